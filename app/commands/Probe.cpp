@@ -1,0 +1,163 @@
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <sstream>
+
+#include "app/commands/Commands.h"
+#include "luminaires/Registry.h"
+#include "renderer/Renderer.h"
+#include "renderer/context/GlContext.h"
+#include "scene/Bvh.h"
+#include "scene/SceneIo.h"
+#include "util/Error.h"
+
+namespace candela {
+
+namespace {
+
+struct ProbePoint {
+    glm::dvec3 p, n;
+};
+
+std::string trim(const std::string& s) {
+    size_t a = s.find_first_not_of(" \t\r\n");
+    size_t b = s.find_last_not_of(" \t\r\n");
+    return a == std::string::npos ? "" : s.substr(a, b - a + 1);
+}
+
+/// Reads "x,y,z,nx,ny,nz" rows after that exact header; errors name the file and line.
+std::vector<ProbePoint> readPoints(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw InputError(path + ": cannot open points file");
+    std::string line;
+    int lineNo = 0;
+    std::vector<ProbePoint> points;
+    bool header = false;
+    while (std::getline(in, line)) {
+        ++lineNo;
+        std::string t = trim(line);
+        if (t.empty()) continue;
+        std::string where = path + ":" + std::to_string(lineNo) + ": ";
+        if (!header) {
+            std::string compact;
+            for (char c : t)
+                if (c != ' ') compact += c;
+            if (compact != "x,y,z,nx,ny,nz")
+                throw InputError(where + "expected the header x,y,z,nx,ny,nz, got \"" + t + "\"");
+            header = true;
+            continue;
+        }
+        std::stringstream ss(t);
+        std::string field;
+        double v[6];
+        int count = 0;
+        while (std::getline(ss, field, ',')) {
+            if (count == 6) throw InputError(where + "expected 6 values, got more");
+            std::string f = trim(field);
+            char* end = nullptr;
+            v[count] = std::strtod(f.c_str(), &end);
+            if (f.empty() || *end != '\0' || !std::isfinite(v[count]))
+                throw InputError(where + "expected a finite number in column " +
+                                 std::to_string(count + 1) + ", got \"" + f + "\"");
+            ++count;
+        }
+        if (count != 6)
+            throw InputError(where + "expected 6 values, got " + std::to_string(count));
+        glm::dvec3 n(v[3], v[4], v[5]);
+        if (glm::length(n) < 1e-12) throw InputError(where + "expected a non-zero normal");
+        points.push_back({{v[0], v[1], v[2]}, glm::normalize(n)});
+    }
+    if (!header) throw InputError(path + ": empty file (expected the header x,y,z,nx,ny,nz)");
+    return points;
+}
+
+double lum(const glm::dvec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+
+}  // namespace
+
+int cmdProbe(const Args& args) {
+    std::string scenePath, pointsPath, technique, device = "cpu";
+    EstimateOptions options;
+    options.spp = 4096;
+    bool withVisibility = false;
+    for (size_t i = 0; i < args.size(); ++i) {
+        const std::string& a = args[i];
+        if (a == "--points") pointsPath = flagValue(args, i);
+        else if (a == "--technique") technique = flagValue(args, i);
+        else if (a == "--spp") options.spp = parseInt(a, flagValue(args, i), 1, 1 << 26);
+        else if (a == "--seed") options.seed = uint64_t(parseInt(a, flagValue(args, i), 0, 1 << 30));
+        else if (a == "--visibility") withVisibility = true;
+        else if (a == "--device") device = flagValue(args, i);
+        else if (!a.empty() && a[0] == '-') throw InputError("probe: unknown option " + a);
+        else if (scenePath.empty()) scenePath = a;
+        else throw InputError("probe: unexpected argument " + a);
+    }
+    if (scenePath.empty() || pointsPath.empty())
+        throw InputError("usage: candela probe scene.json --points pts.csv [--technique T] "
+                         "[--spp N] [--visibility] [--device cpu|gpu] [--seed S]");
+    if (device != "cpu" && device != "gpu")
+        throw InputError("--device: expected cpu or gpu, got \"" + device + "\"");
+    if (device == "gpu" && withVisibility)
+        throw InputError("--device gpu: --visibility is not available on the GPU probe yet; "
+                         "use the CPU probe (the default)");
+
+    Scene scene = loadScene(scenePath);
+    std::vector<ProbePoint> points = readPoints(pointsPath);
+    // Resolve each luminaire's technique up front, so a bad name fails before any work.
+    std::vector<const TechniqueInfo*> chosen;
+    for (const auto& l : scene.luminaires) {
+        std::string name = technique.empty() ? l->technique : technique;
+        const TechniqueInfo* t = findTechnique(l->kind(), name);
+        if (!t)
+            throw InputError("--technique: \"" + name + "\" is not a technique of " +
+                             std::string(l->kind()) + " (available: " + techniqueNames(l->kind()) +
+                             ")");
+        chosen.push_back(t);
+    }
+
+    std::vector<glm::dvec3> E(points.size(), glm::dvec3(0.0)), var(points.size(), glm::dvec3(0.0));
+    if (device == "cpu") {
+        std::unique_ptr<Bvh> bvh;
+        std::unique_ptr<BvhVisibility> vis;
+        if (withVisibility) {
+            bvh = std::make_unique<Bvh>(Bvh::build(scene));
+            vis = std::make_unique<BvhVisibility>(*bvh);
+            options.visibility = vis.get();
+        }
+        for (size_t i = 0; i < points.size(); ++i) {
+            for (size_t k = 0; k < scene.luminaires.size(); ++k) {
+                EstimateOptions o = options;
+                o.seed = options.seed * 1000003ull + i * 7919ull + k;
+                Estimate e = chosen[k]->irradiance(*scene.luminaires[k], points[i].p, points[i].n, o);
+                E[i] += e.irradiance;
+                var[i] += e.stdError * e.stdError;
+            }
+        }
+    } else {
+        auto context = createOffscreenContext();
+        ShaderLibrary shaders;
+        Renderer renderer(shaders);
+        RenderSettings s;
+        s.techniqueOverride = technique;
+        renderer.setSettings(s);
+        std::vector<glm::vec3> p, n;
+        for (const auto& q : points) {
+            p.push_back(glm::vec3(q.p));
+            n.push_back(glm::vec3(q.n));
+        }
+        std::vector<glm::vec3> r = renderer.probe(scene, p, n, options.spp);
+        for (size_t i = 0; i < points.size(); ++i) E[i] = glm::dvec3(r[i]);
+    }
+
+    std::printf("x,y,z,nx,ny,nz,E,E_r,E_g,E_b,E_stderr\n");
+    for (size_t i = 0; i < points.size(); ++i) {
+        const ProbePoint& q = points[i];
+        glm::dvec3 se = glm::sqrt(var[i]);
+        std::printf("%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.10g,%.10g,%.10g,%.10g,%.4g\n", q.p.x, q.p.y,
+                    q.p.z, q.n.x, q.n.y, q.n.z, lum(E[i]), E[i].x, E[i].y, E[i].z, lum(se));
+    }
+    return 0;
+}
+
+}  // namespace candela

@@ -1,0 +1,114 @@
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "app/commands/Commands.h"
+#include "renderer/ImageFile.h"
+#include "renderer/Renderer.h"
+#include "renderer/context/GlContext.h"
+#include "scene/SceneIo.h"
+#include "util/Error.h"
+
+namespace candela {
+
+void parseSize(const std::string& text, int& width, int& height) {
+    int w = 0, h = 0;
+    char x = 0, extra = 0;
+    if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w < 1 ||
+        h < 1 || w > 16384 || h > 16384)
+        throw InputError("--size: expected WIDTHxHEIGHT with each in 1..16384, got \"" + text + "\"");
+    width = w;
+    height = h;
+}
+
+const std::string& flagValue(const Args& args, size_t& i) {
+    if (i + 1 >= args.size()) throw InputError(args[i] + ": expected a value after it");
+    return args[++i];
+}
+
+int parseInt(const std::string& flag, const std::string& text, int min, int max) {
+    try {
+        size_t used = 0;
+        long v = std::stol(text, &used);
+        if (used == text.size() && v >= min && v <= max) return int(v);
+    } catch (const std::exception&) {
+    }
+    throw InputError(flag + ": expected an integer in " + std::to_string(min) + ".." +
+                     std::to_string(max) + ", got \"" + text + "\"");
+}
+
+int cmdRender(const Args& args) {
+    std::string scenePath, out, statsPath;
+    RenderSettings settings;
+    int spp = 64;
+    bool printStats = false;
+    for (size_t i = 0; i < args.size(); ++i) {
+        const std::string& a = args[i];
+        if (a == "--out") out = flagValue(args, i);
+        else if (a == "--technique") settings.techniqueOverride = flagValue(args, i);
+        else if (a == "--spp") spp = parseInt(a, flagValue(args, i), 1, 1 << 24);
+        else if (a == "--size") parseSize(flagValue(args, i), settings.width, settings.height);
+        else if (a == "--stats") printStats = true;
+        else if (a == "--exposure") settings.exposure = float(std::stod(flagValue(args, i)));
+        else if (a == "--tonemap") {
+            std::string op = flagValue(args, i);
+            if (op == "exponential") settings.toneMap = ToneMapOperator::Exponential;
+            else if (op == "reinhard") settings.toneMap = ToneMapOperator::Reinhard;
+            else throw InputError("--tonemap: expected exponential or reinhard, got \"" + op + "\"");
+        } else if (!a.empty() && a[0] == '-') throw InputError("render: unknown option " + a);
+        else if (scenePath.empty()) scenePath = a;
+        else throw InputError("render: unexpected argument " + a);
+    }
+    if (scenePath.empty() || out.empty())
+        throw InputError("usage: candela render scene.json --out img.png|img.exr [--technique T] "
+                         "[--spp N] [--size WxH] [--stats]");
+    std::string ext = std::filesystem::path(out).extension().string();
+    if (ext != ".png" && ext != ".exr")
+        throw InputError(out + ": unsupported output extension \"" + ext + "\" (use .png or .exr)");
+
+    Scene scene = loadScene(scenePath);
+    auto context = createOffscreenContext();
+    ShaderLibrary shaders;
+    Renderer renderer(shaders);
+    settings.samplesPerFrame = std::min(spp, 16);
+    settings.maxSamples = spp;
+    renderer.setSettings(settings);
+    renderer.update(scene, kChangeAll);
+
+    auto start = std::chrono::steady_clock::now();
+    std::vector<PassTiming> totals;
+    int frames = 0;
+    do {
+        renderer.renderFrame();
+        ++frames;
+        for (const auto& p : renderer.stats().passes) {
+            auto it = std::find_if(totals.begin(), totals.end(),
+                                   [&](const PassTiming& t) { return t.name == p.name; });
+            if (it == totals.end()) totals.push_back(p);
+            else it->gpuMs += p.gpuMs;
+        }
+        if (renderer.plan().progressive() && frames % 8 == 0)
+            std::fprintf(stderr, "\rrender: %d / %d samples per pixel", renderer.stats().samplesPerPixel, spp);
+    } while (!renderer.converged());
+    if (renderer.plan().progressive()) std::fprintf(stderr, "\n");
+    double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+    if (ext == ".png")
+        writeImage8(out, settings.width, settings.height, renderer.readDisplay());
+    else
+        writeImageFloat(out, settings.width, settings.height, renderer.readLinear());
+    std::printf("wrote %s (%dx%d, %d frames, %.3f s)\n", out.c_str(), settings.width,
+                settings.height, frames, seconds);
+    if (printStats) {
+        std::printf("context: %s\n", context->description().c_str());
+        std::printf("pass,gpu_ms_total\n");
+        for (const auto& p : totals) std::printf("%s,%.3f\n", p.name.c_str(), p.gpuMs);
+        std::printf("variants:");
+        for (const auto& v : shaders.compiledVariants()) std::printf(" %s", v.c_str());
+        std::printf("\n");
+    }
+    return 0;
+}
+
+}  // namespace candela

@@ -1,0 +1,41 @@
+// candela: the interactive lighting editor and its headless tools.
+#include <cstdio>
+#include <cstring>
+#include <exception>
+
+#include "app/commands/Commands.h"
+
+namespace {
+
+const char* kUsage =
+    "usage: candela <command> [options]\n"
+    "  edit [scene.json]                 open the editor (no display: render the scene's\n"
+    "                                    screenshots offscreen into ./candela-screenshots/)\n"
+    "  render scene.json --out F.png|F.exr [--technique T] [--spp N] [--size WxH] [--stats]\n"
+    "                                    [--tonemap exponential|reinhard] [--exposure K]\n"
+    "  probe scene.json --points pts.csv [--technique T] [--spp N] [--visibility]\n"
+    "                                    [--device cpu|gpu] [--seed S]\n"
+    "                                    CSV x,y,z,nx,ny,nz,E,... with E the irradiance (W/m2)\n"
+    "  info FILE                         describe a scene (.json) or a glTF file\n";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) {
+        std::fputs(kUsage, argc < 2 ? stderr : stdout);
+        return argc < 2 ? 2 : 0;
+    }
+    std::string command = argv[1];
+    candela::Args args(argv + 2, argv + argc);
+    try {
+        if (command == "render") return candela::cmdRender(args);
+        if (command == "probe") return candela::cmdProbe(args);
+        if (command == "info") return candela::cmdInfo(args);
+        if (command == "edit") return candela::cmdEdit(args);
+        std::fprintf(stderr, "candela: unknown command \"%s\"\n%s", command.c_str(), kUsage);
+        return 2;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "candela %s: error: %s\n", command.c_str(), e.what());
+        return 1;
+    }
+}

@@ -1,0 +1,70 @@
+#pragma once
+// The interface every luminaire kind implements (pbrt's "specified object" idea): emitted
+// radiance, power in closed form, a light sampler with its pdf, and the data its GPU passes read.
+// No GL here: renderer/ uploads what gpuData() packs.
+
+#include <glm/glm.hpp>
+#include <nlohmann/json.hpp>
+
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace candela {
+
+/// Placement of a luminaire: local +z is `aim`, local +x is `c0` made orthogonal to aim,
+/// local +y is aim x c0. Position in metres, world Y-up.
+struct Pose {
+    glm::dvec3 position{0.0, 2.0, 0.0};
+    glm::dvec3 aim{0.0, -1.0, 0.0};  ///< Main emission axis; need not be normalised.
+    glm::dvec3 c0{1.0, 0.0, 0.0};    ///< Reference horizontal axis; need not be orthogonal to aim.
+
+    /// Orthonormal frame (x = c0', y = aim x c0', z = aim'). Falls back to a stable perpendicular
+    /// when c0 is parallel to aim, so it never produces NaN.
+    void frame(glm::dvec3& x, glm::dvec3& y, glm::dvec3& z) const;
+};
+
+/// One light sample as seen from a receiver point p.
+struct LightSample {
+    glm::dvec3 position{0.0};  ///< Point on the emitter, metres.
+    glm::dvec3 wi{0.0};        ///< Unit direction from p to the point.
+    double distance = 0.0;     ///< From p to the point, metres.
+    glm::dvec3 radiance{0.0};  ///< Radiance leaving the emitter towards p, W/(m2 sr) (RGB).
+    double pdf = 0.0;          ///< Solid-angle density at p, 1/sr; 0 means "no sample".
+};
+
+class Luminaire {
+public:
+    virtual ~Luminaire() = default;
+
+    /// Kind name as in scene files ("lambertian-rect").
+    virtual std::string_view kind() const = 0;
+    virtual std::unique_ptr<Luminaire> clone() const = 0;
+
+    /// Radiance leaving emitter point x in unit direction w (away from the luminaire),
+    /// W/(m2 sr), RGB. Zero off the emitter and on its back side.
+    virtual glm::dvec3 radiance(const glm::dvec3& x, const glm::dvec3& w) const = 0;
+    /// Total emitted power in closed form (or exact quadrature), W per channel.
+    virtual glm::dvec3 power() const = 0;
+    /// Samples a point on the emitter as seen from receiver p; u in [0,1)^2.
+    virtual LightSample sample(const glm::dvec3& p, const glm::dvec2& u) const = 0;
+    /// Solid-angle pdf of sample() at p for the unit direction wi.
+    virtual double pdf(const glm::dvec3& p, const glm::dvec3& wi) const = 0;
+
+    /// World-space outline of the emitting surface (for drawing, picking and occlusion analysis).
+    virtual std::vector<glm::dvec3> outline() const = 0;
+    /// Kind-specific fields written into the scene file entry (pose, name, technique are common).
+    virtual void writeJson(nlohmann::json& out) const = 0;
+    /// Packed std430 record for this kind's GPU passes (layout in shaders/shared/).
+    virtual std::vector<std::byte> gpuData() const = 0;
+    /// One line for `candela info` and the editor.
+    virtual std::string describe() const = 0;
+
+    Pose pose;
+    std::string name;
+    std::string technique;  ///< A technique registered for kind() (luminaires/Registry.h).
+};
+
+}  // namespace candela

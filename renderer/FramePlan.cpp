@@ -1,0 +1,65 @@
+#include "renderer/FramePlan.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "scene/Occlusion.h"
+#include "util/Error.h"
+
+namespace candela {
+
+glm::mat4 cameraViewProj(const Camera& c, double aspect) {
+    glm::dvec3 forward = c.target - c.position;
+    glm::dvec3 up(0.0, 1.0, 0.0);
+    if (glm::length(glm::cross(forward, up)) < 1e-9 * glm::length(forward)) up = {0.0, 0.0, -1.0};
+    glm::dmat4 view = glm::lookAt(c.position, c.target, up);
+    glm::dmat4 proj = glm::perspective(glm::radians(c.fovDeg), aspect, 0.01, 1000.0);
+    return glm::mat4(proj * view);
+}
+
+bool FramePlan::progressive() const {
+    for (const auto& s : shading)
+        if (s.progressive) return true;
+    return false;
+}
+
+std::vector<std::string> FramePlan::passNames() const {
+    std::vector<std::string> names = {"gbuffer"};
+    for (const auto& s : shading) names.push_back(s.name);
+    names.push_back("resolve");
+    names.push_back("tonemap");
+    return names;
+}
+
+FramePlan planFrame(const Scene& scene, const glm::mat4& viewProj,
+                    const std::string& techniqueOverride) {
+    FramePlan plan;
+    plan.glossy = scene.hasGlossy();
+    std::vector<bool> shadows = luminairesNeedingShadows(scene, viewProj);
+    for (size_t i = 0; i < scene.luminaires.size(); ++i) {
+        const Luminaire& lum = *scene.luminaires[i];
+        std::string name = lum.technique;
+        if (!techniqueOverride.empty() && findTechnique(lum.kind(), techniqueOverride))
+            name = techniqueOverride;
+        const TechniqueInfo* t = findTechnique(lum.kind(), name);
+        if (!t)
+            throw InputError("luminaire \"" + lum.name + "\": unknown technique \"" + name +
+                             "\" for " + std::string(lum.kind()) + " (available: " +
+                             techniqueNames(lum.kind()) + ")");
+        ShadeStep step;
+        step.luminaire = int(i);
+        step.technique = t;
+        step.shadows = shadows[i];
+        step.program.vertex = "fullscreen.vert";
+        step.program.fragment = std::string(t->shader);
+        step.program.defines.push_back(std::string(t->define));
+        if (step.shadows) step.program.defines.push_back("SHADOWS");
+        if (plan.glossy) step.program.defines.push_back("GLOSSY");
+        step.progressive = t->progressive || step.shadows || plan.glossy;
+        step.name = "shade:" + lum.name + ":" + name;
+        plan.needsBvh = plan.needsBvh || step.shadows;
+        plan.shading.push_back(std::move(step));
+    }
+    return plan;
+}
+
+}  // namespace candela

@@ -1,0 +1,44 @@
+#pragma once
+// Which passes and shader variants a scene needs. Derived from the scene alone (no GL), so tests
+// can assert it: a luminaire kind that is absent compiles nothing, shadow tracing runs only for
+// luminaires that an occluder can block from what the camera sees, the glossy variant only when
+// a glossy material exists.
+
+#include <glm/glm.hpp>
+
+#include <string>
+#include <vector>
+
+#include "luminaires/Registry.h"
+#include "renderer/ShaderLibrary.h"
+#include "scene/Scene.h"
+
+namespace candela {
+
+struct ShadeStep {
+    int luminaire = -1;                     ///< Index into Scene::luminaires.
+    const TechniqueInfo* technique = nullptr;
+    ProgramKey program;                     ///< Shader file and variant defines.
+    bool shadows = false;                   ///< Traces shadow rays.
+    bool progressive = false;               ///< Needs more than one frame to converge.
+    std::string name;                       ///< "shade:Panel:analytic"
+};
+
+struct FramePlan {
+    std::vector<ShadeStep> shading;
+    bool needsBvh = false;  ///< Some step traces shadows: build and upload the BVH.
+    bool glossy = false;
+    bool progressive() const;
+    /// Pass names in execution order for a frame that starts a new accumulation.
+    std::vector<std::string> passNames() const;
+};
+
+/// World to clip transform of the camera for an image of the given aspect (width / height).
+glm::mat4 cameraViewProj(const Camera& camera, double aspect);
+
+/// techniqueOverride: if non-empty, used for every luminaire of a kind that has it.
+/// Throws InputError if a luminaire names a technique its kind does not have.
+FramePlan planFrame(const Scene& scene, const glm::mat4& viewProj,
+                    const std::string& techniqueOverride = {});
+
+}  // namespace candela

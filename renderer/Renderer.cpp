@@ -1,0 +1,268 @@
+#include "renderer/Renderer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "renderer/passes/GBufferPass.h"
+#include "renderer/passes/ResolvePass.h"
+#include "renderer/passes/ShadePass.h"
+#include "renderer/passes/TonemapPass.h"
+#include "scene/Bvh.h"
+#include "shaders/shared/GpuTypes.h"
+
+namespace candela {
+
+namespace {
+
+/// Times a pass with a GPU timer query and records it in the frame statistics.
+template <class Fn>
+void timed(FrameStats& stats, const std::string& name, Fn&& fn) {
+    gl::TimerQuery query;
+    query.begin();
+    fn();
+    query.end();
+    stats.passes.push_back({name, query.milliseconds()});
+}
+
+}  // namespace
+
+Renderer::Renderer(ShaderLibrary& shaders)
+    : mShaders(shaders),
+      mGBuffer(std::make_unique<GBufferPass>()),
+      mShade(std::make_unique<ShadePass>()),
+      mResolve(std::make_unique<ResolvePass>()),
+      mTonemap(std::make_unique<TonemapPass>()),
+      mFrameUniforms(sizeof(gpu::FrameUniforms), nullptr) {}
+
+Renderer::~Renderer() = default;
+
+void Renderer::update(const Scene& scene, unsigned changes) {
+    mScene = &scene;
+    mPending |= changes;
+}
+
+void Renderer::setSettings(const RenderSettings& s) {
+    const RenderSettings& o = mSettings;
+    bool restart = s.width != o.width || s.height != o.height ||
+                   s.samplesPerFrame != o.samplesPerFrame || s.maxSamples != o.maxSamples ||
+                   s.techniqueOverride != o.techniqueOverride;
+    bool display = s.toneMap != o.toneMap || s.exposure != o.exposure ||
+                   s.fixedAverage != o.fixedAverage;
+    mSettings = s;
+    mSettings.samplesPerFrame = std::max(1, s.samplesPerFrame);
+    if (restart) mPending |= kChangeSettings;
+    if (display) mNeedDisplay = true;
+}
+
+glm::mat4 Renderer::viewProj() const {
+    return cameraViewProj(mScene ? mScene->camera : Camera{},
+                          double(mSettings.width) / double(std::max(1, mSettings.height)));
+}
+
+void Renderer::resize(int width, int height) {
+    mGBuffer->resize(width, height);
+    mResolve->resize(width, height);
+    mTonemap->resize(width, height);
+    mAccum = gl::Texture2D(width, height, GL_RGBA32F);
+    mAccumFbo = gl::Framebuffer({&mAccum}, nullptr);
+}
+
+void Renderer::uploadLuminaires() {
+    mLuminaireBuffers.clear();
+    for (const auto& lum : mScene->luminaires) {
+        std::vector<std::byte> data = lum->gpuData();
+        mLuminaireBuffers.emplace_back(GLsizeiptr(data.size()), data.data());
+    }
+}
+
+void Renderer::rebuildPlan() {
+    mPlan = planFrame(*mScene, viewProj(), mSettings.techniqueOverride);
+    if (mPlan.needsBvh && !mBvh) {
+        mBvh = std::make_unique<Bvh>(Bvh::build(*mScene));
+        auto bytes = [](const auto& v) { return GLsizeiptr(v.size() * sizeof(v[0])); };
+        mBvhNodes = gl::Buffer(bytes(mBvh->nodes), mBvh->nodes.data(), 0);
+        mBvhTris = gl::Buffer(bytes(mBvh->triangles), mBvh->triangles.data(), 0);
+    }
+}
+
+void Renderer::runShading(int spp) {
+    gpu::FrameUniforms u{};
+    u.viewProj = viewProj();
+    u.invViewProj = glm::inverse(u.viewProj);
+    u.cameraPos = glm::vec4(glm::vec3(mScene->camera.position), 1.f);
+    u.frameInfo = glm::ivec4(mFrames, spp, 0, mPlan.needsBvh ? 1 : 0);
+    u.viewport = glm::vec4(float(mGBuffer->width()), float(mGBuffer->height()),
+                           1.f / float(mGBuffer->width()), 1.f / float(mGBuffer->height()));
+    mFrameUniforms.update(0, sizeof(u), &u);
+    mFrameUniforms.bindBase(GL_UNIFORM_BUFFER, gpu::kBindingFrame);
+    if (mBvh) {
+        mBvhNodes.bindBase(GL_SHADER_STORAGE_BUFFER, gpu::kBindingBvhNodes);
+        mBvhTris.bindBase(GL_SHADER_STORAGE_BUFFER, gpu::kBindingBvhTris);
+    }
+    glBindVertexArray(mEmptyVao.id());
+    for (const ShadeStep& step : mPlan.shading) {
+        timed(mStats, step.name, [&] {
+            mShade->execute(mShaders, step, mLuminaireBuffers[size_t(step.luminaire)], *mGBuffer,
+                            mAccumFbo, mGBuffer->width(), mGBuffer->height());
+        });
+    }
+}
+
+void Renderer::renderFrame() {
+    mStats.passes.clear();
+    if (!mScene) return;
+    bool newAccumulation = false;
+    if (mPending || mPointMode) {
+        if (mPointMode || mGBuffer->width() != mSettings.width ||
+            mGBuffer->height() != mSettings.height) {
+            resize(mSettings.width, mSettings.height);
+            mPending = kChangeAll;
+            mPointMode = false;
+        }
+        if (mPending & kChangeGeometry) {
+            mGBuffer->setGeometry(*mScene);
+            mBvh.reset();
+        }
+        if (mPending & (kChangeGeometry | kChangeLuminaires)) {
+            mGBuffer->setLuminaires(*mScene);
+            uploadLuminaires();
+        }
+        rebuildPlan();
+        mPending = kChangeNone;
+        newAccumulation = true;
+    }
+
+    gpu::FrameUniforms u{};
+    if (newAccumulation) {
+        mFrames = 0;
+        const float zero[4] = {0.f, 0.f, 0.f, 0.f};
+        glClearNamedFramebufferfv(mAccumFbo.id(), GL_COLOR, 0, zero);
+        u.viewProj = viewProj();
+        u.cameraPos = glm::vec4(glm::vec3(mScene->camera.position), 1.f);
+        mFrameUniforms.update(0, sizeof(u), &u);
+        mFrameUniforms.bindBase(GL_UNIFORM_BUFFER, gpu::kBindingFrame);
+        timed(mStats, "gbuffer", [&] { mGBuffer->execute(mShaders); });
+        mStats.converged = false;
+    }
+
+    int spp = mSettings.samplesPerFrame;
+    if (!mStats.converged) {
+        runShading(spp);
+        ++mFrames;
+        mNeedDisplay = true;
+        bool done = mPlan.progressive()
+                        ? mSettings.maxSamples > 0 && mFrames * spp >= mSettings.maxSamples
+                        : true;
+        mStats.converged = done;
+    }
+    if (mNeedDisplay) {
+        glBindVertexArray(mEmptyVao.id());
+        timed(mStats, "resolve",
+              [&] { mResolve->execute(mShaders, mAccum, mGBuffer->texture(gpu::kGBufferEmission), mFrames); });
+        timed(mStats, "tonemap", [&] {
+            mTonemap->execute(mShaders, mResolve->linear(), mResolve->luminance(), mSettings);
+        });
+        mNeedDisplay = false;
+    }
+    mStats.accumulatedFrames = mFrames;
+    mStats.samplesPerPixel = mPlan.progressive() ? mFrames * spp : 0;
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+const gl::Texture2D& Renderer::displayTexture() const { return mTonemap->display(); }
+
+std::vector<float> Renderer::readLinear() const {
+    const gl::Texture2D& t = mResolve->linear();
+    int w = t.width(), h = t.height();
+    std::vector<float> rgba(size_t(w) * size_t(h) * 4);
+    glGetTextureImage(t.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(rgba.size() * sizeof(float)), rgba.data());
+    std::vector<float> rgb(size_t(w) * size_t(h) * 3);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int c = 0; c < 3; ++c)
+                rgb[(size_t(y) * size_t(w) + size_t(x)) * 3 + size_t(c)] =
+                    rgba[(size_t(h - 1 - y) * size_t(w) + size_t(x)) * 4 + size_t(c)];
+    return rgb;
+}
+
+std::vector<unsigned char> Renderer::readDisplay() const {
+    const gl::Texture2D& t = mTonemap->display();
+    int w = t.width(), h = t.height();
+    std::vector<unsigned char> rgba(size_t(w) * size_t(h) * 4);
+    glGetTextureImage(t.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(rgba.size()), rgba.data());
+    std::vector<unsigned char> rgb(size_t(w) * size_t(h) * 3);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int c = 0; c < 3; ++c)
+                rgb[(size_t(y) * size_t(w) + size_t(x)) * 3 + size_t(c)] =
+                    rgba[(size_t(h - 1 - y) * size_t(w) + size_t(x)) * 4 + size_t(c)];
+    return rgb;
+}
+
+std::vector<glm::vec3> Renderer::probe(const Scene& scene, const std::vector<glm::vec3>& points,
+                                       const std::vector<glm::vec3>& normals, int spp) {
+    mScene = &scene;
+    int n = std::max<int>(1, int(points.size()));
+    resize(n, 1);
+    mPointMode = true;
+    mGBuffer->uploadPoints(points, normals);
+    uploadLuminaires();
+    mPlan = planFrame(scene, viewProj(), mSettings.techniqueOverride);
+    // Probes measure unshadowed irradiance on a Lambertian receiver: no shadow or glossy variant.
+    for (ShadeStep& s : mPlan.shading) {
+        std::erase_if(s.program.defines, [](const std::string& d) {
+            return d == "SHADOWS" || d == "GLOSSY";
+        });
+        s.shadows = false;
+        s.progressive = s.technique->progressive;
+    }
+    mPlan.needsBvh = false;
+    const float zero[4] = {0.f, 0.f, 0.f, 0.f};
+    glClearNamedFramebufferfv(mAccumFbo.id(), GL_COLOR, 0, zero);
+    int perFrame = std::max(1, std::min(spp, 256));
+    int frames = mPlan.progressive() ? std::max(1, (spp + perFrame - 1) / perFrame) : 1;
+    for (mFrames = 0; mFrames < frames; ++mFrames) runShading(perFrame);
+    std::vector<glm::vec4> accum(size_t(n));
+    glGetTextureImage(mAccum.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(accum.size() * sizeof(glm::vec4)),
+                      accum.data());
+    std::vector<glm::vec3> out(points.size());
+    for (size_t i = 0; i < points.size(); ++i) out[i] = glm::vec3(accum[i]) / float(frames);
+    mPending = kChangeAll;
+    return out;
+}
+
+int Renderer::pickLuminaire(const Scene& scene, double x, double y) const {
+    glm::dmat4 inv = glm::inverse(glm::dmat4(viewProj()));
+    double ndcX = 2.0 * x / mSettings.width - 1.0;
+    double ndcY = 1.0 - 2.0 * y / mSettings.height;
+    glm::dvec4 a = inv * glm::dvec4(ndcX, ndcY, -1.0, 1.0);
+    glm::dvec4 b = inv * glm::dvec4(ndcX, ndcY, 1.0, 1.0);
+    glm::dvec3 origin = glm::dvec3(a) / a.w;
+    glm::dvec3 dir = glm::normalize(glm::dvec3(b) / b.w - origin);
+    int best = -1;
+    double bestT = 1e300;
+    for (size_t i = 0; i < scene.luminaires.size(); ++i) {
+        std::vector<glm::dvec3> poly = scene.luminaires[i]->outline();
+        for (size_t k = 1; k + 1 < poly.size(); ++k) {
+            // Moller-Trumbore against the fan triangle (poly[0], poly[k], poly[k+1]).
+            glm::dvec3 e1 = poly[k] - poly[0], e2 = poly[k + 1] - poly[0];
+            glm::dvec3 pv = glm::cross(dir, e2);
+            double det = glm::dot(e1, pv);
+            if (std::abs(det) < 1e-18) continue;
+            glm::dvec3 tv = origin - poly[0];
+            double u = glm::dot(tv, pv) / det;
+            glm::dvec3 qv = glm::cross(tv, e1);
+            double v = glm::dot(dir, qv) / det;
+            double t = glm::dot(e2, qv) / det;
+            if (u >= 0 && v >= 0 && u + v <= 1 && t > 0 && t < bestT) {
+                bestT = t;
+                best = int(i);
+            }
+        }
+    }
+    return best;
+}
+
+}  // namespace candela

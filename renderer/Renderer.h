@@ -1,0 +1,110 @@
+#pragma once
+// The progressive renderer: G-buffer, one shading pass per luminaire (its technique's shader
+// variant), accumulation in float buffers, resolve to linear HDR, tone mapping. Works in any
+// current GL 4.5 context. Nothing runs that the scene does not need, and a converged image with
+// no change costs no pass at all.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "renderer/FramePlan.h"
+#include "renderer/FrameStats.h"
+#include "renderer/ShaderLibrary.h"
+#include "renderer/gl/GlObjects.h"
+#include "scene/Scene.h"
+
+namespace candela {
+
+class GBufferPass;
+class ShadePass;
+class ResolvePass;
+class TonemapPass;
+struct Bvh;
+
+enum class ToneMapOperator { Exponential = 0, Reinhard = 1 };
+
+struct RenderSettings {
+    int width = 512;
+    int height = 512;
+    int samplesPerFrame = 4;        ///< Light samples per pixel per luminaire each frame.
+    int maxSamples = 0;             ///< Stop refining at this many samples per pixel; 0 = never.
+    std::string techniqueOverride;  ///< Empty: each luminaire's own technique.
+    ToneMapOperator toneMap = ToneMapOperator::Exponential;
+    float exposure = 1.0f;          ///< k of the operators in shaders/tonemap.frag.
+    float fixedAverage = 0.0f;      ///< > 0: tone-map against this luminance, not the frame mean.
+};
+
+/// What changed since the last frame (the editor sets these; all of them restart accumulation).
+enum ChangeFlags : unsigned {
+    kChangeNone = 0,
+    kChangeCamera = 1,
+    kChangeLuminaires = 2,
+    kChangeGeometry = 4,
+    kChangeSettings = 8,
+    kChangeAll = 15,
+};
+
+class Renderer {
+public:
+    explicit Renderer(ShaderLibrary& shaders);
+    ~Renderer();
+
+    /// Takes the scene (by reference: it must outlive the next renderFrame) and what changed.
+    void update(const Scene& scene, unsigned changes);
+    void setSettings(const RenderSettings& settings);
+    const RenderSettings& settings() const { return mSettings; }
+
+    /// One progressive iteration; does nothing once converged.
+    void renderFrame();
+    bool converged() const { return mStats.converged; }
+    const FrameStats& stats() const { return mStats; }
+    const FramePlan& plan() const { return mPlan; }
+
+    /// Tone-mapped sRGB image (RGBA8, row 0 at the bottom) for display.
+    const gl::Texture2D& displayTexture() const;
+    /// Linear HDR radiance, RGB float, rows top to bottom, W/(m2 sr).
+    std::vector<float> readLinear() const;
+    /// Tone-mapped 8-bit RGB, rows top to bottom.
+    std::vector<unsigned char> readDisplay() const;
+
+    /// Irradiance at points for normals through the production shading passes (albedo pi, so
+    /// the radiance they write is E). Returns RGB per point, W/m2.
+    std::vector<glm::vec3> probe(const Scene& scene, const std::vector<glm::vec3>& points,
+                                 const std::vector<glm::vec3>& normals, int spp);
+
+    glm::mat4 viewProj() const;
+    /// Pick: index of the luminaire under the pixel (x right, y down), or -1.
+    int pickLuminaire(const Scene& scene, double x, double y) const;
+
+private:
+    void resize(int width, int height);
+    void rebuildPlan();
+    void uploadGeometry();
+    void uploadLuminaires();
+    void runShading(int spp);
+
+    ShaderLibrary& mShaders;
+    const Scene* mScene = nullptr;
+    RenderSettings mSettings;
+    FramePlan mPlan;
+    FrameStats mStats;
+    unsigned mPending = kChangeAll;
+    int mFrames = 0;
+    bool mNeedDisplay = false;
+    bool mPointMode = false;  ///< The G-buffer holds probe points, not a camera view.
+
+    std::unique_ptr<GBufferPass> mGBuffer;
+    std::unique_ptr<ShadePass> mShade;
+    std::unique_ptr<ResolvePass> mResolve;
+    std::unique_ptr<TonemapPass> mTonemap;
+    std::unique_ptr<Bvh> mBvh;
+    gl::Buffer mFrameUniforms;
+    gl::Buffer mBvhNodes, mBvhTris;
+    std::vector<gl::Buffer> mLuminaireBuffers;  ///< One record buffer per luminaire.
+    gl::Texture2D mAccum;
+    gl::Framebuffer mAccumFbo;
+    gl::VertexArray mEmptyVao;
+};
+
+}  // namespace candela

@@ -1,0 +1,39 @@
+#pragma once
+// A current OpenGL 4.5 core context with its functions loaded. The renderer draws into its own
+// framebuffers and cannot tell a window context from an offscreen one.
+
+#include <memory>
+#include <string>
+
+struct GLFWwindow;
+
+namespace candela {
+
+class GlContext {
+public:
+    virtual ~GlContext() = default;
+    virtual void makeCurrent() = 0;
+    /// "GL_RENDERER / GL_VERSION" of the context, for logs and bench results.
+    std::string description() const;
+};
+
+/// Offscreen context for tests, headless renders and benchmarks. Today OSMesa (llvmpipe); an
+/// EGL-surfaceless implementation can replace it behind this function (Mesa 25.1 drops OSMesa).
+std::unique_ptr<GlContext> createOffscreenContext();
+
+/// A GLFW window with a GL 4.5 core context, for the editor.
+class WindowContext : public GlContext {
+public:
+    WindowContext(int width, int height, const std::string& title);
+    ~WindowContext() override;
+    void makeCurrent() override;
+    GLFWwindow* window() const { return mWindow; }
+
+private:
+    GLFWwindow* mWindow = nullptr;
+};
+
+/// True when a display is available for a window (X11 or Wayland).
+bool displayAvailable();
+
+}  // namespace candela

@@ -1,0 +1,74 @@
+#include "renderer/gl/GlObjects.h"
+
+#include <string>
+
+#include "util/Error.h"
+
+namespace candela::gl {
+
+static GLuint createName(void (*create)(GLsizei, GLuint*)) {
+    GLuint id = 0;
+    create(1, &id);
+    return id;
+}
+
+Buffer::Buffer(GLsizeiptr size, const void* data, GLbitfield flags) : mSize(size) {
+    GLuint id = 0;
+    glCreateBuffers(1, &id);
+    mHandle = Handle<detail::deleteBuffer>(id);
+    glNamedBufferStorage(id, size > 0 ? size : 16, size > 0 ? data : nullptr, flags);
+}
+
+void Buffer::update(GLintptr offset, GLsizeiptr size, const void* data) {
+    glNamedBufferSubData(id(), offset, size, data);
+}
+
+Texture2D::Texture2D(int width, int height, GLenum internalFormat, int levels)
+    : mWidth(width), mHeight(height), mFormat(internalFormat) {
+    GLuint id = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &id);
+    mHandle = Handle<detail::deleteTexture>(id);
+    glTextureStorage2D(id, levels, internalFormat, width, height);
+    glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, levels > 1 ? GL_LINEAR_MIPMAP_NEAREST : GL_NEAREST);
+    glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+}
+
+Framebuffer::Framebuffer(std::initializer_list<const Texture2D*> colour, const Texture2D* depth) {
+    GLuint id = 0;
+    glCreateFramebuffers(1, &id);
+    mHandle = Handle<detail::deleteFramebuffer>(id);
+    GLenum buffers[8];
+    GLsizei n = 0;
+    for (const Texture2D* t : colour) {
+        glNamedFramebufferTexture(id, GL_COLOR_ATTACHMENT0 + n, t->id(), 0);
+        buffers[n] = GL_COLOR_ATTACHMENT0 + n;
+        ++n;
+    }
+    glNamedFramebufferDrawBuffers(id, n, buffers);
+    if (depth) glNamedFramebufferTexture(id, GL_DEPTH_ATTACHMENT, depth->id(), 0);
+    GLenum status = glCheckNamedFramebufferStatus(id, GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE)
+        throw RuntimeError("framebuffer incomplete (status 0x" + std::to_string(status) + ")");
+}
+
+VertexArray::VertexArray() {
+    mHandle = Handle<detail::deleteVertexArray>(createName([](GLsizei n, GLuint* ids) {
+        glCreateVertexArrays(n, ids);
+    }));
+}
+
+TimerQuery::TimerQuery() {
+    mHandle = Handle<detail::deleteQuery>(createName([](GLsizei n, GLuint* ids) {
+        glCreateQueries(GL_TIME_ELAPSED, n, ids);
+    }));
+}
+
+double TimerQuery::milliseconds() const {
+    GLuint64 ns = 0;
+    glGetQueryObjectui64v(mHandle.id(), GL_QUERY_RESULT, &ns);
+    return double(ns) * 1e-6;
+}
+
+}  // namespace candela::gl

@@ -1,0 +1,25 @@
+#include "renderer/passes/ShadePass.h"
+
+#include "renderer/passes/GBufferPass.h"
+#include "shaders/shared/GpuTypes.h"
+
+namespace candela {
+
+void ShadePass::execute(ShaderLibrary& shaders, const ShadeStep& step, const gl::Buffer& luminaire,
+                        const GBufferPass& gbuffer, const gl::Framebuffer& target, int width,
+                        int height) {
+    GLuint program = shaders.program(step.program);
+    glUseProgram(program);
+    // Each luminaire has its own record buffer; the shader reads element 0.
+    glProgramUniform1i(program, 0, 0);
+    luminaire.bindBase(GL_SHADER_STORAGE_BUFFER, gpu::kBindingLuminaire);
+    for (int i = 0; i < 4; ++i) glBindTextureUnit(GLuint(i), gbuffer.texture(i).id());
+    glBindFramebuffer(GL_FRAMEBUFFER, target.id());
+    glViewport(0, 0, width, height);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDisable(GL_BLEND);
+}
+
+}  // namespace candela

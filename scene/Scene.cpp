@@ -1,0 +1,69 @@
+#include "scene/Scene.h"
+
+#include <algorithm>
+
+namespace candela {
+
+float Material::phongExponent() const {
+    // alpha = roughness^2 (glTF perceptual roughness); the Phong exponent whose lobe matches a
+    // Beckmann-like distribution of width alpha is n = 2/alpha^2 - 2. alpha is kept above 1e-3
+    // so a mirror-like roughness of 0 gives a large but finite exponent (about 2e6).
+    float alpha = std::max(roughness * roughness, 1e-3f);
+    return std::max(2.f / (alpha * alpha) - 2.f, 0.f);
+}
+
+void Mesh::computeBounds() {
+    if (positions.empty()) {
+        boundsMin = boundsMax = glm::vec3(0.f);
+        return;
+    }
+    boundsMin = boundsMax = positions[0];
+    for (const glm::vec3& p : positions) {
+        boundsMin = glm::min(boundsMin, p);
+        boundsMax = glm::max(boundsMax, p);
+    }
+}
+
+Scene Scene::clone() const {
+    Scene copy;
+    copy.path = path;
+    copy.geometry = geometry;
+    copy.meshes = meshes;
+    copy.materials = materials;
+    copy.luminaires.reserve(luminaires.size());
+    for (const auto& luminaire : luminaires) copy.luminaires.push_back(luminaire->clone());
+    copy.environment = environment;
+    copy.camera = camera;
+    return copy;
+}
+
+glm::vec3 Scene::boundsMin() const {
+    bool any = false;
+    glm::vec3 lo(0.f);
+    for (const Mesh& mesh : meshes) {
+        if (mesh.positions.empty()) continue;
+        lo = any ? glm::min(lo, mesh.boundsMin) : mesh.boundsMin;
+        any = true;
+    }
+    return lo;
+}
+
+glm::vec3 Scene::boundsMax() const {
+    bool any = false;
+    glm::vec3 hi(0.f);
+    for (const Mesh& mesh : meshes) {
+        if (mesh.positions.empty()) continue;
+        hi = any ? glm::max(hi, mesh.boundsMax) : mesh.boundsMax;
+        any = true;
+    }
+    return hi;
+}
+
+bool Scene::hasGlossy() const {
+    // Only materials some mesh uses count: an unused glossy material changes no pixel.
+    for (const Mesh& mesh : meshes)
+        if (mesh.material < materials.size() && materials[mesh.material].isGlossy()) return true;
+    return false;
+}
+
+}  // namespace candela

@@ -1,0 +1,81 @@
+#pragma once
+// The scene as Candela edits and renders it: world-space meshes with materials, luminaire
+// instances, the camera. World is Y-up, lengths in metres.
+
+#include <glm/glm.hpp>
+#include <nlohmann/json.hpp>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "luminaires/Luminaire.h"
+
+namespace candela {
+
+/// Surface material: a Lambertian base with an optional glossy (normalised modified Phong) lobe.
+struct Material {
+    std::string name;
+    glm::vec3 albedo{0.5f};   ///< Diffuse reflectance, linear RGB in [0, 1].
+    glm::vec3 specular{0.f};  ///< Glossy reflectance at normal incidence, linear RGB; 0 = no lobe.
+    float roughness = 1.f;    ///< Perceptual roughness in [0, 1] (glTF convention).
+
+    bool isGlossy() const { return specular.x + specular.y + specular.z > 0.f; }
+    /// Phong exponent equivalent to the roughness (alpha = roughness^2, n = 2/alpha^2 - 2).
+    float phongExponent() const;
+};
+
+/// How a mesh is shaped, which bounds what it can occlude (see scene/Occlusion.h).
+enum class MeshShape {
+    Plane,     ///< A single flat polygon: cannot shadow itself.
+    Convex,    ///< A closed convex solid (procedural box): cannot shadow itself.
+    General,   ///< Anything else (glTF meshes): may shadow itself.
+};
+
+/// Triangles in world space, one material.
+struct Mesh {
+    std::string name;
+    std::vector<glm::vec3> positions;  ///< World space, metres.
+    std::vector<glm::vec3> normals;    ///< World space, unit length, one per position.
+    std::vector<uint32_t> indices;     ///< Three per triangle, counter-clockwise seen from outside.
+    uint32_t material = 0;             ///< Index into Scene::materials.
+    MeshShape shape = MeshShape::General;
+    glm::vec3 boundsMin{0.f}, boundsMax{0.f};  ///< Axis-aligned bounds, metres.
+
+    size_t triangleCount() const { return indices.size() / 3; }
+    void computeBounds();
+};
+
+/// One entry of the scene file's "geometry" list, kept as written so saving loses nothing.
+struct GeometryItem {
+    nlohmann::json source;          ///< The entry as read (paths as the user wrote them).
+    std::vector<uint32_t> meshes;   ///< The meshes it produced, indices into Scene::meshes.
+};
+
+struct Camera {
+    glm::dvec3 position{0.0, 1.5, 4.0};  ///< Metres.
+    glm::dvec3 target{0.0, 1.0, 0.0};    ///< Metres.
+    double fovDeg = 45.0;                ///< Vertical field of view, degrees.
+};
+
+struct Scene {
+    std::string path;  ///< Scene file this came from; relative paths resolve against its folder.
+    std::vector<GeometryItem> geometry;
+    std::vector<Mesh> meshes;
+    std::vector<Material> materials;
+    std::vector<std::unique_ptr<Luminaire>> luminaires;
+    nlohmann::json environment;  ///< null: no environment map.
+    Camera camera;
+
+    Scene() = default;
+    Scene(Scene&&) = default;
+    Scene& operator=(Scene&&) = default;
+    /// Deep copy (luminaires are cloned); used by undo and by the editor's render snapshot.
+    Scene clone() const;
+
+    glm::vec3 boundsMin() const;
+    glm::vec3 boundsMax() const;
+    bool hasGlossy() const;
+};
+
+}  // namespace candela

@@ -1,0 +1,468 @@
+#include "scene/SceneIo.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <vector>
+
+#include "luminaires/Registry.h"
+#include "scene/GltfLoader.h"
+#include "util/Error.h"
+
+namespace candela {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+nlohmann::json toJson(const glm::dvec3& v) { return nlohmann::json::array({v.x, v.y, v.z}); }
+nlohmann::json toJson(const glm::dvec2& v) { return nlohmann::json::array({v.x, v.y}); }
+
+std::string lowerExtension(const std::string& path) {
+    std::string ext = fs::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return ext;
+}
+
+/// Whole file as bytes; throws InputError "PATH: cannot open scene file (reason)".
+std::string readFile(const std::string& path) {
+    errno = 0;
+    std::FILE* file = std::fopen(path.c_str(), "rb");
+    if (!file) {
+        int err = errno;
+        throw InputError(path + ": cannot open scene file (" +
+                         (err ? std::strerror(err) : "unknown error") + ")");
+    }
+    std::string text;
+    char buffer[1 << 16];
+    size_t n;
+    while ((n = std::fread(buffer, 1, sizeof buffer, file)) > 0) text.append(buffer, n);
+    bool failed = std::ferror(file) != 0;
+    int err = errno;
+    std::fclose(file);
+    if (failed) throw InputError(path + ": cannot read scene file (" + std::strerror(err) + ")");
+    return text;
+}
+
+/// nlohmann reports a parse error at a 1-based byte count (the last byte it read). Converts it
+/// to a 1-based line and column (in bytes) of that byte.
+void lineAndColumn(const std::string& text, size_t byte, size_t& line, size_t& column) {
+    size_t at = std::min(byte == 0 ? 0 : byte - 1, text.size());
+    line = 1;
+    size_t lineStart = 0;
+    for (size_t i = 0; i < at; ++i) {
+        if (text[i] == '\n') {
+            ++line;
+            lineStart = i + 1;
+        }
+    }
+    column = at - lineStart + 1;
+}
+
+/// The reason part of a nlohmann parse error, without its "[json.exception...] parse error at
+/// line L, column C: " prefix (we compute the position ourselves).
+std::string parseErrorReason(const std::string& what) {
+    size_t at = what.find("parse error");
+    if (at != std::string::npos) {
+        size_t colon = what.find(": ", at);
+        if (colon != std::string::npos) return what.substr(colon + 2);
+    }
+    size_t bracket = what.find("] ");
+    return bracket == std::string::npos ? what : what.substr(bracket + 2);
+}
+
+glm::dvec3 unitRgb(const nlohmann::json& v, const json::Where& where) {
+    glm::dvec3 c = json::vec3(v, where);
+    for (int i = 0; i < 3; ++i)
+        if (c[i] < 0.0 || c[i] > 1.0) json::fail(where[i], "a value in [0, 1], got " + v.dump());
+    return c;
+}
+
+double unitNumber(const nlohmann::json& v, const json::Where& where) {
+    double x = json::number(v, where);
+    if (x < 0.0 || x > 1.0) json::fail(where, "a value in [0, 1], got " + v.dump());
+    return x;
+}
+
+glm::dvec2 positive2(const nlohmann::json& v, const json::Where& where) {
+    glm::dvec2 s = json::vec2(v, where);
+    for (int i = 0; i < 2; ++i)
+        if (!(s[i] > 0.0)) json::fail(where[i], "a positive size, got " + v.dump());
+    return s;
+}
+
+glm::dvec3 positive3(const nlohmann::json& v, const json::Where& where) {
+    glm::dvec3 s = json::vec3(v, where);
+    for (int i = 0; i < 3; ++i)
+        if (!(s[i] > 0.0)) json::fail(where[i], "a positive size, got " + v.dump());
+    return s;
+}
+
+/// Material of a plane or box entry; its name is the entry's "name" or `fallbackName`.
+uint32_t addItemMaterial(const nlohmann::json& item, const json::Where& where,
+                         const std::string& fallbackName, Scene& scene) {
+    Material material;
+    material.name = json::optional(item, "name", where, fallbackName, json::string);
+    material.albedo = glm::vec3(json::optional(item, "albedo", where, glm::dvec3(0.5), unitRgb));
+    material.specular =
+        glm::vec3(json::optional(item, "specular", where, glm::dvec3(0.0), unitRgb));
+    material.roughness = float(json::optional(item, "roughness", where, 1.0, unitNumber));
+    scene.materials.push_back(material);
+    return uint32_t(scene.materials.size() - 1);
+}
+
+/// Plane tangents (see the convention in SceneIo.h); n must be unit length.
+void planeTangents(const glm::dvec3& n, glm::dvec3& u, glm::dvec3& v) {
+    glm::dvec3 c = glm::cross(glm::dvec3(0.0, 1.0, 0.0), n);
+    u = glm::length(c) > 1e-3 ? glm::normalize(c) : glm::dvec3(1.0, 0.0, 0.0);
+    u = glm::normalize(u - glm::dot(u, n) * n);
+    v = glm::cross(n, u);
+}
+
+void parsePlane(const nlohmann::json& item, const json::Where& where, size_t index,
+                Scene& scene) {
+    json::checkKeys(item, {"plane", "name", "albedo", "specular", "roughness"}, where);
+    const json::Where at = where / "plane";
+    const nlohmann::json& spec = item["plane"];
+    json::checkKeys(spec, {"center", "normal", "size"}, at);
+    glm::dvec3 center = json::optional(spec, "center", at, glm::dvec3(0.0), json::vec3);
+    glm::dvec3 n = glm::normalize(
+        json::optional(spec, "normal", at, glm::dvec3(0.0, 1.0, 0.0), json::direction));
+    if (!spec.contains("size")) json::fail(at / "size", "[width, height] in metres (missing)");
+    glm::dvec2 size = positive2(spec["size"], at / "size");
+
+    Mesh mesh;
+    mesh.material = addItemMaterial(item, where, "plane " + std::to_string(index), scene);
+    mesh.name = scene.materials[mesh.material].name;
+    mesh.shape = MeshShape::Plane;
+    glm::dvec3 u, v;
+    planeTangents(n, u, v);
+    glm::dvec3 hu = u * (0.5 * size.x), hv = v * (0.5 * size.y);
+    // Counter-clockwise seen from the normal's side: (p1 - p0) x (p2 - p0) is along u x v = n.
+    for (glm::dvec3 corner : {center - hu - hv, center + hu - hv, center + hu + hv,
+                              center - hu + hv}) {
+        mesh.positions.push_back(glm::vec3(corner));
+        mesh.normals.push_back(glm::vec3(n));
+    }
+    mesh.indices = {0, 1, 2, 0, 2, 3};
+    mesh.computeBounds();
+    scene.meshes.push_back(std::move(mesh));
+}
+
+void parseBox(const nlohmann::json& item, const json::Where& where, size_t index, Scene& scene) {
+    json::checkKeys(item, {"box", "name", "albedo", "specular", "roughness"}, where);
+    const json::Where at = where / "box";
+    const nlohmann::json& spec = item["box"];
+    json::checkKeys(spec, {"center", "size", "rotate_y_deg"}, at);
+    glm::dvec3 center = json::optional(spec, "center", at, glm::dvec3(0.0), json::vec3);
+    if (!spec.contains("size")) json::fail(at / "size", "[x, y, z] edge lengths in metres (missing)");
+    glm::dvec3 half = 0.5 * positive3(spec["size"], at / "size");
+    double angle = json::optional(spec, "rotate_y_deg", at, 0.0, json::number);
+    glm::dmat3 rotation(glm::rotate(glm::dmat4(1.0), glm::radians(angle), glm::dvec3(0, 1, 0)));
+
+    Mesh mesh;
+    mesh.material = addItemMaterial(item, where, "box " + std::to_string(index), scene);
+    mesh.name = scene.materials[mesh.material].name;
+    mesh.shape = MeshShape::Convex;
+    // Six faces, four vertices each (flat normals). For axis a, e_b x e_c = e_a with b = a + 1,
+    // c = a + 2 (mod 3); swapping u and v on the negative face keeps u x v = outward normal.
+    for (int a = 0; a < 3; ++a) {
+        for (double sign : {1.0, -1.0}) {
+            glm::dvec3 n(0.0), u(0.0), v(0.0);
+            n[a] = sign;
+            u[(a + 1) % 3] = half[(a + 1) % 3];
+            v[(a + 2) % 3] = half[(a + 2) % 3];
+            if (sign < 0.0) std::swap(u, v);
+            glm::dvec3 faceCenter = n * half[a];
+            uint32_t base = uint32_t(mesh.positions.size());
+            for (glm::dvec3 corner : {faceCenter - u - v, faceCenter + u - v, faceCenter + u + v,
+                                      faceCenter - u + v}) {
+                mesh.positions.push_back(glm::vec3(center + rotation * corner));
+                mesh.normals.push_back(glm::vec3(rotation * n));
+            }
+            for (uint32_t k : {0u, 1u, 2u, 0u, 2u, 3u}) mesh.indices.push_back(base + k);
+        }
+    }
+    mesh.computeBounds();
+    scene.meshes.push_back(std::move(mesh));
+}
+
+void parseGltfItem(const nlohmann::json& item, const json::Where& where, Scene& scene) {
+    json::checkKeys(item, {"gltf", "transform"}, where);
+    std::string file = json::string(item["gltf"], where / "gltf");
+    fs::path resolved(file);
+    if (resolved.is_relative()) resolved = fs::path(scene.path).parent_path() / resolved;
+
+    glm::dmat4 transform(1.0);
+    if (item.contains("transform")) {
+        const json::Where at = where / "transform";
+        const nlohmann::json& t = item["transform"];
+        json::checkKeys(t, {"translate", "rotate_y_deg", "scale"}, at);
+        glm::dvec3 translate = json::optional(t, "translate", at, glm::dvec3(0.0), json::vec3);
+        double angle = json::optional(t, "rotate_y_deg", at, 0.0, json::number);
+        double scale = json::optional(t, "scale", at, 1.0, json::positive);
+        transform = glm::translate(glm::dmat4(1.0), translate) *
+                    glm::rotate(glm::dmat4(1.0), glm::radians(angle), glm::dvec3(0, 1, 0)) *
+                    glm::scale(glm::dmat4(1.0), glm::dvec3(scale));
+    }
+    loadGltf(resolved.string(), transform, scene, where / "gltf");
+}
+
+/// Parses one "geometry" entry, appending its meshes and materials and its GeometryItem.
+void parseGeometryItem(const nlohmann::json& item, const json::Where& where, size_t index,
+                       Scene& scene) {
+    if (!item.is_object()) json::fail(where, "an object, got " + std::string(item.type_name()));
+    int kinds = int(item.contains("gltf")) + int(item.contains("plane")) +
+                int(item.contains("box"));
+    if (kinds != 1) json::fail(where, "exactly one of \"gltf\", \"plane\" or \"box\"");
+
+    GeometryItem geometry;
+    geometry.source = item;
+    size_t firstMesh = scene.meshes.size();
+    if (item.contains("gltf")) parseGltfItem(item, where, scene);
+    else if (item.contains("plane")) parsePlane(item, where, index, scene);
+    else parseBox(item, where, index, scene);
+    for (size_t m = firstMesh; m < scene.meshes.size(); ++m) geometry.meshes.push_back(uint32_t(m));
+    scene.geometry.push_back(std::move(geometry));
+}
+
+Camera parseCamera(const nlohmann::json& v, const json::Where& where) {
+    json::checkKeys(v, {"position", "target", "fov_deg"}, where);
+    Camera camera;
+    camera.position = json::optional(v, "position", where, camera.position, json::vec3);
+    camera.target = json::optional(v, "target", where, camera.target, json::vec3);
+    camera.fovDeg = json::optional(v, "fov_deg", where, camera.fovDeg, json::number);
+    if (!(camera.fovDeg > 0.0 && camera.fovDeg < 180.0))
+        json::fail(where / "fov_deg", "a field of view in (0, 180) degrees, got " +
+                                          v["fov_deg"].dump());
+    if (glm::length(camera.target - camera.position) < 1e-9)
+        json::fail(where / "target", "a target different from the camera position");
+    return camera;
+}
+
+std::string kindNames() {
+    std::string names;
+    for (const LuminaireKindInfo& kind : luminaireKinds())
+        names += (names.empty() ? "" : ", ") + std::string(kind.kind);
+    return names;
+}
+
+/// Geometry item of a plane or box built in code: validated by the same parser as the file.
+size_t addGeneratedItem(Scene& scene, nlohmann::json item, const Material& material) {
+    if (!material.name.empty()) item["name"] = material.name;
+    item["albedo"] = toJson(glm::dvec3(material.albedo));
+    item["specular"] = toJson(glm::dvec3(material.specular));
+    item["roughness"] = double(material.roughness);
+    size_t index = scene.geometry.size();
+    json::Where where{scene.path.empty() ? "<scene>" : scene.path, ""};
+    parseGeometryItem(item, (where / "geometry")[index], index, scene);
+    return index;
+}
+
+/// Rewrites relative glTF paths of `doc` written for a scene in folder of `fromPath` so they
+/// resolve from the folder of `toPath`. Paths stay as written when the folder does not change.
+void rebaseGltfPaths(nlohmann::json& doc, const std::string& fromPath, const std::string& toPath) {
+    fs::path fromDir = fs::absolute(fs::path(fromPath).parent_path()).lexically_normal();
+    fs::path toDir = fs::absolute(fs::path(toPath).parent_path()).lexically_normal();
+    if (fromDir == toDir) return;
+    for (nlohmann::json& item : doc["geometry"]) {
+        auto it = item.find("gltf");
+        if (it == item.end() || !it->is_string()) continue;
+        fs::path file(it->get<std::string>());
+        if (file.is_absolute()) continue;
+        fs::path target = (fromDir / file).lexically_normal();
+        fs::path relative = target.lexically_relative(toDir);
+        *it = (relative.empty() ? target : relative).generic_string();
+    }
+}
+
+/// Writes `text` to `path` through a temporary file in the same folder and rename().
+void writeFileAtomically(const std::string& path, const std::string& text) {
+    fs::path target(path);
+    if (!target.has_filename()) throw InputError(path + ": cannot save scene (not a file name)");
+    fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+    std::string pattern = (dir / ("." + target.filename().string() + ".tmp-XXXXXX")).string();
+    std::vector<char> tempName(pattern.begin(), pattern.end());
+    tempName.push_back('\0');
+
+    int fd = mkstemp(tempName.data());
+    if (fd < 0) {
+        throw InputError(path + ": cannot save scene (cannot create a temporary file in " +
+                         dir.string() + ": " + std::strerror(errno) + ")");
+    }
+    auto fail = [&](const char* step) {
+        int err = errno;
+        if (fd >= 0) ::close(fd);
+        ::unlink(tempName.data());
+        throw InputError(path + ": cannot save scene (" + step + ": " + std::strerror(err) + ")");
+    };
+    // Keep the permissions of the file being replaced; new files get rw-r--r--.
+    struct stat existing;
+    mode_t mode = ::stat(path.c_str(), &existing) == 0 ? (existing.st_mode & 07777) : 0644;
+    if (::fchmod(fd, mode) != 0) fail("chmod");
+
+    size_t written = 0;
+    while (written < text.size()) {
+        ssize_t n = ::write(fd, text.data() + written, text.size() - written);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) fail("write");
+        written += size_t(n);
+    }
+    if (::fsync(fd) != 0) fail("fsync");
+    int closed = ::close(fd);
+    fd = -1;
+    if (closed != 0) fail("close");
+    if (::rename(tempName.data(), path.c_str()) != 0) fail("rename");
+    // Make the rename itself durable; failing here cannot lose data, so it is best effort.
+    int dirFd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY);
+    if (dirFd >= 0) {
+        ::fsync(dirFd);
+        ::close(dirFd);
+    }
+}
+
+}  // namespace
+
+Scene loadScene(const std::string& path) {
+    std::string ext = lowerExtension(path);
+    if (ext != ".json") {
+        throw InputError(path + ": unsupported scene file type \"" + ext +
+                         "\" (scene files are .json)");
+    }
+    std::string text = readFile(path);
+    nlohmann::json doc;
+    try {
+        doc = nlohmann::json::parse(text);
+    } catch (const nlohmann::json::parse_error& e) {
+        size_t line = 0, column = 0;
+        lineAndColumn(text, e.byte, line, column);
+        throw InputError(path + ":" + std::to_string(line) + ":" + std::to_string(column) +
+                         ": invalid JSON (" + parseErrorReason(e.what()) + ")");
+    }
+    return parseScene(doc, path);
+}
+
+Scene parseScene(const nlohmann::json& doc, const std::string& path) {
+    const json::Where root{path, ""};
+    json::checkKeys(doc, {"geometry", "luminaires", "environment", "camera"}, root);
+    Scene scene;
+    scene.path = path;
+
+    if (doc.contains("geometry")) {
+        const nlohmann::json& items = doc["geometry"];
+        if (!items.is_array()) json::fail(root / "geometry", "an array of geometry entries");
+        for (size_t i = 0; i < items.size(); ++i)
+            parseGeometryItem(items[i], (root / "geometry")[i], i, scene);
+    }
+    if (doc.contains("luminaires")) {
+        const nlohmann::json& items = doc["luminaires"];
+        if (!items.is_array()) json::fail(root / "luminaires", "an array of luminaires");
+        for (size_t i = 0; i < items.size(); ++i)
+            scene.luminaires.push_back(parseLuminaire(items[i], (root / "luminaires")[i], i));
+    }
+    if (doc.contains("environment") && !doc["environment"].is_null()) {
+        throw InputError((root / "environment").str() +
+                         ": environment maps are not supported yet (only null)");
+    }
+    scene.environment = nullptr;
+    if (doc.contains("camera")) scene.camera = parseCamera(doc["camera"], root / "camera");
+    return scene;
+}
+
+nlohmann::json sceneToJson(const Scene& scene) {
+    nlohmann::json doc = nlohmann::json::object();
+    doc["geometry"] = nlohmann::json::array();
+    for (const GeometryItem& item : scene.geometry) doc["geometry"].push_back(item.source);
+    doc["luminaires"] = nlohmann::json::array();
+    for (const auto& luminaire : scene.luminaires)
+        doc["luminaires"].push_back(luminaireToJson(*luminaire));
+    doc["environment"] = scene.environment;
+    doc["camera"] = {{"position", toJson(scene.camera.position)},
+                     {"target", toJson(scene.camera.target)},
+                     {"fov_deg", scene.camera.fovDeg}};
+    return doc;
+}
+
+void saveScene(const Scene& scene, const std::string& path) {
+    nlohmann::json doc = sceneToJson(scene);
+    rebaseGltfPaths(doc, scene.path, path);
+    std::string text;
+    try {
+        text = doc.dump(2) + "\n";
+    } catch (const nlohmann::json::exception& e) {
+        // E.g. a name that is not valid UTF-8: nothing has been written yet.
+        throw InputError(path + ": cannot save scene (" + e.what() + ")");
+    }
+    writeFileAtomically(path, text);
+}
+
+std::unique_ptr<Luminaire> parseLuminaire(const nlohmann::json& entry, const json::Where& where,
+                                          size_t index) {
+    if (!entry.is_object()) json::fail(where, "an object, got " + std::string(entry.type_name()));
+    if (!entry.contains("type"))
+        json::fail(where / "type", "a luminaire type (one of " + kindNames() + "); it is missing");
+    std::string type = json::string(entry["type"], where / "type");
+    const LuminaireKindInfo* kind = findKind(type);
+    if (!kind) {
+        throw InputError((where / "type").str() + ": unknown luminaire type \"" + type +
+                         "\" (expected one of " + kindNames() + ")");
+    }
+    std::unique_ptr<Luminaire> luminaire = kind->parse(entry, where);
+    if (!luminaire) throw InputError(where.str() + ": luminaire could not be built");
+
+    luminaire->name = json::optional(entry, "name", where, type + " " + std::to_string(index),
+                                     json::string);
+    Pose& pose = luminaire->pose;
+    pose.position = json::optional(entry, "position", where, Pose{}.position, json::vec3);
+    pose.aim = json::optional(entry, "aim", where, Pose{}.aim, json::direction);
+    pose.c0 = json::optional(entry, "c0", where, Pose{}.c0, json::direction);
+    luminaire->technique = json::optional(entry, "technique", where,
+                                          std::string(kind->defaultTechnique), json::string);
+    if (!findTechnique(type, luminaire->technique)) {
+        throw InputError((where / "technique").str() + ": unknown technique \"" +
+                         luminaire->technique + "\" for " + type + " (expected one of " +
+                         techniqueNames(type) + ")");
+    }
+    return luminaire;
+}
+
+nlohmann::json luminaireToJson(const Luminaire& luminaire) {
+    nlohmann::json out = nlohmann::json::object();
+    out["type"] = std::string(luminaire.kind());
+    out["name"] = luminaire.name;
+    out["position"] = toJson(luminaire.pose.position);
+    out["aim"] = toJson(luminaire.pose.aim);
+    out["c0"] = toJson(luminaire.pose.c0);
+    out["technique"] = luminaire.technique;
+    luminaire.writeJson(out);
+    return out;
+}
+
+size_t addPlane(Scene& scene, const glm::dvec3& center, const glm::dvec3& normal,
+                const glm::dvec2& size, const Material& material) {
+    nlohmann::json item;
+    item["plane"] = {{"center", toJson(center)}, {"normal", toJson(normal)},
+                     {"size", toJson(size)}};
+    return addGeneratedItem(scene, std::move(item), material);
+}
+
+size_t addBox(Scene& scene, const glm::dvec3& center, const glm::dvec3& size, double rotateYDeg,
+              const Material& material) {
+    nlohmann::json item;
+    item["box"] = {{"center", toJson(center)}, {"size", toJson(size)},
+                   {"rotate_y_deg", rotateYDeg}};
+    return addGeneratedItem(scene, std::move(item), material);
+}
+
+}  // namespace candela

@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# Installs Candela's build and test dependencies from Debian 12's packages (needs root or sudo).
+set -euo pipefail
+packages=(
+  build-essential cmake pkg-config git python3
+  libglfw3-dev libimgui-dev libglm-dev libtinygltf-dev libopenimageio-dev openimageio-tools
+  libosmesa6-dev libgl-dev libgtest-dev libbenchmark-dev nlohmann-json3-dev
+  xvfb xdotool imagemagick x11-utils mesa-utils clang-format
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  SUDO=""
+  [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+  echo "setup: installing ${missing[*]}"
+  $SUDO apt-get update
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y --no-install-recommends "${missing[@]}"
+fi

@@ -1,0 +1,16 @@
+// Mean of the accumulated estimates plus the emitters seen directly: the linear HDR image.
+// Also writes its luminance for the exposure average (mip-mapped by the renderer).
+#include "common.glsl"
+layout(binding = 0) uniform sampler2D uAccum;
+layout(binding = 1) uniform sampler2D gEmission;
+layout(location = 0) uniform float uInvFrames;
+
+layout(location = 0) out vec4 outLinear;
+layout(location = 1) out float outLuminance;
+
+void main() {
+    ivec2 px = ivec2(gl_FragCoord.xy);
+    vec3 c = texelFetch(uAccum, px, 0).rgb * uInvFrames + texelFetch(gEmission, px, 0).rgb;
+    outLinear = vec4(c, 1.0);
+    outLuminance = luminance(c);
+}

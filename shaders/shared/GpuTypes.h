@@ -1,0 +1,72 @@
+// Structs and constants shared by C++ and GLSL (std430 / std140 layouts, vec4-aligned only: no
+// bool and no bare vec3 in buffers). Included from C++ via this header and from GLSL through the
+// shader loader's #include. Sizes are checked by static_assert in renderer/GpuLayout.cpp.
+#ifdef __cplusplus
+#pragma once
+#include <glm/glm.hpp>
+#include <cstdint>
+namespace candela::gpu {
+using vec4 = glm::vec4;
+using mat4 = glm::mat4;
+using uvec4 = glm::uvec4;
+using ivec4 = glm::ivec4;
+#define CANDELA_CONST static constexpr
+#else
+#define CANDELA_CONST const
+#endif
+
+/// Material flags stored in the G-buffer's albedo.w.
+CANDELA_CONST int kMaterialGlossy = 1;
+CANDELA_CONST int kMaterialEmitter = 2;
+
+/// G-buffer attachments, in binding order.
+CANDELA_CONST int kGBufferPosition = 0;  // xyz world position (m), w = 1 where a surface was hit
+CANDELA_CONST int kGBufferNormal = 1;    // xyz unit shading normal, w = Phong exponent
+CANDELA_CONST int kGBufferAlbedo = 2;    // rgb diffuse albedo, w = material flags
+CANDELA_CONST int kGBufferSpecular = 3;  // rgb glossy reflectance, w unused
+CANDELA_CONST int kGBufferEmission = 4;  // rgb emitted radiance towards the camera, W/(m2 sr)
+CANDELA_CONST int kGBufferCount = 5;
+
+/// Buffer binding points.
+CANDELA_CONST int kBindingFrame = 0;       // UBO FrameUniforms
+CANDELA_CONST int kBindingLuminaire = 1;   // SSBO of the luminaire kind's records
+CANDELA_CONST int kBindingBvhNodes = 2;    // SSBO BvhNode[]
+CANDELA_CONST int kBindingBvhTris = 3;     // SSBO BvhTriangle[]
+CANDELA_CONST int kBindingTestIn = 6;      // SSBOs of parity and chi-square compute tests
+CANDELA_CONST int kBindingTestOut = 7;
+
+/// Per-frame constants (std140 UBO).
+struct FrameUniforms {
+    mat4 viewProj;        // world -> clip
+    mat4 invViewProj;     // clip -> world
+    vec4 cameraPos;       // xyz metres
+    ivec4 frameInfo;      // x = frame index (sample batch), y = samples per pixel per frame,
+                          // z = luminaire index being shaded, w = 1 if shadows are traced
+    vec4 viewport;        // xy size in pixels, zw = 1/size
+};
+
+/// A Lambertian rectangle: corner, edge vectors, radiance (std430).
+struct LambertianRectGpu {
+    vec4 corner;    // xyz metres; w = area m2
+    vec4 edgeX;     // xyz full width along c0 (m); w = width
+    vec4 edgeY;     // xyz full height along aim x c0 (m); w = height
+    vec4 radiance;  // rgb W/(m2 sr) emitted to the +aim side; w unused
+    vec4 normal;    // xyz unit aim; w unused
+};
+
+/// BVH node (std430): bounds with the child or triangle range packed in w as int bits.
+struct BvhNode {
+    vec4 lo;  // xyz min; w = intBitsToFloat(first child index, or first triangle if leaf)
+    vec4 hi;  // xyz max; w = intBitsToFloat(triangle count; 0 for an inner node)
+};
+
+/// Triangle as vertex plus two edges (std430).
+struct BvhTriangle {
+    vec4 v0;
+    vec4 e1;
+    vec4 e2;
+};
+
+#ifdef __cplusplus
+}  // namespace candela::gpu
+#endif

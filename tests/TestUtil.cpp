@@ -1,0 +1,77 @@
+#include "tests/TestUtil.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "renderer/context/GlContext.h"
+
+namespace candela::test {
+
+// Regularised upper incomplete gamma Q(a, x), by series for x < a + 1 and by the continued
+// fraction (modified Lentz) otherwise (Numerical Recipes' split; our own implementation).
+static double gammaQ(double a, double x) {
+    if (x <= 0.0) return 1.0;
+    double lnPrefix = a * std::log(x) - x - std::lgamma(a);
+    if (x < a + 1.0) {
+        double term = 1.0 / a, sum = term;
+        for (int n = 1; n < 10000 && std::abs(term) > std::abs(sum) * 1e-16; ++n) {
+            term *= x / (a + n);
+            sum += term;
+        }
+        return std::clamp(1.0 - sum * std::exp(lnPrefix), 0.0, 1.0);
+    }
+    const double tiny = 1e-300;
+    double b = x + 1.0 - a, c = 1.0 / tiny, d = 1.0 / b, h = d;
+    for (int i = 1; i < 10000; ++i) {
+        double an = -i * (i - a);
+        b += 2.0;
+        d = an * d + b;
+        if (std::abs(d) < tiny) d = tiny;
+        c = b + an / c;
+        if (std::abs(c) < tiny) c = tiny;
+        d = 1.0 / d;
+        double delta = d * c;
+        h *= delta;
+        if (std::abs(delta - 1.0) < 1e-16) break;
+    }
+    return std::clamp(std::exp(lnPrefix) * h, 0.0, 1.0);
+}
+
+double chiSquareSurvival(double x, double k) { return gammaQ(0.5 * k, 0.5 * x); }
+
+ChiSquareResult chiSquare(const std::vector<double>& observed, const std::vector<double>& expected) {
+    ChiSquareResult r;
+    double pooledObs = 0.0, pooledExp = 0.0;
+    int cells = 0;
+    for (size_t i = 0; i < observed.size(); ++i) {
+        if (expected[i] < 5.0) {
+            pooledObs += observed[i];
+            pooledExp += expected[i];
+            continue;
+        }
+        double d = observed[i] - expected[i];
+        r.statistic += d * d / expected[i];
+        ++cells;
+    }
+    if (pooledExp > 0.0) {
+        double d = pooledObs - pooledExp;
+        r.statistic += d * d / pooledExp;
+        ++cells;
+    } else if (pooledObs > 0.0) {
+        r.statistic = 1e300;  // samples where the pdf says none can be
+    }
+    r.degreesOfFreedom = std::max(1, cells - 1);
+    r.pValue = chiSquareSurvival(r.statistic, r.degreesOfFreedom);
+    return r;
+}
+
+GlContext& glContext() {
+    static std::unique_ptr<GlContext> context = createOffscreenContext();
+    context->makeCurrent();
+    return *context;
+}
+
+std::string dataDir() { return CANDELA_TEST_DATA; }
+std::string sourceDir() { return CANDELA_SOURCE_DIR; }
+
+}  // namespace candela::test

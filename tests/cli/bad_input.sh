@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# Bad input gives a clear error naming the file and the problem, exit code 1, never a crash.
+set -uo pipefail
+binary=$1
+data="$2/data/cli"
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+failures=0
+passed=0
+
+# expect EXPECTED_SUBSTRING... -- ARGS: runs candela ARGS, wants exit 1 and every substring.
+expect() {
+  local wants=()
+  while [ "$1" != "--" ]; do wants+=("$1"); shift; done
+  shift
+  local err
+  err=$("$binary" "$@" 2>&1 >/dev/null)
+  local rc=$?
+  local ok=1
+  [ $rc -eq 1 ] || ok=0
+  for w in "${wants[@]}"; do
+    grep -qF -- "$w" <<<"$err" || ok=0
+  done
+  if [ $ok -eq 1 ]; then
+    passed=$((passed + 1))
+  else
+    failures=$((failures + 1))
+    echo "FAIL: candela $* (exit $rc) wanted [${wants[*]}], got: $err"
+  fi
+}
+
+expect "nothing_here.json" "cannot open" -- info "$data/nothing_here.json"
+expect "malformed.json" "invalid JSON" ":5:" -- render "$data/malformed.json" --out "$out/a.png"
+expect "nan_literal.json" "invalid JSON" -- probe "$data/nan_literal.json" --points "$data/nan_points.csv"
+expect "nan_string.json" "size" "NaN" -- info "$data/nan_string.json"
+expect "negative_size.json" "size" "positive" -- render "$data/negative_size.json" --out "$out/a.png"
+expect "draco.gltf" "KHR_draco_mesh_compression" -- info "$data/draco_scene.json"
+expect "draco.gltf" "KHR_draco_mesh_compression" -- info "$data/draco.gltf"
+expect "does_not_exist.gltf" -- render "$data/missing_gltf.json" --out "$out/a.png"
+expect "magic" "analytic" -- info "$data/unknown_technique.json"
+expect "laser" "lambertian-rect" -- info "$data/unknown_kind.json"
+expect "scene.txt" "unsupported" -- render "$data/scene.txt" --out "$out/a.png"
+expect "scene.txt" "unsupported" -- info "$data/scene.txt"
+expect "a.jpg" "unsupported" -- render "$data/ok.json" --out "$out/a.jpg"
+expect "--size" "WIDTHxHEIGHT" -- render "$data/ok.json" --out "$out/a.png" --size 0x10
+expect "--spp" "integer" -- render "$data/ok.json" --out "$out/a.png" --spp many
+expect "nan_points.csv:3" "column 2" -- probe "$data/ok.json" --points "$data/nan_points.csv"
+expect "bad_header.csv:1" "header" -- probe "$data/ok.json" --points "$data/bad_header.csv"
+expect "zero_normal.csv:2" "normal" -- probe "$data/ok.json" --points "$data/zero_normal.csv"
+expect "magic" "analytic" -- probe "$data/ok.json" --points "$data/ok_points.csv" --technique magic
+expect "missing.csv" "cannot open" -- probe "$data/ok.json" --points "$data/missing.csv"
+expect "unknown option" -- render "$data/ok.json" --out "$out/a.png" --frobnicate
+# A failed render leaves no output file behind.
+[ ! -e "$out/a.png" ] || { echo "FAIL: a failed render left $out/a.png"; failures=$((failures + 1)); }
+
+echo "$passed passed, $failures failed"
+[ $failures -eq 0 ]

@@ -1,0 +1,42 @@
+#pragma once
+// Checked reads of scene-file fields: every failure names the file, the field and what was
+// expected, and no NaN, infinity or wrong type gets past.
+
+#include <glm/glm.hpp>
+#include <nlohmann/json.hpp>
+
+#include <string>
+
+namespace candela::json {
+
+/// Where a value came from, for error messages: "scene.json: luminaires[0].size".
+struct Where {
+    std::string file;
+    std::string field;
+    Where operator/(const std::string& child) const;
+    Where operator[](size_t index) const;
+    std::string str() const;
+};
+
+[[noreturn]] void fail(const Where& where, const std::string& expected);
+
+double number(const nlohmann::json& v, const Where& where);
+double positive(const nlohmann::json& v, const Where& where);
+glm::dvec3 vec3(const nlohmann::json& v, const Where& where);
+glm::dvec2 vec2(const nlohmann::json& v, const Where& where);
+/// A non-zero vector (directions such as aim): rejects zero length.
+glm::dvec3 direction(const nlohmann::json& v, const Where& where);
+std::string string(const nlohmann::json& v, const Where& where);
+/// Requires an object and rejects keys not in `allowed` (catches typos such as "positon").
+void checkKeys(const nlohmann::json& object, std::initializer_list<const char*> allowed,
+               const Where& where);
+
+/// Optional field: returns fallback when absent; validates like the functions above if present.
+template <class Fn, class T>
+T optional(const nlohmann::json& object, const char* key, const Where& where, T fallback, Fn read) {
+    auto it = object.find(key);
+    if (it == object.end()) return fallback;
+    return read(*it, where / key);
+}
+
+}  // namespace candela::json
