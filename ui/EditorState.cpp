@@ -1,0 +1,137 @@
+#include "ui/EditorState.h"
+
+#include <exception>
+
+#include "scene/SceneIo.h"
+
+namespace candela::ui {
+
+void applyEdit(EditorState& state, std::string_view label, unsigned changes,
+               const std::function<void(Scene&)>& edit) {
+    (void)label;  // Undo (a later issue) records a step per label here.
+    edit(state.scene);
+    state.pendingChanges |= changes;
+    state.dirty = true;
+}
+
+void setStatus(EditorState& state, std::string message, bool error) {
+    state.status = std::move(message);
+    state.statusIsError = error;
+}
+
+void reportError(EditorState& state, const std::string& message) {
+    setStatus(state, message, true);
+    state.modalError = message;
+}
+
+bool openSceneFile(EditorState& state, const std::string& path) {
+    try {
+        Scene loaded = loadScene(path);
+        state.scene = std::move(loaded);
+        if (state.scene.path.empty()) state.scene.path = path;
+        state.selectedLuminaire = -1;
+        state.selectedGeometry = -1;
+        state.drag = {};
+        state.inspectorError.clear();
+        state.pendingChanges = kChangeAll;
+        state.dirty = false;
+        setStatus(state, "Opened " + path);
+        return true;
+    } catch (const std::exception& e) {
+        reportError(state, std::string("Could not open scene: ") + e.what());
+        return false;
+    }
+}
+
+bool saveSceneFile(EditorState& state, const std::string& path) {
+    std::string target = path.empty() ? state.scene.path : path;
+    if (target.empty()) {
+        reportError(state, "Save: the scene has no file yet; use File > Save As");
+        return false;
+    }
+    try {
+        saveScene(state.scene, target);
+        state.scene.path = target;
+        state.dirty = false;
+        setStatus(state, "Saved " + target);
+        return true;
+    } catch (const std::exception& e) {
+        reportError(state, std::string("Could not save scene: ") + e.what());
+        return false;
+    }
+}
+
+std::string uniqueLuminaireName(const Scene& scene, const std::string& base) {
+    auto used = [&](const std::string& name) {
+        for (const auto& lum : scene.luminaires)
+            if (lum->name == name) return true;
+        return false;
+    };
+    if (!used(base)) return base;
+    for (int n = 2;; ++n) {
+        std::string name = base + " " + std::to_string(n);
+        if (!used(name)) return name;
+    }
+}
+
+int addLuminaire(EditorState& state, const LuminaireKindInfo& kind) {
+    std::unique_ptr<Luminaire> lum = kind.create();
+    if (!lum) {
+        reportError(state, "Add: kind " + std::string(kind.kind) + " has no default luminaire");
+        return -1;
+    }
+    const Scene& scene = state.scene;
+    glm::dvec3 position(0.0, 2.5, 0.0);
+    if (!scene.meshes.empty()) {
+        glm::dvec3 lo(scene.boundsMin()), hi(scene.boundsMax());
+        position = glm::dvec3(0.5 * (lo.x + hi.x), hi.y - 0.5, 0.5 * (lo.z + hi.z));
+    }
+    lum->pose.position = position;
+    lum->pose.aim = glm::dvec3(0.0, -1.0, 0.0);
+    lum->pose.c0 = glm::dvec3(1.0, 0.0, 0.0);
+    lum->name = uniqueLuminaireName(scene, lum->name.empty() ? std::string(kind.kind) : lum->name);
+    if (lum->technique.empty()) lum->technique = std::string(kind.defaultTechnique);
+    std::string label = "Add " + lum->name;
+    applyEdit(state, label, kChangeLuminaires,
+              [&](Scene& s) { s.luminaires.push_back(std::move(lum)); });
+    state.selectedLuminaire = int(state.scene.luminaires.size()) - 1;
+    state.selectedGeometry = -1;
+    state.inspectorError.clear();
+    return state.selectedLuminaire;
+}
+
+int duplicateLuminaire(EditorState& state, int index) {
+    if (index < 0 || index >= int(state.scene.luminaires.size())) return -1;
+    std::unique_ptr<Luminaire> copy = state.scene.luminaires[size_t(index)]->clone();
+    copy->name = uniqueLuminaireName(state.scene, copy->name);
+    copy->pose.position.x += 0.25;
+    std::string label = "Duplicate " + copy->name;
+    applyEdit(state, label, kChangeLuminaires,
+              [&](Scene& s) { s.luminaires.push_back(std::move(copy)); });
+    state.selectedLuminaire = int(state.scene.luminaires.size()) - 1;
+    state.inspectorError.clear();
+    return state.selectedLuminaire;
+}
+
+void deleteLuminaire(EditorState& state, int index) {
+    if (index < 0 || index >= int(state.scene.luminaires.size())) return;
+    std::string label = "Delete " + state.scene.luminaires[size_t(index)]->name;
+    applyEdit(state, label, kChangeLuminaires,
+              [&](Scene& s) { s.luminaires.erase(s.luminaires.begin() + index); });
+    if (state.selectedLuminaire == index) state.selectedLuminaire = -1;
+    else if (state.selectedLuminaire > index) --state.selectedLuminaire;
+    if (state.drag.mode == DragMode::Luminaire) state.drag = {};
+    state.inspectorError.clear();
+}
+
+void replaceLuminaire(EditorState& state, int index, std::unique_ptr<Luminaire> replacement) {
+    if (index < 0 || index >= int(state.scene.luminaires.size()) || !replacement) return;
+    const Luminaire& old = *state.scene.luminaires[size_t(index)];
+    replacement->pose = old.pose;
+    replacement->name = old.name;
+    replacement->technique = old.technique;
+    applyEdit(state, "Edit " + old.name, kChangeLuminaires,
+              [&](Scene& s) { s.luminaires[size_t(index)] = std::move(replacement); });
+}
+
+}  // namespace candela::ui

@@ -1,0 +1,100 @@
+#pragma once
+// Everything the editor's panels read and write. Panels are free functions over this state; the
+// scene changes only through applyEdit() (and the few helpers built on it), which is where undo
+// will record its steps.
+
+#include <glm/glm.hpp>
+
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <string>
+#include <string_view>
+
+#include "luminaires/Registry.h"
+#include "renderer/Renderer.h"
+#include "scene/Scene.h"
+#include "ui/Screenshot.h"
+
+namespace candela::ui {
+
+enum class DragMode { None, Orbit, Pan, Luminaire };
+
+/// A mouse interaction in the viewport that spans several frames.
+struct ViewportDrag {
+    DragMode mode = DragMode::None;
+    int luminaire = -1;           ///< Luminaire being moved (DragMode::Luminaire).
+    double height = 0.0;          ///< Height of the horizontal drag plane, metres.
+    glm::dvec3 grabOffset{0.0};   ///< Luminaire position minus the grabbed plane point, metres.
+};
+
+/// Where things are on screen this frame, in window pixels (x right, y down).
+struct ScreenLayout {
+    glm::vec2 window{0.f};            ///< Window size.
+    glm::vec4 viewport{0.f};          ///< Viewport image: x, y, width, height.
+    glm::vec2 screenshotButton{0.f};  ///< Centre of the Screenshot button.
+};
+
+/// The File menu's dialogs.
+struct FileDialogs {
+    bool openRequested = false;    ///< Open the "Open scene" modal next frame.
+    bool saveAsRequested = false;  ///< Open the "Save scene as" modal next frame.
+    std::string openPath;
+    std::string saveAsPath;
+};
+
+struct EditorState {
+    Scene scene;
+    int selectedLuminaire = -1;  ///< Index into scene.luminaires, or -1.
+    int selectedGeometry = -1;   ///< Index into scene.geometry, or -1.
+
+    RenderSettings settings;  ///< What the renderer uses; the editor applies it every frame.
+    /// Render pixels per viewport pixel (1 = full resolution; less is faster on slow GPUs).
+    float renderScale = 1.f;
+    unsigned pendingChanges = kChangeAll;  ///< Scene changes not yet passed to the renderer.
+    bool dirty = false;                    ///< Edits not yet saved.
+
+    std::filesystem::path screenshotDir = "candela-screenshots";
+    bool screenshotRequested = false;  ///< Set by the Screenshot button; the editor takes it.
+    int screenshotsTaken = 0;
+
+    std::string status;          ///< One line in the status bar.
+    bool statusIsError = false;
+    std::string modalError;      ///< Non-empty: shown in the error modal until dismissed.
+    std::string inspectorError;  ///< Why the inspector rejected the last value.
+    bool quitRequested = false;
+
+    int addKind = 0;  ///< Index into luminaireKinds() for the Add button.
+    FileDialogs files;
+    ViewportDrag drag;
+    ScreenLayout layout;
+    PassTotals passes;
+};
+
+/// The one path by which the scene changes: runs edit on the scene, tells the renderer what
+/// changed and marks the scene unsaved. label names the step ("Move Ceiling panel") for undo.
+void applyEdit(EditorState& state, std::string_view label, unsigned changes,
+               const std::function<void(Scene&)>& edit);
+
+void setStatus(EditorState& state, std::string message, bool error = false);
+/// Shows message in the status bar and in the error modal.
+void reportError(EditorState& state, const std::string& message);
+
+/// Loads a scene file into the state; on failure reports the error and keeps the current scene.
+bool openSceneFile(EditorState& state, const std::string& path);
+/// Saves atomically to path (the scene's own path when empty); reports errors, never throws.
+bool saveSceneFile(EditorState& state, const std::string& path);
+
+/// Adds a default luminaire of the kind 0.5 m below the top of the scene's bounds, centred,
+/// aimed down; selects it and returns its index.
+int addLuminaire(EditorState& state, const LuminaireKindInfo& kind);
+/// Copies the luminaire 0.25 m along +x with a fresh name; selects and returns the copy.
+int duplicateLuminaire(EditorState& state, int index);
+void deleteLuminaire(EditorState& state, int index);
+/// Replaces a luminaire by one built from edited fields, keeping its pose, name and technique.
+void replaceLuminaire(EditorState& state, int index, std::unique_ptr<Luminaire> replacement);
+
+/// base, or "base 2", "base 3", ... whichever no luminaire of the scene uses yet.
+std::string uniqueLuminaireName(const Scene& scene, const std::string& base);
+
+}  // namespace candela::ui
