@@ -224,7 +224,7 @@ std::vector<glm::vec3> Renderer::probe(const Scene& scene, const std::vector<glm
     int perFrame = std::max(1, std::min(spp, 256));
     int frames = mPlan.progressive() ? std::max(1, (spp + perFrame - 1) / perFrame) : 1;
     for (mFrames = 0; mFrames < frames; ++mFrames) runShading(perFrame);
-    std::vector<glm::vec4> accum(size_t(n));
+    std::vector<glm::vec4> accum(static_cast<size_t>(n), glm::vec4(0.f));
     glGetTextureImage(mAccum.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(accum.size() * sizeof(glm::vec4)),
                       accum.data());
     std::vector<glm::vec3> out(points.size());

@@ -2,10 +2,6 @@
 
 #include <tiny_gltf.h>
 
-#include <glm/gtc/matrix_transform.hpp>
-#include <glm/gtc/quaternion.hpp>
-#include <glm/gtc/type_ptr.hpp>
-
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -14,6 +10,9 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
 #include <map>
 
 #include "util/Error.h"
@@ -31,28 +30,41 @@ constexpr double kDielectricF0 = 0.04;
 
 int componentBytes(int componentType) {
     switch (componentType) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
-    case TINYGLTF_COMPONENT_TYPE_SHORT:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
-    case TINYGLTF_COMPONENT_TYPE_INT:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
-    case TINYGLTF_COMPONENT_TYPE_DOUBLE: return 8;
-    default: return 0;
+        case TINYGLTF_COMPONENT_TYPE_BYTE:
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+            return 1;
+        case TINYGLTF_COMPONENT_TYPE_SHORT:
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+            return 2;
+        case TINYGLTF_COMPONENT_TYPE_INT:
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+        case TINYGLTF_COMPONENT_TYPE_FLOAT:
+            return 4;
+        case TINYGLTF_COMPONENT_TYPE_DOUBLE:
+            return 8;
+        default:
+            return 0;
     }
 }
 
 int componentCount(int type) {
     switch (type) {
-    case TINYGLTF_TYPE_SCALAR: return 1;
-    case TINYGLTF_TYPE_VEC2: return 2;
-    case TINYGLTF_TYPE_VEC3: return 3;
-    case TINYGLTF_TYPE_VEC4: return 4;
-    case TINYGLTF_TYPE_MAT2: return 4;
-    case TINYGLTF_TYPE_MAT3: return 9;
-    case TINYGLTF_TYPE_MAT4: return 16;
-    default: return 0;
+        case TINYGLTF_TYPE_SCALAR:
+            return 1;
+        case TINYGLTF_TYPE_VEC2:
+            return 2;
+        case TINYGLTF_TYPE_VEC3:
+            return 3;
+        case TINYGLTF_TYPE_VEC4:
+            return 4;
+        case TINYGLTF_TYPE_MAT2:
+            return 4;
+        case TINYGLTF_TYPE_MAT3:
+            return 9;
+        case TINYGLTF_TYPE_MAT4:
+            return 16;
+        default:
+            return 0;
     }
 }
 
@@ -76,15 +88,19 @@ struct AccessorView {
 
 /// Converts one file's model into Candela meshes; every failure throws InputError(prefix: ...).
 class GltfImport {
-public:
+  public:
     GltfImport(const tinygltf::Model& model, std::string prefix, Scene& scene)
-        : mModel(model), mPrefix(std::move(prefix)), mScene(scene),
+        : mModel(model),
+          mPrefix(std::move(prefix)),
+          mScene(scene),
           mVisited(model.nodes.size(), false) {}
 
     void run(const glm::dmat4& transform);
 
-private:
-    [[noreturn]] void fail(const std::string& what) const { throw InputError(mPrefix + ": " + what); }
+  private:
+    [[noreturn]] void fail(const std::string& what) const {
+        throw InputError(mPrefix + ": " + what);
+    }
     void warn(const std::string& what) const {
         std::fprintf(stderr, "warning: %s: %s\n", mPrefix.c_str(), what.c_str());
     }
@@ -122,9 +138,9 @@ AccessorView GltfImport::view(int accessorIndex, const std::string& what) const 
     if (bufferView.byteLength > buffer.size() ||
         bufferView.byteOffset > buffer.size() - bufferView.byteLength) {
         fail(name + ": bufferView " + std::to_string(accessor.bufferView) + " (bytes " +
-             std::to_string(bufferView.byteOffset) + " + " +
-             std::to_string(bufferView.byteLength) + ") lies outside its buffer of " +
-             std::to_string(buffer.size()) + " bytes (truncated .bin?)");
+             std::to_string(bufferView.byteOffset) + " + " + std::to_string(bufferView.byteLength) +
+             ") lies outside its buffer of " + std::to_string(buffer.size()) +
+             " bytes (truncated .bin?)");
     }
     AccessorView out;
     out.componentType = accessor.componentType;
@@ -179,12 +195,15 @@ std::vector<uint32_t> GltfImport::readIndices(int accessorIndex, size_t vertexCo
     for (size_t i = 0; i < v.count; ++i) {
         const unsigned char* p = v.data + i * v.stride;
         uint32_t index = 0;
-        if (bytes == 1) index = p[0];
-        else if (bytes == 2) {
+        if (bytes == 1) {
+            index = p[0];
+        } else if (bytes == 2) {
             uint16_t s;
             std::memcpy(&s, p, 2);
             index = s;
-        } else std::memcpy(&index, p, 4);
+        } else {
+            std::memcpy(&index, p, 4);
+        }
         if (index >= vertexCount) {
             fail(what + ": index " + std::to_string(index) + " at position " + std::to_string(i) +
                  " is out of range (" + std::to_string(vertexCount) + " vertices)");
@@ -240,12 +259,11 @@ void GltfImport::visitNode(int index, const glm::dmat4& parent) {
             fail("node " + std::to_string(index) + ": mesh " + std::to_string(node.mesh) +
                  " is out of range");
         const tinygltf::Mesh& mesh = mModel.meshes[size_t(node.mesh)];
-        std::string base = !node.name.empty() ? node.name
+        std::string base = !node.name.empty()   ? node.name
                            : !mesh.name.empty() ? mesh.name
                                                 : "mesh " + std::to_string(node.mesh);
         for (size_t p = 0; p < mesh.primitives.size(); ++p) {
-            std::string name = mesh.primitives.size() == 1 ? base
-                                                           : base + "/" + std::to_string(p);
+            std::string name = mesh.primitives.size() == 1 ? base : base + "/" + std::to_string(p);
             addPrimitive(mesh.primitives[p], name, toWorld);
         }
     }
@@ -359,10 +377,10 @@ uint32_t GltfImport::material(int index) {
         if (!finite(base)) fail("material \"" + out.name + "\": baseColorFactor is not finite");
         if (pbr.baseColorTexture.index >= 0) base *= textureMeanLinear(pbr.baseColorTexture.index);
         base = glm::clamp(base, 0.0, 1.0);
-        double metallic = std::clamp(std::isfinite(pbr.metallicFactor) ? pbr.metallicFactor : 0.0,
-                                     0.0, 1.0);
-        double roughness = std::clamp(
-            std::isfinite(pbr.roughnessFactor) ? pbr.roughnessFactor : 1.0, 0.0, 1.0);
+        double metallic =
+            std::clamp(std::isfinite(pbr.metallicFactor) ? pbr.metallicFactor : 0.0, 0.0, 1.0);
+        double roughness =
+            std::clamp(std::isfinite(pbr.roughnessFactor) ? pbr.roughnessFactor : 1.0, 0.0, 1.0);
         // The metallicRoughness texture is not read: factors only.
         out.roughness = float(roughness);
         if (roughness < kGlossyRoughnessLimit) {
@@ -392,8 +410,8 @@ glm::dvec3 GltfImport::textureMeanLinear(int textureIndex) {
     }
     const tinygltf::Image& image = mModel.images[size_t(source)];
     size_t bytesPerValue = image.bits == 16 ? 2 : image.bits == 8 ? 1 : 0;
-    size_t pixels = image.width > 0 && image.height > 0 ? size_t(image.width) * size_t(image.height)
-                                                        : 0;
+    size_t pixels =
+        image.width > 0 && image.height > 0 ? size_t(image.width) * size_t(image.height) : 0;
     size_t channels = image.component > 0 && image.component <= 4 ? size_t(image.component) : 0;
     if (pixels == 0 || channels == 0 || bytesPerValue == 0 ||
         image.image.size() < pixels * channels * bytesPerValue) {
@@ -410,8 +428,9 @@ glm::dvec3 GltfImport::textureMeanLinear(int textureIndex) {
         for (size_t k = 0; k < 3; ++k) {
             size_t channel = channels >= 3 ? k : 0;  // Grey (+alpha) images: replicate.
             size_t at = (p * channels + channel) * bytesPerValue;
-            if (bytesPerValue == 1) c[int(k)] = lut8[data[at]];
-            else {
+            if (bytesPerValue == 1) {
+                c[int(k)] = lut8[data[at]];
+            } else {
                 uint16_t v;
                 std::memcpy(&v, data + at, 2);
                 c[int(k)] = srgbToLinear(v / 65535.0);
@@ -459,7 +478,8 @@ void loadGltf(const std::string& path, const glm::dmat4& transform, Scene& scene
     std::transform(ext.begin(), ext.end(), ext.begin(),
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
     if (ext != ".gltf" && ext != ".glb")
-        throw InputError(prefix + ": unsupported file type \"" + ext + "\" (expected .gltf or .glb)");
+        throw InputError(prefix + ": unsupported file type \"" + ext +
+                         "\" (expected .gltf or .glb)");
 
     tinygltf::TinyGLTF loader;
     tinygltf::Model model;

@@ -11,7 +11,6 @@
 // decodes none).
 
 #include <glm/glm.hpp>
-
 #include <string>
 
 #include "scene/Scene.h"

@@ -5,9 +5,10 @@
 namespace candela {
 
 float Material::phongExponent() const {
-    // alpha = roughness^2 (glTF perceptual roughness); the Phong exponent whose lobe matches a
-    // Beckmann-like distribution of width alpha is n = 2/alpha^2 - 2. alpha is kept above 1e-3
-    // so a mirror-like roughness of 0 gives a large but finite exponent (about 2e6).
+    // alpha = roughness^2 (glTF perceptual roughness). Walter et al. 2007, "Microfacet Models
+    // for Refraction", match a Phong exponent to a Beckmann width alpha as n = 2 / alpha^2 - 2.
+    // alpha is kept at or above 1e-3 so a roughness of 0 gives a large but finite exponent
+    // (about 2e6).
     float alpha = std::max(roughness * roughness, 1e-3f);
     return std::max(2.f / (alpha * alpha) - 2.f, 0.f);
 }

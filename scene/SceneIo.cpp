@@ -4,8 +4,6 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include <glm/gtc/matrix_transform.hpp>
-
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
@@ -13,6 +11,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <glm/gtc/matrix_transform.hpp>
 #include <vector>
 
 #include "luminaires/Registry.h"
@@ -25,8 +24,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
-nlohmann::json toJson(const glm::dvec3& v) { return nlohmann::json::array({v.x, v.y, v.z}); }
-nlohmann::json toJson(const glm::dvec2& v) { return nlohmann::json::array({v.x, v.y}); }
+nlohmann::json toJson(const glm::dvec3& v) {
+    return nlohmann::json::array({v.x, v.y, v.z});
+}
+nlohmann::json toJson(const glm::dvec2& v) {
+    return nlohmann::json::array({v.x, v.y});
+}
 
 std::string lowerExtension(const std::string& path) {
     std::string ext = fs::path(path).extension().string();
@@ -130,8 +133,7 @@ void planeTangents(const glm::dvec3& n, glm::dvec3& u, glm::dvec3& v) {
     v = glm::cross(n, u);
 }
 
-void parsePlane(const nlohmann::json& item, const json::Where& where, size_t index,
-                Scene& scene) {
+void parsePlane(const nlohmann::json& item, const json::Where& where, size_t index, Scene& scene) {
     json::checkKeys(item, {"plane", "name", "albedo", "specular", "roughness"}, where);
     const json::Where at = where / "plane";
     const nlohmann::json& spec = item["plane"];
@@ -150,8 +152,8 @@ void parsePlane(const nlohmann::json& item, const json::Where& where, size_t ind
     planeTangents(n, u, v);
     glm::dvec3 hu = u * (0.5 * size.x), hv = v * (0.5 * size.y);
     // Counter-clockwise seen from the normal's side: (p1 - p0) x (p2 - p0) is along u x v = n.
-    for (glm::dvec3 corner : {center - hu - hv, center + hu - hv, center + hu + hv,
-                              center - hu + hv}) {
+    for (glm::dvec3 corner :
+         {center - hu - hv, center + hu - hv, center + hu + hv, center - hu + hv}) {
         mesh.positions.push_back(glm::vec3(corner));
         mesh.normals.push_back(glm::vec3(n));
     }
@@ -166,7 +168,8 @@ void parseBox(const nlohmann::json& item, const json::Where& where, size_t index
     const nlohmann::json& spec = item["box"];
     json::checkKeys(spec, {"center", "size", "rotate_y_deg"}, at);
     glm::dvec3 center = json::optional(spec, "center", at, glm::dvec3(0.0), json::vec3);
-    if (!spec.contains("size")) json::fail(at / "size", "[x, y, z] edge lengths in metres (missing)");
+    if (!spec.contains("size"))
+        json::fail(at / "size", "[x, y, z] edge lengths in metres (missing)");
     glm::dvec3 half = 0.5 * positive3(spec["size"], at / "size");
     double angle = json::optional(spec, "rotate_y_deg", at, 0.0, json::number);
     glm::dmat3 rotation(glm::rotate(glm::dmat4(1.0), glm::radians(angle), glm::dvec3(0, 1, 0)));
@@ -186,8 +189,8 @@ void parseBox(const nlohmann::json& item, const json::Where& where, size_t index
             if (sign < 0.0) std::swap(u, v);
             glm::dvec3 faceCenter = n * half[a];
             uint32_t base = uint32_t(mesh.positions.size());
-            for (glm::dvec3 corner : {faceCenter - u - v, faceCenter + u - v, faceCenter + u + v,
-                                      faceCenter - u + v}) {
+            for (glm::dvec3 corner :
+                 {faceCenter - u - v, faceCenter + u - v, faceCenter + u + v, faceCenter - u + v}) {
                 mesh.positions.push_back(glm::vec3(center + rotation * corner));
                 mesh.normals.push_back(glm::vec3(rotation * n));
             }
@@ -223,16 +226,19 @@ void parseGltfItem(const nlohmann::json& item, const json::Where& where, Scene& 
 void parseGeometryItem(const nlohmann::json& item, const json::Where& where, size_t index,
                        Scene& scene) {
     if (!item.is_object()) json::fail(where, "an object, got " + std::string(item.type_name()));
-    int kinds = int(item.contains("gltf")) + int(item.contains("plane")) +
-                int(item.contains("box"));
+    int kinds =
+        int(item.contains("gltf")) + int(item.contains("plane")) + int(item.contains("box"));
     if (kinds != 1) json::fail(where, "exactly one of \"gltf\", \"plane\" or \"box\"");
 
     GeometryItem geometry;
     geometry.source = item;
     size_t firstMesh = scene.meshes.size();
-    if (item.contains("gltf")) parseGltfItem(item, where, scene);
-    else if (item.contains("plane")) parsePlane(item, where, index, scene);
-    else parseBox(item, where, index, scene);
+    if (item.contains("gltf"))
+        parseGltfItem(item, where, scene);
+    else if (item.contains("plane"))
+        parsePlane(item, where, index, scene);
+    else
+        parseBox(item, where, index, scene);
     for (size_t m = firstMesh; m < scene.meshes.size(); ++m) geometry.meshes.push_back(uint32_t(m));
     scene.geometry.push_back(std::move(geometry));
 }
@@ -244,8 +250,8 @@ Camera parseCamera(const nlohmann::json& v, const json::Where& where) {
     camera.target = json::optional(v, "target", where, camera.target, json::vec3);
     camera.fovDeg = json::optional(v, "fov_deg", where, camera.fovDeg, json::number);
     if (!(camera.fovDeg > 0.0 && camera.fovDeg < 180.0))
-        json::fail(where / "fov_deg", "a field of view in (0, 180) degrees, got " +
-                                          v["fov_deg"].dump());
+        json::fail(where / "fov_deg",
+                   "a field of view in (0, 180) degrees, got " + v["fov_deg"].dump());
     if (glm::length(camera.target - camera.position) < 1e-9)
         json::fail(where / "target", "a target different from the camera position");
     return camera;
@@ -292,7 +298,9 @@ void writeFileAtomically(const std::string& path, const std::string& text) {
     fs::path target(path);
     if (!target.has_filename()) throw InputError(path + ": cannot save scene (not a file name)");
     fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
-    std::string pattern = (dir / ("." + target.filename().string() + ".tmp-XXXXXX")).string();
+    std::string tempLeaf = ".";
+    tempLeaf.append(target.filename().string()).append(".tmp-XXXXXX");
+    std::string pattern = (dir / tempLeaf).string();
     std::vector<char> tempName(pattern.begin(), pattern.end());
     tempName.push_back('\0');
 
@@ -421,8 +429,8 @@ std::unique_ptr<Luminaire> parseLuminaire(const nlohmann::json& entry, const jso
     std::unique_ptr<Luminaire> luminaire = kind->parse(entry, where);
     if (!luminaire) throw InputError(where.str() + ": luminaire could not be built");
 
-    luminaire->name = json::optional(entry, "name", where, type + " " + std::to_string(index),
-                                     json::string);
+    luminaire->name =
+        json::optional(entry, "name", where, type + " " + std::to_string(index), json::string);
     Pose& pose = luminaire->pose;
     pose.position = json::optional(entry, "position", where, Pose{}.position, json::vec3);
     pose.aim = json::optional(entry, "aim", where, Pose{}.aim, json::direction);
@@ -452,16 +460,16 @@ nlohmann::json luminaireToJson(const Luminaire& luminaire) {
 size_t addPlane(Scene& scene, const glm::dvec3& center, const glm::dvec3& normal,
                 const glm::dvec2& size, const Material& material) {
     nlohmann::json item;
-    item["plane"] = {{"center", toJson(center)}, {"normal", toJson(normal)},
-                     {"size", toJson(size)}};
+    item["plane"] = {
+        {"center", toJson(center)}, {"normal", toJson(normal)}, {"size", toJson(size)}};
     return addGeneratedItem(scene, std::move(item), material);
 }
 
 size_t addBox(Scene& scene, const glm::dvec3& center, const glm::dvec3& size, double rotateYDeg,
               const Material& material) {
     nlohmann::json item;
-    item["box"] = {{"center", toJson(center)}, {"size", toJson(size)},
-                   {"rotate_y_deg", rotateYDeg}};
+    item["box"] = {
+        {"center", toJson(center)}, {"size", toJson(size)}, {"rotate_y_deg", rotateYDeg}};
     return addGeneratedItem(scene, std::move(item), material);
 }
 

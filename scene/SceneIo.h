@@ -25,9 +25,8 @@
 // the given one; the rasteriser draws it from both sides.
 
 #include <glm/glm.hpp>
-#include <nlohmann/json.hpp>
-
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "luminaires/Luminaire.h"

@@ -118,8 +118,10 @@ void deleteLuminaire(EditorState& state, int index) {
     std::string label = "Delete " + state.scene.luminaires[size_t(index)]->name;
     applyEdit(state, label, kChangeLuminaires,
               [&](Scene& s) { s.luminaires.erase(s.luminaires.begin() + index); });
-    if (state.selectedLuminaire == index) state.selectedLuminaire = -1;
-    else if (state.selectedLuminaire > index) --state.selectedLuminaire;
+    if (state.selectedLuminaire == index)
+        state.selectedLuminaire = -1;
+    else if (state.selectedLuminaire > index)
+        --state.selectedLuminaire;
     if (state.drag.mode == DragMode::Luminaire) state.drag = {};
     state.inspectorError.clear();
 }

@@ -3,10 +3,9 @@
 // scene changes only through applyEdit() (and the few helpers built on it), which is where undo
 // will record its steps.
 
-#include <glm/glm.hpp>
-
 #include <filesystem>
 #include <functional>
+#include <glm/glm.hpp>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -23,9 +22,9 @@ enum class DragMode { None, Orbit, Pan, Luminaire };
 /// A mouse interaction in the viewport that spans several frames.
 struct ViewportDrag {
     DragMode mode = DragMode::None;
-    int luminaire = -1;           ///< Luminaire being moved (DragMode::Luminaire).
-    double height = 0.0;          ///< Height of the horizontal drag plane, metres.
-    glm::dvec3 grabOffset{0.0};   ///< Luminaire position minus the grabbed plane point, metres.
+    int luminaire = -1;          ///< Luminaire being moved (DragMode::Luminaire).
+    double height = 0.0;         ///< Height of the horizontal drag plane, metres.
+    glm::dvec3 grabOffset{0.0};  ///< Luminaire position minus the grabbed plane point, metres.
 };
 
 /// Where things are on screen this frame, in window pixels (x right, y down).
@@ -58,7 +57,7 @@ struct EditorState {
     bool screenshotRequested = false;  ///< Set by the Screenshot button; the editor takes it.
     int screenshotsTaken = 0;
 
-    std::string status;          ///< One line in the status bar.
+    std::string status;  ///< One line in the status bar.
     bool statusIsError = false;
     std::string modalError;      ///< Non-empty: shown in the error modal until dismissed.
     std::string inspectorError;  ///< Why the inspector rejected the last value.

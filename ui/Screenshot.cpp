@@ -25,8 +25,10 @@ void PassTotals::add(const FrameStats& stats) {
     for (const PassTiming& p : stats.passes) {
         auto it = std::find_if(mTotals.begin(), mTotals.end(),
                                [&](const PassTiming& t) { return t.name == p.name; });
-        if (it == mTotals.end()) mTotals.push_back(p);
-        else it->gpuMs += p.gpuMs;
+        if (it == mTotals.end())
+            mTotals.push_back(p);
+        else
+            it->gpuMs += p.gpuMs;
     }
     mLastFrame = stats.passes;
 }

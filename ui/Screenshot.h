@@ -17,7 +17,7 @@ namespace candela::ui {
 /// last frame that ran any (a converged frame runs none, and the statistics should still show
 /// what produced the image).
 class PassTotals {
-public:
+  public:
     /// Adds a frame's passes; a frame that ran the G-buffer pass starts a new accumulation.
     void add(const FrameStats& stats);
     /// Milliseconds per pass over the current accumulation, in first-run order.
@@ -27,7 +27,7 @@ public:
     /// Sum of totals(), GPU milliseconds.
     double totalGpuMs() const;
 
-private:
+  private:
     std::vector<PassTiming> mTotals;
     std::vector<PassTiming> mLastFrame;
 };

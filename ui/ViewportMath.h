@@ -4,7 +4,6 @@
 // viewport pixels. No ImGui and no GL here, so the maths can be tested on its own.
 
 #include <glm/glm.hpp>
-
 #include <optional>
 
 #include "scene/Scene.h"

@@ -30,7 +30,7 @@ expect() {
 }
 
 expect "nothing_here.json" "cannot open" -- info "$data/nothing_here.json"
-expect "malformed.json" "invalid JSON" ":5:" -- render "$data/malformed.json" --out "$out/a.png"
+expect "malformed.json" "invalid JSON" ":4:" -- render "$data/malformed.json" --out "$out/a.png"
 expect "nan_literal.json" "invalid JSON" -- probe "$data/nan_literal.json" --points "$data/nan_points.csv"
 expect "nan_string.json" "size" "NaN" -- info "$data/nan_string.json"
 expect "negative_size.json" "size" "positive" -- render "$data/negative_size.json" --out "$out/a.png"

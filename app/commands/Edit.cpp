@@ -1,0 +1,102 @@
+// `candela edit [scene.json]`: the interactive editor, or, without a display, the editor's
+// screenshots of the scene rendered offscreen.
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include "app/commands/Commands.h"
+#include "renderer/Renderer.h"
+#include "renderer/ShaderLibrary.h"
+#include "renderer/context/GlContext.h"
+#include "scene/SceneIo.h"
+#include "ui/Editor.h"
+#include "ui/Screenshot.h"
+#include "util/Error.h"
+
+namespace candela {
+
+namespace {
+
+constexpr int kHeadlessWidth = 960;   ///< Offscreen screenshot width, pixels.
+constexpr int kHeadlessHeight = 540;  ///< Offscreen screenshot height, pixels.
+constexpr int kHeadlessMaxSpp = 64;   ///< Samples per pixel for progressive techniques.
+
+/// Renders the scene offscreen with its own techniques until converged (at most 64 spp) and
+/// writes the screenshot files the editor's Screenshot button would.
+int renderScreenshotsOffscreen(const ui::EditorOptions& options) {
+    Scene scene = loadScene(options.scenePath);
+    auto context = createOffscreenContext();
+    ShaderLibrary shaders;
+    Renderer renderer(shaders);
+    RenderSettings settings;
+    settings.width = kHeadlessWidth;
+    settings.height = kHeadlessHeight;
+    settings.samplesPerFrame = 8;
+    settings.maxSamples = kHeadlessMaxSpp;
+    renderer.setSettings(settings);
+    renderer.update(scene, kChangeAll);
+
+    ui::PassTotals passes;
+    // Guard against a plan that never reports convergence: 64 spp at 1 spp per frame at most.
+    for (int frame = 0; frame < 4 * kHeadlessMaxSpp; ++frame) {
+        renderer.renderFrame();
+        passes.add(renderer.stats());
+        if (renderer.converged()) break;
+    }
+    ui::ScreenshotFiles files = ui::writeScreenshot(options.screenshotDir, scene, renderer, passes);
+    std::printf("rendered %s offscreen (%dx%d, %d spp%s)\n", options.scenePath.c_str(),
+                kHeadlessWidth, kHeadlessHeight, renderer.stats().samplesPerPixel,
+                renderer.plan().progressive() ? "" : ", exact techniques");
+    std::printf("wrote %s\nwrote %s\nwrote %s\n", files.png.c_str(), files.exr.c_str(),
+                files.json.c_str());
+    return 0;
+}
+
+}  // namespace
+
+int cmdEdit(const Args& args) {
+    ui::EditorOptions options;
+    for (size_t i = 0; i < args.size(); ++i) {
+        const std::string& a = args[i];
+        if (a == "--size")
+            parseSize(flagValue(args, i), options.width, options.height);
+        else if (a == "--screenshot-dir")
+            options.screenshotDir = flagValue(args, i);
+        else if (a == "--layout-file")
+            options.layoutFile = flagValue(args, i);
+        else if (a == "--quit-after-frames")
+            options.quitAfterFrames = parseInt(a, flagValue(args, i), 1, 1 << 30);
+        else if (!a.empty() && a[0] == '-')
+            throw InputError("edit: unknown option " + a +
+                             " (expected --size WxH, --screenshot-dir DIR, --layout-file FILE, "
+                             "--quit-after-frames N)");
+        else if (options.scenePath.empty())
+            options.scenePath = a;
+        else
+            throw InputError("edit: unexpected argument " + a);
+    }
+    if (options.scenePath.empty())
+        options.scenePath = std::string(CANDELA_SOURCE_DIR) + "/resources/scenes/demo.json";
+
+    if (!displayAvailable()) {
+        std::printf(
+            "candela edit: no display found (DISPLAY and WAYLAND_DISPLAY are unset); "
+            "rendering the scene's screenshots offscreen into %s/ instead\n",
+            options.screenshotDir.string().c_str());
+        return renderScreenshotsOffscreen(options);
+    }
+    std::unique_ptr<ui::Editor> editor;
+    try {
+        editor = std::make_unique<ui::Editor>(options);
+    } catch (const RuntimeError& e) {
+        std::fprintf(stderr, "candela edit: cannot open the editor window: %s\n", e.what());
+        std::printf(
+            "candela edit: no usable display found; rendering the scene's screenshots "
+            "offscreen into %s/ instead\n",
+            options.screenshotDir.string().c_str());
+        return renderScreenshotsOffscreen(options);
+    }
+    return editor->run();
+}
+
+}  // namespace candela

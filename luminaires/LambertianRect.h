@@ -1,0 +1,46 @@
+#pragma once
+// A uniformly emitting (Lambertian) rectangle: the simplest luminaire with exact answers.
+// It is centred on pose.position, spans the pose's local x (width) and y (height) axes and emits
+// only into the half-space its aim (local +z) points to.
+
+#include "luminaires/Luminaire.h"
+#include "luminaires/Registry.h"
+
+namespace candela {
+
+class LambertianRect final : public Luminaire {
+public:
+    glm::dvec2 size{1.0, 0.5};     ///< Width along local x (c0), height along local y, metres.
+    glm::dvec3 emitted{10.0};      ///< Radiance to the +aim side, W/(m2 sr), RGB.
+
+    std::string_view kind() const override { return "lambertian-rect"; }
+    std::unique_ptr<Luminaire> clone() const override;
+    glm::dvec3 radiance(const glm::dvec3& x, const glm::dvec3& w) const override;
+    glm::dvec3 power() const override;
+    /// Uniform in the solid angle of the rectangle seen from p (Urena, Fajardo, King 2013);
+    /// pdf = 1 / solidAngle(p), or no sample (pdf 0) when p is not in front of the emitting side.
+    LightSample sample(const glm::dvec3& p, const glm::dvec2& u) const override;
+    double pdf(const glm::dvec3& p, const glm::dvec3& wi) const override;
+    /// Corners counter-clockwise seen from the emitting side, starting at -x/2, -y/2.
+    std::vector<glm::dvec3> outline() const override;
+    void writeJson(nlohmann::json& out) const override;
+    /// One gpu::LambertianRectGpu (shaders/shared/GpuTypes.h).
+    std::vector<std::byte> gpuData() const override;
+    std::string describe() const override;
+
+    /// Solid angle subtended at p (steradians); 0 behind the emitting side or in its plane.
+    double solidAngle(const glm::dvec3& p) const;
+
+    static std::unique_ptr<Luminaire> parse(const nlohmann::json& entry, const json::Where& where);
+    static std::unique_ptr<Luminaire> create();
+};
+
+/// Closed-form irradiance (polygon formula after horizon clipping); with a visibility query it
+/// is scaled by the stochastic ratio sum(cos V) / sum(cos) over solid-angle samples.
+Estimate lambertianRectAnalytic(const Luminaire& luminaire, const glm::dvec3& p,
+                                const glm::dvec3& n, const EstimateOptions& options);
+/// Monte Carlo with samples uniform in solid angle; reports the standard error.
+Estimate lambertianRectReference(const Luminaire& luminaire, const glm::dvec3& p,
+                                 const glm::dvec3& n, const EstimateOptions& options);
+
+}  // namespace candela

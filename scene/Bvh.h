@@ -1,0 +1,70 @@
+#pragma once
+// Bounding volume hierarchy over every scene triangle, for shadow rays. Built on the CPU, used by
+// Bvh::occluded() (probe, tests, CPU estimators) and uploaded unchanged for
+// shaders/bvh_traverse.glsl, which runs the same traversal on the GPU.
+//
+// Layout (gpu::BvhNode, shaders/shared/GpuTypes.h): node 0 is the root. An inner node stores
+// intBitsToFloat(left child index) in lo.w and intBitsToFloat(0) in hi.w; its right child is
+// left + 1. A leaf stores its first triangle in lo.w and its triangle count (1 to 4) in hi.w,
+// both as int bits. Trees are at most kMaxDepth levels deep, so a traversal stack of 32 entries
+// never overflows. An empty scene gets one degenerate (never hit) triangle in a root leaf, so
+// both buffers are non-empty and the root is always valid.
+//
+// Shadow-ray bias: occluded(from, to) tests the open segment shrunk by
+// eps = 1e-4 m * max(1, |to - from|) at both ends, so the surfaces the segment starts and ends
+// on (receiver and emitter) do not shadow themselves through rounding; occluders closer than eps
+// to either end are missed.
+
+#include <algorithm>
+#include <glm/glm.hpp>
+#include <vector>
+
+#include "luminaires/Registry.h"
+#include "scene/Scene.h"
+#include "shaders/shared/GpuTypes.h"
+
+namespace candela {
+
+struct Bvh {
+    std::vector<gpu::BvhNode> nodes;          ///< Node 0 is the root; see the layout above.
+    std::vector<gpu::BvhTriangle> triangles;  ///< World space (metres), in leaf order.
+
+    static constexpr int kMaxLeafTriangles = 4;
+    /// Most inner levels on any root-to-leaf path; the GLSL traversal stack holds 32 entries.
+    static constexpr int kMaxDepth = 31;
+
+    /// Binned SAH build over all triangles of all meshes (falls back to median splits where
+    /// needed to respect kMaxDepth).
+    static Bvh build(const Scene& scene);
+
+    /// True when a triangle (either side) cuts the segment between from and to (metres), with
+    /// the end bias described above.
+    bool occluded(const glm::dvec3& from, const glm::dvec3& to) const;
+
+    /// Two-sided Moller-Trumbore: does origin + t * dir hit the triangle with tMin < t < tMax?
+    /// (t in metres for a unit dir.)
+    static bool intersects(const gpu::BvhTriangle& triangle, const glm::dvec3& origin,
+                           const glm::dvec3& dir, double tMin, double tMax);
+    /// End bias of a segment of `distance` metres, metres.
+    static double segmentEpsilon(double distance) { return 1e-4 * std::max(1.0, distance); }
+
+    /// Inner levels on the longest root-to-leaf path (0 for a single leaf).
+    int depth() const;
+};
+
+/// Visibility through a BVH, for the CPU estimators' EstimateOptions::visibility. Holds a
+/// reference: the Bvh must outlive it (temporaries are rejected at compile time).
+class BvhVisibility : public Visibility {
+  public:
+    explicit BvhVisibility(const Bvh& bvh) : mBvh(bvh) {}
+    explicit BvhVisibility(Bvh&&) = delete;
+    bool visible(const glm::dvec3& from, const glm::dvec3& to) const override {
+        return !mBvh.occluded(from, to);
+    }
+    const Bvh& bvh() const { return mBvh; }
+
+  private:
+    const Bvh& mBvh;
+};
+
+}  // namespace candela

@@ -1,0 +1,254 @@
+#!/usr/bin/env bash
+# End-to-end test of the editor with real X input events under Xvfb (llvmpipe, no GPU needed):
+#   1. press the Screenshot button                         -> shot-000.{png,exr,json}
+#   2. press on the ceiling panel and drag it 150 px right  -> the panel follows the mouse
+#   3. let the image refine, press Screenshot again         -> shot-001.{png,exr,json}
+#   4. check the images: the panel's old spot got darker, its new spot brighter; the sidecars
+#      parse and the luminaire moved in its horizontal plane to where the mouse was released.
+# Usage: bash tests/e2e/editor_drag.sh /path/to/candela /path/to/tests
+# The editor writes its layout (viewport, button and luminaire positions in window pixels) with
+# --layout-file; the test polls it instead of sleeping for fixed times. CANDELA_E2E_KEEP=1 keeps
+# the temporary folder (screenshots, layout, editor log, window.png) after a pass too.
+set -euo pipefail
+
+CANDELA=${1:?usage: editor_drag.sh /path/to/candela /path/to/tests}
+TESTS=${2:?usage: editor_drag.sh /path/to/candela /path/to/tests}
+SOURCE=$(cd "$TESTS/.." && pwd)
+DRAG_PX=150        # horizontal drag, window pixels
+BOX=20             # side of the boxes whose mean brightness is compared, image pixels
+TIMEOUT_S=60       # longest wait for any one step
+
+TMP=$(mktemp -d "${TMPDIR:-/tmp}/candela-e2e.XXXXXX")
+LAYOUT=$TMP/layout.json
+SHOTS=$TMP/shots
+XVFB_PID=
+EDITOR_PID=
+PASSED=0
+
+cleanup() {
+    [ -n "$EDITOR_PID" ] && kill "$EDITOR_PID" 2>/dev/null || true
+    [ -n "$XVFB_PID" ] && kill "$XVFB_PID" 2>/dev/null || true
+    wait 2>/dev/null || true
+    if [ "$PASSED" = 1 ] && [ -z "${CANDELA_E2E_KEEP:-}" ]; then
+        rm -rf "$TMP"
+    else
+        echo "editor_drag: files kept in $TMP" >&2
+    fi
+}
+trap cleanup EXIT
+
+fail() {
+    echo "editor_drag: FAIL: $*" >&2
+    if [ -f "$TMP/editor.log" ]; then
+        echo "--- editor output (last 40 lines) ---" >&2
+        tail -n 40 "$TMP/editor.log" >&2
+    fi
+    if [ -f "$LAYOUT" ]; then
+        echo "--- last layout ---" >&2
+        cat "$LAYOUT" >&2
+    fi
+    exit 1
+}
+
+for tool in Xvfb xdotool python3 convert identify; do
+    command -v "$tool" >/dev/null || fail "$tool is not installed (needs xvfb, xdotool, imagemagick)"
+done
+[ -x "$CANDELA" ] || fail "no candela binary at $CANDELA"
+
+# Evaluates a Python expression over the layout file's JSON `d`; a bool becomes the exit status,
+# anything else is printed. Exit 2 while the file is missing or unreadable.
+layout() {
+    python3 - "$LAYOUT" "$1" <<'EOF'
+import json, sys
+try:
+    with open(sys.argv[1]) as f:
+        d = json.load(f)
+except Exception:
+    sys.exit(2)
+v = eval(sys.argv[2], {"d": d, "abs": abs})
+if isinstance(v, bool):
+    sys.exit(0 if v else 1)
+print(v)
+EOF
+}
+
+# wait_until DESCRIPTION EXPRESSION: polls the layout until the expression holds.
+wait_until() {
+    local deadline=$((SECONDS + TIMEOUT_S))
+    until layout "$2" >/dev/null 2>&1; do
+        kill -0 "$EDITOR_PID" 2>/dev/null || fail "the editor exited while waiting for $1"
+        ((SECONDS < deadline)) || fail "timed out after $TIMEOUT_S s waiting for $1"
+        sleep 0.1
+    done
+}
+
+wait_for_file() {
+    local deadline=$((SECONDS + TIMEOUT_S))
+    until [ -s "$1" ]; do
+        kill -0 "$EDITOR_PID" 2>/dev/null || fail "the editor exited while waiting for $1"
+        ((SECONDS < deadline)) || fail "timed out after $TIMEOUT_S s waiting for $1"
+        sleep 0.1
+    done
+}
+
+# Moves the pointer to window pixel (x, y) and waits until the editor has seen it there, so a
+# following press lands where intended even when frames are slow.
+move_to() {
+    xdotool mousemove --window "$WID" "$1" "$2"
+    wait_until "the pointer at ($1, $2)" \
+        "d['mouse'] is not None and abs(d['mouse'][0] - $1) < 1 and abs(d['mouse'][1] - $2) < 1"
+}
+
+# --- X server: Xvfb picks a free display number itself and reports it once it is ready. --------
+Xvfb -displayfd 5 -screen 0 1280x800x24 -nolisten tcp 5>"$TMP/display" >/dev/null 2>"$TMP/xvfb.log" &
+XVFB_PID=$!
+deadline=$((SECONDS + 30))
+until [ -s "$TMP/display" ]; do
+    kill -0 "$XVFB_PID" 2>/dev/null || fail "Xvfb did not start: $(cat "$TMP/xvfb.log")"
+    ((SECONDS < deadline)) || fail "Xvfb did not report a display within 30 s"
+    sleep 0.1
+done
+export DISPLAY=":$(head -n 1 "$TMP/display")"
+unset WAYLAND_DISPLAY  # GLFW must use the X server above
+echo "editor_drag: Xvfb on $DISPLAY"
+
+# --- Scene: the demo with the camera raised to see the ceiling panel, and the panel turned so ---
+# its short side runs across the image (a 150 px drag then clears its old footprint).
+python3 - "$SOURCE/resources/scenes/demo.json" "$TMP/scene.json" <<'EOF'
+import json, sys
+scene = json.load(open(sys.argv[1]))
+scene["camera"] = {"position": [0.0, 1.3, 2.6], "target": [0.0, 1.9, -1.0], "fov_deg": 60}
+lum = scene["luminaires"][0]
+lum["c0"] = [0, 0, 1]
+json.dump(scene, open(sys.argv[2], "w"), indent=1)
+EOF
+
+# --- Editor ---------------------------------------------------------------------------------------
+LIBGL_ALWAYS_SOFTWARE=1 timeout 280 "$CANDELA" edit "$TMP/scene.json" --size 1280x800 \
+    --screenshot-dir "$SHOTS" --layout-file "$LAYOUT" --quit-after-frames 1000000 \
+    >"$TMP/editor.log" 2>&1 &
+EDITOR_PID=$!
+wait_until "the editor's first layout" "len(d['luminaires']) > 0 and d['frame'] >= 2"
+WID=$(timeout 30 xdotool search --sync --onlyvisible --name Candela | head -n 1) ||
+    fail "no window named Candela"
+[ -n "$WID" ] || fail "no window named Candela"
+xdotool windowfocus "$WID" 2>/dev/null || true
+wait_until "a visible luminaire" "d['luminaires'][0]['screen'] is not None"
+
+read -r BX BY < <(layout "'%d %d' % tuple(round(c) for c in d['screenshot_button'])")
+read -r LX LY < <(layout "'%d %d' % tuple(round(c) for c in d['luminaires'][0]['screen'])")
+NAME=$(layout "d['luminaires'][0]['name']")
+read -r VX VY VW VH < <(layout "'%d %d %d %d' % tuple(d['viewport'])")
+echo "editor_drag: viewport $VX,$VY ${VW}x$VH; Screenshot button at ($BX, $BY); \"$NAME\" at ($LX, $LY)"
+((LX > VX + BOX && LX + DRAG_PX < VX + VW - BOX && LY > VY + BOX && LY < VY + VH - BOX)) ||
+    fail "the luminaire at ($LX, $LY) is too close to the viewport's edge for the drag"
+
+# --- 1. Screenshot before the drag ---------------------------------------------------------------
+move_to "$BX" "$BY"
+xdotool click 1
+wait_for_file "$SHOTS/shot-000.json"
+[ -s "$SHOTS/shot-000.png" ] && [ -s "$SHOTS/shot-000.exr" ] || fail "shot-000.png/.exr missing"
+echo "editor_drag: shot-000 written"
+
+# --- 2. Drag the luminaire by DRAG_PX to the right ----------------------------------------------
+move_to "$LX" "$LY"
+xdotool mousedown 1
+wait_until "\"$NAME\" to be picked and dragged" "d['dragging'] and d['selected'] == '$NAME'"
+STEPS=10
+for ((i = 1; i <= STEPS; i++)); do
+    xdotool mousemove --window "$WID" $((LX + DRAG_PX * i / STEPS)) "$LY"
+    sleep 0.05
+done
+NX=$((LX + DRAG_PX))
+move_to "$NX" "$LY"
+wait_until "the luminaire to follow the mouse to ($NX, $LY)" \
+    "abs(d['luminaires'][0]['screen'][0] - $NX) < 3 and abs(d['luminaires'][0]['screen'][1] - $LY) < 3"
+xdotool mouseup 1
+wait_until "the end of the drag" "not d['dragging']"
+read -r NX NY < <(layout "'%.2f %.2f' % tuple(d['luminaires'][0]['screen'])")
+echo "editor_drag: \"$NAME\" now at ($NX, $NY)"
+
+# --- 3. Let the image refine (a soft wait: the checks do not need convergence), screenshot ------
+deadline=$((SECONDS + 20))
+until layout "d['converged'] or d['samples_per_pixel'] >= 16" >/dev/null 2>&1 ||
+    ((SECONDS >= deadline)); do
+    sleep 0.2
+done
+move_to "$BX" "$BY"
+xdotool click 1
+wait_for_file "$SHOTS/shot-001.json"
+[ -s "$SHOTS/shot-001.png" ] && [ -s "$SHOTS/shot-001.exr" ] || fail "shot-001.png/.exr missing"
+echo "editor_drag: shot-001 written"
+kill -0 "$EDITOR_PID" 2>/dev/null || fail "the editor exited"
+grep -q "shot-001.png" "$TMP/editor.log" || fail "the editor did not print the screenshot paths"
+import -window root "$TMP/window.png" 2>/dev/null || true  # the whole editor, for a look
+
+# --- 4. Compare the screenshots ------------------------------------------------------------------
+# Window pixels -> image pixels through the viewport rectangle and the image size.
+read -r IW IH < <(identify -format '%w %h\n' "$SHOTS/shot-001.png")
+read -r OX OY < <(python3 -c "print(round(($LX-$VX)*$IW/$VW), round(($LY-$VY)*$IH/$VH))")
+read -r PX PY < <(python3 -c "print(round(($NX-$VX)*$IW/$VW), round(($NY-$VY)*$IH/$VH))")
+mean() {  # mean grey level (0-255) of the BOX x BOX square centred on ($2, $3) of image $1
+    convert "$1" -crop "${BOX}x${BOX}+$(($2 - BOX / 2))+$(($3 - BOX / 2))" +repage \
+        -colorspace Gray -format '%[fx:mean*255]' info:
+}
+OLD_BEFORE=$(mean "$SHOTS/shot-000.png" "$OX" "$OY")
+OLD_AFTER=$(mean "$SHOTS/shot-001.png" "$OX" "$OY")
+NEW_BEFORE=$(mean "$SHOTS/shot-000.png" "$PX" "$PY")
+NEW_AFTER=$(mean "$SHOTS/shot-001.png" "$PX" "$PY")
+echo "editor_drag: old spot ($OX, $OY): $OLD_BEFORE -> $OLD_AFTER;" \
+    "new spot ($PX, $PY): $NEW_BEFORE -> $NEW_AFTER"
+# The panel is an emitter far brighter than the frame mean, so tone mapping shows it near white;
+# the ceiling around it is lit only indirectly (not at all here). 20 grey levels is well above
+# the noise of a few-spp image in 400-pixel means.
+python3 - "$OLD_BEFORE" "$OLD_AFTER" "$NEW_BEFORE" "$NEW_AFTER" <<'EOF' || fail "brightness check"
+import sys
+ob, oa, nb, na = map(float, sys.argv[1:])
+ok = True
+if not ob - oa > 20:
+    print(f"old spot did not get darker by > 20 levels ({ob:.1f} -> {oa:.1f})"); ok = False
+if not na - nb > 20:
+    print(f"new spot did not get brighter by > 20 levels ({nb:.1f} -> {na:.1f})"); ok = False
+sys.exit(0 if ok else 1)
+EOF
+
+# Sidecars: parse, the luminaire moved in its horizontal plane, and its new position projects to
+# where the mouse was released (the renderer's camera model: lookAt + perspective, Y-up).
+python3 - "$SHOTS/shot-000.json" "$SHOTS/shot-001.json" "$NAME" "$PX" "$PY" <<'EOF' ||
+import json, math, sys
+before, after = (json.load(open(p)) for p in sys.argv[1:3])
+name, px, py = sys.argv[3], float(sys.argv[4]), float(sys.argv[5])
+for s in (before, after):
+    for key in ("camera", "luminaires", "render_size", "samples_per_pixel", "passes",
+                "total_gpu_ms", "timestamp", "scene"):
+        assert key in s, f"sidecar lacks {key}"
+    assert all("technique" in l for l in s["luminaires"]), "a luminaire lacks its technique"
+lum = lambda s: next(l for l in s["luminaires"] if l["name"] == name)
+p0, p1 = lum(before)["position"], lum(after)["position"]
+d = [b - a for a, b in zip(p0, p1)]
+print(f"editor_drag: sidecar position {p0} -> {p1}")
+assert abs(d[1]) < 1e-6, f"the drag changed the height by {d[1]} m"
+assert math.hypot(d[0], d[2]) > 0.2, f"the luminaire moved only {math.hypot(d[0], d[2]):.3f} m"
+assert d[0] > 0, "dragging right should move the luminaire towards +x in this view"
+
+def sub(a, b): return [x - y for x, y in zip(a, b)]
+def dot(a, b): return sum(x * y for x, y in zip(a, b))
+def norm(a): return [x / math.sqrt(dot(a, a)) for x in a]
+def cross(a, b): return [a[1]*b[2]-a[2]*b[1], a[2]*b[0]-a[0]*b[2], a[0]*b[1]-a[1]*b[0]]
+cam = after["camera"]
+w, h = after["render_size"]
+f = norm(sub(cam["target"], cam["position"]))
+r = norm(cross(f, [0, 1, 0]))
+u = cross(r, f)
+v = sub(p1, cam["position"])
+x, y, z = dot(v, r), dot(v, u), dot(v, f)
+t = math.tan(math.radians(cam["fov_deg"]) / 2)
+sx = (x / (z * t * w / h) * 0.5 + 0.5) * w
+sy = (0.5 - y / (z * t) * 0.5) * h
+print(f"editor_drag: new position projects to ({sx:.1f}, {sy:.1f}), mouse released at ({px}, {py})")
+assert abs(sx - px) < 4 and abs(sy - py) < 4, "the luminaire is not where it was dropped"
+EOF
+    fail "sidecar check"
+
+PASSED=1
+echo "editor_drag: PASS"

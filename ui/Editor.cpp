@@ -1,0 +1,291 @@
+// GL function declarations first: nothing below may pull in GL/gl.h before them.
+// clang-format off
+#include "renderer/gl/GlFunctions.h"
+// clang-format on
+#include "ui/Editor.h"
+
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <imgui_impl_glfw.h>
+#include <imgui_impl_opengl3.h>
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <cstdio>
+#include <exception>
+
+#include "renderer/Renderer.h"
+#include "renderer/ShaderLibrary.h"
+#include "renderer/context/GlContext.h"
+#include "ui/EditorState.h"
+#include "ui/KeyLatch.h"
+#include "ui/Panels.h"
+#include "ui/Screenshot.h"
+#include "ui/ViewportMath.h"
+
+namespace candela::ui {
+
+namespace {
+
+constexpr double kReloadIntervalS = 0.5;  ///< How often shader files are checked, seconds.
+constexpr double kIdleWaitS = 0.1;        ///< Longest sleep of an idle editor, seconds.
+constexpr int kBusyFramesAfterInput = 3;  ///< Frames drawn after input before sleeping.
+constexpr float kLeftWidth = 330.f;       ///< Outline and inspector column, pixels.
+constexpr float kRightWidth = 330.f;      ///< Render and statistics column, pixels.
+
+/// True when this frame saw mouse motion, a wheel turn, or a button or key held down.
+bool hadInput() {
+    const ImGuiIO& io = ImGui::GetIO();
+    if (io.MouseDelta.x != 0.f || io.MouseDelta.y != 0.f || io.MouseWheel != 0.f ||
+        io.MouseWheelH != 0.f)
+        return true;
+    for (bool down : io.MouseDown)
+        if (down) return true;
+    for (bool down : io.KeysDown)
+        if (down) return true;
+    return false;
+}
+
+nlohmann::json vec2Json(float x, float y) {
+    return nlohmann::json::array({x, y});
+}
+
+}  // namespace
+
+Editor::Editor(const EditorOptions& options) : mOptions(options) {
+    mContext = std::make_unique<WindowContext>(options.width, options.height, "Candela");
+    mShaders = std::make_unique<ShaderLibrary>();
+    mRenderer = std::make_unique<Renderer>(*mShaders);
+    mState = std::make_unique<EditorState>();
+    mState->screenshotDir = options.screenshotDir;
+    mState->settings.samplesPerFrame = 4;
+    mState->settings.maxSamples = 256;
+    if (!options.scenePath.empty()) openSceneFile(*mState, options.scenePath);
+
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGuiIO& io = ImGui::GetIO();
+    io.IniFilename = nullptr;  // deterministic layout: no imgui.ini
+    io.LogFilename = nullptr;
+    ImGui::StyleColorsDark();
+    ImGui::GetStyle().WindowRounding = 0.f;
+    mKeyLatch = std::make_unique<KeyLatch>();
+    mKeyLatch->install(mContext->window());  // before the backend, which chains to it
+    ImGui_ImplGlfw_InitForOpenGL(mContext->window(), true);
+    ImGui_ImplOpenGL3_Init("#version 450 core");
+    mImGuiReady = true;
+    updateTitle();
+}
+
+Editor::~Editor() {
+    if (mImGuiReady) {
+        ImGui_ImplOpenGL3_Shutdown();
+        ImGui_ImplGlfw_Shutdown();
+        ImGui::DestroyContext();
+    }
+    if (mContext) {
+        glfwSetKeyCallback(mContext->window(), nullptr);
+        glfwSetWindowUserPointer(mContext->window(), nullptr);
+    }
+    // GL objects go before the context that owns them.
+    mRenderer.reset();
+    mShaders.reset();
+    mState.reset();
+    mContext.reset();
+}
+
+int Editor::run() {
+    GLFWwindow* window = mContext->window();
+    while (!glfwWindowShouldClose(window) && !mState->quitRequested) {
+        frame();
+        ++mFrame;
+        if (mOptions.quitAfterFrames > 0 && mFrame >= mOptions.quitAfterFrames) break;
+    }
+    return 0;
+}
+
+void Editor::frame() {
+    EditorState& state = *mState;
+    // While a text field has the keyboard, refinement pauses: Dear ImGui 1.86 sees a key only if
+    // it is still down at the next frame, and a slow GPU's frames would lose keystrokes.
+    bool typing = ImGui::GetIO().WantTextInput;
+    bool settled = mRenderer->converged() || mRenderFailed || typing;
+    bool idle = settled && mIdleFrames >= kBusyFramesAfterInput &&
+                state.pendingChanges == kChangeNone && !state.screenshotRequested;
+    if (idle)
+        glfwWaitEventsTimeout(kIdleWaitS);
+    else
+        glfwPollEvents();
+
+    double now = glfwGetTime();
+    if (now - mLastReloadCheck >= kReloadIntervalS) {
+        mLastReloadCheck = now;
+        bool reloaded = mShaders->reloadChanged();
+        if (reloaded) state.pendingChanges |= kChangeSettings;
+        const std::string& log = mShaders->errorLog();
+        if (log != mLastShaderLog && !log.empty())
+            setStatus(state,
+                      "Shader compile failed (log under Frame statistics); keeping the "
+                      "last good program",
+                      true);
+        else if (reloaded)
+            setStatus(state, "Shaders reloaded");
+        mLastShaderLog = log;
+    }
+
+    mRenderer->setSettings(state.settings);
+    if (state.pendingChanges != kChangeNone) {
+        mRenderer->update(state.scene, state.pendingChanges);
+        state.pendingChanges = kChangeNone;
+    }
+    glDisable(GL_SCISSOR_TEST);
+    try {
+        // Frame 0 only lays out the UI, which sets the render size from the viewport panel.
+        if (mFrame > 0 && !typing) {
+            mRenderer->renderFrame();
+            state.passes.add(mRenderer->stats());
+        }
+        mRenderFailed = false;
+    } catch (const std::exception& e) {
+        std::string message = std::string("Render failed: ") + e.what();
+        if (state.status != message) {
+            std::fprintf(stderr, "candela edit: %s\n", message.c_str());
+            setStatus(state, message, true);
+        }
+        mRenderFailed = true;
+    }
+    // Requested last frame; taken now that the image shows the scene as it is.
+    if (state.screenshotRequested) takeScreenshot();
+
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    mKeyLatch->apply(mContext->window());
+    ImGui::NewFrame();
+    buildUi();
+    ImGui::Render();
+
+    int fbWidth = 0, fbHeight = 0;
+    glfwGetFramebufferSize(mContext->window(), &fbWidth, &fbHeight);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glViewport(0, 0, fbWidth, fbHeight);
+    glClearColor(0.08f, 0.08f, 0.09f, 1.f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    glfwSwapBuffers(mContext->window());
+
+    if (state.quitRequested) glfwSetWindowShouldClose(mContext->window(), GLFW_TRUE);
+    mIdleFrames = hadInput() ? 0 : mIdleFrames + 1;
+    updateTitle();
+    writeLayout();
+}
+
+void Editor::buildUi() {
+    EditorState& state = *mState;
+    float menuHeight = 0.f;
+    mainMenuBar(state, menuHeight);
+
+    ImVec2 display = ImGui::GetIO().DisplaySize;
+    float statusHeight = ImGui::GetFrameHeight() + 6.f;
+    float top = menuHeight;
+    float middle = std::max(1.f, display.y - statusHeight - top);
+    float left = std::min(kLeftWidth, display.x * 0.27f);
+    float right = std::min(kRightWidth, display.x * 0.28f);
+    PanelRect viewport{left, top, std::max(1.f, display.x - left - right), middle};
+    PanelRect outline{0.f, top, left, std::floor(middle * 0.4f)};
+    PanelRect inspector{0.f, top + outline.h, left, middle - outline.h};
+    PanelRect render{display.x - right, top, right, std::floor(middle * 0.5f)};
+    PanelRect stats{display.x - right, top + render.h, right, middle - render.h};
+    PanelRect status{0.f, top + middle, display.x, statusHeight};
+
+    viewportPanel(state, *mRenderer, viewport);
+    outlinePanel(state, outline);
+    inspectorPanel(state, inspector);
+    renderPanel(state, render);
+    statsPanel(state, *mRenderer, *mShaders, stats);
+    statusBar(state, *mRenderer, status);
+    fileDialogs(state);
+}
+
+void Editor::takeScreenshot() {
+    EditorState& state = *mState;
+    state.screenshotRequested = false;
+    try {
+        ScreenshotFiles files =
+            writeScreenshot(state.screenshotDir, state.scene, *mRenderer, state.passes);
+        std::printf("screenshot: %s\nscreenshot: %s\nscreenshot: %s\n", files.png.c_str(),
+                    files.exr.c_str(), files.json.c_str());
+        std::fflush(stdout);
+        ++state.screenshotsTaken;
+        setStatus(state, "Screenshot written: " + files.png + " (+ .exr, .json)");
+    } catch (const std::exception& e) {
+        reportError(state, std::string("Screenshot failed: ") + e.what());
+    }
+}
+
+void Editor::updateTitle() {
+    const EditorState& state = *mState;
+    std::string name = state.scene.path.empty()
+                           ? std::string("untitled")
+                           : std::filesystem::path(state.scene.path).filename().string();
+    std::string title = "Candela - " + name + (state.dirty ? " *" : "");
+    if (title != mTitle) {
+        glfwSetWindowTitle(mContext->window(), title.c_str());
+        mTitle = title;
+    }
+}
+
+void Editor::writeLayout() {
+    if (mOptions.layoutFile.empty()) return;
+    const EditorState& state = *mState;
+    const ScreenLayout& layout = state.layout;
+    int width = 0, height = 0;
+    glfwGetWindowSize(mContext->window(), &width, &height);
+    const RenderSettings& settings = mRenderer->settings();
+    glm::mat4 viewProj = mRenderer->viewProj();
+    const glm::vec4& v = layout.viewport;
+
+    nlohmann::json lums = nlohmann::json::array();
+    for (const auto& lum : state.scene.luminaires) {
+        nlohmann::json entry = {{"name", lum->name}};
+        glm::dvec3 p = lum->pose.position;
+        entry["position"] = {p.x, p.y, p.z};
+        auto px = projectToPixels(viewProj, p, settings.width, settings.height);
+        if (px)
+            entry["screen"] = vec2Json(v.x + float(px->x) * v.z / float(settings.width),
+                                       v.y + float(px->y) * v.w / float(settings.height));
+        else
+            entry["screen"] = nullptr;
+        lums.push_back(std::move(entry));
+    }
+    const ImGuiIO& io = ImGui::GetIO();
+    const FrameStats& stats = mRenderer->stats();
+    int selected = state.selectedLuminaire;
+    nlohmann::json j = {
+        {"window", {width, height}},
+        {"viewport", {v.x, v.y, v.z, v.w}},
+        {"render_size", {settings.width, settings.height}},
+        {"screenshot_button", vec2Json(layout.screenshotButton.x, layout.screenshotButton.y)},
+        {"luminaires", std::move(lums)},
+        {"selected", selected >= 0 && selected < int(state.scene.luminaires.size())
+                         ? nlohmann::json(state.scene.luminaires[size_t(selected)]->name)
+                         : nlohmann::json(nullptr)},
+        {"dragging", state.drag.mode == DragMode::Luminaire},
+        {"mouse", io.MousePos.x > -FLT_MAX / 2 ? vec2Json(io.MousePos.x, io.MousePos.y)
+                                               : nlohmann::json(nullptr)},
+        {"samples_per_pixel", stats.samplesPerPixel},
+        {"converged", stats.converged},
+        {"screenshots", state.screenshotsTaken},
+    };
+    std::string key = j.dump();
+    if (key == mLastLayout && mFrame >= 5) return;
+    mLastLayout = key;
+    j["frame"] = mFrame;
+    try {
+        writeFileAtomic(mOptions.layoutFile, j.dump(2) + "\n");
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "candela edit: layout file: %s\n", e.what());
+    }
+}
+
+}  // namespace candela::ui

@@ -1,0 +1,68 @@
+#pragma once
+// The interactive editor: a GLFW window with Dear ImGui panels around the progressive renderer's
+// viewport. One frame: poll events, refine the image (nothing when converged), build the UI,
+// draw, swap. A converged editor with no input sleeps in glfwWaitEventsTimeout.
+
+#include <filesystem>
+#include <memory>
+#include <string>
+
+namespace candela {
+
+class WindowContext;
+class ShaderLibrary;
+class Renderer;
+
+namespace ui {
+
+struct EditorState;
+class KeyLatch;
+
+struct EditorOptions {
+    std::string scenePath;  ///< Scene file to open.
+    int width = 1280;       ///< Window width, screen pixels.
+    int height = 800;       ///< Window height, screen pixels.
+    std::filesystem::path screenshotDir = "candela-screenshots";
+    /// Test hook: after frames whose layout changed, the window, viewport, Screenshot button and
+    /// luminaire positions (window pixels) are written here as JSON (atomically). Empty: off.
+    std::filesystem::path layoutFile;
+    int quitAfterFrames = 0;  ///< Test hook: exit after this many frames; 0 runs until closed.
+};
+
+class Editor {
+  public:
+    /// Opens the window and loads the scene (a scene that fails to load leaves the editor open
+    /// with an empty scene and the error shown). Throws RuntimeError when no window can be made.
+    explicit Editor(const EditorOptions& options);
+    ~Editor();
+    Editor(const Editor&) = delete;
+    Editor& operator=(const Editor&) = delete;
+
+    /// Runs until the window closes, Quit, or the frame limit. Returns the exit code.
+    int run();
+
+  private:
+    void frame();
+    void buildUi();
+    void takeScreenshot();
+    void updateTitle();
+    void writeLayout();
+
+    EditorOptions mOptions;
+    std::unique_ptr<WindowContext> mContext;
+    std::unique_ptr<ShaderLibrary> mShaders;
+    std::unique_ptr<Renderer> mRenderer;
+    std::unique_ptr<EditorState> mState;
+    std::unique_ptr<KeyLatch> mKeyLatch;
+    bool mImGuiReady = false;
+    bool mRenderFailed = false;  ///< The last renderFrame() threw; shown, not spun on.
+    int mFrame = 0;
+    int mIdleFrames = 0;            ///< Consecutive frames without input.
+    double mLastReloadCheck = 0.0;  ///< glfwGetTime() of the last shader reload check, s.
+    std::string mTitle;
+    std::string mLastLayout;     ///< Layout JSON last written, without the frame number.
+    std::string mLastShaderLog;  ///< Shader error log at the last reload check.
+};
+
+}  // namespace ui
+}  // namespace candela

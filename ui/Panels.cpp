@@ -1,0 +1,253 @@
+// Menu bar, file dialogs, scene outline and status bar.
+#include "ui/Panels.h"
+
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include <algorithm>
+#include <cstring>
+#include <filesystem>
+
+#include "ui/ImGuiUtil.h"
+
+namespace candela::ui {
+
+namespace {
+
+void requestSave(EditorState& state) {
+    if (state.scene.path.empty())
+        state.files.saveAsRequested = true;
+    else
+        saveSceneFile(state, {});
+}
+
+/// "plane #0", "box #5", "gltf chair.glb #7": the entry's shape key (or its name) and index.
+std::string geometryLabel(const GeometryItem& item, size_t index) {
+    std::string label;
+    const nlohmann::json& src = item.source;
+    if (src.is_object()) {
+        auto name = src.find("name");
+        if (name != src.end() && name->is_string()) label = name->get<std::string>();
+        for (auto it = src.begin(); label.empty() && it != src.end(); ++it) {
+            static const char* kMaterialKeys[] = {"albedo", "specular", "roughness", "material"};
+            bool material = false;
+            for (const char* k : kMaterialKeys) material = material || it.key() == k;
+            if (material) continue;
+            label = it.key();
+            if (it.value().is_string()) {
+                std::filesystem::path file = it.value().get<std::string>();
+                label.append(" ").append(file.filename().string());
+            }
+        }
+    }
+    if (label.empty()) label = "geometry";
+    return label + " #" + std::to_string(index);
+}
+
+}  // namespace
+
+const char* fieldUnit(const std::string& key) {
+    struct Unit {
+        const char* key;
+        const char* unit;
+    };
+    static const Unit kUnits[] = {
+        {"size", " [m]"},       {"width", " [m]"},
+        {"height", " [m]"},     {"length", " [m]"},
+        {"radius", " [m]"},     {"diameter", " [m]"},
+        {"distance", " [m]"},   {"radiance", " [W/(m2 sr)]"},
+        {"power", " [W]"},      {"irradiance", " [W/m2]"},
+        {"intensity", " [cd]"}, {"lumens", " [lm]"},
+        {"flux", " [lm]"},      {"illuminance", " [lx]"},
+    };
+    for (const Unit& u : kUnits)
+        if (key == u.key) return u.unit;
+    auto endsWith = [&](const char* suffix) {
+        size_t n = std::strlen(suffix);
+        return key.size() > n && key.compare(key.size() - n, n, suffix) == 0;
+    };
+    if (endsWith("_deg")) return " [deg]";
+    if (endsWith("_m")) return " [m]";
+    if (endsWith("_mm")) return " [mm]";
+    return "";
+}
+
+bool mainMenuBar(EditorState& state, float& barHeight) {
+    bool changed = false;
+    barHeight = 0.f;
+    if (ImGui::BeginMainMenuBar()) {
+        if (ImGui::BeginMenu("File")) {
+            if (ImGui::MenuItem("Open...", "Ctrl+O")) state.files.openRequested = true;
+            if (ImGui::MenuItem("Save", "Ctrl+S")) requestSave(state);
+            if (ImGui::MenuItem("Save As...")) state.files.saveAsRequested = true;
+            ImGui::Separator();
+            if (ImGui::MenuItem("Quit")) state.quitRequested = true;
+            ImGui::EndMenu();
+        }
+        barHeight = ImGui::GetWindowSize().y;
+        ImGui::EndMainMenuBar();
+    }
+    const ImGuiIO& io = ImGui::GetIO();
+    if (!io.WantTextInput && !ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId)) {
+        // GLFW key codes equal ASCII for letters (the 1.86 backend indexes KeysDown by them).
+        if (io.KeyCtrl && ImGui::IsKeyPressed('S', false)) requestSave(state);
+        if (io.KeyCtrl && ImGui::IsKeyPressed('O', false)) state.files.openRequested = true;
+        if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Delete), false) &&
+            state.selectedLuminaire >= 0) {
+            deleteLuminaire(state, state.selectedLuminaire);
+            changed = true;
+        }
+    }
+    return changed;
+}
+
+bool fileDialogs(EditorState& state) {
+    bool changed = false;
+    if (state.files.openRequested) {
+        if (state.files.openPath.empty()) state.files.openPath = state.scene.path;
+        ImGui::OpenPopup("Open scene");
+        state.files.openRequested = false;
+    }
+    if (state.files.saveAsRequested) {
+        if (state.files.saveAsPath.empty()) state.files.saveAsPath = state.scene.path;
+        ImGui::OpenPopup("Save scene as");
+        state.files.saveAsRequested = false;
+    }
+    auto pathDialog = [&](const char* title, const char* action, std::string& path,
+                          bool (*run)(EditorState&, const std::string&)) {
+        if (!ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return;
+        ImGui::TextUnformatted("Scene file (.json), absolute or relative to the working folder:");
+        ImGui::SetNextItemWidth(520.f);
+        if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
+        bool enter = ImGui::InputText("##path", &path, ImGuiInputTextFlags_EnterReturnsTrue);
+        if (ImGui::Button(action) || enter) {
+            changed = run(state, path) || changed;
+            ImGui::CloseCurrentPopup();
+        }
+        ImGui::SameLine();
+        if (ImGui::Button("Cancel")) ImGui::CloseCurrentPopup();
+        ImGui::EndPopup();
+    };
+    pathDialog("Open scene", "Open", state.files.openPath, &openSceneFile);
+    pathDialog("Save scene as", "Save", state.files.saveAsPath, &saveSceneFile);
+
+    if (!state.modalError.empty() && !ImGui::IsPopupOpen("Error")) ImGui::OpenPopup("Error");
+    if (ImGui::BeginPopupModal("Error", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+        ImGui::PushTextWrapPos(ImGui::GetFontSize() * 40.f);
+        ImGui::TextColored(errorColour(), "%s", state.modalError.c_str());
+        ImGui::PopTextWrapPos();
+        if (ImGui::Button("OK") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape)) ||
+            ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Enter))) {
+            state.modalError.clear();
+            ImGui::CloseCurrentPopup();
+        }
+        ImGui::EndPopup();
+    }
+    return changed;
+}
+
+bool outlinePanel(EditorState& state, const PanelRect& rect) {
+    bool changed = false;
+    placeNextWindow(rect);
+    ImGui::Begin("Scene", nullptr, kPanelFlags);
+    Scene& scene = state.scene;
+
+    std::string luminairesHeader =
+        "Luminaires (" + std::to_string(scene.luminaires.size()) + ")###luminaires";
+    if (ImGui::CollapsingHeader(luminairesHeader.c_str(), ImGuiTreeNodeFlags_DefaultOpen)) {
+        for (size_t i = 0; i < scene.luminaires.size(); ++i) {
+            const Luminaire& lum = *scene.luminaires[i];
+            ImGui::PushID(int(i));
+            bool selected = state.selectedLuminaire == int(i);
+            std::string label = lum.name + "  [" + lum.technique + "]";
+            if (ImGui::Selectable(label.c_str(), selected)) {
+                state.selectedLuminaire = int(i);
+                state.selectedGeometry = -1;
+                state.inspectorError.clear();
+                changed = true;
+            }
+            itemTooltip(std::string(lum.kind()) + ": " + lum.describe());
+            ImGui::PopID();
+        }
+        auto kinds = luminaireKinds();
+        if (!kinds.empty()) {
+            state.addKind = std::clamp(state.addKind, 0, int(kinds.size()) - 1);
+            ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x - 60.f);
+            std::string current(kinds[size_t(state.addKind)].kind);
+            if (ImGui::BeginCombo("##addkind", current.c_str())) {
+                for (size_t k = 0; k < kinds.size(); ++k) {
+                    std::string name(kinds[k].kind);
+                    if (ImGui::Selectable(name.c_str(), int(k) == state.addKind))
+                        state.addKind = int(k);
+                    itemTooltip(std::string(kinds[k].description));
+                }
+                ImGui::EndCombo();
+            }
+            ImGui::SameLine();
+            if (ImGui::Button("Add", ImVec2(-1.f, 0.f))) {
+                changed = addLuminaire(state, kinds[size_t(state.addKind)]) >= 0 || changed;
+            }
+            itemTooltip(
+                "Adds a luminaire of this kind 0.5 m below the top of the scene, aimed "
+                "down");
+        }
+        bool none = state.selectedLuminaire < 0;
+        ImGui::BeginDisabled(none);
+        if (ImGui::Button("Duplicate")) {
+            duplicateLuminaire(state, state.selectedLuminaire);
+            changed = true;
+        }
+        ImGui::SameLine();
+        if (ImGui::Button("Delete")) {
+            deleteLuminaire(state, state.selectedLuminaire);
+            changed = true;
+        }
+        ImGui::EndDisabled();
+    }
+
+    std::string geometryHeader =
+        "Geometry (" + std::to_string(scene.geometry.size()) + ")###geometry";
+    if (ImGui::CollapsingHeader(geometryHeader.c_str(), ImGuiTreeNodeFlags_DefaultOpen)) {
+        for (size_t i = 0; i < scene.geometry.size(); ++i) {
+            ImGui::PushID(int(i));
+            bool selected = state.selectedGeometry == int(i);
+            if (ImGui::Selectable(geometryLabel(scene.geometry[i], i).c_str(), selected)) {
+                state.selectedGeometry = int(i);
+                state.selectedLuminaire = -1;
+                state.inspectorError.clear();
+                changed = true;
+            }
+            ImGui::PopID();
+        }
+    }
+    ImGui::End();
+    return changed;
+}
+
+void statusBar(const EditorState& state, const Renderer& renderer, const PanelRect& rect) {
+    placeNextWindow(rect);
+    ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(8.f, 3.f));
+    ImGui::Begin("##status", nullptr,
+                 kPanelFlags | ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoScrollbar);
+    ImGui::PopStyleVar();
+    const FrameStats& stats = renderer.stats();
+    std::string right =
+        (state.scene.path.empty() ? std::string("(unsaved scene)") : state.scene.path) +
+        (state.dirty ? " *" : "") + "   |   " + std::to_string(stats.samplesPerPixel) + " spp   " +
+        (ImGui::GetIO().WantTextInput ? "paused while typing"
+         : stats.converged            ? "converged"
+                                      : "refining");
+    float rightWidth = ImGui::CalcTextSize(right.c_str()).x;
+    ImGui::PushClipRect(ImGui::GetCursorScreenPos(),
+                        ImVec2(rect.x + rect.w - rightWidth - 24.f, rect.y + rect.h), true);
+    if (state.statusIsError)
+        ImGui::TextColored(errorColour(), "%s", state.status.c_str());
+    else
+        ImGui::TextUnformatted(state.status.c_str());
+    ImGui::PopClipRect();
+    ImGui::SameLine(std::max(0.f, rect.w - rightWidth - 12.f));
+    ImGui::TextUnformatted(right.c_str());
+    ImGui::End();
+}
+
+}  // namespace candela::ui

@@ -1,0 +1,38 @@
+#pragma once
+// The editor's panels: free functions over EditorState that return whether they changed it.
+// They read the renderer and shader library (statistics, picking) but never own GL objects.
+
+#include "renderer/Renderer.h"
+#include "renderer/ShaderLibrary.h"
+#include "ui/EditorState.h"
+
+namespace candela::ui {
+
+/// A fixed panel placement in window pixels (the layout is deterministic; no imgui.ini).
+struct PanelRect {
+    float x = 0.f, y = 0.f, w = 0.f, h = 0.f;
+};
+
+/// File menu (Open, Save, Save As, Quit) and keyboard shortcuts (Ctrl+O, Ctrl+S, Delete).
+/// barHeight receives the menu bar's height in pixels.
+bool mainMenuBar(EditorState& state, float& barHeight);
+/// The Open / Save As modals and the error modal.
+bool fileDialogs(EditorState& state);
+
+/// Outline of geometry and luminaires (click to select) with Add / Duplicate / Delete.
+bool outlinePanel(EditorState& state, const PanelRect& rect);
+/// Fields of the selected luminaire (pose, technique, kind-specific values) or geometry.
+bool inspectorPanel(EditorState& state, const PanelRect& rect);
+/// Screenshot button, tone mapping, camera and sampling settings.
+bool renderPanel(EditorState& state, const PanelRect& rect);
+/// Passes with GPU times, accumulation, compiled variants and the shader error log.
+void statsPanel(const EditorState& state, const Renderer& renderer, const ShaderLibrary& shaders,
+                const PanelRect& rect);
+/// The rendered image; picking, luminaire dragging and camera orbit / pan / zoom.
+bool viewportPanel(EditorState& state, const Renderer& renderer, const PanelRect& rect);
+void statusBar(const EditorState& state, const Renderer& renderer, const PanelRect& rect);
+
+/// " [unit]" for a scene-file field name ("radiance" -> " [W/(m2 sr)]"), or "" if unknown.
+const char* fieldUnit(const std::string& key);
+
+}  // namespace candela::ui

@@ -1,0 +1,198 @@
+// The viewport: the renderer's tone-mapped image, luminaire outlines, picking and dragging of
+// luminaires in their horizontal plane, and camera orbit / pan / zoom around the target.
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "ui/ImGuiUtil.h"
+#include "ui/Panels.h"
+#include "ui/ViewportMath.h"
+
+namespace candela::ui {
+
+namespace {
+
+constexpr double kOrbitDegPerPixel = 0.3;   ///< Camera orbit per pixel of mouse motion, degrees.
+constexpr double kMaxDragDistance = 200.0;  ///< Farthest a drag may place a luminaire, metres.
+
+/// Maps between window pixels of the viewport image and render pixels.
+struct ImageMapping {
+    ImVec2 origin;  ///< Top-left of the image, window pixels.
+    ImVec2 size;    ///< Image size, window pixels.
+    int renderWidth = 1, renderHeight = 1;
+
+    glm::dvec2 toRender(const ImVec2& p) const {
+        return {(p.x - origin.x) * renderWidth / size.x, (p.y - origin.y) * renderHeight / size.y};
+    }
+    ImVec2 toWindow(const glm::dvec2& p) const {
+        return ImVec2(origin.x + float(p.x) * size.x / float(renderWidth),
+                      origin.y + float(p.y) * size.y / float(renderHeight));
+    }
+};
+
+void drawOutlines(const EditorState& state, const Renderer& renderer, const ImageMapping& map) {
+    ImDrawList* draw = ImGui::GetWindowDrawList();
+    glm::mat4 viewProj = renderer.viewProj();
+    for (size_t i = 0; i < state.scene.luminaires.size(); ++i) {
+        std::vector<glm::dvec3> outline = state.scene.luminaires[i]->outline();
+        std::vector<ImVec2> points;
+        for (const glm::dvec3& p : outline) {
+            auto px = projectToPixels(viewProj, p, map.renderWidth, map.renderHeight);
+            if (!px) break;
+            points.push_back(map.toWindow(*px));
+        }
+        if (points.size() != outline.size() || points.size() < 2) continue;
+        bool selected = int(i) == state.selectedLuminaire;
+        ImU32 colour = selected ? IM_COL32(255, 210, 40, 255) : IM_COL32(255, 255, 255, 70);
+        draw->AddPolyline(points.data(), int(points.size()), colour, ImDrawFlags_Closed,
+                          selected ? 2.f : 1.f);
+    }
+}
+
+/// Left press: picks a luminaire (select it and start moving it) or starts an orbit.
+void beginLeftDrag(EditorState& state, const Renderer& renderer, const ImageMapping& map,
+                   const ImVec2& mouse) {
+    glm::dvec2 px = map.toRender(mouse);
+    int hit = renderer.pickLuminaire(state.scene, px.x, px.y);
+    state.drag = {};
+    if (hit < 0) {
+        state.drag.mode = DragMode::Orbit;
+        return;
+    }
+    if (state.selectedLuminaire != hit) state.inspectorError.clear();
+    state.selectedLuminaire = hit;
+    state.selectedGeometry = -1;
+    const Luminaire& lum = *state.scene.luminaires[size_t(hit)];
+    Ray ray = pixelRay(renderer.viewProj(), px.x, px.y, map.renderWidth, map.renderHeight);
+    auto grabbed = intersectHorizontal(ray, lum.pose.position.y);
+    if (!grabbed) return;  // Seen exactly edge-on: selectable but not draggable from here.
+    state.drag.mode = DragMode::Luminaire;
+    state.drag.luminaire = hit;
+    state.drag.height = lum.pose.position.y;
+    state.drag.grabOffset = lum.pose.position - *grabbed;
+    state.drag.grabOffset.y = 0.0;
+}
+
+/// Moves the dragged luminaire to where the mouse ray meets its horizontal plane.
+bool continueLuminaireDrag(EditorState& state, const Renderer& renderer, const ImageMapping& map,
+                           const ImVec2& mouse) {
+    int index = state.drag.luminaire;
+    if (index < 0 || index >= int(state.scene.luminaires.size())) return false;
+    glm::dvec2 px = map.toRender(mouse);
+    Ray ray = pixelRay(renderer.viewProj(), px.x, px.y, map.renderWidth, map.renderHeight);
+    auto hit = intersectHorizontal(ray, state.drag.height);
+    if (!hit || glm::length(*hit - ray.origin) > kMaxDragDistance) return false;
+    glm::dvec3 position = *hit + state.drag.grabOffset;
+    position.y = state.drag.height;
+    Luminaire& lum = *state.scene.luminaires[size_t(index)];
+    if (position == lum.pose.position) return false;
+    applyEdit(state, "Move " + lum.name, kChangeLuminaires,
+              [&](Scene& s) { s.luminaires[size_t(index)]->pose.position = position; });
+    return true;
+}
+
+bool handleInput(EditorState& state, const Renderer& renderer, const ImageMapping& map,
+                 bool hovered) {
+    const ImGuiIO& io = ImGui::GetIO();
+    bool changed = false;
+    if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
+        beginLeftDrag(state, renderer, map, io.MouseClickedPos[ImGuiMouseButton_Left]);
+        changed = true;
+    } else if (hovered && (ImGui::IsMouseClicked(ImGuiMouseButton_Right) ||
+                           ImGui::IsMouseClicked(ImGuiMouseButton_Middle))) {
+        state.drag = {};
+        state.drag.mode = DragMode::Pan;
+    }
+
+    ImVec2 delta = io.MouseDelta;
+    bool moved = delta.x != 0.f || delta.y != 0.f;
+    switch (state.drag.mode) {
+        case DragMode::Luminaire:
+            if (!ImGui::IsMouseDown(ImGuiMouseButton_Left))
+                state.drag = {};
+            else
+                changed = continueLuminaireDrag(state, renderer, map, io.MousePos) || changed;
+            break;
+        case DragMode::Orbit:
+            if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
+                state.drag = {};
+            } else if (moved) {
+                applyEdit(state, "Orbit camera", kChangeCamera, [&](Scene& s) {
+                    orbitCamera(s.camera, delta.x * kOrbitDegPerPixel, delta.y * kOrbitDegPerPixel);
+                });
+                changed = true;
+            }
+            break;
+        case DragMode::Pan:
+            if (!ImGui::IsMouseDown(ImGuiMouseButton_Right) &&
+                !ImGui::IsMouseDown(ImGuiMouseButton_Middle)) {
+                state.drag = {};
+            } else if (moved) {
+                applyEdit(state, "Pan camera", kChangeCamera,
+                          [&](Scene& s) { panCamera(s.camera, delta.x, delta.y, map.size.y); });
+                changed = true;
+            }
+            break;
+        case DragMode::None:
+            break;
+    }
+
+    if (hovered && io.MouseWheel != 0.f) {
+        applyEdit(state, "Zoom camera", kChangeCamera,
+                  [&](Scene& s) { zoomCamera(s.camera, io.MouseWheel); });
+        changed = true;
+    }
+    if (hovered && state.drag.mode == DragMode::None) {
+        glm::dvec2 px = map.toRender(io.MousePos);
+        if (renderer.pickLuminaire(state.scene, px.x, px.y) >= 0)
+            ImGui::SetMouseCursor(ImGuiMouseCursor_Hand);
+    }
+    return changed;
+}
+
+}  // namespace
+
+bool viewportPanel(EditorState& state, const Renderer& renderer, const PanelRect& rect) {
+    placeNextWindow(rect);
+    ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(0.f, 0.f));
+    ImGui::PushStyleVar(ImGuiStyleVar_WindowBorderSize, 0.f);
+    ImGui::Begin("Viewport", nullptr,
+                 kPanelFlags | ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoScrollbar |
+                     ImGuiWindowFlags_NoScrollWithMouse | ImGuiWindowFlags_NoBringToFrontOnFocus);
+    ImGui::PopStyleVar(2);
+
+    ImVec2 avail = ImGui::GetContentRegionAvail();
+    ImVec2 size(std::max(1.f, std::floor(avail.x)), std::max(1.f, std::floor(avail.y)));
+    ImVec2 origin = ImGui::GetCursorScreenPos();
+    origin = ImVec2(std::floor(origin.x), std::floor(origin.y));
+    state.layout.viewport = glm::vec4(origin.x, origin.y, size.x, size.y);
+    // The render resolution follows the panel (scaled down on request); applied next frame.
+    state.settings.width = std::max(1, int(std::lround(size.x * state.renderScale)));
+    state.settings.height = std::max(1, int(std::lround(size.y * state.renderScale)));
+
+    ImGui::InvisibleButton("##viewport", size,
+                           ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight |
+                               ImGuiButtonFlags_MouseButtonMiddle);
+    bool hovered = ImGui::IsItemHovered();
+
+    ImDrawList* draw = ImGui::GetWindowDrawList();
+    ImVec2 corner(origin.x + size.x, origin.y + size.y);
+    GLuint texture = renderer.displayTexture().id();
+    if (texture) {
+        // Row 0 of the display texture is the bottom row: flip v.
+        draw->AddImage(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(texture)), origin,
+                       corner, ImVec2(0.f, 1.f), ImVec2(1.f, 0.f));
+    } else {
+        draw->AddRectFilled(origin, corner, IM_COL32(20, 20, 24, 255));
+    }
+
+    ImageMapping map{origin, size, renderer.settings().width, renderer.settings().height};
+    drawOutlines(state, renderer, map);
+    bool changed = handleInput(state, renderer, map, hovered);
+    ImGui::End();
+    return changed;
+}
+
+}  // namespace candela::ui
