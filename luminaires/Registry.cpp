@@ -1,6 +1,7 @@
 #include "luminaires/Registry.h"
 
 #include "luminaires/LambertianRect.h"
+#include "luminaires/LightField.h"
 
 namespace candela {
 
@@ -9,6 +10,8 @@ namespace candela {
 static const LuminaireKindInfo kKinds[] = {
     {"lambertian-rect", "uniformly emitting (Lambertian) rectangle", &LambertianRect::parse,
      &LambertianRect::create, "analytic"},
+    {"lightfield", "measured near-field luminaire (light field on two planes, Lu et al. 2015)",
+     &LightFieldLuminaire::parse, &LightFieldLuminaire::create, "restricted-cdf"},
 };
 
 static const TechniqueInfo kTechniques[] = {
@@ -18,6 +21,18 @@ static const TechniqueInfo kTechniques[] = {
     {"lambertian-rect", "reference",
      "Monte Carlo, samples uniform in solid angle (Urena et al. 2013)", true,
      &lambertianRectReference, "lambertian_rect_shade.frag", "TECHNIQUE_REFERENCE"},
+    // Light fields: CPU estimators for now; the GPU pass is not written yet (empty shader).
+    {"lightfield", "restricted-cdf",
+     "position-dependent restricted CDFs with balancing (Lu et al. 2015, Eq. 8, 12, 13)", true,
+     &lightFieldRestrictedCdf, "", ""},
+    {"lightfield", "uniform-restricted", "uniform samples in the same restricted boxes (Fig. 12)",
+     true, &lightFieldUniformRestricted, "", ""},
+    {"lightfield", "precomputed-global",
+     "one global CDF over all images, the same for every receiver (Fig. 11)", true,
+     &lightFieldPrecomputedGlobal, "", ""},
+    {"lightfield", "reference",
+     "Gauss-Legendre quadrature of the exact model over U, split at knots and pixel edges", false,
+     &lightFieldReference, "", ""},
 };
 
 std::span<const LuminaireKindInfo> luminaireKinds() { return kKinds; }

@@ -45,6 +45,10 @@ FramePlan planFrame(const Scene& scene, const glm::mat4& viewProj,
             throw InputError("luminaire \"" + lum.name + "\": unknown technique \"" + name +
                              "\" for " + std::string(lum.kind()) + " (available: " +
                              techniqueNames(lum.kind()) + ")");
+        if (t->shader.empty())
+            throw InputError("luminaire \"" + lum.name + "\": technique \"" + name + "\" of " +
+                             std::string(lum.kind()) +
+                             " has no GPU pass yet; use `candela probe` (CPU) for this kind");
         ShadeStep step;
         step.luminaire = int(i);
         step.technique = t;

@@ -293,6 +293,9 @@ void rebaseGltfPaths(nlohmann::json& doc, const std::string& fromPath, const std
     }
 }
 
+
+}  // namespace
+
 /// Writes `text` to `path` through a temporary file in the same folder and rename().
 void writeFileAtomically(const std::string& path, const std::string& text) {
     fs::path target(path);
@@ -339,8 +342,6 @@ void writeFileAtomically(const std::string& path, const std::string& text) {
         ::close(dirFd);
     }
 }
-
-}  // namespace
 
 Scene loadScene(const std::string& path) {
     std::string ext = lowerExtension(path);

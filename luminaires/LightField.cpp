@@ -1,0 +1,581 @@
+#include "luminaires/LightField.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "scene/SceneIo.h"
+#include "util/Error.h"
+#include "util/JsonRead.h"
+
+namespace candela {
+
+namespace fs = std::filesystem;
+
+double bspline2(double x) {
+    x = std::abs(x);
+    if (x < 0.5) return 0.75 - x * x;
+    if (x < 1.5) return 0.5 * (1.5 - x) * (1.5 - x);
+    return 0.0;
+}
+
+namespace {
+
+constexpr int kMaxImages = 4096;         // 64 x 64 basis functions
+constexpr int kMaxImageSide = 8192;      // pixels
+constexpr double kGauss4X[4] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563,
+                                0.8611363115940526};
+constexpr double kGauss4W[4] = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461,
+                                0.3478548451374538};
+constexpr double kLumR = 0.2126, kLumG = 0.7152, kLumB = 0.0722;
+
+std::string fmt(double v) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.9g", v);
+    return buf;
+}
+
+/// Search over the knots 0..n of a non-decreasing piecewise linear function for the piece
+/// [k, k+1] with value(k) <= target < value(k+1) (the last rising piece when target is at the
+/// top). Secant guesses on the knot index, falling back to bisection when a guess does not halve
+/// the bracket: the "modified secant" inversion of Sec. 5, which stops as soon as the bracket is
+/// one linear piece. Returns k, or -1 when the function does not rise at all.
+template <class Fn>
+int findPiece(int n, double target, const Fn& value) {
+    int lo = 0, hi = n;
+    double vlo = value(lo), vhi = value(hi);
+    if (!(vhi > vlo)) return -1;
+    if (target >= vhi) {
+        // Top end: the last piece that rises.
+        for (int k = n - 1; k >= 0; --k)
+            if (value(k + 1) > value(k)) return k;
+        return -1;
+    }
+    bool bisect = false;
+    while (hi - lo > 1) {
+        int mid;
+        if (bisect) {
+            mid = lo + (hi - lo) / 2;
+        } else {
+            double f = (target - vlo) / (vhi - vlo);
+            mid = lo + int(f * double(hi - lo));
+            mid = std::clamp(mid, lo + 1, hi - 1);
+        }
+        int before = hi - lo;
+        double v = value(mid);
+        if (v > target) {
+            hi = mid;
+            vhi = v;
+        } else {
+            lo = mid;
+            vlo = v;
+        }
+        bisect = (hi - lo) * 2 > before;  // the guess did not halve the bracket
+    }
+    // lo..hi is one piece with vlo <= target < vhi.
+    return lo;
+}
+
+void readImage(const fs::path& file, const std::string& where, int& w, int& h, int& channels,
+               std::vector<float>& pixels) {
+    auto in = OIIO::ImageInput::open(file.string());
+    if (!in) throw InputError(where + ": cannot read image " + file.string() + ": " + OIIO::geterror());
+    const OIIO::ImageSpec& spec = in->spec();
+    w = spec.width;
+    h = spec.height;
+    channels = spec.nchannels;
+    if (w <= 0 || h <= 0 || w > kMaxImageSide || h > kMaxImageSide)
+        throw InputError(where + ": " + file.string() + ": image size " + std::to_string(w) + "x" +
+                         std::to_string(h) + " out of range (1.." + std::to_string(kMaxImageSide) + ")");
+    if (channels != 1 && channels != 3 && channels != 4)
+        throw InputError(where + ": " + file.string() + ": " + std::to_string(channels) +
+                         " channels; expected 1 (luminance), 3 (RGB) or 4 (RGBA)");
+    pixels.assign(size_t(w) * size_t(h) * size_t(channels), 0.f);
+    if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data()))
+        throw InputError(where + ": " + file.string() + ": cannot read pixels: " + in->geterror());
+}
+
+std::string modelName(LightFieldData::Model m) {
+    return m == LightFieldData::Model::Goesele ? "goesele" : "canned";
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// Loading, validation, saving
+
+void LightFieldData::validate(const std::string& what) const {
+    auto bad = [&](const std::string& msg) { throw InputError(what + ": " + msg); };
+    if (!(delta > 0.0) || !std::isfinite(delta)) bad("delta must be a positive distance in metres, got " + fmt(delta));
+    if (count.x < 1 || count.y < 1 || count.x * count.y > kMaxImages)
+        bad("basis count must be at least 1x1 and at most " + std::to_string(kMaxImages) + " images");
+    if (!(spacing.x > 0.0 && spacing.y > 0.0) || !std::isfinite(spacing.x) || !std::isfinite(spacing.y))
+        bad("basis spacing must be positive, got [" + fmt(spacing.x) + ", " + fmt(spacing.y) + "]");
+    if (!std::isfinite(origin.x) || !std::isfinite(origin.y)) bad("basis origin must be finite");
+    if (!(imageMax.x > imageMin.x && imageMax.y > imageMin.y) || !std::isfinite(imageMin.x) ||
+        !std::isfinite(imageMin.y) || !std::isfinite(imageMax.x) || !std::isfinite(imageMax.y))
+        bad("image extent must have max > min on both axes");
+    if (int(images.size()) != imageCount())
+        bad("basis count " + std::to_string(count.x) + "x" + std::to_string(count.y) + " needs " +
+            std::to_string(imageCount()) + " images, found " + std::to_string(images.size()));
+    if (width < 1 || height < 1) bad("images must have at least one pixel");
+    size_t pixels = size_t(width) * size_t(height);
+    for (size_t m = 0; m < images.size(); ++m) {
+        const LightFieldImage& img = images[m];
+        if (img.luminance.size() != pixels || (rgb && img.colour.size() != pixels))
+            bad("image " + std::to_string(m) + " has the wrong number of pixels");
+        for (size_t k = 0; k < pixels; ++k)
+            if (!(img.luminance[k] >= 0.f) || !std::isfinite(img.luminance[k]))
+                bad("image " + std::to_string(m) + " pixel (" + std::to_string(k % size_t(width)) + ", " +
+                    std::to_string(k / size_t(width)) + ") is negative, NaN or infinite");
+    }
+}
+
+std::shared_ptr<LightFieldData> LightFieldData::load(const fs::path& file) {
+    std::ifstream in(file);
+    if (!in) throw InputError(file.string() + ": cannot open light-field file");
+    std::stringstream text;
+    text << in.rdbuf();
+    nlohmann::json doc;
+    try {
+        doc = nlohmann::json::parse(text.str());
+    } catch (const nlohmann::json::exception& e) {
+        throw InputError(file.string() + ": invalid JSON (" + e.what() + ")");
+    }
+    json::Where where{file.string(), ""};
+    json::checkKeys(doc, {"format", "version", "model", "delta", "basis", "image", "images", "unit"},
+                    where);
+    if (json::optional(doc, "format", where, std::string(), json::string) != "candela-lightfield")
+        json::fail(where / "format", "\"candela-lightfield\"");
+    if (!doc.contains("version") || !doc["version"].is_number_integer() || doc["version"] != 1)
+        json::fail(where / "version", "1");
+
+    auto lf = std::make_shared<LightFieldData>();
+    lf->path = file;
+    std::string model = json::optional(doc, "model", where, std::string("canned"), json::string);
+    if (model == "canned") lf->model = Model::Canned;
+    else if (model == "goesele") lf->model = Model::Goesele;
+    else json::fail(where / "model", "\"canned\" or \"goesele\"");
+    if (!doc.contains("delta")) json::fail(where / "delta", "a positive distance in metres");
+    lf->delta = json::positive(doc["delta"], where / "delta");
+
+    if (!doc.contains("basis")) json::fail(where / "basis", "an object");
+    const auto& basis = doc["basis"];
+    json::Where wb = where / "basis";
+    json::checkKeys(basis, {"kind", "count", "spacing", "origin"}, wb);
+    if (json::optional(basis, "kind", wb, std::string("bspline2"), json::string) != "bspline2")
+        json::fail(wb / "kind", "\"bspline2\"");
+    auto readCount = [](const nlohmann::json& v, const json::Where& w) {
+        if (!v.is_array() || v.size() != 2 || !v[0].is_number_integer() || !v[1].is_number_integer() ||
+            v[0].get<long>() < 1 || v[1].get<long>() < 1 || v[0].get<long>() > 64 || v[1].get<long>() > 64)
+            json::fail(w, "two integers between 1 and 64");
+        return glm::ivec2(v[0].get<int>(), v[1].get<int>());
+    };
+    if (!basis.contains("count")) json::fail(wb / "count", "[W, H]");
+    lf->count = readCount(basis["count"], wb / "count");
+    if (!basis.contains("spacing")) json::fail(wb / "spacing", "[hx, hy] in metres");
+    lf->spacing = json::vec2(basis["spacing"], wb / "spacing");
+    if (!(lf->spacing.x > 0.0 && lf->spacing.y > 0.0)) json::fail(wb / "spacing", "positive spacings");
+    lf->origin = json::optional(basis, "origin", wb, glm::dvec2(0.0), json::vec2);
+
+    if (!doc.contains("image")) json::fail(where / "image", "an object with min and max");
+    json::Where wi = where / "image";
+    json::checkKeys(doc["image"], {"min", "max"}, wi);
+    if (!doc["image"].contains("min") || !doc["image"].contains("max")) json::fail(wi, "min and max");
+    lf->imageMin = json::vec2(doc["image"]["min"], wi / "min");
+    lf->imageMax = json::vec2(doc["image"]["max"], wi / "max");
+    if (!(lf->imageMax.x > lf->imageMin.x && lf->imageMax.y > lf->imageMin.y))
+        json::fail(wi, "max greater than min on both axes");
+
+    std::string unit = json::optional(doc, "unit", where, std::string("W/(m2 sr)"), json::string);
+    if (unit != "W/(m2 sr)" && unit != "cd/m2") json::fail(where / "unit", "\"W/(m2 sr)\" or \"cd/m2\"");
+    lf->unit = unit;
+
+    if (!doc.contains("images") || !doc["images"].is_array())
+        json::fail(where / "images", "an array of image file names");
+    const auto& names = doc["images"];
+    if (int(names.size()) != lf->imageCount())
+        json::fail(where / "images", std::to_string(lf->imageCount()) + " file names (count " +
+                                         std::to_string(lf->count.x) + "x" + std::to_string(lf->count.y) +
+                                         "), found " + std::to_string(names.size()));
+    fs::path dir = file.parent_path();
+    lf->images.resize(names.size());
+    for (size_t m = 0; m < names.size(); ++m) {
+        std::string name = json::string(names[m], (where / "images")[m]);
+        fs::path imgPath = fs::path(name).is_relative() ? dir / name : fs::path(name);
+        int w = 0, h = 0, channels = 0;
+        std::vector<float> px;
+        readImage(imgPath, file.string(), w, h, channels, px);
+        if (m == 0) {
+            lf->width = w;
+            lf->height = h;
+            lf->rgb = channels >= 3;
+        } else if (w != lf->width || h != lf->height) {
+            throw InputError(file.string() + ": " + imgPath.string() + ": image is " + std::to_string(w) + "x" + std::to_string(h) +
+                             " but the first image is " + std::to_string(lf->width) + "x" +
+                             std::to_string(lf->height) + " (all images must match)");
+        } else if ((channels >= 3) != lf->rgb) {
+            throw InputError(file.string() + ": " + imgPath.string() + ": mixes luminance and RGB images");
+        }
+        LightFieldImage& img = lf->images[m];
+        size_t n = size_t(w) * size_t(h);
+        img.luminance.resize(n);
+        if (lf->rgb) img.colour.resize(n);
+        for (size_t k = 0; k < n; ++k) {
+            const float* v = &px[k * size_t(channels)];
+            for (int c = 0; c < std::min(channels, 3); ++c)
+                if (!(v[c] >= 0.f) || !std::isfinite(v[c]))
+                    throw InputError(file.string() + ": " + imgPath.string() + ": pixel (" + std::to_string(k % size_t(w)) + ", " +
+                                     std::to_string(k / size_t(w)) + ") is negative, NaN or infinite");
+            if (!lf->rgb) {
+                img.luminance[k] = v[0];
+                continue;
+            }
+            double y = kLumR * v[0] + kLumG * v[1] + kLumB * v[2];
+            img.luminance[k] = float(y);
+            img.colour[k] = y > 0.0 ? glm::vec3(float(v[0] / y), float(v[1] / y), float(v[2] / y))
+                                    : glm::vec3(1.f);
+        }
+    }
+    lf->validate(file.string());
+    lf->precompute();
+    return lf;
+}
+
+void LightFieldData::save(const fs::path& file) const {
+    validate(file.string());
+    fs::path dir = file.parent_path().empty() ? fs::path(".") : file.parent_path();
+    std::string stem = file.filename().string();
+    const std::string suffix = ".lf.json";
+    if (stem.size() > suffix.size() && stem.compare(stem.size() - suffix.size(), suffix.size(), suffix) == 0)
+        stem = stem.substr(0, stem.size() - suffix.size());
+    else
+        throw InputError(file.string() + ": light-field files must be named NAME.lf.json");
+    nlohmann::json names = nlohmann::json::array();
+    int channels = rgb ? 3 : 1;
+    for (int j = 0; j < count.y; ++j)
+        for (int i = 0; i < count.x; ++i) {
+            int m = j * count.x + i;
+            std::string name = stem + "_" + std::to_string(i) + "_" + std::to_string(j) + ".exr";
+            names.push_back(name);
+            fs::path target = dir / name;
+            fs::path temp = dir / (name + ".tmp.exr");
+            std::vector<float> px(size_t(width) * size_t(height) * size_t(channels));
+            const LightFieldImage& img = images[size_t(m)];
+            for (size_t k = 0; k < img.luminance.size(); ++k) {
+                if (!rgb) {
+                    px[k] = img.luminance[k];
+                    continue;
+                }
+                glm::vec3 c = img.colour[k] * img.luminance[k];
+                px[3 * k] = c.x;
+                px[3 * k + 1] = c.y;
+                px[3 * k + 2] = c.z;
+            }
+            auto out = OIIO::ImageOutput::create(temp.string());
+            OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::FLOAT);
+            spec.attribute("compression", "zip");
+            if (!out || !out->open(temp.string(), spec) ||
+                !out->write_image(OIIO::TypeDesc::FLOAT, px.data()) || !out->close())
+                throw InputError(target.string() + ": cannot write image: " + OIIO::geterror());
+            std::error_code ec;
+            fs::rename(temp, target, ec);
+            if (ec) throw InputError(target.string() + ": cannot write image: " + ec.message());
+        }
+    nlohmann::json doc = {
+        {"format", "candela-lightfield"}, {"version", 1}, {"model", modelName(model)}, {"delta", delta},
+        {"basis", {{"kind", "bspline2"}, {"count", {count.x, count.y}}, {"spacing", {spacing.x, spacing.y}},
+                   {"origin", {origin.x, origin.y}}}},
+        {"image", {{"min", {imageMin.x, imageMin.y}}, {"max", {imageMax.x, imageMax.y}}}},
+        {"images", names}, {"unit", unit}};
+    writeFileAtomically(file.string(), doc.dump(2) + "\n");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Precomputation (Sec. 3.1)
+
+void LightFieldData::precompute() {
+    auto start = std::chrono::steady_clock::now();
+    glm::dvec2 px = pixelSize();
+    double area = px.x * px.y;
+    size_t w = size_t(width), h = size_t(height);
+    tables.assign(images.size(), {});
+    for (size_t m = 0; m < images.size(); ++m) {
+        LightFieldTables& t = tables[m];
+        const std::vector<float>& c = images[m].luminance;
+        t.sat.assign((w + 1) * (h + 1), 0.0);
+        for (size_t j = 0; j < h; ++j) {
+            double row = 0.0;
+            for (size_t i = 0; i < w; ++i) {
+                row += double(c[j * w + i]) * area;
+                t.sat[(j + 1) * (w + 1) + i + 1] = t.sat[j * (w + 1) + i + 1] + row;
+            }
+        }
+        t.total = t.sat.back();
+        t.marginalCdf.assign(w + 1, 0.0);
+        t.conditionalCdf.assign(w * (h + 1), 0.0);
+        for (size_t i = 0; i <= w; ++i)
+            t.marginalCdf[i] = t.total > 0.0 ? t.sat[h * (w + 1) + i] / t.total : double(i) / double(w);
+        for (size_t i = 0; i < w; ++i) {
+            double column = t.sat[h * (w + 1) + i + 1] - t.sat[h * (w + 1) + i];
+            for (size_t j = 0; j <= h; ++j) {
+                double below = t.sat[j * (w + 1) + i + 1] - t.sat[j * (w + 1) + i];
+                t.conditionalCdf[i * (h + 1) + j] = column > 0.0 ? below / column : double(j) / double(h);
+            }
+        }
+        // Sec. 6.2: s_m with cdf_m(s) = 0.5 and cdf_m(t | s) = 0.5.
+        t.median = 0.5 * (imageMin + imageMax);
+        if (t.total > 0.0) {
+            int ci = findPiece(int(w), 0.5, [&](int k) { return t.marginalCdf[size_t(k)]; });
+            if (ci >= 0) {
+                double a = t.marginalCdf[size_t(ci)], b = t.marginalCdf[size_t(ci) + 1];
+                t.median.x = imageMin.x + (double(ci) + (0.5 - a) / (b - a)) * px.x;
+                const double* col = &t.conditionalCdf[size_t(ci) * (h + 1)];
+                int rj = findPiece(int(h), 0.5, [&](int k) { return col[k]; });
+                if (rj >= 0)
+                    t.median.y = imageMin.y + (double(rj) + (0.5 - col[rj]) / (col[rj + 1] - col[rj])) * px.y;
+            }
+        }
+    }
+    precomputeMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Geometry
+
+glm::dvec2 LightFieldData::node(int m) const {
+    return origin + glm::dvec2(double(m % count.x) * spacing.x, double(m / count.x) * spacing.y);
+}
+
+void LightFieldData::support(int m, glm::dvec2& uMin, glm::dvec2& uMax) const {
+    glm::dvec2 c = node(m);
+    uMin = c - 1.5 * spacing;
+    uMax = c + 1.5 * spacing;
+}
+
+double LightFieldData::basis(int m, const glm::dvec2& u) const {
+    glm::dvec2 d = (u - node(m)) / spacing;
+    return bspline2(d.x) * bspline2(d.y);
+}
+
+double LightFieldData::psi(int m, const glm::dvec2& u, const glm::dvec2& s) const {
+    double phi = basis(m, u);
+    if (model == Model::Canned || phi == 0.0) return phi;
+    // "goesele": Psi = Phi delta^2 cos^4(theta), theta the ray's angle with the planes' normal.
+    glm::dvec2 d = s - u;
+    double c2 = delta * delta / (delta * delta + glm::dot(d, d));
+    return phi * delta * delta * c2 * c2;
+}
+
+glm::dvec2 LightFieldData::pixelSize() const {
+    return (imageMax - imageMin) / glm::dvec2(double(width), double(height));
+}
+
+double LightFieldData::lum(int m, const glm::dvec2& s) const {
+    glm::dvec2 f = (s - imageMin) / pixelSize();
+    if (!(f.x >= 0.0 && f.y >= 0.0 && f.x < double(width) && f.y < double(height))) return 0.0;
+    return double(images[size_t(m)].luminance[size_t(int(f.y)) * size_t(width) + size_t(int(f.x))]);
+}
+
+glm::dvec3 LightFieldData::colour(int m, const glm::dvec2& s) const {
+    if (!rgb) return glm::dvec3(1.0);
+    glm::dvec2 f = (s - imageMin) / pixelSize();
+    if (!(f.x >= 0.0 && f.y >= 0.0 && f.x < double(width) && f.y < double(height))) return glm::dvec3(1.0);
+    return glm::dvec3(images[size_t(m)].colour[size_t(int(f.y)) * size_t(width) + size_t(int(f.x))]);
+}
+
+glm::dvec3 LightFieldData::radiance(const glm::dvec2& u, const glm::dvec2& s) const {
+    glm::dvec3 sum(0.0);
+    // Only the (up to) 3 x 3 basis functions whose support holds u contribute.
+    glm::dvec2 g = (u - origin) / spacing;
+    int i0 = std::max(0, int(std::ceil(g.x - 1.5))), i1 = std::min(count.x - 1, int(std::floor(g.x + 1.5)));
+    int j0 = std::max(0, int(std::ceil(g.y - 1.5))), j1 = std::min(count.y - 1, int(std::floor(g.y + 1.5)));
+    for (int j = j0; j <= j1; ++j)
+        for (int i = i0; i <= i1; ++i) {
+            int m = j * count.x + i;
+            double c = lum(m, s);
+            if (c > 0.0) sum += c * psi(m, u, s) * colour(m, s);
+        }
+    return sum;
+}
+
+bool LightFieldData::restrictedBox(int m, const glm::dvec3& q, glm::dvec2& sMin, glm::dvec2& sMax) const {
+    if (!(q.z > delta)) return false;
+    glm::dvec2 uMin, uMax;
+    support(m, uMin, uMax);
+    // The line from q through u meets S at s = u + (q - u) delta / q.z (seed 000 Eq. 7 with the
+    // U-plane term the printed equation drops); s grows with u, so the box maps to a box.
+    double f = delta / q.z;
+    glm::dvec2 p(q.x, q.y);
+    sMin = glm::max(uMin + (p - uMin) * f, imageMin);
+    sMax = glm::min(uMax + (p - uMax) * f, imageMax);
+    return sMax.x > sMin.x && sMax.y > sMin.y;
+}
+
+namespace {
+
+/// Integral of C over [s0, x] x [s0, y] from the summed-area table: bilinear within a pixel,
+/// which is exact for a piecewise constant image.
+double satAt(const LightFieldData& lf, const LightFieldTables& t, glm::dvec2 s) {
+    glm::dvec2 f = glm::clamp((s - lf.imageMin) / lf.pixelSize(), glm::dvec2(0.0),
+                              glm::dvec2(double(lf.width), double(lf.height)));
+    int i = std::min(int(f.x), lf.width - 1), j = std::min(int(f.y), lf.height - 1);
+    double fx = f.x - i, fy = f.y - j;
+    size_t w1 = size_t(lf.width) + 1;
+    double s00 = t.sat[size_t(j) * w1 + size_t(i)], s10 = t.sat[size_t(j) * w1 + size_t(i) + 1];
+    double s01 = t.sat[size_t(j + 1) * w1 + size_t(i)], s11 = t.sat[size_t(j + 1) * w1 + size_t(i) + 1];
+    return s00 + fx * (s10 - s00) + fy * (s01 - s00) + fx * fy * (s11 - s10 - s01 + s00);
+}
+
+}  // namespace
+
+double LightFieldData::boxIntegral(int m, glm::dvec2 a, glm::dvec2 b) const {
+    if (!(b.x > a.x && b.y > a.y)) return 0.0;
+    const LightFieldTables& t = tables[size_t(m)];
+    double v = satAt(*this, t, b) - satAt(*this, t, {a.x, b.y}) - satAt(*this, t, {b.x, a.y}) + satAt(*this, t, a);
+    return std::max(0.0, v);
+}
+
+bool LightFieldData::sampleBox(int m, const glm::dvec2& a, const glm::dvec2& b, glm::dvec2 xi,
+                               glm::dvec2& s) const {
+    const LightFieldTables& t = tables[size_t(m)];
+    glm::dvec2 px = pixelSize();
+    // Knots of the restricted marginal G(x) = F(x, b.y) - F(x, a.y): the box's ends and the pixel
+    // column edges between them (Eq. 8, cdf_m(s | p), built from the SAT rather than the global
+    // marginal so that the density is exactly C_m / A_m, Eq. 10).
+    int c0 = std::clamp(int(std::floor((a.x - imageMin.x) / px.x)), 0, width - 1);
+    int c1 = std::clamp(int(std::ceil((b.x - imageMin.x) / px.x)), c0 + 1, width);
+    auto knotX = [&](int k) { return std::clamp(imageMin.x + double(c0 + k) * px.x, a.x, b.x); };
+    auto G = [&](int k) {
+        double x = knotX(k);
+        return satAt(*this, t, {x, b.y}) - satAt(*this, t, {x, a.y});
+    };
+    int nx = c1 - c0;
+    double g0 = G(0), g1 = G(nx);
+    if (!(g1 > g0)) return false;
+    double target = g0 + std::clamp(xi.x, 0.0, 1.0) * (g1 - g0);
+    int kx = findPiece(nx, target, G);
+    if (kx < 0) return false;
+    double ga = G(kx), gb = G(kx + 1), xa = knotX(kx), xb = knotX(kx + 1);
+    s.x = std::clamp(xa + (target - ga) / (gb - ga) * (xb - xa), xa, xb);
+    int column = c0 + kx;
+
+    // Conditional in t within that pixel column (Eq. 8, cdf_m(t | s, p)).
+    int r0 = std::clamp(int(std::floor((a.y - imageMin.y) / px.y)), 0, height - 1);
+    int r1 = std::clamp(int(std::ceil((b.y - imageMin.y) / px.y)), r0 + 1, height);
+    double colL = imageMin.x + double(column) * px.x, colR = colL + px.x;
+    auto knotY = [&](int k) { return std::clamp(imageMin.y + double(r0 + k) * px.y, a.y, b.y); };
+    auto H = [&](int k) {
+        double y = knotY(k);
+        return satAt(*this, t, {colR, y}) - satAt(*this, t, {colL, y});
+    };
+    int ny = r1 - r0;
+    double h0 = H(0), h1 = H(ny);
+    if (!(h1 > h0)) return false;  // cannot happen: the column was chosen for its energy
+    double targetY = h0 + std::clamp(xi.y, 0.0, 1.0) * (h1 - h0);
+    int ky = findPiece(ny, targetY, H);
+    if (ky < 0) return false;
+    double ha = H(ky), hb = H(ky + 1), ya = knotY(ky), yb = knotY(ky + 1);
+    s.y = std::clamp(ya + (targetY - ha) / (hb - ha) * (yb - ya), ya, yb);
+    // Keep s inside the chosen pixel column even where x fell on its edge.
+    s.x = std::clamp(s.x, std::max(colL, a.x), std::min(colR, b.x));
+    return true;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Power
+
+glm::dvec3 LightFieldData::cachedPower() const {
+    std::call_once(mPowerOnce, [&] { mPower = power(); });
+    return mPower;
+}
+
+glm::dvec3 LightFieldData::power() const {
+    // Flux = sum_m sum_pixels C_m(pixel) int_pixel G_m(s) ds with
+    // G_m(s) = int_U Psi_m(u->s) delta^2 / |u - s|^4 du (L cos(theta_u) cos(theta_s) / r^2, both
+    // cosines delta / r). G_m(s) = G(s - node_m) for all m, so G is tabulated once over the
+    // offsets that occur and read bilinearly; each table entry is a Gauss-Legendre quadrature over
+    // the support's 3 x 3 knot cells, refined near the kernel's peak (width delta).
+    double d2 = delta * delta;
+    auto psiAt = [&](glm::dvec2 u, glm::dvec2 o) {  // basis centred on 0, ray from u to offset o
+        double phi = bspline2(u.x / spacing.x) * bspline2(u.y / spacing.y);
+        if (model == Model::Goesele) {
+            glm::dvec2 d = o - u;
+            double c2 = d2 / (d2 + glm::dot(d, d));
+            phi *= d2 * c2 * c2;
+        }
+        return phi;
+    };
+    auto cell = [&](auto&& self, glm::dvec2 lo, glm::dvec2 hi, glm::dvec2 o, int depth) -> double {
+        glm::dvec2 size = hi - lo;
+        glm::dvec2 nearest = glm::clamp(o, lo, hi);
+        double dist = glm::length(nearest - o);
+        if (depth < 8 && std::max(size.x, size.y) > 0.5 * (dist + delta)) {
+            glm::dvec2 mid = 0.5 * (lo + hi);
+            return self(self, lo, mid, o, depth + 1) + self(self, {mid.x, lo.y}, {hi.x, mid.y}, o, depth + 1) +
+                   self(self, {lo.x, mid.y}, {mid.x, hi.y}, o, depth + 1) + self(self, mid, hi, o, depth + 1);
+        }
+        double sum = 0.0;
+        for (int b = 0; b < 4; ++b)
+            for (int a = 0; a < 4; ++a) {
+                glm::dvec2 u = lo + 0.5 * (glm::dvec2(kGauss4X[a], kGauss4X[b]) + 1.0) * size;
+                glm::dvec2 d = u - o;
+                double r2 = glm::dot(d, d) + d2;
+                sum += kGauss4W[a] * kGauss4W[b] * psiAt(u, o) * d2 / (r2 * r2);
+            }
+        return sum * 0.25 * size.x * size.y;
+    };
+    auto G = [&](glm::dvec2 o) {
+        double sum = 0.0;
+        for (int j = 0; j < 3; ++j)
+            for (int i = 0; i < 3; ++i) {
+                glm::dvec2 lo = glm::dvec2(-1.5 + i, -1.5 + j) * spacing;
+                sum += cell(cell, lo, lo + spacing, o, 0);
+            }
+        return sum;
+    };
+    // Offsets s - node over all pixels and nodes.
+    glm::dvec2 nodeMin = origin, nodeMax = origin + glm::dvec2(count - 1) * spacing;
+    glm::dvec2 oMin = imageMin - nodeMax, oMax = imageMax - nodeMin;
+    double step = std::min({delta, spacing.x, spacing.y}) / 6.0;
+    glm::ivec2 n = glm::clamp(glm::ivec2(glm::ceil((oMax - oMin) / step)) + 1, glm::ivec2(2), glm::ivec2(400));
+    glm::dvec2 st = (oMax - oMin) / glm::dvec2(n - 1);
+    std::vector<double> table(size_t(n.x) * size_t(n.y));
+    for (int j = 0; j < n.y; ++j)
+        for (int i = 0; i < n.x; ++i) table[size_t(j) * size_t(n.x) + size_t(i)] = G(oMin + glm::dvec2(i, j) * st);
+    auto lookup = [&](glm::dvec2 o) {
+        glm::dvec2 f = glm::clamp((o - oMin) / st, glm::dvec2(0.0), glm::dvec2(n - 1) - 1e-9);
+        int i = int(f.x), j = int(f.y);
+        double fx = f.x - i, fy = f.y - j;
+        const double* r0 = &table[size_t(j) * size_t(n.x) + size_t(i)];
+        const double* r1 = r0 + n.x;
+        return (1 - fy) * ((1 - fx) * r0[0] + fx * r0[1]) + fy * ((1 - fx) * r1[0] + fx * r1[1]);
+    };
+    glm::dvec2 px = pixelSize();
+    double g = 0.5773502691896258;  // 2 x 2 Gauss points per pixel
+    glm::dvec3 flux(0.0);
+    for (int m = 0; m < imageCount(); ++m) {
+        glm::dvec2 c = node(m);
+        const LightFieldImage& img = images[size_t(m)];
+        for (int j = 0; j < height; ++j)
+            for (int i = 0; i < width; ++i) {
+                double v = img.luminance[size_t(j) * size_t(width) + size_t(i)];
+                if (v <= 0.0) continue;
+                glm::dvec2 centre = imageMin + (glm::dvec2(i, j) + 0.5) * px;
+                double sum = 0.0;
+                for (int b = -1; b <= 1; b += 2)
+                    for (int a = -1; a <= 1; a += 2)
+                        sum += lookup(centre + 0.5 * px * glm::dvec2(a * g, b * g) - c);
+                double e = v * 0.25 * sum * px.x * px.y;
+                flux += e * (rgb ? glm::dvec3(img.colour[size_t(j) * size_t(width) + size_t(i)]) : glm::dvec3(1.0));
+            }
+    }
+    return flux;
+}
+
+}  // namespace candela

@@ -1,0 +1,186 @@
+// The light-field luminaire in a scene: pose, file reference, the Luminaire interface.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <mutex>
+
+#include "luminaires/LightField.h"
+#include "util/Error.h"
+#include "util/JsonRead.h"
+
+namespace candela {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+/// Loaded models by canonical path and modification time: placing the same file twice, or
+/// duplicating a luminaire, shares one copy.
+std::shared_ptr<const LightFieldData> loadShared(const fs::path& file) {
+    static std::mutex mutex;
+    static std::map<std::string, std::pair<fs::file_time_type, std::weak_ptr<const LightFieldData>>> cache;
+    std::error_code ec;
+    fs::path canonical = fs::weakly_canonical(file, ec);
+    std::string key = (ec ? file : canonical).string();
+    fs::file_time_type stamp = fs::last_write_time(file, ec);
+    std::lock_guard<std::mutex> lock(mutex);
+    auto it = cache.find(key);
+    if (it != cache.end() && it->second.first == stamp)
+        if (auto data = it->second.second.lock()) return data;
+    std::shared_ptr<const LightFieldData> data = LightFieldData::load(file);
+    cache[key] = {stamp, data};
+    return data;
+}
+
+}  // namespace
+
+std::unique_ptr<Luminaire> LightFieldLuminaire::clone() const {
+    return std::make_unique<LightFieldLuminaire>(*this);
+}
+
+glm::dvec3 LightFieldLuminaire::toLocal(const glm::dvec3& p) const {
+    glm::dvec3 x, y, z;
+    pose.frame(x, y, z);
+    glm::dvec3 d = p - pose.position;
+    return {glm::dot(d, x), glm::dot(d, y), glm::dot(d, z)};
+}
+
+glm::dvec3 LightFieldLuminaire::toWorldDir(const glm::dvec3& v) const {
+    glm::dvec3 x, y, z;
+    pose.frame(x, y, z);
+    return v.x * x + v.y * y + v.z * z;
+}
+
+glm::dvec3 LightFieldLuminaire::radiance(const glm::dvec3& xWorld, const glm::dvec3& w) const {
+    glm::dvec3 s = toLocal(xWorld);
+    glm::dvec3 x, y, z;
+    pose.frame(x, y, z);
+    glm::dvec3 wl(glm::dot(w, x), glm::dot(w, y), glm::dot(w, z));
+    if (!(wl.z > 0.0)) return glm::dvec3(0.0);
+    // Back along the ray from S (z = delta) to U (z = 0).
+    glm::dvec2 u = glm::dvec2(s.x, s.y) - glm::dvec2(wl.x, wl.y) * (data->delta / wl.z);
+    return data->radiance(u, glm::dvec2(s.x, s.y));
+}
+
+glm::dvec3 LightFieldLuminaire::power() const { return data->cachedPower(); }
+
+LightSample LightFieldLuminaire::sample(const glm::dvec3& p, const glm::dvec2& u) const {
+    LightSample out;
+    const LightFieldData& lf = *data;
+    glm::dvec3 q = toLocal(p);
+    if (!(q.z > lf.delta)) return out;
+    // Image m with probability A_m / A (Eq. 12's balancing as a discrete choice), u.x reused.
+    std::vector<double> cdf(size_t(lf.imageCount()) + 1, 0.0);
+    std::vector<glm::dvec2> lo(size_t(lf.imageCount())), hi(size_t(lf.imageCount()));
+    for (int m = 0; m < lf.imageCount(); ++m) {
+        double a = lf.restrictedBox(m, q, lo[size_t(m)], hi[size_t(m)]) ? lf.boxIntegral(m, lo[size_t(m)], hi[size_t(m)]) : 0.0;
+        cdf[size_t(m) + 1] = cdf[size_t(m)] + a;
+    }
+    double total = cdf.back();
+    if (!(total > 0.0)) return out;
+    double target = u.x * total;
+    int m = int(std::upper_bound(cdf.begin() + 1, cdf.end(), target) - cdf.begin()) - 1;
+    m = std::clamp(m, 0, lf.imageCount() - 1);
+    while (m > 0 && !(cdf[size_t(m) + 1] > cdf[size_t(m)])) --m;
+    double am = cdf[size_t(m) + 1] - cdf[size_t(m)];
+    if (!(am > 0.0)) return out;
+    double ux = std::clamp((target - cdf[size_t(m)]) / am, 0.0, 1.0);
+    glm::dvec2 s;
+    if (!lf.sampleBox(m, lo[size_t(m)], hi[size_t(m)], {ux, u.y}, s)) return out;
+    glm::dvec3 sl(s.x, s.y, lf.delta);
+    glm::dvec3 d = sl - q;
+    double r = glm::length(d);
+    if (!(r > 0.0)) return out;
+    glm::dvec3 x, y, z;
+    pose.frame(x, y, z);
+    out.position = pose.position + sl.x * x + sl.y * y + sl.z * z;
+    out.wi = toWorldDir(d / r);
+    out.distance = r;
+    out.radiance = radiance(out.position, -out.wi);
+    out.pdf = pdf(p, out.wi);
+    return out;
+}
+
+double LightFieldLuminaire::pdf(const glm::dvec3& p, const glm::dvec3& wi) const {
+    const LightFieldData& lf = *data;
+    glm::dvec3 q = toLocal(p);
+    if (!(q.z > lf.delta)) return 0.0;
+    glm::dvec3 x, y, z;
+    pose.frame(x, y, z);
+    glm::dvec3 w(glm::dot(wi, x), glm::dot(wi, y), glm::dot(wi, z));
+    if (!(w.z < 0.0)) return 0.0;
+    double dz = q.z - lf.delta;
+    double t = dz / -w.z;
+    glm::dvec2 s = glm::dvec2(q.x, q.y) + t * glm::dvec2(w.x, w.y);
+    double total = 0.0, density = 0.0;
+    for (int m = 0; m < lf.imageCount(); ++m) {
+        glm::dvec2 lo, hi;
+        if (!lf.restrictedBox(m, q, lo, hi)) continue;
+        total += lf.boxIntegral(m, lo, hi);
+        if (s.x >= lo.x && s.x <= hi.x && s.y >= lo.y && s.y <= hi.y) density += lf.lum(m, s);
+    }
+    if (!(total > 0.0)) return 0.0;
+    // Area density on S to solid angle at q: r^2 / cos(theta_s), cos(theta_s) = dz / r.
+    double r = t;  // |w| = 1
+    return density / total * r * r * r / dz;
+}
+
+std::vector<glm::dvec3> LightFieldLuminaire::outline() const {
+    glm::dvec3 x, y, z;
+    pose.frame(x, y, z);
+    const LightFieldData& lf = *data;
+    glm::dvec3 c = pose.position + lf.delta * z;
+    return {c + lf.imageMin.x * x + lf.imageMin.y * y, c + lf.imageMax.x * x + lf.imageMin.y * y,
+            c + lf.imageMax.x * x + lf.imageMax.y * y, c + lf.imageMin.x * x + lf.imageMax.y * y};
+}
+
+void LightFieldLuminaire::writeJson(nlohmann::json& out) const { out["file"] = file; }
+
+std::vector<std::byte> LightFieldLuminaire::gpuData() const { return {}; }
+
+std::string LightFieldLuminaire::describe() const {
+    const LightFieldData& lf = *data;
+    char buf[640];
+    glm::dvec3 flux = lf.cachedPower();
+    bool photometric = lf.unit == "cd/m2";
+    double total = 0.2126 * flux.x + 0.7152 * flux.y + 0.0722 * flux.z;
+    std::snprintf(buf, sizeof buf,
+                  "lightfield %s: %dx%d images of %dx%d %s, delta %.4g m, S %.4g x %.4g m, radiance "
+                  "in %s, flux %.4g %s, precomputed in %.1f ms",
+                  file.c_str(), lf.count.x, lf.count.y, lf.width, lf.height, lf.rgb ? "RGB" : "luminance",
+                  lf.delta, lf.imageMax.x - lf.imageMin.x, lf.imageMax.y - lf.imageMin.y,
+                  photometric ? "cd/m2" : "W/(m2 sr)", total, photometric ? "lm" : "W", lf.precomputeMs);
+    return buf;
+}
+
+std::unique_ptr<Luminaire> LightFieldLuminaire::parse(const nlohmann::json& entry, const json::Where& where) {
+    json::checkKeys(entry, {"type", "name", "position", "aim", "c0", "technique", "file"}, where);
+    if (!entry.contains("file")) json::fail(where / "file", "the path of a .lf.json light-field file");
+    auto light = std::make_unique<LightFieldLuminaire>();
+    light->file = json::string(entry["file"], where / "file");
+    fs::path resolved(light->file);
+    if (resolved.is_relative()) resolved = fs::path(where.file).parent_path() / resolved;
+    light->data = loadShared(resolved);
+    return light;
+}
+
+std::unique_ptr<Luminaire> LightFieldLuminaire::create() {
+    // The editor adds light fields through a file; a default instance has a small uniform model.
+    auto lf = std::make_shared<LightFieldData>();
+    lf->count = {3, 3};
+    lf->spacing = {0.02, 0.02};
+    lf->origin = {-0.02, -0.02};
+    lf->delta = 0.05;
+    lf->imageMin = {-0.05, -0.05};
+    lf->imageMax = {0.05, 0.05};
+    lf->width = lf->height = 16;
+    lf->images.assign(9, LightFieldImage{std::vector<float>(256, 1000.f), {}});
+    lf->precompute();
+    auto light = std::make_unique<LightFieldLuminaire>();
+    light->data = lf;
+    light->file = "";
+    return light;
+}
+
+}  // namespace candela
