@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "luminaires/LambertianRect.h"
+#include "tests/TestUtil.h"
 #include "shaders/shared/GpuTypes.h"
 #include "util/Error.h"
 
@@ -370,35 +371,9 @@ TEST(LambertianRect, SolidAngleMatchesQuadrature) {
 // ---------------------------------------------------------------------------------------------
 // The sampler.
 
-/// Upper regularised incomplete gamma function Q(a, x) = Gamma(a, x) / Gamma(a): the series of
-/// P(a, x) below x < a + 1, else the continued fraction of Q evaluated with Lentz's method.
-double gammaQ(double a, double x) {
-    if (x <= 0.0) return 1.0;
-    double logPrefix = a * std::log(x) - x - std::lgamma(a);
-    if (x < a + 1.0) {
-        double term = 1.0 / a, sum = term;
-        for (int k = 1; k < 10000 && std::abs(term) > 1e-17 * std::abs(sum); ++k) {
-            term *= x / (a + k);
-            sum += term;
-        }
-        return std::max(0.0, 1.0 - sum * std::exp(logPrefix));
-    }
-    const double tiny = 1e-300;
-    double b = x + 1.0 - a, c = 1.0 / tiny, d = 1.0 / b, frac = d;
-    for (int k = 1; k < 10000; ++k) {
-        double an = -k * (k - a);
-        b += 2.0;
-        d = an * d + b;
-        if (std::abs(d) < tiny) d = tiny;
-        c = b + an / c;
-        if (std::abs(c) < tiny) c = tiny;
-        d = 1.0 / d;
-        double delta = d * c;
-        frac *= delta;
-        if (std::abs(delta - 1.0) < 1e-16) break;
-    }
-    return std::exp(logPrefix) * frac;
-}
+/// Upper regularised incomplete gamma function Q(a, x), through the shared chi-square survival
+/// function (Q(k/2, x/2) is the chi-square survival of x with k degrees of freedom).
+double gammaQ(double a, double x) { return test::chiSquareSurvival(2.0 * x, 2.0 * a); }
 
 TEST(LambertianRect, IncompleteGammaMatchesKnownValues) {
     // Q(1, x) = exp(-x); Q(k/2, x/2) is the chi-square survival function: 3.841 is the 5% point
