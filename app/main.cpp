@@ -16,7 +16,12 @@ const char* kUsage =
     "  probe scene.json --points pts.csv [--technique T] [--spp N] [--visibility]\n"
     "                                    [--device cpu|gpu] [--seed S]\n"
     "                                    CSV x,y,z,nx,ny,nz,E,... with E the irradiance (W/m2)\n"
-    "  info FILE                         describe a scene (.json) or a glTF file\n";
+    "  info FILE                         describe a scene (.json) or a glTF file\n"
+    "  convert RAYS.TM25RAY --out NAME.lf.json [--grid WxH] [--res N] [--delta D]\n"
+    "                                    [--axis z|main] [--coverage C] [--raw-flux]\n"
+    "  convert --procedural bike-headlight|car-headlight --out NAME.lf.json [--rays N]\n"
+    "                                    light-field luminaire from an IES TM-25 ray file\n"
+    "                                    (delta in metres) or a simulated headlight\n";
 
 }  // namespace
 
@@ -32,6 +37,7 @@ int main(int argc, char** argv) {
         if (command == "probe") return candela::cmdProbe(args);
         if (command == "info") return candela::cmdInfo(args);
         if (command == "edit") return candela::cmdEdit(args);
+        if (command == "convert") return candela::cmdConvert(args);
         std::fprintf(stderr, "candela: unknown command \"%s\"\n%s", command.c_str(), kUsage);
         return 2;
     } catch (const std::exception& e) {

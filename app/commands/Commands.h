@@ -13,6 +13,7 @@ int cmdRender(const Args& args);
 int cmdProbe(const Args& args);
 int cmdInfo(const Args& args);
 int cmdEdit(const Args& args);
+int cmdConvert(const Args& args);
 
 /// Parses "WxH" (e.g. 512x512); throws InputError.
 void parseSize(const std::string& text, int& width, int& height);

@@ -1,0 +1,262 @@
+// candela convert: a TM-25 ray file or a procedural luminaire to a light-field file.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "app/commands/Commands.h"
+#include "luminaires/LightFieldRays.h"
+#include "luminaires/ProceduralLuminaire.h"
+#include "luminaires/Tm25RayFile.h"
+#include "util/Error.h"
+
+namespace candela {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+constexpr double kMmPerM = 1000.0;
+
+struct ConvertOptions {
+    std::string input, procedural, out;
+    LayoutOptions layout;
+    uint64_t rays = 0;
+    bool rawFlux = false;
+    bool layoutFlagGiven = false;  ///< --grid, --res, --delta, --axis or --coverage
+};
+
+double seconds(Clock::time_point a, Clock::time_point b) {
+    return std::chrono::duration<double>(b - a).count();
+}
+
+double parseNumber(const std::string& flag, const std::string& text, double min, double max) {
+    try {
+        size_t used = 0;
+        double v = std::stod(text, &used);
+        if (used == text.size() && std::isfinite(v) && v >= min && v <= max) return v;
+    } catch (const std::exception&) {
+    }
+    char range[96];
+    std::snprintf(range, sizeof range, "a number in %g..%g", min, max);
+    throw InputError(flag + ": expected " + range + ", got \"" + text + "\"");
+}
+
+/// Percentages on stderr, at most one line a second, so short conversions stay quiet.
+class Progress {
+  public:
+    explicit Progress(std::string what) : mWhat(std::move(what)), mLast(Clock::now()) {}
+    void operator()(double fraction) {
+        auto now = Clock::now();
+        if (seconds(mLast, now) < 1.0) return;
+        mLast = now;
+        std::fprintf(stderr, "candela convert: %s %.0f %%\n", mWhat.c_str(), 100.0 * fraction);
+    }
+
+  private:
+    std::string mWhat;
+    Clock::time_point mLast;
+};
+
+glm::ivec2 parseGrid(const std::string& v) {
+    int w = 0, h = 0;
+    char x = 0, extra = 0;
+    if (std::sscanf(v.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w < 3 || h < 3 ||
+        w > 64 || h > 64)
+        throw InputError("--grid: expected WxH basis functions with each in 3..64, got \"" + v +
+                         "\"");
+    return {w, h};
+}
+
+SourceAxis parseAxis(const std::string& v) {
+    if (v == "z") return SourceAxis::AsGiven;
+    if (v == "main") return SourceAxis::MainAxis;
+    throw InputError(
+        "--axis: expected z (rays given with +z forward) or main (rotate the mean emission "
+        "direction onto +z), got \"" +
+        v + "\"");
+}
+
+/// The layout flags of a ray-file conversion; false when `a` is none of them.
+bool parseLayoutFlag(const Args& args, size_t& i, LayoutOptions& layout) {
+    const std::string& a = args[i];
+    if (a == "--grid") {
+        layout.count = parseGrid(flagValue(args, i));
+    } else if (a == "--res") {
+        int n = parseInt(a, flagValue(args, i), 4, 4096);
+        layout.resolution = {n, n};
+    } else if (a == "--delta") {
+        layout.delta = parseNumber(a, flagValue(args, i), 1e-6, 100.0);  // metres
+    } else if (a == "--coverage") {
+        layout.coverage = parseNumber(a, flagValue(args, i), 0.9, 0.99999);
+    } else if (a == "--axis") {
+        layout.axis = parseAxis(flagValue(args, i));
+    } else {
+        return false;
+    }
+    return true;
+}
+
+void checkOptions(const ConvertOptions& o) {
+    if (o.out.empty() || o.input.empty() == o.procedural.empty())
+        throw InputError(
+            "usage: candela convert INPUT.TM25RAY --out NAME.lf.json [--grid WxH] [--res N] "
+            "[--delta D] | candela convert --procedural bike-headlight|car-headlight "
+            "--out NAME.lf.json [--rays N]");
+    const std::string suffix = ".lf.json";
+    if (o.out.size() <= suffix.size() ||
+        o.out.compare(o.out.size() - suffix.size(), suffix.size(), suffix) != 0)
+        throw InputError(o.out + ": the output must be named NAME.lf.json");
+    std::filesystem::path dir = std::filesystem::path(o.out).parent_path();
+    if (!dir.empty() && !std::filesystem::is_directory(dir))
+        throw InputError(o.out + ": the output folder " + dir.string() + " does not exist");
+    if (!o.procedural.empty() && (o.layoutFlagGiven || o.rawFlux))
+        throw InputError(
+            "convert: --grid, --res, --delta, --axis, --coverage and --raw-flux apply to "
+            "ray files; a procedural preset fixes its own layout");
+    if (o.procedural.empty() && o.rays > 0)
+        throw InputError("convert: --rays applies to --procedural only");
+}
+
+ConvertOptions parseArgs(const Args& args) {
+    ConvertOptions o;
+    o.layout.resolution = {128, 128};
+    for (size_t i = 0; i < args.size(); ++i) {
+        const std::string& a = args[i];
+        if (a == "--out") {
+            o.out = flagValue(args, i);
+        } else if (a == "--procedural") {
+            o.procedural = flagValue(args, i);
+        } else if (a == "--rays") {
+            o.rays = uint64_t(parseNumber(a, flagValue(args, i), 1000, 1e9));
+        } else if (a == "--raw-flux") {
+            o.rawFlux = true;
+        } else if (parseLayoutFlag(args, i, o.layout)) {
+            o.layoutFlagGiven = true;
+        } else if (!a.empty() && a[0] == '-') {
+            throw InputError("convert: unknown option " + a);
+        } else if (o.input.empty()) {
+            o.input = a;
+        } else {
+            throw InputError("convert: unexpected argument " + a);
+        }
+    }
+    checkOptions(o);
+    return o;
+}
+
+void printFlux(const char* label, double v, double total, const char* unit) {
+    std::printf("%s %.6g %s (%.2f %%)", label, v, unit, total > 0.0 ? 100.0 * v / total : 0.0);
+}
+
+void printProjection(const ProjectionReport& r, const LightFieldLayout& l, const char* unit) {
+    double dropped = r.backwardFlux + r.outsideImageFlux + r.outsideBasisFlux;
+    printFlux("flux kept:", r.keptFlux, r.totalFlux, unit);
+    std::printf("\n");
+    printFlux("flux dropped:", dropped, r.totalFlux, unit);
+    std::printf(
+        ": backward %.4g %s (%llu rays), outside the image on S %.4g %s (%llu rays), "
+        "outside the basis on U %.4g %s (%llu rays wholly)\n",
+        r.backwardFlux, unit, (unsigned long long)r.backwardRays, r.outsideImageFlux, unit,
+        (unsigned long long)r.outsideImageRays, r.outsideBasisFlux, unit,
+        (unsigned long long)r.outsideBasisRays);
+    std::printf("model flux (sum of C_m G_m): %.6g %s\n", r.modelFlux, unit);
+    std::printf("delta: %.4g mm\n", l.delta * kMmPerM);
+    glm::dvec2 last = l.origin + glm::dvec2(l.count - 1) * l.spacing;
+    std::printf(
+        "U: %dx%d basis functions, spacing %.4g x %.4g mm, nodes [%.4g, %.4g] x [%.4g, %.4g] mm\n",
+        l.count.x, l.count.y, l.spacing.x * kMmPerM, l.spacing.y * kMmPerM, l.origin.x * kMmPerM,
+        last.x * kMmPerM, l.origin.y * kMmPerM, last.y * kMmPerM);
+    std::printf("S: %dx%d pixels over [%.4g, %.4g] x [%.4g, %.4g] mm\n", l.resolution.x,
+                l.resolution.y, l.imageMin.x * kMmPerM, l.imageMax.x * kMmPerM,
+                l.imageMin.y * kMmPerM, l.imageMax.y * kMmPerM);
+}
+
+int convertRayFile(const ConvertOptions& o) {
+    auto t0 = Clock::now();
+    Progress reading("reading rays");
+    Tm25RayFile file = readTm25(
+        o.input, [&](uint64_t done, uint64_t total) { reading(double(done) / double(total)); });
+    const Tm25Header& h = file.header;
+    std::fprintf(stderr, "candela convert: read %llu rays from %s\n",
+                 (unsigned long long)file.rays.size(), o.input.c_str());
+    for (const std::string& w : file.warnings)
+        std::fprintf(stderr, "candela convert: warning: %s: %s\n", o.input.c_str(), w.c_str());
+    auto t1 = Clock::now();
+
+    Tm25FluxInfo flux;
+    std::vector<EmittedRay> rays = raysFromTm25(file, !o.rawFlux, flux);
+    LayoutOptions lo = o.layout;
+    lo.what = o.input;
+    LayoutChoice choice = chooseLayout(rays, lo);
+    ProjectionReport report;
+    Progress projecting("projecting rays");
+    auto lf = projectRays(rays, choice, flux.unit, report, Estimator::FluxConserving,
+                          [&](double f) { projecting(f); });
+    auto t2 = Clock::now();
+    lf->save(o.out);
+    auto t3 = Clock::now();
+
+    const char* unit = flux.photometric ? "lm" : "W";
+    std::printf("converted: %s -> %s\n", o.input.c_str(), o.out.c_str());
+    std::printf("source: TM-25 ray file, %s, %llu rays, date \"%s\"\n",
+                h.creationMethod == 1   ? "measured"
+                : h.creationMethod == 0 ? "simulated"
+                                        : "unknown creation method",
+                (unsigned long long)h.rayCount, h.dateTime.c_str());
+    std::printf("flux in file header: %.6g lm (luminous), %.6g W (radiant)\n", h.luminousFlux,
+                h.radiantFlux);
+    std::printf("flux of the rays: %.6g %s (%s)", flux.raySum, unit,
+                flux.photometric ? "luminous" : "radiant");
+    if (flux.scale != 1.0)
+        std::printf(", disagrees with the header: scaled by %.6g to the header's %.6g %s\n",
+                    flux.scale, flux.headerTotal, unit);
+    else if (std::isfinite(flux.headerTotal) && flux.headerTotal > 0.0)
+        std::printf(", header / rays = %.6f\n", flux.headerTotal / flux.raySum);
+    else
+        std::printf("\n");
+    printProjection(report, choice.layout, unit);
+    glm::dvec3 axis = choice.meanDirection;
+    std::printf(
+        "frame: %s; mean direction (%.3f, %.3f, %.3f); U at z = %.4g mm of the %ssource frame\n",
+        lo.axis == SourceAxis::AsGiven ? "+z as given"
+        : choice.axisFallback          ? "+z kept (the source has no main axis)"
+                                       : "main axis rotated onto +z",
+        axis.x, axis.y, axis.z, choice.frame.uPlaneZ * kMmPerM,
+        lo.axis == SourceAxis::AsGiven ? "" : "rotated ");
+    std::printf("time: read %.2f s, project %.2f s, save %.2f s, total %.2f s\n", seconds(t0, t1),
+                report.seconds, seconds(t2, t3), seconds(t0, t3));
+    return 0;
+}
+
+int convertProcedural(const ConvertOptions& o) {
+    auto t0 = Clock::now();
+    ProceduralOptions po;
+    po.rays = o.rays;
+    Progress tracing("tracing " + o.procedural);
+    po.progress = [&](double f) { tracing(f); };
+    ProceduralResult r = buildProceduralLuminaire(o.procedural, po);
+    auto t1 = Clock::now();
+    r.data->save(o.out);
+    auto t2 = Clock::now();
+    std::printf("converted: procedural %s -> %s\n", o.procedural.c_str(), o.out.c_str());
+    std::printf("source: %s; %llu rays traced, %llu leave through the cover\n",
+                proceduralDescription(o.procedural).c_str(), (unsigned long long)r.emittedRays,
+                (unsigned long long)r.exitRays);
+    std::printf(
+        "flux of the dies: %.6g lm; leaving through the cover: %.6g lm (the rest is absorbed)\n",
+        r.emittedFlux, r.exitFlux);
+    printProjection(r.report, r.layout, "lm");
+    std::printf("time: trace %.2f s, project %.2f s, save %.2f s, total %.2f s\n", r.traceSeconds,
+                r.report.seconds, seconds(t1, t2), seconds(t0, t2));
+    return 0;
+}
+
+}  // namespace
+
+int cmdConvert(const Args& args) {
+    ConvertOptions o = parseArgs(args);
+    return o.procedural.empty() ? convertRayFile(o) : convertProcedural(o);
+}
+
+}  // namespace candela
