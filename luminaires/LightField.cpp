@@ -32,6 +32,9 @@ constexpr double kGauss4X[4] = {-0.8611363115940526, -0.3399810435848563, 0.3399
                                 0.8611363115940526};
 constexpr double kGauss4W[4] = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461,
                                 0.3478548451374538};
+/// Relative energy below which a summed-area difference is rounding noise (doubles keep ~1e-16;
+/// 1e-12 leaves room for tables of 8192^2 pixels).
+constexpr double kEnergyFloor = 1e-12;
 constexpr double kLumR = 0.2126, kLumG = 0.7152, kLumB = 0.0722;
 
 std::string fmt(double v) {
@@ -438,7 +441,8 @@ double LightFieldData::boxIntegral(int m, glm::dvec2 a, glm::dvec2 b) const {
     if (!(b.x > a.x && b.y > a.y)) return 0.0;
     const LightFieldTables& t = tables[size_t(m)];
     double v = satAt(*this, t, b) - satAt(*this, t, {a.x, b.y}) - satAt(*this, t, {b.x, a.y}) + satAt(*this, t, a);
-    return std::max(0.0, v);
+    // Below 1e-12 of the image's energy the difference is the table's rounding, not energy.
+    return v > kEnergyFloor * t.total ? v : 0.0;
 }
 
 bool LightFieldData::sampleBox(int m, const glm::dvec2& a, const glm::dvec2& b, glm::dvec2 xi,
@@ -457,7 +461,7 @@ bool LightFieldData::sampleBox(int m, const glm::dvec2& a, const glm::dvec2& b, 
     };
     int nx = c1 - c0;
     double g0 = G(0), g1 = G(nx);
-    if (!(g1 > g0)) return false;
+    if (!(g1 - g0 > kEnergyFloor * t.total)) return false;
     double target = g0 + std::clamp(xi.x, 0.0, 1.0) * (g1 - g0);
     int kx = findPiece(nx, target, G);
     if (kx < 0) return false;
@@ -476,7 +480,7 @@ bool LightFieldData::sampleBox(int m, const glm::dvec2& a, const glm::dvec2& b, 
     };
     int ny = r1 - r0;
     double h0 = H(0), h1 = H(ny);
-    if (!(h1 > h0)) return false;  // cannot happen: the column was chosen for its energy
+    if (!(h1 - h0 > kEnergyFloor * t.total)) return false;
     double targetY = h0 + std::clamp(xi.y, 0.0, 1.0) * (h1 - h0);
     int ky = findPiece(ny, targetY, H);
     if (ky < 0) return false;

@@ -124,6 +124,10 @@ private:
 /// origin (U's node grid is centred there by the converters).
 class LightFieldLuminaire final : public Luminaire {
 public:
+    /// K_max of the paper's Fig. 9: at most this many samples per image per frame on the GPU
+    /// (the samples taken are reweighted, so the cap keeps the estimator unbiased).
+    static constexpr int kMaxSamplesPerImage = 64;
+
     std::shared_ptr<const LightFieldData> data;
     std::string file;  ///< As written in the scene file (relative to it or absolute).
 

@@ -6,6 +6,11 @@
 #include <mutex>
 
 #include "luminaires/LightField.h"
+#include "shaders/shared/GpuTypes.h"
+
+#include <glm/gtc/packing.hpp>
+
+#include <cstring>
 #include "util/Error.h"
 #include "util/JsonRead.h"
 
@@ -137,7 +142,47 @@ std::vector<glm::dvec3> LightFieldLuminaire::outline() const {
 
 void LightFieldLuminaire::writeJson(nlohmann::json& out) const { out["file"] = file; }
 
-std::vector<std::byte> LightFieldLuminaire::gpuData() const { return {}; }
+std::vector<std::byte> LightFieldLuminaire::gpuData() const {
+    const LightFieldData& lf = *data;
+    gpu::LightFieldGpu h{};
+    glm::dvec3 x, y, z;
+    pose.frame(x, y, z);
+    h.position = glm::vec4(glm::vec3(pose.position), 1.f);
+    h.axisX = glm::vec4(glm::vec3(x), 0.f);
+    h.axisY = glm::vec4(glm::vec3(y), 0.f);
+    h.axisZ = glm::vec4(glm::vec3(z), 0.f);
+    h.geometry = glm::vec4(float(lf.delta), float(lf.spacing.x), float(lf.spacing.y),
+                           lf.model == LightFieldData::Model::Goesele ? 1.f : 0.f);
+    h.origin = glm::vec4(float(lf.origin.x), float(lf.origin.y), float(lf.imageMin.x), float(lf.imageMin.y));
+    glm::dvec2 px = lf.pixelSize();
+    h.image = glm::vec4(float(lf.imageMax.x), float(lf.imageMax.y), float(px.x), float(px.y));
+    h.dims = glm::ivec4(lf.count.x, lf.count.y, lf.width, lf.height);
+    h.options = glm::ivec4(kMaxSamplesPerImage, 0, 0, 0);
+    size_t images = size_t(lf.imageCount());
+    size_t satCount = size_t(lf.width + 1) * size_t(lf.height + 1);
+    size_t pixels = size_t(lf.width) * size_t(lf.height);
+    size_t satOffset = sizeof(h) / sizeof(double);            // doubles
+    size_t lumOffset = (satOffset + images * satCount) * 2;   // floats
+    size_t colourOffset = lumOffset + images * pixels;        // uints
+    size_t colourCount = lf.rgb ? images * pixels * 2 : 0;
+    h.offsets = glm::ivec4(int(satOffset), int(lumOffset), int(colourOffset), lf.rgb ? 1 : 0);
+    std::vector<std::byte> out((colourOffset + colourCount) * 4);
+    std::memcpy(out.data(), &h, sizeof(h));
+    auto* sat = reinterpret_cast<double*>(out.data()) + satOffset;
+    auto* lum = reinterpret_cast<float*>(out.data()) + lumOffset;
+    auto* colour = reinterpret_cast<uint32_t*>(out.data()) + colourOffset;
+    for (size_t m = 0; m < images; ++m) {
+        std::memcpy(sat + m * satCount, lf.tables[m].sat.data(), satCount * sizeof(double));
+        std::memcpy(lum + m * pixels, lf.images[m].luminance.data(), pixels * sizeof(float));
+        if (!lf.rgb) continue;
+        for (size_t k = 0; k < pixels; ++k) {
+            glm::vec3 c = lf.images[m].colour[k];
+            colour[(m * pixels + k) * 2] = glm::packHalf2x16(glm::vec2(c.x, c.y));
+            colour[(m * pixels + k) * 2 + 1] = glm::packHalf2x16(glm::vec2(c.z, 0.f));
+        }
+    }
+    return out;
+}
 
 std::string LightFieldLuminaire::describe() const {
     const LightFieldData& lf = *data;

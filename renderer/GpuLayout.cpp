@@ -6,6 +6,7 @@
 namespace candela::gpu {
 static_assert(sizeof(FrameUniforms) == 2 * 64 + 3 * 16);
 static_assert(sizeof(LambertianRectGpu) == 5 * 16);
+static_assert(sizeof(LightFieldGpu) == 10 * 16);
 static_assert(sizeof(BvhNode) == 32);
 static_assert(sizeof(BvhTriangle) == 48);
 static_assert(sizeof(GBufferPass::Vertex) == 17 * sizeof(float));

@@ -54,6 +54,23 @@ struct LambertianRectGpu {
     vec4 normal;    // xyz unit aim; w unused
 };
 
+/// A light-field luminaire (std430): this header, then in the same buffer the summed-area
+/// tables of all images as doubles, their luminance as floats and, for RGB data, their colour
+/// ratios as two packed halves per pixel (luminaires/LightFieldLuminaire.cpp packs it). Offsets
+/// are in elements of each array's type from the start of the buffer.
+struct LightFieldGpu {
+    vec4 position;  // xyz world position of the local origin (m)
+    vec4 axisX;     // xyz world direction of local +x (c0)
+    vec4 axisY;     // xyz world direction of local +y
+    vec4 axisZ;     // xyz world direction of local +z (aim)
+    vec4 geometry;  // x = delta (m), yz = basis spacing (m), w = 1 for the goesele model
+    vec4 origin;    // xy = basis node (0,0) on U (m), zw = image min on S (m)
+    vec4 image;     // xy = image max on S (m), zw = pixel size (m)
+    ivec4 dims;     // x, y = basis count W, H; z, w = image width, height (pixels)
+    ivec4 offsets;  // x = SAT (doubles), y = luminance (floats), z = colour (uints), w = 1 if RGB
+    ivec4 options;  // x = K_max samples per image per frame (0: no cap), yzw unused
+};
+
 /// BVH node (std430): bounds with the child or triangle range packed in w as int bits.
 struct BvhNode {
     vec4 lo;  // xyz min; w = intBitsToFloat(first child index, or first triangle if leaf)

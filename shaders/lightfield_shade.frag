@@ -1,0 +1,167 @@
+// Shades the G-buffer with one light-field luminaire (Lu et al. 2015). Variants:
+//   TECHNIQUE_RESTRICTED  position-dependent restricted CDFs with balancing (Eq. 8, 12, 14)
+//   TECHNIQUE_UNIFORM     uniform samples in the same restricted boxes (Fig. 12 baseline)
+//   TECHNIQUE_GLOBAL      one CDF per image over the whole image, the same for every pixel
+//                         (Fig. 11 baseline, "precomputed global light importance sampling")
+//   SHADOWS               one shadow ray per sample through the scene BVH (exact visibility)
+//   GLOSSY                the scene has glossy materials: add the Phong lobe
+// K samples per pixel per frame are spread over the images in proportion to A_m(p) (Eq. 12) by
+// systematic sampling with one random offset per pixel and frame, which makes the counts the
+// nearest integers of K A_m / A and keeps the estimator unbiased; at most K_max samples are
+// taken per image (Fig. 9), reweighted. Sample positions come from one Halton sequence shared
+// by all pixels (Sec. 6.3), rotated per pixel (the jitter that trades structure for noise), and
+// continued from frame to frame. Output: this frame's radiance estimate, added to the
+// accumulation buffer.
+#include "shade_common.glsl"
+#include "lightfield.glsl"
+#ifdef SHADOWS
+#include "bvh_traverse.glsl"
+#endif
+
+layout(location = 0) uniform int uLuminaire;
+layout(location = 0) out vec4 outRadiance;
+
+vec3 brdf(Surface s, vec3 wi) {
+    vec3 f = s.albedo / kPi;
+#ifdef GLOSSY
+    if ((s.flags & kMaterialGlossy) != 0) f += glossyBrdf(s, wi);
+#endif
+    return f;
+}
+
+float visibility(Surface s, vec3 target) {
+#ifdef SHADOWS
+    return bvhOccluded(shadowOrigin(s), target) ? 0.0 : 1.0;
+#else
+    return 1.0;
+#endif
+}
+
+vec3 toWorld(vec3 local) {
+    return lf.position.xyz + local.x * lf.axisX.xyz + local.y * lf.axisY.xyz + local.z * lf.axisZ.xyz;
+}
+
+/// Image weight for the balancing: A_m(p) in its restricted box, or the image's whole energy.
+double imageWeight(int m, vec3 q, out vec2 a, out vec2 b) {
+#ifdef TECHNIQUE_GLOBAL
+    a = lfImageMin();
+    b = lfImageMax();
+    return lfSatEntry(m, lf.dims.z, lf.dims.w);
+#else
+    if (!lfRestrictedBox(m, q, a, b)) return 0.0;
+    return lfBoxIntegral(m, a, b);
+#endif
+}
+
+/// Eq. (9): p on S. u uniform over each support, images chosen in proportion to C_m(p).
+vec3 shadeOnS(Surface s, vec3 q, vec3 nl, int K, vec2 shift, float offset) {
+    int M = lfImageCount();
+    float total = 0.0;
+    for (int m = 0; m < M; ++m) total += lfLum(m, q.xy);
+    if (!(total > 0.0)) return vec3(0.0);
+    vec2 h = lf.geometry.yz;
+    float area = 9.0 * h.x * h.y;
+    vec3 sum = vec3(0.0);
+    float cum = 0.0;
+    for (int m = 0; m < M; ++m) {
+        float c = lfLum(m, q.xy);
+        if (!(c > 0.0)) continue;
+        int k0 = int(ceil(cum / total * float(K) - offset));
+        cum += c;
+        int k1 = int(ceil(cum / total * float(K) - offset));
+        for (int k = k0; k < k1; ++k) {
+            uint index = uint(frame.frameInfo.x * K + k + 1);
+            vec2 xi = fract(vec2(lfHalton2(index), lfHalton3(index)) + shift);
+            vec2 u = lfNode(m) - 1.5 * h + xi * 3.0 * h;
+            vec3 d = vec3(u - q.xy, -q.z);
+            float r = length(d);
+            vec3 wl = d / r;
+            float cosR = dot(nl, wl);
+            if (cosR <= 0.0) continue;
+            vec3 wi = normalize(wl.x * lf.axisX.xyz + wl.y * lf.axisY.xyz + wl.z * lf.axisZ.xyz);
+            float term = total * area * lfPsi(m, u, q.xy) * lfDelta() * cosR / (r * r * r);
+            sum += term * lfColour(m, q.xy) * brdf(s, wi) * visibility(s, toWorld(vec3(u, 0.0)));
+        }
+    }
+    return sum / float(K);
+}
+
+void main() {
+    Surface s;
+    if (!loadSurface(s)) discard;
+    int K = frame.frameInfo.y;
+    uvec2 pixel = uvec2(gl_FragCoord.xy);
+    uint rng = rngSeed(pixel, uint(frame.frameInfo.x * 7919 + uLuminaire));
+    float offset = rand01(rng);                                       // systematic sampling
+    uint pixelHash = rngSeed(pixel, uint(uLuminaire) * 104729u + 17u);
+    vec2 shift = vec2(rand01(pixelHash), rand01(pixelHash));          // per-pixel rotation
+
+    vec3 d = s.p - lf.position.xyz;
+    vec3 q = vec3(dot(d, lf.axisX.xyz), dot(d, lf.axisY.xyz), dot(d, lf.axisZ.xyz));
+    vec3 nl = vec3(dot(s.n, lf.axisX.xyz), dot(s.n, lf.axisY.xyz), dot(s.n, lf.axisZ.xyz));
+    float dz = q.z - lfDelta();
+    vec3 result = vec3(0.0);
+    if (dz < 0.0) {
+        // Behind S or between U and S: no light.
+    } else if (dz < 1e-5 * max(q.z, 1e-3)) {
+        // Closer to S than float coordinates resolve the restricted boxes: p on S (Eq. 9).
+        result = shadeOnS(s, q, nl, K, shift, offset);
+    } else {
+        int M = lfImageCount();
+        double A = 0.0;
+        for (int m = 0; m < M; ++m) {
+            vec2 a, b;
+            A += imageWeight(m, q, a, b);
+        }
+        if (A > 0.0) {
+            double cum = 0.0;
+            for (int m = 0; m < M; ++m) {
+                vec2 a, b;
+                double Am = imageWeight(m, q, a, b);
+                if (!(Am > 0.0)) continue;
+                // Slots k with (k + offset) / K * A in [cum, cum + A_m) go to image m.
+                int k0 = int(ceil(float(cum / A) * float(K) - offset));
+                cum += Am;
+                int k1 = int(ceil(float(cum / A) * float(K) - offset));
+                int Km = k1 - k0;
+                if (Km <= 0) continue;
+                int n = lf.options.x > 0 ? min(Km, lf.options.x) : Km;
+                // Each slot is worth A / K; n samples stand for Km slots.
+                float weight = float(A) / float(K) * float(Km) / float(n);
+#ifdef TECHNIQUE_UNIFORM
+                float boxArea = (b.x - a.x) * (b.y - a.y);
+#endif
+                for (int k = k0; k < k0 + n; ++k) {
+                    uint index = uint(frame.frameInfo.x * K + k + 1);
+                    vec2 xi = fract(vec2(lfHalton2(index), lfHalton3(index)) + shift);
+                    vec2 sp;
+                    float scale;  // (f / pdf) without Psi c cos Delta / r^3, over A
+#ifdef TECHNIQUE_UNIFORM
+                    sp = a + xi * (b - a);
+                    float c = lfLum(m, sp);
+                    if (!(c > 0.0)) continue;
+                    scale = c * boxArea / float(Am);
+#else
+                    if (!lfSampleBox(m, a, b, xi, sp)) continue;
+                    scale = 1.0;
+#endif
+                    vec3 dl = vec3(sp - q.xy, -dz);
+                    float r = length(dl);
+                    vec3 wl = dl / r;
+                    float cosR = dot(nl, wl);
+                    if (cosR <= 0.0) continue;
+                    vec2 u = q.xy + (sp - q.xy) * (q.z / dz);
+                    float psi = lfPsi(m, u, sp);
+                    if (psi <= 0.0) continue;
+                    vec3 wi = normalize(wl.x * lf.axisX.xyz + wl.y * lf.axisY.xyz + wl.z * lf.axisZ.xyz);
+                    // Eq. (14): rho_k v_k c_m(s_k) Psi_m / r^3, times Delta and the weight.
+                    float term = weight * scale * psi * cosR * dz / (r * r * r);
+                    result += term * lfColour(m, sp) * brdf(s, wi) *
+                              visibility(s, toWorld(vec3(sp, lfDelta())));
+                }
+            }
+        }
+    }
+    if (any(isnan(result)) || any(isinf(result))) result = vec3(0.0);
+    outRadiance = vec4(result, 1.0);
+}
