@@ -21,7 +21,10 @@ const char* kUsage =
     "                                    [--axis z|main] [--coverage C] [--raw-flux]\n"
     "  convert --procedural bike-headlight|car-headlight --out NAME.lf.json [--rays N]\n"
     "                                    light-field luminaire from an IES TM-25 ray file\n"
-    "                                    (delta in metres) or a simulated headlight\n";
+    "                                    (delta in metres) or a simulated headlight\n"
+    "  bench --lightfield F.lf.json [--out DIR] [--spp 4,8,..] [--reference-spp N] [--size WxH]\n"
+    "                                    error against GPU time of the light-field techniques\n"
+    "                                    (CSV, images, plot, ratios)\n";
 
 }  // namespace
 
@@ -38,6 +41,7 @@ int main(int argc, char** argv) {
         if (command == "info") return candela::cmdInfo(args);
         if (command == "edit") return candela::cmdEdit(args);
         if (command == "convert") return candela::cmdConvert(args);
+        if (command == "bench") return candela::cmdBench(args);
         std::fprintf(stderr, "candela: unknown command \"%s\"\n%s", command.c_str(), kUsage);
         return 2;
     } catch (const std::exception& e) {

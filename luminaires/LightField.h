@@ -145,6 +145,9 @@ public:
     std::vector<std::byte> gpuData() const override;
     std::string describe() const override;
 
+    /// Mean radiance over S of the rays parallel to the axis (u = s).
+    glm::dvec3 displayRadiance() const override;
+
     glm::dvec3 toLocal(const glm::dvec3& p) const;
     glm::dvec3 toWorldDir(const glm::dvec3& v) const;
 

@@ -68,6 +68,18 @@ glm::dvec3 LightFieldLuminaire::radiance(const glm::dvec3& xWorld, const glm::dv
     return data->radiance(u, glm::dvec2(s.x, s.y));
 }
 
+glm::dvec3 LightFieldLuminaire::displayRadiance() const {
+    const LightFieldData& lf = *data;
+    glm::dvec3 sum(0.0);
+    const int n = 32;
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            glm::dvec2 s = lf.imageMin + (glm::dvec2(i, j) + 0.5) / double(n) * (lf.imageMax - lf.imageMin);
+            sum += lf.radiance(s, s);
+        }
+    return sum / double(n * n);
+}
+
 glm::dvec3 LightFieldLuminaire::power() const { return data->cachedPower(); }
 
 LightSample LightFieldLuminaire::sample(const glm::dvec3& p, const glm::dvec2& u) const {
@@ -211,7 +223,15 @@ std::unique_ptr<Luminaire> LightFieldLuminaire::parse(const nlohmann::json& entr
 }
 
 std::unique_ptr<Luminaire> LightFieldLuminaire::create() {
-    // The editor adds light fields through a file; a default instance has a small uniform model.
+    // The editor's "Add": the bundled measured LED; a small uniform model if it is missing.
+    auto light = std::make_unique<LightFieldLuminaire>();
+    fs::path bundled = fs::path(CANDELA_SOURCE_DIR) / "resources/luminaires/osram-lertduw.lf.json";
+    try {
+        light->data = loadShared(bundled);
+        light->file = bundled.generic_string();
+        return light;
+    } catch (const InputError&) {
+    }
     auto lf = std::make_shared<LightFieldData>();
     lf->count = {3, 3};
     lf->spacing = {0.02, 0.02};
@@ -222,9 +242,7 @@ std::unique_ptr<Luminaire> LightFieldLuminaire::create() {
     lf->width = lf->height = 16;
     lf->images.assign(9, LightFieldImage{std::vector<float>(256, 1000.f), {}});
     lf->precompute();
-    auto light = std::make_unique<LightFieldLuminaire>();
     light->data = lf;
-    light->file = "";
     return light;
 }
 

@@ -59,6 +59,13 @@ public:
     virtual void writeJson(nlohmann::json& out) const = 0;
     /// Packed std430 record for this kind's GPU passes (layout in shaders/shared/).
     virtual std::vector<std::byte> gpuData() const = 0;
+    /// Radiance the viewport shows on the emitting surface, W/(m2 sr): by default what leaves its
+    /// centre along the aim (exact for Lambertian emitters).
+    virtual glm::dvec3 displayRadiance() const {
+        glm::dvec3 x, y, z;
+        pose.frame(x, y, z);
+        return radiance(pose.position, z);
+    }
     /// One line for `candela info` and the editor.
     virtual std::string describe() const = 0;
 

@@ -48,7 +48,7 @@ FramePlan planFrame(const Scene& scene, const glm::mat4& viewProj,
         if (t->shader.empty())
             throw InputError("luminaire \"" + lum.name + "\": technique \"" + name + "\" of " +
                              std::string(lum.kind()) +
-                             " has no GPU pass yet; use `candela probe` (CPU) for this kind");
+                             " runs on the CPU only (`candela probe`, benches); pick another technique to render");
         ShadeStep step;
         step.luminaire = int(i);
         step.technique = t;

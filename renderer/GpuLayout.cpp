@@ -4,7 +4,7 @@
 #include "shaders/shared/GpuTypes.h"
 
 namespace candela::gpu {
-static_assert(sizeof(FrameUniforms) == 2 * 64 + 3 * 16);
+static_assert(sizeof(FrameUniforms) == 2 * 64 + 4 * 16);
 static_assert(sizeof(LambertianRectGpu) == 5 * 16);
 static_assert(sizeof(LightFieldGpu) == 10 * 16);
 static_assert(sizeof(BvhNode) == 32);

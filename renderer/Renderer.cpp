@@ -93,6 +93,7 @@ void Renderer::runShading(int spp) {
     u.invViewProj = glm::inverse(u.viewProj);
     u.cameraPos = glm::vec4(glm::vec3(mScene->camera.position), 1.f);
     u.frameInfo = glm::ivec4(mFrames, spp, 0, mPlan.needsBvh ? 1 : 0);
+    u.seeds = glm::ivec4(int(mSettings.seed), 0, 0, 0);
     u.viewport = glm::vec4(float(mGBuffer->width()), float(mGBuffer->height()),
                            1.f / float(mGBuffer->width()), 1.f / float(mGBuffer->height()));
     mFrameUniforms.update(0, sizeof(u), &u);

@@ -5,6 +5,7 @@
 // no change costs no pass at all.
 
 #include <memory>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,7 @@ struct RenderSettings {
     ToneMapOperator toneMap = ToneMapOperator::Exponential;
     float exposure = 1.0f;          ///< k of the operators in shaders/tonemap.frag.
     float fixedAverage = 0.0f;      ///< > 0: tone-map against this luminance, not the frame mean.
+    uint32_t seed = 0;              ///< Seeds the random numbers (independent renders differ).
 };
 
 /// What changed since the last frame (the editor sets these; all of them restart accumulation).

@@ -5,7 +5,7 @@ packages=(
   build-essential cmake pkg-config git python3
   libglfw3-dev libimgui-dev libglm-dev libtinygltf-dev libopenimageio-dev
   libosmesa6-dev libgl-dev libgtest-dev libbenchmark-dev nlohmann-json3-dev
-  xvfb xdotool imagemagick x11-utils mesa-utils clang-format
+  xvfb xdotool imagemagick x11-utils mesa-utils clang-format gnuplot-nox
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -31,7 +31,7 @@ void main() {
     if (!loadSurface(s)) discard;
     LambertianRectGpu L = lights[uLuminaire];
     int spp = frame.frameInfo.y;
-    uint rng = rngSeed(uvec2(gl_FragCoord.xy), uint(frame.frameInfo.x * 7919 + uLuminaire));
+    uint rng = rngSeed(uvec2(gl_FragCoord.xy), uint(frame.frameInfo.x * 7919 + uLuminaire) + uint(frame.seeds.x) * 2654435761u);
     vec3 result = vec3(0.0);
 
 #ifdef TECHNIQUE_ANALYTIC

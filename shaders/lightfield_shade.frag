@@ -91,9 +91,9 @@ void main() {
     if (!loadSurface(s)) discard;
     int K = frame.frameInfo.y;
     uvec2 pixel = uvec2(gl_FragCoord.xy);
-    uint rng = rngSeed(pixel, uint(frame.frameInfo.x * 7919 + uLuminaire));
+    uint rng = rngSeed(pixel, uint(frame.frameInfo.x * 7919 + uLuminaire) + uint(frame.seeds.x) * 2654435761u);
     float offset = rand01(rng);                                       // systematic sampling
-    uint pixelHash = rngSeed(pixel, uint(uLuminaire) * 104729u + 17u);
+    uint pixelHash = rngSeed(pixel, uint(uLuminaire) * 104729u + 17u + uint(frame.seeds.x) * 40503u);
     vec2 shift = vec2(rand01(pixelHash), rand01(pixelHash));          // per-pixel rotation
 
     vec3 d = s.p - lf.position.xyz;
@@ -108,17 +108,38 @@ void main() {
         result = shadeOnS(s, q, nl, K, shift, offset);
     } else {
         int M = lfImageCount();
+        // Step 1 of Sec. 6.1: A_m(p) for every image and their sum A(p); kept for step 2 (up to
+        // kCached images; beyond that step 2 recomputes them).
+        const int kCached = 128;
+        float cached[kCached];
         double A = 0.0;
         for (int m = 0; m < M; ++m) {
             vec2 a, b;
-            A += imageWeight(m, q, a, b);
+            double w = imageWeight(m, q, a, b);
+            if (m < kCached) {
+                cached[m] = float(w);
+                w = double(cached[m]);  // step 2 reads the float: sum the same values
+            }
+            A += w;
         }
         if (A > 0.0) {
             double cum = 0.0;
             for (int m = 0; m < M; ++m) {
                 vec2 a, b;
-                double Am = imageWeight(m, q, a, b);
-                if (!(Am > 0.0)) continue;
+                double Am;
+                if (m < kCached) {
+                    Am = double(cached[m]);
+                    if (!(Am > 0.0)) continue;
+#ifdef TECHNIQUE_GLOBAL
+                    a = lfImageMin();
+                    b = lfImageMax();
+#else
+                    lfRestrictedBox(m, q, a, b);
+#endif
+                } else {
+                    Am = imageWeight(m, q, a, b);
+                    if (!(Am > 0.0)) continue;
+                }
                 // Slots k with (k + offset) / K * A in [cum, cum + A_m) go to image m.
                 int k0 = int(ceil(float(cum / A) * float(K) - offset));
                 cum += Am;

@@ -10,6 +10,7 @@
 #include <exception>
 #include <vector>
 
+#include "luminaires/LightField.h"
 #include "scene/SceneIo.h"
 #include "ui/ImGuiUtil.h"
 #include "ui/Panels.h"
@@ -201,8 +202,13 @@ bool luminaireInspector(EditorState& state, int index) {
     }
 
     const Luminaire& shown = *state.scene.luminaires[size_t(index)];
-    glm::dvec3 power = shown.power();
-    ImGui::Text("Power [W]: %.4g  %.4g  %.4g", power.x, power.y, power.z);
+    if (const auto* lf = dynamic_cast<const LightFieldLuminaire*>(&shown)) {
+        static int shownImage = 0;  // UI state only: which image the panel shows
+        lightFieldDetails(*lf, shownImage);
+    } else {
+        glm::dvec3 power = shown.power();
+        ImGui::Text("Power [W]: %.4g  %.4g  %.4g", power.x, power.y, power.z);
+    }
     if (!state.inspectorError.empty()) errorText(state.inspectorError);
 
     ImGui::Spacing();

@@ -6,6 +6,10 @@
 #include "renderer/ShaderLibrary.h"
 #include "ui/EditorState.h"
 
+namespace candela {
+class LightFieldLuminaire;
+}
+
 namespace candela::ui {
 
 /// A fixed panel placement in window pixels (the layout is deterministic; no imgui.ini).
@@ -23,6 +27,9 @@ bool fileDialogs(EditorState& state);
 bool outlinePanel(EditorState& state, const PanelRect& rect);
 /// Fields of the selected luminaire (pose, technique, kind-specific values) or geometry.
 bool inspectorPanel(EditorState& state, const PanelRect& rect);
+/// Basis grid, one image and the flux of a light-field luminaire (ui/LightFieldPanel.cpp);
+/// shownImage is the image index the user picked.
+void lightFieldDetails(const LightFieldLuminaire& light, int& shownImage);
 /// Screenshot button, tone mapping, camera and sampling settings.
 bool renderPanel(EditorState& state, const PanelRect& rect);
 /// Passes with GPU times, accumulation, compiled variants and the shader error log.

@@ -14,6 +14,7 @@ int cmdProbe(const Args& args);
 int cmdInfo(const Args& args);
 int cmdEdit(const Args& args);
 int cmdConvert(const Args& args);
+int cmdBench(const Args& args);
 
 /// Parses "WxH" (e.g. 512x512); throws InputError.
 void parseSize(const std::string& text, int& width, int& height);

@@ -43,6 +43,7 @@ struct FrameUniforms {
     ivec4 frameInfo;      // x = frame index (sample batch), y = samples per pixel per frame,
                           // z = luminaire index being shaded, w = 1 if shadows are traced
     vec4 viewport;        // xy size in pixels, zw = 1/size
+    ivec4 seeds;          // x = seed of this accumulation's random numbers, yzw unused
 };
 
 /// A Lambertian rectangle: corner, edge vectors, radiance (std430).

@@ -1,0 +1,12 @@
+set terminal pngcairo size 900,420 noenhanced
+set datafile separator ','
+set logscale xy
+set grid
+set key bottom left
+set multiplot layout 1,2
+set xlabel 'GPU time of the shading pass (ms)'
+set ylabel 'relative RMSE (linear luminance, reference noise removed)'
+plot for [t in 'restricted-cdf uniform-restricted precomputed-global'] 'bench.csv' using (strcol(1) eq t ? $3 : 1/0):4 with linespoints title t
+set ylabel 'mean Delta E (CIE76, tone-mapped)'
+plot for [t in 'restricted-cdf uniform-restricted precomputed-global'] 'bench.csv' using (strcol(1) eq t ? $3 : 1/0):5 with linespoints title t
+unset multiplot
