@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "renderer/ShaderLibrary.h"
 #include "renderer/context/GlContext.h"
+#include "renderer/gl/GlObjects.h"
 
 namespace candela::test {
 
@@ -69,6 +71,29 @@ GlContext& glContext() {
     static std::unique_ptr<GlContext> context = createOffscreenContext();
     context->makeCurrent();
     return *context;
+}
+
+std::vector<std::byte> runComputeTest(const std::string& shader, const std::vector<std::byte>& record,
+                                      const void* inputs, size_t inputBytes, size_t count,
+                                      size_t outputBytes) {
+    glContext();
+    ShaderLibrary shaders;
+    ProgramKey key;
+    key.compute = shader;
+    GLuint program = shaders.program(key);
+    gl::Buffer lights(GLsizeiptr(record.size()), record.data());
+    gl::Buffer in(GLsizeiptr(inputBytes), inputs);
+    gl::Buffer out(GLsizeiptr(outputBytes), nullptr, GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT);
+    lights.bindBase(GL_SHADER_STORAGE_BUFFER, 1);
+    in.bindBase(GL_SHADER_STORAGE_BUFFER, 6);
+    out.bindBase(GL_SHADER_STORAGE_BUFFER, 7);
+    glUseProgram(program);
+    glProgramUniform1i(program, 0, int(count));
+    glDispatchCompute(GLuint((count + 63) / 64), 1, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    std::vector<std::byte> result(outputBytes);
+    glGetNamedBufferSubData(out.id(), 0, GLsizeiptr(outputBytes), result.data());
+    return result;
 }
 
 std::string dataDir() { return CANDELA_TEST_DATA; }

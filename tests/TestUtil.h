@@ -1,6 +1,8 @@
 #pragma once
 // Helpers shared by the tests: statistics for sampler tests and a GL context for *_gltest.cpp.
 
+#include <cstddef>
+#include <cstring>
 #include <memory>
 #include <string>
 #include <vector>
@@ -27,6 +29,23 @@ ChiSquareResult chiSquare(const std::vector<double>& observed, const std::vector
 
 /// One OSMesa context for the whole GL test binary (created on first use).
 GlContext& glContext();
+
+/// Runs a test compute shader (a path relative to shaders/, e.g. "../tests/shaders/x.comp") with
+/// 64-wide groups over `count` inputs: `record` (a luminaire's gpuData) at binding 1, the inputs
+/// at binding 6, the outputs at 7, the count in uniform location 0. Returns the output bytes.
+std::vector<std::byte> runComputeTest(const std::string& shader, const std::vector<std::byte>& record,
+                                      const void* inputs, size_t inputBytes, size_t count,
+                                      size_t outputBytes);
+
+template <class Out, class In>
+std::vector<Out> runComputeTest(const std::string& shader, const std::vector<std::byte>& record,
+                                const std::vector<In>& in) {
+    std::vector<std::byte> bytes = runComputeTest(shader, record, in.data(), in.size() * sizeof(In),
+                                                  in.size(), in.size() * sizeof(Out));
+    std::vector<Out> out(in.size());
+    std::memcpy(out.data(), bytes.data(), bytes.size());
+    return out;
+}
 
 /// Folder of the test data (tests/data) and of the repository.
 std::string dataDir();

@@ -34,26 +34,7 @@ LightFieldLuminaire tiny() {
 }
 
 std::vector<ParityOut> runParity(const LightFieldLuminaire& light, const std::vector<ParityIn>& in) {
-    test::glContext();
-    ShaderLibrary shaders;
-    ProgramKey key;
-    key.compute = "../tests/shaders/lightfield_parity.comp";
-    GLuint program = shaders.program(key);
-    std::vector<std::byte> record = light.gpuData();
-    gl::Buffer lights(GLsizeiptr(record.size()), record.data());
-    gl::Buffer inputs(GLsizeiptr(in.size() * sizeof(ParityIn)), in.data());
-    gl::Buffer outputs(GLsizeiptr(in.size() * sizeof(ParityOut)), nullptr,
-                       GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT);
-    lights.bindBase(GL_SHADER_STORAGE_BUFFER, 1);
-    inputs.bindBase(GL_SHADER_STORAGE_BUFFER, 6);
-    outputs.bindBase(GL_SHADER_STORAGE_BUFFER, 7);
-    glUseProgram(program);
-    glProgramUniform1i(program, 0, int(in.size()));
-    glDispatchCompute(GLuint((in.size() + 63) / 64), 1, 1);
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    std::vector<ParityOut> out(in.size());
-    glGetNamedBufferSubData(outputs.id(), 0, GLsizeiptr(out.size() * sizeof(ParityOut)), out.data());
-    return out;
+    return test::runComputeTest<ParityOut>("../tests/shaders/lightfield_parity.comp", light.gpuData(), in);
 }
 
 TEST(LightFieldGl, BoxIntegralAndSamplerMatchCpp) {

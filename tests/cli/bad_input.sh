@@ -8,26 +8,7 @@ trap 'rm -rf "$out"' EXIT
 failures=0
 passed=0
 
-# expect EXPECTED_SUBSTRING... -- ARGS: runs candela ARGS, wants exit 1 and every substring.
-expect() {
-  local wants=()
-  while [ "$1" != "--" ]; do wants+=("$1"); shift; done
-  shift
-  local err
-  err=$("$binary" "$@" 2>&1 >/dev/null)
-  local rc=$?
-  local ok=1
-  [ $rc -eq 1 ] || ok=0
-  for w in "${wants[@]}"; do
-    grep -qF -- "$w" <<<"$err" || ok=0
-  done
-  if [ $ok -eq 1 ]; then
-    passed=$((passed + 1))
-  else
-    failures=$((failures + 1))
-    echo "FAIL: candela $* (exit $rc) wanted [${wants[*]}], got: $err"
-  fi
-}
+source "$(dirname "$0")/lib/expect.sh"  # expect SUBSTRING... -- ARGS
 
 expect "nothing_here.json" "cannot open" -- info "$data/nothing_here.json"
 expect "malformed.json" "invalid JSON" ":4:" -- render "$data/malformed.json" --out "$out/a.png"

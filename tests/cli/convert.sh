@@ -16,26 +16,7 @@ check() {  # check DESCRIPTION CONDITION...: counts a pass when the command succ
   if "$@"; then passed=$((passed + 1)); else failures=$((failures + 1)); echo "FAIL: $what"; fi
 }
 
-# expect EXPECTED_SUBSTRING... -- ARGS: runs candela ARGS, wants exit 1 and every substring.
-expect() {
-  local wants=()
-  while [ "$1" != "--" ]; do wants+=("$1"); shift; done
-  shift
-  local err
-  err=$("$binary" "$@" 2>&1 >/dev/null)
-  local rc=$?
-  local ok=1
-  [ $rc -eq 1 ] || ok=0
-  for w in "${wants[@]}"; do
-    grep -qF -- "$w" <<<"$err" || ok=0
-  done
-  if [ $ok -eq 1 ]; then
-    passed=$((passed + 1))
-  else
-    failures=$((failures + 1))
-    echo "FAIL: candela $* (exit $rc) wanted [${wants[*]}], got: $err"
-  fi
-}
+source "$(dirname "$0")/lib/expect.sh"  # expect SUBSTRING... -- ARGS
 
 # The OSRAM LED: 337 lm in the header, at least 98 % of it kept (the flux tests allow 2 %).
 "$binary" convert "$led" --out "$out/led.lf.json" --grid 5x5 --res 32 >"$out/led.txt" 2>"$out/led.err"

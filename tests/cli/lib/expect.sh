@@ -1,0 +1,24 @@
+# Shared by the CLI test scripts (sourced, not run; it is not a test itself). The caller sets
+# `binary` and initialises `passed` and `failures` to 0.
+
+# expect EXPECTED_SUBSTRING... -- ARGS: runs candela ARGS, wants exit 1 and every substring in
+# what it prints on stderr.
+expect() {
+  local wants=()
+  while [ "$1" != "--" ]; do wants+=("$1"); shift; done
+  shift
+  local err
+  err=$("$binary" "$@" 2>&1 >/dev/null)
+  local rc=$?
+  local ok=1
+  [ $rc -eq 1 ] || ok=0
+  for w in "${wants[@]}"; do
+    grep -qF -- "$w" <<<"$err" || ok=0
+  done
+  if [ $ok -eq 1 ]; then
+    passed=$((passed + 1))
+  else
+    failures=$((failures + 1))
+    echo "FAIL: candela $* (exit $rc) wanted [${wants[*]}], got: $err"
+  fi
+}
