@@ -165,6 +165,10 @@ Estimate lightFieldRestrictedCdf(const Luminaire& l, const glm::dvec3& p, const 
 /// Uniform sampling of the same restricted boxes (the paper's Fig. 12 baseline).
 Estimate lightFieldUniformRestricted(const Luminaire& l, const glm::dvec3& p, const glm::dvec3& n,
                                      const EstimateOptions& options);
+/// Granier et al. 2003 (seed 001, Eq. 14): one textured spot light per basis function at its node,
+/// the image averaged over the support's footprint on S; deterministic and approximate.
+Estimate lightFieldGranier2003(const Luminaire& l, const glm::dvec3& p, const glm::dvec3& n,
+                               const EstimateOptions& options);
 /// One global CDF over all images and pixels, independent of p (the paper's Fig. 11 baseline).
 Estimate lightFieldPrecomputedGlobal(const Luminaire& l, const glm::dvec3& p, const glm::dvec3& n,
                                      const EstimateOptions& options);

@@ -303,6 +303,37 @@ Estimate lightFieldReference(const Luminaire& l, const glm::dvec3& p, const glm:
     return e;
 }
 
+Estimate lightFieldGranier2003(const Luminaire& l, const glm::dvec3& p, const glm::dvec3& n,
+                               const EstimateOptions& o) {
+    Setup s;
+    Estimate e;
+    if (!setup(l, p, n, s) || s.dz == 0.0) return e;  // on S the spot lights are undefined
+    const LightFieldData& lf = *s.lf;
+    double phiIntegral = lf.spacing.x * lf.spacing.y;  // A = int Phi_m du (Eq. 14)
+    for (int m = 0; m < lf.imageCount(); ++m) {
+        glm::dvec2 a, b;
+        if (!lf.restrictedBox(m, s.q, a, b)) continue;
+        // E'_m averaged over the support's whole footprint on S (3h scaled by Delta / q.z per
+        // axis; C_m is 0 where it leaves the image), from the box integral.
+        double footprint = 9.0 * lf.spacing.x * lf.spacing.y * (s.dz / s.q.z) * (s.dz / s.q.z);
+        double mean = lf.boxIntegral(m, a, b) / footprint;
+        if (!(mean > 0.0)) continue;
+        // f_m (Eq. 13): cos(theta) cos(theta') / d^2 at the support's centre, the node.
+        glm::dvec2 node = lf.node(m);
+        glm::dvec3 d(node.x - s.q.x, node.y - s.q.y, -s.q.z);
+        double dist = glm::length(d);
+        double cosR = glm::dot(s.n, d / dist), cosL = s.q.z / dist;
+        if (!(cosR > 0.0)) continue;
+        glm::dvec2 centre = 0.5 * (a + b);
+        // The goesele model's factor at the node (1 for canned): Psi / Phi there.
+        double model = lf.psi(m, node, centre) / std::max(lf.basis(m, node), 1e-300);
+        if (o.visibility && !o.visibility->visible(p, s.light->pose.position + node.x * s.x + node.y * s.y))
+            continue;
+        e.irradiance += phiIntegral * mean * model * lf.colour(m, centre) * (cosR * cosL / (dist * dist));
+    }
+    return e;
+}
+
 Estimate lightFieldRestrictedCdf(const Luminaire& l, const glm::dvec3& p, const glm::dvec3& n,
                                  const EstimateOptions& o) {
     return sampled(l, p, n, o, Strategy::Restricted);

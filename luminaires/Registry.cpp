@@ -29,6 +29,9 @@ static const TechniqueInfo kTechniques[] = {
     {"lightfield", "precomputed-global",
      "one global CDF over all images, the same for every receiver (Fig. 11)", true,
      &lightFieldPrecomputedGlobal, "lightfield_shade.frag", "TECHNIQUE_GLOBAL"},
+    {"lightfield", "granier2003",
+     "one textured spot light per basis function (Granier et al. 2003, Eq. 14); approximate", false,
+     &lightFieldGranier2003, "lightfield_shade.frag", "TECHNIQUE_GRANIER"},
     // CPU only (probe, tests, benches): no GPU pass.
     {"lightfield", "reference",
      "Gauss-Legendre quadrature of the exact model over U, split at knots and pixel edges", false,

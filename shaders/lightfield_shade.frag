@@ -3,6 +3,8 @@
 //   TECHNIQUE_UNIFORM     uniform samples in the same restricted boxes (Fig. 12 baseline)
 //   TECHNIQUE_GLOBAL      one CDF per image over the whole image, the same for every pixel
 //                         (Fig. 11 baseline, "precomputed global light importance sampling")
+//   TECHNIQUE_GRANIER     Granier et al. 2003, Eq. 14: one textured spot light per basis function
+//                         at its node, C_m averaged over the support's footprint (deterministic)
 //   SHADOWS               one shadow ray per sample through the scene BVH (exact visibility)
 //   GLOSSY                the scene has glossy materials: add the Phong lobe
 // K samples per pixel per frame are spread over the images in proportion to A_m(p) (Eq. 12) by
@@ -86,6 +88,33 @@ vec3 shadeOnS(Surface s, vec3 q, vec3 nl, int K, vec2 shift, float offset) {
     return sum / float(K);
 }
 
+/// Granier et al. 2003 (seed 001, Eq. 14), as luminaires/LightFieldEstimators.cpp.
+vec3 shadeGranier(Surface s, vec3 q, vec3 nl) {
+    vec3 sum = vec3(0.0);
+    float phiIntegral = lf.geometry.y * lf.geometry.z;
+    for (int m = 0; m < lfImageCount(); ++m) {
+        vec2 a, b;
+        if (!lfRestrictedBox(m, q, a, b)) continue;
+        // Mean over the support's whole footprint on S (C_m is 0 where it leaves the image).
+        float scale = (q.z - lfDelta()) / q.z;
+        float footprint = 9.0 * lf.geometry.y * lf.geometry.z * scale * scale;
+        float mean = float(lfBoxIntegral(m, a, b)) / footprint;
+        if (!(mean > 0.0)) continue;
+        vec2 node = lfNode(m);
+        vec3 d = vec3(node - q.xy, -q.z);
+        float dist = length(d);
+        vec3 wl = d / dist;
+        float cosR = dot(nl, wl), cosL = q.z / dist;
+        if (cosR <= 0.0) continue;
+        vec2 centre = 0.5 * (a + b);
+        float model = lfPsi(m, node, centre) / 0.5625;  // Phi_m at its node is 0.75^2
+        vec3 wi = normalize(wl.x * lf.axisX.xyz + wl.y * lf.axisY.xyz + wl.z * lf.axisZ.xyz);
+        sum += phiIntegral * mean * model * cosR * cosL / (dist * dist) * lfColour(m, centre) * brdf(s, wi) *
+               visibility(s, toWorld(vec3(node, 0.0)));
+    }
+    return sum;
+}
+
 void main() {
     Surface s;
     if (!loadSurface(s)) discard;
@@ -103,6 +132,10 @@ void main() {
     vec3 result = vec3(0.0);
     if (dz < 0.0) {
         // Behind S or between U and S: no light.
+#ifdef TECHNIQUE_GRANIER
+    } else if (true) {
+        result = shadeGranier(s, q, nl);  // 0 on S itself: its restricted boxes are empty
+#endif
     } else if (dz < 1e-5 * max(q.z, 1e-3)) {
         // Closer to S than float coordinates resolve the restricted boxes: p on S (Eq. 9).
         result = shadeOnS(s, q, nl, K, shift, offset);

@@ -166,5 +166,25 @@ TEST(LightFieldGl, ShadingPassMatchesTheCpuReference) {
     }
 }
 
+TEST(LightFieldGl, Granier2003MatchesCpp) {
+    test::glContext();
+    Scene scene = loadScene(CANDELA_TEST_DATA "/lightfield/scene.json");
+    const Luminaire& light = *scene.luminaires[0];
+    std::vector<glm::vec3> points = {{0.0f, 0.96f, 0.0f}, {0.2f, 0.5f, -0.1f}, {-0.5f, 0.0f, 0.4f}, {1.5f, -1.5f, 0.5f}};
+    std::vector<glm::vec3> normals = {{0, 1, 0}, glm::normalize(glm::vec3(0.3f, 1, 0)), {0, 1, 0}, {0, 1, 0}};
+    ShaderLibrary shaders;
+    Renderer renderer(shaders);
+    RenderSettings s;
+    s.width = s.height = 8;
+    s.techniqueOverride = "granier2003";
+    renderer.setSettings(s);
+    std::vector<glm::vec3> gpu = renderer.probe(scene, points, normals, 1);
+    for (size_t i = 0; i < points.size(); ++i) {
+        Estimate e = lightFieldGranier2003(light, glm::dvec3(points[i]), glm::dvec3(normals[i]), {});
+        // Deterministic; the same sums in float (the box mean divides two float differences): 1e-3.
+        EXPECT_NEAR(gpu[i].y, e.irradiance.y, 1e-3 * e.irradiance.y) << i;
+    }
+}
+
 }  // namespace
 }  // namespace candela

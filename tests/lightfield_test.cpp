@@ -162,6 +162,29 @@ TEST(LightField, ConstantImagesActAsALambertianRectangle) {
     }
 }
 
+TEST(LightField, Granier2003ConvergesWhereItsAssumptionsHold) {
+    // Seed 001's approximation assumes the geometry constant over each basis support and takes
+    // the plain mean of the image over the support's footprint. With constant images the mean
+    // is exact and only the geometry is approximated, an error of order (support / distance)^2:
+    // below 1 % from 1 m on for supports of 15 cm (the closed form is the Lambertian rectangle).
+    const double C = 250.0, delta = 0.05, half = 0.05;
+    auto lf = makeField({13, 13}, 0.05, delta, half, 8, [&](int, int, int) { return float(C); });
+    LightFieldLuminaire l = place(lf);
+    EstimateOptions o;
+    for (double z : {1.05, 2.0, 5.05}) {
+        glm::dvec3 p = worldOf(l, {0.05, -0.03, z}), n = worldDir(l, glm::normalize(glm::dvec3(0.2, 0.1, -1)));
+        double ref = lightFieldReference(l, p, n, o).irradiance.x;
+        double granier = lightFieldGranier2003(l, p, n, o).irradiance.x;
+        EXPECT_NEAR(granier, ref, 0.01 * ref) << z;
+    }
+    // Hard cases: on S and behind it exactly 0; a grazing receiver finite and non-negative.
+    glm::dvec3 down = worldDir(l, {0, 0, -1});
+    EXPECT_EQ(lightFieldGranier2003(l, worldOf(l, {0.0, 0.0, delta}), down, o).irradiance.x, 0.0);
+    EXPECT_EQ(lightFieldGranier2003(l, worldOf(l, {0.0, 0.0, 0.01}), down, o).irradiance.x, 0.0);
+    double g = lightFieldGranier2003(l, worldOf(l, {0.0, 0.0, delta + 1e-6}), worldDir(l, {1, 0, 0}), o).irradiance.x;
+    EXPECT_TRUE(std::isfinite(g) && g >= 0.0);
+}
+
 TEST(LightField, ReferenceMatchesAnIndependentIntegralOverS) {
     auto lf = randomField(3);
     LightFieldLuminaire l = place(lf);

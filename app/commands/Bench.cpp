@@ -213,6 +213,19 @@ int cmdBench(const Args& args) {
                             width, height, img.display);
         }
 
+    // Granier et al. 2003: deterministic, one frame; its error is its bias.
+    {
+        render(renderer, scene, settings, "granier2003", 1, 1);  // compile
+        Image img = render(renderer, scene, settings, "granier2003", 1, seed++);
+        double raw = relRmse(img.linear, ref.linear);
+        Row r{"granier2003", 1, img.shadeMs, std::sqrt(std::max(0.0, raw * raw - refNoise * refNoise)),
+              meanDeltaE(img.display, ref.display), raw};
+        rows.push_back(r);
+        std::fprintf(stderr, "bench: %-20s  1 frame  %9.1f ms  rel. RMSE %.4f  Delta E %.3f\n", "granier2003",
+                     r.shadeMs, r.rmse, r.deltaE);
+        writeImage8((fs::path(outDir) / "granier2003.png").string(), width, height, img.display);
+    }
+
     std::ofstream csv(fs::path(outDir) / "bench.csv");
     csv << "technique,spp,gpu_ms,rel_rmse,mean_delta_e,rel_rmse_raw\n";
     for (const Row& r : rows)
@@ -248,6 +261,13 @@ int cmdBench(const Args& args) {
                       need / spp, tUr / tRc, tGl / tRc);
         summary << line;
     }
+    for (const Row& r : rows)
+        if (r.technique == "granier2003") {
+            std::snprintf(line, sizeof line,
+                          "granier2003 (deterministic, approximate): rel. RMSE %.4f, Delta E %.3f in %.1f ms\n",
+                          r.rmse, r.deltaE, r.shadeMs);
+            summary << line;
+        }
     std::ofstream(fs::path(outDir) / "summary.txt") << summary.str();
     std::fputs(summary.str().c_str(), stdout);
 
@@ -255,12 +275,12 @@ int cmdBench(const Args& args) {
     std::ofstream gp(fs::path(outDir) / "plot.gp");
     gp << "set terminal pngcairo size 900,420 noenhanced\nset datafile separator ','\nset logscale xy\n"
           "set grid\nset key bottom left\nset multiplot layout 1,2\n"
-          "set xlabel 'GPU time of the shading pass (ms)'\nset ylabel 'relative RMSE (linear luminance, reference noise removed)'\n"
-          "plot for [t in 'restricted-cdf uniform-restricted precomputed-global'] 'bench.csv' using "
-          "(strcol(1) eq t ? $3 : 1/0):4 with linespoints title t\n"
+          "set xlabel 'GPU time of the shading pass (ms)'\nset ylabel 'rel. RMSE (luminance, ref. noise removed)'\n"
+          "plot for [t in 'restricted-cdf uniform-restricted precomputed-global granier2003'] 'bench.csv' using "
+          "(strcol(1) eq t ? $3 : 1/0):4 with linespoints pointsize 1.5 title t\n"
           "set ylabel 'mean Delta E (CIE76, tone-mapped)'\n"
-          "plot for [t in 'restricted-cdf uniform-restricted precomputed-global'] 'bench.csv' using "
-          "(strcol(1) eq t ? $3 : 1/0):5 with linespoints title t\nunset multiplot\n";
+          "plot for [t in 'restricted-cdf uniform-restricted precomputed-global granier2003'] 'bench.csv' using "
+          "(strcol(1) eq t ? $3 : 1/0):5 with linespoints pointsize 1.5 title t\nunset multiplot\n";
     gp.close();
     std::string cmd = "cd '" + outDir + "' && gnuplot plot.gp > error_vs_time.png 2>/dev/null";
     if (std::system("command -v gnuplot >/dev/null 2>&1") == 0 && std::system(cmd.c_str()) == 0)

@@ -16,7 +16,7 @@ check() { if eval "$2"; then passed=$((passed + 1)); else failures=$((failures +
   >"$out/stdout" 2>"$out/stderr"
 rc=$?
 check "bench exits 0 (rc $rc): $(tail -3 "$out/stderr")" '[ $rc -eq 0 ]'
-check "bench.csv has a header and 6 rows" '[ "$(wc -l <"$out/bench.csv")" -eq 7 ]'
+check "bench.csv has a header and 7 rows" '[ "$(wc -l <"$out/bench.csv")" -eq 8 ]'
 bad=$(tail -n +2 "$out/bench.csv" | awk -F, '!($3 > 0 && $4 >= 0 && $5 >= 0 && $3 == $3 && $4 == $4) {print}')
 check "finite, positive figures: $bad" '[ -z "$bad" ]'
 falls=$(awk -F, '$1 == "restricted-cdf" {e[$2] = $6} END {print (e[32] < e[2]) ? "yes" : "no"}' "$out/bench.csv")
