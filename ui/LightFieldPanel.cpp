@@ -26,10 +26,10 @@ void lightFieldDetails(const LightFieldLuminaire& light, int& shownImage) {
     bool photometric = lf.unit == "cd/m2";
     glm::dvec3 flux = lf.cachedPower();
     double total = 0.2126 * flux.x + 0.7152 * flux.y + 0.0722 * flux.z;
-    ImGui::Text("Flux: %.4g %s (from the model, by quadrature)", total, photometric ? "lm" : "W");
-    ImGui::Text("Basis %d x %d, spacing %.2f x %.2f mm, delta %.2f mm", lf.count.x, lf.count.y,
+    ImGui::TextWrapped("Flux: %.4g %s (from the model, by quadrature)", total, photometric ? "lm" : "W");
+    ImGui::TextWrapped("Basis %d x %d, spacing %.2f x %.2f mm, delta %.2f mm", lf.count.x, lf.count.y,
                 1e3 * lf.spacing.x, 1e3 * lf.spacing.y, 1e3 * lf.delta);
-    ImGui::Text("Images %d x %d px over %.1f x %.1f mm; precomputed in %.1f ms", lf.width, lf.height,
+    ImGui::TextWrapped("Images %d x %d px over %.1f x %.1f mm; precomputed in %.1f ms", lf.width, lf.height,
                 1e3 * (lf.imageMax.x - lf.imageMin.x), 1e3 * (lf.imageMax.y - lf.imageMin.y), lf.precomputeMs);
 
     // Basis grid: one disc per node, its brightness the image's share of the energy; the image
