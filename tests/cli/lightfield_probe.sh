@@ -22,5 +22,17 @@ info=$("$binary" info "$data/scene.json" 2>&1)
 check "info lists the light field: $info" 'grep -q "3x3 images of 8x8 RGB" <<<"$info" && grep -q "flux" <<<"$info"'
 err=$("$binary" info "$data/missing_file.json" 2>&1 >/dev/null); rc=$?
 check "missing light-field file (rc $rc): $err" '[ $rc -eq 1 ] && grep -q "nowhere.lf.json" <<<"$err"'
+# Rendering: a floor and the light field, no occluder and no glossy material, so exactly the
+# G-buffer, one restricted-CDF shading pass without SHADOWS or GLOSSY, resolve and tone mapping.
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+stats=$("$binary" render "$data/scene.json" --out "$out/lf.exr" --size 64x48 --spp 16 --stats 2>&1)
+passes=$(sed -n '/^pass,/,/^variants/p' <<<"$stats" | grep -v '^pass,\|^variants' | cut -d, -f1 | tr '\n' ' ')
+check "pass list [$passes]" '[ "$passes" = "gbuffer shade:Tiny:restricted-cdf resolve tonemap " ]'
+check "variants: $(grep variants <<<"$stats")" 'grep -q "lightfield_shade.frag\[TECHNIQUE_RESTRICTED\] " <<<"$stats" && ! grep -q "SHADOWS\|GLOSSY" <<<"$stats"'
+check "EXR written" '[ -s "$out/lf.exr" ]'
+err=$("$binary" render "$data/scene.json" --out "$out/ref.png" --technique reference 2>&1 >/dev/null); rc=$?
+check "reference is CPU only (rc $rc): $err" '[ $rc -eq 1 ] && grep -q "CPU only" <<<"$err" && [ ! -e "$out/ref.png" ]'
+
 echo "$passed passed, $failures failed"
 [ $failures -eq 0 ]
