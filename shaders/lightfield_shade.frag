@@ -11,9 +11,10 @@
 // systematic sampling with one random offset per pixel and frame, which makes the counts the
 // nearest integers of K A_m / A and keeps the estimator unbiased; at most K_max samples are
 // taken per image (Fig. 9), reweighted. Sample positions come from one Halton sequence shared
-// by all pixels (Sec. 6.3), rotated per pixel (the jitter that trades structure for noise), and
-// continued from frame to frame. Output: this frame's radiance estimate, added to the
-// accumulation buffer.
+// by all pixels (Sec. 6.3): each image uses its first points, rotated by a random offset per
+// pixel and frame (the jitter that trades structure for noise and keeps every frame's estimate
+// independent and unbiased). Output: this frame's radiance estimate, added to the accumulation
+// buffer.
 #include "shade_common.glsl"
 #include "lightfield.glsl"
 #ifdef SHADOWS
@@ -72,7 +73,7 @@ vec3 shadeOnS(Surface s, vec3 q, vec3 nl, int K, vec2 shift, float offset) {
         cum += c;
         int k1 = int(ceil(cum / total * float(K) - offset));
         for (int k = k0; k < k1; ++k) {
-            uint index = uint(frame.frameInfo.x * K + k + 1);
+            uint index = uint(k - k0 + 1);
             vec2 xi = fract(vec2(lfHalton2(index), lfHalton3(index)) + shift);
             vec2 u = lfNode(m) - 1.5 * h + xi * 3.0 * h;
             vec3 d = vec3(u - q.xy, -q.z);
@@ -121,9 +122,13 @@ void main() {
     int K = frame.frameInfo.y;
     uvec2 pixel = uvec2(gl_FragCoord.xy);
     uint rng = rngSeed(pixel, uint(frame.frameInfo.x * 7919 + uLuminaire) + uint(frame.seeds.x) * 2654435761u);
-    float offset = rand01(rng);                                       // systematic sampling
-    uint pixelHash = rngSeed(pixel, uint(uLuminaire) * 104729u + 17u + uint(frame.seeds.x) * 40503u);
-    vec2 shift = vec2(rand01(pixelHash), rand01(pixelHash));          // per-pixel rotation
+    float offset = rand01(rng);  // systematic sampling over the images
+    // A new random rotation of the shared Halton points per pixel and frame. (A rotation kept
+    // across frames with the index running on would confine each image's points: image m holds
+    // the same slots of every frame's block of K indices, so their base-2 digits below K repeat
+    // and its samples never leave one dyadic strip. Each pixel would then converge to a wrong
+    // value, right only on average over pixels.)
+    vec2 shift = vec2(rand01(rng), rand01(rng));
 
     vec3 d = s.p - lf.position.xyz;
     vec3 q = vec3(dot(d, lf.axisX.xyz), dot(d, lf.axisY.xyz), dot(d, lf.axisZ.xyz));
@@ -186,7 +191,7 @@ void main() {
                 float boxArea = (b.x - a.x) * (b.y - a.y);
 #endif
                 for (int k = k0; k < k0 + n; ++k) {
-                    uint index = uint(frame.frameInfo.x * K + k + 1);
+                    uint index = uint(k - k0 + 1);  // the image's own points, 1..n, this frame
                     vec2 xi = fract(vec2(lfHalton2(index), lfHalton3(index)) + shift);
                     vec2 sp;
                     float scale;  // (f / pdf) without Psi c cos Delta / r^3, over A
