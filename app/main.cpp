@@ -13,6 +13,7 @@ const char* kUsage =
     "                                    screenshots offscreen into ./candela-screenshots/)\n"
     "  render scene.json --out F.png|F.exr [--technique T] [--spp N] [--size WxH] [--stats]\n"
     "                                    [--tonemap exponential|reinhard] [--exposure K]\n"
+    "                                    [--false-colour [--legend MIN,MAX] [--log] [--isolux L,..|none]]\n"
     "  probe scene.json --points pts.csv [--technique T] [--spp N] [--visibility]\n"
     "                                    [--device cpu|gpu] [--seed S]\n"
     "                                    CSV x,y,z,nx,ny,nz,E,... with E the irradiance (W/m2)\n"
@@ -24,7 +25,11 @@ const char* kUsage =
     "                                    (delta in metres) or a simulated headlight\n"
     "  bench --lightfield F.lf.json [--out DIR] [--spp 4,8,..] [--reference-spp N] [--size WxH]\n"
     "                                    error against GPU time of the light-field techniques\n"
-    "                                    (CSV, images, plot, ratios)\n";
+    "                                    (CSV, images, plot, ratios)\n"
+    "  grid scene.json --plane y=0.8 [--extent u0,v0,u1,v1] [--spacing 0.25] [--spp N] [--csv F]\n"
+    "                                    illuminance (lx) on a calculation grid; Emin, Eavg, Emax, U0\n"
+    "  polar FILE.ies|FILE.ldt [--out polar.png] [--step DEG]\n"
+    "                                    polar candela diagram (C0-C180, C90-C270) and its table\n";
 
 }  // namespace
 
@@ -42,6 +47,8 @@ int main(int argc, char** argv) {
         if (command == "edit") return candela::cmdEdit(args);
         if (command == "convert") return candela::cmdConvert(args);
         if (command == "bench") return candela::cmdBench(args);
+        if (command == "grid") return candela::cmdGrid(args);
+        if (command == "polar") return candela::cmdPolar(args);
         std::fprintf(stderr, "candela: unknown command \"%s\"\n%s", command.c_str(), kUsage);
         return 2;
     } catch (const std::exception& e) {

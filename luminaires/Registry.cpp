@@ -2,6 +2,7 @@
 
 #include "luminaires/LambertianRect.h"
 #include "luminaires/LightField.h"
+#include "luminaires/PhotometricLuminaire.h"
 
 namespace candela {
 
@@ -12,6 +13,8 @@ static const LuminaireKindInfo kKinds[] = {
      &LambertianRect::create, "analytic"},
     {"lightfield", "measured near-field luminaire (light field on two planes, Lu et al. 2015)",
      &LightFieldLuminaire::parse, &LightFieldLuminaire::create, "restricted-cdf"},
+    {"photometric", "far-field photometry (IES LM-63, EULUMDAT) on its luminous opening (Prost 2019)",
+     &PhotometricLuminaire::parse, &PhotometricLuminaire::create, "hybrid"},
 };
 
 static const TechniqueInfo kTechniques[] = {
@@ -36,6 +39,25 @@ static const TechniqueInfo kTechniques[] = {
     {"lightfield", "reference",
      "Gauss-Legendre quadrature of the exact model over U, split at knots and pixel edges", false,
      &lightFieldReference, "", ""},
+    {"photometric", "scattered",
+     "corners + closest point, spherical Delaunay cubature normalised by the form factor (Prost Eq. 5.6, 5.11)",
+     false, &photometricScattered, "photometric_shade.frag", "TECHNIQUE_SCATTERED"},
+    {"photometric", "structured", "corners and barycentre as uniform solid-angle samples (Lagarde 2014)",
+     false, &photometricStructured, "photometric_shade.frag", "TECHNIQUE_STRUCTURED"},
+    {"photometric", "mrp", "one sample at the most representative point (Drobot 2014)", false,
+     &photometricMrp, "photometric_shade.frag", "TECHNIQUE_MRP"},
+    {"photometric", "mc-poisson-24", "a fixed set of 24 Poisson-disk points on the opening (MCI-24)",
+     false, &photometricPoisson24, "photometric_shade.frag", "TECHNIQUE_POISSON24"},
+    {"photometric", "mc-poisson-40", "a fixed set of 40 Poisson-disk points on the opening (MCI-40)",
+     false, &photometricPoisson40, "photometric_shade.frag", "TECHNIQUE_POISSON40"},
+    {"photometric", "point", "one photometric point light at the centre (DIALux-style preview)", false,
+     &photometricPoint, "photometric_shade.frag", "TECHNIQUE_POINT"},
+    {"photometric", "hybrid",
+     "scattered within one opening size, 24 Poisson points beyond five, blended between (Prost Sec. 6.6)",
+     false, &photometricHybrid, "photometric_shade.frag", "TECHNIQUE_HYBRID"},
+    {"photometric", "reference",
+     "Monte Carlo, points uniform on the opening's bounding rectangle (Prost Eq. 6.3)", true,
+     &photometricReference, "photometric_shade.frag", "TECHNIQUE_REFERENCE"},
 };
 
 std::span<const LuminaireKindInfo> luminaireKinds() { return kKinds; }

@@ -31,9 +31,9 @@ std::vector<std::string> FramePlan::passNames() const {
 }
 
 FramePlan planFrame(const Scene& scene, const glm::mat4& viewProj,
-                    const std::string& techniqueOverride) {
+                    const std::string& techniqueOverride, Quantity quantity) {
     FramePlan plan;
-    plan.glossy = scene.hasGlossy();
+    plan.glossy = quantity == Quantity::Radiance && scene.hasGlossy();
     std::vector<bool> shadows = luminairesNeedingShadows(scene, viewProj);
     for (size_t i = 0; i < scene.luminaires.size(); ++i) {
         const Luminaire& lum = *scene.luminaires[i];

@@ -15,6 +15,9 @@
 
 namespace candela {
 
+/// What the shading passes compute per pixel (see RenderSettings::quantity).
+enum class Quantity { Radiance = 0, Illuminance = 1 };
+
 struct ShadeStep {
     int luminaire = -1;                     ///< Index into Scene::luminaires.
     const TechniqueInfo* technique = nullptr;
@@ -37,8 +40,10 @@ struct FramePlan {
 glm::mat4 cameraViewProj(const Camera& camera, double aspect);
 
 /// techniqueOverride: if non-empty, used for every luminaire of a kind that has it.
-/// Throws InputError if a luminaire names a technique its kind does not have.
+/// In illuminance mode every receiver is white Lambertian: no GLOSSY variant whatever the
+/// materials. Throws InputError if a luminaire names a technique its kind does not have.
 FramePlan planFrame(const Scene& scene, const glm::mat4& viewProj,
-                    const std::string& techniqueOverride = {});
+                    const std::string& techniqueOverride = {},
+                    Quantity quantity = Quantity::Radiance);
 
 }  // namespace candela

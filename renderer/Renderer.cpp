@@ -47,9 +47,9 @@ void Renderer::setSettings(const RenderSettings& s) {
     const RenderSettings& o = mSettings;
     bool restart = s.width != o.width || s.height != o.height ||
                    s.samplesPerFrame != o.samplesPerFrame || s.maxSamples != o.maxSamples ||
-                   s.techniqueOverride != o.techniqueOverride;
+                   s.techniqueOverride != o.techniqueOverride || s.quantity != o.quantity;
     bool display = s.toneMap != o.toneMap || s.exposure != o.exposure ||
-                   s.fixedAverage != o.fixedAverage;
+                   s.fixedAverage != o.fixedAverage || s.legend != o.legend;
     mSettings = s;
     mSettings.samplesPerFrame = std::max(1, s.samplesPerFrame);
     if (restart) mPending |= kChangeSettings;
@@ -78,7 +78,7 @@ void Renderer::uploadLuminaires() {
 }
 
 void Renderer::rebuildPlan() {
-    mPlan = planFrame(*mScene, viewProj(), mSettings.techniqueOverride);
+    mPlan = planFrame(*mScene, viewProj(), mSettings.techniqueOverride, mSettings.quantity);
     if (mPlan.needsBvh && !mBvh) {
         mBvh = std::make_unique<Bvh>(Bvh::build(*mScene));
         auto bytes = [](const auto& v) { return GLsizeiptr(v.size() * sizeof(v[0])); };
@@ -144,7 +144,7 @@ void Renderer::renderFrame() {
         u.cameraPos = glm::vec4(glm::vec3(mScene->camera.position), 1.f);
         mFrameUniforms.update(0, sizeof(u), &u);
         mFrameUniforms.bindBase(GL_UNIFORM_BUFFER, gpu::kBindingFrame);
-        timed(mStats, "gbuffer", [&] { mGBuffer->execute(mShaders); });
+        timed(mStats, "gbuffer", [&] { mGBuffer->execute(mShaders, mSettings.quantity); });
         mStats.converged = false;
     }
 
@@ -163,7 +163,9 @@ void Renderer::renderFrame() {
         timed(mStats, "resolve",
               [&] { mResolve->execute(mShaders, mAccum, mGBuffer->texture(gpu::kGBufferEmission), mFrames); });
         timed(mStats, "tonemap", [&] {
-            mTonemap->execute(mShaders, mResolve->linear(), mResolve->luminance(), mSettings);
+            mTonemap->execute(mShaders, mResolve->linear(), mResolve->luminance(),
+                              mGBuffer->texture(gpu::kGBufferPosition),
+                              mGBuffer->texture(gpu::kGBufferAlbedo), mSettings);
         });
         mNeedDisplay = false;
     }
@@ -203,12 +205,15 @@ std::vector<unsigned char> Renderer::readDisplay() const {
 }
 
 std::vector<glm::vec3> Renderer::probe(const Scene& scene, const std::vector<glm::vec3>& points,
-                                       const std::vector<glm::vec3>& normals, int spp) {
+                                       const std::vector<glm::vec3>& normals, int spp, int width) {
     mScene = &scene;
     int n = std::max<int>(1, int(points.size()));
-    resize(n, 1);
+    int w = width > 0 ? width : n;
+    int h = (n + w - 1) / w;
+    resize(w, h);
     mPointMode = true;
-    mGBuffer->uploadPoints(points, normals);
+    mStats = FrameStats{};
+    mGBuffer->uploadPoints(points, normals, w);
     uploadLuminaires();
     mPlan = planFrame(scene, viewProj(), mSettings.techniqueOverride);
     // Probes measure unshadowed irradiance on a Lambertian receiver: no shadow or glossy variant.
@@ -225,7 +230,7 @@ std::vector<glm::vec3> Renderer::probe(const Scene& scene, const std::vector<glm
     int perFrame = std::max(1, std::min(spp, 256));
     int frames = mPlan.progressive() ? std::max(1, (spp + perFrame - 1) / perFrame) : 1;
     for (mFrames = 0; mFrames < frames; ++mFrames) runShading(perFrame);
-    std::vector<glm::vec4> accum(static_cast<size_t>(n), glm::vec4(0.f));
+    std::vector<glm::vec4> accum(static_cast<size_t>(w) * size_t(h), glm::vec4(0.f));
     glGetTextureImage(mAccum.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(accum.size() * sizeof(glm::vec4)),
                       accum.data());
     std::vector<glm::vec3> out(points.size());

@@ -13,6 +13,7 @@
 #include "renderer/FrameStats.h"
 #include "renderer/ShaderLibrary.h"
 #include "renderer/gl/GlObjects.h"
+#include "renderer/passes/TonemapPass.h"
 #include "scene/Scene.h"
 
 namespace candela {
@@ -23,7 +24,8 @@ class ResolvePass;
 class TonemapPass;
 struct Bvh;
 
-enum class ToneMapOperator { Exponential = 0, Reinhard = 1 };
+/// FalseColour maps the values (lux in illuminance mode) through `RenderSettings::legend`.
+enum class ToneMapOperator { Exponential = 0, Reinhard = 1, FalseColour = 2 };
 
 struct RenderSettings {
     int width = 512;
@@ -34,6 +36,11 @@ struct RenderSettings {
     ToneMapOperator toneMap = ToneMapOperator::Exponential;
     float exposure = 1.0f;          ///< k of the operators in shaders/tonemap.frag.
     float fixedAverage = 0.0f;      ///< > 0: tone-map against this luminance, not the frame mean.
+    /// Radiance: what the camera sees. Illuminance: every surface but the luminaires is a white
+    /// Lambertian receiver of albedo pi (no glossy lobe), so each pixel holds the irradiance E on
+    /// the surface, W/m2 (lux for photometric luminaires); luminaires show no value.
+    Quantity quantity = Quantity::Radiance;
+    FalseColourLegend legend;       ///< Used by ToneMapOperator::FalseColour.
     uint32_t seed = 0;              ///< Seeds the random numbers (independent renders differ).
 };
 
@@ -65,7 +72,8 @@ public:
 
     /// Tone-mapped sRGB image (RGBA8, row 0 at the bottom) for display.
     const gl::Texture2D& displayTexture() const;
-    /// Linear HDR radiance, RGB float, rows top to bottom, W/(m2 sr).
+    /// Linear HDR radiance, RGB float, rows top to bottom, W/(m2 sr) (irradiance, W/m2 or lux,
+    /// in illuminance mode).
     std::vector<float> readLinear() const;
     /// Tone-mapped 8-bit RGB, rows top to bottom.
     std::vector<unsigned char> readDisplay() const;
@@ -73,7 +81,9 @@ public:
     /// Irradiance at points for normals through the production shading passes (albedo pi, so
     /// the radiance they write is E). Returns RGB per point, W/m2.
     std::vector<glm::vec3> probe(const Scene& scene, const std::vector<glm::vec3>& points,
-                                 const std::vector<glm::vec3>& normals, int spp);
+                                 const std::vector<glm::vec3>& normals, int spp, int width = 0);
+    /// (width > 0: the points form a width x (count / width) image, row-major, so more than the
+    /// largest texture width fit; the shading passes' GPU times are in stats() afterwards.)
 
     glm::mat4 viewProj() const;
     /// Pick: index of the luminaire under the pixel (x right, y down), or -1.

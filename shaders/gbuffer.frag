@@ -1,5 +1,8 @@
 // Writes position, normal, material and emission. Normals face the camera (two-sided surfaces);
-// emitters show their radiance only from their emitting side.
+// emitters show their radiance only from their emitting side. In illuminance mode every other
+// surface becomes a white Lambertian receiver of albedo pi (no glossy lobe), so the unchanged
+// shading passes write (albedo / pi) E = E, the irradiance; emitters show nothing (their
+// luminance is not an illuminance).
 #include "common.glsl"
 in vec3 vPosition;
 in vec3 vNormal;
@@ -7,6 +10,7 @@ in vec3 vAlbedo;
 in vec4 vSpecular;
 in vec3 vEmission;
 flat in float vFlags;
+layout(location = 0) uniform int uIlluminance;  // 1: illuminance mode
 
 layout(location = 0) out vec4 outPosition;
 layout(location = 1) out vec4 outNormal;
@@ -23,7 +27,16 @@ void main() {
     if (!front && !emitter) n = -n;
     outPosition = vec4(vPosition, 1.0);
     outNormal = vec4(n, vSpecular.a);
-    outAlbedo = vec4(vAlbedo, float(flags));
-    outSpecular = vec4(vSpecular.rgb, 0.0);
-    outEmission = vec4(emitter && front ? vEmission : vec3(0.0), 1.0);
+    vec3 albedo = vAlbedo, specular = vSpecular.rgb, emission = emitter && front ? vEmission : vec3(0.0);
+    if (uIlluminance != 0) {
+        emission = vec3(0.0);
+        if (!emitter) {
+            albedo = vec3(kPi);
+            specular = vec3(0.0);
+            flags &= ~kMaterialGlossy;
+        }
+    }
+    outAlbedo = vec4(albedo, float(flags));
+    outSpecular = vec4(specular, 0.0);
+    outEmission = vec4(emission, 1.0);
 }

@@ -13,6 +13,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "app/commands/BenchUtil.h"
 #include "app/commands/Commands.h"
 #include "luminaires/LightField.h"
 #include "renderer/ImageFile.h"
@@ -75,49 +76,6 @@ Image render(Renderer& renderer, const Scene& scene, RenderSettings settings, co
     return img;
 }
 
-double luma(const float* c) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; }
-
-/// sqrt(sum (x - r)^2 / sum r^2) over pixel luminances.
-double relRmse(const std::vector<float>& x, const std::vector<float>& r) {
-    double num = 0.0, den = 0.0;
-    for (size_t i = 0; i + 2 < r.size(); i += 3) {
-        double d = luma(&x[i]) - luma(&r[i]);
-        num += d * d;
-        den += luma(&r[i]) * luma(&r[i]);
-    }
-    return den > 0.0 ? std::sqrt(num / den) : 0.0;
-}
-
-/// sRGB8 to CIELAB (D65).
-glm::dvec3 lab(const unsigned char* c) {
-    auto lin = [](double v) {
-        v /= 255.0;
-        return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
-    };
-    double r = lin(c[0]), g = lin(c[1]), b = lin(c[2]);
-    double X = (0.4124 * r + 0.3576 * g + 0.1805 * b) / 0.95047;
-    double Y = 0.2126 * r + 0.7152 * g + 0.0722 * b;
-    double Z = (0.0193 * r + 0.1192 * g + 0.9505 * b) / 1.08883;
-    auto f = [](double t) { return t > 216.0 / 24389.0 ? std::cbrt(t) : (24389.0 / 27.0 * t + 16.0) / 116.0; };
-    return {116.0 * f(Y) - 16.0, 500.0 * (f(X) - f(Y)), 200.0 * (f(Y) - f(Z))};
-}
-
-double meanDeltaE(const std::vector<unsigned char>& x, const std::vector<unsigned char>& r) {
-    double sum = 0.0;
-    size_t n = r.size() / 3;
-    for (size_t i = 0; i < n; ++i) sum += glm::length(lab(&x[3 * i]) - lab(&r[3 * i]));
-    return n ? sum / double(n) : 0.0;
-}
-
-std::vector<int> parseList(const std::string& text) {
-    std::vector<int> out;
-    std::stringstream ss(text);
-    std::string item;
-    while (std::getline(ss, item, ',')) out.push_back(parseInt("--spp", item, 1, 1 << 20));
-    if (out.empty()) throw InputError("--spp: expected a comma-separated list of sample counts");
-    return out;
-}
-
 struct Row {
     std::string technique;
     int spp;
@@ -146,6 +104,7 @@ double atError(const std::vector<Row>& rows, const std::string& technique, doubl
 }  // namespace
 
 int cmdBench(const Args& args) {
+    if (std::find(args.begin(), args.end(), "--prost") != args.end()) return benchProst(args);
     std::string lfPath, outDir = "bench-lightfield";
     std::vector<int> sppList = {4, 8, 16, 32, 64, 128, 256, 512};
     int refSpp = 8192, width = 256, height = 192;
@@ -256,9 +215,9 @@ int cmdBench(const Args& args) {
         double tUr = atError(rows, "uniform-restricted", rc, true);
         std::snprintf(line, sizeof line,
                       "%5d spp: error uniform/restricted %.2fx, global/restricted %.2fx; for restricted's "
-                      "error uniform needs %s spp (%.1fx) and %.1fx the time, global %.1fx the time\n",
-                      spp, ur / rc, gl / rc, std::isnan(need) ? "n/a" : std::to_string(int(need)).c_str(),
-                      need / spp, tUr / tRc, tGl / tRc);
+                      "error uniform needs %s spp (%s) and %s the time, global %s the time\n",
+                      spp, ur / rc, gl / rc, std::isnan(need) ? "more than the sweep's" : std::to_string(int(need)).c_str(),
+                      formatRatio(need / spp).c_str(), formatRatio(tUr / tRc).c_str(), formatRatio(tGl / tRc).c_str());
         summary << line;
     }
     for (const Row& r : rows)
@@ -282,11 +241,7 @@ int cmdBench(const Args& args) {
           "plot for [t in 'restricted-cdf uniform-restricted precomputed-global granier2003'] 'bench.csv' using "
           "(strcol(1) eq t ? $3 : 1/0):5 with linespoints pointsize 1.5 title t\nunset multiplot\n";
     gp.close();
-    std::string cmd = "cd '" + outDir + "' && gnuplot plot.gp > error_vs_time.png 2>/dev/null";
-    if (std::system("command -v gnuplot >/dev/null 2>&1") == 0 && std::system(cmd.c_str()) == 0)
-        std::printf("wrote %s/error_vs_time.png\n", outDir.c_str());
-    else
-        std::printf("gnuplot not found: %s/plot.gp is there to plot bench.csv\n", outDir.c_str());
+    runGnuplot(outDir, "error_vs_time.png");
     std::printf("wrote %s/bench.csv and images\n", outDir.c_str());
     return 0;
 }

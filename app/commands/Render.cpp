@@ -1,4 +1,6 @@
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -11,6 +13,54 @@
 #include "util/Error.h"
 
 namespace candela {
+
+namespace {
+
+/// "A,B,.." as finite numbers; throws InputError naming the flag.
+std::vector<float> parseNumberList(const std::string& flag, const std::string& text) {
+    std::vector<float> values;
+    size_t start = 0;
+    while (true) {
+        size_t comma = text.find(',', start);
+        std::string item = text.substr(start, comma - start);
+        size_t used = 0;
+        double v = 0.0;
+        try {
+            v = std::stod(item, &used);
+        } catch (const std::exception&) {
+            used = 0;
+        }
+        if (item.empty() || used != item.size() || !std::isfinite(v))
+            throw InputError(flag + ": expected comma-separated finite numbers, got \"" + text + "\"");
+        values.push_back(float(v));
+        if (comma == std::string::npos) break;
+        start = comma + 1;
+    }
+    return values;
+}
+
+/// The legend's range from the image when the user gave none: 0 to a round value at or above
+/// the brightest pixel (linear), or the decades around it, three below (log).
+void autoLegend(FalseColourLegend& legend, const std::vector<float>& rgb) {
+    float peak = 0.f;
+    for (size_t i = 0; i + 2 < rgb.size(); i += 3)
+        peak = std::max(peak, 0.2126f * rgb[i] + 0.7152f * rgb[i + 1] + 0.0722f * rgb[i + 2]);
+    if (!(peak > 0.f)) peak = 1.f;
+    double decade = std::pow(10.0, std::floor(std::log10(double(peak))));
+    if (legend.logScale) {
+        legend.max = float(decade * 10.0);
+        legend.min = float(decade * 1e-2);
+        return;
+    }
+    legend.min = 0.f;
+    for (double m : {1.0, 2.0, 2.5, 5.0, 10.0})
+        if (m * decade >= peak) {
+            legend.max = float(m * decade);
+            break;
+        }
+}
+
+}  // namespace
 
 void parseSize(const std::string& text, int& width, int& height) {
     int w = 0, h = 0;
@@ -42,7 +92,7 @@ int cmdRender(const Args& args) {
     std::string scenePath, out, statsPath;
     RenderSettings settings;
     int spp = 64;
-    bool printStats = false;
+    bool printStats = false, falseColour = false, haveLegend = false;
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
         if (a == "--out") out = flagValue(args, i);
@@ -50,7 +100,21 @@ int cmdRender(const Args& args) {
         else if (a == "--spp") spp = parseInt(a, flagValue(args, i), 1, 1 << 24);
         else if (a == "--size") parseSize(flagValue(args, i), settings.width, settings.height);
         else if (a == "--stats") printStats = true;
-        else if (a == "--exposure") settings.exposure = float(std::stod(flagValue(args, i)));
+        else if (a == "--exposure") settings.exposure = parseNumberList(a, flagValue(args, i)).at(0);
+        else if (a == "--false-colour") falseColour = true;
+        else if (a == "--log") settings.legend.logScale = true;
+        else if (a == "--legend") {
+            std::vector<float> range = parseNumberList(a, flagValue(args, i));
+            if (range.size() != 2 || !(range[1] > range[0]))
+                throw InputError("--legend: expected MIN,MAX in lux with MAX > MIN");
+            settings.legend.min = range[0];
+            settings.legend.max = range[1];
+            haveLegend = true;
+        } else if (a == "--isolux") {
+            std::string levels = flagValue(args, i);
+            if (levels == "none") settings.legend.contours = false;
+            else settings.legend.levels = parseNumberList(a, levels);
+        }
         else if (a == "--tonemap") {
             std::string op = flagValue(args, i);
             if (op == "exponential") settings.toneMap = ToneMapOperator::Exponential;
@@ -63,6 +127,12 @@ int cmdRender(const Args& args) {
     if (scenePath.empty() || out.empty())
         throw InputError("usage: candela render scene.json --out img.png|img.exr [--technique T] "
                          "[--spp N] [--size WxH] [--stats]");
+    if (falseColour) {
+        settings.quantity = Quantity::Illuminance;
+        settings.toneMap = ToneMapOperator::FalseColour;
+        if (settings.legend.logScale && haveLegend && !(settings.legend.min > 0.f))
+            throw InputError("--legend: a log scale (--log) needs MIN > 0 lux");
+    }
     std::string ext = std::filesystem::path(out).extension().string();
     if (ext != ".png" && ext != ".exr")
         throw InputError(out + ": unsupported output extension \"" + ext + "\" (use .png or .exr)");
@@ -92,6 +162,20 @@ int cmdRender(const Args& args) {
             std::fprintf(stderr, "\rrender: %d / %d samples per pixel", renderer.stats().samplesPerPixel, spp);
     } while (!renderer.converged());
     if (renderer.plan().progressive()) std::fprintf(stderr, "\n");
+    if (falseColour) {
+        if (!haveLegend) {
+            autoLegend(settings.legend, renderer.readLinear());
+            renderer.setSettings(settings);
+            renderer.renderFrame();  // converged: tone mapping only, with the new legend
+        }
+        FalseColourLegend legend = sanitizedLegend(settings.legend);
+        std::printf("false colour: %g .. %g lx (%s)", legend.min, legend.max,
+                    legend.logScale ? "log" : "linear");
+        std::vector<float> levels = contourLevels(legend);
+        for (size_t k = 0; k < levels.size(); ++k)
+            std::printf("%s%g", k ? ", " : ", isolux at ", levels[k]);
+        std::printf("%s\n", levels.empty() ? ", no isolux lines" : " lx");
+    }
     double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
     if (ext == ".png")

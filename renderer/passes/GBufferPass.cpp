@@ -1,5 +1,7 @@
 #include "renderer/passes/GBufferPass.h"
 
+#include <algorithm>
+
 #include <cstddef>
 #include <numbers>
 
@@ -78,9 +80,11 @@ void GBufferPass::setLuminaires(const Scene& scene) {
     mLuminaires = makeDraw(vertices, indices);
 }
 
-void GBufferPass::execute(ShaderLibrary& shaders) {
+void GBufferPass::execute(ShaderLibrary& shaders, Quantity quantity) {
     ProgramKey key{"gbuffer.vert", "gbuffer.frag", "", {}};
-    glUseProgram(shaders.program(key));
+    GLuint program = shaders.program(key);
+    glUseProgram(program);
+    glProgramUniform1i(program, 0, quantity == Quantity::Illuminance ? 1 : 0);
     glBindFramebuffer(GL_FRAMEBUFFER, mFbo.id());
     glViewport(0, 0, mWidth, mHeight);
     const float zero[4] = {0.f, 0.f, 0.f, 0.f};
@@ -100,10 +104,12 @@ void GBufferPass::execute(ShaderLibrary& shaders) {
 }
 
 void GBufferPass::uploadPoints(const std::vector<glm::vec3>& points,
-                               const std::vector<glm::vec3>& normals) {
-    int n = int(points.size());
-    std::vector<glm::vec4> pos(points.size()), nrm(points.size()), alb(points.size()),
-        zero(points.size(), glm::vec4(0.f));
+                               const std::vector<glm::vec3>& normals, int width) {
+    int w = std::max(1, width);
+    int h = (int(points.size()) + w - 1) / w;
+    size_t texels = size_t(w) * size_t(std::max(h, 1));
+    std::vector<glm::vec4> pos(texels, glm::vec4(0.f)), nrm(texels, glm::vec4(0.f)),
+        alb(texels, glm::vec4(0.f)), zero(texels, glm::vec4(0.f));
     for (size_t i = 0; i < points.size(); ++i) {
         pos[i] = glm::vec4(points[i], 1.f);
         nrm[i] = glm::vec4(glm::normalize(normals[i]), 1.f);
@@ -111,7 +117,7 @@ void GBufferPass::uploadPoints(const std::vector<glm::vec3>& points,
     }
     const std::vector<glm::vec4>* data[] = {&pos, &nrm, &alb, &zero, &zero};
     for (int i = 0; i < gpu::kGBufferCount; ++i)
-        glTextureSubImage2D(mTextures[size_t(i)].id(), 0, 0, 0, n, 1, GL_RGBA, GL_FLOAT,
+        glTextureSubImage2D(mTextures[size_t(i)].id(), 0, 0, 0, w, std::max(h, 1), GL_RGBA, GL_FLOAT,
                             data[i]->data());
 }
 

@@ -1,10 +1,12 @@
 #pragma once
 // Rasterises the scene and the luminaires' emitting surfaces into the G-buffer (layout in
 // shaders/shared/GpuTypes.h). In probe mode the G-buffer is filled with given points instead.
+// In illuminance mode the materials are replaced by a white Lambertian receiver of albedo pi.
 
 #include <array>
 #include <vector>
 
+#include "renderer/FramePlan.h"
 #include "renderer/ShaderLibrary.h"
 #include "renderer/gl/GlObjects.h"
 #include "scene/Scene.h"
@@ -16,9 +18,13 @@ public:
     void resize(int width, int height);
     void setGeometry(const Scene& scene);
     void setLuminaires(const Scene& scene);
-    void execute(ShaderLibrary& shaders);
-    /// Fills the G-buffer with points (one texel each, row 0) for the probe; albedo = pi.
-    void uploadPoints(const std::vector<glm::vec3>& points, const std::vector<glm::vec3>& normals);
+    /// Illuminance: every non-emitter gets albedo pi and no glossy lobe, emitters no emission,
+    /// so the shading passes write irradiance (shaders/gbuffer.frag).
+    void execute(ShaderLibrary& shaders, Quantity quantity = Quantity::Radiance);
+    /// Fills the G-buffer with points (one texel each, rows of `width`, row-major) for the
+    /// probe; albedo = pi. Texels past the last point stay empty (no surface).
+    void uploadPoints(const std::vector<glm::vec3>& points, const std::vector<glm::vec3>& normals,
+                      int width);
 
     const gl::Texture2D& texture(int attachment) const { return mTextures[size_t(attachment)]; }
     int width() const { return mWidth; }

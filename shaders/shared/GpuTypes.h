@@ -72,6 +72,23 @@ struct LightFieldGpu {
     ivec4 options;  // x = K_max samples per image per frame (0: no cap), yzw unused
 };
 
+/// A photometric area light (std430): this header, then in the same buffer as floats the
+/// vertical angles (radians), the horizontal angles (radians), the candela table (scale
+/// applied, [h * vertical + v]) and the opening polygon's corners (x, y pairs, metres, local
+/// z = 0, counter-clockwise about +z). Offsets are in floats from the start of the buffer.
+struct PhotometricGpu {
+    vec4 position;  // xyz world centre of the opening (m); w = opening area (m2)
+    vec4 axisX;     // xyz world direction of local +x (C0); w = largest opening extent (m)
+    vec4 axisY;     // xyz world direction of local +y (C90); w = tilted-horizon epsilon (m)
+    vec4 axisZ;     // xyz world direction of local +z (aim, gamma = 0); w unused
+    vec4 colour;    // rgb tint; w unused
+    ivec4 dims;     // x = vertical count, y = horizontal count, z = polygon corners (0: point,
+                    // 2: segment), w = 1 for type B goniometry
+    ivec4 offsets;  // x = vertical angles, y = horizontal angles, z = candela, w = polygon
+    ivec4 samples;  // x, y = offsets of the 24- and 40-point Poisson sets (x, y pairs in the
+                    // unit square), z = samples per frame of the reference, w unused
+};
+
 /// BVH node (std430): bounds with the child or triangle range packed in w as int bits.
 struct BvhNode {
     vec4 lo;  // xyz min; w = intBitsToFloat(first child index, or first triangle if leaf)

@@ -1,0 +1,122 @@
+// `candela polar`: the polar candela diagram of an IES or EULUMDAT file (C0-C180 and C90-C270,
+// gamma 0 at the bottom) as a PNG drawn by gnuplot, and its intensities as a table.
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+
+#include "app/commands/Commands.h"
+#include "luminaires/Photometry.h"
+#include "ui/PolarDiagram.h"
+#include "util/Error.h"
+
+namespace candela {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+/// gnuplot data: one block per plane, theta (degrees, 0 at the bottom, + to the right) and cd.
+void writePlotData(const fs::path& path, const ui::PolarCurves& c) {
+    std::ofstream out(path);
+    if (!out) throw RuntimeError(path.string() + ": cannot write the plot data");
+    auto block = [&](const std::vector<double>& left, const std::vector<double>& right) {
+        for (size_t k = c.gamma.size(); k-- > 0;) out << -c.gamma[k] << " " << left[k] << "\n";
+        for (size_t k = 0; k < c.gamma.size(); ++k) out << c.gamma[k] << " " << right[k] << "\n";
+        out << "\n\n";
+    };
+    block(c.c180, c.c0);
+    block(c.c270, c.c90);
+}
+
+/// Single quotes are the only character gnuplot's single-quoted strings cannot hold.
+std::string quoted(const std::string& s) {
+    std::string out = "'";
+    for (char ch : s) out += ch == '\'' ? std::string("''") : std::string(1, ch);
+    return out + "'";
+}
+
+void plotPng(const PhotometricData& data, const ui::PolarCurves& curves, const std::string& out) {
+    if (std::system("command -v gnuplot >/dev/null 2>&1") != 0)
+        throw RuntimeError("gnuplot not found (install gnuplot-nox: scripts/setup.sh)");
+    fs::path dir = fs::temp_directory_path() / ("candela-polar-" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    std::vector<double> rings = ui::polarRings(curves.peak);
+    writePlotData(dir / "polar.dat", curves);
+    std::string title = (data.name.empty() ? fs::path(data.path).filename().string() : data.name) +
+                        ": luminous intensity [cd]";
+    std::ofstream gp(dir / "polar.gp");
+    gp << "set terminal pngcairo size 720,720 noenhanced\n"
+       << "set output " << quoted(fs::absolute(out).string()) << "\n"
+       << "set title " << quoted(title) << "\n"
+       << "set polar\nset angles degrees\n"
+       << "set theta bottom counterclockwise  # gamma 0 at the bottom; C0 and C90 on the right\n"
+       << "set size square\nunset border\nunset xtics\nunset ytics\nunset raxis\n"
+       << "set rrange [0:" << rings.back() << "]\n"
+       << "set rtics " << rings.front() << " format '%g cd' scale 0\n"
+       << "set ttics 0,30 format '%g' font ',9'\n"
+       << "set grid polar 30 lt 1 lc rgb '#c8c8c8' lw 0.5\n"
+       << "set key bottom right\n"
+       << "plot 'polar.dat' index 0 using 1:2 with lines lw 2.5 lc rgb '#e07b00' title 'C0-C180', "
+          "'' index 1 using 1:2 with lines lw 2.5 lc rgb '#2c7fd0' dt 2 title 'C90-C270'\n";
+    gp.close();
+    std::string cmd = "cd " + quoted(dir.string()) + " && gnuplot polar.gp 2>gnuplot.log";
+    int rc = std::system(cmd.c_str());
+    std::string log;
+    {
+        std::ifstream in(dir / "gnuplot.log");
+        std::getline(in, log, '\0');
+    }
+    fs::remove_all(dir);
+    if (rc != 0 || !fs::exists(out) || fs::file_size(out) == 0)
+        throw RuntimeError(out + ": gnuplot failed: " + log);
+}
+
+}  // namespace
+
+int cmdPolar(const Args& args) {
+    std::string path, out;
+    double step = 0.0;
+    for (size_t i = 0; i < args.size(); ++i) {
+        const std::string& a = args[i];
+        if (a == "--out") out = flagValue(args, i);
+        else if (a == "--step") step = parseInt(a, flagValue(args, i), 1, 90);
+        else if (!a.empty() && a[0] == '-') throw InputError("polar: unknown option " + a);
+        else if (path.empty()) path = a;
+        else throw InputError("polar: unexpected argument " + a);
+    }
+    if (path.empty())
+        throw InputError("usage: candela polar FILE.ies|FILE.ldt [--out polar.png] [--step DEG]");
+    if (!out.empty() && fs::path(out).extension() != ".png")
+        throw InputError(out + ": unsupported output extension \"" +
+                         fs::path(out).extension().string() + "\" (use .png)");
+    PhotometricData data = loadPhotometry(path);
+
+    // Table at the file's own vertical angles (type C) or every `step` degrees.
+    std::vector<double> gamma;
+    if (step == 0.0 && data.goniometer == Goniometer::C) {
+        for (double g : data.vertical)
+            if (g >= 0.0 && g <= 180.0) gamma.push_back(g);
+    }
+    if (gamma.empty()) {
+        double s = step > 0.0 ? step : 5.0;
+        for (int k = 0; k * s <= 180.0 + 1e-9; ++k) gamma.push_back(k * s);
+    }
+    ui::PolarCurves table = ui::polarCurves(data, gamma);
+    std::printf("%s (%s, type %s), peak %.6g cd\n", path.c_str(), data.format.c_str(),
+                data.goniometer == Goniometer::C ? "C" : "B", data.maxIntensity());
+    std::printf("luminous intensity [cd]; gamma [deg] from the aim\n");
+    std::printf("%9s %12s %12s %12s %12s\n", "gamma", "C0", "C180", "C90", "C270");
+    for (size_t k = 0; k < table.gamma.size(); ++k)
+        std::printf("%9.3g %12.6g %12.6g %12.6g %12.6g\n", table.gamma[k], table.c0[k],
+                    table.c180[k], table.c90[k], table.c270[k]);
+    if (!out.empty()) {
+        plotPng(data, ui::polarCurves(data, 0.5), out);
+        std::printf("wrote %s\n", out.c_str());
+    }
+    return 0;
+}
+
+}  // namespace candela

@@ -1,0 +1,390 @@
+// IES LM-63 photometric data files (.ies): the 1986 layout (no header line), IESNA91,
+// IESNA:LM-63-1995, IESNA:LM-63-2002 and IES:LM-63-2019.
+//
+// Layout (ANSI/IES LM-63-2019 Sec. 5, and the 2002 and 1995 editions): a header line (absent in
+// 1986 files), keyword lines "[KEY] value" with [MORE] continuing the previous keyword, the line
+// TILT=NONE | INCLUDE | <file name>, the tilt data when INCLUDE, then free-format numbers:
+//   number of lamps, lumens per lamp (-1: absolute photometry), candela multiplier,
+//   number of vertical angles, number of horizontal angles, photometric type (1 C, 2 B, 3 A),
+//   units type (1 feet, 2 metres), width, length, height of the luminous opening,
+//   ballast factor, ballast-lamp photometric factor (2019: file generation type), input watts,
+//   vertical angles, horizontal angles, candela values one horizontal angle after another.
+// Numbers may be separated by any white space or commas; "//" starts a comment to the end of the
+// line (not in the standard, found in annotated files); tokens after the candela values are
+// ignored. Width and length follow LM-63: width along C90-C270 (local y), length along C0-C180
+// (local x).
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "luminaires/Photometry.h"
+#include "util/Error.h"
+
+namespace candela {
+
+using photometry_detail::fail;
+using photometry_detail::formatNumber;
+using photometry_detail::kMaxCount;
+using photometry_detail::parseNumber;
+
+namespace {
+
+constexpr double kFootInMetres = 0.3048;
+
+struct Token {
+    std::string text;
+    int line = 0;
+};
+
+std::string trim(const std::string& s) {
+    size_t b = 0, e = s.size();
+    while (b < e && std::isspace(static_cast<unsigned char>(s[b]))) ++b;
+    while (e > b && std::isspace(static_cast<unsigned char>(s[e - 1]))) --e;
+    return s.substr(b, e - b);
+}
+
+std::string upper(std::string s) {
+    for (char& c : s) c = char(std::toupper(static_cast<unsigned char>(c)));
+    return s;
+}
+
+std::string showToken(const std::string& s) {
+    std::string shown = s.size() > 40 ? s.substr(0, 40) + "..." : s;
+    for (char& c : shown)
+        if (!std::isprint(static_cast<unsigned char>(c))) c = '?';
+    return "'" + shown + "'";
+}
+
+/// Splits text into lines on LF, CRLF or a lone CR.
+std::vector<std::string> splitLines(const std::string& text) {
+    std::vector<std::string> lines;
+    std::string cur;
+    for (size_t i = 0; i < text.size(); ++i) {
+        char c = text[i];
+        if (c == '\n' || c == '\r') {
+            lines.push_back(cur);
+            cur.clear();
+            if (c == '\r' && i + 1 < text.size() && text[i + 1] == '\n') ++i;
+        } else {
+            cur.push_back(c);
+        }
+    }
+    if (!cur.empty()) lines.push_back(cur);
+    return lines;
+}
+
+/// Free-format numbers after the TILT line: white space and commas separate, "//" comments out
+/// the rest of the line. Numbers are converted only when asked for, so trailing junk after the
+/// candela block is never looked at.
+class TokenStream {
+public:
+    TokenStream(std::string path, const std::vector<std::string>& lines, size_t firstLine)
+        : mPath(std::move(path)) {
+        for (size_t l = firstLine; l < lines.size(); ++l) {
+            std::string s = lines[l];
+            size_t comment = s.find("//");
+            if (comment != std::string::npos) s.resize(comment);
+            std::replace(s.begin(), s.end(), ',', ' ');
+            std::istringstream words(s);
+            std::string w;
+            while (words >> w) mTokens.push_back({w, int(l) + 1});
+        }
+        mLastLine = mTokens.empty() ? int(lines.size()) : mTokens.back().line;
+        if (mLastLine < 1) mLastLine = 1;
+    }
+
+    const std::string& path() const { return mPath; }
+    int line() const { return mPos < mTokens.size() ? mTokens[mPos].line : mLastLine; }
+
+    /// Reads n numbers described by `what` ("vertical angles"). Truncation is reported with the
+    /// line where the data ended and how many of the n values were there.
+    std::vector<double> numbers(size_t n, const std::string& what) {
+        size_t available = mTokens.size() - mPos;
+        size_t take = std::min(n, available);
+        std::vector<double> out;
+        out.reserve(take);
+        for (size_t k = 0; k < take; ++k) {
+            const Token& t = mTokens[mPos++];
+            double v;
+            if (!parseNumber(t.text, v))
+                fail(mPath, t.line, "a finite number (" + what + ", value " + std::to_string(k + 1) +
+                                        " of " + std::to_string(n) + ")",
+                     showToken(t.text));
+            out.push_back(v);
+        }
+        if (take < n)
+            fail(mPath, mLastLine,
+                 std::to_string(n) + " " + what,
+                 "only " + std::to_string(take) + " before the data ended at line " +
+                     std::to_string(mLastLine));
+        return out;
+    }
+    int lineOfPrevious(size_t back) const {
+        return mPos >= back && back > 0 ? mTokens[mPos - back].line : line();
+    }
+
+private:
+    std::string mPath;
+    std::vector<Token> mTokens;
+    size_t mPos = 0;
+    int mLastLine = 1;
+};
+
+/// An integer count field in [lo, hi]; `line` for messages.
+int countField(double v, int lo, int hi, const std::string& path, int line, const std::string& what) {
+    if (!(std::abs(v - std::round(v)) < 1e-6) || v < lo || v > hi)
+        fail(path, line, what + " (an integer from " + std::to_string(lo) + " to " + std::to_string(hi) + ")",
+             formatNumber(v));
+    return int(std::lround(v));
+}
+
+void checkAscending(const std::vector<double>& a, double lo, double hi, const std::string& path,
+                    int line, const std::string& what) {
+    for (size_t k = 0; k < a.size(); ++k) {
+        if (a[k] < lo || a[k] > hi)
+            fail(path, line, what + " between " + formatNumber(lo) + " and " + formatNumber(hi) + " degrees",
+                 formatNumber(a[k]));
+        if (k > 0 && !(a[k] > a[k - 1]))
+            fail(path, line, what + " in strictly ascending order",
+                 formatNumber(a[k]) + " after " + formatNumber(a[k - 1]));
+    }
+}
+
+/// TILT data (from the .ies itself or a TILT file): geometry, count, angles, factors.
+void readTilt(TokenStream& in, PhotometricData& d) {
+    int line = in.line();
+    d.tiltGeometry = countField(in.numbers(1, "lamp-to-luminaire geometry")[0], 1, 3, in.path(), line,
+                                "lamp-to-luminaire geometry");
+    line = in.line();
+    int n = countField(in.numbers(1, "number of tilt angles")[0], 1, kMaxCount, in.path(), line,
+                       "number of tilt angles");
+    line = in.line();
+    d.tiltAngles = in.numbers(size_t(n), "tilt angles");
+    checkAscending(d.tiltAngles, -360.0, 360.0, in.path(), line, "tilt angles");
+    line = in.line();
+    d.tiltFactors = in.numbers(size_t(n), "tilt multiplying factors");
+    for (double f : d.tiltFactors)
+        if (f < 0.0) fail(in.path(), line, "non-negative tilt multiplying factors", formatNumber(f));
+}
+
+/// Tilt factor at angle 0 (the standard orientation), linear between table entries and held at
+/// the end values outside the table.
+double tiltFactorAtZero(const PhotometricData& d) {
+    const auto& a = d.tiltAngles;
+    const auto& f = d.tiltFactors;
+    if (a.empty()) return 1.0;
+    if (0.0 <= a.front()) return f.front();
+    if (0.0 >= a.back()) return f.back();
+    size_t k = size_t(std::upper_bound(a.begin(), a.end(), 0.0) - a.begin()) - 1;
+    double t = (0.0 - a[k]) / (a[k + 1] - a[k]);
+    return f[k] + t * (f[k + 1] - f[k]);
+}
+
+/// LM-63-2002 Table 1 / LM-63-2019 Annex D luminous opening from signed width, length, height
+/// (metres). Negative values mark curved shapes; a zero horizontal size next to a negative one
+/// takes the other's magnitude (older files give a circle's diameter once).
+LuminousOpening openingFrom(double width, double length, double height) {
+    LuminousOpening o;
+    double w = std::abs(width), l = std::abs(length), h = std::abs(height);
+    o.length = l;
+    o.width = w;
+    o.height = h;
+    bool curvedW = width < 0.0, curvedL = length < 0.0, curvedH = height < 0.0;
+    if (w == 0.0 && l == 0.0 && h == 0.0) {
+        o.shape = LuminousOpening::Shape::Point;
+    } else if (!curvedW && !curvedL && !curvedH) {
+        o.shape = LuminousOpening::Shape::Rectangle;  // a box when height > 0
+    } else if (curvedH && (width > 0.0) != (length > 0.0)) {
+        // Horizontal cylinder: its axis runs along the positive (or only non-zero) size, the
+        // negative height is its diameter.
+        o.shape = LuminousOpening::Shape::Cylinder;
+        if (length > 0.0) {
+            o.axis = LuminousOpening::Axis::X;
+            o.width = h;
+        } else {
+            o.axis = LuminousOpening::Axis::Y;
+            o.length = h;
+        }
+    } else {
+        if (o.length == 0.0) o.length = o.width > 0.0 ? o.width : h;
+        if (o.width == 0.0) o.width = o.length;
+        if (curvedH) {
+            o.shape = LuminousOpening::Shape::Sphere;  // ellipsoid when the sizes differ
+        } else if (h > 0.0) {
+            o.shape = LuminousOpening::Shape::Cylinder;  // vertical, circular or elliptical
+        } else {
+            o.shape = LuminousOpening::Shape::Ellipse;  // circle when length == width
+        }
+    }
+    return o;
+}
+
+std::string formatFromHeader(const std::string& header) {
+    std::string u = upper(header);
+    u.erase(std::remove_if(u.begin(), u.end(), [](char c) { return std::isspace(static_cast<unsigned char>(c)); }),
+            u.end());
+    if (u.find("LM-63-2019") != std::string::npos) return "IES LM-63-2019";
+    if (u.find("LM-63-2002") != std::string::npos) return "IES LM-63-2002";
+    if (u.find("LM-63-1995") != std::string::npos) return "IES LM-63-1995";
+    if (u.rfind("IESNA91", 0) == 0) return "IES LM-63-1991";
+    return "IES LM-63-1995";  // an IESNA header with an unknown year: read as the 1995 layout
+}
+
+}  // namespace
+
+PhotometricData parseIes(const std::string& text, const std::string& path) {
+    PhotometricData d;
+    d.path = path;
+    std::vector<std::string> lines = splitLines(text);
+    if (!lines.empty() && lines[0].rfind("\xEF\xBB\xBF", 0) == 0) lines[0].erase(0, 3);
+
+    // Header line and keywords, up to the TILT line.
+    size_t l = 0;
+    std::string first = lines.empty() ? "" : upper(trim(lines[0]));
+    if (first.rfind("IESNA", 0) == 0 || first.rfind("IES:", 0) == 0) {
+        d.format = formatFromHeader(first);
+        l = 1;
+    } else {
+        d.format = "IES LM-63-1986";
+    }
+    size_t tiltLine = lines.size();
+    for (; l < lines.size(); ++l) {
+        std::string s = trim(lines[l]);
+        if (upper(s).rfind("TILT", 0) == 0 && s.find('=') != std::string::npos) {
+            tiltLine = l;
+            break;
+        }
+        if (s.empty()) continue;
+        size_t close = s.find(']');
+        if (s[0] == '[' && close != std::string::npos) {
+            std::string key = upper(trim(s.substr(1, close - 1)));
+            std::string value = trim(s.substr(close + 1));
+            if (key == "MORE" && !d.keywords.empty())
+                d.keywords.back().second += "\n" + value;
+            else
+                d.keywords.emplace_back(key, value);
+        } else {
+            d.keywords.emplace_back("LABEL", s);  // 1986 free text, or a stray label line
+        }
+    }
+    if (tiltLine == lines.size())
+        fail(path, std::max<int>(1, int(lines.size())),
+             "a TILT= line (TILT=NONE, TILT=INCLUDE or TILT=<file>) before the photometric data",
+             "none in the file's " + std::to_string(lines.size()) + " line(s)");
+    for (const auto& [key, value] : d.keywords)
+        if (key == "LUMINAIRE") {
+            d.name = value;
+            break;
+        }
+
+    std::string tiltLineText = trim(lines[tiltLine]);
+    std::string tilt = trim(tiltLineText.substr(tiltLineText.find('=') + 1));
+    TokenStream in(path, lines, tiltLine + 1);
+    if (upper(tilt) == "INCLUDE") {
+        readTilt(in, d);
+    } else if (upper(tilt) != "NONE") {
+        if (tilt.empty()) fail(path, int(tiltLine) + 1, "NONE, INCLUDE or a file name after TILT=", "nothing");
+        std::filesystem::path tiltPath = std::filesystem::path(path).parent_path() / tilt;
+        std::error_code ec;
+        std::ifstream tf;
+        if (std::filesystem::is_regular_file(tiltPath, ec)) tf.open(tiltPath, std::ios::binary);
+        if (!tf.is_open())
+            fail(path, int(tiltLine) + 1, "the TILT file " + showToken(tilt) + " next to the photometry file",
+                 "no readable file " + tiltPath.string());
+        std::stringstream tiltText;
+        tiltText << tf.rdbuf();
+        TokenStream tiltIn(tiltPath.string(), splitLines(tiltText.str()), 0);
+        readTilt(tiltIn, d);
+    }
+
+    // Lamp and photometry line, then the ballast line.
+    int headerLine = in.line();
+    std::vector<double> h = in.numbers(10, "values on the lamp line (number of lamps, lumens per lamp, "
+                                           "candela multiplier, vertical and horizontal angle counts, "
+                                           "photometric type, units type, width, length, height)");
+    int lamps = countField(h[0], 1, kMaxCount, path, headerLine, "number of lamps");
+    double lumens = h[1], multiplier = h[2];
+    if (!(lumens > 0.0) && lumens != -1.0)
+        fail(path, headerLine, "lumens per lamp > 0, or -1 for absolute photometry", formatNumber(lumens));
+    if (!(multiplier > 0.0)) fail(path, headerLine, "a positive candela multiplier", formatNumber(multiplier));
+    int nv = countField(h[3], 1, kMaxCount, path, headerLine, "number of vertical angles");
+    int nh = countField(h[4], 1, kMaxCount, path, headerLine, "number of horizontal angles");
+    int type = countField(h[5], 1, 3, path, headerLine, "photometric type 1 (C), 2 (B) or 3 (A)");
+    if (type == 3)
+        fail(path, headerLine, "photometric type 1 (C) or 2 (B)",
+             "3: type A (automotive) photometry is not supported");
+    d.goniometer = type == 1 ? Goniometer::C : Goniometer::B;
+    int units = countField(h[6], 1, 2, path, headerLine, "units type 1 (feet) or 2 (metres)");
+    double toMetres = units == 1 ? kFootInMetres : 1.0;
+    d.opening = openingFrom(h[7] * toMetres, h[8] * toMetres, h[9] * toMetres);
+
+    int ballastLine = in.line();
+    std::vector<double> b = in.numbers(3, "values on the ballast line (ballast factor, ballast-lamp "
+                                          "photometric factor or file generation type, input watts)");
+    if (!(b[0] > 0.0)) fail(path, ballastLine, "a positive ballast factor", formatNumber(b[0]));
+    // LM-63-2019 replaced the ballast-lamp photometric factor by the file generation type
+    // (Sec. 5.12), which is a code, not a multiplier.
+    bool is2019 = d.format == "IES LM-63-2019";
+    if (is2019) d.keywords.emplace_back("FILEGENTYPE", formatNumber(b[1]));
+    else if (!(b[1] > 0.0))
+        fail(path, ballastLine, "a positive ballast-lamp photometric factor", formatNumber(b[1]));
+    double scale = multiplier * b[0] * (is2019 ? 1.0 : b[1]);
+    d.inputWatts = b[2];
+    d.lampFlux = lumens > 0.0 ? double(lamps) * lumens : -1.0;
+
+    int vLine = in.line();
+    d.vertical = in.numbers(size_t(nv), "vertical angles");
+    if (d.goniometer == Goniometer::C) checkAscending(d.vertical, 0.0, 180.0, path, vLine, "vertical angles");
+    else checkAscending(d.vertical, -90.0, 90.0, path, vLine, "vertical angles");
+
+    int hLine = in.line();
+    std::vector<double> given = in.numbers(size_t(nh), "horizontal angles");
+    using Sym = PhotometricSymmetry;
+    auto near = [](double a, double b) { return std::abs(a - b) < 1e-6; };
+    if (d.goniometer == Goniometer::C) {
+        checkAscending(given, 0.0, 360.0, path, hLine, "horizontal angles");
+        double f = given.front(), last = given.back();
+        if (nh == 1) d.symmetry = Sym::Axial;
+        else if (near(f, 0.0) && near(last, 90.0)) d.symmetry = Sym::Quadrant;
+        else if (near(f, 0.0) && near(last, 180.0)) d.symmetry = Sym::PlaneC0C180;
+        else if (near(f, 90.0) && near(last, 270.0)) d.symmetry = Sym::PlaneC90C270;
+        else if (near(f, 0.0) && last > 180.0) d.symmetry = Sym::None;
+        else
+            fail(path, hLine,
+                 "type C horizontal angles 0 (axial), 0..90, 0..180, 90..270 or 0..(more than 180, up to 360)",
+                 formatNumber(f) + ".." + formatNumber(last));
+    } else {
+        checkAscending(given, -180.0, 180.0, path, hLine, "horizontal angles");
+        double f = given.front();
+        if (nh == 1) d.symmetry = Sym::Axial;
+        else if (near(f, 0.0)) d.symmetry = Sym::PlaneC90C270;  // mirrored about H = 0
+        else if (f < 0.0) d.symmetry = Sym::None;
+        else
+            fail(path, hLine, "type B horizontal angles starting at 0 (symmetric) or below 0",
+                 formatNumber(f) + ".." + formatNumber(given.back()));
+    }
+
+    std::vector<double> cd = in.numbers(size_t(nv) * size_t(nh), "candela values (" + std::to_string(nh) +
+                                                                     " horizontal x " + std::to_string(nv) +
+                                                                     " vertical angles)");
+    double tiltScale = tiltFactorAtZero(d);
+    for (size_t k = 0; k < cd.size(); ++k) {
+        if (cd[k] < 0.0)
+            fail(path, in.lineOfPrevious(cd.size() - k),
+                 "non-negative candela values (horizontal angle " + formatNumber(given[k / size_t(nv)]) +
+                     ", vertical angle " + formatNumber(d.vertical[k % size_t(nv)]) + ")",
+                 formatNumber(cd[k]));
+        cd[k] *= scale * tiltScale;
+        if (!std::isfinite(cd[k]))
+            fail(path, in.lineOfPrevious(cd.size() - k), "candela values that stay finite after the multipliers",
+                 "an overflow");
+    }
+    photometry_detail::unfold(d, given, cd);
+    return d;
+}
+
+}  // namespace candela

@@ -1,0 +1,317 @@
+// EULUMDAT photometric data files (.ldt).
+//
+// Field order (Stockmar 1990, "EULUMDAT - ein Leuchtendatenformat fuer den europaeischen
+// Beleuchtungsplaner", and its published field list), one field per line:
+//   1 company, 2 Ityp, 3 Isym, 4 Mc, 5 Dc, 6 Ng, 7 Dg, 8 measurement report, 9 luminaire name,
+//   10 luminaire number, 11 file name, 12 date/user, 13-15 luminaire length/diameter, width
+//   (0: round), height (mm), 16-17 luminous area length/diameter, width (0: round) (mm),
+//   18-21 luminous area height at C0, C90, C180, C270 (mm), 22 DFF (%), 23 LORL (%),
+//   24 conversion factor for luminous intensities, 25 tilt of luminaire during measurement,
+//   26 number n of lamp sets, then per set 26a number of lamps, 26b type, 26c total luminous flux
+//   (lm), 26d colour temperature, 26e colour rendering, 26f wattage (W);
+//   then 10 direct ratios, Mc C angles, Ng gamma angles and the intensities (cd/klm) of the
+//   C planes that Isym requires, Ng values per plane:
+//   Isym 0: all Mc planes; 1: one plane; 2: C0..C180 (Mc/2 + 1); 3: C90..C270 (Mc/2 + 1, from
+//   the C90 plane); 4: C0..C90 (Mc/4 + 1).
+// The header fields are read line by line (text fields may be empty); from the direct ratios on
+// the numbers are read as white-space separated tokens, so files that put several on one line
+// also load. Decimal commas ("1,5") are accepted in numbers.
+//
+// Decisions (documented for `candela info` and the tests):
+// - Absolute candela = value * conversion factor * (sum of the lamp sets' total flux) / 1000.
+//   The conversion factor is multiplied (its name: "conversion factor for luminous
+//   intensities"); a factor of 0 is read as "unused" and taken as 1. All files seen use 1.
+// - A negative number of lamps marks absolute photometry (the DIAL / Lighting Analysts
+//   convention for EULUMDAT: the "lamp" flux is then the luminaire flux and LORL 100 %); the
+//   count is used as its absolute value and the keyword "absolute photometry" is set. The
+//   intensities are still cd/klm of the given flux, so the conversion is the same.
+// - Opening height: the largest of the four luminous-area heights.
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <sstream>
+
+#include "luminaires/Photometry.h"
+#include "util/Error.h"
+
+namespace candela {
+
+using photometry_detail::fail;
+using photometry_detail::formatNumber;
+using photometry_detail::kMaxCount;
+using photometry_detail::parseNumber;
+
+namespace {
+
+std::string trim(const std::string& s) {
+    size_t b = 0, e = s.size();
+    while (b < e && std::isspace(static_cast<unsigned char>(s[b]))) ++b;
+    while (e > b && std::isspace(static_cast<unsigned char>(s[e - 1]))) --e;
+    return s.substr(b, e - b);
+}
+
+std::string showToken(const std::string& s) {
+    std::string shown = s.size() > 40 ? s.substr(0, 40) + "..." : s;
+    for (char& c : shown)
+        if (!std::isprint(static_cast<unsigned char>(c))) c = '?';
+    return "'" + shown + "'";
+}
+
+/// A number with an optional decimal comma ("1,5" -> 1.5).
+bool parseLdtNumber(std::string s, double& v) {
+    if (s.find(',') != std::string::npos && s.find('.') == std::string::npos)
+        std::replace(s.begin(), s.end(), ',', '.');
+    return parseNumber(s, v);
+}
+
+class LdtReader {
+public:
+    LdtReader(const std::string& text, std::string path) : mPath(std::move(path)) {
+        std::string cur;
+        for (size_t i = 0; i < text.size(); ++i) {
+            char c = text[i];
+            if (c == '\n' || c == '\r') {
+                mLines.push_back(cur);
+                cur.clear();
+                if (c == '\r' && i + 1 < text.size() && text[i + 1] == '\n') ++i;
+            } else {
+                cur.push_back(c);
+            }
+        }
+        if (!cur.empty()) mLines.push_back(cur);
+        if (!mLines.empty() && mLines[0].rfind("\xEF\xBB\xBF", 0) == 0) mLines[0].erase(0, 3);
+    }
+
+    const std::string& path() const { return mPath; }
+    int lineCount() const { return int(mLines.size()); }
+
+    /// Text of line `n` (1-based), trimmed.
+    std::string text(int n, const std::string& what) const {
+        if (n > int(mLines.size()))
+            fail(mPath, std::max(1, int(mLines.size())), what + " on line " + std::to_string(n),
+                 "the end of the file after " + std::to_string(mLines.size()) + " line(s)");
+        return trim(mLines[size_t(n - 1)]);
+    }
+
+    double number(int n, const std::string& what) const {
+        std::string s = text(n, what);
+        double v;
+        if (!parseLdtNumber(s, v)) fail(mPath, n, what + " (a number)", s.empty() ? "an empty line" : showToken(s));
+        return v;
+    }
+
+    int integer(int n, const std::string& what, int lo, int hi) const {
+        double v = number(n, what);
+        if (!(std::abs(v - std::round(v)) < 1e-6) || v < lo || v > hi)
+            fail(mPath, n, what + " (an integer from " + std::to_string(lo) + " to " + std::to_string(hi) + ")",
+                 formatNumber(v));
+        return int(std::lround(v));
+    }
+
+    /// Switches to token reading from line `n` (1-based) on.
+    void startTokens(int n) {
+        for (size_t l = size_t(std::max(n, 1) - 1); l < mLines.size(); ++l) {
+            std::string s = mLines[l];
+            std::replace(s.begin(), s.end(), ';', ' ');
+            std::istringstream words(s);
+            std::string w;
+            while (words >> w) mTokens.push_back({w, int(l) + 1});
+        }
+        mLastLine = mTokens.empty() ? std::max(1, int(mLines.size())) : mTokens.back().second;
+    }
+    int tokenLine() const { return mPos < mTokens.size() ? mTokens[mPos].second : mLastLine; }
+    int lineOfToken(size_t index) const { return index < mTokens.size() ? mTokens[index].second : mLastLine; }
+    size_t position() const { return mPos; }
+
+    std::vector<double> numbers(size_t n, const std::string& what) {
+        size_t take = std::min(n, mTokens.size() - mPos);
+        std::vector<double> out;
+        out.reserve(take);
+        for (size_t k = 0; k < take; ++k) {
+            const auto& [s, line] = mTokens[mPos++];
+            double v;
+            if (!parseLdtNumber(s, v))
+                fail(mPath, line, "a finite number (" + what + ", value " + std::to_string(k + 1) + " of " +
+                                      std::to_string(n) + ")",
+                     showToken(s));
+            out.push_back(v);
+        }
+        if (take < n)
+            fail(mPath, mLastLine, std::to_string(n) + " " + what,
+                 "only " + std::to_string(take) + " before the data ended at line " + std::to_string(mLastLine));
+        return out;
+    }
+
+private:
+    std::string mPath;
+    std::vector<std::string> mLines;
+    std::vector<std::pair<std::string, int>> mTokens;
+    size_t mPos = 0;
+    int mLastLine = 1;
+};
+
+void checkAscending(const std::vector<double>& a, double lo, double hi, bool hiOpen, const std::string& path,
+                    int line, const std::string& what) {
+    for (size_t k = 0; k < a.size(); ++k) {
+        if (a[k] < lo || a[k] > hi || (hiOpen && a[k] >= hi))
+            fail(path, line, what + " from " + formatNumber(lo) + (hiOpen ? " up to (not including) " : " to ") +
+                                 formatNumber(hi) + " degrees",
+                 formatNumber(a[k]));
+        if (k > 0 && !(a[k] > a[k - 1]))
+            fail(path, line, what + " in strictly ascending order", formatNumber(a[k]) + " after " + formatNumber(a[k - 1]));
+    }
+}
+
+}  // namespace
+
+PhotometricData parseEulumdat(const std::string& text, const std::string& path) {
+    LdtReader in(text, path);
+    PhotometricData d;
+    d.path = path;
+    d.format = "EULUMDAT";
+    auto keep = [&](const std::string& key, const std::string& value) { d.keywords.emplace_back(key, value); };
+
+    keep("company", in.text(1, "company identification"));
+    int ityp = in.integer(2, "type indicator Ityp", 0, 3);
+    int isym = in.integer(3, "symmetry indicator Isym", 0, 4);
+    int mc = in.integer(4, "number of C planes Mc", 1, kMaxCount);
+    double dc = in.number(5, "distance between C planes Dc");
+    int ng = in.integer(6, "number of intensities per C plane Ng", 1, kMaxCount);
+    double dg = in.number(7, "distance between intensities Dg");
+    keep("Ityp", std::to_string(ityp));
+    keep("Isym", std::to_string(isym));
+    keep("Mc", std::to_string(mc));
+    keep("Dc", formatNumber(dc));
+    keep("Ng", std::to_string(ng));
+    keep("Dg", formatNumber(dg));
+    keep("measurement report", in.text(8, "measurement report number"));
+    d.name = in.text(9, "luminaire name");
+    keep("luminaire name", d.name);
+    keep("luminaire number", in.text(10, "luminaire number"));
+    keep("file name", in.text(11, "file name"));
+    keep("date/user", in.text(12, "date/user"));
+    const char* sizes[] = {"luminaire length/diameter (mm)", "luminaire width (mm)", "luminaire height (mm)",
+                           "luminous area length/diameter (mm)", "luminous area width (mm)",
+                           "luminous area height C0 (mm)", "luminous area height C90 (mm)",
+                           "luminous area height C180 (mm)", "luminous area height C270 (mm)"};
+    double size[9];
+    for (int k = 0; k < 9; ++k) {
+        size[k] = in.number(13 + k, sizes[k]);
+        if (size[k] < 0.0) fail(path, 13 + k, std::string(sizes[k]) + " >= 0", formatNumber(size[k]));
+        keep(sizes[k], formatNumber(size[k]));
+    }
+    double dff = in.number(22, "downward flux fraction DFF (%)");
+    double lorl = in.number(23, "light output ratio LORL (%)");
+    if (lorl < 0.0) fail(path, 23, "a light output ratio LORL >= 0 %", formatNumber(lorl));
+    double conversion = in.number(24, "conversion factor for luminous intensities");
+    if (conversion < 0.0) fail(path, 24, "a conversion factor >= 0", formatNumber(conversion));
+    double tilt = in.number(25, "tilt of the luminaire during measurement (degrees)");
+    keep("DFF %", formatNumber(dff));
+    keep("LORL %", formatNumber(lorl));
+    keep("conversion factor", formatNumber(conversion));
+    keep("tilt", formatNumber(tilt));
+    d.lightOutputRatio = lorl / 100.0;
+
+    int sets = in.integer(26, "number of lamp sets n", 1, kMaxCount);
+    double totalFlux = 0.0, watts = 0.0;
+    bool absolute = false;
+    for (int s = 0; s < sets; ++s) {
+        int base = 27 + 6 * s;
+        std::string set = "lamp set " + std::to_string(s + 1);
+        int lamps = in.integer(base, "number of lamps in " + set, -kMaxCount, kMaxCount);
+        if (lamps < 0) absolute = true;
+        std::string type = in.text(base + 1, "lamp type of " + set);
+        double flux = in.number(base + 2, "total luminous flux (lm) of " + set);
+        if (flux < 0.0) fail(path, base + 2, "a total luminous flux >= 0 lm", formatNumber(flux));
+        std::string cct = in.text(base + 3, "colour temperature of " + set);
+        std::string cri = in.text(base + 4, "colour rendering index of " + set);
+        std::string w = in.text(base + 5, "wattage of " + set);
+        double wattage = 0.0;
+        if (!w.empty() && !parseLdtNumber(w, wattage)) fail(path, base + 5, "a wattage in W", showToken(w));
+        totalFlux += flux;
+        watts += wattage;
+        keep(set, std::to_string(std::abs(lamps)) + " x " + type + ", " + formatNumber(flux) + " lm, " + cct +
+                      ", CRI " + cri + ", " + formatNumber(wattage) + " W");
+    }
+    if (absolute) keep("absolute photometry", "negative number of lamps");
+    if (!(totalFlux > 0.0)) fail(path, 27 + 2, "a positive total lamp flux (sum over the lamp sets)", formatNumber(totalFlux));
+    d.lampFlux = totalFlux;
+    d.inputWatts = watts;
+
+    in.startTokens(27 + 6 * sets);
+    std::vector<double> ratios = in.numbers(10, "direct ratios");
+    std::string dr;
+    for (double r : ratios) dr += (dr.empty() ? "" : " ") + formatNumber(r);
+    keep("direct ratios", dr);
+    int cLine = in.tokenLine();
+    std::vector<double> cAngles = in.numbers(size_t(mc), "C angles");
+    checkAscending(cAngles, 0.0, 360.0, true, path, cLine, "C angles");
+    int gLine = in.tokenLine();
+    d.vertical = in.numbers(size_t(ng), "gamma angles");
+    checkAscending(d.vertical, 0.0, 180.0, false, path, gLine, "gamma angles");
+
+    // The planes stored for each symmetry.
+    using Sym = PhotometricSymmetry;
+    const Sym symmetries[] = {Sym::None, Sym::Axial, Sym::PlaneC0C180, Sym::PlaneC90C270, Sym::Quadrant};
+    d.symmetry = symmetries[isym];
+    size_t firstPlane = 0, planes = size_t(mc);
+    double expectFirst = 0.0, expectLast = -1.0;
+    if ((isym == 2 || isym == 3) && mc % 2 != 0)
+        fail(path, 4, "an even number of C planes Mc for Isym " + std::to_string(isym), std::to_string(mc));
+    if (isym == 4 && mc % 4 != 0) fail(path, 4, "a number of C planes Mc divisible by 4 for Isym 4", std::to_string(mc));
+    if (isym == 1) planes = 1;
+    if (isym == 2) planes = size_t(mc / 2 + 1), expectLast = 180.0;
+    if (isym == 4) planes = size_t(mc / 4 + 1), expectLast = 90.0;
+    if (isym == 3) {
+        planes = size_t(mc / 2 + 1), expectFirst = 90.0, expectLast = 270.0;
+        auto it = std::find_if(cAngles.begin(), cAngles.end(), [](double c) { return std::abs(c - 90.0) < 1e-6; });
+        if (it == cAngles.end()) fail(path, cLine, "a C90 plane among the C angles (Isym 3 data start there)", "none");
+        firstPlane = size_t(it - cAngles.begin());
+    }
+    if (firstPlane + planes > cAngles.size())
+        fail(path, cLine, std::to_string(planes) + " C planes from C" + formatNumber(cAngles[firstPlane]),
+             "only " + std::to_string(cAngles.size() - firstPlane));
+    std::vector<double> given(cAngles.begin() + std::ptrdiff_t(firstPlane),
+                              cAngles.begin() + std::ptrdiff_t(firstPlane + planes));
+    if (isym >= 2 && (std::abs(given.front() - expectFirst) > 1e-6 || std::abs(given.back() - expectLast) > 1e-6))
+        fail(path, cLine,
+             "C planes " + formatNumber(expectFirst) + ".." + formatNumber(expectLast) + " for Isym " + std::to_string(isym),
+             formatNumber(given.front()) + ".." + formatNumber(given.back()));
+
+    size_t start = in.position();
+    std::vector<double> cd = in.numbers(planes * size_t(ng), "intensities (cd/klm, " + std::to_string(planes) +
+                                                                 " C planes x " + std::to_string(ng) + " gamma angles)");
+    double scale = (conversion > 0.0 ? conversion : 1.0) * totalFlux / 1000.0;
+    for (size_t k = 0; k < cd.size(); ++k) {
+        if (cd[k] < 0.0)
+            fail(path, in.lineOfToken(start + k),
+                 "non-negative intensities (C" + formatNumber(given[k / size_t(ng)]) + ", gamma " +
+                     formatNumber(d.vertical[k % size_t(ng)]) + ")",
+                 formatNumber(cd[k]));
+        cd[k] *= scale;
+        if (!std::isfinite(cd[k])) fail(path, in.lineOfToken(start + k), "intensities that stay finite in candela", "an overflow");
+    }
+    d.goniometer = Goniometer::C;
+    photometry_detail::unfold(d, given, cd);
+
+    // Luminous area: length along C0-C180, width along C90-C270; width 0 means round.
+    const double mm = 1e-3;
+    double length = size[3] * mm, width = size[4] * mm;
+    double height = std::max({size[5], size[6], size[7], size[8]}) * mm;
+    d.opening.height = height;
+    if (length == 0.0 && width == 0.0) {
+        d.opening.shape = LuminousOpening::Shape::Point;
+        d.opening.height = 0.0;
+    } else if (width == 0.0) {
+        d.opening.shape = height > 0.0 ? LuminousOpening::Shape::Cylinder : LuminousOpening::Shape::Ellipse;
+        d.opening.length = d.opening.width = length;
+    } else {
+        d.opening.shape = LuminousOpening::Shape::Rectangle;
+        d.opening.length = length;
+        d.opening.width = width;
+    }
+    return d;
+}
+
+}  // namespace candela

@@ -1,0 +1,353 @@
+// Techniques for photometric area lights (Prost 2019, seed 004), CPU double precision. Each has
+// a GLSL twin in shaders/photometric.glsl; the registry (luminaires/Registry.cpp) lists them.
+//
+// All work in the luminaire's local frame (opening in z = 0, aim +z) with vectors relative to the
+// receiver p. Two forms of the same integral appear:
+//   area form   E = (1/A) Int_opening I(w) cos(theta_p) / r^2 dA     (Eq. 6.3 with L = I/(A cos))
+//   solid-angle E = Int_Omega L(w) cos(theta_p) dw,  L = I / (A |cos theta_L|)  (Eq. 2.46)
+// The area form is finite everywhere, including receivers in the opening's plane; the solid-angle
+// form is what structured, MRP and scattered sampling approximate.
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <mutex>
+
+#include "luminaires/PhotometricLuminaire.h"
+#include "luminaires/Random.h"
+#include "luminaires/SphericalPolygon.h"
+
+namespace candela {
+
+namespace {
+
+using spherical::Polygon;
+
+struct Setup {
+    const PhotometricLuminaire* light;
+    glm::dvec3 p;  ///< Receiver, local frame (opening centre at the origin).
+    glm::dvec3 n;  ///< Receiver's unit normal, local frame.
+    glm::dvec3 x, y, z;  ///< The pose's frame (world directions of local axes).
+};
+
+Setup makeSetup(const Luminaire& l, const glm::dvec3& pWorld, const glm::dvec3& nWorld) {
+    Setup s;
+    s.light = static_cast<const PhotometricLuminaire*>(&l);
+    l.pose.frame(s.x, s.y, s.z);
+    glm::dvec3 d = pWorld - l.pose.position;
+    s.p = {glm::dot(d, s.x), glm::dot(d, s.y), glm::dot(d, s.z)};
+    glm::dvec3 n = {glm::dot(nWorld, s.x), glm::dot(nWorld, s.y), glm::dot(nWorld, s.z)};
+    double ln = glm::length(n);
+    s.n = ln > 0.0 ? n / ln : glm::dvec3(0.0);
+    return s;
+}
+
+/// Candela from local opening point q towards the receiver (local direction q -> p).
+double intensityTowards(const Setup& s, const glm::dvec3& v) {
+    // v = q - p (receiver to light); the light emits along -v.
+    double l = glm::length(v);
+    if (!(l > 0.0)) return 0.0;
+    glm::dvec3 w = -v / l;
+    return s.light->scale * s.light->data->intensity(w);
+}
+
+/// Point-source irradiance at the receiver from opening point q (local): I cos(theta_p) / r^2.
+double pointIrradiance(const Setup& s, const glm::dvec3& q) {
+    glm::dvec3 v = q - s.p;
+    double r2 = glm::dot(v, v);
+    if (!(r2 > 0.0)) return 0.0;
+    double c = glm::dot(s.n, v) / std::sqrt(r2);
+    if (!(c > 0.0)) return 0.0;
+    double e = intensityTowards(s, v) * c / r2;
+    return std::isfinite(e) ? e : 0.0;
+}
+
+/// L(w) cos(theta_p) along the unit direction d from the receiver towards the opening, L = I /
+/// (A |cos theta_L|): the solid-angle integrand.
+double solidAngleIntegrand(const Setup& s, const glm::dvec3& d) {
+    double c = glm::dot(s.n, d);
+    double cosL = std::abs(d.z);
+    if (!(c > 0.0) || !(cosL > 1e-12) || !(s.light->area() > 0.0)) return 0.0;
+    double value = s.light->scale * s.light->data->intensity(-d) * c / (s.light->area() * cosL);
+    return std::isfinite(value) ? value : 0.0;
+}
+
+Estimate withColour(const Setup& s, double e, double stdError = 0.0) {
+    Estimate out;
+    out.irradiance = s.light->colour * e;
+    out.stdError = s.light->colour * stdError;
+    return out;
+}
+
+/// Zero-area openings. A point: the point-source law. A segment: the average of point sources
+/// along it by 16-point Gauss-Legendre (the limit of the area form as the width goes to 0).
+bool degenerate(const Setup& s, double& e) {
+    const auto& poly = s.light->polygon();
+    if (poly.size() >= 3) return false;
+    if (poly.empty()) {
+        e = pointIrradiance(s, glm::dvec3(0.0));
+        return true;
+    }
+    static const double node[8] = {0.0950125098376374, 0.2816035507792589, 0.4580167776572274,
+                                   0.6178762444026438, 0.7554044083550030, 0.8656312023878318,
+                                   0.9445750230732326, 0.9894009349916499};
+    static const double weight[8] = {0.1894506104550685, 0.1826034150449236, 0.1691565193950025,
+                                     0.1495959888165767, 0.1246289712555339, 0.0951585116824928,
+                                     0.0622535239386479, 0.0271524594117541};
+    glm::dvec3 a(poly[0], 0.0), b(poly[1], 0.0);
+    e = 0.0;
+    for (int i = 0; i < 8; ++i)
+        for (double sign : {-1.0, 1.0}) {
+            double t = 0.5 + 0.5 * sign * node[i];
+            e += 0.5 * weight[i] * pointIrradiance(s, a + t * (b - a));
+        }
+    return true;
+}
+
+/// The opening as a polygon of vectors from the receiver.
+Polygon openingFromReceiver(const Setup& s) {
+    Polygon q;
+    for (const auto& c : s.light->polygon())
+        if (q.count < spherical::kMaxPolygon) q.v[size_t(q.count++)] = glm::dvec3(c, 0.0) - s.p;
+    return q;
+}
+
+/// Bounding rectangle of the opening (local x, y).
+void bounds(const PhotometricLuminaire& l, glm::dvec2& lo, glm::dvec2& hi) {
+    lo = glm::dvec2(INFINITY);
+    hi = glm::dvec2(-INFINITY);
+    for (const auto& c : l.polygon()) {
+        lo = glm::min(lo, c);
+        hi = glm::max(hi, c);
+    }
+}
+
+bool insideOpening(const PhotometricLuminaire& l, const glm::dvec2& q) {
+    const auto& poly = l.polygon();
+    for (size_t i = 0; i < poly.size(); ++i) {
+        glm::dvec2 a = poly[i], e = poly[(i + 1) % poly.size()] - a;
+        if (e.x * (q.y - a.y) - e.y * (q.x - a.x) < 0.0) return false;
+    }
+    return true;
+}
+
+/// Area-form estimate with fixed points u in [0,1)^2 on the bounding rectangle: the mean over
+/// the points inside the opening of I cos / r^2 (a ratio estimator: openings that do not fill the
+/// rectangle, such as ellipses, lose no accuracy to rejected points).
+double areaFormFixed(const Setup& s, const std::vector<glm::dvec2>& points) {
+    glm::dvec2 lo, hi;
+    bounds(*s.light, lo, hi);
+    double sum = 0.0;
+    int inside = 0;
+    for (const auto& u : points) {
+        glm::dvec2 q = lo + u * (hi - lo);
+        if (!insideOpening(*s.light, q)) continue;
+        sum += pointIrradiance(s, glm::dvec3(q, 0.0));
+        ++inside;
+    }
+    return inside > 0 ? sum / inside : 0.0;
+}
+
+Estimate poisson(const Luminaire& l, const glm::dvec3& p, const glm::dvec3& n, int count) {
+    Setup s = makeSetup(l, p, n);
+    double e;
+    if (degenerate(s, e)) return withColour(s, e);
+    return withColour(s, areaFormFixed(s, poissonSet(count)));
+}
+
+/// Closest point of polygon q (vectors from the receiver) to the point `target` in its plane.
+spherical::ClosestPoint closestTo(const Polygon& q, const glm::dvec3& target, double tolerance) {
+    Polygon shifted = q;
+    for (int i = 0; i < q.count; ++i) shifted.v[size_t(i)] -= target;
+    spherical::ClosestPoint cp = spherical::closestPoint(shifted, tolerance);
+    cp.point += target;
+    return cp;
+}
+
+double scatteredValue(const Setup& s, int* flips = nullptr) {
+    Polygon full = openingFromReceiver(s);
+    Polygon visible = spherical::clip(full, s.n);
+    if (visible.count < 3) return 0.0;
+    double projected = spherical::projectedSolidAngle(visible, s.n);  // pi times the form factor
+    if (!(projected > 0.0)) return 0.0;
+    // Samples on the opening clipped at the horizon tilted up by epsilon where it meets the
+    // opening's plane (Sec. 5.2.4), so no corner sample lies in the horizon; falls back to the
+    // true horizon if the tilted one leaves nothing.
+    double eps = 0.1 * s.light->size();
+    // Relative to the receiver the opening's plane is z = -p.z; the plane through the receiver
+    // and the line where n.v = eps meets it has normal |p.z| n + sign(p.z) eps z, and on the
+    // opening's plane (that normal).v = |p.z| (n.v - eps): it keeps what is eps above the horizon.
+    double sign = s.p.z >= 0.0 ? 1.0 : -1.0;
+    glm::dvec3 tilted = std::abs(s.p.z) * s.n + sign * eps * glm::dvec3(0.0, 0.0, 1.0);
+    Polygon samplesPoly = spherical::clip(full, tilted);
+    if (samplesPoly.count < 3) samplesPoly = visible;
+    spherical::ClosestPoint cp = spherical::closestPoint(samplesPoly, 1e-6 * s.light->size());
+    // Vertex 0 the closest point, 1..k the corners (Prost Sec. 5.2.2).
+    glm::dvec3 dirs[spherical::kMaxPolygon + 1];
+    double f[spherical::kMaxPolygon + 1], c[spherical::kMaxPolygon + 1];
+    int k = samplesPoly.count;
+    for (int i = 0; i <= k; ++i) {
+        glm::dvec3 v = i == 0 ? cp.point : samplesPoly.v[size_t(i - 1)];
+        double lv = glm::length(v);
+        dirs[i] = lv > 0.0 ? v / lv : glm::dvec3(0, 0, 1);
+        f[i] = solidAngleIntegrand(s, dirs[i]);
+        c[i] = std::max(0.0, glm::dot(s.n, dirs[i]));
+    }
+    spherical::Triangulation t = spherical::initialTriangulation(k, cp);
+    spherical::makeDelaunay(t, dirs);
+    if (flips) *flips = t.flips;
+    // Eq. (5.6) for the cosine-weighted mean of L (numerator and denominator), times the
+    // projected solid angle in closed form (Eq. 5.11).
+    double qf = 0.0, qc = 0.0;
+    for (int i = 0; i < t.count; ++i) {
+        const auto& tri = t.tri[size_t(i)];
+        double area = spherical::triangleSolidAngle(dirs[tri[0]], dirs[tri[1]], dirs[tri[2]]);
+        qf += area * (f[tri[0]] + f[tri[1]] + f[tri[2]]) / 3.0;
+        qc += area * (c[tri[0]] + c[tri[1]] + c[tri[2]]) / 3.0;
+    }
+    if (!(qc > 0.0)) return 0.0;
+    double e = projected * qf / qc;
+    return std::isfinite(e) ? e : 0.0;
+}
+
+}  // namespace
+
+const std::vector<glm::dvec2>& poissonSet(int n) {
+    static std::mutex mutex;
+    static std::map<int, std::vector<glm::dvec2>> sets;  // node-based: references stay valid
+    std::lock_guard<std::mutex> lock(mutex);
+    if (auto it = sets.find(n); it != sets.end()) return it->second;
+    // Dart throwing with a shrinking radius: start at the radius of a hexagonal packing of n
+    // disks in the unit square and shrink 5 % after every 1000 rejected darts.
+    std::vector<glm::dvec2> points;
+    Random rng(0x5eed0000ull + uint64_t(n));
+    double r = std::sqrt(2.0 / (std::sqrt(3.0) * n));
+    int misses = 0;
+    while (int(points.size()) < n) {
+        glm::dvec2 q(rng.uniform(), rng.uniform());
+        bool ok = true;
+        for (const auto& o : points) ok = ok && glm::length(q - o) >= r;
+        if (ok) {
+            points.push_back(q);
+            misses = 0;
+        } else if (++misses > 1000) {
+            r *= 0.95;
+            misses = 0;
+        }
+    }
+    return sets.emplace(n, std::move(points)).first->second;
+}
+
+double hybridWeight(double distance, double size) {
+    if (!(size > 0.0)) return 1.0;
+    double t = std::clamp((distance / size - 1.0) / 4.0, 0.0, 1.0);
+    return t * t * (3.0 - 2.0 * t);
+}
+
+Estimate photometricPoint(const Luminaire& l, const glm::dvec3& p, const glm::dvec3& n,
+                          const EstimateOptions&) {
+    Setup s = makeSetup(l, p, n);
+    return withColour(s, pointIrradiance(s, glm::dvec3(0.0)));
+}
+
+Estimate photometricReference(const Luminaire& l, const glm::dvec3& p, const glm::dvec3& n,
+                              const EstimateOptions& options) {
+    // Eq. (6.3): points uniform on the bounding rectangle, those outside the opening count 0.
+    Setup s = makeSetup(l, p, n);
+    double e;
+    if (degenerate(s, e)) return withColour(s, e);
+    if (options.spp <= 0) return withColour(s, 0.0);
+    glm::dvec2 lo, hi;
+    bounds(*s.light, lo, hi);
+    double ratio = (hi.x - lo.x) * (hi.y - lo.y) / s.light->area();  // S_rect / A
+    Random rng(options.seed);
+    double mean = 0.0, m2 = 0.0;
+    for (int k = 0; k < options.spp; ++k) {
+        glm::dvec2 q = lo + glm::dvec2(rng.uniform(), rng.uniform()) * (hi - lo);
+        double f = insideOpening(*s.light, q) ? ratio * pointIrradiance(s, glm::dvec3(q, 0.0)) : 0.0;
+        double delta = f - mean;
+        mean += delta / double(k + 1);
+        m2 += delta * (f - mean);
+    }
+    double variance = options.spp > 1 ? std::max(0.0, m2) / double(options.spp - 1) : 0.0;
+    return withColour(s, mean, std::sqrt(variance / double(options.spp)));
+}
+
+Estimate photometricPoisson24(const Luminaire& l, const glm::dvec3& p, const glm::dvec3& n,
+                              const EstimateOptions&) {
+    return poisson(l, p, n, 24);
+}
+
+Estimate photometricPoisson40(const Luminaire& l, const glm::dvec3& p, const glm::dvec3& n,
+                              const EstimateOptions&) {
+    return poisson(l, p, n, 40);
+}
+
+Estimate photometricStructured(const Luminaire& l, const glm::dvec3& p, const glm::dvec3& n,
+                               const EstimateOptions&) {
+    // Eq. (4.3) with the corners and the barycentre of the horizon-clipped opening (Lagarde and
+    // de Rousiers 2014), as if uniform in its solid angle.
+    Setup s = makeSetup(l, p, n);
+    double e;
+    if (degenerate(s, e)) return withColour(s, e);
+    Polygon visible = spherical::clip(openingFromReceiver(s), s.n);
+    if (visible.count < 3) return withColour(s, 0.0);
+    double omega = spherical::solidAngle(visible);
+    glm::dvec3 centre(0.0);
+    double sum = 0.0;
+    for (int i = 0; i < visible.count; ++i) {
+        centre += visible.v[size_t(i)];
+        sum += solidAngleIntegrand(s, glm::normalize(visible.v[size_t(i)]));
+    }
+    centre /= double(visible.count);
+    sum += solidAngleIntegrand(s, glm::normalize(centre));
+    return withColour(s, omega * sum / double(visible.count + 1));
+}
+
+Estimate photometricMrp(const Luminaire& l, const glm::dvec3& p, const glm::dvec3& n,
+                        const EstimateOptions&) {
+    // Drobot's most representative point (2014): the half-vector of the closest point and the
+    // normal point, back on the opening's plane and clamped to the opening; one sample, Eq. (4.3).
+    Setup s = makeSetup(l, p, n);
+    double e;
+    if (degenerate(s, e)) return withColour(s, e);
+    Polygon visible = spherical::clip(openingFromReceiver(s), s.n);
+    if (visible.count < 3) return withColour(s, 0.0);
+    double tol = 1e-9 * s.light->size();
+    glm::dvec3 pc = spherical::closestPoint(visible, tol).point;
+    double h = -s.p.z;  // plane of the opening: z = h relative to the receiver
+    glm::dvec3 pn = pc;
+    if (std::abs(s.n.z) > 1e-12) {
+        double t = h / s.n.z;
+        if (t > 0.0) pn = closestTo(visible, t * s.n, tol).point;
+    }
+    glm::dvec3 half = glm::normalize(pc) + glm::normalize(pn);
+    glm::dvec3 pm = pc;
+    if (std::abs(half.z) > 1e-12 && h / half.z > 0.0) pm = closestTo(visible, (h / half.z) * half, tol).point;
+    double lm = glm::length(pm);
+    if (!(lm > 0.0)) return withColour(s, 0.0);
+    return withColour(s, spherical::solidAngle(visible) * solidAngleIntegrand(s, pm / lm));
+}
+
+Estimate photometricScattered(const Luminaire& l, const glm::dvec3& p, const glm::dvec3& n,
+                              const EstimateOptions&) {
+    Setup s = makeSetup(l, p, n);
+    double e;
+    if (degenerate(s, e)) return withColour(s, e);
+    return withColour(s, scatteredValue(s));
+}
+
+Estimate photometricHybrid(const Luminaire& l, const glm::dvec3& p, const glm::dvec3& n,
+                           const EstimateOptions&) {
+    // Scattered sampling near the opening, the 24-point Poisson set beyond five opening sizes,
+    // a smooth blend between (Prost Sec. 6.6).
+    Setup s = makeSetup(l, p, n);
+    double e;
+    if (degenerate(s, e)) return withColour(s, e);
+    double distance = glm::length(spherical::closestPoint(openingFromReceiver(s), 0.0).point);
+    double w = hybridWeight(distance, s.light->size());
+    double near = w < 1.0 ? scatteredValue(s) : 0.0;
+    double far = w > 0.0 ? areaFormFixed(s, poissonSet(24)) : 0.0;
+    return withColour(s, (1.0 - w) * near + w * far);
+}
+
+}  // namespace candela

@@ -1,0 +1,323 @@
+// The photometric area light in a scene: file reference, opening, the Luminaire interface.
+#include "luminaires/PhotometricLuminaire.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <mutex>
+
+#include "shaders/shared/GpuTypes.h"
+#include "util/Error.h"
+#include "util/JsonRead.h"
+
+namespace candela {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+/// Openings smaller than this (m2, relative to the squared extent) are a segment or a point.
+constexpr double kDegenerateArea = 1e-9;
+
+glm::dvec3 toLocalDir(const Pose& pose, const glm::dvec3& w) {
+    glm::dvec3 x, y, z;
+    pose.frame(x, y, z);
+    return {glm::dot(w, x), glm::dot(w, y), glm::dot(w, z)};
+}
+
+/// Signed area of a polygon in the plane (shoelace), positive counter-clockwise.
+double signedArea(const std::vector<glm::dvec2>& p) {
+    double a = 0.0;
+    for (size_t i = 0; i < p.size(); ++i) {
+        const glm::dvec2& u = p[i];
+        const glm::dvec2& v = p[(i + 1) % p.size()];
+        a += u.x * v.y - v.x * u.y;
+    }
+    return 0.5 * a;
+}
+
+}  // namespace
+
+std::shared_ptr<const PhotometricData> PhotometricLuminaire::load(const std::string& path) {
+    // One copy per file and modification time, shared by every instance that places it.
+    static std::mutex mutex;
+    static std::map<std::string, std::pair<fs::file_time_type, std::weak_ptr<const PhotometricData>>> cache;
+    std::error_code ec;
+    if (!fs::exists(path, ec)) throw InputError(path + ": no such file");
+    fs::path canonical = fs::weakly_canonical(path, ec);
+    std::string key = ec ? path : canonical.string();
+    fs::file_time_type stamp = fs::last_write_time(path, ec);
+    std::lock_guard<std::mutex> lock(mutex);
+    auto it = cache.find(key);
+    if (it != cache.end() && it->second.first == stamp)
+        if (auto data = it->second.second.lock()) return data;
+    std::shared_ptr<const PhotometricData> data;
+    try {
+        data = std::make_shared<const PhotometricData>(loadPhotometry(path));
+    } catch (const InputError&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw InputError(e.what());
+    }
+    cache[key] = {stamp, data};
+    return data;
+}
+
+void PhotometricLuminaire::updateOpening() {
+    LuminousOpening opening = data ? data->opening : LuminousOpening{};
+    if (openingOverride.x > 0.0 || openingOverride.y > 0.0) {
+        opening.shape = LuminousOpening::Shape::Rectangle;
+        opening.length = openingOverride.x;
+        opening.width = openingOverride.y;
+        opening.height = 0.0;
+    }
+    mPolygon = opening.polygon();
+    if (signedArea(mPolygon) < 0.0) std::reverse(mPolygon.begin(), mPolygon.end());
+    mSize = 0.0;
+    for (const auto& a : mPolygon)
+        for (const auto& b : mPolygon) mSize = std::max(mSize, glm::length(a - b));
+    mArea = std::abs(signedArea(mPolygon));
+    if (mSize == 0.0) {
+        mPolygon.clear();  // a point
+        mArea = 0.0;
+    } else if (mArea <= kDegenerateArea * mSize * mSize) {
+        // A segment: keep its two farthest corners.
+        glm::dvec2 a = mPolygon[0], b = mPolygon[0];
+        for (const auto& u : mPolygon)
+            for (const auto& v : mPolygon)
+                if (glm::length(u - v) >= glm::length(a - b)) a = u, b = v;
+        mPolygon = {a, b};
+        mArea = 0.0;
+    }
+}
+
+std::unique_ptr<Luminaire> PhotometricLuminaire::clone() const {
+    return std::make_unique<PhotometricLuminaire>(*this);
+}
+
+double PhotometricLuminaire::intensity(const glm::dvec3& w) const {
+    double l = glm::length(w);
+    if (!(l > 0.0) || !data) return 0.0;
+    return scale * data->intensity(toLocalDir(pose, w / l));
+}
+
+glm::dvec3 PhotometricLuminaire::radiance(const glm::dvec3& xWorld, const glm::dvec3& w) const {
+    if (mArea <= 0.0) return glm::dvec3(0.0);
+    glm::dvec3 x = toLocalDir(pose, xWorld - pose.position);
+    double size = std::max(mSize, 1e-9);
+    if (std::abs(x.z) > 1e-6 * size) return glm::dvec3(0.0);
+    for (size_t i = 0; i < mPolygon.size(); ++i) {
+        glm::dvec2 a = mPolygon[i], b = mPolygon[(i + 1) % mPolygon.size()];
+        glm::dvec2 e = b - a, q = glm::dvec2(x) - a;
+        if (e.x * q.y - e.y * q.x < -1e-9 * size * glm::length(e)) return glm::dvec3(0.0);
+    }
+    double l = glm::length(w);
+    if (!(l > 0.0)) return glm::dvec3(0.0);
+    double cosL = std::abs(glm::dot(toLocalDir(pose, w), glm::dvec3(0, 0, 1))) / l;
+    if (!(cosL > 1e-12)) return glm::dvec3(0.0);
+    return colour * (intensity(w) / (mArea * cosL));
+}
+
+glm::dvec3 PhotometricLuminaire::power() const {
+    return data ? colour * (scale * data->fluxFromTable()) : glm::dvec3(0.0);
+}
+
+LightSample PhotometricLuminaire::sample(const glm::dvec3& p, const glm::dvec2& u) const {
+    LightSample s;
+    glm::dvec3 ex, ey, ez;
+    pose.frame(ex, ey, ez);
+    glm::dvec2 local(0.0);
+    if (mPolygon.size() >= 3) {
+        // Uniform in area: a triangle of the fan by area, then a uniform point in it.
+        double total = 0.0;
+        for (size_t i = 1; i + 1 < mPolygon.size(); ++i)
+            total += 0.5 * std::abs((mPolygon[i].x - mPolygon[0].x) * (mPolygon[i + 1].y - mPolygon[0].y) -
+                                    (mPolygon[i + 1].x - mPolygon[0].x) * (mPolygon[i].y - mPolygon[0].y));
+        double pick = std::clamp(u.x, 0.0, 1.0) * total, v = u.x;
+        size_t tri = 1;
+        for (; tri + 1 < mPolygon.size(); ++tri) {
+            double a = 0.5 * std::abs((mPolygon[tri].x - mPolygon[0].x) * (mPolygon[tri + 1].y - mPolygon[0].y) -
+                                      (mPolygon[tri + 1].x - mPolygon[0].x) * (mPolygon[tri].y - mPolygon[0].y));
+            if (pick < a || tri + 2 == mPolygon.size()) {
+                v = a > 0.0 ? std::clamp(pick / a, 0.0, 1.0) : 0.0;
+                break;
+            }
+            pick -= a;
+        }
+        // Uniform in the triangle (P0, P1, P2): P0 (1 - sqrt v) + sqrt v ((1 - w) P1 + w P2).
+        double su = std::sqrt(v), w = std::clamp(u.y, 0.0, 1.0);
+        local = mPolygon[0] * (1.0 - su) + mPolygon[tri] * (su * (1.0 - w)) + mPolygon[tri + 1] * (su * w);
+    } else if (mPolygon.size() == 2) {
+        local = mPolygon[0] + std::clamp(u.x, 0.0, 1.0) * (mPolygon[1] - mPolygon[0]);
+    }
+    s.position = pose.position + local.x * ex + local.y * ey;
+    glm::dvec3 d = s.position - p;
+    s.distance = glm::length(d);
+    if (!(s.distance > 0.0) || mArea <= 0.0) return s;
+    s.wi = d / s.distance;
+    double cosL = std::abs(glm::dot(s.wi, ez));
+    if (!(cosL > 1e-12)) return s;
+    s.pdf = s.distance * s.distance / (mArea * cosL);
+    s.radiance = colour * (intensity(-s.wi) / (mArea * cosL));
+    return s;
+}
+
+double PhotometricLuminaire::pdf(const glm::dvec3& p, const glm::dvec3& wi) const {
+    if (mArea <= 0.0) return 0.0;
+    glm::dvec3 ex, ey, ez;
+    pose.frame(ex, ey, ez);
+    double denom = glm::dot(wi, ez);
+    if (std::abs(denom) < 1e-12) return 0.0;
+    double t = glm::dot(pose.position - p, ez) / denom;
+    if (!(t > 0.0)) return 0.0;
+    glm::dvec3 x = p + t * wi - pose.position;
+    glm::dvec2 q(glm::dot(x, ex), glm::dot(x, ey));
+    for (size_t i = 0; i < mPolygon.size(); ++i) {
+        glm::dvec2 a = mPolygon[i], e = mPolygon[(i + 1) % mPolygon.size()] - a;
+        if (e.x * (q.y - a.y) - e.y * (q.x - a.x) < 0.0) return 0.0;
+    }
+    return t * t / (mArea * std::abs(denom));
+}
+
+std::vector<glm::dvec3> PhotometricLuminaire::outline() const {
+    glm::dvec3 ex, ey, ez;
+    pose.frame(ex, ey, ez);
+    std::vector<glm::dvec3> out;
+    if (mPolygon.size() >= 3) {
+        for (const auto& q : mPolygon) out.push_back(pose.position + q.x * ex + q.y * ey);
+        return out;
+    }
+    // A point or a segment still needs something to draw and to click: a thin quad around it.
+    glm::dvec2 a = mPolygon.empty() ? glm::dvec2(0.0) : mPolygon[0];
+    glm::dvec2 b = mPolygon.empty() ? glm::dvec2(0.0) : mPolygon[1];
+    const double r = 0.01;
+    glm::dvec2 lo = glm::min(a, b) - r, hi = glm::max(a, b) + r;
+    for (glm::dvec2 q : {lo, glm::dvec2(hi.x, lo.y), hi, glm::dvec2(lo.x, hi.y)})
+        out.push_back(pose.position + q.x * ex + q.y * ey);
+    return out;
+}
+
+glm::dvec3 PhotometricLuminaire::displayRadiance() const {
+    glm::dvec3 ex, ey, ez;
+    pose.frame(ex, ey, ez);
+    double area = mArea;
+    if (area <= 0.0) {
+        auto o = outline();
+        area = glm::length(o[1] - o[0]) * glm::length(o[3] - o[0]);
+    }
+    return colour * (intensity(ez) / std::max(area, 1e-12));
+}
+
+void PhotometricLuminaire::writeJson(nlohmann::json& out) const {
+    out["file"] = file;
+    if (scale != 1.0) out["scale"] = scale;
+    if (colour != glm::dvec3(1.0)) out["colour"] = {colour.x, colour.y, colour.z};
+    if (openingOverride.x > 0.0 || openingOverride.y > 0.0)
+        out["opening"] = {openingOverride.x, openingOverride.y};
+}
+
+std::vector<std::byte> PhotometricLuminaire::gpuData() const {
+    const PhotometricData& d = *data;
+    gpu::PhotometricGpu h{};
+    glm::dvec3 x, y, z;
+    pose.frame(x, y, z);
+    h.position = glm::vec4(glm::vec3(pose.position), float(mArea));
+    h.axisX = glm::vec4(glm::vec3(x), float(mSize));
+    h.axisY = glm::vec4(glm::vec3(y), float(0.1 * mSize));
+    h.axisZ = glm::vec4(glm::vec3(z), 0.f);
+    h.colour = glm::vec4(glm::vec3(colour), 0.f);
+    int nv = int(d.vertical.size()), nh = int(d.horizontal.size());
+    int corners = int(mPolygon.size());
+    h.dims = glm::ivec4(nv, nh, corners, d.goniometer == Goniometer::B ? 1 : 0);
+    int base = int(sizeof(h) / sizeof(float));
+    h.offsets = glm::ivec4(base, base + nv, base + nv + nh, base + nv + nh + nv * nh);
+    const auto& p24 = poissonSet(24);
+    const auto& p40 = poissonSet(40);
+    h.samples = glm::ivec4(h.offsets.w + 2 * corners, h.offsets.w + 2 * corners + 48, 0, 0);
+    std::vector<float> values(size_t(h.samples.y + 80), 0.f);
+    for (int i = 0; i < nv; ++i) values[size_t(h.offsets.x + i)] = float(d.vertical[size_t(i)] * kPi / 180.0);
+    for (int i = 0; i < nh; ++i) values[size_t(h.offsets.y + i)] = float(d.horizontal[size_t(i)] * kPi / 180.0);
+    for (int i = 0; i < nv * nh; ++i) values[size_t(h.offsets.z + i)] = float(scale * d.candela[size_t(i)]);
+    for (int i = 0; i < corners; ++i) {
+        values[size_t(h.offsets.w + 2 * i)] = float(mPolygon[size_t(i)].x);
+        values[size_t(h.offsets.w + 2 * i + 1)] = float(mPolygon[size_t(i)].y);
+    }
+    for (int i = 0; i < 24; ++i) {
+        values[size_t(h.samples.x + 2 * i)] = float(p24[size_t(i)].x);
+        values[size_t(h.samples.x + 2 * i + 1)] = float(p24[size_t(i)].y);
+    }
+    for (int i = 0; i < 40; ++i) {
+        values[size_t(h.samples.y + 2 * i)] = float(p40[size_t(i)].x);
+        values[size_t(h.samples.y + 2 * i + 1)] = float(p40[size_t(i)].y);
+    }
+    std::vector<std::byte> out(values.size() * sizeof(float));
+    std::memcpy(out.data(), values.data(), out.size());
+    std::memcpy(out.data(), &h, sizeof(h));
+    return out;
+}
+
+std::string PhotometricLuminaire::describe() const {
+    const PhotometricData& d = *data;
+    const char* shape = mPolygon.empty() ? "point" : (mPolygon.size() == 2 ? "segment" : "polygon");
+    char buf[768];
+    std::snprintf(buf, sizeof buf,
+                  "photometric %s: %s, type %s, %zu x %zu angles, opening %.4g x %.4g m (%s, %.4g m2), "
+                  "flux %.5g lm from the table%s",
+                  file.c_str(), d.format.c_str(), d.goniometer == Goniometer::B ? "B" : "C",
+                  d.vertical.size(), d.horizontal.size(),
+                  openingOverride.x > 0.0 ? openingOverride.x : d.opening.length,
+                  openingOverride.x > 0.0 ? openingOverride.y : d.opening.width, shape, mArea,
+                  scale * d.fluxFromTable(), scale != 1.0 ? " (scaled)" : "");
+    std::string out = buf;
+    if (d.lampFlux > 0.0) {
+        std::snprintf(buf, sizeof buf, ", lamps %.5g lm x LOR %.3g = %.5g lm", d.lampFlux,
+                      d.lightOutputRatio, d.lampFlux * d.lightOutputRatio);
+        out += buf;
+    }
+    return out;
+}
+
+std::unique_ptr<Luminaire> PhotometricLuminaire::parse(const nlohmann::json& entry, const json::Where& where) {
+    json::checkKeys(entry, {"type", "name", "position", "aim", "c0", "technique", "file", "scale",
+                            "colour", "opening"}, where);
+    if (!entry.contains("file")) json::fail(where / "file", "the path of an .ies or .ldt photometric file");
+    auto light = std::make_unique<PhotometricLuminaire>();
+    light->file = json::string(entry["file"], where / "file");
+    fs::path resolved(light->file);
+    if (resolved.is_relative()) resolved = fs::path(where.file).parent_path() / resolved;
+    light->scale = json::optional(entry, "scale", where, 1.0, json::positive);
+    light->colour = json::optional(entry, "colour", where, glm::dvec3(1.0),
+                                   [](const nlohmann::json& v, const json::Where& w) {
+                                       glm::dvec3 c = json::vec3(v, w);
+                                       if (c.x < 0.0 || c.y < 0.0 || c.z < 0.0)
+                                           json::fail(w, "a colour with no negative component");
+                                       return c;
+                                   });
+    light->openingOverride = json::optional(entry, "opening", where, glm::dvec2(0.0),
+                                            [](const nlohmann::json& v, const json::Where& w) {
+                                                glm::dvec2 s = json::vec2(v, w);
+                                                if (!(s.x >= 0.0 && s.y >= 0.0 && s.x + s.y > 0.0))
+                                                    json::fail(w, "[length, width] in metres, not negative, not both 0");
+                                                return s;
+                                            });
+    light->data = load(resolved.string());
+    light->updateOpening();
+    return light;
+}
+
+std::unique_ptr<Luminaire> PhotometricLuminaire::create() {
+    // The editor's "Add": a bundled real file (resources/luminaires/photometric/LICENSE.md).
+    auto light = std::make_unique<PhotometricLuminaire>();
+    fs::path bundled = fs::path(CANDELA_SOURCE_DIR) / "resources/luminaires/photometric/linear-pendant.ies";
+    light->file = bundled.generic_string();
+    light->data = load(light->file);
+    light->updateOpening();
+    return light;
+}
+
+}  // namespace candela

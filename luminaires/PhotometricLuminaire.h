@@ -1,0 +1,85 @@
+#pragma once
+// A photometric area light: far-field photometry (IES LM-63 / EULUMDAT, luminaires/Photometry.h)
+// emitted from the luminous opening as a flat two-sided polygon (Prost 2019, Ch. 2.3 and 6.1).
+//
+// Radiance leaving the opening in direction w is I(w) / (A |cos theta_L|), theta_L the angle to the
+// opening's normal (the aim), so that far away it is a point source of intensity I(w) and the
+// irradiance at p is the average over the opening of I(w) cos(theta_p) / r^2 — which stays finite
+// even for receivers in the opening's plane. Openings of zero area (a point, or a segment for a
+// zero width) are treated as that point or segment. Units: the file's candela give lux and cd/m2.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "luminaires/Luminaire.h"
+#include "luminaires/Photometry.h"
+#include "luminaires/Registry.h"
+
+namespace candela {
+
+class PhotometricLuminaire final : public Luminaire {
+public:
+    std::shared_ptr<const PhotometricData> data;
+    std::string file;                ///< As written in the scene (relative to it or absolute).
+    double scale = 1.0;              ///< Dimming: multiplies every intensity.
+    glm::dvec3 colour{1.0};          ///< RGB tint of the luminous quantities (white: lux in all three).
+    glm::dvec2 openingOverride{0.0}; ///< > 0: a length x width rectangle instead of the file's opening.
+
+    std::string_view kind() const override { return "photometric"; }
+    std::unique_ptr<Luminaire> clone() const override;
+    glm::dvec3 radiance(const glm::dvec3& x, const glm::dvec3& w) const override;
+    /// Flux from the table (exact quadrature of the interpolant) times scale, lm per channel.
+    glm::dvec3 power() const override;
+    /// Uniform in area on the opening (the reference's density, Eq. 6.3), as a solid-angle pdf;
+    /// pdf 0 in the opening's plane.
+    LightSample sample(const glm::dvec3& p, const glm::dvec2& u) const override;
+    double pdf(const glm::dvec3& p, const glm::dvec3& wi) const override;
+    std::vector<glm::dvec3> outline() const override;
+    void writeJson(nlohmann::json& out) const override;
+    std::vector<std::byte> gpuData() const override;
+    std::string describe() const override;
+    glm::dvec3 displayRadiance() const override;
+
+    /// The opening in the local z = 0 plane (metres), counter-clockwise about +z; empty for a
+    /// point source.
+    const std::vector<glm::dvec2>& polygon() const { return mPolygon; }
+    double area() const { return mArea; }
+    /// Largest extent of the opening, metres (0 for a point).
+    double size() const { return mSize; }
+    /// Candela towards world direction w (from the luminaire), scale applied.
+    double intensity(const glm::dvec3& w) const;
+    /// Recomputes the polygon after data or openingOverride changed.
+    void updateOpening();
+
+    static std::unique_ptr<Luminaire> parse(const nlohmann::json& entry, const json::Where& where);
+    static std::unique_ptr<Luminaire> create();
+    /// Loads (shared between instances) a photometric file; throws InputError naming it.
+    static std::shared_ptr<const PhotometricData> load(const std::string& path);
+
+private:
+    std::vector<glm::dvec2> mPolygon;
+    double mArea = 0.0;
+    double mSize = 0.0;
+};
+
+/// The techniques (luminaires/PhotometricEstimators.cpp); all take world p and unit normal n and
+/// return illuminance in lux (per channel, times the colour).
+Estimate photometricReference(const Luminaire&, const glm::dvec3& p, const glm::dvec3& n, const EstimateOptions&);
+Estimate photometricPoint(const Luminaire&, const glm::dvec3& p, const glm::dvec3& n, const EstimateOptions&);
+Estimate photometricStructured(const Luminaire&, const glm::dvec3& p, const glm::dvec3& n, const EstimateOptions&);
+Estimate photometricMrp(const Luminaire&, const glm::dvec3& p, const glm::dvec3& n, const EstimateOptions&);
+Estimate photometricScattered(const Luminaire&, const glm::dvec3& p, const glm::dvec3& n, const EstimateOptions&);
+Estimate photometricPoisson24(const Luminaire&, const glm::dvec3& p, const glm::dvec3& n, const EstimateOptions&);
+Estimate photometricPoisson40(const Luminaire&, const glm::dvec3& p, const glm::dvec3& n, const EstimateOptions&);
+Estimate photometricHybrid(const Luminaire&, const glm::dvec3& p, const glm::dvec3& n, const EstimateOptions&);
+
+/// The fixed Poisson-disk set of the mc-poisson-N techniques: N points in [0,1)^2 by dart
+/// throwing with a fixed seed and the largest minimum distance that admits them.
+const std::vector<glm::dvec2>& poissonSet(int n);
+
+/// Hybrid blend weight of the Monte Carlo part: 0 within one opening size of the opening, 1
+/// beyond five (the five-times rule, Prost Sec. 2.3 and 6.6), smooth in between.
+double hybridWeight(double distance, double size);
+
+}  // namespace candela

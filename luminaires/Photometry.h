@@ -1,0 +1,121 @@
+#pragma once
+// Far-field photometry of a luminaire: luminous intensity per direction from an IES LM-63 or
+// EULUMDAT file, plus the size of its luminous opening (Prost 2019, seed 004, Ch. 2).
+//
+// Local frame (shared with Pose): +z is the aim (gamma = 0, nadir for a downlight), +x is C = 0,
+// +y is C = 90. C grows counter-clockwise seen from above a downlight. For type B files the polar
+// axis is local +y: horizontal angle H turns about +y from +z towards +x, vertical angle V lifts
+// towards +y, so (H, V) = (0, 0) is the aim.
+//
+// The table is stored expanded to the full range its goniometer covers (symmetries unfolded), in
+// absolute candela (candela multiplier, ballast factor, ballast-lamp factor and EULUMDAT's cd/klm
+// scaling applied). TILT=INCLUDE (or a TILT file next to the .ies) is applied at the tilt of the
+// luminaire's standard orientation (angle 0 of the tilt table) and kept in `tilt` so a renderer
+// can apply the factor for another mounting. No GL here.
+
+#include <glm/glm.hpp>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace candela {
+
+enum class Goniometer { C, B };
+
+/// Symmetry as declared in the file (kept for `candela info`; the table is already unfolded).
+enum class PhotometricSymmetry {
+    None,          ///< Full 0-360 (IES) / Isym 0.
+    Axial,         ///< One C plane: rotationally symmetric (IES single angle / Isym 1).
+    Quadrant,      ///< 0-90 mirrored to all four quadrants (IES 0-90 / Isym 4).
+    PlaneC0C180,   ///< Mirror about the C0-C180 plane (IES 0-180 / Isym 2).
+    PlaneC90C270,  ///< Mirror about the C90-C270 plane (IES 90-270 / Isym 3).
+};
+
+/// The luminous opening in the local frame, centred on the origin, in metres. IES and EULUMDAT
+/// both give a length along C0-C180 (local x) and a width along C90-C270 (local y).
+struct LuminousOpening {
+    enum class Shape { Point, Rectangle, Ellipse, Sphere, Cylinder };
+    /// Axis of a Cylinder (added for the LM-63-2002 horizontal cylinders): Z for the usual
+    /// vertical cylinder (an ellipse of length x width seen from below), X or Y for a cylinder
+    /// lying along local x or y, whose emitting face seen from below is its length x width
+    /// rectangle. Ignored for the other shapes.
+    enum class Axis { Z, X, Y };
+    Shape shape = Shape::Point;
+    Axis axis = Axis::Z;
+    double length = 0.0;  ///< Along local x (C0-C180), metres.
+    double width = 0.0;   ///< Along local y (C90-C270), metres.
+    double height = 0.0;  ///< Along local z, metres (0 for flat openings).
+    /// Polygon of the emitting face, counter-clockwise seen from below (from +z looking back at
+    /// the luminaire, i.e. the emitting side), in the local z = 0 plane; ellipses as 16-gons.
+    /// Empty for a point source.
+    std::vector<glm::dvec2> polygon() const;
+    double area() const;  ///< Area of polygon(), m2 (0 for a point).
+};
+
+struct PhotometricData {
+    std::string path;    ///< File it came from (for messages).
+    std::string format;  ///< "IES LM-63-1986", "IES LM-63-1991", "-1995", "-2002", "-2019", "EULUMDAT".
+    std::vector<std::pair<std::string, std::string>> keywords;  ///< IES [KEY] value / LDT fields.
+    std::string name;    ///< Luminaire name (IES [LUMINAIRE] or LDT luminaire name), may be empty.
+
+    Goniometer goniometer = Goniometer::C;
+    PhotometricSymmetry symmetry = PhotometricSymmetry::Axial;
+    /// Polar angles, degrees, strictly ascending: gamma in [0, 180] for type C, V in [-90, 90]
+    /// for type B.
+    std::vector<double> vertical;
+    /// Azimuths, degrees, strictly ascending, unfolded to the full turn: type C from 0 to 360
+    /// inclusive (first and last rows equal), type B from -180 to 180 inclusive (or -90..90 when
+    /// the file covers only the front).
+    std::vector<double> horizontal;
+    /// Absolute candela, candela[h * vertical.size() + v], all >= 0 and finite.
+    std::vector<double> candela;
+
+    LuminousOpening opening;
+
+    double lampFlux = -1.0;      ///< Rated lamp lumens in total (all lamps); -1 for absolute photometry.
+    double lightOutputRatio = 1.0;  ///< EULUMDAT LORL / 100; 1 when the file does not say.
+    double inputWatts = 0.0;
+
+    /// IES TILT table (lamp-to-luminaire geometry 1-3, angles in degrees, multiplying factors);
+    /// empty for TILT=NONE.
+    int tiltGeometry = 0;
+    std::vector<double> tiltAngles, tiltFactors;
+
+    /// Luminous intensity in candela towards the unit local direction d (local frame above);
+    /// bilinear in (vertical, horizontal) so it is never negative; 0 outside the table's range.
+    double intensity(const glm::dvec3& d) const;
+    /// Total luminous flux, lm: the exact integral over the sphere of the bilinear interpolant
+    /// that intensity() evaluates (per cell, linear in angle times sin/cos integrated in closed
+    /// form).
+    double fluxFromTable() const;
+    /// The largest intensity in the table, cd.
+    double maxIntensity() const;
+};
+
+/// Reads an IES LM-63 (.ies) or EULUMDAT (.ldt) file, chosen by extension (case-insensitive).
+/// Throws std::runtime_error "PATH:LINE: what was expected, what was found" on any defect.
+PhotometricData loadPhotometry(const std::string& path);
+PhotometricData parseIes(const std::string& text, const std::string& pathForMessages);
+PhotometricData parseEulumdat(const std::string& text, const std::string& pathForMessages);
+
+/// Helpers shared by the two parsers (Photometry.cpp); not part of the public interface.
+namespace photometry_detail {
+/// Largest angle or candela count a file may declare (guards allocations on corrupt files).
+constexpr int kMaxCount = 100000;
+/// Throws InputError "PATH:LINE: expected EXPECTED, found FOUND".
+[[noreturn]] void fail(const std::string& path, int line, const std::string& expected,
+                       const std::string& found);
+/// Parses a whole token as a finite double (C locale, no trailing characters).
+bool parseNumber(const std::string& token, double& value);
+/// Shortest round-trip text of a number, for messages.
+std::string formatNumber(double v);
+/// Unfolds rows of candela given at the file's horizontal angles `given` (row h holds
+/// data.vertical.size() values) into data.horizontal / data.candela over the full range, using
+/// data.goniometer and data.symmetry. Type C: 0..360 inclusive; type B: -180..180 or the mirrored
+/// front range. The given angles must already be validated for the symmetry.
+void unfold(PhotometricData& data, const std::vector<double>& given,
+            const std::vector<double>& givenCandela);
+}  // namespace photometry_detail
+
+}  // namespace candela

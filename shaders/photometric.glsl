@@ -1,0 +1,367 @@
+// Photometric area lights in GLSL: the same algorithms as luminaires/PhotometricEstimators.cpp
+// and luminaires/SphericalPolygon.cpp, in float. Needs shared/GpuTypes.h (PhotometricGpu) and
+// kPi from common.glsl. Everything works in the luminaire's local frame (opening in z = 0, aim
+// +z) with vectors relative to the receiver, as on the CPU.
+
+layout(std430, binding = 1) readonly buffer PhotometricHeader { PhotometricGpu ph; };
+layout(std430, binding = 1) readonly buffer PhotometricFloats { float phFloats[]; };
+
+const int PH_MAX = 20;  // spherical::kMaxPolygon
+
+// --- The intensity table ------------------------------------------------------------------------
+
+/// Cell of x in the ascending array of n angles at float offset o: i with a[i] <= x <= a[i+1] and
+/// the fraction t; false outside [a[0], a[n-1]]. A single angle is a cell of its own (t = 0).
+bool phCell(int o, int n, float x, out int i, out float t) {
+    i = 0;
+    t = 0.0;
+    if (n < 1 || !(x >= phFloats[o] && x <= phFloats[o + n - 1])) return false;
+    if (n == 1) return true;
+    int lo = 0, hi = n - 1;
+    while (hi - lo > 1) {
+        int mid = (lo + hi) / 2;
+        if (phFloats[o + mid] <= x) lo = mid;
+        else hi = mid;
+    }
+    float a = phFloats[o + lo], b = phFloats[o + hi];
+    i = lo;
+    t = b > a ? clamp((x - a) / (b - a), 0.0, 1.0) : 0.0;
+    return true;
+}
+
+/// Candela towards the unit local direction d, bilinear in (vertical, horizontal) angle like
+/// PhotometricData::intensity (scale is already in the table).
+float phIntensity(vec3 d) {
+    float vertical, horizontal;
+    if (ph.dims.w == 1) {  // type B: polar axis +y
+        vertical = asin(clamp(d.y, -1.0, 1.0));
+        horizontal = atan(d.x, d.z);
+    } else {  // type C: gamma from +z, C counter-clockwise from +x
+        vertical = acos(clamp(d.z, -1.0, 1.0));
+        horizontal = atan(d.y, d.x);
+        if (horizontal < 0.0) horizontal += 2.0 * kPi;
+    }
+    int nv = ph.dims.x, nh = ph.dims.y;
+    int iv, ih;
+    float tv, th;
+    if (!phCell(ph.offsets.x, nv, vertical, iv, tv)) return 0.0;
+    if (!phCell(ph.offsets.y, nh, horizontal, ih, th)) {
+        // A full turn that stops short of 2 pi by rounding: wrap into the first cell.
+        if (nh > 1 || !phCell(ph.offsets.y, nh, horizontal - 2.0 * kPi, ih, th)) return 0.0;
+    }
+    int iv1 = min(iv + 1, nv - 1), ih1 = min(ih + 1, nh - 1);
+    int o = ph.offsets.z;
+    float a = mix(phFloats[o + ih * nv + iv], phFloats[o + ih * nv + iv1], tv);
+    float b = mix(phFloats[o + ih1 * nv + iv], phFloats[o + ih1 * nv + iv1], tv);
+    return max(mix(a, b, th), 0.0);
+}
+
+// --- Receiver setup -----------------------------------------------------------------------------
+
+vec3 phToLocal(vec3 v) { return vec3(dot(v, ph.axisX.xyz), dot(v, ph.axisY.xyz), dot(v, ph.axisZ.xyz)); }
+vec3 phFromLocal(vec3 v) { return v.x * ph.axisX.xyz + v.y * ph.axisY.xyz + v.z * ph.axisZ.xyz; }
+vec2 phCorner(int i) { return vec2(phFloats[ph.offsets.w + 2 * i], phFloats[ph.offsets.w + 2 * i + 1]); }
+
+/// Point-source irradiance at local p (unit normal n) from local opening point q.
+float phPointIrradiance(vec3 p, vec3 n, vec3 q) {
+    vec3 v = q - p;
+    float r2 = dot(v, v);
+    if (!(r2 > 0.0)) return 0.0;
+    float r = sqrt(r2);
+    float c = dot(n, v) / r;
+    if (!(c > 0.0)) return 0.0;
+    return phIntensity(-v / r) * c / r2;
+}
+
+/// L(w) cos(theta_p) along the unit direction d from the receiver, L = I / (A |cos theta_L|).
+float phIntegrand(vec3 n, vec3 d) {
+    float c = dot(n, d), cosL = abs(d.z);
+    if (!(c > 0.0) || !(cosL > 1e-7) || !(ph.position.w > 0.0)) return 0.0;
+    return phIntensity(-d) * c / (ph.position.w * cosL);
+}
+
+/// Zero-area openings: a point (the point law) or a segment (16-point Gauss-Legendre).
+bool phDegenerate(vec3 p, vec3 n, out float e) {
+    e = 0.0;
+    int corners = ph.dims.z;
+    if (corners >= 3) return false;
+    if (corners == 0) {
+        e = phPointIrradiance(p, n, vec3(0.0));
+        return true;
+    }
+    const float node[8] = float[8](0.0950125098, 0.2816035508, 0.4580167777, 0.6178762444,
+                                   0.7554044084, 0.8656312024, 0.9445750231, 0.9894009350);
+    const float weight[8] = float[8](0.1894506105, 0.1826034150, 0.1691565194, 0.1495959888,
+                                     0.1246289713, 0.0951585117, 0.0622535239, 0.0271524594);
+    vec3 a = vec3(phCorner(0), 0.0), b = vec3(phCorner(1), 0.0);
+    for (int i = 0; i < 8; ++i) {
+        e += 0.5 * weight[i] * phPointIrradiance(p, n, mix(a, b, 0.5 - 0.5 * node[i]));
+        e += 0.5 * weight[i] * phPointIrradiance(p, n, mix(a, b, 0.5 + 0.5 * node[i]));
+    }
+    return true;
+}
+
+bool phInside(vec2 q) {
+    int corners = ph.dims.z;
+    for (int i = 0; i < corners; ++i) {
+        vec2 a = phCorner(i), e = phCorner((i + 1) % corners) - a;
+        if (e.x * (q.y - a.y) - e.y * (q.x - a.x) < 0.0) return false;
+    }
+    return true;
+}
+
+void phBounds(out vec2 lo, out vec2 hi) {
+    lo = vec2(1e30);
+    hi = vec2(-1e30);
+    for (int i = 0; i < ph.dims.z; ++i) {
+        lo = min(lo, phCorner(i));
+        hi = max(hi, phCorner(i));
+    }
+}
+
+/// Area form with the fixed Poisson set at float offset o (count points): the mean over the
+/// points inside the opening of I cos / r^2.
+float phPoisson(vec3 p, vec3 n, int o, int count) {
+    vec2 lo, hi;
+    phBounds(lo, hi);
+    float sum = 0.0;
+    int inside = 0;
+    for (int i = 0; i < count; ++i) {
+        vec2 q = lo + vec2(phFloats[o + 2 * i], phFloats[o + 2 * i + 1]) * (hi - lo);
+        if (!phInside(q)) continue;
+        sum += phPointIrradiance(p, n, vec3(q, 0.0));
+        ++inside;
+    }
+    return inside > 0 ? sum / float(inside) : 0.0;
+}
+
+// --- Spherical polygons (luminaires/SphericalPolygon.cpp) ----------------------------------------
+
+struct PhPolygon {
+    vec3 v[PH_MAX];
+    int count;
+};
+
+PhPolygon phOpening(vec3 p) {
+    PhPolygon q;
+    q.count = min(ph.dims.z, PH_MAX);
+    for (int i = 0; i < q.count; ++i) q.v[i] = vec3(phCorner(i), 0.0) - p;
+    return q;
+}
+
+PhPolygon phClip(PhPolygon a, vec3 normal) {
+    PhPolygon out_;
+    out_.count = 0;
+    for (int i = 0; i < a.count; ++i) {
+        vec3 u = a.v[i], w = a.v[(i + 1) % a.count];
+        float du = dot(normal, u), dw = dot(normal, w);
+        if (du >= 0.0 && out_.count < PH_MAX) out_.v[out_.count++] = u;
+        if ((du >= 0.0) != (dw >= 0.0) && out_.count < PH_MAX) out_.v[out_.count++] = u + (w - u) * (du / (du - dw));
+    }
+    if (out_.count < 3) out_.count = 0;
+    return out_;
+}
+
+float phTriangleSolidAngle(vec3 a, vec3 b, vec3 c) {
+    float la = length(a), lb = length(b), lc = length(c);
+    if (!(la > 0.0 && lb > 0.0 && lc > 0.0)) return 0.0;
+    a /= la;
+    b /= lb;
+    c /= lc;
+    float num = abs(dot(a, cross(b, c)));
+    float den = 1.0 + dot(a, b) + dot(b, c) + dot(c, a);
+    return 2.0 * atan(num, den);
+}
+
+float phSolidAngle(PhPolygon q) {
+    float sum = 0.0;
+    for (int i = 1; i + 1 < q.count; ++i) sum += phTriangleSolidAngle(q.v[0], q.v[i], q.v[i + 1]);
+    return sum;
+}
+
+float phProjectedSolidAngle(PhPolygon q, vec3 m) {
+    float sum = 0.0;
+    for (int i = 0; i < q.count; ++i) {
+        vec3 a = q.v[i], b = q.v[(i + 1) % q.count];
+        vec3 c = cross(a, b);
+        float lc = length(c);
+        if (!(lc > 0.0)) continue;
+        sum += atan(lc, dot(a, b)) * dot(m, c) / lc;
+    }
+    return 0.5 * abs(sum);
+}
+
+const int PH_INSIDE = 0;
+const int PH_EDGE = 1;
+const int PH_CORNER = 2;
+
+/// Closest point of q to `target` (a point in q's plane, receiver-relative); place and index as
+/// spherical::closestPoint.
+vec3 phClosest(PhPolygon q, vec3 target, float tolerance, out int place, out int index) {
+    place = PH_INSIDE;
+    index = 0;
+    vec3 normal = vec3(0.0);
+    for (int i = 0; i < q.count; ++i) normal += cross(q.v[i] - target, q.v[(i + 1) % q.count] - target);
+    float ln = length(normal);
+    if (ln > 0.0 && q.count >= 3) {
+        normal /= ln;
+        vec3 foot = target + dot(q.v[0] - target, normal) * normal;
+        float clearance = 1e30;
+        for (int i = 0; i < q.count; ++i) {
+            vec3 a = q.v[i], e = q.v[(i + 1) % q.count] - a;
+            float le = length(e);
+            if (!(le > 0.0)) continue;
+            clearance = min(clearance, dot(cross(e, foot - a), normal) / le);
+        }
+        if (clearance > tolerance) return foot;
+    }
+    float best = 1e30;
+    vec3 point = q.count > 0 ? q.v[0] : vec3(0.0);
+    for (int i = 0; i < q.count; ++i) {
+        vec3 a = q.v[i], e = q.v[(i + 1) % q.count] - a;
+        float le2 = dot(e, e);
+        float t = le2 > 0.0 ? clamp(dot(target - a, e) / le2, 0.0, 1.0) : 0.0;
+        vec3 c = a + t * e;
+        float d = length(c - target);
+        if (!(d < best)) continue;
+        best = d;
+        float le = sqrt(le2);
+        point = c;
+        index = i;
+        place = PH_EDGE;
+        if (t * le <= tolerance) {
+            place = PH_CORNER;
+            point = a;
+        } else if ((1.0 - t) * le <= tolerance) {
+            place = PH_CORNER;
+            index = (i + 1) % q.count;
+            point = q.v[index];
+        }
+    }
+    return point;
+}
+
+bool phInCircumcircle(vec3 a, vec3 b, vec3 c, vec3 d) {
+    vec3 nrm = cross(b - a, c - a);
+    float ln = length(nrm);
+    if (!(ln > 0.0)) return false;
+    float centre = -dot(nrm, a);
+    float point = dot(nrm, d - a);
+    return (centre > 0.0 ? -point : point) > 1e-6 * ln;
+}
+
+float phSide(vec3 a, vec3 b, vec3 c) { return dot(cross(a, b), c); }
+
+/// Scattered sampling (Prost Ch. 5): corners of the opening clipped at the tilted horizon plus
+/// the closest point, Delaunay triangulation by flips, cubature (5.6) of the cosine-weighted
+/// mean of L, times the closed-form projected solid angle (5.11).
+float phScattered(vec3 p, vec3 n, out int flips) {
+    flips = 0;
+    PhPolygon full = phOpening(p);
+    PhPolygon visible = phClip(full, n);
+    if (visible.count < 3) return 0.0;
+    float projected = phProjectedSolidAngle(visible, n);
+    if (!(projected > 0.0)) return 0.0;
+    float eps = ph.axisY.w;
+    vec3 tilted = abs(p.z) * n + (p.z >= 0.0 ? 1.0 : -1.0) * eps * vec3(0.0, 0.0, 1.0);
+    PhPolygon q = phClip(full, tilted);
+    if (q.count < 3) q = visible;
+    int place, index;
+    vec3 cp = phClosest(q, vec3(0.0), 1e-6 * ph.axisX.w, place, index);
+
+    const int V = PH_MAX + 1;
+    vec3 dirs[V];
+    float f[V], c[V];
+    int k = q.count;
+    for (int i = 0; i <= k; ++i) {
+        vec3 v = i == 0 ? cp : q.v[i - 1];
+        float lv = length(v);
+        dirs[i] = lv > 0.0 ? v / lv : vec3(0.0, 0.0, 1.0);
+        f[i] = phIntegrand(n, dirs[i]);
+        c[i] = max(dot(n, dirs[i]), 0.0);
+    }
+    // Initial triangulation (Fig. 5.8).
+    ivec3 tri[2 * PH_MAX];
+    int count = 0;
+    if (place == PH_CORNER) {
+        for (int j = 1; j + 1 < k; ++j)
+            tri[count++] = ivec3(1 + index, 1 + (index + j) % k, 1 + (index + j + 1) % k);
+    } else {
+        for (int i = 0; i < k; ++i)
+            if (!(place == PH_EDGE && i == index)) tri[count++] = ivec3(0, 1 + i, 1 + (i + 1) % k);
+    }
+    // Lawson's flips (Alg. 5.1), bounded like the CPU version.
+    bool changed = true;
+    while (changed && flips < 4 * PH_MAX) {
+        changed = false;
+        for (int i = 0; i < count && !changed; ++i) {
+            for (int e = 0; e < 3 && !changed; ++e) {
+                int a = tri[i][e], b = tri[i][(e + 1) % 3], cc = tri[i][(e + 2) % 3];
+                for (int j = 0; j < count; ++j) {
+                    if (j == i) continue;
+                    ivec3 o = tri[j];
+                    bool hasA = o.x == a || o.y == a || o.z == a;
+                    bool hasB = o.x == b || o.y == b || o.z == b;
+                    if (!hasA || !hasB) continue;
+                    int d = (o.x != a && o.x != b) ? o.x : ((o.y != a && o.y != b) ? o.y : o.z);
+                    if (!phInCircumcircle(dirs[a], dirs[b], dirs[cc], dirs[d])) break;
+                    bool convex = phSide(dirs[a], dirs[b], dirs[cc]) * phSide(dirs[a], dirs[b], dirs[d]) < 0.0 &&
+                                  phSide(dirs[cc], dirs[d], dirs[a]) * phSide(dirs[cc], dirs[d], dirs[b]) < 0.0;
+                    if (!convex) break;
+                    tri[i] = ivec3(a, d, cc);
+                    tri[j] = ivec3(d, b, cc);
+                    ++flips;
+                    changed = true;
+                    break;
+                }
+            }
+        }
+    }
+    float qf = 0.0, qc = 0.0;
+    for (int i = 0; i < count; ++i) {
+        ivec3 t = tri[i];
+        float area = phTriangleSolidAngle(dirs[t.x], dirs[t.y], dirs[t.z]);
+        qf += area * (f[t.x] + f[t.y] + f[t.z]) / 3.0;
+        qc += area * (c[t.x] + c[t.y] + c[t.z]) / 3.0;
+    }
+    return qc > 0.0 ? projected * qf / qc : 0.0;
+}
+
+float phStructured(vec3 p, vec3 n) {
+    PhPolygon visible = phClip(phOpening(p), n);
+    if (visible.count < 3) return 0.0;
+    vec3 centre = vec3(0.0);
+    float sum = 0.0;
+    for (int i = 0; i < visible.count; ++i) {
+        centre += visible.v[i];
+        sum += phIntegrand(n, normalize(visible.v[i]));
+    }
+    sum += phIntegrand(n, normalize(centre / float(visible.count)));
+    return phSolidAngle(visible) * sum / float(visible.count + 1);
+}
+
+float phMrp(vec3 p, vec3 n) {
+    PhPolygon visible = phClip(phOpening(p), n);
+    if (visible.count < 3) return 0.0;
+    float tol = 1e-6 * ph.axisX.w;
+    int place, index;
+    vec3 pc = phClosest(visible, vec3(0.0), tol, place, index);
+    float h = -p.z;
+    vec3 pn = pc;
+    if (abs(n.z) > 1e-7 && h / n.z > 0.0) pn = phClosest(visible, (h / n.z) * n, tol, place, index);
+    vec3 half_ = normalize(pc) + normalize(pn);
+    vec3 pm = pc;
+    if (abs(half_.z) > 1e-7 && h / half_.z > 0.0) pm = phClosest(visible, (h / half_.z) * half_, tol, place, index);
+    float lm = length(pm);
+    if (!(lm > 0.0)) return 0.0;
+    return phSolidAngle(visible) * phIntegrand(n, pm / lm);
+}
+
+/// The hybrid's Monte Carlo weight (hybridWeight in C++): 0 within one opening size, 1 beyond
+/// five, smoothstep between.
+float phHybridWeight(float distance) {
+    float size = ph.axisX.w;
+    if (!(size > 0.0)) return 1.0;
+    float t = clamp((distance / size - 1.0) / 4.0, 0.0, 1.0);
+    return t * t * (3.0 - 2.0 * t);
+}

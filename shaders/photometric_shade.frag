@@ -1,0 +1,135 @@
+// Shades the G-buffer with one photometric area light (Prost 2019). Variants, one per technique:
+//   TECHNIQUE_SCATTERED, TECHNIQUE_STRUCTURED, TECHNIQUE_MRP, TECHNIQUE_POISSON24,
+//   TECHNIQUE_POISSON40, TECHNIQUE_POINT, TECHNIQUE_HYBRID: deterministic, converged in one frame;
+//   TECHNIQUE_REFERENCE: Monte Carlo over the opening's bounding rectangle (Eq. 6.3), progressive.
+//   SHADOWS: the deterministic techniques are scaled by the visible fraction of the 24-point
+//            Poisson set's irradiance (consistent, not exact); the reference traces a shadow ray
+//            per sample.
+//   GLOSSY:  the Phong lobe through the area form: the reference's samples, or the 24 Poisson
+//            points for the deterministic techniques.
+// Output: this frame's radiance estimate, added into the accumulation buffer.
+#include "shade_common.glsl"
+#include "photometric.glsl"
+#ifdef SHADOWS
+#include "bvh_traverse.glsl"
+#endif
+
+layout(location = 0) uniform int uLuminaire;
+layout(location = 0) out vec4 outRadiance;
+
+float visibleTo(Surface s, vec3 qLocal) {
+#ifdef SHADOWS
+    vec3 q = ph.position.xyz + phFromLocal(qLocal);
+    return bvhOccluded(shadowOrigin(s), q) ? 0.0 : 1.0;
+#else
+    return 1.0;
+#endif
+}
+
+/// Irradiance-weighted visibility and glossy term over the 24 Poisson points (area form).
+void poissonExtras(Surface s, vec3 p, vec3 n, out float visibleFraction, out vec3 glossy) {
+    visibleFraction = 1.0;
+    glossy = vec3(0.0);
+#if defined(SHADOWS) || defined(GLOSSY)
+    int corners = ph.dims.z;
+    float sumE = 0.0, sumEV = 0.0;
+    int inside = 0;
+    vec2 lo, hi;
+    phBounds(lo, hi);
+    for (int i = 0; i < 24; ++i) {
+        vec2 u = vec2(phFloats[ph.samples.x + 2 * i], phFloats[ph.samples.x + 2 * i + 1]);
+        vec3 q = corners >= 3 ? vec3(lo + u * (hi - lo), 0.0)
+                              : (corners == 2 ? vec3(mix(phCorner(0), phCorner(1), u.x), 0.0) : vec3(0.0));
+        if (corners >= 3 && !phInside(q.xy)) continue;
+        ++inside;
+        float e = phPointIrradiance(p, n, q);
+        if (!(e > 0.0)) continue;
+        float v = visibleTo(s, q);
+        sumE += e;
+        sumEV += e * v;
+#ifdef GLOSSY
+        if ((s.flags & kMaterialGlossy) != 0) glossy += e * v * glossyBrdf(s, normalize(phFromLocal(q - p)));
+#endif
+    }
+    if (sumE > 0.0) visibleFraction = sumEV / sumE;
+    if (inside > 0) glossy /= float(inside);
+#endif
+}
+
+void main() {
+    Surface s;
+    if (!loadSurface(s)) discard;
+    vec3 p = phToLocal(s.p - ph.position.xyz);
+    vec3 n = normalize(phToLocal(s.n));
+    vec3 colour = ph.colour.rgb;
+    vec3 result = vec3(0.0);
+
+#ifdef TECHNIQUE_REFERENCE
+    int spp = frame.frameInfo.y;
+    uint rng = rngSeed(uvec2(gl_FragCoord.xy), uint(frame.frameInfo.x * 7919 + uLuminaire) + uint(frame.seeds.x) * 2654435761u);
+    float degenerateE;
+    if (phDegenerate(p, n, degenerateE)) {
+        result = s.albedo / kPi * degenerateE;
+    } else {
+        vec2 lo, hi;
+        phBounds(lo, hi);
+        float ratio = (hi.x - lo.x) * (hi.y - lo.y) / ph.position.w;  // S_rect / A
+        for (int k = 0; k < spp; ++k) {
+            vec2 q = lo + vec2(rand01(rng), rand01(rng)) * (hi - lo);
+            if (!phInside(q)) continue;
+            float e = ratio * phPointIrradiance(p, n, vec3(q, 0.0));
+            if (!(e > 0.0)) continue;
+            e *= visibleTo(s, vec3(q, 0.0));
+            vec3 f = s.albedo / kPi;
+#ifdef GLOSSY
+            if ((s.flags & kMaterialGlossy) != 0) f += glossyBrdf(s, normalize(phFromLocal(vec3(q, 0.0) - p)));
+#endif
+            result += f * e;
+        }
+        result /= float(spp);
+    }
+#else
+    float E;
+    if (!phDegenerate(p, n, E)) {
+#if defined(TECHNIQUE_SCATTERED)
+        int flips;
+        E = phScattered(p, n, flips);
+#elif defined(TECHNIQUE_STRUCTURED)
+        E = phStructured(p, n);
+#elif defined(TECHNIQUE_MRP)
+        E = phMrp(p, n);
+#elif defined(TECHNIQUE_POISSON24)
+        E = phPoisson(p, n, ph.samples.x, 24);
+#elif defined(TECHNIQUE_POISSON40)
+        E = phPoisson(p, n, ph.samples.y, 40);
+#elif defined(TECHNIQUE_POINT)
+        E = phPointIrradiance(p, n, vec3(0.0));
+#elif defined(TECHNIQUE_HYBRID)
+        int place, index;
+        float distance = length(phClosest(phOpening(p), vec3(0.0), 0.0, place, index));
+        float w = phHybridWeight(distance);
+        int flips;
+        float nearE = w < 1.0 ? phScattered(p, n, flips) : 0.0;
+        float farE = w > 0.0 ? phPoisson(p, n, ph.samples.x, 24) : 0.0;
+        E = mix(nearE, farE, w);
+#endif
+    }
+#ifdef TECHNIQUE_POINT
+    // The point technique is a point light: its shadows and highlights come from the centre.
+    float visibleFraction = visibleTo(s, vec3(0.0));
+    vec3 glossy = vec3(0.0);
+#ifdef GLOSSY
+    if ((s.flags & kMaterialGlossy) != 0) glossy = E * visibleFraction * glossyBrdf(s, normalize(phFromLocal(-p)));
+#endif
+#else
+    float visibleFraction;
+    vec3 glossy;
+    poissonExtras(s, p, n, visibleFraction, glossy);
+#endif
+    result = s.albedo / kPi * E * visibleFraction + glossy;
+#endif
+    result *= colour;
+    // Hard cases must never poison the accumulation: drop non-finite estimates.
+    if (any(isnan(result)) || any(isinf(result))) result = vec3(0.0);
+    outRadiance = vec4(result, 1.0);
+}
