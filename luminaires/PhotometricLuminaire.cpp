@@ -215,7 +215,7 @@ glm::dvec3 PhotometricLuminaire::displayRadiance() const {
 
 void PhotometricLuminaire::writeJson(nlohmann::json& out) const {
     out["file"] = file;
-    if (scale != 1.0) out["scale"] = scale;
+    out["scale"] = scale;  // always present, so the inspector offers it
     if (colour != glm::dvec3(1.0)) out["colour"] = {colour.x, colour.y, colour.z};
     if (openingOverride.x > 0.0 || openingOverride.y > 0.0)
         out["opening"] = {openingOverride.x, openingOverride.y};

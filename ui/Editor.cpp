@@ -14,6 +14,8 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
+#include <string>
+#include <vector>
 
 #include "renderer/Renderer.h"
 #include "renderer/ShaderLibrary.h"
@@ -23,6 +25,17 @@
 #include "ui/Panels.h"
 #include "ui/Screenshot.h"
 #include "ui/ViewportMath.h"
+
+namespace {
+
+/// Paths dropped onto the window since the last frame (GLFW calls back on the main thread).
+std::vector<std::string> gDropped;
+
+void onDrop(GLFWwindow*, int count, const char** paths) {
+    for (int i = 0; i < count; ++i) gDropped.emplace_back(paths[i]);
+}
+
+}  // namespace
 
 namespace candela::ui {
 
@@ -75,6 +88,7 @@ Editor::Editor(const EditorOptions& options) : mOptions(options) {
     ImGui_ImplGlfw_InitForOpenGL(mContext->window(), true);
     ImGui_ImplOpenGL3_Init("#version 450 core");
     mImGuiReady = true;
+    glfwSetDropCallback(mContext->window(), onDrop);
     updateTitle();
 }
 
@@ -86,6 +100,7 @@ Editor::~Editor() {
     }
     if (mContext) {
         glfwSetKeyCallback(mContext->window(), nullptr);
+        glfwSetDropCallback(mContext->window(), nullptr);
         glfwSetWindowUserPointer(mContext->window(), nullptr);
     }
     // GL objects go before the context that owns them.
@@ -117,6 +132,10 @@ void Editor::frame() {
         glfwWaitEventsTimeout(kIdleWaitS);
     else
         glfwPollEvents();
+
+    // Files dropped onto the window become luminaires (photometry or light fields).
+    for (const std::string& path : gDropped) addLuminaireFromFile(state, path);
+    gDropped.clear();
 
     double now = glfwGetTime();
     if (now - mLastReloadCheck >= kReloadIntervalS) {
@@ -194,14 +213,20 @@ void Editor::buildUi() {
     PanelRect viewport{left, top, std::max(1.f, display.x - left - right), middle};
     PanelRect outline{0.f, top, left, std::floor(middle * 0.4f)};
     PanelRect inspector{0.f, top + outline.h, left, middle - outline.h};
-    PanelRect render{display.x - right, top, right, std::floor(middle * 0.5f)};
-    PanelRect stats{display.x - right, top + render.h, right, middle - render.h};
+    PanelRect render{display.x - right, top, right, std::floor(middle * 0.36f)};
+    PanelRect measure{display.x - right, top + render.h, right, std::floor(middle * 0.4f)};
+    PanelRect stats{display.x - right, top + render.h + measure.h, right,
+                    middle - render.h - measure.h};
     PanelRect status{0.f, top + middle, display.x, statusHeight};
 
     viewportPanel(state, *mRenderer, viewport);
     outlinePanel(state, outline);
     inspectorPanel(state, inspector);
     renderPanel(state, render);
+    // The Measure panel's grid lives as long as the editor (one editor per process); it belongs
+    // in EditorState once that file gains a MeasureState member.
+    static MeasureState measureState;
+    measurePanel(state, measureState, *mRenderer, measure);
     statsPanel(state, *mRenderer, *mShaders, stats);
     statusBar(state, *mRenderer, status);
     fileDialogs(state);

@@ -1,7 +1,10 @@
 #include "ui/EditorState.h"
 
+#include <cctype>
 #include <exception>
+#include <filesystem>
 
+#include "luminaires/Registry.h"
 #include "scene/SceneIo.h"
 
 namespace candela::ui {
@@ -74,8 +77,11 @@ std::string uniqueLuminaireName(const Scene& scene, const std::string& base) {
     }
 }
 
-int addLuminaire(EditorState& state, const LuminaireKindInfo& kind) {
-    std::unique_ptr<Luminaire> lum = kind.create();
+namespace {
+
+/// Places a new luminaire 0.5 m below the top of the scene, aimed down, and selects it (one undo
+/// step).
+int insertLuminaire(EditorState& state, const LuminaireKindInfo& kind, std::unique_ptr<Luminaire> lum) {
     if (!lum) {
         reportError(state, "Add: kind " + std::string(kind.kind) + " has no default luminaire");
         return -1;
@@ -98,6 +104,47 @@ int addLuminaire(EditorState& state, const LuminaireKindInfo& kind) {
     state.selectedGeometry = -1;
     state.inspectorError.clear();
     return state.selectedLuminaire;
+}
+
+}  // namespace
+
+int addLuminaire(EditorState& state, const LuminaireKindInfo& kind) {
+    try {
+        return insertLuminaire(state, kind, kind.create());
+    } catch (const std::exception& e) {
+        reportError(state, "Add " + std::string(kind.kind) + ": " + e.what());
+        return -1;
+    }
+}
+
+int addLuminaireFromFile(EditorState& state, const std::string& path) {
+    std::string lower = path;
+    for (char& c : lower) c = char(std::tolower((unsigned char)c));
+    auto endsWith = [&](const char* suffix) {
+        std::string s(suffix);
+        return lower.size() >= s.size() && lower.compare(lower.size() - s.size(), s.size(), s) == 0;
+    };
+    const char* kind = endsWith(".ies") || endsWith(".ldt") ? "photometric"
+                       : endsWith(".lf.json")               ? "lightfield"
+                                                            : nullptr;
+    if (!kind) {
+        reportError(state, path + ": cannot add a luminaire from this file (expected .ies, .ldt or .lf.json)");
+        return -1;
+    }
+    const LuminaireKindInfo* info = findKind(kind);
+    try {
+        // Through the scene-file parser, so a dropped file gets the same checks as a loaded one.
+        nlohmann::json entry = {{"type", kind}, {"file", path}};
+        std::unique_ptr<Luminaire> lum = info->parse(entry, json::Where{path, "dropped file"});
+        std::string stem = std::filesystem::path(path).filename().string();
+        lum->name = stem.substr(0, stem.find('.'));
+        int index = insertLuminaire(state, *info, std::move(lum));
+        if (index >= 0) setStatus(state, "Added " + state.scene.luminaires[size_t(index)]->name + " from " + path);
+        return index;
+    } catch (const std::exception& e) {
+        reportError(state, e.what());
+        return -1;
+    }
 }
 
 int duplicateLuminaire(EditorState& state, int index) {

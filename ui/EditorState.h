@@ -87,6 +87,10 @@ bool saveSceneFile(EditorState& state, const std::string& path);
 /// Adds a default luminaire of the kind 0.5 m below the top of the scene's bounds, centred,
 /// aimed down; selects it and returns its index.
 int addLuminaire(EditorState& state, const LuminaireKindInfo& kind);
+/// Adds a luminaire made from a file (a drop onto the window): .ies / .ldt photometry or a
+/// .lf.json light field, placed like Add and selected. A file that fails to load is reported and
+/// nothing changes. Returns the new index or -1.
+int addLuminaireFromFile(EditorState& state, const std::string& path);
 /// Copies the luminaire 0.25 m along +x with a fresh name; selects and returns the copy.
 int duplicateLuminaire(EditorState& state, int index);
 void deleteLuminaire(EditorState& state, int index);

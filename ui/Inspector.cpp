@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "luminaires/LightField.h"
+#include "luminaires/PhotometricLuminaire.h"
 #include "scene/SceneIo.h"
 #include "ui/ImGuiUtil.h"
 #include "ui/Panels.h"
@@ -205,6 +206,8 @@ bool luminaireInspector(EditorState& state, int index) {
     if (const auto* lf = dynamic_cast<const LightFieldLuminaire*>(&shown)) {
         static int shownImage = 0;  // UI state only: which image the panel shows
         lightFieldDetails(*lf, shownImage);
+    } else if (const auto* ph = dynamic_cast<const PhotometricLuminaire*>(&shown)) {
+        photometricDetails(*ph);
     } else {
         glm::dvec3 power = shown.power();
         ImGui::Text("Power [W]: %.4g  %.4g  %.4g", power.x, power.y, power.z);

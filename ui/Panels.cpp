@@ -59,6 +59,7 @@ const char* fieldUnit(const std::string& key) {
         {"power", " [W]"},      {"irradiance", " [W/m2]"},
         {"intensity", " [cd]"}, {"lumens", " [lm]"},
         {"flux", " [lm]"},      {"illuminance", " [lx]"},
+        {"opening", " [m]"},    {"scale", " [x]"},
     };
     for (const Unit& u : kUnits)
         if (key == u.key) return u.unit;

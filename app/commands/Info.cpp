@@ -1,13 +1,57 @@
+#include <cctype>
 #include <cstdio>
+#include <memory>
 #include <filesystem>
 
 #include "app/commands/Commands.h"
+#include "luminaires/PhotometricLuminaire.h"
 #include "luminaires/Registry.h"
 #include "scene/GltfLoader.h"
 #include "scene/SceneIo.h"
 #include "util/Error.h"
 
 namespace candela {
+
+static const char* symmetryName(PhotometricSymmetry s) {
+    switch (s) {
+        case PhotometricSymmetry::None: return "none";
+        case PhotometricSymmetry::Axial: return "rotational (one C plane)";
+        case PhotometricSymmetry::Quadrant: return "quadrants (C0-C90 mirrored)";
+        case PhotometricSymmetry::PlaneC0C180: return "mirror about the C0-C180 plane";
+        case PhotometricSymmetry::PlaneC90C270: return "mirror about the C90-C270 plane";
+    }
+    return "?";
+}
+
+/// `candela info FILE.ies|FILE.ldt`: what the file holds and its flux two ways.
+static void printPhotometry(const std::string& path) {
+    auto light = std::make_unique<PhotometricLuminaire>();
+    light->file = path;
+    light->data = PhotometricLuminaire::load(path);
+    light->updateOpening();
+    const PhotometricData& d = *light->data;
+    std::printf("photometry: %s\n", path.c_str());
+    std::printf("format: %s, type %s goniometry, symmetry: %s\n", d.format.c_str(),
+                d.goniometer == Goniometer::B ? "B" : "C", symmetryName(d.symmetry));
+    if (!d.name.empty()) std::printf("luminaire: %s\n", d.name.c_str());
+    std::printf("angles: %zu vertical (%.4g..%.4g deg) x %zu horizontal (%.4g..%.4g deg, unfolded)\n",
+                d.vertical.size(), d.vertical.front(), d.vertical.back(), d.horizontal.size(),
+                d.horizontal.front(), d.horizontal.back());
+    std::printf("max intensity: %.6g cd\n", d.maxIntensity());
+    std::printf("opening: %.4g x %.4g x %.4g m (length along C0, width along C90, height), emitting "
+                "polygon %.4g m2%s\n", d.opening.length, d.opening.width, d.opening.height, light->area(),
+                light->polygon().empty() ? " (a point source)" : "");
+    double flux = d.fluxFromTable();
+    std::printf("luminaire flux (exact quadrature of the table): %.6g lm\n", flux);
+    if (d.lampFlux > 0.0) {
+        double declared = d.lampFlux * d.lightOutputRatio;
+        std::printf("lamp flux %.6g lm x light output ratio %.4g = %.6g lm (table / declared %.4f)\n",
+                    d.lampFlux, d.lightOutputRatio, declared, flux / declared);
+    } else {
+        std::printf("absolute photometry: no lamp flux declared\n");
+    }
+    if (d.inputWatts > 0.0) std::printf("input power: %.4g W (%.1f lm/W)\n", d.inputWatts, flux / d.inputWatts);
+}
 
 static void printMeshes(const Scene& scene) {
     size_t triangles = 0;
@@ -26,9 +70,14 @@ static void printMeshes(const Scene& scene) {
 }
 
 int cmdInfo(const Args& args) {
-    if (args.size() != 1) throw InputError("usage: candela info FILE (.json scene, .gltf, .glb)");
+    if (args.size() != 1) throw InputError("usage: candela info FILE (.json scene, .gltf, .glb, .ies, .ldt)");
     const std::string& path = args[0];
     std::string ext = std::filesystem::path(path).extension().string();
+    for (char& c : ext) c = char(std::tolower((unsigned char)c));
+    if (ext == ".ies" || ext == ".ldt") {
+        printPhotometry(path);
+        return 0;
+    }
     if (ext == ".json") {
         Scene scene = loadScene(path);
         std::printf("scene: %s\n", path.c_str());
@@ -56,7 +105,7 @@ int cmdInfo(const Args& args) {
         printMeshes(scene);
         return 0;
     }
-    throw InputError(path + ": unsupported file type \"" + ext + "\" (expected .json, .gltf or .glb)");
+    throw InputError(path + ": unsupported file type \"" + ext + "\" (expected .json, .gltf, .glb, .ies or .ldt)");
 }
 
 }  // namespace candela

@@ -31,6 +31,15 @@ void writePlotData(const fs::path& path, const ui::PolarCurves& c) {
     block(c.c270, c.c90);
 }
 
+/// gnuplot ttics list: theta every 30 degrees, each labelled with gamma = |theta|.
+std::string ticsList() {
+    std::string out;
+    for (int theta = -150; theta <= 180; theta += 30)
+        out += (out.empty() ? "" : ", ") + std::string("'") + std::to_string(std::abs(theta)) +
+               "' " + std::to_string(theta);
+    return out;
+}
+
 /// Single quotes are the only character gnuplot's single-quoted strings cannot hold.
 std::string quoted(const std::string& s) {
     std::string out = "'";
@@ -50,15 +59,17 @@ void plotPng(const PhotometricData& data, const ui::PolarCurves& curves, const s
     std::ofstream gp(dir / "polar.gp");
     gp << "set terminal pngcairo size 720,720 noenhanced\n"
        << "set output " << quoted(fs::absolute(out).string()) << "\n"
-       << "set title " << quoted(title) << "\n"
+       << "set title " << quoted(title) << " . \"\\n\" . 'left half C180 / C270, right half C0 / C90, "
+          "gamma from the aim'\n"
        << "set polar\nset angles degrees\n"
        << "set theta bottom counterclockwise  # gamma 0 at the bottom; C0 and C90 on the right\n"
        << "set size square\nunset border\nunset xtics\nunset ytics\nunset raxis\n"
        << "set rrange [0:" << rings.back() << "]\n"
-       << "set rtics " << rings.front() << " format '%g cd' scale 0\n"
-       << "set ttics 0,30 format '%g' font ',9'\n"
+       << "set rtics " << rings.front() << " format '%g' scale 0 font ',8'\n"
+       << "set rlabel 'cd'\n"
+       << "set ttics (" << ticsList() << ") font ',9'  # labelled in gamma on both halves\n"
        << "set grid polar 30 lt 1 lc rgb '#c8c8c8' lw 0.5\n"
-       << "set key bottom right\n"
+       << "set key outside bottom center horizontal\n"
        << "plot 'polar.dat' index 0 using 1:2 with lines lw 2.5 lc rgb '#e07b00' title 'C0-C180', "
           "'' index 1 using 1:2 with lines lw 2.5 lc rgb '#2c7fd0' dt 2 title 'C90-C270'\n";
     gp.close();

@@ -1,0 +1,303 @@
+// The Measure panel: what the image shows (radiance or illuminance), the false-colour legend
+// (range in lux, log or linear, isolux levels) with its colour bar, and the calculation grid on a
+// plane, whose summary it lists and whose values it writes over the viewport.
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <sstream>
+
+#include "shaders/shared/FalseColour.h"
+#include "ui/ImGuiUtil.h"
+#include "ui/Panels.h"
+#include "ui/ViewportMath.h"
+
+namespace candela::ui {
+
+namespace {
+
+constexpr int kBarSegments = 96;         ///< Quads of the colour bar (the scale is piecewise linear).
+constexpr size_t kMaxLabelledPoints = 900;  ///< More grid points than this: dots only, no values.
+
+ImU32 toImColour(const glm::vec3& c) {
+    return ImGui::ColorConvertFloat4ToU32(ImVec4(c.x, c.y, c.z, 1.f));
+}
+
+/// "100, 200, 500" from levels in lux.
+std::string levelsToText(const std::vector<float>& levels) {
+    std::string out;
+    char item[32];
+    for (float v : levels) {
+        std::snprintf(item, sizeof item, "%s%g", out.empty() ? "" : ", ", double(v));
+        out += item;
+    }
+    return out;
+}
+
+/// Comma- or space-separated numbers; false if any item is not a finite number.
+bool textToLevels(const std::string& text, std::vector<float>& levels) {
+    std::string t = text;
+    std::replace(t.begin(), t.end(), ',', ' ');
+    std::istringstream in(t);
+    std::vector<float> out;
+    std::string item;
+    while (in >> item) {
+        char* end = nullptr;
+        double v = std::strtod(item.c_str(), &end);
+        if (*end != '\0' || !std::isfinite(v)) return false;
+        out.push_back(float(v));
+    }
+    levels = out;
+    return true;
+}
+
+/// The colour bar of the legend with its ticks labelled in the image's unit.
+void colourBar(const FalseColourLegend& raw, const char* unit) {
+    FalseColourLegend legend = sanitizedLegend(raw);
+    ImDrawList* draw = ImGui::GetWindowDrawList();
+    ImVec2 p = ImGui::GetCursorScreenPos();
+    float width = std::max(40.f, ImGui::GetContentRegionAvail().x - 8.f);
+    float height = ImGui::GetFrameHeight() * 0.8f;
+    float x0 = p.x + 4.f;
+    for (int k = 0; k < kBarSegments; ++k) {
+        float t0 = float(k) / kBarSegments, t1 = float(k + 1) / kBarSegments;
+        ImU32 a = toImColour(gpu::falseColour(t0)), b = toImColour(gpu::falseColour(t1));
+        draw->AddRectFilledMultiColor(ImVec2(x0 + t0 * width, p.y), ImVec2(x0 + t1 * width, p.y + height),
+                                      a, b, b, a);
+    }
+    std::vector<float> contours = contourLevels(legend);
+    for (float level : contours) {
+        float t = gpu::legendPosition(level, legend.min, legend.max, legend.logScale ? 1 : 0);
+        if (t < 0.f || t > 1.f) continue;
+        draw->AddLine(ImVec2(x0 + t * width, p.y), ImVec2(x0 + t * width, p.y + height),
+                      IM_COL32(0, 0, 0, 200), 1.f);
+    }
+    float labelY = p.y + height + 2.f, lastRight = -1e9f;
+    char text[32];
+    for (float tick : legendTicks(legend)) {
+        float t = gpu::legendPosition(tick, legend.min, legend.max, legend.logScale ? 1 : 0);
+        float x = x0 + t * width;
+        draw->AddLine(ImVec2(x, p.y + height), ImVec2(x, p.y + height + 3.f), IM_COL32(220, 220, 220, 255));
+        std::snprintf(text, sizeof text, "%g", double(tick));
+        ImVec2 size = ImGui::CalcTextSize(text);
+        float left = std::clamp(x - 0.5f * size.x, x0 - 4.f, x0 + width + 4.f - size.x);
+        if (left < lastRight + 4.f) continue;  // would overlap the previous label
+        draw->AddText(ImVec2(left, labelY + 2.f), IM_COL32(220, 220, 220, 255), text);
+        lastRight = left + size.x;
+    }
+    ImGui::Dummy(ImVec2(width + 8.f, height + ImGui::GetTextLineHeight() + 6.f));
+    ImGui::TextDisabled("[%s], %s scale; lines: isolux", unit, legend.logScale ? "log" : "linear");
+}
+
+bool legendControls(EditorState& state, MeasureState& measure) {
+    RenderSettings& s = state.settings;
+    FalseColourLegend& legend = s.legend;
+    bool changed = false;
+    bool illuminance = s.quantity == Quantity::Illuminance;
+    const char* unit = illuminance ? "lx" : "cd/m2";
+    std::string minLabel = std::string("Min [") + unit + "]", maxLabel = std::string("Max [") + unit + "]";
+    float speed = std::max(0.01f, 0.005f * (legend.max - legend.min));
+    changed = ImGui::DragFloat(minLabel.c_str(), &legend.min, speed, 0.f, 1e9f, "%.4g") || changed;
+    changed = ImGui::DragFloat(maxLabel.c_str(), &legend.max, speed, 0.f, 1e9f, "%.4g") || changed;
+    changed = ImGui::Checkbox("Log scale", &legend.logScale) || changed;
+    ImGui::SameLine();
+    changed = ImGui::Checkbox("Isolux lines", &legend.contours) || changed;
+    std::string levelsLabel = std::string("Levels [") + unit + "]";
+    if (ImGui::InputTextWithHint(levelsLabel.c_str(), "at the legend's ticks", &measure.levelsText)) {
+        std::vector<float> levels;
+        if (textToLevels(measure.levelsText, levels)) {
+            legend.levels = levels;
+            changed = true;
+        }
+    }
+    itemTooltip("Isolux levels, comma-separated (at most 16); empty: at the legend's ticks");
+    if (measure.result && ImGui::Button("Range from grid")) {
+        legend.min = legend.logScale ? float(std::max(measure.summary.eMin, 1e-3)) : 0.f;
+        legend.max = float(std::max(measure.summary.eMax, double(legend.min) * 1.01 + 1e-6));
+        changed = true;
+    }
+    legend = sanitizedLegend(legend);
+    colourBar(legend, unit);
+    if (!illuminance)
+        ImGui::TextDisabled("Radiance mode: the scale shows luminance (cd/m2 or W/(m2 sr))");
+    return changed;
+}
+
+/// Takes plane, height and extent from the selected geometry if it is an axis-aligned plane.
+bool pickSelectedPlane(const EditorState& state, GridSpec& grid, std::string& error) {
+    int index = state.selectedGeometry;
+    if (index < 0 || index >= int(state.scene.geometry.size())) {
+        error = "Select a plane in the outline first";
+        return false;
+    }
+    const GeometryItem& item = state.scene.geometry[size_t(index)];
+    if (item.meshes.size() != 1 || state.scene.meshes[item.meshes[0]].shape != MeshShape::Plane) {
+        error = "The selected geometry is not a plane";
+        return false;
+    }
+    const Mesh& mesh = state.scene.meshes[item.meshes[0]];
+    glm::vec3 n = mesh.normals.empty() ? glm::vec3(0.f) : mesh.normals[0];
+    int axis = 0;
+    for (int a = 1; a < 3; ++a)
+        if (std::abs(n[a]) > std::abs(n[axis])) axis = a;
+    if (std::abs(n[axis]) < 0.999f) {
+        error = "The selected plane is not axis-aligned";
+        return false;
+    }
+    grid.plane.axis = axis;
+    grid.plane.sign = n[axis] > 0.f ? 1.0 : -1.0;
+    grid.plane.offset = 0.5 * double(mesh.boundsMin[axis] + mesh.boundsMax[axis]);
+    int u = axis == 0 ? 1 : 0, v = axis == 2 ? 1 : 2;
+    grid.lo = {mesh.boundsMin[u], mesh.boundsMin[v]};
+    grid.hi = {mesh.boundsMax[u], mesh.boundsMax[v]};
+    error.clear();
+    return true;
+}
+
+void computeNow(const EditorState& state, MeasureState& measure) {
+    try {
+        if (!measure.extentSet) defaultGridExtent(state.scene, measure.grid);
+        measure.extentSet = true;
+        measure.result = computeGrid(state.scene, measure.grid);
+        measure.summary = summariseGrid(measure.result->lux);
+        measure.error.clear();
+    } catch (const std::exception& e) {
+        measure.error = e.what();
+    }
+}
+
+void gridControls(EditorState& state, MeasureState& measure) {
+    GridSpec& g = measure.grid;
+    const char* axes[] = {"x (wall)", "y (horizontal)", "z (wall)"};
+    int axis = g.plane.axis;
+    if (ImGui::Combo("Plane normal", &axis, axes, 3)) {
+        g.plane.axis = axis;
+        measure.extentSet = false;
+    }
+    bool down = g.plane.sign < 0.0;
+    if (ImGui::Checkbox("Faces -axis", &down)) g.plane.sign = down ? -1.0 : 1.0;
+    itemTooltip("Receiving side: off = towards +axis (a floor or desk), on = towards -axis (a ceiling)");
+    ImGui::DragScalar("Height [m]", ImGuiDataType_Double, &g.plane.offset, 0.01f, nullptr, nullptr, "%.3f");
+    std::string extentLabel = "Extent " + g.plane.uName() + "0," + g.plane.vName() + "0," +
+                              g.plane.uName() + "1," + g.plane.vName() + "1 [m]";
+    double extent[4] = {g.lo.x, g.lo.y, g.hi.x, g.hi.y};
+    if (ImGui::DragScalarN(extentLabel.c_str(), ImGuiDataType_Double, extent, 4, 0.01f, nullptr,
+                           nullptr, "%.2f")) {
+        g.lo = {extent[0], extent[1]};
+        g.hi = {extent[2], extent[3]};
+        measure.extentSet = true;
+    }
+    if (ImGui::Button("Scene bounds")) {
+        measure.extentSet = false;
+        try {
+            defaultGridExtent(state.scene, g);
+            measure.extentSet = true;
+        } catch (const std::exception& e) {
+            measure.error = e.what();
+        }
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Selected plane")) measure.extentSet = pickSelectedPlane(state, g, measure.error);
+    const double minSpacing = 0.01, maxSpacing = 10.0;
+    ImGui::SliderScalar("Spacing [m]", ImGuiDataType_Double, &g.spacing, &minSpacing, &maxSpacing,
+                        "%.3f", ImGuiSliderFlags_Logarithmic);
+    ImGui::SliderInt("Samples / point", &g.spp, 16, 4096, "%d", ImGuiSliderFlags_Logarithmic);
+    itemTooltip("For stochastic techniques; exact ones ignore it");
+    ImGui::Checkbox("Shadows", &g.visibility);
+    itemTooltip("Shadow rays through the scene (occluders block light)");
+    if (ImGui::Button("Compute grid", ImVec2(-1.f, 0.f))) computeNow(state, measure);
+    if (!measure.error.empty()) errorText(measure.error);
+    if (!measure.result) return;
+    const GridSummary& s = measure.summary;
+    const GridResult& r = *measure.result;
+    ImGui::Text("%zu points (%zu x %zu), %s = %.3g m", s.count, r.u.size(), r.v.size(),
+                r.spec.plane.uName().c_str(), r.spec.plane.offset);
+    if (ImGui::BeginTable("summary", 2, ImGuiTableFlags_RowBg)) {
+        auto row = [](const char* name, const char* format, double value) {
+            ImGui::TableNextRow();
+            ImGui::TableNextColumn();
+            ImGui::TextUnformatted(name);
+            ImGui::TableNextColumn();
+            ImGui::Text(format, value);
+        };
+        row("Emin", "%.4g lx", s.eMin);
+        row("Eavg", "%.4g lx", s.eAvg);
+        row("Emax", "%.4g lx", s.eMax);
+        row("U0 = Emin/Eavg", "%.3f", s.u0);
+        row("Emin/Emax", "%.3f", s.minOverMax);
+        ImGui::EndTable();
+    }
+    ImGui::Checkbox("Values in the viewport", &measure.showValues);
+}
+
+/// Each grid point as a dot with its illuminance over the viewport image.
+void drawGridValues(const EditorState& state, const MeasureState& measure, const Renderer& renderer) {
+    if (!measure.result || !measure.showValues) return;
+    const GridResult& r = *measure.result;
+    const glm::vec4& v = state.layout.viewport;
+    int width = renderer.settings().width, height = renderer.settings().height;
+    ImDrawList* draw = ImGui::GetForegroundDrawList();
+    draw->PushClipRect(ImVec2(v.x, v.y), ImVec2(v.x + v.z, v.y + v.w), true);
+    bool labels = r.lux.size() <= kMaxLabelledPoints;
+    char text[32];
+    glm::mat4 viewProj = renderer.viewProj();
+    for (size_t j = 0; j < r.v.size(); ++j)
+        for (size_t i = 0; i < r.u.size(); ++i) {
+            auto px = projectToPixels(viewProj, r.spec.plane.point(r.u[i], r.v[j]), width, height);
+            if (!px) continue;
+            ImVec2 at(v.x + float(px->x) * v.z / float(width), v.y + float(px->y) * v.w / float(height));
+            draw->AddCircleFilled(at, 2.f, IM_COL32(255, 255, 255, 230));
+            if (!labels) continue;
+            std::snprintf(text, sizeof text, "%.3g", r.lux[j * r.u.size() + i]);
+            ImVec2 size = ImGui::CalcTextSize(text);
+            ImVec2 lo(at.x - 0.5f * size.x - 1.f, at.y + 3.f);
+            draw->AddRectFilled(lo, ImVec2(lo.x + size.x + 2.f, lo.y + size.y), IM_COL32(0, 0, 0, 150));
+            draw->AddText(ImVec2(lo.x + 1.f, lo.y), IM_COL32(255, 255, 255, 255), text);
+        }
+    draw->PopClipRect();
+}
+
+}  // namespace
+
+bool measurePanel(EditorState& state, MeasureState& measure, const Renderer& renderer,
+                  const PanelRect& rect) {
+    RenderSettings& s = state.settings;
+    bool changed = false;
+    placeNextWindow(rect);
+    ImGui::Begin("Measure", nullptr, kPanelFlags);
+    ImGui::PushItemWidth(-ImGui::GetFontSize() * 8.5f);
+    int quantity = int(s.quantity);
+    changed = ImGui::RadioButton("Radiance", &quantity, 0) || changed;
+    ImGui::SameLine();
+    changed = ImGui::RadioButton("Illuminance", &quantity, 1) || changed;
+    s.quantity = Quantity(quantity);
+    itemTooltip("Illuminance: every surface becomes a white Lambertian receiver and each pixel "
+                "shows the irradiance on it, lx (W/m2 for radiometric luminaires)");
+    bool falseColour = s.toneMap == ToneMapOperator::FalseColour;
+    if (ImGui::Checkbox("False colour", &falseColour)) {
+        if (falseColour) {
+            measure.previousOperator = s.toneMap;
+            s.toneMap = ToneMapOperator::FalseColour;
+        } else {
+            s.toneMap = measure.previousOperator;
+        }
+        changed = true;
+    }
+    if (falseColour) {
+        if (measure.levelsText.empty() && !s.legend.levels.empty())
+            measure.levelsText = levelsToText(s.legend.levels);
+        changed = legendControls(state, measure) || changed;
+    }
+    ImGui::Separator();
+    ImGui::TextDisabled("Calculation grid");
+    gridControls(state, measure);
+    ImGui::PopItemWidth();
+    ImGui::End();
+    drawGridValues(state, measure, renderer);
+    return changed;
+}
+
+}  // namespace candela::ui

@@ -1,0 +1,41 @@
+// The photometric part of the inspector: what the file holds, the flux two ways (the table's
+// exact quadrature and lamp flux x light output ratio), the emitting opening, and the polar
+// candela diagram (ui/PolarDiagram.cpp).
+#include <imgui.h>
+
+#include <algorithm>
+#include <filesystem>
+
+#include "luminaires/PhotometricLuminaire.h"
+#include "ui/Panels.h"
+#include "ui/PolarDiagram.h"
+
+namespace candela::ui {
+
+void photometricDetails(const PhotometricLuminaire& light) {
+    const PhotometricData& d = *light.data;
+    ImGui::TextWrapped("%s: %s, type %s", std::filesystem::path(light.file).filename().string().c_str(),
+                       d.format.c_str(), d.goniometer == Goniometer::B ? "B" : "C");
+    if (!d.name.empty()) ImGui::TextWrapped("%s", d.name.c_str());
+    double flux = light.scale * d.fluxFromTable();
+    ImGui::TextWrapped("Flux: %.5g lm (exact quadrature of the table%s)", flux, light.scale != 1.0 ? ", scaled" : "");
+    if (d.lampFlux > 0.0)
+        ImGui::TextWrapped("Lamps %.5g lm x LOR %.3g = %.5g lm (table / declared %.3f)", d.lampFlux,
+                           d.lightOutputRatio, d.lampFlux * d.lightOutputRatio,
+                           d.fluxFromTable() / (d.lampFlux * d.lightOutputRatio));
+    else
+        ImGui::TextDisabled("Absolute photometry (no lamp flux declared)");
+    ImGui::TextWrapped("Peak %.5g cd; %zu x %zu angles", light.scale * d.maxIntensity(), d.vertical.size(),
+                       d.horizontal.size());
+    const auto& poly = light.polygon();
+    if (poly.empty())
+        ImGui::TextWrapped("Opening: a point (the file gives no size): every technique is the point law");
+    else
+        ImGui::TextWrapped("Opening: %.3g x %.3g m, %s of %.4g m2%s", d.opening.length, d.opening.width,
+                           poly.size() == 2 ? "a segment" : "a polygon", light.area(),
+                           light.openingOverride.x > 0.0 ? " (overridden in the scene)" : "");
+    float side = std::min(ImGui::GetContentRegionAvail().x, 260.f);
+    drawPolarDiagram(d, side);
+}
+
+}  // namespace candela::ui
