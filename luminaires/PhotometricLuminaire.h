@@ -78,8 +78,9 @@ Estimate photometricHybrid(const Luminaire&, const glm::dvec3& p, const glm::dve
 /// throwing with a fixed seed and the largest minimum distance that admits them.
 const std::vector<glm::dvec2>& poissonSet(int n);
 
-/// Hybrid blend weight of the Monte Carlo part: 0 within one opening size of the opening, 1
-/// beyond five (the five-times rule, Prost Sec. 2.3 and 6.6), smooth in between.
+/// Hybrid blend weight of the Monte Carlo part: 0 within half an opening size of the opening, 1
+/// beyond one and a half, smooth in between (where the 24-point set's light bumps fade in
+/// `candela bench --prost`; Prost Sec. 6.6 suggests the blend, not the distances).
 double hybridWeight(double distance, double size);
 
 }  // namespace candela

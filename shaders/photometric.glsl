@@ -357,11 +357,11 @@ float phMrp(vec3 p, vec3 n) {
     return phSolidAngle(visible) * phIntegrand(n, pm / lm);
 }
 
-/// The hybrid's Monte Carlo weight (hybridWeight in C++): 0 within one opening size, 1 beyond
-/// five, smoothstep between.
+/// The hybrid's Monte Carlo weight (hybridWeight in C++): 0 within half an opening size, 1
+/// beyond one and a half, smoothstep between.
 float phHybridWeight(float distance) {
     float size = ph.axisX.w;
     if (!(size > 0.0)) return 1.0;
-    float t = clamp((distance / size - 1.0) / 4.0, 0.0, 1.0);
+    float t = clamp(distance / size - 0.5, 0.0, 1.0);
     return t * t * (3.0 - 2.0 * t);
 }

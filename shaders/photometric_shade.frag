@@ -2,10 +2,10 @@
 //   TECHNIQUE_SCATTERED, TECHNIQUE_STRUCTURED, TECHNIQUE_MRP, TECHNIQUE_POISSON24,
 //   TECHNIQUE_POISSON40, TECHNIQUE_POINT, TECHNIQUE_HYBRID: deterministic, converged in one frame;
 //   TECHNIQUE_REFERENCE: Monte Carlo over the opening's bounding rectangle (Eq. 6.3), progressive.
-//   SHADOWS: the deterministic techniques are scaled by the visible fraction of the 24-point
-//            Poisson set's irradiance (consistent, not exact); the reference traces a shadow ray
-//            per sample.
-//   GLOSSY:  the Phong lobe through the area form: the reference's samples, or the 24 Poisson
+//   SHADOWS: the deterministic techniques are scaled by the irradiance-weighted visible fraction
+//            of a few random points on the opening per frame (refined progressively, consistent);
+//            the reference traces a shadow ray per sample.
+//   GLOSSY:  the Phong lobe through the area form: the reference's samples, or the same random
 //            points for the deterministic techniques.
 // Output: this frame's radiance estimate, added into the accumulation buffer.
 #include "shade_common.glsl"
@@ -26,33 +26,37 @@ float visibleTo(Surface s, vec3 qLocal) {
 #endif
 }
 
-/// Irradiance-weighted visibility and glossy term over the 24 Poisson points (area form).
-void poissonExtras(Surface s, vec3 p, vec3 n, out float visibleFraction, out vec3 glossy) {
+/// Irradiance-weighted visibility and the glossy term from `count` random points on the opening
+/// (area form) this frame: visibleFraction = sum(E_i V_i) / sum(E_i), which the progressive
+/// accumulation refines (consistent, as the Lambertian rectangle's analytic technique), and an
+/// unbiased estimate of the glossy lobe. Costs `count` shadow rays per pixel and frame.
+void stochasticExtras(Surface s, vec3 p, vec3 n, int count, inout uint rng, out float visibleFraction,
+                      out vec3 glossy) {
     visibleFraction = 1.0;
     glossy = vec3(0.0);
 #if defined(SHADOWS) || defined(GLOSSY)
     int corners = ph.dims.z;
     float sumE = 0.0, sumEV = 0.0;
-    int inside = 0;
     vec2 lo, hi;
     phBounds(lo, hi);
-    for (int i = 0; i < 24; ++i) {
-        vec2 u = vec2(phFloats[ph.samples.x + 2 * i], phFloats[ph.samples.x + 2 * i + 1]);
+    float ratio = corners >= 3 ? (hi.x - lo.x) * (hi.y - lo.y) / ph.position.w : 1.0;  // S_rect / A
+    for (int i = 0; i < count; ++i) {
+        vec2 u = vec2(rand01(rng), rand01(rng));
         vec3 q = corners >= 3 ? vec3(lo + u * (hi - lo), 0.0)
                               : (corners == 2 ? vec3(mix(phCorner(0), phCorner(1), u.x), 0.0) : vec3(0.0));
         if (corners >= 3 && !phInside(q.xy)) continue;
-        ++inside;
         float e = phPointIrradiance(p, n, q);
         if (!(e > 0.0)) continue;
         float v = visibleTo(s, q);
         sumE += e;
         sumEV += e * v;
 #ifdef GLOSSY
-        if ((s.flags & kMaterialGlossy) != 0) glossy += e * v * glossyBrdf(s, normalize(phFromLocal(q - p)));
+        if ((s.flags & kMaterialGlossy) != 0)
+            glossy += ratio * e * v * glossyBrdf(s, normalize(phFromLocal(q - p)));
 #endif
     }
     if (sumE > 0.0) visibleFraction = sumEV / sumE;
-    if (inside > 0) glossy /= float(inside);
+    glossy /= float(max(count, 1));
 #endif
 }
 
@@ -63,10 +67,10 @@ void main() {
     vec3 n = normalize(phToLocal(s.n));
     vec3 colour = ph.colour.rgb;
     vec3 result = vec3(0.0);
-
-#ifdef TECHNIQUE_REFERENCE
     int spp = frame.frameInfo.y;
     uint rng = rngSeed(uvec2(gl_FragCoord.xy), uint(frame.frameInfo.x * 7919 + uLuminaire) + uint(frame.seeds.x) * 2654435761u);
+
+#ifdef TECHNIQUE_REFERENCE
     float degenerateE;
     if (phDegenerate(p, n, degenerateE)) {
         result = s.albedo / kPi * degenerateE;
@@ -124,7 +128,7 @@ void main() {
 #else
     float visibleFraction;
     vec3 glossy;
-    poissonExtras(s, p, n, visibleFraction, glossy);
+    stochasticExtras(s, p, n, spp, rng, visibleFraction, glossy);
 #endif
     result = s.albedo / kPi * E * visibleFraction + glossy;
 #endif

@@ -162,6 +162,22 @@ bool poseFields(EditorState& state, int index) {
             state.inspectorError = "C0: the direction must not be zero";
     }
     itemTooltip("Reference horizontal axis (local +x); made orthogonal to the aim");
+
+    // Spin: the angle of C0 about the aim, from world +X projected onto the plane across the aim
+    // (world +Z when the aim is along X), counter-clockwise seen from the front of the luminaire.
+    glm::dvec3 ex, ey, ez;
+    lum.pose.frame(ex, ey, ez);
+    glm::dvec3 ref = std::abs(ez.x) > 0.99 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0);
+    ref = glm::normalize(ref - glm::dot(ref, ez) * ez);
+    glm::dvec3 refY = glm::cross(ez, ref);
+    double spin = glm::degrees(std::atan2(glm::dot(ex, refY), glm::dot(ex, ref)));
+    if (ImGui::DragScalar("Spin [deg]", ImGuiDataType_Double, &spin, 0.5f, nullptr, nullptr, "%.1f")) {
+        double s = glm::radians(spin);
+        pose = lum.pose;
+        pose.c0 = std::cos(s) * ref + std::sin(s) * refY;
+        setPose("Spin", pose);
+    }
+    itemTooltip("Rotation of the luminaire about its aim (where its C0 plane points)");
     return changed;
 }
 

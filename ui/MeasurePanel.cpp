@@ -19,7 +19,7 @@ namespace candela::ui {
 
 namespace {
 
-constexpr int kBarSegments = 96;         ///< Quads of the colour bar (the scale is piecewise linear).
+constexpr int kBarSegments = 96;  ///< Quads of the colour bar (the scale is piecewise linear).
 constexpr size_t kMaxLabelledPoints = 900;  ///< More grid points than this: dots only, no values.
 
 ImU32 toImColour(const glm::vec3& c) {
@@ -65,8 +65,8 @@ void colourBar(const FalseColourLegend& raw, const char* unit) {
     for (int k = 0; k < kBarSegments; ++k) {
         float t0 = float(k) / kBarSegments, t1 = float(k + 1) / kBarSegments;
         ImU32 a = toImColour(gpu::falseColour(t0)), b = toImColour(gpu::falseColour(t1));
-        draw->AddRectFilledMultiColor(ImVec2(x0 + t0 * width, p.y), ImVec2(x0 + t1 * width, p.y + height),
-                                      a, b, b, a);
+        draw->AddRectFilledMultiColor(ImVec2(x0 + t0 * width, p.y),
+                                      ImVec2(x0 + t1 * width, p.y + height), a, b, b, a);
     }
     std::vector<float> contours = contourLevels(legend);
     for (float level : contours) {
@@ -80,7 +80,8 @@ void colourBar(const FalseColourLegend& raw, const char* unit) {
     for (float tick : legendTicks(legend)) {
         float t = gpu::legendPosition(tick, legend.min, legend.max, legend.logScale ? 1 : 0);
         float x = x0 + t * width;
-        draw->AddLine(ImVec2(x, p.y + height), ImVec2(x, p.y + height + 3.f), IM_COL32(220, 220, 220, 255));
+        draw->AddLine(ImVec2(x, p.y + height), ImVec2(x, p.y + height + 3.f),
+                      IM_COL32(220, 220, 220, 255));
         std::snprintf(text, sizeof text, "%g", double(tick));
         ImVec2 size = ImGui::CalcTextSize(text);
         float left = std::clamp(x - 0.5f * size.x, x0 - 4.f, x0 + width + 4.f - size.x);
@@ -92,13 +93,14 @@ void colourBar(const FalseColourLegend& raw, const char* unit) {
     ImGui::TextDisabled("[%s], %s scale; lines: isolux", unit, legend.logScale ? "log" : "linear");
 }
 
-bool legendControls(EditorState& state, MeasureState& measure) {
+bool legendControls(EditorState& state, MeasureState& measure, const Renderer& renderer) {
     RenderSettings& s = state.settings;
     FalseColourLegend& legend = s.legend;
     bool changed = false;
     bool illuminance = s.quantity == Quantity::Illuminance;
     const char* unit = illuminance ? "lx" : "cd/m2";
-    std::string minLabel = std::string("Min [") + unit + "]", maxLabel = std::string("Max [") + unit + "]";
+    std::string minLabel = std::string("Min [") + unit + "]",
+                maxLabel = std::string("Max [") + unit + "]";
     float speed = std::max(0.01f, 0.005f * (legend.max - legend.min));
     changed = ImGui::DragFloat(minLabel.c_str(), &legend.min, speed, 0.f, 1e9f, "%.4g") || changed;
     changed = ImGui::DragFloat(maxLabel.c_str(), &legend.max, speed, 0.f, 1e9f, "%.4g") || changed;
@@ -106,7 +108,8 @@ bool legendControls(EditorState& state, MeasureState& measure) {
     ImGui::SameLine();
     changed = ImGui::Checkbox("Isolux lines", &legend.contours) || changed;
     std::string levelsLabel = std::string("Levels [") + unit + "]";
-    if (ImGui::InputTextWithHint(levelsLabel.c_str(), "at the legend's ticks", &measure.levelsText)) {
+    if (ImGui::InputTextWithHint(levelsLabel.c_str(), "at the legend's ticks",
+                                 &measure.levelsText)) {
         std::vector<float> levels;
         if (textToLevels(measure.levelsText, levels)) {
             legend.levels = levels;
@@ -114,6 +117,16 @@ bool legendControls(EditorState& state, MeasureState& measure) {
         }
     }
     itemTooltip("Isolux levels, comma-separated (at most 16); empty: at the legend's ticks");
+    if (ImGui::Button("Fit to image")) {
+        std::vector<float> rgb = renderer.readLinear();
+        float peak = 0.f;
+        for (size_t i = 0; i + 2 < rgb.size(); i += 3)
+            peak = std::max(peak, 0.2126f * rgb[i] + 0.7152f * rgb[i + 1] + 0.0722f * rgb[i + 2]);
+        fitLegend(legend, peak);
+        changed = true;
+    }
+    itemTooltip("Range from 0 (log: 3 decades below) to a round value above the brightest pixel");
+    if (measure.result) ImGui::SameLine();
     if (measure.result && ImGui::Button("Range from grid")) {
         legend.min = legend.logScale ? float(std::max(measure.summary.eMin, 1e-3)) : 0.f;
         legend.max = float(std::max(measure.summary.eMax, double(legend.min) * 1.01 + 1e-6));
@@ -179,17 +192,19 @@ void gridControls(EditorState& state, MeasureState& measure) {
     }
     bool down = g.plane.sign < 0.0;
     if (ImGui::Checkbox("Faces -axis", &down)) g.plane.sign = down ? -1.0 : 1.0;
-    itemTooltip("Receiving side: off = towards +axis (a floor or desk), on = towards -axis (a ceiling)");
-    ImGui::DragScalar("Height [m]", ImGuiDataType_Double, &g.plane.offset, 0.01f, nullptr, nullptr, "%.3f");
-    std::string extentLabel = "Extent " + g.plane.uName() + "0," + g.plane.vName() + "0," +
-                              g.plane.uName() + "1," + g.plane.vName() + "1 [m]";
+    itemTooltip(
+        "Receiving side: off = towards +axis (a floor or desk), on = towards -axis (a ceiling)");
+    ImGui::DragScalar("Plane at [m]", ImGuiDataType_Double, &g.plane.offset, 0.01f, nullptr,
+                      nullptr, "%.3f");
     double extent[4] = {g.lo.x, g.lo.y, g.hi.x, g.hi.y};
-    if (ImGui::DragScalarN(extentLabel.c_str(), ImGuiDataType_Double, extent, 4, 0.01f, nullptr,
-                           nullptr, "%.2f")) {
+    if (ImGui::DragScalarN("Extent [m]", ImGuiDataType_Double, extent, 4, 0.01f, nullptr, nullptr,
+                           "%.2f")) {
         g.lo = {extent[0], extent[1]};
         g.hi = {extent[2], extent[3]};
         measure.extentSet = true;
     }
+    itemTooltip("Corners " + g.plane.uName() + "0, " + g.plane.vName() + "0, " + g.plane.uName() +
+                "1, " + g.plane.vName() + "1 of the grid on the plane, metres");
     if (ImGui::Button("Scene bounds")) {
         measure.extentSet = false;
         try {
@@ -200,7 +215,8 @@ void gridControls(EditorState& state, MeasureState& measure) {
         }
     }
     ImGui::SameLine();
-    if (ImGui::Button("Selected plane")) measure.extentSet = pickSelectedPlane(state, g, measure.error);
+    if (ImGui::Button("Selected plane"))
+        measure.extentSet = pickSelectedPlane(state, g, measure.error);
     const double minSpacing = 0.01, maxSpacing = 10.0;
     ImGui::SliderScalar("Spacing [m]", ImGuiDataType_Double, &g.spacing, &minSpacing, &maxSpacing,
                         "%.3f", ImGuiSliderFlags_Logarithmic);
@@ -213,8 +229,8 @@ void gridControls(EditorState& state, MeasureState& measure) {
     if (!measure.result) return;
     const GridSummary& s = measure.summary;
     const GridResult& r = *measure.result;
-    ImGui::Text("%zu points (%zu x %zu), %s = %.3g m", s.count, r.u.size(), r.v.size(),
-                r.spec.plane.uName().c_str(), r.spec.plane.offset);
+    ImGui::Text("%zu points (%zu x %zu), %c = %.3g m", s.count, r.u.size(), r.v.size(),
+                "xyz"[r.spec.plane.axis], r.spec.plane.offset);
     if (ImGui::BeginTable("summary", 2, ImGuiTableFlags_RowBg)) {
         auto row = [](const char* name, const char* format, double value) {
             ImGui::TableNextRow();
@@ -234,7 +250,8 @@ void gridControls(EditorState& state, MeasureState& measure) {
 }
 
 /// Each grid point as a dot with its illuminance over the viewport image.
-void drawGridValues(const EditorState& state, const MeasureState& measure, const Renderer& renderer) {
+void drawGridValues(const EditorState& state, const MeasureState& measure,
+                    const Renderer& renderer) {
     if (!measure.result || !measure.showValues) return;
     const GridResult& r = *measure.result;
     const glm::vec4& v = state.layout.viewport;
@@ -243,18 +260,28 @@ void drawGridValues(const EditorState& state, const MeasureState& measure, const
     draw->PushClipRect(ImVec2(v.x, v.y), ImVec2(v.x + v.z, v.y + v.w), true);
     bool labels = r.lux.size() <= kMaxLabelledPoints;
     char text[32];
+    std::vector<ImVec4> drawn;  ///< Label boxes drawn so far: x0, y0, x1, y1 in window pixels.
     glm::mat4 viewProj = renderer.viewProj();
     for (size_t j = 0; j < r.v.size(); ++j)
         for (size_t i = 0; i < r.u.size(); ++i) {
             auto px = projectToPixels(viewProj, r.spec.plane.point(r.u[i], r.v[j]), width, height);
             if (!px) continue;
-            ImVec2 at(v.x + float(px->x) * v.z / float(width), v.y + float(px->y) * v.w / float(height));
+            ImVec2 at(v.x + float(px->x) * v.z / float(width),
+                      v.y + float(px->y) * v.w / float(height));
             draw->AddCircleFilled(at, 2.f, IM_COL32(255, 255, 255, 230));
             if (!labels) continue;
             std::snprintf(text, sizeof text, "%.3g", r.lux[j * r.u.size() + i]);
             ImVec2 size = ImGui::CalcTextSize(text);
             ImVec2 lo(at.x - 0.5f * size.x - 1.f, at.y + 3.f);
-            draw->AddRectFilled(lo, ImVec2(lo.x + size.x + 2.f, lo.y + size.y), IM_COL32(0, 0, 0, 150));
+            ImVec4 box(lo.x, lo.y, lo.x + size.x + 2.f, lo.y + size.y);
+            // Far from the camera the labels crowd: keep the first of any that overlap.
+            bool overlaps = std::any_of(drawn.begin(), drawn.end(), [&](const ImVec4& o) {
+                return box.x < o.z && o.x < box.z && box.y < o.w && o.y < box.w;
+            });
+            if (overlaps) continue;
+            drawn.push_back(box);
+            draw->AddRectFilled(lo, ImVec2(lo.x + size.x + 2.f, lo.y + size.y),
+                                IM_COL32(0, 0, 0, 150));
             draw->AddText(ImVec2(lo.x + 1.f, lo.y), IM_COL32(255, 255, 255, 255), text);
         }
     draw->PopClipRect();
@@ -274,8 +301,9 @@ bool measurePanel(EditorState& state, MeasureState& measure, const Renderer& ren
     ImGui::SameLine();
     changed = ImGui::RadioButton("Illuminance", &quantity, 1) || changed;
     s.quantity = Quantity(quantity);
-    itemTooltip("Illuminance: every surface becomes a white Lambertian receiver and each pixel "
-                "shows the irradiance on it, lx (W/m2 for radiometric luminaires)");
+    itemTooltip(
+        "Illuminance: every surface becomes a white Lambertian receiver and each pixel "
+        "shows the irradiance on it, lx (W/m2 for radiometric luminaires)");
     bool falseColour = s.toneMap == ToneMapOperator::FalseColour;
     if (ImGui::Checkbox("False colour", &falseColour)) {
         if (falseColour) {
@@ -289,7 +317,7 @@ bool measurePanel(EditorState& state, MeasureState& measure, const Renderer& ren
     if (falseColour) {
         if (measure.levelsText.empty() && !s.legend.levels.empty())
             measure.levelsText = levelsToText(s.legend.levels);
-        changed = legendControls(state, measure) || changed;
+        changed = legendControls(state, measure, renderer) || changed;
     }
     ImGui::Separator();
     ImGui::TextDisabled("Calculation grid");

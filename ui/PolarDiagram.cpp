@@ -73,7 +73,8 @@ std::vector<double> polarRings(double peak) {
         if (step * 5.0 >= peak * (1.0 - 1e-12)) break;
     }
     std::vector<double> rings;
-    for (int k = 1; rings.empty() || rings.back() < peak * (1.0 - 1e-12); ++k) rings.push_back(k * step);
+    for (int k = 1; rings.empty() || rings.back() < peak * (1.0 - 1e-12); ++k)
+        rings.push_back(k * step);
     return rings;
 }
 

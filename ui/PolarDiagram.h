@@ -16,9 +16,9 @@ namespace candela::ui {
 /// Intensity along the two vertical planes at the angles gamma, from PhotometricData::intensity
 /// towards (cos C sin gamma, sin C sin gamma, cos gamma) in the luminaire's local frame.
 struct PolarCurves {
-    std::vector<double> gamma;                 ///< Angle from the aim, degrees, 0 .. 180.
-    std::vector<double> c0, c180, c90, c270;   ///< Luminous intensity in each half plane, cd.
-    double peak = 0.0;                         ///< Largest value of the four curves, cd.
+    std::vector<double> gamma;                ///< Angle from the aim, degrees, 0 .. 180.
+    std::vector<double> c0, c180, c90, c270;  ///< Luminous intensity in each half plane, cd.
+    double peak = 0.0;                        ///< Largest value of the four curves, cd.
 };
 
 /// Samples the curves at every `stepDeg` degrees from 0 to 180 (180 included).

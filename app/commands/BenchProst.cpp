@@ -9,7 +9,7 @@
 // upper and lower error bounds (the extreme signed differences of the tone-mapped images, Eq. 6.8,
 // which also saturate the error images: orange too bright, blue too dark), the NMSE of the near
 // field (receivers within 1.5 m of the opening, where the thesis sees light bumps), a bumpiness
-// figure (mean |Laplacian| of the relative error there) and the GPU time of the shading pass.
+// figure (mean |Laplacian| of the image minus that of the smoothed reference, over the mean) and the GPU time of the shading pass.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -218,6 +218,20 @@ int benchProst(const Args& args) {
                         unsigned char* px = images.at(0, rot, x, y);
                         px[0] = px[1] = px[2] = v;
                     }
+                std::vector<double> smooth(N, 0.0);  // the reference, 5 x 5 box (edges: what is inside)
+                for (int y = 0; y < size; ++y)
+                    for (int x = 0; x < size; ++x) {
+                        double sum = 0.0;
+                        int count = 0;
+                        for (int dy = -2; dy <= 2; ++dy)
+                            for (int dx = -2; dx <= 2; ++dx) {
+                                int xx = x + dx, yy = y + dy;
+                                if (xx < 0 || yy < 0 || xx >= size || yy >= size) continue;
+                                sum += r[size_t(yy * size + xx)];
+                                ++count;
+                            }
+                        smooth[size_t(y * size + x)] = sum / count;
+                    }
                 allR.insert(allR.end(), r.begin(), r.end());
                 allNear.insert(allNear.end(), nearMask.begin(), nearMask.end());
                 for (size_t t = 0; t < techniques.size(); ++t) {
@@ -231,22 +245,27 @@ int benchProst(const Args& args) {
                     for (size_t k = 0; k < N; ++k) A[k] = img[k].y;
                     m.nmse = nmse(r, A);
                     m.nearNmse = nmse(r, A, &nearMask);
-                    std::vector<double> diff(N), rel(N, 0.0);
+                    std::vector<double> diff(N);
                     m.ueb = 0.0;
                     m.leb = 0.0;
                     for (size_t k = 0; k < N; ++k) {
                         diff[k] = toneMap(A[k], a) - toneMap(r[k], a);
                         m.ueb = std::max(m.ueb, diff[k]);
                         m.leb = std::min(m.leb, diff[k]);
-                        rel[k] = mean > 0.0 ? (A[k] - r[k]) / mean : 0.0;
                     }
+                    // Light bumps: curvature the reference does not have. The Laplacian of the
+                    // approximation against that of the reference smoothed by a 5 x 5 box (which
+                    // removes the reference's own noise), relative to the mean, near the light.
                     double bump = 0.0;
                     int nb = 0;
-                    for (int y = 1; y + 1 < size; ++y)
-                        for (int x = 1; x + 1 < size; ++x) {
+                    for (int y = 3; y + 3 < size; ++y)
+                        for (int x = 3; x + 3 < size; ++x) {
                             size_t k = size_t(y * size + x);
                             if (!nearMask[k]) continue;
-                            bump += std::abs(4 * rel[k] - rel[k - 1] - rel[k + 1] - rel[k - size_t(size)] - rel[k + size_t(size)]);
+                            auto lapA = 4 * A[k] - A[k - 1] - A[k + 1] - A[k - size_t(size)] - A[k + size_t(size)];
+                            auto lapR = 4 * smooth[k] - smooth[k - 1] - smooth[k + 1] - smooth[k - size_t(size)] -
+                                        smooth[k + size_t(size)];
+                            bump += std::abs(lapA - lapR) / std::max(mean, 1e-30);
                             ++nb;
                         }
                     m.bumpiness = nb ? bump / nb : 0.0;

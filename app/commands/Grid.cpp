@@ -22,8 +22,12 @@ constexpr double kMaxGridPoints = 1e6;  ///< Refuse grids larger than this (a ty
 
 const char* const kAxisNames[] = {"x", "y", "z"};
 
-int uAxis(int axis) { return axis == 0 ? 1 : 0; }
-int vAxis(int axis) { return axis == 2 ? 1 : 2; }
+int uAxis(int axis) {
+    return axis == 0 ? 1 : 0;
+}
+int vAxis(int axis) {
+    return axis == 2 ? 1 : 2;
+}
 
 double parseFinite(const std::string& flag, const std::string& text) {
     try {
@@ -46,23 +50,27 @@ void parseExtent(const std::string& text, GridSpec& spec) {
         start = comma + 1;
     }
     if (values.size() != 4)
-        throw InputError("--extent: expected u0,v0,u1,v1 (four numbers in metres), got \"" + text + "\"");
+        throw InputError("--extent: expected u0,v0,u1,v1 (four numbers in metres), got \"" + text +
+                         "\"");
     spec.lo = {std::min(values[0], values[2]), std::min(values[1], values[3])};
     spec.hi = {std::max(values[0], values[2]), std::max(values[1], values[3])};
 }
 
-double luminanceOf(const glm::dvec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+double luminanceOf(const glm::dvec3& c) {
+    return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
+}
 
 void printGrid(const GridResult& r, const GridSummary& s) {
     const GridSpec& g = r.spec;
     const CalcPlane& p = g.plane;
-    std::printf("plane %s = %g m (normal %s%s), extent %s %g..%g m, %s %g..%g m, spacing %g m, "
-                "%zu x %zu points\n",
-                kAxisNames[p.axis], p.offset, p.sign > 0 ? "+" : "-", kAxisNames[p.axis],
-                p.uName().c_str(), g.lo.x, g.hi.x, p.vName().c_str(), g.lo.y, g.hi.y, g.spacing,
-                r.u.size(), r.v.size());
-    std::printf("illuminance E [lx] (W/m2 for radiometric luminaires); rows %s [m], columns %s [m]\n",
-                p.vName().c_str(), p.uName().c_str());
+    std::printf(
+        "plane %s = %g m (normal %s%s), extent %s %g..%g m, %s %g..%g m, spacing %g m, "
+        "%zu x %zu points\n",
+        kAxisNames[p.axis], p.offset, p.sign > 0 ? "+" : "-", kAxisNames[p.axis], p.uName().c_str(),
+        g.lo.x, g.hi.x, p.vName().c_str(), g.lo.y, g.hi.y, g.spacing, r.u.size(), r.v.size());
+    std::printf(
+        "illuminance E [lx] (W/m2 for radiometric luminaires); rows %s [m], columns %s [m]\n",
+        p.vName().c_str(), p.uName().c_str());
     std::printf("%7s\\%s", p.vName().c_str(), p.uName().c_str());
     for (double u : r.u) std::printf(" %9.3f", u);
     std::printf("\n");
@@ -108,8 +116,12 @@ glm::dvec3 CalcPlane::point(double u, double v) const {
     return p;
 }
 
-std::string CalcPlane::uName() const { return kAxisNames[uAxis(axis)]; }
-std::string CalcPlane::vName() const { return kAxisNames[vAxis(axis)]; }
+std::string CalcPlane::uName() const {
+    return kAxisNames[uAxis(axis)];
+}
+std::string CalcPlane::vName() const {
+    return kAxisNames[vAxis(axis)];
+}
 
 CalcPlane parsePlane(const std::string& text) {
     CalcPlane plane;
@@ -121,8 +133,8 @@ CalcPlane parsePlane(const std::string& text) {
     size_t eq = t.find('=');
     std::string axis = t.substr(0, eq);
     if (eq == std::string::npos || (axis != "x" && axis != "y" && axis != "z"))
-        throw InputError("--plane: expected [+|-]x|y|z=VALUE in metres (e.g. y=0.8), got \"" + text +
-                         "\"");
+        throw InputError("--plane: expected [+|-]x|y|z=VALUE in metres (e.g. y=0.8), got \"" +
+                         text + "\"");
     plane.axis = axis[0] - 'x';
     plane.offset = parseFinite("--plane", t.substr(eq + 1));
     return plane;
@@ -175,9 +187,9 @@ GridResult computeGrid(const Scene& scene, const GridSpec& spec) {
         std::string name = spec.technique.empty() ? l->technique : spec.technique;
         const TechniqueInfo* t = findTechnique(l->kind(), name);
         if (!t || !t->irradiance)
-            throw InputError("--technique: \"" + name + "\" is not a technique of " +
-                             std::string(l->kind()) + " with a CPU estimator (available: " +
-                             techniqueNames(l->kind()) + ")");
+            throw InputError(
+                "--technique: \"" + name + "\" is not a technique of " + std::string(l->kind()) +
+                " with a CPU estimator (available: " + techniqueNames(l->kind()) + ")");
         chosen.push_back(t);
     }
     std::unique_ptr<Bvh> bvh;
@@ -225,18 +237,27 @@ int cmdGrid(const Args& args) {
         } else if (a == "--extent") {
             parseExtent(flagValue(args, i), spec);
             haveExtent = true;
-        } else if (a == "--spacing") spec.spacing = parseFinite(a, flagValue(args, i));
-        else if (a == "--spp") spec.spp = parseInt(a, flagValue(args, i), 1, 1 << 24);
-        else if (a == "--technique") spec.technique = flagValue(args, i);
-        else if (a == "--visibility") spec.visibility = true;
-        else if (a == "--csv") csvPath = flagValue(args, i);
-        else if (!a.empty() && a[0] == '-') throw InputError("grid: unknown option " + a);
-        else if (scenePath.empty()) scenePath = a;
-        else throw InputError("grid: unexpected argument " + a);
+        } else if (a == "--spacing")
+            spec.spacing = parseFinite(a, flagValue(args, i));
+        else if (a == "--spp")
+            spec.spp = parseInt(a, flagValue(args, i), 1, 1 << 24);
+        else if (a == "--technique")
+            spec.technique = flagValue(args, i);
+        else if (a == "--visibility")
+            spec.visibility = true;
+        else if (a == "--csv")
+            csvPath = flagValue(args, i);
+        else if (!a.empty() && a[0] == '-')
+            throw InputError("grid: unknown option " + a);
+        else if (scenePath.empty())
+            scenePath = a;
+        else
+            throw InputError("grid: unexpected argument " + a);
     }
     if (scenePath.empty() || !havePlane)
-        throw InputError("usage: candela grid scene.json --plane y=0.8 [--extent u0,v0,u1,v1] "
-                         "[--spacing 0.25] [--spp N] [--technique T] [--visibility] [--csv out.csv]");
+        throw InputError(
+            "usage: candela grid scene.json --plane y=0.8 [--extent u0,v0,u1,v1] "
+            "[--spacing 0.25] [--spp N] [--technique T] [--visibility] [--csv out.csv]");
     if (!(spec.spacing > 0.0))
         throw InputError("--spacing: expected a positive number of metres, got " +
                          std::to_string(spec.spacing));

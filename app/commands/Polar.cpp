@@ -1,11 +1,12 @@
 // `candela polar`: the polar candela diagram of an IES or EULUMDAT file (C0-C180 and C90-C270,
 // gamma 0 at the bottom) as a PNG drawn by gnuplot, and its intensities as a table.
+#include <unistd.h>
+
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <unistd.h>
 
 #include "app/commands/Commands.h"
 #include "luminaires/Photometry.h"
@@ -59,7 +60,8 @@ void plotPng(const PhotometricData& data, const ui::PolarCurves& curves, const s
     std::ofstream gp(dir / "polar.gp");
     gp << "set terminal pngcairo size 720,720 noenhanced\n"
        << "set output " << quoted(fs::absolute(out).string()) << "\n"
-       << "set title " << quoted(title) << " . \"\\n\" . 'left half C180 / C270, right half C0 / C90, "
+       << "set title " << quoted(title)
+       << " . \"\\n\" . 'left half C180 / C270, right half C0 / C90, "
           "gamma from the aim'\n"
        << "set polar\nset angles degrees\n"
        << "set theta bottom counterclockwise  # gamma 0 at the bottom; C0 and C90 on the right\n"
@@ -92,11 +94,16 @@ int cmdPolar(const Args& args) {
     double step = 0.0;
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
-        if (a == "--out") out = flagValue(args, i);
-        else if (a == "--step") step = parseInt(a, flagValue(args, i), 1, 90);
-        else if (!a.empty() && a[0] == '-') throw InputError("polar: unknown option " + a);
-        else if (path.empty()) path = a;
-        else throw InputError("polar: unexpected argument " + a);
+        if (a == "--out")
+            out = flagValue(args, i);
+        else if (a == "--step")
+            step = parseInt(a, flagValue(args, i), 1, 90);
+        else if (!a.empty() && a[0] == '-')
+            throw InputError("polar: unknown option " + a);
+        else if (path.empty())
+            path = a;
+        else
+            throw InputError("polar: unexpected argument " + a);
     }
     if (path.empty())
         throw InputError("usage: candela polar FILE.ies|FILE.ldt [--out polar.png] [--step DEG]");

@@ -39,25 +39,12 @@ std::vector<float> parseNumberList(const std::string& flag, const std::string& t
     return values;
 }
 
-/// The legend's range from the image when the user gave none: 0 to a round value at or above
-/// the brightest pixel (linear), or the decades around it, three below (log).
-void autoLegend(FalseColourLegend& legend, const std::vector<float>& rgb) {
+/// The brightest pixel's luminance (lux in illuminance mode).
+float peakLuminance(const std::vector<float>& rgb) {
     float peak = 0.f;
     for (size_t i = 0; i + 2 < rgb.size(); i += 3)
         peak = std::max(peak, 0.2126f * rgb[i] + 0.7152f * rgb[i + 1] + 0.0722f * rgb[i + 2]);
-    if (!(peak > 0.f)) peak = 1.f;
-    double decade = std::pow(10.0, std::floor(std::log10(double(peak))));
-    if (legend.logScale) {
-        legend.max = float(decade * 10.0);
-        legend.min = float(decade * 1e-2);
-        return;
-    }
-    legend.min = 0.f;
-    for (double m : {1.0, 2.0, 2.5, 5.0, 10.0})
-        if (m * decade >= peak) {
-            legend.max = float(m * decade);
-            break;
-        }
+    return peak;
 }
 
 }  // namespace
@@ -164,7 +151,7 @@ int cmdRender(const Args& args) {
     if (renderer.plan().progressive()) std::fprintf(stderr, "\n");
     if (falseColour) {
         if (!haveLegend) {
-            autoLegend(settings.legend, renderer.readLinear());
+            fitLegend(settings.legend, peakLuminance(renderer.readLinear()));
             renderer.setSettings(settings);
             renderer.renderFrame();  // converged: tone mapping only, with the new legend
         }

@@ -31,12 +31,29 @@ FalseColourLegend sanitizedLegend(FalseColourLegend l) {
     return l;
 }
 
+void fitLegend(FalseColourLegend& legend, float peak) {
+    if (!(peak > 0.f) || !std::isfinite(peak)) peak = 1.f;
+    double decade = std::pow(10.0, std::floor(std::log10(double(peak))));
+    if (legend.logScale) {
+        legend.max = float(decade * 10.0);
+        legend.min = float(decade * 1e-2);
+        return;
+    }
+    legend.min = 0.f;
+    for (double m : {1.0, 2.0, 2.5, 5.0, 10.0})
+        if (m * decade >= peak * (1.0 - 1e-6)) {
+            legend.max = float(m * decade);
+            return;
+        }
+}
+
 std::vector<float> legendTicks(const FalseColourLegend& legend, int target) {
     FalseColourLegend l = sanitizedLegend(legend);
     std::vector<float> ticks;
     double lo = l.min, hi = l.max, eps = 1e-6 * (hi - lo);
     if (l.logScale) {
-        int first = int(std::ceil(std::log10(lo) - 1e-9)), last = int(std::floor(std::log10(hi) + 1e-9));
+        int first = int(std::ceil(std::log10(lo) - 1e-9)),
+            last = int(std::floor(std::log10(hi) + 1e-9));
         bool fine = std::log10(hi / lo) < 3.5;
         for (int e = first - 1; e <= last; ++e)
             for (double m : {1.0, 2.0, 5.0}) {

@@ -14,10 +14,10 @@ struct RenderSettings;
 /// The false-colour operator's legend. Values are in the image's unit: lux in illuminance mode
 /// (W/m2 for radiometric luminaires), cd/m2 (W/(m2 sr)) in radiance mode.
 struct FalseColourLegend {
-    float min = 0.f;         ///< Value at the bottom of the scale, lux (> 0 for a log scale).
-    float max = 500.f;       ///< Value at the top of the scale, lux (> min).
-    bool logScale = false;   ///< Log scale (decades equally spaced) instead of linear.
-    bool contours = true;    ///< Draw isolux lines.
+    float min = 0.f;            ///< Value at the bottom of the scale, lux (> 0 for a log scale).
+    float max = 500.f;          ///< Value at the top of the scale, lux (> min).
+    bool logScale = false;      ///< Log scale (decades equally spaced) instead of linear.
+    bool contours = true;       ///< Draw isolux lines.
     std::vector<float> levels;  ///< Isolux levels, lux; empty: at the legend's ticks.
     bool operator==(const FalseColourLegend&) const = default;
 };
@@ -32,11 +32,14 @@ std::vector<float> legendTicks(const FalseColourLegend& legend, int target = 6);
 /// Where isolux lines go: the legend's own levels (finite, positive for a log scale, sorted, at
 /// most kMaxContourLevels), else its ticks strictly inside (min, max); none if contours are off.
 std::vector<float> contourLevels(const FalseColourLegend& legend);
+/// Sets the range from the largest value shown (peak, lux): linear from 0 to the first of 1, 2,
+/// 2.5, 5 or 10 times a power of ten at or above it; log over the decade above it and 3 below.
+void fitLegend(FalseColourLegend& legend, float peak);
 /// The legend made valid: finite, max > min, min > 0 for a log scale (then max / min <= 1e9).
 FalseColourLegend sanitizedLegend(FalseColourLegend legend);
 
 class TonemapPass {
-public:
+  public:
     void resize(int width, int height);
     /// position and albedo: the G-buffer's (false colour greys out background and luminaires).
     void execute(ShaderLibrary& shaders, const gl::Texture2D& linear,
@@ -44,7 +47,7 @@ public:
                  const gl::Texture2D& albedo, const RenderSettings& settings);
     const gl::Texture2D& display() const { return mDisplay; }
 
-private:
+  private:
     gl::Texture2D mDisplay;
     gl::Framebuffer mFbo;
     int mWidth = 0, mHeight = 0;

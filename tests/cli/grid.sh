@@ -1,0 +1,131 @@
+#!/usr/bin/env bash
+# candela grid: the grid and its summary against an independent closed form (Howell's
+# configuration factor of a rectangle to a parallel element, by corner superposition, written
+# here without Candela's code), the CSV, and bad input giving a clear error and exit code 1.
+set -uo pipefail
+binary=$1
+data="$2/data/measure"
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+failures=0
+passed=0
+
+source "$(dirname "$0")/lib/expect.sh"  # expect SUBSTRING... -- ARGS
+
+# A 0.2 m square panel of 1000 W/(m2 sr) at (0.3, 3, -0.2) facing down over the floor y = 0.
+if "$binary" grid "$data/plane.json" --plane y=0 --extent -2,-2,2,2 --spacing 0.5 \
+    --csv "$out/grid.csv" >"$out/grid.txt" 2>"$out/err.txt"; then
+  python3 - "$out/grid.txt" "$out/grid.csv" <<'PY' || failures=$((failures + 1))
+import math, sys
+L, CX, H, CZ, HALF = 1000.0, 0.3, 3.0, -0.2, 0.1
+
+def corner(a, b, h):
+    """Howell C-11: element parallel to an a x b rectangle, h below one of its corners."""
+    x, y = a / h, b / h
+    return (x / math.sqrt(1 + x * x) * math.atan(y / math.sqrt(1 + x * x)) +
+            y / math.sqrt(1 + y * y) * math.atan(x / math.sqrt(1 + y * y))) / (2 * math.pi)
+
+def exact(px, pz):
+    def g(x, z):
+        return math.copysign(1, x) * math.copysign(1, z) * corner(abs(x), abs(z), H) if x and z else 0.0
+    x0, x1, z0, z1 = CX - HALF - px, CX + HALF - px, CZ - HALF - pz, CZ + HALF - pz
+    return math.pi * L * (g(x1, z1) - g(x0, z1) - g(x1, z0) + g(x0, z0))
+
+text = open(sys.argv[1]).read().splitlines()
+coords = [-1.75 + 0.5 * i for i in range(8)]   # 4 m at 0.5 m: 8 points at cell centres
+fail = []
+header = [l for l in text if l.strip().startswith("z\\x")]
+cols = [float(v) for v in header[0].split()[1:]] if header else []
+if cols != coords: fail.append("columns %s, want %s" % (cols, coords))
+rows = [l.split() for l in text if l.split() and l.split()[0].replace('.', '').replace('-', '').isdigit()]
+values = []
+for r in rows:
+    z = float(r[0])
+    for x, v in zip(coords, r[1:]):
+        want = exact(x, z)
+        values.append(want)
+        # Printed with 4 significant digits: rounding is below 5e-4 relative.
+        if abs(float(v) - want) > 6e-4 * want: fail.append("E(%g, %g) = %s, want %.6g" % (x, z, v, want))
+if len(values) != 64: fail.append("%d grid values, want 64" % len(values))
+summary = dict(l.split(":", 1) for l in text if ":" in l and not l.startswith("plane"))
+def num(key): return float(summary[key].split()[0])
+emin, emax = min(values), max(values)
+eavg = sum(values) / len(values)
+# Emin, Eavg, Emax printed with 6 significant digits (rounding < 5e-6 relative); the CPU closed
+# form is double precision: 1e-5 relative.
+for key, want in (("Emin", emin), ("Eavg", eavg), ("Emax", emax)):
+    got = num(key)
+    print("%s: candela %.6g lx, closed form %.6g lx, rel. error %.1e (tolerance 1e-5)" % (key, got, want, abs(got - want) / want))
+    if abs(got - want) > 1e-5 * want: fail.append("%s %g, want %g" % (key, got, want))
+    if "lx" not in summary[key]: fail.append("%s without its unit lx" % key)
+# Ratios printed with 4 decimals: 6e-5 absolute.
+for key, want in (("U0 (Emin/Eavg)", emin / eavg), ("Emin/Emax", emin / emax)):
+    got = num(key)
+    print("%s: candela %.4f, closed form %.6f" % (key, got, want))
+    if abs(got - want) > 6e-5: fail.append("%s %g, want %g" % (key, got, want))
+if num("points") != 64: fail.append("points %s" % summary["points"])
+# Far field sanity (independent of the corner formula): 0.2 m at 3 m is nearly a point of
+# intensity L A cos(theta), E = L A cos^4(theta) / H^2; within 1 % at the brightest point.
+best = max((exact(x, z), x, z) for x in coords for z in coords)
+r2 = H * H + (best[1] - CX) ** 2 + (best[2] - CZ) ** 2
+point = L * 0.04 * (H * H / r2) ** 2 / (H * H)
+if abs(best[0] - point) > 0.01 * point: fail.append("point-source check %g vs %g" % (best[0], point))
+# CSV: header and one row per point, 10 significant digits.
+csv = open(sys.argv[2]).read().split()
+if csv[0] != "x,y,z,E_lx,E_stderr": fail.append("CSV header %s" % csv[0])
+for line in csv[1:]:
+    x, y, z, e, se = map(float, line.split(","))
+    if y != 0.0 or abs(e - exact(x, z)) > 1e-8 * exact(x, z) or se != 0.0:
+        fail.append("CSV row %s, want E %.10g" % (line, exact(x, z)))
+if len(csv) != 65: fail.append("CSV has %d rows, want 65" % len(csv))
+for f in fail: print("FAIL:", f)
+sys.exit(1 if fail else 0)
+PY
+  [ $? -eq 0 ] && passed=$((passed + 1))
+else
+  echo "FAIL: candela grid exited $?: $(cat "$out/err.txt")"
+  failures=$((failures + 1))
+fi
+
+# The back side of the floor (facing down, away from the panel) receives nothing: U0 is 0.
+if "$binary" grid "$data/plane.json" --plane -y=0 --extent -1,-1,1,1 --spacing 1 >"$out/down.txt" 2>&1 &&
+    grep -q "^Emax: 0 lx" "$out/down.txt" && grep -q "^U0 (Emin/Eavg): 0.0000" "$out/down.txt"; then
+  passed=$((passed + 1))
+else
+  echo "FAIL: grid on the floor's back side: $(cat "$out/down.txt")"
+  failures=$((failures + 1))
+fi
+
+expect "nothing_here.json" "cannot open" -- grid "$data/nothing_here.json" --plane y=0
+expect "--plane" "x|y|z=VALUE" -- grid "$data/plane.json" --plane w=1
+expect "--plane" "x|y|z=VALUE" -- grid "$data/plane.json" --plane y
+expect "--plane" "finite number" -- grid "$data/plane.json" --plane y=abc
+expect "--plane" "finite number" -- grid "$data/plane.json" --plane y=nan
+expect "--spacing" "positive" -- grid "$data/plane.json" --plane y=0 --spacing 0
+expect "--spacing" "positive" -- grid "$data/plane.json" --plane y=0 --spacing -0.5
+expect "--spacing" "finite number" -- grid "$data/plane.json" --plane y=0 --spacing NaN
+expect "--spacing" "1e6 points" -- grid "$data/plane.json" --plane y=0 --spacing 1e-5
+expect "--extent" "four numbers" -- grid "$data/plane.json" --plane y=0 --extent 0,0,1
+expect "--extent" "an area" -- grid "$data/plane.json" --plane y=0 --extent 0,0,0,1
+expect "--extent" "finite number" -- grid "$data/plane.json" --plane y=0 --extent 0,0,inf,1
+expect "usage" "--plane" -- grid "$data/plane.json"
+expect "unknown option" -- grid "$data/plane.json" --plane y=0 --frobnicate
+expect "--technique" "magic" -- grid "$data/plane.json" --plane y=0 --technique magic
+
+# render --false-colour: the illuminance picture with the legend it used; bad legends refused.
+if "$binary" render "$data/plane.json" --out "$out/fc.png" --size 64x48 --false-colour \
+    --legend 0,5 --isolux 1,2,3 >"$out/fc.txt" 2>&1 && [ -s "$out/fc.png" ] &&
+    grep -q "false colour: 0 .. 5 lx (linear), isolux at 1, 2, 3 lx" "$out/fc.txt"; then
+  passed=$((passed + 1))
+else
+  echo "FAIL: render --false-colour: $(cat "$out/fc.txt")"
+  failures=$((failures + 1))
+fi
+expect "--legend" "MAX > MIN" -- render "$data/plane.json" --out "$out/b.png" --false-colour --legend 5,1
+expect "--legend" "finite numbers" -- render "$data/plane.json" --out "$out/b.png" --false-colour --legend 0,nan
+expect "--legend" "MIN > 0" -- render "$data/plane.json" --out "$out/b.png" --false-colour --legend 0,10 --log
+expect "--isolux" "finite numbers" -- render "$data/plane.json" --out "$out/b.png" --false-colour --isolux 1,,2
+[ ! -e "$out/b.png" ] || { echo "FAIL: a refused render left $out/b.png"; failures=$((failures + 1)); }
+
+echo "$passed passed, $failures failed"
+[ $failures -eq 0 ]
