@@ -30,6 +30,7 @@ using photometry_detail::fail;
 using photometry_detail::formatNumber;
 using photometry_detail::kMaxCount;
 using photometry_detail::parseNumber;
+using photometry_detail::splitLines;
 
 namespace {
 
@@ -57,24 +58,6 @@ std::string showToken(const std::string& s) {
     for (char& c : shown)
         if (!std::isprint(static_cast<unsigned char>(c))) c = '?';
     return "'" + shown + "'";
-}
-
-/// Splits text into lines on LF, CRLF or a lone CR.
-std::vector<std::string> splitLines(const std::string& text) {
-    std::vector<std::string> lines;
-    std::string cur;
-    for (size_t i = 0; i < text.size(); ++i) {
-        char c = text[i];
-        if (c == '\n' || c == '\r') {
-            lines.push_back(cur);
-            cur.clear();
-            if (c == '\r' && i + 1 < text.size() && text[i + 1] == '\n') ++i;
-        } else {
-            cur.push_back(c);
-        }
-    }
-    if (!cur.empty()) lines.push_back(cur);
-    return lines;
 }
 
 /// Free-format numbers after the TILT line: white space and commas separate, "//" comments out

@@ -68,18 +68,7 @@ bool parseLdtNumber(std::string s, double& v) {
 class LdtReader {
 public:
     LdtReader(const std::string& text, std::string path) : mPath(std::move(path)) {
-        std::string cur;
-        for (size_t i = 0; i < text.size(); ++i) {
-            char c = text[i];
-            if (c == '\n' || c == '\r') {
-                mLines.push_back(cur);
-                cur.clear();
-                if (c == '\r' && i + 1 < text.size() && text[i + 1] == '\n') ++i;
-            } else {
-                cur.push_back(c);
-            }
-        }
-        if (!cur.empty()) mLines.push_back(cur);
+        mLines = photometry_detail::splitLines(text);
         if (!mLines.empty() && mLines[0].rfind("\xEF\xBB\xBF", 0) == 0) mLines[0].erase(0, 3);
     }
 
@@ -242,7 +231,10 @@ PhotometricData parseEulumdat(const std::string& text, const std::string& path) 
     in.startTokens(27 + 6 * sets);
     std::vector<double> ratios = in.numbers(10, "direct ratios");
     std::string dr;
-    for (double r : ratios) dr += (dr.empty() ? "" : " ") + formatNumber(r);
+    for (double r : ratios) {
+        if (!dr.empty()) dr += ' ';
+        dr += formatNumber(r);
+    }
     keep("direct ratios", dr);
     int cLine = in.tokenLine();
     std::vector<double> cAngles = in.numbers(size_t(mc), "C angles");

@@ -209,6 +209,22 @@ double scatteredValue(const Setup& s, int* flips = nullptr) {
     return std::isfinite(e) ? e : 0.0;
 }
 
+/// The shared start of the solid-angle techniques: the setup, the answer for a zero-area opening
+/// (returned in `early`), and the opening clipped at the receiver's horizon. False when `early`
+/// is the estimate.
+bool visibleOpening(const Luminaire& l, const glm::dvec3& p, const glm::dvec3& n, Setup& s,
+                    Polygon& visible, Estimate& early) {
+    s = makeSetup(l, p, n);
+    double e;
+    if (degenerate(s, e)) {
+        early = withColour(s, e);
+        return false;
+    }
+    visible = spherical::clip(openingFromReceiver(s), s.n);
+    early = withColour(s, 0.0);
+    return visible.count >= 3;
+}
+
 }  // namespace
 
 const std::vector<glm::dvec2>& poissonSet(int n) {
@@ -286,11 +302,10 @@ Estimate photometricStructured(const Luminaire& l, const glm::dvec3& p, const gl
                                const EstimateOptions&) {
     // Eq. (4.3) with the corners and the barycentre of the horizon-clipped opening (Lagarde and
     // de Rousiers 2014), as if uniform in its solid angle.
-    Setup s = makeSetup(l, p, n);
-    double e;
-    if (degenerate(s, e)) return withColour(s, e);
-    Polygon visible = spherical::clip(openingFromReceiver(s), s.n);
-    if (visible.count < 3) return withColour(s, 0.0);
+    Setup s;
+    Polygon visible;
+    Estimate early;
+    if (!visibleOpening(l, p, n, s, visible, early)) return early;
     double omega = spherical::solidAngle(visible);
     glm::dvec3 centre(0.0);
     double sum = 0.0;
@@ -307,11 +322,10 @@ Estimate photometricMrp(const Luminaire& l, const glm::dvec3& p, const glm::dvec
                         const EstimateOptions&) {
     // Drobot's most representative point (2014): the half-vector of the closest point and the
     // normal point, back on the opening's plane and clamped to the opening; one sample, Eq. (4.3).
-    Setup s = makeSetup(l, p, n);
-    double e;
-    if (degenerate(s, e)) return withColour(s, e);
-    Polygon visible = spherical::clip(openingFromReceiver(s), s.n);
-    if (visible.count < 3) return withColour(s, 0.0);
+    Setup s;
+    Polygon visible;
+    Estimate early;
+    if (!visibleOpening(l, p, n, s, visible, early)) return early;
     double tol = 1e-9 * s.light->size();
     glm::dvec3 pc = spherical::closestPoint(visible, tol).point;
     double h = -s.p.z;  // plane of the opening: z = h relative to the receiver

@@ -97,6 +97,23 @@ std::string lowerExtension(const std::string& path) {
 
 namespace photometry_detail {
 
+std::vector<std::string> splitLines(const std::string& text) {
+    std::vector<std::string> lines;
+    std::string cur;
+    for (size_t i = 0; i < text.size(); ++i) {
+        char c = text[i];
+        if (c == '\n' || c == '\r') {
+            lines.push_back(cur);
+            cur.clear();
+            if (c == '\r' && i + 1 < text.size() && text[i + 1] == '\n') ++i;
+        } else {
+            cur.push_back(c);
+        }
+    }
+    if (!cur.empty()) lines.push_back(cur);
+    return lines;
+}
+
 void fail(const std::string& path, int line, const std::string& expected, const std::string& found) {
     throw InputError(path + ":" + std::to_string(line) + ": expected " + expected + ", found " + found);
 }

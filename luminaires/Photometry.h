@@ -108,6 +108,8 @@ constexpr int kMaxCount = 100000;
                        const std::string& found);
 /// Parses a whole token as a finite double (C locale, no trailing characters).
 bool parseNumber(const std::string& token, double& value);
+/// Splits text into lines on LF, CRLF or a lone CR (a final line without a newline included).
+std::vector<std::string> splitLines(const std::string& text);
 /// Shortest round-trip text of a number, for messages.
 std::string formatNumber(double v);
 /// Unfolds rows of candela given at the file's horizontal angles `given` (row h holds
