@@ -34,6 +34,8 @@ Scene Scene::clone() const {
     copy.luminaires.reserve(luminaires.size());
     for (const auto& luminaire : luminaires) copy.luminaires.push_back(luminaire->clone());
     copy.environment = environment;
+    copy.environmentMap = environmentMap;  // immutable, shared
+    copy.environmentSequence = environmentSequence;
     copy.camera = camera;
     return copy;
 }

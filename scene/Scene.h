@@ -12,6 +12,11 @@
 #include "luminaires/Luminaire.h"
 
 namespace candela {
+class EnvironmentMap;
+class EnvironmentSequence;
+}  // namespace candela
+
+namespace candela {
 
 /// Surface material: a Lambertian base with an optional glossy (normalised modified Phong) lobe.
 struct Material {
@@ -64,7 +69,11 @@ struct Scene {
     std::vector<Mesh> meshes;
     std::vector<Material> materials;
     std::vector<std::unique_ptr<Luminaire>> luminaires;
-    nlohmann::json environment;  ///< null: no environment map.
+    nlohmann::json environment;  ///< null: no environment map. Kept as written, for saving.
+    /// The environment's radiance now (luminaires/Environment.h); null when `environment` is.
+    std::shared_ptr<const EnvironmentMap> environmentMap;
+    /// Set only for {"sequence": ...}: the frames; environmentMap is its frame at t = 0.
+    std::shared_ptr<EnvironmentSequence> environmentSequence;
     Camera camera;
 
     Scene() = default;

@@ -14,6 +14,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <vector>
 
+#include "luminaires/Environment.h"
 #include "luminaires/Registry.h"
 #include "scene/GltfLoader.h"
 #include "util/Error.h"
@@ -291,6 +292,18 @@ void rebaseGltfPaths(nlohmann::json& doc, const std::string& fromPath, const std
         fs::path relative = target.lexically_relative(toDir);
         *it = (relative.empty() ? target : relative).generic_string();
     }
+    // The environment's "file" or "sequence" pattern, relative to the scene file, likewise.
+    nlohmann::json& env = doc["environment"];
+    if (!env.is_object()) return;
+    for (const char* key : {"file", "sequence"}) {
+        auto it = env.find(key);
+        if (it == env.end() || !it->is_string()) continue;
+        fs::path file(it->get<std::string>());
+        if (file.is_absolute()) continue;
+        fs::path target = (fromDir / file).lexically_normal();
+        fs::path relative = target.lexically_relative(toDir);
+        *it = (relative.empty() ? target : relative).generic_string();
+    }
 }
 
 
@@ -380,11 +393,14 @@ Scene parseScene(const nlohmann::json& doc, const std::string& path) {
         for (size_t i = 0; i < items.size(); ++i)
             scene.luminaires.push_back(parseLuminaire(items[i], (root / "luminaires")[i], i));
     }
-    if (doc.contains("environment") && !doc["environment"].is_null()) {
-        throw InputError((root / "environment").str() +
-                         ": environment maps are not supported yet (only null)");
-    }
     scene.environment = nullptr;
+    if (doc.contains("environment") && !doc["environment"].is_null()) {
+        EnvironmentSource env = parseEnvironment(doc["environment"], root / "environment",
+                                                 fs::path(path).parent_path().string());
+        scene.environment = doc["environment"];
+        scene.environmentMap = std::move(env.map);
+        scene.environmentSequence = std::move(env.sequence);
+    }
     if (doc.contains("camera")) scene.camera = parseCamera(doc["camera"], root / "camera");
     return scene;
 }

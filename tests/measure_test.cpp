@@ -6,10 +6,11 @@
 #include <algorithm>
 #include <cmath>
 
-#include "app/commands/Commands.h"
+#include "app/commands/Commands.h"  // parsePlane
 #include "luminaires/LambertianRect.h"
 #include "renderer/FramePlan.h"
 #include "renderer/Renderer.h"
+#include "scene/CalculationGrid.h"
 #include "scene/SceneIo.h"
 #include "shaders/shared/FalseColour.h"
 #include "util/Error.h"

@@ -124,11 +124,11 @@ TEST(SceneIo, MissingGltf) {
     EXPECT_CONTAINS(m, "does_not_exist.gltf: cannot open glTF file (No such file or directory)");
 }
 
-TEST(SceneIo, EnvironmentMapsNotYetSupported) {
+TEST(SceneIo, EnvironmentMapFileMustExist) {
+    // Environment maps load now (tests/environment_test.cpp); this scene names a missing file.
     std::string m = inputError([] { loadScene(data("scenes/environment.json")); });
-    EXPECT_CONTAINS(m,
-                    "environment.json: environment: environment maps are not supported yet "
-                    "(only null)");
+    EXPECT_CONTAINS(m, "environment.json: environment.file: ");
+    EXPECT_CONTAINS(m, "sky.hdr: cannot open environment map (No such file or directory)");
 }
 
 TEST(SceneIo, ValueErrorsNameTheField) {

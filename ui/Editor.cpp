@@ -20,6 +20,7 @@
 #include "renderer/Renderer.h"
 #include "renderer/ShaderLibrary.h"
 #include "renderer/context/GlContext.h"
+#include "scene/SceneIo.h"
 #include "ui/EditorState.h"
 #include "ui/KeyLatch.h"
 #include "ui/Panels.h"
@@ -223,10 +224,7 @@ void Editor::buildUi() {
     outlinePanel(state, outline);
     inspectorPanel(state, inspector);
     renderPanel(state, render);
-    // The Measure panel's grid lives as long as the editor (one editor per process); it belongs
-    // in EditorState once that file gains a MeasureState member.
-    static MeasureState measureState;
-    measurePanel(state, measureState, *mRenderer, measure);
+    measurePanel(state, *mRenderer, measure);
     statsPanel(state, *mRenderer, *mShaders, stats);
     statusBar(state, *mRenderer, status);
     fileDialogs(state);
@@ -261,6 +259,9 @@ void Editor::updateTitle() {
 }
 
 void Editor::writeLayout() {
+    // The panels record named widgets' rectangles every frame; taken here so they never pile up.
+    std::vector<std::pair<std::string, glm::vec4>> widgets;
+    widgets.swap(mState->widgetRects);
     if (mOptions.layoutFile.empty()) return;
     const EditorState& state = *mState;
     const ScreenLayout& layout = state.layout;
@@ -272,9 +273,10 @@ void Editor::writeLayout() {
 
     nlohmann::json lums = nlohmann::json::array();
     for (const auto& lum : state.scene.luminaires) {
-        nlohmann::json entry = {{"name", lum->name}};
+        // Its scene-file entry (type, name, position, aim, c0, technique, kind fields such as
+        // file), plus where its position is on screen.
+        nlohmann::json entry = luminaireToJson(*lum);
         glm::dvec3 p = lum->pose.position;
-        entry["position"] = {p.x, p.y, p.z};
         auto px = projectToPixels(viewProj, p, settings.width, settings.height);
         if (px)
             entry["screen"] = vec2Json(v.x + float(px->x) * v.z / float(settings.width),
@@ -286,6 +288,9 @@ void Editor::writeLayout() {
     const ImGuiIO& io = ImGui::GetIO();
     const FrameStats& stats = mRenderer->stats();
     int selected = state.selectedLuminaire;
+    // Named widgets drawn this frame (see EditorState::widgetRects): x0, y0, x1, y1.
+    nlohmann::json widgetJson = nlohmann::json::object();
+    for (const auto& [name, r] : widgets) widgetJson[name] = {r.x, r.y, r.z, r.w};
     nlohmann::json j = {
         {"window", {width, height}},
         {"viewport", {v.x, v.y, v.z, v.w}},
@@ -301,6 +306,12 @@ void Editor::writeLayout() {
         {"samples_per_pixel", stats.samplesPerPixel},
         {"converged", stats.converged},
         {"screenshots", state.screenshotsTaken},
+        {"mouse_down", io.MouseDown[ImGuiMouseButton_Left]},  // as this frame's widgets saw it
+        {"typing", io.WantTextInput},                        // a text field has the keyboard
+        {"dirty", state.dirty},
+        {"status", state.status},
+        {"error", state.modalError},
+        {"widgets", std::move(widgetJson)},
     };
     std::string key = j.dump();
     if (key == mLastLayout && mFrame >= 5) return;

@@ -22,6 +22,17 @@ void setStatus(EditorState& state, std::string message, bool error) {
     state.statusIsError = error;
 }
 
+void setFalseColour(EditorState& state, bool on) {
+    ToneMapOperator& op = state.settings.toneMap;
+    if (on == (op == ToneMapOperator::FalseColour)) return;  // already so: keep what it replaced
+    if (on) {
+        state.measure.previousOperator = op;
+        op = ToneMapOperator::FalseColour;
+    } else {
+        op = state.measure.previousOperator;
+    }
+}
+
 void reportError(EditorState& state, const std::string& message) {
     setStatus(state, message, true);
     state.modalError = message;

@@ -7,11 +7,13 @@
 #include <functional>
 #include <glm/glm.hpp>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 
 #include "luminaires/Registry.h"
 #include "renderer/Renderer.h"
+#include "scene/CalculationGrid.h"
 #include "scene/Scene.h"
 #include "ui/Screenshot.h"
 
@@ -42,6 +44,20 @@ struct FileDialogs {
     std::string saveAsPath;
 };
 
+/// What the Measure panel keeps between frames: the calculation grid's settings and result, and
+/// the operator that false colour replaced (the Render panel's operator combo switches it too).
+struct MeasureState {
+    GridSpec grid;                     ///< Plane, extent (m), spacing (m), samples per point.
+    bool extentSet = false;            ///< False: take the extent from the scene's bounds.
+    std::optional<GridResult> result;  ///< Last computed grid (shown until recomputed).
+    GridSummary summary;
+    bool showValues = true;  ///< Draw each point's illuminance in the viewport.
+    std::string levelsText;  ///< The isolux levels as typed, lux.
+    std::string error;       ///< Why the last computation failed.
+    /// The operator false colour replaced, restored when it is turned off (setFalseColour).
+    ToneMapOperator previousOperator = ToneMapOperator::Exponential;
+};
+
 struct EditorState {
     Scene scene;
     int selectedLuminaire = -1;  ///< Index into scene.luminaires, or -1.
@@ -68,6 +84,11 @@ struct EditorState {
     ViewportDrag drag;
     ScreenLayout layout;
     PassTotals passes;
+    MeasureState measure;  ///< The Measure panel's grid and legend text; kept across scenes.
+    /// Test hook for --layout-file: screen rectangles (x0, y0, x1, y1, window pixels) of named
+    /// widgets drawn this frame ("inspector.spin", "outline.add", ...), recorded by the panels
+    /// and written out, then cleared, by the editor's layout writer each frame.
+    std::vector<std::pair<std::string, glm::vec4>> widgetRects;
 };
 
 /// The one path by which the scene changes: runs edit on the scene, tells the renderer what
@@ -76,6 +97,10 @@ void applyEdit(EditorState& state, std::string_view label, unsigned changes,
                const std::function<void(Scene&)>& edit);
 
 void setStatus(EditorState& state, std::string message, bool error = false);
+/// Turns the false-colour operator on (remembering the operator it replaces in
+/// state.measure.previousOperator) or off (restoring that operator). The Measure panel's toggle
+/// and the Render panel's operator combo both go through here.
+void setFalseColour(EditorState& state, bool on);
 /// Shows message in the status bar and in the error modal.
 void reportError(EditorState& state, const std::string& message);
 

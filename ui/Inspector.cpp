@@ -28,6 +28,12 @@ bool isCommonField(const std::string& key) {
     return false;
 }
 
+/// Test hook: the last item's screen rectangle under name, for the layout file.
+void recordRect(EditorState& state, std::string name) {
+    ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
+    state.widgetRects.emplace_back(std::move(name), glm::vec4(lo.x, lo.y, hi.x, hi.y));
+}
+
 /// Drag speed per pixel proportional to the value, so a radiance of 40 and a size of 0.3 both
 /// edit comfortably.
 float dragSpeed(double value) {
@@ -40,7 +46,7 @@ bool dragVec3(const char* label, glm::dvec3& v, float speed) {
 }
 
 /// Edits the numeric, string and boolean fields of a kind-specific entry in place.
-bool editKindFields(nlohmann::json& entry) {
+bool editKindFields(EditorState& state, nlohmann::json& entry) {
     bool edited = false;
     for (auto it = entry.begin(); it != entry.end(); ++it) {
         const std::string& key = it.key();
@@ -84,6 +90,7 @@ bool editKindFields(nlohmann::json& entry) {
                 value = text;
                 edited = true;
             }
+            recordRect(state, "inspector.field:" + key);
             itemTooltip("Press Enter to apply");
         } else if (value.is_boolean()) {
             bool b = value.get<bool>();
@@ -107,7 +114,9 @@ bool techniqueCombo(EditorState& state, int index) {
         for (const TechniqueInfo& t : techniques()) {
             if (t.kind != lum.kind()) continue;
             std::string name(t.name);
-            if (ImGui::Selectable(name.c_str(), &t == current) && name != lum.technique) {
+            bool picked = ImGui::Selectable(name.c_str(), &t == current);
+            recordRect(state, "inspector.technique:" + name);
+            if (picked && name != lum.technique) {
                 applyEdit(state, "Technique of " + lum.name, kChangeLuminaires,
                           [&](Scene& s) { s.luminaires[size_t(index)]->technique = name; });
                 changed = true;
@@ -115,6 +124,8 @@ bool techniqueCombo(EditorState& state, int index) {
             itemTooltip(std::string(t.description) + (t.progressive ? " (progressive)" : ""));
         }
         ImGui::EndCombo();
+    } else {
+        recordRect(state, "inspector.technique");  // the closed combo
     }
     if (current) itemTooltip(std::string(current->description));
     return changed;
@@ -177,6 +188,7 @@ bool poseFields(EditorState& state, int index) {
         pose.c0 = std::cos(s) * ref + std::sin(s) * refY;
         setPose("Spin", pose);
     }
+    recordRect(state, "inspector.spin");
     itemTooltip("Rotation of the luminaire about its aim (where its C0 plane points)");
     return changed;
 }
@@ -206,7 +218,7 @@ bool luminaireInspector(EditorState& state, int index) {
 
     try {
         nlohmann::json entry = luminaireToJson(*state.scene.luminaires[size_t(index)]);
-        if (editKindFields(entry)) {
+        if (editKindFields(state, entry)) {
             json::Where where{state.scene.path.empty() ? "(editor)" : state.scene.path,
                               "luminaires[" + std::to_string(index) + "]"};
             // The same parser as scene loading: common fields, then the kind's own.

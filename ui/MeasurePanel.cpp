@@ -289,9 +289,9 @@ void drawGridValues(const EditorState& state, const MeasureState& measure,
 
 }  // namespace
 
-bool measurePanel(EditorState& state, MeasureState& measure, const Renderer& renderer,
-                  const PanelRect& rect) {
+bool measurePanel(EditorState& state, const Renderer& renderer, const PanelRect& rect) {
     RenderSettings& s = state.settings;
+    MeasureState& measure = state.measure;
     bool changed = false;
     placeNextWindow(rect);
     ImGui::Begin("Measure", nullptr, kPanelFlags);
@@ -306,12 +306,7 @@ bool measurePanel(EditorState& state, MeasureState& measure, const Renderer& ren
         "shows the irradiance on it, lx (W/m2 for radiometric luminaires)");
     bool falseColour = s.toneMap == ToneMapOperator::FalseColour;
     if (ImGui::Checkbox("False colour", &falseColour)) {
-        if (falseColour) {
-            measure.previousOperator = s.toneMap;
-            s.toneMap = ToneMapOperator::FalseColour;
-        } else {
-            s.toneMap = measure.previousOperator;
-        }
+        setFalseColour(state, falseColour);
         changed = true;
     }
     if (falseColour) {

@@ -21,6 +21,12 @@ void requestSave(EditorState& state) {
         saveSceneFile(state, {});
 }
 
+/// Test hook: the last item's screen rectangle under name, for the layout file.
+void recordRect(EditorState& state, std::string name) {
+    ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
+    state.widgetRects.emplace_back(std::move(name), glm::vec4(lo.x, lo.y, hi.x, hi.y));
+}
+
 /// "plane #0", "box #5", "gltf chair.glb #7": the entry's shape key (or its name) and index.
 std::string geometryLabel(const GeometryItem& item, size_t index) {
     std::string label;
@@ -161,7 +167,9 @@ bool outlinePanel(EditorState& state, const PanelRect& rect) {
             ImGui::PushID(int(i));
             bool selected = state.selectedLuminaire == int(i);
             std::string label = lum.name + "  [" + lum.technique + "]";
-            if (ImGui::Selectable(label.c_str(), selected)) {
+            bool clicked = ImGui::Selectable(label.c_str(), selected);
+            recordRect(state, "outline.luminaire:" + lum.name);
+            if (clicked) {
                 state.selectedLuminaire = int(i);
                 state.selectedGeometry = -1;
                 state.inspectorError.clear();
@@ -180,14 +188,18 @@ bool outlinePanel(EditorState& state, const PanelRect& rect) {
                     std::string name(kinds[k].kind);
                     if (ImGui::Selectable(name.c_str(), int(k) == state.addKind))
                         state.addKind = int(k);
+                    recordRect(state, "outline.add_kind:" + name);
                     itemTooltip(std::string(kinds[k].description));
                 }
                 ImGui::EndCombo();
+            } else {
+                recordRect(state, "outline.add_kind");  // the closed combo
             }
             ImGui::SameLine();
             if (ImGui::Button("Add", ImVec2(-1.f, 0.f))) {
                 changed = addLuminaire(state, kinds[size_t(state.addKind)]) >= 0 || changed;
             }
+            recordRect(state, "outline.add");
             itemTooltip(
                 "Adds a luminaire of this kind 0.5 m below the top of the scene, aimed "
                 "down");

@@ -2,10 +2,8 @@
 // The editor's panels: free functions over EditorState that return whether they changed it.
 // They read the renderer and shader library (statistics, picking) but never own GL objects.
 
-#include <optional>
 #include <string>
 
-#include "app/commands/Commands.h"
 #include "renderer/Renderer.h"
 #include "renderer/ShaderLibrary.h"
 #include "ui/EditorState.h"
@@ -40,23 +38,10 @@ void lightFieldDetails(const LightFieldLuminaire& light, int& shownImage);
 void photometricDetails(const PhotometricLuminaire& light);
 /// Screenshot button, tone mapping, camera and sampling settings.
 bool renderPanel(EditorState& state, const PanelRect& rect);
-/// What the Measure panel keeps between frames: the calculation grid's settings and result.
-struct MeasureState {
-    GridSpec grid;                     ///< Plane, extent (m), spacing (m), samples per point.
-    bool extentSet = false;            ///< False: take the extent from the scene's bounds.
-    std::optional<GridResult> result;  ///< Last computed grid (shown until recomputed).
-    GridSummary summary;
-    bool showValues = true;            ///< Draw each point's illuminance in the viewport.
-    std::string levelsText;            ///< The isolux levels as typed, lux.
-    std::string error;                 ///< Why the last computation failed.
-    ToneMapOperator previousOperator = ToneMapOperator::Exponential;  ///< Restored on false colour off.
-};
-
 /// Quantity (radiance / illuminance), false colour with its legend (range in lux, log or linear,
 /// isolux levels) drawn as a colour bar, and the calculation grid (Emin, Eavg, Emax, U0) whose
-/// values it writes over the viewport (ui/MeasurePanel.cpp).
-bool measurePanel(EditorState& state, MeasureState& measure, const Renderer& renderer,
-                  const PanelRect& rect);
+/// values it writes over the viewport (ui/MeasurePanel.cpp); its own settings are state.measure.
+bool measurePanel(EditorState& state, const Renderer& renderer, const PanelRect& rect);
 /// Passes with GPU times, accumulation, compiled variants and the shader error log.
 void statsPanel(const EditorState& state, const Renderer& renderer, const ShaderLibrary& shaders,
                 const PanelRect& rect);

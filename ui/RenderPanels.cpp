@@ -15,15 +15,22 @@ namespace {
 bool toneMappingControls(EditorState& state) {
     bool changed = false;
     ImGui::TextDisabled("Tone mapping");
-    const char* operators[] = {"Exponential", "Reinhard"};
+    // In ToneMapOperator order. Picking False colour does what the Measure panel's toggle does
+    // (setFalseColour), so that toggle, turned off, restores the operator it replaced.
+    const char* operators[] = {"Exponential", "Reinhard", "False colour"};
+    static_assert(int(ToneMapOperator::FalseColour) == 2, "operators[] follows ToneMapOperator");
     int op = int(state.settings.toneMap);
-    if (ImGui::Combo("Operator", &op, operators, 2)) {
-        state.settings.toneMap = ToneMapOperator(op);
+    if (ImGui::Combo("Operator", &op, operators, IM_ARRAYSIZE(operators))) {
+        if (ToneMapOperator(op) == ToneMapOperator::FalseColour)
+            setFalseColour(state, true);
+        else
+            state.settings.toneMap = ToneMapOperator(op);
         changed = true;
     }
     itemTooltip(
         "Exponential: 1 - exp(-k L / Lavg) (Lu et al. 2015). Reinhard (2002): "
-        "0.18 k L / Lavg mapped by x / (1 + x). Lavg is the frame's mean luminance.");
+        "0.18 k L / Lavg mapped by x / (1 + x). Lavg is the frame's mean luminance. "
+        "False colour: the Measure panel's scale and legend (lx in illuminance mode).");
     changed = ImGui::SliderFloat("Exposure k", &state.settings.exposure, 0.01f, 100.f, "%.3g",
                                  ImGuiSliderFlags_Logarithmic) ||
               changed;

@@ -2,14 +2,12 @@
 // The `candela` subcommands. Each returns the process exit code; errors go to stderr with the
 // file and the problem, never a crash.
 
-#include <glm/glm.hpp>
-
 #include <string>
 #include <vector>
 
 namespace candela {
 
-struct Scene;
+struct CalcPlane;
 
 using Args = std::vector<std::string>;
 
@@ -28,60 +26,9 @@ void parseSize(const std::string& text, int& width, int& height);
 const std::string& flagValue(const Args& args, size_t& i);
 int parseInt(const std::string& flag, const std::string& text, int min, int max);
 
-// The calculation grid of `candela grid` and of the editor's Measure panel (app/commands/Grid.cpp):
-// illuminance at the points of a grid on an axis-aligned plane from each luminaire's CPU
-// estimator in the registry, and its summary (EN 12464-1 style: Emin, Eavg, Emax, U0).
-
-/// An axis-aligned calculation plane: points with coordinate `offset` (m) along `axis`
-/// (0 x, 1 y, 2 z), receiving light on the side of the normal `sign` * axis. Its in-plane axes
-/// (u, v) are the two others in x, y, z order: y plane (x, z), x plane (y, z), z plane (x, y).
-struct CalcPlane {
-    int axis = 1;
-    double offset = 0.0;  ///< Metres.
-    double sign = 1.0;    ///< +1 or -1: which way the receiving side faces.
-    glm::dvec3 normal() const;
-    glm::dvec3 point(double u, double v) const;  ///< World point (m) at in-plane coordinates (m).
-    std::string uName() const;                   ///< "x", "y" or "z".
-    std::string vName() const;
-};
-
-/// Parses "[+|-]x|y|z=VALUE" (VALUE in metres, finite): "y=0.8" is a working plane facing up,
-/// "-y=2.4" a ceiling facing down. Throws InputError naming --plane.
+/// Parses "[+|-]x|y|z=VALUE" (VALUE in metres, finite) for --plane (app/commands/Grid.cpp):
+/// "y=0.8" is a working plane facing up, "-y=2.4" a ceiling facing down. Throws InputError
+/// naming --plane.
 CalcPlane parsePlane(const std::string& text);
-
-struct GridSpec {
-    CalcPlane plane;
-    glm::dvec2 lo{0.0}, hi{0.0};  ///< Extent in (u, v), metres.
-    double spacing = 0.25;        ///< Distance between adjacent points, metres.
-    int spp = 1024;               ///< Samples per point and luminaire for stochastic techniques.
-    bool visibility = false;      ///< Shadow rays through the scene's BVH.
-    std::string technique;        ///< Empty: each luminaire's own technique.
-};
-
-/// Point coordinates along one axis: floor(len / spacing) points (at least 1) spacing apart,
-/// centred in [lo, hi], so a 4 m side at 0.25 m gets 16 points at cell centres 0.125 .. 3.875.
-std::vector<double> gridCoordinates(double lo, double hi, double spacing);
-
-struct GridResult {
-    GridSpec spec;
-    std::vector<double> u, v;      ///< Point coordinates along u (columns) and v (rows), metres.
-    std::vector<double> lux;       ///< Illuminance at point (i, j) in lux[j * u.size() + i], lx
-                                   ///< (W/m2 for radiometric luminaires), luminance-weighted.
-    std::vector<double> stdError;  ///< Standard error of each value, lx (0 for exact techniques).
-};
-
-struct GridSummary {
-    size_t count = 0;
-    double eMin = 0.0, eAvg = 0.0, eMax = 0.0;  ///< Lux.
-    double u0 = 0.0;          ///< Uniformity Emin / Eavg (0 when Eavg is 0).
-    double minOverMax = 0.0;  ///< Emin / Emax (0 when Emax is 0).
-};
-
-GridSummary summariseGrid(const std::vector<double>& lux);
-/// The scene's bounds projected on the plane, or throws InputError when it has no geometry.
-void defaultGridExtent(const Scene& scene, GridSpec& spec);
-/// Checks the spec (finite extent with hi > lo, spacing > 0, at most 1e6 points) and evaluates
-/// every point; throws InputError on bad values or a luminaire without a CPU estimator.
-GridResult computeGrid(const Scene& scene, const GridSpec& spec);
 
 }  // namespace candela

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "app/commands/Commands.h"
+#include "luminaires/EnvironmentSampling.h"
 #include "luminaires/Registry.h"
 #include "renderer/Renderer.h"
 #include "renderer/context/GlContext.h"
@@ -77,7 +78,7 @@ double lum(const glm::dvec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * 
 }  // namespace
 
 int cmdProbe(const Args& args) {
-    std::string scenePath, pointsPath, technique, device = "cpu";
+    std::string scenePath, pointsPath, technique, envTechnique, device = "cpu";
     EstimateOptions options;
     options.spp = 4096;
     bool withVisibility = false;
@@ -85,6 +86,7 @@ int cmdProbe(const Args& args) {
         const std::string& a = args[i];
         if (a == "--points") pointsPath = flagValue(args, i);
         else if (a == "--technique") technique = flagValue(args, i);
+        else if (a == "--env-technique") envTechnique = flagValue(args, i);
         else if (a == "--spp") options.spp = parseInt(a, flagValue(args, i), 1, 1 << 26);
         else if (a == "--seed") options.seed = uint64_t(parseInt(a, flagValue(args, i), 0, 1 << 30));
         else if (a == "--visibility") withVisibility = true;
@@ -95,7 +97,7 @@ int cmdProbe(const Args& args) {
     }
     if (scenePath.empty() || pointsPath.empty())
         throw InputError("usage: candela probe scene.json --points pts.csv [--technique T] "
-                         "[--spp N] [--visibility] [--device cpu|gpu] [--seed S]");
+                         "[--spp N] [--visibility] [--device cpu|gpu] [--seed S] [--env-technique T]");
     if (device != "cpu" && device != "gpu")
         throw InputError("--device: expected cpu or gpu, got \"" + device + "\"");
     if (device == "gpu" && withVisibility)
@@ -104,10 +106,29 @@ int cmdProbe(const Args& args) {
 
     Scene scene = loadScene(scenePath);
     std::vector<ProbePoint> points = readPoints(pointsPath);
+    // The environment's technique: --env-technique, else --technique when it names one of the
+    // environment's, else the exact reference. --technique applies to the luminaires as before,
+    // except that a name only the environment has leaves them on their own techniques.
+    const EnvironmentTechniqueInfo* envChosen = nullptr;
+    if (!envTechnique.empty()) {
+        envChosen = findEnvironmentTechnique(envTechnique);
+        if (!envChosen)
+            throw InputError("--env-technique: \"" + envTechnique + "\" is not an environment "
+                             "technique (available: " + environmentTechniqueNames() + ")");
+    } else {
+        envChosen = findEnvironmentTechnique(technique.empty() ? "reference" : technique);
+        if (!envChosen) envChosen = findEnvironmentTechnique("reference");
+    }
+    if (device == "gpu" && scene.environmentMap)
+        throw InputError("--device gpu: environment maps are CPU-only so far; use the CPU probe "
+                         "(the default)");
     // Resolve each luminaire's technique up front, so a bad name fails before any work.
     std::vector<const TechniqueInfo*> chosen;
     for (const auto& l : scene.luminaires) {
         std::string name = technique.empty() ? l->technique : technique;
+        if (!technique.empty() && !findTechnique(l->kind(), technique) &&
+            findEnvironmentTechnique(technique))
+            name = l->technique;
         const TechniqueInfo* t = findTechnique(l->kind(), name);
         if (!t)
             throw InputError("--technique: \"" + name + "\" is not a technique of " +
@@ -125,7 +146,17 @@ int cmdProbe(const Args& args) {
             vis = std::make_unique<BvhVisibility>(*bvh);
             options.visibility = vis.get();
         }
+        std::unique_ptr<EnvironmentLighting> lighting;
+        if (scene.environmentMap)
+            lighting = std::make_unique<EnvironmentLighting>(scene.environmentMap);
         for (size_t i = 0; i < points.size(); ++i) {
+            if (lighting) {
+                EstimateOptions o = options;
+                o.seed = options.seed * 1000003ull + i * 7919ull + 999983ull;
+                Estimate e = envChosen->irradiance(*lighting, points[i].p, points[i].n, o);
+                E[i] += e.irradiance;
+                var[i] += e.stdError * e.stdError;
+            }
             for (size_t k = 0; k < scene.luminaires.size(); ++k) {
                 EstimateOptions o = options;
                 o.seed = options.seed * 1000003ull + i * 7919ull + k;
