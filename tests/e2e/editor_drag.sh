@@ -18,99 +18,12 @@ DRAG_PX=150        # horizontal drag, window pixels
 BOX=20             # side of the boxes whose mean brightness is compared, image pixels
 TIMEOUT_S=60       # longest wait for any one step
 
-TMP=$(mktemp -d "${TMPDIR:-/tmp}/candela-e2e.XXXXXX")
-LAYOUT=$TMP/layout.json
-SHOTS=$TMP/shots
-XVFB_PID=
-EDITOR_PID=
-PASSED=0
+E2E_NAME=editor_drag
+source "$(dirname "$0")/lib/harness.sh"
+e2e_setup
 
-cleanup() {
-    [ -n "$EDITOR_PID" ] && kill "$EDITOR_PID" 2>/dev/null || true
-    [ -n "$XVFB_PID" ] && kill "$XVFB_PID" 2>/dev/null || true
-    wait 2>/dev/null || true
-    if [ "$PASSED" = 1 ] && [ -z "${CANDELA_E2E_KEEP:-}" ]; then
-        rm -rf "$TMP"
-    else
-        echo "editor_drag: files kept in $TMP" >&2
-    fi
-}
-trap cleanup EXIT
-
-fail() {
-    echo "editor_drag: FAIL: $*" >&2
-    if [ -f "$TMP/editor.log" ]; then
-        echo "--- editor output (last 40 lines) ---" >&2
-        tail -n 40 "$TMP/editor.log" >&2
-    fi
-    if [ -f "$LAYOUT" ]; then
-        echo "--- last layout ---" >&2
-        cat "$LAYOUT" >&2
-    fi
-    exit 1
-}
-
-for tool in Xvfb xdotool python3 convert identify; do
-    command -v "$tool" >/dev/null || fail "$tool is not installed (needs xvfb, xdotool, imagemagick)"
-done
-[ -x "$CANDELA" ] || fail "no candela binary at $CANDELA"
-
-# Evaluates a Python expression over the layout file's JSON `d`; a bool becomes the exit status,
-# anything else is printed. Exit 2 while the file is missing or unreadable.
-layout() {
-    python3 - "$LAYOUT" "$1" <<'EOF'
-import json, sys
-try:
-    with open(sys.argv[1]) as f:
-        d = json.load(f)
-except Exception:
-    sys.exit(2)
-v = eval(sys.argv[2], {"d": d, "abs": abs})
-if isinstance(v, bool):
-    sys.exit(0 if v else 1)
-print(v)
-EOF
-}
-
-# wait_until DESCRIPTION EXPRESSION: polls the layout until the expression holds.
-wait_until() {
-    local deadline=$((SECONDS + TIMEOUT_S))
-    until layout "$2" >/dev/null 2>&1; do
-        kill -0 "$EDITOR_PID" 2>/dev/null || fail "the editor exited while waiting for $1"
-        ((SECONDS < deadline)) || fail "timed out after $TIMEOUT_S s waiting for $1"
-        sleep 0.1
-    done
-}
-
-wait_for_file() {
-    local deadline=$((SECONDS + TIMEOUT_S))
-    until [ -s "$1" ]; do
-        kill -0 "$EDITOR_PID" 2>/dev/null || fail "the editor exited while waiting for $1"
-        ((SECONDS < deadline)) || fail "timed out after $TIMEOUT_S s waiting for $1"
-        sleep 0.1
-    done
-}
-
-# Moves the pointer to window pixel (x, y) and waits until the editor has seen it there, so a
-# following press lands where intended even when frames are slow.
-move_to() {
-    xdotool mousemove --window "$WID" "$1" "$2"
-    wait_until "the pointer at ($1, $2)" \
-        "d['mouse'] is not None and abs(d['mouse'][0] - $1) < 1 and abs(d['mouse'][1] - $2) < 1"
-}
-
-# --- X server: Xvfb picks a free display number itself and reports it once it is ready. --------
-Xvfb -displayfd 5 -screen 0 1280x800x24 -nolisten tcp 5>"$TMP/display" >/dev/null 2>"$TMP/xvfb.log" &
-XVFB_PID=$!
-deadline=$((SECONDS + 30))
-until [ -s "$TMP/display" ]; do
-    kill -0 "$XVFB_PID" 2>/dev/null || fail "Xvfb did not start: $(cat "$TMP/xvfb.log")"
-    ((SECONDS < deadline)) || fail "Xvfb did not report a display within 30 s"
-    sleep 0.1
-done
-export DISPLAY=":$(head -n 1 "$TMP/display")"
-unset WAYLAND_DISPLAY  # GLFW must use the X server above
-echo "editor_drag: Xvfb on $DISPLAY"
+# --- X server ------------------------------------------------------------------------------------
+e2e_start_xvfb 1280x800
 
 # --- Scene: the demo with the camera raised to see the ceiling panel, and the panel turned so ---
 # its short side runs across the image (a 150 px drag then clears its old footprint).

@@ -36,101 +36,14 @@ BOX=10             # side of the boxes whose mean brightness is compared, image 
 TIMEOUT_S=60       # longest wait for any one step
 SPIN_DEG=30        # Spin typed for the photometric luminaire
 
-TMP=$(mktemp -d "${TMPDIR:-/tmp}/candela-e2e.XXXXXX")
-LAYOUT=$TMP/layout.json
-SHOTS=$TMP/shots
+E2E_NAME=editor_luminaires
+source "$(dirname "$0")/lib/harness.sh"
+e2e_setup
 SCENE=$TMP/scene.json
 BIKE=$TMP/bike.lf.json
-XVFB_PID=
-EDITOR_PID=
-PASSED=0
-T0=$SECONDS
-
-log() { echo "editor_luminaires: [$((SECONDS - T0)) s] $*"; }
-
-cleanup() {
-    [ -n "$EDITOR_PID" ] && kill "$EDITOR_PID" 2>/dev/null || true
-    [ -n "$XVFB_PID" ] && kill "$XVFB_PID" 2>/dev/null || true
-    wait 2>/dev/null || true
-    if [ "$PASSED" = 1 ] && [ -z "${CANDELA_E2E_KEEP:-}" ]; then
-        rm -rf "$TMP"
-    else
-        echo "editor_luminaires: files kept in $TMP" >&2
-    fi
-}
-trap cleanup EXIT
-
-fail() {
-    echo "editor_luminaires: FAIL: $*" >&2
-    if [ -f "$TMP/editor.log" ]; then
-        echo "--- editor output (last 40 lines) ---" >&2
-        tail -n 40 "$TMP/editor.log" >&2
-    fi
-    if [ -f "$LAYOUT" ]; then
-        echo "--- last layout ---" >&2
-        cat "$LAYOUT" >&2
-    fi
-    [ -n "${DISPLAY:-}" ] && import -window root "$TMP/failure.png" 2>/dev/null || true
-    exit 1
-}
-
-for tool in Xvfb xdotool python3 convert identify import; do
-    command -v "$tool" >/dev/null || fail "$tool is not installed (needs xvfb, xdotool, imagemagick)"
-done
-[ -x "$CANDELA" ] || fail "no candela binary at $CANDELA"
 LED_FILE=$SOURCE/resources/luminaires/osram-lertduw.lf.json
 IES_NAME=linear-pendant.ies
 [ -f "$LED_FILE" ] || fail "no $LED_FILE"
-
-# Evaluates a Python expression over the layout file's JSON `d`; a bool becomes the exit status,
-# anything else is printed. Exit 2 while the file is missing or unreadable. lum(name) is the
-# layout's entry of that luminaire (None when there is none), w(name) a widget's rectangle
-# (None when it was not drawn last frame).
-layout() {
-    python3 - "$LAYOUT" "$1" <<'EOF'
-import json, math, sys
-try:
-    with open(sys.argv[1]) as f:
-        d = json.load(f)
-except Exception:
-    sys.exit(2)
-lum = lambda name: next((l for l in d["luminaires"] if l["name"] == name), None)
-w = lambda name: d["widgets"].get(name)
-close = lambda a, b, tol=1e-6: all(abs(x - y) <= tol for x, y in zip(a, b))
-v = eval(sys.argv[2], {"d": d, "abs": abs, "lum": lum, "w": w, "close": close, "math": math,
-                       "json": json})
-if isinstance(v, bool):
-    sys.exit(0 if v else 1)
-print(v)
-EOF
-}
-
-# wait_until DESCRIPTION EXPRESSION: polls the layout until the expression holds.
-wait_until() {
-    local deadline=$((SECONDS + TIMEOUT_S))
-    until layout "$2" >/dev/null 2>&1; do
-        kill -0 "$EDITOR_PID" 2>/dev/null || fail "the editor exited while waiting for $1"
-        ((SECONDS < deadline)) || fail "timed out after $TIMEOUT_S s waiting for $1"
-        sleep 0.1
-    done
-}
-
-wait_for_file() {
-    local deadline=$((SECONDS + TIMEOUT_S))
-    until [ -s "$1" ]; do
-        kill -0 "$EDITOR_PID" 2>/dev/null || fail "the editor exited while waiting for $1"
-        ((SECONDS < deadline)) || fail "timed out after $TIMEOUT_S s waiting for $1"
-        sleep 0.1
-    done
-}
-
-# Moves the pointer to window pixel (x, y) and waits until the editor has seen it there, so a
-# following press lands where intended even when frames are slow.
-move_to() {
-    xdotool mousemove --window "$WID" "$1" "$2"
-    wait_until "the pointer at ($1, $2)" \
-        "d['mouse'] is not None and abs(d['mouse'][0] - $1) < 1 and abs(d['mouse'][1] - $2) < 1"
-}
 
 # click X Y WHAT: a left click at window pixel (x, y) whose press a frame has seen before the
 # release (buttons, combos and selectables act on the release).
@@ -202,17 +115,7 @@ screenshot() {
 CONVERT_PID=$!
 
 # --- X server: Xvfb picks a free display number itself and reports it once it is ready. --------
-Xvfb -displayfd 5 -screen 0 1024x720x24 -nolisten tcp 5>"$TMP/display" >/dev/null 2>"$TMP/xvfb.log" &
-XVFB_PID=$!
-deadline=$((SECONDS + 30))
-until [ -s "$TMP/display" ]; do
-    kill -0 "$XVFB_PID" 2>/dev/null || fail "Xvfb did not start: $(cat "$TMP/xvfb.log")"
-    ((SECONDS < deadline)) || fail "Xvfb did not report a display within 30 s"
-    sleep 0.1
-done
-export DISPLAY=":$(head -n 1 "$TMP/display")"
-unset WAYLAND_DISPLAY  # GLFW must use the X server above
-log "Xvfb on $DISPLAY"
+e2e_start_xvfb 1024x720
 
 # --- Scene: a floor strip (1 x 0.4 m: most of the image is background, which shades quickly on
 # llvmpipe) seen from above, the LED 0.08 m over it aimed down, left of the middle (low, so its
