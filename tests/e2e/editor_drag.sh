@@ -37,15 +37,7 @@ json.dump(scene, open(sys.argv[2], "w"), indent=1)
 EOF
 
 # --- Editor ---------------------------------------------------------------------------------------
-LIBGL_ALWAYS_SOFTWARE=1 timeout 280 "$CANDELA" edit "$TMP/scene.json" --size 1280x800 \
-    --screenshot-dir "$SHOTS" --layout-file "$LAYOUT" --quit-after-frames 1000000 \
-    >"$TMP/editor.log" 2>&1 &
-EDITOR_PID=$!
-wait_until "the editor's first layout" "len(d['luminaires']) > 0 and d['frame'] >= 2"
-WID=$(timeout 30 xdotool search --sync --onlyvisible --name Candela | head -n 1) ||
-    fail "no window named Candela"
-[ -n "$WID" ] || fail "no window named Candela"
-xdotool windowfocus "$WID" 2>/dev/null || true
+e2e_start_editor "$TMP/scene.json" 1280x800 "len(d['luminaires']) > 0 and d['frame'] >= 2"
 wait_until "a visible luminaire" "d['luminaires'][0]['screen'] is not None"
 
 read -r BX BY < <(layout "'%d %d' % tuple(round(c) for c in d['screenshot_button'])")
@@ -101,29 +93,10 @@ import -window root "$TMP/window.png" 2>/dev/null || true  # the whole editor, f
 read -r IW IH < <(identify -format '%w %h\n' "$SHOTS/shot-001.png")
 read -r OX OY < <(python3 -c "print(round(($LX-$VX)*$IW/$VW), round(($LY-$VY)*$IH/$VH))")
 read -r PX PY < <(python3 -c "print(round(($NX-$VX)*$IW/$VW), round(($NY-$VY)*$IH/$VH))")
-mean() {  # mean grey level (0-255) of the BOX x BOX square centred on ($2, $3) of image $1
-    convert "$1" -crop "${BOX}x${BOX}+$(($2 - BOX / 2))+$(($3 - BOX / 2))" +repage \
-        -colorspace Gray -format '%[fx:mean*255]' info:
-}
-OLD_BEFORE=$(mean "$SHOTS/shot-000.png" "$OX" "$OY")
-OLD_AFTER=$(mean "$SHOTS/shot-001.png" "$OX" "$OY")
-NEW_BEFORE=$(mean "$SHOTS/shot-000.png" "$PX" "$PY")
-NEW_AFTER=$(mean "$SHOTS/shot-001.png" "$PX" "$PY")
-echo "editor_drag: old spot ($OX, $OY): $OLD_BEFORE -> $OLD_AFTER;" \
-    "new spot ($PX, $PY): $NEW_BEFORE -> $NEW_AFTER"
 # The panel is an emitter far brighter than the frame mean, so tone mapping shows it near white;
 # the ceiling around it is lit only indirectly (not at all here). 20 grey levels is well above
 # the noise of a few-spp image in 400-pixel means.
-python3 - "$OLD_BEFORE" "$OLD_AFTER" "$NEW_BEFORE" "$NEW_AFTER" <<'EOF' || fail "brightness check"
-import sys
-ob, oa, nb, na = map(float, sys.argv[1:])
-ok = True
-if not ob - oa > 20:
-    print(f"old spot did not get darker by > 20 levels ({ob:.1f} -> {oa:.1f})"); ok = False
-if not na - nb > 20:
-    print(f"new spot did not get brighter by > 20 levels ({nb:.1f} -> {na:.1f})"); ok = False
-sys.exit(0 if ok else 1)
-EOF
+e2e_spot_moved "$SHOTS/shot-000.png" "$SHOTS/shot-001.png" "$OX" "$OY" "$PX" "$PY" 20
 
 # Sidecars: parse, the luminaire moved in its horizontal plane, and its new position projects to
 # where the mouse was released (the renderer's camera model: lookAt + perspective, Y-up).

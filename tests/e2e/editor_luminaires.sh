@@ -142,15 +142,7 @@ json.dump(scene, open(sys.argv[2], "w"), indent=1)
 EOF
 
 # --- Editor ---------------------------------------------------------------------------------------
-LIBGL_ALWAYS_SOFTWARE=1 timeout 280 "$CANDELA" edit "$SCENE" --size 1024x720 \
-    --screenshot-dir "$SHOTS" --layout-file "$LAYOUT" --quit-after-frames 1000000 \
-    >"$TMP/editor.log" 2>&1 &
-EDITOR_PID=$!
-wait_until "the editor's first layout" "len(d['luminaires']) == 1 and d['frame'] >= 2"
-WID=$(timeout 30 xdotool search --sync --onlyvisible --name Candela | head -n 1) ||
-    fail "no window named Candela"
-[ -n "$WID" ] || fail "no window named Candela"
-xdotool windowfocus "$WID" 2>/dev/null || true
+e2e_start_editor "$SCENE" 1024x720 "len(d['luminaires']) == 1 and d['frame'] >= 2"
 wait_until "the LED on screen" "lum('LED')['screen'] is not None"
 layout "d['selected'] is None" || fail "a luminaire is selected before any click"
 
@@ -221,32 +213,13 @@ def project(p, s):  # world point -> image pixel (the renderer's lookAt + perspe
 print(*project([p0[0], 0.0, p0[2] + 0.06], after), *project([p1[0], 0.0, p1[2] + 0.06], after))
 EOF
 read -r OX OY PX PY <"$TMP/spots.txt"
-mean() {  # mean grey level (0-255) of the BOX x BOX square centred on ($2, $3) of image $1
-    convert "$1" -crop "${BOX}x${BOX}+$(($2 - BOX / 2))+$(($3 - BOX / 2))" +repage \
-        -colorspace Gray -format '%[fx:mean*255]' info:
-}
 for c in "$OX $OY" "$PX $PY"; do
     read -r x y <<<"$c"
     ((x >= BOX && x < IW - BOX && y >= BOX && y < IH - BOX)) ||
         fail "the floor spot ($x, $y) is outside the ${IW}x$IH image"
 done
-OLD_BEFORE=$(mean "$SHOTS/shot-000.png" "$OX" "$OY")
-OLD_AFTER=$(mean "$SHOTS/shot-001.png" "$OX" "$OY")
-NEW_BEFORE=$(mean "$SHOTS/shot-000.png" "$PX" "$PY")
-NEW_AFTER=$(mean "$SHOTS/shot-001.png" "$PX" "$PY")
-log "floor below the old position ($OX, $OY): $OLD_BEFORE -> $OLD_AFTER;" \
-    "below the new one ($PX, $PY): $NEW_BEFORE -> $NEW_AFTER"
 # The floor is lit only by the LED (no indirect light), so away from its spot it is black.
-python3 - "$OLD_BEFORE" "$OLD_AFTER" "$NEW_BEFORE" "$NEW_AFTER" <<'EOF' || fail "lit spot check"
-import sys
-ob, oa, nb, na = map(float, sys.argv[1:])
-ok = True
-if not ob - oa > 30:
-    print(f"the old spot did not get darker by > 30 levels ({ob:.1f} -> {oa:.1f})"); ok = False
-if not na - nb > 30:
-    print(f"the new spot did not get brighter by > 30 levels ({nb:.1f} -> {na:.1f})"); ok = False
-sys.exit(0 if ok else 1)
-EOF
+e2e_spot_moved "$SHOTS/shot-000.png" "$SHOTS/shot-001.png" "$OX" "$OY" "$PX" "$PY" 30
 log "1. drag: passed"
 
 # === 2. Swap the LED's light field through the inspector's file field ==============================

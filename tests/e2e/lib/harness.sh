@@ -114,3 +114,46 @@ e2e_start_xvfb() {
     unset WAYLAND_DISPLAY  # GLFW must use the X server above
     log "Xvfb on $DISPLAY"
 }
+
+# e2e_mean IMAGE X Y: mean grey level (0-255) of the BOX x BOX square centred on (X, Y).
+e2e_mean() {
+    convert "$1" -crop "${BOX}x${BOX}+$(($2 - BOX / 2))+$(($3 - BOX / 2))" +repage \
+        -colorspace Gray -format '%[fx:mean*255]' info:
+}
+
+# e2e_spot_moved BEFORE.png AFTER.png OX OY PX PY LEVELS: between the two images the square at
+# the old place (OX, OY) got darker and the one at the new place (PX, PY) brighter, each by more
+# than LEVELS grey levels.
+e2e_spot_moved() {
+    local ob oa nb na
+    ob=$(e2e_mean "$1" "$3" "$4")
+    oa=$(e2e_mean "$2" "$3" "$4")
+    nb=$(e2e_mean "$1" "$5" "$6")
+    na=$(e2e_mean "$2" "$5" "$6")
+    log "old place ($3, $4): $ob -> $oa; new place ($5, $6): $nb -> $na"
+    python3 - "$ob" "$oa" "$nb" "$na" "$7" <<'PY' || fail "the lit spot did not move"
+import sys
+ob, oa, nb, na, levels = map(float, sys.argv[1:])
+ok = True
+if not ob - oa > levels:
+    print(f"the old place did not get darker by > {levels:g} levels ({ob:.1f} -> {oa:.1f})"); ok = False
+if not na - nb > levels:
+    print(f"the new place did not get brighter by > {levels:g} levels ({nb:.1f} -> {na:.1f})"); ok = False
+sys.exit(0 if ok else 1)
+PY
+}
+
+# e2e_start_editor SCENE WxH FIRST_LAYOUT_CONDITION: starts the editor on SCENE (screenshots into
+# SHOTS, layout into LAYOUT), waits until the layout satisfies the condition, and finds and
+# focuses its window (WID).
+e2e_start_editor() {
+    LIBGL_ALWAYS_SOFTWARE=1 timeout 280 "$CANDELA" edit "$1" --size "$2" \
+        --screenshot-dir "$SHOTS" --layout-file "$LAYOUT" --quit-after-frames 1000000 \
+        >"$TMP/editor.log" 2>&1 &
+    EDITOR_PID=$!
+    wait_until "the editor's first layout" "$3"
+    WID=$(timeout 30 xdotool search --sync --onlyvisible --name Candela | head -n 1) ||
+        fail "no window named Candela"
+    [ -n "$WID" ] || fail "no window named Candela"
+    xdotool windowfocus "$WID" 2>/dev/null || true
+}
