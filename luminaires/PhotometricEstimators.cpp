@@ -26,13 +26,13 @@ struct Setup {
     const PhotometricLuminaire* light;
     glm::dvec3 p;  ///< Receiver, local frame (opening centre at the origin).
     glm::dvec3 n;  ///< Receiver's unit normal, local frame.
-    glm::dvec3 x, y, z;  ///< The pose's frame (world directions of local axes).
+    glm::dvec3 x, y, z;  ///< The photometric frame (world directions of local axes).
 };
 
 Setup makeSetup(const Luminaire& l, const glm::dvec3& pWorld, const glm::dvec3& nWorld) {
     Setup s;
     s.light = static_cast<const PhotometricLuminaire*>(&l);
-    l.pose.frame(s.x, s.y, s.z);
+    s.light->photometricFrame(s.x, s.y, s.z);
     glm::dvec3 d = pWorld - l.pose.position;
     s.p = {glm::dot(d, s.x), glm::dot(d, s.y), glm::dot(d, s.z)};
     glm::dvec3 n = {glm::dot(nWorld, s.x), glm::dot(nWorld, s.y), glm::dot(nWorld, s.z)};

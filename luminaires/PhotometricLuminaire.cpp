@@ -24,9 +24,9 @@ constexpr double kPi = 3.14159265358979323846;
 /// Openings smaller than this (m2, relative to the squared extent) are a segment or a point.
 constexpr double kDegenerateArea = 1e-9;
 
-glm::dvec3 toLocalDir(const Pose& pose, const glm::dvec3& w) {
+glm::dvec3 toLocalDir(const PhotometricLuminaire& l, const glm::dvec3& w) {
     glm::dvec3 x, y, z;
-    pose.frame(x, y, z);
+    l.photometricFrame(x, y, z);
     return {glm::dot(w, x), glm::dot(w, y), glm::dot(w, z)};
 }
 
@@ -96,6 +96,11 @@ void PhotometricLuminaire::updateOpening() {
     }
 }
 
+void PhotometricLuminaire::photometricFrame(glm::dvec3& x, glm::dvec3& y, glm::dvec3& z) const {
+    pose.frame(x, y, z);
+    y = -y;  // c0 x aim
+}
+
 std::unique_ptr<Luminaire> PhotometricLuminaire::clone() const {
     return std::make_unique<PhotometricLuminaire>(*this);
 }
@@ -103,12 +108,12 @@ std::unique_ptr<Luminaire> PhotometricLuminaire::clone() const {
 double PhotometricLuminaire::intensity(const glm::dvec3& w) const {
     double l = glm::length(w);
     if (!(l > 0.0) || !data) return 0.0;
-    return scale * data->intensity(toLocalDir(pose, w / l));
+    return scale * data->intensity(toLocalDir(*this, w / l));
 }
 
 glm::dvec3 PhotometricLuminaire::radiance(const glm::dvec3& xWorld, const glm::dvec3& w) const {
     if (mArea <= 0.0) return glm::dvec3(0.0);
-    glm::dvec3 x = toLocalDir(pose, xWorld - pose.position);
+    glm::dvec3 x = toLocalDir(*this, xWorld - pose.position);
     double size = std::max(mSize, 1e-9);
     if (std::abs(x.z) > 1e-6 * size) return glm::dvec3(0.0);
     for (size_t i = 0; i < mPolygon.size(); ++i) {
@@ -118,7 +123,7 @@ glm::dvec3 PhotometricLuminaire::radiance(const glm::dvec3& xWorld, const glm::d
     }
     double l = glm::length(w);
     if (!(l > 0.0)) return glm::dvec3(0.0);
-    double cosL = std::abs(glm::dot(toLocalDir(pose, w), glm::dvec3(0, 0, 1))) / l;
+    double cosL = std::abs(glm::dot(toLocalDir(*this, w), glm::dvec3(0, 0, 1))) / l;
     if (!(cosL > 1e-12)) return glm::dvec3(0.0);
     return colour * (intensity(w) / (mArea * cosL));
 }
@@ -130,7 +135,7 @@ glm::dvec3 PhotometricLuminaire::power() const {
 LightSample PhotometricLuminaire::sample(const glm::dvec3& p, const glm::dvec2& u) const {
     LightSample s;
     glm::dvec3 ex, ey, ez;
-    pose.frame(ex, ey, ez);
+    photometricFrame(ex, ey, ez);
     glm::dvec2 local(0.0);
     if (mPolygon.size() >= 3) {
         // Uniform in area: a triangle of the fan by area, then a uniform point in it.
@@ -170,7 +175,7 @@ LightSample PhotometricLuminaire::sample(const glm::dvec3& p, const glm::dvec2& 
 double PhotometricLuminaire::pdf(const glm::dvec3& p, const glm::dvec3& wi) const {
     if (mArea <= 0.0) return 0.0;
     glm::dvec3 ex, ey, ez;
-    pose.frame(ex, ey, ez);
+    photometricFrame(ex, ey, ez);
     double denom = glm::dot(wi, ez);
     if (std::abs(denom) < 1e-12) return 0.0;
     double t = glm::dot(pose.position - p, ez) / denom;
@@ -186,7 +191,7 @@ double PhotometricLuminaire::pdf(const glm::dvec3& p, const glm::dvec3& wi) cons
 
 std::vector<glm::dvec3> PhotometricLuminaire::outline() const {
     glm::dvec3 ex, ey, ez;
-    pose.frame(ex, ey, ez);
+    photometricFrame(ex, ey, ez);
     std::vector<glm::dvec3> out;
     if (mPolygon.size() >= 3) {
         for (const auto& q : mPolygon) out.push_back(pose.position + q.x * ex + q.y * ey);
@@ -204,7 +209,7 @@ std::vector<glm::dvec3> PhotometricLuminaire::outline() const {
 
 glm::dvec3 PhotometricLuminaire::displayRadiance() const {
     glm::dvec3 ex, ey, ez;
-    pose.frame(ex, ey, ez);
+    photometricFrame(ex, ey, ez);
     double area = mArea;
     if (area <= 0.0) {
         auto o = outline();
@@ -225,7 +230,7 @@ std::vector<std::byte> PhotometricLuminaire::gpuData() const {
     const PhotometricData& d = *data;
     gpu::PhotometricGpu h{};
     glm::dvec3 x, y, z;
-    pose.frame(x, y, z);
+    photometricFrame(x, y, z);
     h.position = glm::vec4(glm::vec3(pose.position), float(mArea));
     h.axisX = glm::vec4(glm::vec3(x), float(mSize));
     h.axisY = glm::vec4(glm::vec3(y), float(0.1 * mSize));

@@ -49,6 +49,11 @@ public:
     double size() const { return mSize; }
     /// Candela towards world direction w (from the luminaire), scale applied.
     double intensity(const glm::dvec3& w) const;
+    /// The photometric frame in world directions: x = C0 (c0 made orthogonal to the aim),
+    /// y = C90 = c0 x aim (so C grows counter-clockwise seen from above a downlight, the
+    /// photometric convention; Pose::frame's y is aim x c0, the other way), z = the aim
+    /// (gamma = 0). The opening, the table and the GPU record all use this frame.
+    void photometricFrame(glm::dvec3& x, glm::dvec3& y, glm::dvec3& z) const;
     /// Recomputes the polygon after data or openingOverride changed.
     void updateOpening();
 

@@ -2,8 +2,9 @@
 // Far-field photometry of a luminaire: luminous intensity per direction from an IES LM-63 or
 // EULUMDAT file, plus the size of its luminous opening (Prost 2019, seed 004, Ch. 2).
 //
-// Local frame (shared with Pose): +z is the aim (gamma = 0, nadir for a downlight), +x is C = 0,
-// +y is C = 90. C grows counter-clockwise seen from above a downlight. For type B files the polar
+// Local frame (PhotometricLuminaire::photometricFrame): +z is the aim (gamma = 0, nadir for a
+// downlight), +x is C = 0 (the pose's c0), +y is C = 90 = c0 x aim, so C grows counter-clockwise
+// seen from above a downlight (Pose::frame's y, aim x c0, is the opposite direction). For type B files the polar
 // axis is local +y: horizontal angle H turns about +y from +z towards +x, vertical angle V lifts
 // towards +y, so (H, V) = (0, 0) is the aim.
 //

@@ -207,6 +207,22 @@ double areaQuadrature(const PhotometricLuminaire& l, glm::dvec3 p, glm::dvec3 n,
     return sum / double(cells * cells);
 }
 
+TEST(PhotometricLuminaire, CGrowsCounterClockwiseSeenFromAboveADownlight) {
+    // The frame: gamma = 0 along aim, C = 0 along c0, C = 90 along c0 x aim. A downlight
+    // (aim -Y, c0 +X) seen from above (from +Y, X to the right, Z towards the viewer's bottom):
+    // counter-clockwise from +X is -Z. cplanes.ies has 100, 200, 300, 400 cd at C 0, 90, 180, 270.
+    auto l = place("cplanes.ies", {0, 2, 0}, {0, -1, 0}, {1, 0, 0});
+    const double s = std::sqrt(0.5);
+    struct Case { glm::dvec3 dir; double cd; };
+    for (Case c : {Case{{s, -s, 0}, 100.0}, Case{{0, -s, -s}, 200.0}, Case{{-s, -s, 0}, 300.0},
+                   Case{{0, -s, s}, 400.0}}) {
+        EXPECT_NEAR(l->intensity(c.dir), c.cd, 1e-9) << c.dir.x << " " << c.dir.z;
+        // And through a technique: the point law at a receiver 1 m along that direction.
+        glm::dvec3 p = l->pose.position + c.dir;
+        EXPECT_NEAR(run("point", *l, p, -c.dir).irradiance.y, c.cd, 1e-9);
+    }
+}
+
 TEST(PhotometricLuminaire, ReferenceMatchesQuadratureNearAndPointLawFar) {
     for (const char* file : {"spot.ies", "side.ies", "lambert.ies"}) {
         auto l = place(file, {0, 2, 0}, glm::normalize(glm::dvec3(0.3, -1, 0.1)), {1, 0, 0});
@@ -339,7 +355,7 @@ TEST(PhotometricLuminaire, FluxFromASphereOfProbesMatchesTheTable) {
     // noise summed over 26k receivers to ~1e-4).
     namespace fs = std::filesystem;
     std::vector<std::string> files;
-    for (const char* f : {"lambert.ies", "side.ies", "spot.ies"}) files.push_back(kData + f);
+    for (const char* f : {"lambert.ies", "side.ies", "spot.ies", "cplanes.ies"}) files.push_back(kData + f);
     for (const auto& e : fs::recursive_directory_iterator(CANDELA_TEST_DATA "/photometry")) {
         std::string ext = e.path().extension().string();
         for (char& c : ext) c = char(std::tolower((unsigned char)c));
@@ -385,7 +401,7 @@ TEST(PhotometricLuminaire, FluxFromASphereOfProbesMatchesTheTable) {
         double integrated = sum * R * R * (kPi / nt) * (2 * kPi / np);
         EXPECT_NEAR(integrated, flux, 0.01 * flux) << file;
     }
-    EXPECT_GE(loaded, 57);  // 54 shared files and 3 synthetic ones
+    EXPECT_GE(loaded, 58);  // 54 shared files and 4 synthetic ones
 }
 
 }  // namespace
