@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "luminaires/Random.h"
+#include "luminaires/SphericalPolygon.h"
 #include "shaders/shared/GpuTypes.h"
 
 namespace candela {
@@ -115,42 +116,16 @@ double solidAngleOf(const LocalRect& r) {
 }
 
 /// Integral of max(0, m . w) over the rectangle's solid angle (sr), m the receiver's unit normal
-/// in the local frame: the rectangle is clipped to the receiver's upper hemisphere (Sutherland-
-/// Hodgman against m . v >= 0), then the polygon formula of Lambert (Baum, Rushmeier, Winget
-/// 1989, Eq. 2) sums over edges the angle subtended times m . (unit normal of the edge's plane).
+/// in the local frame: the rectangle clipped to the receiver's upper hemisphere, then Lambert's
+/// polygon formula (Baum, Rushmeier, Winget 1989, Eq. 2), both from luminaires/SphericalPolygon.
 double projectedSolidAngle(const LocalRect& r, const glm::dvec3& m) {
-    const glm::dvec3 quad[4] = {{r.x0, r.y0, -r.h},
-                                {r.x1, r.y0, -r.h},
-                                {r.x1, r.y1, -r.h},
-                                {r.x0, r.y1, -r.h}};
-    double dist[4];
-    for (int i = 0; i < 4; ++i) dist[i] = glm::dot(m, quad[i]);
-    // A convex quad cut by one plane keeps at most 5 vertices; 8 leaves room for rounding.
-    glm::dvec3 poly[8];
-    int count = 0;
-    for (int i = 0; i < 4; ++i) {
-        int j = (i + 1) % 4;
-        bool inI = dist[i] >= 0.0, inJ = dist[j] >= 0.0;
-        if (inI) poly[count++] = quad[i];
-        if (inI != inJ) {
-            // The signs differ, so dist[i] - dist[j] is not zero.
-            double s = dist[i] / (dist[i] - dist[j]);
-            poly[count++] = quad[i] + s * (quad[j] - quad[i]);
-        }
-    }
-    if (count < 3) return 0.0;
-    double sum = 0.0;
-    for (int i = 0; i < count; ++i) {
-        glm::dvec3 a = poly[i], b = poly[(i + 1) % count];
-        glm::dvec3 c = glm::cross(a, b);
-        double lc = glm::length(c);
-        if (!(lc > 0.0)) continue;  // zero-length edge (a clip point on a vertex)
-        sum += std::atan2(lc, glm::dot(a, b)) * glm::dot(m, c) / lc;
-    }
-    // Counter-clockwise seen from the emitting side, where the receiver is, the edge normals
-    // a x b point away from the polygon: the sum is negative for a visible polygon.
-    double result = -0.5 * sum;
-    return result > 0.0 && std::isfinite(result) ? result : 0.0;
+    spherical::Polygon quad;
+    quad.count = 4;
+    quad.v[0] = {r.x0, r.y0, -r.h};
+    quad.v[1] = {r.x1, r.y0, -r.h};
+    quad.v[2] = {r.x1, r.y1, -r.h};
+    quad.v[3] = {r.x0, r.y1, -r.h};
+    return spherical::projectedSolidAngle(spherical::clip(quad, m), m);
 }
 
 /// Clamps a sampler input to [0, 1]; NaN becomes 0.

@@ -121,15 +121,6 @@ void bounds(const PhotometricLuminaire& l, glm::dvec2& lo, glm::dvec2& hi) {
     }
 }
 
-bool insideOpening(const PhotometricLuminaire& l, const glm::dvec2& q) {
-    const auto& poly = l.polygon();
-    for (size_t i = 0; i < poly.size(); ++i) {
-        glm::dvec2 a = poly[i], e = poly[(i + 1) % poly.size()] - a;
-        if (e.x * (q.y - a.y) - e.y * (q.x - a.x) < 0.0) return false;
-    }
-    return true;
-}
-
 /// Area-form estimate with fixed points u in [0,1)^2 on the bounding rectangle: the mean over
 /// the points inside the opening of I cos / r^2 (a ratio estimator: openings that do not fill the
 /// rectangle, such as ellipses, lose no accuracy to rejected points).
@@ -140,7 +131,7 @@ double areaFormFixed(const Setup& s, const std::vector<glm::dvec2>& points) {
     int inside = 0;
     for (const auto& u : points) {
         glm::dvec2 q = lo + u * (hi - lo);
-        if (!insideOpening(*s.light, q)) continue;
+        if (!s.light->contains(q)) continue;
         sum += pointIrradiance(s, glm::dvec3(q, 0.0));
         ++inside;
     }
@@ -279,7 +270,7 @@ Estimate photometricReference(const Luminaire& l, const glm::dvec3& p, const glm
     double mean = 0.0, m2 = 0.0;
     for (int k = 0; k < options.spp; ++k) {
         glm::dvec2 q = lo + glm::dvec2(rng.uniform(), rng.uniform()) * (hi - lo);
-        double f = insideOpening(*s.light, q) ? ratio * pointIrradiance(s, glm::dvec3(q, 0.0)) : 0.0;
+        double f = s.light->contains(q) ? ratio * pointIrradiance(s, glm::dvec3(q, 0.0)) : 0.0;
         double delta = f - mean;
         mean += delta / double(k + 1);
         m2 += delta * (f - mean);

@@ -96,6 +96,14 @@ void PhotometricLuminaire::updateOpening() {
     }
 }
 
+bool PhotometricLuminaire::contains(const glm::dvec2& q, double slack) const {
+    for (size_t i = 0; i < mPolygon.size(); ++i) {
+        glm::dvec2 a = mPolygon[i], e = mPolygon[(i + 1) % mPolygon.size()] - a;
+        if (e.x * (q.y - a.y) - e.y * (q.x - a.x) < -slack * glm::length(e)) return false;
+    }
+    return true;
+}
+
 void PhotometricLuminaire::photometricFrame(glm::dvec3& x, glm::dvec3& y, glm::dvec3& z) const {
     pose.frame(x, y, z);
     y = -y;  // c0 x aim
@@ -115,12 +123,7 @@ glm::dvec3 PhotometricLuminaire::radiance(const glm::dvec3& xWorld, const glm::d
     if (mArea <= 0.0) return glm::dvec3(0.0);
     glm::dvec3 x = toLocalDir(*this, xWorld - pose.position);
     double size = std::max(mSize, 1e-9);
-    if (std::abs(x.z) > 1e-6 * size) return glm::dvec3(0.0);
-    for (size_t i = 0; i < mPolygon.size(); ++i) {
-        glm::dvec2 a = mPolygon[i], b = mPolygon[(i + 1) % mPolygon.size()];
-        glm::dvec2 e = b - a, q = glm::dvec2(x) - a;
-        if (e.x * q.y - e.y * q.x < -1e-9 * size * glm::length(e)) return glm::dvec3(0.0);
-    }
+    if (std::abs(x.z) > 1e-6 * size || !contains(glm::dvec2(x), 1e-9 * size)) return glm::dvec3(0.0);
     double l = glm::length(w);
     if (!(l > 0.0)) return glm::dvec3(0.0);
     double cosL = std::abs(glm::dot(toLocalDir(*this, w), glm::dvec3(0, 0, 1))) / l;
@@ -139,15 +142,16 @@ LightSample PhotometricLuminaire::sample(const glm::dvec3& p, const glm::dvec2& 
     glm::dvec2 local(0.0);
     if (mPolygon.size() >= 3) {
         // Uniform in area: a triangle of the fan by area, then a uniform point in it.
+        auto fanArea = [&](size_t i) {
+            glm::dvec2 a = mPolygon[i] - mPolygon[0], b = mPolygon[i + 1] - mPolygon[0];
+            return 0.5 * std::abs(a.x * b.y - b.x * a.y);
+        };
         double total = 0.0;
-        for (size_t i = 1; i + 1 < mPolygon.size(); ++i)
-            total += 0.5 * std::abs((mPolygon[i].x - mPolygon[0].x) * (mPolygon[i + 1].y - mPolygon[0].y) -
-                                    (mPolygon[i + 1].x - mPolygon[0].x) * (mPolygon[i].y - mPolygon[0].y));
+        for (size_t i = 1; i + 1 < mPolygon.size(); ++i) total += fanArea(i);
         double pick = std::clamp(u.x, 0.0, 1.0) * total, v = u.x;
         size_t tri = 1;
         for (; tri + 1 < mPolygon.size(); ++tri) {
-            double a = 0.5 * std::abs((mPolygon[tri].x - mPolygon[0].x) * (mPolygon[tri + 1].y - mPolygon[0].y) -
-                                      (mPolygon[tri + 1].x - mPolygon[0].x) * (mPolygon[tri].y - mPolygon[0].y));
+            double a = fanArea(tri);
             if (pick < a || tri + 2 == mPolygon.size()) {
                 v = a > 0.0 ? std::clamp(pick / a, 0.0, 1.0) : 0.0;
                 break;
@@ -181,11 +185,7 @@ double PhotometricLuminaire::pdf(const glm::dvec3& p, const glm::dvec3& wi) cons
     double t = glm::dot(pose.position - p, ez) / denom;
     if (!(t > 0.0)) return 0.0;
     glm::dvec3 x = p + t * wi - pose.position;
-    glm::dvec2 q(glm::dot(x, ex), glm::dot(x, ey));
-    for (size_t i = 0; i < mPolygon.size(); ++i) {
-        glm::dvec2 a = mPolygon[i], e = mPolygon[(i + 1) % mPolygon.size()] - a;
-        if (e.x * (q.y - a.y) - e.y * (q.x - a.x) < 0.0) return 0.0;
-    }
+    if (!contains({glm::dot(x, ex), glm::dot(x, ey)})) return 0.0;
     return t * t / (mArea * std::abs(denom));
 }
 

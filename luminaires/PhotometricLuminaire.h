@@ -45,6 +45,9 @@ public:
     /// point source.
     const std::vector<glm::dvec2>& polygon() const { return mPolygon; }
     double area() const { return mArea; }
+    /// Whether local point q (metres, z = 0 plane) lies in the opening polygon; `slack` metres
+    /// of tolerance outside its edges.
+    bool contains(const glm::dvec2& q, double slack = 0.0) const;
     /// Largest extent of the opening, metres (0 for a point).
     double size() const { return mSize; }
     /// Candela towards world direction w (from the luminaire), scale applied.
