@@ -56,19 +56,7 @@ wait_for_file "$SHOTS/shot-000.json"
 echo "editor_drag: shot-000 written"
 
 # --- 2. Drag the luminaire by DRAG_PX to the right ----------------------------------------------
-move_to "$LX" "$LY"
-xdotool mousedown 1
-wait_until "\"$NAME\" to be picked and dragged" "d['dragging'] and d['selected'] == '$NAME'"
-STEPS=10
-for ((i = 1; i <= STEPS; i++)); do
-    xdotool mousemove --window "$WID" $((LX + DRAG_PX * i / STEPS)) "$LY"
-    sleep 0.05
-done
-NX=$((LX + DRAG_PX))
-move_to "$NX" "$LY"
-wait_until "the luminaire to follow the mouse to ($NX, $LY)" \
-    "abs(d['luminaires'][0]['screen'][0] - $NX) < 3 and abs(d['luminaires'][0]['screen'][1] - $LY) < 3"
-xdotool mouseup 1
+e2e_drag "$NAME" "$LX" "$LY" "$DRAG_PX"
 wait_until "the end of the drag" "not d['dragging']"
 read -r NX NY < <(layout "'%.2f %.2f' % tuple(d['luminaires'][0]['screen'])")
 echo "editor_drag: \"$NAME\" now at ($NX, $NY)"

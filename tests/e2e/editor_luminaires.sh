@@ -155,19 +155,7 @@ log "viewport $VX,$VY ${VW}x$VH; LED at ($LX, $LY)"
 
 # === 1. Select the LED by clicking it and drag it ==================================================
 screenshot 000
-move_to "$LX" "$LY"
-xdotool mousedown 1
-wait_until "the LED to be picked and dragged" "d['dragging'] and d['selected'] == 'LED'"
-STEPS=10
-for ((i = 1; i <= STEPS; i++)); do
-    xdotool mousemove --window "$WID" $((LX + DRAG_PX * i / STEPS)) "$LY"
-    sleep 0.05
-done
-NX=$((LX + DRAG_PX))
-move_to "$NX" "$LY"
-wait_until "the LED to follow the mouse to ($NX, $LY)" \
-    "abs(lum('LED')['screen'][0] - $NX) < 3 and abs(lum('LED')['screen'][1] - $LY) < 3"
-xdotool mouseup 1
+e2e_drag "LED" "$LX" "$LY" "$DRAG_PX"
 wait_until "the end of the drag" "not d['dragging']"
 layout "d['selected'] == 'LED'" || fail "the LED is not selected after the drag"
 LED_POSE=$(layout "json.dumps([lum('LED')[k] for k in ('position', 'aim', 'c0')])")

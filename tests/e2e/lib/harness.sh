@@ -157,3 +157,21 @@ e2e_start_editor() {
     [ -n "$WID" ] || fail "no window named Candela"
     xdotool windowfocus "$WID" 2>/dev/null || true
 }
+
+# e2e_drag NAME X Y DX: presses on luminaire NAME at window pixel (X, Y), drags it DX pixels to
+# the right in ten steps, waits until it follows the mouse there, and releases. Sets NX.
+e2e_drag() {
+    local name=$1 x=$2 y=$3 dx=$4 i
+    move_to "$x" "$y"
+    xdotool mousedown 1
+    wait_until "\"$name\" to be picked and dragged" "d['dragging'] and d['selected'] == '$name'"
+    for ((i = 1; i <= 10; i++)); do
+        xdotool mousemove --window "$WID" $((x + dx * i / 10)) "$y"
+        sleep 0.05
+    done
+    NX=$((x + dx))
+    move_to "$NX" "$y"
+    wait_until "\"$name\" to follow the mouse to ($NX, $y)" \
+        "abs(lum('$name')['screen'][0] - $NX) < 3 and abs(lum('$name')['screen'][1] - $y) < 3"
+    xdotool mouseup 1
+}
