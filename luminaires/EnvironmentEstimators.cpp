@@ -271,21 +271,23 @@ Estimate environmentBalancedMis(const EnvironmentLighting& lighting, const glm::
 
 // ---------------------------------------------------------------------------------------------
 // The table of environment techniques (the registry of luminaires/Registry.cpp is typed on
-// Luminaire; the environment is not one, so its techniques live here until the GPU passes).
+// Luminaire; the environment is not one, so its techniques live here, each naming its variant
+// of shaders/environment_shade.frag).
 
+using Tables = EnvironmentTechniqueInfo::Tables;
 static const EnvironmentTechniqueInfo kEnvironmentTechniques[] = {
     {"reference", "exact: every texel's radiance times its clipped-cosine integral", false,
-     &environmentReference},
+     &environmentReference, "", Tables::None},
     {"balanced", "cube-map CDFs, samples per face balanced per normal (Lu et al. 2013, Eq. 3-5)",
-     true, &environmentBalanced},
+     true, &environmentBalanced, "TECHNIQUE_BALANCED", Tables::Cube},
     {"uniform-faces", "cube-map CDFs, 1/6 of the samples per face (Lu et al. 2013, Fig. 2)", true,
-     &environmentUniformFaces},
+     &environmentUniformFaces, "TECHNIQUE_UNIFORM_FACES", Tables::Cube},
     {"global-cdf", "one CDF over the lat-long map with the sin(theta) Jacobian", true,
-     &environmentGlobalCdf},
+     &environmentGlobalCdf, "TECHNIQUE_GLOBAL_CDF", Tables::LatLong},
     {"havran2005", "256 filtered directional lights from relaxed Halton points (Havran et al. 2005)",
-     false, &environmentHavran},
+     false, &environmentHavran, "TECHNIQUE_HAVRAN", Tables::Lights},
     {"balanced-mis", "balanced light samples and cosine samples, balance heuristic (Eq. 6)", true,
-     &environmentBalancedMis},
+     &environmentBalancedMis, "TECHNIQUE_BALANCED_MIS", Tables::Cube},
 };
 
 std::span<const EnvironmentTechniqueInfo> environmentTechniques() { return kEnvironmentTechniques; }

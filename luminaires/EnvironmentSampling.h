@@ -124,6 +124,9 @@ public:
     double pdf(const glm::dvec3& w) const;
     glm::dvec2 invert(const glm::dvec3& w) const;
     bool empty() const { return !(mRows.total > 0.0); }
+    /// The tables (the GPU's global-cdf technique uploads them).
+    const Cdf1D& rows() const { return mRows; }
+    const Cdf1D& columns(int row) const { return mColumns[size_t(row)]; }
 
 private:
     const EnvironmentMap* mMap;
@@ -208,6 +211,10 @@ struct EnvironmentTechniqueInfo {
     std::string_view description;  ///< One line for help.
     bool progressive;              ///< Stochastic.
     EnvironmentIrradianceFn irradiance;
+    std::string_view define;       ///< Variant of shaders/environment_shade.frag; empty: CPU only.
+    /// What the GPU builds for it when the map changes: the cube-map CDFs (and then a pool of
+    /// light samples every frame), the lat-long CDF (on the CPU), or the Havran lights (CPU).
+    enum class Tables { None, Cube, LatLong, Lights } tables = Tables::None;
 };
 std::span<const EnvironmentTechniqueInfo> environmentTechniques();
 const EnvironmentTechniqueInfo* findEnvironmentTechnique(std::string_view name);

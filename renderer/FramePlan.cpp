@@ -19,19 +19,25 @@ glm::mat4 cameraViewProj(const Camera& c, double aspect) {
 bool FramePlan::progressive() const {
     for (const auto& s : shading)
         if (s.progressive) return true;
-    return false;
+    return environment && environment->progressive;
 }
 
 std::vector<std::string> FramePlan::passNames() const {
     std::vector<std::string> names = {"gbuffer"};
+    if (environment && environmentTechnique->tables == EnvironmentTechniqueInfo::Tables::Cube) {
+        names.push_back("env:cdf");
+        names.push_back("env:samples");
+    }
     for (const auto& s : shading) names.push_back(s.name);
+    if (environment) names.push_back(environment->name);
     names.push_back("resolve");
     names.push_back("tonemap");
     return names;
 }
 
 FramePlan planFrame(const Scene& scene, const glm::mat4& viewProj,
-                    const std::string& techniqueOverride, Quantity quantity) {
+                    const std::string& techniqueOverride, Quantity quantity,
+                    const std::string& environmentTechnique) {
     FramePlan plan;
     plan.glossy = quantity == Quantity::Radiance && scene.hasGlossy();
     std::vector<bool> shadows = luminairesNeedingShadows(scene, viewProj);
@@ -62,6 +68,32 @@ FramePlan planFrame(const Scene& scene, const glm::mat4& viewProj,
         step.name = "shade:" + lum.name + ":" + name;
         plan.needsBvh = plan.needsBvh || step.shadows;
         plan.shading.push_back(std::move(step));
+    }
+    if (scene.environmentMap) {
+        std::string name = environmentTechnique;
+        if (name.empty())
+            name = findEnvironmentTechnique(techniqueOverride) ? techniqueOverride : "balanced";
+        const EnvironmentTechniqueInfo* t = findEnvironmentTechnique(name);
+        if (!t)
+            throw InputError("environment: unknown technique \"" + name + "\" (available: " +
+                             environmentTechniqueNames() + ")");
+        if (t->define.empty())
+            throw InputError("environment: technique \"" + name +
+                             "\" runs on the CPU only (`candela probe`, benches); pick another "
+                             "technique to render");
+        ShadeStep step;
+        step.shadows = environmentNeedsShadows(scene, viewProj);
+        step.program.vertex = "fullscreen.vert";
+        step.program.fragment = "environment_shade.frag";
+        step.program.defines.push_back(std::string(t->define));
+        if (step.shadows) step.program.defines.push_back("SHADOWS");
+        if (plan.glossy) step.program.defines.push_back("GLOSSY");
+        // The Havran lights are a fixed set: every light (and its shadow ray) each frame.
+        step.progressive = t->progressive;
+        step.name = "shade:environment:" + name;
+        plan.needsBvh = plan.needsBvh || step.shadows;
+        plan.environment = std::move(step);
+        plan.environmentTechnique = t;
     }
     return plan;
 }

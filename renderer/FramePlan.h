@@ -6,9 +6,11 @@
 
 #include <glm/glm.hpp>
 
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "luminaires/EnvironmentSampling.h"
 #include "luminaires/Registry.h"
 #include "renderer/ShaderLibrary.h"
 #include "scene/Scene.h"
@@ -29,6 +31,9 @@ struct ShadeStep {
 
 struct FramePlan {
     std::vector<ShadeStep> shading;
+    /// The environment map's shading (luminaire -1, technique null), when the scene has one.
+    std::optional<ShadeStep> environment;
+    const EnvironmentTechniqueInfo* environmentTechnique = nullptr;
     bool needsBvh = false;  ///< Some step traces shadows: build and upload the BVH.
     bool glossy = false;
     bool progressive() const;
@@ -39,11 +44,14 @@ struct FramePlan {
 /// World to clip transform of the camera for an image of the given aspect (width / height).
 glm::mat4 cameraViewProj(const Camera& camera, double aspect);
 
-/// techniqueOverride: if non-empty, used for every luminaire of a kind that has it.
+/// techniqueOverride: if non-empty, used for every luminaire of a kind that has it, and for the
+/// environment if it names an environment technique and environmentTechnique is empty (then the
+/// environment uses "balanced").
 /// In illuminance mode every receiver is white Lambertian: no GLOSSY variant whatever the
 /// materials. Throws InputError if a luminaire names a technique its kind does not have.
 FramePlan planFrame(const Scene& scene, const glm::mat4& viewProj,
                     const std::string& techniqueOverride = {},
-                    Quantity quantity = Quantity::Radiance);
+                    Quantity quantity = Quantity::Radiance,
+                    const std::string& environmentTechnique = {});
 
 }  // namespace candela

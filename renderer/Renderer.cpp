@@ -5,6 +5,7 @@
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "renderer/passes/EnvironmentPass.h"
 #include "renderer/passes/GBufferPass.h"
 #include "renderer/passes/ResolvePass.h"
 #include "renderer/passes/ShadePass.h"
@@ -34,6 +35,7 @@ Renderer::Renderer(ShaderLibrary& shaders)
       mShade(std::make_unique<ShadePass>()),
       mResolve(std::make_unique<ResolvePass>()),
       mTonemap(std::make_unique<TonemapPass>()),
+      mEnvironment(std::make_unique<EnvironmentPass>()),
       mFrameUniforms(sizeof(gpu::FrameUniforms), nullptr) {}
 
 Renderer::~Renderer() = default;
@@ -47,7 +49,9 @@ void Renderer::setSettings(const RenderSettings& s) {
     const RenderSettings& o = mSettings;
     bool restart = s.width != o.width || s.height != o.height ||
                    s.samplesPerFrame != o.samplesPerFrame || s.maxSamples != o.maxSamples ||
-                   s.techniqueOverride != o.techniqueOverride || s.quantity != o.quantity;
+                   s.techniqueOverride != o.techniqueOverride || s.quantity != o.quantity ||
+                   s.environmentTechnique != o.environmentTechnique ||
+                   s.environmentFaceSize != o.environmentFaceSize;
     bool display = s.toneMap != o.toneMap || s.exposure != o.exposure ||
                    s.fixedAverage != o.fixedAverage || s.legend != o.legend;
     mSettings = s;
@@ -78,7 +82,10 @@ void Renderer::uploadLuminaires() {
 }
 
 void Renderer::rebuildPlan() {
-    mPlan = planFrame(*mScene, viewProj(), mSettings.techniqueOverride, mSettings.quantity);
+    mPlan = planFrame(*mScene, viewProj(), mSettings.techniqueOverride, mSettings.quantity,
+                      mSettings.environmentTechnique);
+    mEnvironment->setMap(mPlan.environment ? mScene->environmentMap : nullptr,
+                         mSettings.environmentFaceSize);
     if (mPlan.needsBvh && !mBvh) {
         mBvh = std::make_unique<Bvh>(Bvh::build(*mScene));
         auto bytes = [](const auto& v) { return GLsizeiptr(v.size() * sizeof(v[0])); };
@@ -103,6 +110,7 @@ void Renderer::runShading(int spp) {
         mBvhTris.bindBase(GL_SHADER_STORAGE_BUFFER, gpu::kBindingBvhTris);
     }
     glBindVertexArray(mEmptyVao.id());
+    if (mPlan.environment) runEnvironment(spp);
     for (const ShadeStep& step : mPlan.shading) {
         timed(mStats, step.name, [&] {
             mShade->execute(mShaders, step, mLuminaireBuffers[size_t(step.luminaire)], *mGBuffer,
@@ -111,9 +119,38 @@ void Renderer::runShading(int spp) {
     }
 }
 
+void Renderer::runEnvironment(int spp) {
+    using Tables = EnvironmentTechniqueInfo::Tables;
+    Tables tables = mPlan.environmentTechnique->tables;
+    if (tables == Tables::Cube) {
+        if (!mEnvironment->tablesBuilt())
+            timed(mStats, "env:cdf", [&] { mEnvironment->buildTables(mShaders); });
+        // Enough samples per face that a pixel whose faces balance to one face still draws
+        // distinct ones; a fresh pool every frame.
+        int pool = std::max(256, spp);
+        uint32_t seed = uint32_t(mSettings.seed) * 2654435761u ^ uint32_t(mFrames) * 40503u ^ 0x5bd1e995u;
+        timed(mStats, "env:samples", [&] { mEnvironment->drawSamples(mShaders, seed, pool); });
+    } else if (tables == Tables::LatLong) {
+        mEnvironment->prepareGlobalCdf();
+    } else if (tables == Tables::Lights) {
+        mEnvironment->prepareHavran();
+    }
+    bool background = !mPointMode && mSettings.quantity == Quantity::Radiance;
+    timed(mStats, mPlan.environment->name, [&] {
+        mEnvironment->shade(mShaders, *mPlan.environment, *mGBuffer, mAccumFbo, mGBuffer->width(),
+                            mGBuffer->height(), background);
+    });
+    // The shading passes bind their own G-buffer units; restore the frame block.
+    mFrameUniforms.bindBase(GL_UNIFORM_BUFFER, gpu::kBindingFrame);
+}
+
 void Renderer::renderFrame() {
     mStats.passes.clear();
     if (!mScene) return;
+    // A new map (a sequence's next frame, a moved sun) restarts the accumulation.
+    if (mScene->environmentMap.get() != mEnvironment->map() &&
+        (mScene->environmentMap || mPlan.environment))
+        mPending |= kChangeEnvironment;
     bool newAccumulation = false;
     if (mPending || mPointMode) {
         if (mPointMode || mGBuffer->width() != mSettings.width ||
@@ -215,15 +252,22 @@ std::vector<glm::vec3> Renderer::probe(const Scene& scene, const std::vector<glm
     mStats = FrameStats{};
     mGBuffer->uploadPoints(points, normals, w);
     uploadLuminaires();
-    mPlan = planFrame(scene, viewProj(), mSettings.techniqueOverride);
+    mPlan = planFrame(scene, viewProj(), mSettings.techniqueOverride, Quantity::Radiance,
+                      mSettings.environmentTechnique);
     // Probes measure unshadowed irradiance on a Lambertian receiver: no shadow or glossy variant.
-    for (ShadeStep& s : mPlan.shading) {
+    auto unshadowed = [](ShadeStep& s) {
         std::erase_if(s.program.defines, [](const std::string& d) {
             return d == "SHADOWS" || d == "GLOSSY";
         });
         s.shadows = false;
+    };
+    for (ShadeStep& s : mPlan.shading) {
+        unshadowed(s);
         s.progressive = s.technique->progressive;
     }
+    if (mPlan.environment) unshadowed(*mPlan.environment);
+    mEnvironment->setMap(mPlan.environment ? scene.environmentMap : nullptr,
+                         mSettings.environmentFaceSize);
     mPlan.needsBvh = false;
     const float zero[4] = {0.f, 0.f, 0.f, 0.f};
     glClearNamedFramebufferfv(mAccumFbo.id(), GL_COLOR, 0, zero);

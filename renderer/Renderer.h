@@ -22,6 +22,7 @@ class GBufferPass;
 class ShadePass;
 class ResolvePass;
 class TonemapPass;
+class EnvironmentPass;
 struct Bvh;
 
 /// FalseColour maps the values (lux in illuminance mode) through `RenderSettings::legend`.
@@ -42,6 +43,9 @@ struct RenderSettings {
     Quantity quantity = Quantity::Radiance;
     FalseColourLegend legend;       ///< Used by ToneMapOperator::FalseColour.
     uint32_t seed = 0;              ///< Seeds the random numbers (independent renders differ).
+    /// The environment's technique; empty: techniqueOverride if it names one, else "balanced".
+    std::string environmentTechnique;
+    int environmentFaceSize = 0;    ///< Cube faces of N^2 texels; 0: EnvironmentPass's default.
 };
 
 /// What changed since the last frame (the editor sets these; all of them restart accumulation).
@@ -51,7 +55,8 @@ enum ChangeFlags : unsigned {
     kChangeLuminaires = 2,
     kChangeGeometry = 4,
     kChangeSettings = 8,
-    kChangeAll = 15,
+    kChangeEnvironment = 16,  ///< The environment map (a sequence's frame, a moved sun, a file).
+    kChangeAll = 31,
 };
 
 class Renderer {
@@ -69,6 +74,8 @@ public:
     bool converged() const { return mStats.converged; }
     const FrameStats& stats() const { return mStats; }
     const FramePlan& plan() const { return mPlan; }
+    /// The environment's GPU state (tables, samples), for tests and the editor's sample view.
+    const EnvironmentPass& environment() const { return *mEnvironment; }
 
     /// Tone-mapped sRGB image (RGBA8, row 0 at the bottom) for display.
     const gl::Texture2D& displayTexture() const;
@@ -95,6 +102,7 @@ private:
     void uploadGeometry();
     void uploadLuminaires();
     void runShading(int spp);
+    void runEnvironment(int spp);
 
     ShaderLibrary& mShaders;
     const Scene* mScene = nullptr;
@@ -110,6 +118,7 @@ private:
     std::unique_ptr<ShadePass> mShade;
     std::unique_ptr<ResolvePass> mResolve;
     std::unique_ptr<TonemapPass> mTonemap;
+    std::unique_ptr<EnvironmentPass> mEnvironment;
     std::unique_ptr<Bvh> mBvh;
     gl::Buffer mFrameUniforms;
     gl::Buffer mBvhNodes, mBvhTris;

@@ -154,3 +154,40 @@ std::vector<bool> luminairesNeedingShadows(const Scene& scene, const glm::mat4& 
 }
 
 }  // namespace candela
+
+namespace candela {
+
+bool environmentNeedsShadows(const Scene& scene, const glm::mat4& viewProj) {
+    std::vector<size_t> solid;
+    for (size_t m = 0; m < scene.meshes.size(); ++m) {
+        const Mesh& mesh = scene.meshes[m];
+        if (mesh.triangleCount() > 0 && !mesh.positions.empty()) solid.push_back(m);
+    }
+    for (size_t r : solid) {
+        const Mesh& receiver = scene.meshes[r];
+        DBox rb = boundsOf(receiver);
+        if (!mayBeVisible(rb, glm::dmat4(viewProj))) continue;
+        if (receiver.shape == MeshShape::General) return true;
+        for (size_t o : solid) {
+            if (o == r) continue;
+            const Mesh& occluder = scene.meshes[o];
+            // A plane cannot block a receiver lying in it (the rays would graze it); anything
+            // else may block some direction of a light that comes from everywhere.
+            if (occluder.shape == MeshShape::Plane && !occluder.normals.empty()) {
+                glm::dvec3 n = glm::dvec3(occluder.normals[0]);
+                if (glm::length(n) > 1e-12) {
+                    n = glm::normalize(n);
+                    glm::dvec3 p0(occluder.positions[0]);
+                    double eps = 1e-6 * std::max(1.0, largestCoordinate(rb));
+                    bool inPlane = true;
+                    for (const glm::dvec3& c : corners(rb)) inPlane = inPlane && std::abs(glm::dot(c - p0, n)) <= eps;
+                    if (inPlane) continue;
+                }
+            }
+            return true;
+        }
+    }
+    return false;
+}
+
+}  // namespace candela

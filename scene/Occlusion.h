@@ -33,4 +33,10 @@ namespace candela {
 /// One flag per Scene::luminaires entry: true when shadow rays are needed for it.
 std::vector<bool> luminairesNeedingShadows(const Scene& scene, const glm::mat4& viewProj);
 
+/// Whether the environment map can be shadowed on what the camera sees. Light comes from every
+/// direction, so any other mesh may block some of it: the answer is yes when a receiver that may
+/// be visible shares the scene with another mesh, or is a General mesh (it may shadow itself).
+/// A single ground plane or a single convex box needs no shadow rays.
+bool environmentNeedsShadows(const Scene& scene, const glm::mat4& viewProj);
+
 }  // namespace candela

@@ -119,9 +119,13 @@ int cmdProbe(const Args& args) {
         envChosen = findEnvironmentTechnique(technique.empty() ? "reference" : technique);
         if (!envChosen) envChosen = findEnvironmentTechnique("reference");
     }
-    if (device == "gpu" && scene.environmentMap)
-        throw InputError("--device gpu: environment maps are CPU-only so far; use the CPU probe "
-                         "(the default)");
+    if (device == "gpu" && scene.environmentMap && envTechnique.empty() &&
+        envChosen->define.empty())
+        envChosen = findEnvironmentTechnique("balanced");  // the GPU has no exact reference
+    if (device == "gpu" && scene.environmentMap && envChosen->define.empty())
+        throw InputError("--env-technique: \"" + std::string(envChosen->name) +
+                         "\" runs on the CPU only; use the CPU probe (the default) or another "
+                         "technique");
     // Resolve each luminaire's technique up front, so a bad name fails before any work.
     std::vector<const TechniqueInfo*> chosen;
     for (const auto& l : scene.luminaires) {
@@ -171,6 +175,7 @@ int cmdProbe(const Args& args) {
         Renderer renderer(shaders);
         RenderSettings s;
         s.techniqueOverride = technique;
+        s.environmentTechnique = std::string(envChosen->name);
         renderer.setSettings(s);
         std::vector<glm::vec3> p, n;
         for (const auto& q : points) {

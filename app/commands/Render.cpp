@@ -84,6 +84,9 @@ int cmdRender(const Args& args) {
         const std::string& a = args[i];
         if (a == "--out") out = flagValue(args, i);
         else if (a == "--technique") settings.techniqueOverride = flagValue(args, i);
+        else if (a == "--env-technique") settings.environmentTechnique = flagValue(args, i);
+        else if (a == "--env-face-size")
+            settings.environmentFaceSize = parseInt(a, flagValue(args, i), 4, 2048);
         else if (a == "--spp") spp = parseInt(a, flagValue(args, i), 1, 1 << 24);
         else if (a == "--size") parseSize(flagValue(args, i), settings.width, settings.height);
         else if (a == "--stats") printStats = true;
@@ -113,7 +116,7 @@ int cmdRender(const Args& args) {
     }
     if (scenePath.empty() || out.empty())
         throw InputError("usage: candela render scene.json --out img.png|img.exr [--technique T] "
-                         "[--spp N] [--size WxH] [--stats]");
+                         "[--env-technique T] [--env-face-size N] [--spp N] [--size WxH] [--stats]");
     if (falseColour) {
         settings.quantity = Quantity::Illuminance;
         settings.toneMap = ToneMapOperator::FalseColour;

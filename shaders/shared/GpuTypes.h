@@ -34,6 +34,21 @@ CANDELA_CONST int kBindingBvhNodes = 2;    // SSBO BvhNode[]
 CANDELA_CONST int kBindingBvhTris = 3;     // SSBO BvhTriangle[]
 CANDELA_CONST int kBindingTestIn = 6;      // SSBOs of parity and chi-square compute tests
 CANDELA_CONST int kBindingTestOut = 7;
+CANDELA_CONST int kBindingEnvCube = 8;     // SSBO vec2 per cube texel: luminance x solid angle, weight
+CANDELA_CONST int kBindingEnvRowCdf = 9;   // SSBO float [face][column][row + 1]: CDF(v | u)
+CANDELA_CONST int kBindingEnvColCdf = 10;  // SSBO float [face][column + 1]: CDF(u), then the
+                                           // column totals [face][column] after 6 (N + 1) floats
+CANDELA_CONST int kBindingEnvFaces = 11;   // SSBO EnvironmentFaceGpu[6]
+CANDELA_CONST int kBindingEnvSamples = 12; // SSBO EnvironmentSampleGpu[6][pool]
+CANDELA_CONST int kBindingEnvExtra = 13;   // SSBO of global-cdf tables or Havran lights
+
+/// Texture unit of the lat-long environment map (RGB32F, intensity applied, row 0 = top, v = 0).
+CANDELA_CONST int kUnitEnvironmentMap = 5;
+
+/// Cube-map sampling weights (luminaires/EnvironmentSampling.h, CubeMapDistribution): the share
+/// of the largest luminance a texel touches, and the floor as a fraction of the face's mean.
+CANDELA_CONST float kEnvMaxShare = 0.1;
+CANDELA_CONST float kEnvFaceFloor = 1e-3;
 
 /// Per-frame constants (std140 UBO).
 struct FrameUniforms {
@@ -87,6 +102,28 @@ struct PhotometricGpu {
     ivec4 offsets;  // x = vertical angles, y = horizontal angles, z = candela, w = polygon
     ivec4 samples;  // x, y = offsets of the 24- and 40-point Poisson sets (x, y pairs in the
                     // unit square), z = samples per frame of the reference, w unused
+};
+
+/// Per-frame state of the environment passes (std140 UBO at kBindingEnvironment).
+CANDELA_CONST int kBindingEnvironment = 4;
+struct EnvironmentGpu {
+    ivec4 dims;     // x, y = lat-long width, height; z = cube face size N; w = samples per face
+                    // in the pool
+    vec4 params;    // x = rotation about +Y (rad); y = 1 to show the map behind the scene; zw unused
+    ivec4 frame;    // x = seed of this frame's light samples; y = supersampling k; zw unused
+    ivec4 extra;    // x = count of Havran lights or 0; y = global-cdf tables present; zw unused
+};
+
+/// One cube face's totals (std430).
+struct EnvironmentFaceGpu {
+    vec4 totals;    // x = I_f, the face's total sampling weight; y = sum of luminance x solid
+                    // angle (the face's energy); zw unused
+};
+
+/// A light sample of one face drawn before shading (Algorithm 1, line 10), std430.
+struct EnvironmentSampleGpu {
+    vec4 direction; // xyz unit direction; w = pdf_L(w | f), 1/sr (0: no sample)
+    vec4 radiance;  // rgb radiance of the map along it; w unused
 };
 
 /// BVH node (std430): bounds with the child or triangle range packed in w as int bits.

@@ -1,0 +1,171 @@
+#include "renderer/passes/EnvironmentPass.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "renderer/passes/GBufferPass.h"
+
+namespace candela {
+
+namespace {
+
+template <class T>
+std::vector<T> readBuffer(const gl::Buffer& buffer, size_t count) {
+    std::vector<T> out(count);
+    if (count > 0) glGetNamedBufferSubData(buffer.id(), 0, GLsizeiptr(count * sizeof(T)), out.data());
+    return out;
+}
+
+}  // namespace
+
+int EnvironmentPass::defaultFaceSize(const EnvironmentMap& map) {
+    return std::clamp(map.width() / 2, 8, 256);
+}
+
+bool EnvironmentPass::setMap(std::shared_ptr<const EnvironmentMap> map, int faceSize) {
+    int n = faceSize > 0 ? faceSize : (map ? defaultFaceSize(*map) : 0);
+    bool changed = map != mMap || n != mN;
+    if (!changed) return false;
+    bool resized = !mMap || !map || map->width() != mMap->width() || map->height() != mMap->height();
+    mMap = std::move(map);
+    mBuilt = false;
+    mExtraFor.reset();
+    if (!mMap) return true;
+    if (resized || !mTexture.id()) mTexture = gl::Texture2D(mMap->width(), mMap->height(), GL_RGB32F);
+    std::vector<float> rgb(size_t(mMap->width()) * size_t(mMap->height()) * 3);
+    for (int y = 0; y < mMap->height(); ++y)
+        for (int x = 0; x < mMap->width(); ++x) {
+            glm::dvec3 c = mMap->texel(x, y);  // intensity applied
+            float* o = &rgb[(size_t(y) * size_t(mMap->width()) + size_t(x)) * 3];
+            o[0] = float(c.x), o[1] = float(c.y), o[2] = float(c.z);
+        }
+    glTextureSubImage2D(mTexture.id(), 0, 0, 0, mMap->width(), mMap->height(), GL_RGB, GL_FLOAT, rgb.data());
+    if (n != mN) {
+        mN = n;
+        size_t texels = 6 * size_t(n) * size_t(n);
+        mCube = gl::Buffer(GLsizeiptr(texels * sizeof(glm::vec2)), nullptr);
+        mRowCdf = gl::Buffer(GLsizeiptr(6 * size_t(n) * size_t(n + 1) * sizeof(double)), nullptr);
+        mColCdf = gl::Buffer(GLsizeiptr((6 * size_t(n + 1) + 6 * size_t(n)) * sizeof(double)), nullptr);
+        mFaces = gl::Buffer(GLsizeiptr(6 * sizeof(gpu::EnvironmentFaceGpu)), nullptr);
+    }
+    mUniforms.dims = glm::ivec4(mMap->width(), mMap->height(), mN, mPool);
+    mUniforms.params = glm::vec4(float(mMap->rotation()), 0.f, 0.f, 0.f);
+    // k x k subsamples, k >= 2 W / (pi N), as the CPU twin.
+    mUniforms.frame.y = std::clamp(int(std::ceil(2.0 * mMap->width() / (3.14159265358979 * n))), 1, 8);
+    return true;
+}
+
+void EnvironmentPass::bindAll() const {
+    mUniformBuffer.bindBase(GL_UNIFORM_BUFFER, gpu::kBindingEnvironment);
+    glBindTextureUnit(GLuint(gpu::kUnitEnvironmentMap), mTexture.id());
+    mCube.bindBase(GL_SHADER_STORAGE_BUFFER, gpu::kBindingEnvCube);
+    mRowCdf.bindBase(GL_SHADER_STORAGE_BUFFER, gpu::kBindingEnvRowCdf);
+    mColCdf.bindBase(GL_SHADER_STORAGE_BUFFER, gpu::kBindingEnvColCdf);
+    mFaces.bindBase(GL_SHADER_STORAGE_BUFFER, gpu::kBindingEnvFaces);
+    if (mSamples.id()) mSamples.bindBase(GL_SHADER_STORAGE_BUFFER, gpu::kBindingEnvSamples);
+    if (mExtra.id()) mExtra.bindBase(GL_SHADER_STORAGE_BUFFER, gpu::kBindingEnvExtra);
+}
+
+void EnvironmentPass::dispatch(ShaderLibrary& shaders, const char* pass, GLuint x, GLuint y, GLuint z) {
+    ProgramKey key;
+    key.compute = "environment_cdf.comp";
+    key.defines = {pass};
+    glUseProgram(shaders.program(key));
+    glDispatchCompute(x, y, z);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+}
+
+void EnvironmentPass::buildTables(ShaderLibrary& shaders) {
+    if (!mMap || mBuilt) return;
+    if (!mUniformBuffer.id()) mUniformBuffer = gl::Buffer(sizeof(gpu::EnvironmentGpu), nullptr);
+    mUniformBuffer.update(0, sizeof(mUniforms), &mUniforms);
+    bindAll();
+    GLuint n = GLuint(mN);
+    dispatch(shaders, "PASS_CUBE", (n + 7) / 8, (n + 7) / 8, 6);
+    dispatch(shaders, "PASS_ENERGY", 6, 1, 1);
+    dispatch(shaders, "PASS_ROWS", n, 6, 1);
+    dispatch(shaders, "PASS_COLUMNS", 6, 1, 1);
+    mBuilt = true;
+}
+
+void EnvironmentPass::drawSamples(ShaderLibrary& shaders, uint32_t seed, int pool) {
+    if (!mMap) return;
+    if (pool != mPool) {
+        mPool = pool;
+        mSamples = gl::Buffer(GLsizeiptr(6 * size_t(pool) * sizeof(gpu::EnvironmentSampleGpu)), nullptr);
+    }
+    mUniforms.dims.w = mPool;
+    mUniforms.frame.x = int(seed);
+    mUniformBuffer.update(0, sizeof(mUniforms), &mUniforms);
+    bindAll();
+    dispatch(shaders, "PASS_SAMPLES", GLuint((pool + 63) / 64), 1, 6);
+}
+
+void EnvironmentPass::prepareGlobalCdf() {
+    if (!mMap || (mExtraFor.lock() == mMap && mUniforms.extra.y == 1)) return;
+    LatLongDistribution global(*mMap);
+    int w = mMap->width(), h = mMap->height();
+    std::vector<float> tables(size_t(h + 1) + size_t(h) * size_t(w + 1), 0.f);
+    if (!global.empty()) {
+        for (int y = 0; y <= h; ++y) tables[size_t(y)] = float(global.rows().cdf[size_t(y)]);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x <= w; ++x)
+                tables[size_t(h + 1) + size_t(y) * size_t(w + 1) + size_t(x)] =
+                    float(global.columns(y).cdf[size_t(x)]);
+    }
+    mExtra = gl::Buffer(GLsizeiptr(tables.size() * sizeof(float)), tables.data());
+    mUniforms.extra = glm::ivec4(0, 1, 0, 0);
+    mExtraFor = mMap;
+}
+
+void EnvironmentPass::prepareHavran() {
+    if (!mMap || (mExtraFor.lock() == mMap && mUniforms.extra.x > 0)) return;
+    // One filter for the pass's lifetime: its history carries over from map to map (the frames
+    // of a sequence, a moving sun), which is what the temporal filtering is for.
+    if (!mHavran) mHavran = std::make_unique<HavranLights>(256);
+    if (mHavranFor.lock() != mMap) mHavran->update(*mMap);
+    mHavranFor = mMap;
+    std::vector<glm::vec4> data;
+    for (const HavranLights::Light& l : mHavran->lights()) {
+        data.push_back(glm::vec4(glm::vec3(l.direction), 0.f));
+        data.push_back(glm::vec4(glm::vec3(l.power), 0.f));
+    }
+    mExtra = gl::Buffer(GLsizeiptr(data.size() * sizeof(glm::vec4)), data.data());
+    mUniforms.extra = glm::ivec4(int(mHavran->lights().size()), 0, 0, 0);
+    mExtraFor = mMap;
+}
+
+void EnvironmentPass::shade(ShaderLibrary& shaders, const ShadeStep& step, const GBufferPass& gbuffer,
+                            const gl::Framebuffer& target, int width, int height, bool background) {
+    if (!mMap) return;
+    mUniforms.params.y = background ? 1.f : 0.f;
+    if (!mUniformBuffer.id()) mUniformBuffer = gl::Buffer(sizeof(gpu::EnvironmentGpu), nullptr);
+    mUniformBuffer.update(0, sizeof(mUniforms), &mUniforms);
+    bindAll();
+    glUseProgram(shaders.program(step.program));
+    for (int i = 0; i < 4; ++i) glBindTextureUnit(GLuint(i), gbuffer.texture(i).id());
+    glBindFramebuffer(GL_FRAMEBUFFER, target.id());
+    glViewport(0, 0, width, height);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDisable(GL_BLEND);
+}
+
+std::vector<glm::vec2> EnvironmentPass::readCube() const {
+    return readBuffer<glm::vec2>(mCube, 6 * size_t(mN) * size_t(mN));
+}
+std::vector<double> EnvironmentPass::readRowCdf() const {
+    return readBuffer<double>(mRowCdf, 6 * size_t(mN) * size_t(mN + 1));
+}
+std::vector<double> EnvironmentPass::readColumnCdf() const {
+    return readBuffer<double>(mColCdf, 6 * size_t(mN + 1));
+}
+std::vector<gpu::EnvironmentFaceGpu> EnvironmentPass::readFaces() const {
+    return readBuffer<gpu::EnvironmentFaceGpu>(mFaces, 6);
+}
+std::vector<gpu::EnvironmentSampleGpu> EnvironmentPass::readSamples() const {
+    return readBuffer<gpu::EnvironmentSampleGpu>(mSamples, 6 * size_t(mPool));
+}
+
+}  // namespace candela

@@ -1,0 +1,69 @@
+#pragma once
+// The environment map on the GPU (Lu et al. 2013, Algorithm 1): uploads the lat-long map, builds
+// the cube-face luminance, weights and CDFs in compute shaders whenever the map changes, draws
+// each frame's pools of light samples per face, and shades the G-buffer with the chosen
+// technique (shaders/environment_shade.frag). The CPU twin is luminaires/EnvironmentSampling.
+
+#include <glm/glm.hpp>
+
+#include <memory>
+#include <vector>
+
+#include "luminaires/EnvironmentSampling.h"
+#include "renderer/FramePlan.h"
+#include "renderer/ShaderLibrary.h"
+#include "renderer/gl/GlObjects.h"
+#include "shaders/shared/GpuTypes.h"
+
+namespace candela {
+
+class GBufferPass;
+
+class EnvironmentPass {
+public:
+    /// Face size used for a map when none is asked for: the CPU default (texels no larger than
+    /// the lat-long map's at the equator) capped at 256, the paper's size.
+    static int defaultFaceSize(const EnvironmentMap& map);
+
+    /// Makes `map` current. Returns true when it differs from the map the tables were built for
+    /// (then the next buildTables() does the work). faceSize 0: defaultFaceSize.
+    bool setMap(std::shared_ptr<const EnvironmentMap> map, int faceSize = 0);
+    /// Algorithm 1, lines 6-9 (cube conversion, face energies, prefix sums, CDFs) on the GPU.
+    void buildTables(ShaderLibrary& shaders);
+    /// Line 10: `pool` light samples per face from the frame's seed.
+    void drawSamples(ShaderLibrary& shaders, uint32_t seed, int pool);
+    /// What the global-cdf and havran2005 techniques read, built on the CPU for the current map.
+    void prepareGlobalCdf();
+    void prepareHavran();
+    /// Shades the G-buffer into `target` (additive). background: show the map behind the scene.
+    void shade(ShaderLibrary& shaders, const ShadeStep& step, const GBufferPass& gbuffer,
+               const gl::Framebuffer& target, int width, int height, bool background);
+
+    const EnvironmentMap* map() const { return mMap.get(); }
+    int faceSize() const { return mN; }
+    bool tablesBuilt() const { return mBuilt; }
+
+    /// Read-backs for tests: per texel (luminance, weight), [face][row][col]; the CDFs; the face
+    /// totals (I_f, energy); the last pools of samples [face][pool].
+    std::vector<glm::vec2> readCube() const;
+    std::vector<double> readRowCdf() const;
+    std::vector<double> readColumnCdf() const;
+    std::vector<gpu::EnvironmentFaceGpu> readFaces() const;
+    std::vector<gpu::EnvironmentSampleGpu> readSamples() const;
+
+private:
+    void bindAll() const;
+    void dispatch(ShaderLibrary& shaders, const char* pass, GLuint x, GLuint y, GLuint z);
+
+    std::shared_ptr<const EnvironmentMap> mMap;
+    bool mBuilt = false;
+    int mN = 0, mPool = 0;
+    gpu::EnvironmentGpu mUniforms{};
+    gl::Texture2D mTexture;
+    gl::Buffer mUniformBuffer, mCube, mRowCdf, mColCdf, mFaces, mSamples, mExtra;
+    std::weak_ptr<const EnvironmentMap> mExtraFor;  ///< Map whose global CDF or lights mExtra holds.
+    std::unique_ptr<HavranLights> mHavran;
+    std::weak_ptr<const EnvironmentMap> mHavranFor;  ///< Newest map the filter has seen.
+};
+
+}  // namespace candela

@@ -1,0 +1,151 @@
+// The environment map on the GPU: the lat-long map, the cube-face frames and the per-face
+// tables built each time the map changes (environment_cdf.comp, Algorithm 1 of Lu et al. 2013).
+// Mirrors luminaires/EnvironmentSampling.cpp (the CPU reference): same face layout (OpenEXR
+// envmap=cube), same texel weights, same piecewise-constant CDFs, so pdfs agree.
+#include "common.glsl"
+
+layout(std140, binding = 4) uniform EnvironmentBlock { EnvironmentGpu env; };
+layout(binding = 5) uniform sampler2D uEnvMap;  // kUnitEnvironmentMap: RGB32F, row 0 = v = 0
+
+layout(std430, binding = 8) buffer EnvCube { vec2 envCube[]; };            // [f][row][col]
+layout(std430, binding = 9) buffer EnvRowCdf { double envRowCdf[]; };      // [f][col][row + 1]
+layout(std430, binding = 10) buffer EnvColCdf { double envColCdf[]; };     // [f][col + 1], then
+                                                                           // column totals
+layout(std430, binding = 11) buffer EnvFaces { EnvironmentFaceGpu envFaces[6]; };
+layout(std430, binding = 12) buffer EnvSamples { EnvironmentSampleGpu envSamples[]; };
+
+// Face frames (centre, right = +col, down = +row), the table in EnvironmentSampling.h.
+const vec3 kFaceCentre[6] = vec3[6](vec3(1, 0, 0), vec3(-1, 0, 0), vec3(0, 1, 0),
+                                    vec3(0, -1, 0), vec3(0, 0, 1), vec3(0, 0, -1));
+const vec3 kFaceRight[6] = vec3[6](vec3(0, 0, 1), vec3(0, 0, -1), vec3(1, 0, 0),
+                                   vec3(1, 0, 0), vec3(-1, 0, 0), vec3(1, 0, 0));
+const vec3 kFaceDown[6] = vec3[6](vec3(0, -1, 0), vec3(0, -1, 0), vec3(0, 0, -1),
+                                  vec3(0, 0, 1), vec3(0, -1, 0), vec3(0, -1, 0));
+
+vec3 envFaceDirection(int f, float a, float b) {
+    return normalize(kFaceCentre[f] + a * kFaceRight[f] + b * kFaceDown[f]);
+}
+
+/// Face of a direction (largest |component|, ties in the order x, y, z) and its face
+/// coordinates in [-1, 1]^2; -1 for a zero direction.
+int envFaceOf(vec3 w, out vec2 ab) {
+    vec3 aw = abs(w);
+    int f;
+    float major;
+    if (aw.x >= aw.y && aw.x >= aw.z) {
+        f = w.x > 0.0 ? 0 : 1;
+        major = aw.x;
+    } else if (aw.y >= aw.z) {
+        f = w.y > 0.0 ? 2 : 3;
+        major = aw.y;
+    } else {
+        f = w.z > 0.0 ? 4 : 5;
+        major = aw.z;
+    }
+    ab = vec2(0.0);
+    if (!(major > 0.0)) return -1;
+    vec3 d = w / major;
+    ab = clamp(vec2(dot(d, kFaceRight[f]), dot(d, kFaceDown[f])), -1.0, 1.0);
+    return f;
+}
+
+/// (u, v) of a direction under the scene-file convention (EnvironmentMap::uvOf).
+vec2 envUv(vec3 w) {
+    vec3 d = normalize(w);
+    float theta = acos(clamp(d.y, -1.0, 1.0));
+    float phi = atan(d.z, d.x);
+    float u = (phi - env.params.x) / (2.0 * kPi);
+    return vec2(u - floor(u), theta / kPi);
+}
+
+ivec2 envTexelOf(vec3 w) {
+    vec2 uv = envUv(w);
+    return clamp(ivec2(uv * vec2(env.dims.xy)), ivec2(0), env.dims.xy - 1);
+}
+
+/// Radiance of the map towards w: exactly the texel's value (no filtering).
+vec3 envRadiance(vec3 w) { return texelFetch(uEnvMap, envTexelOf(w), 0).rgb; }
+
+/// Signed solid angle of [0, a] x [0, b] on the face plane at distance 1.
+float envCornerSolidAngle(float a, float b) { return atan(a * b, sqrt(1.0 + a * a + b * b)); }
+
+/// Exact solid angle of texel (col, row) of any face of N^2 texels.
+float envTexelSolidAngle(int col, int row, int n) {
+    float a0 = -1.0 + 2.0 * float(col) / float(n), a1 = -1.0 + 2.0 * float(col + 1) / float(n);
+    float b0 = -1.0 + 2.0 * float(row) / float(n), b1 = -1.0 + 2.0 * float(row + 1) / float(n);
+    return envCornerSolidAngle(a1, b1) - envCornerSolidAngle(a0, b1) -
+           envCornerSolidAngle(a1, b0) + envCornerSolidAngle(a0, b0);
+}
+
+/// The CDFs are doubles, drawn with 48-bit uniforms: in float, a texel 1e8 times dimmer than a
+/// sun on the same face has a probability below the CDF's resolution near 1 (6e-8), so it would
+/// be sampled at the wrong rate (a measured +12 % bias facing away from such a sun).
+double envRand48(inout uint state) {
+    double hi = double(rand01(state)), lo = double(rand01(state));
+    return hi + lo * (1.0LF / 16777216.0LF);
+}
+
+/// Index of the CDF piece holding u: cdf[i] <= u < cdf[i + 1] over cdf[base .. base + n]
+/// (non-empty pieces only), and u's fraction inside it.
+int envSearchRow(int base, int n, double u, out float fraction) {
+    int lo = 0, hi = n;  // invariant: cdf[lo] <= u < cdf[hi] (cdf[n] = 1 > u)
+    while (hi - lo > 1) {
+        int mid = (lo + hi) >> 1;
+        if (envRowCdf[base + mid] <= u) lo = mid; else hi = mid;
+    }
+    double w = envRowCdf[base + lo + 1] - envRowCdf[base + lo];
+    fraction = w > 0.0LF ? clamp(float((u - envRowCdf[base + lo]) / w), 0.0, 1.0) : 0.5;
+    return lo;
+}
+
+int envSearchColumn(int base, int n, double u, out float fraction) {
+    int lo = 0, hi = n;
+    while (hi - lo > 1) {
+        int mid = (lo + hi) >> 1;
+        if (envColCdf[base + mid] <= u) lo = mid; else hi = mid;
+    }
+    double w = envColCdf[base + lo + 1] - envColCdf[base + lo];
+    fraction = w > 0.0LF ? clamp(float((u - envColCdf[base + lo]) / w), 0.0, 1.0) : 0.5;
+    return lo;
+}
+
+/// I_f of Eq. (3).
+float envFaceImportance(int f) { return envFaces[f].totals.x; }
+
+/// pdf_L(w | f) of a direction on face f (0 off the face or on a black face), 1/sr: the texel's
+/// probability (CDF differences, what the sampler draws) over its area on the face plane,
+/// times the plane-to-sphere Jacobian (1 + a^2 + b^2)^(3/2).
+float envPdfFace(int f, vec3 w) {
+    vec2 ab;
+    if (envFaceOf(w, ab) != f || !(envFaceImportance(f) > 0.0)) return 0.0;
+    int n = env.dims.z;
+    int c = clamp(int((ab.x + 1.0) * 0.5 * float(n)), 0, n - 1);
+    int r = clamp(int((ab.y + 1.0) * 0.5 * float(n)), 0, n - 1);
+    int cb = f * (n + 1), rb = (f * n + c) * (n + 1);
+    float p = float((envColCdf[cb + c + 1] - envColCdf[cb + c]) * (envRowCdf[rb + r + 1] - envRowCdf[rb + r]));
+    float q = 1.0 + dot(ab, ab);
+    return p * float(n) * float(n) * 0.25 * q * sqrt(q);
+}
+
+/// mu_f(n) of Eq. (3): F_f(n) I_f normalised, F_f(n) the sum over the face's four unit corner
+/// directions of max(0, n . c). All zero when no lit face is in front of n.
+void envBalance(vec3 n, out float mu[6]) {
+    float sum = 0.0;
+    for (int f = 0; f < 6; ++f) {
+        float form = 0.0;
+        for (int j = 0; j < 4; ++j) {
+            vec3 c = envFaceDirection(f, (j & 1) != 0 ? 1.0 : -1.0, (j & 2) != 0 ? 1.0 : -1.0);
+            form += max(0.0, dot(n, c));
+        }
+        mu[f] = form * envFaceImportance(f);
+        sum += mu[f];
+    }
+    for (int f = 0; f < 6; ++f) mu[f] = sum > 0.0 ? mu[f] / sum : 0.0;
+}
+
+/// pdf of the face mixture mu: mu_f pdf_L(w | f) for w's face (the denominator of Eq. 2).
+float envPdf(float mu[6], vec3 w) {
+    vec2 ab;
+    int f = envFaceOf(w, ab);
+    return f < 0 || !(mu[f] > 0.0) ? 0.0 : mu[f] * envPdfFace(f, w);
+}

@@ -1,0 +1,207 @@
+// Algorithm 1 of Lu et al. 2013 (lines 5-10) in compute shaders, one variant per step:
+//   PASS_CUBE     per cube texel: mean luminance of k x k subsamples of the lat-long map (the
+//                 cube-map conversion) and its sampling weight before the face floor;
+//   PASS_ENERGY   per face: the sum of luminance x solid angle (a reduction), for the floor;
+//   PASS_ROWS     per face and column: the final weights, an inclusive prefix sum over rows
+//                 giving CDF(v | u), and the column's total;
+//   PASS_COLUMNS  per face: the prefix sum over column totals giving CDF(u), and I_f;
+//   PASS_SAMPLES  per face: a pool of light samples drawn by binary search (line 10).
+// The weights are exactly those of CubeMapDistribution (luminaires/EnvironmentSampling.cpp):
+// (mean luminance + kEnvMaxShare x the largest lat-long luminance the texel touches + a floor of
+// kEnvFaceFloor x the face's mean luminance) x the texel's solid angle. Prefix sums run in double
+// precision and the tables are stored as doubles (see envRand48 in environment.glsl).
+#include "environment.glsl"
+
+#if defined(PASS_CUBE)
+layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
+#elif defined(PASS_SAMPLES)
+layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
+#else
+layout(local_size_x = 256, local_size_y = 1, local_size_z = 1) in;
+#endif
+
+/// Exact solid angle of the texel as two spherical triangles (Van Oosterom and Strackee 1983):
+/// the triple product of the corner vectors is da db exactly (the face plane is at distance 1),
+/// so nothing cancels in float, unlike a difference of corner atans.
+float texelSolidAngleStable(int col, int row, int n) {
+    float a0 = -1.0 + 2.0 * float(col) / float(n), a1 = -1.0 + 2.0 * float(col + 1) / float(n);
+    float b0 = -1.0 + 2.0 * float(row) / float(n), b1 = -1.0 + 2.0 * float(row + 1) / float(n);
+    vec3 p00 = vec3(a0, b0, 1.0), p10 = vec3(a1, b0, 1.0), p11 = vec3(a1, b1, 1.0), p01 = vec3(a0, b1, 1.0);
+    float l00 = length(p00), l10 = length(p10), l11 = length(p11), l01 = length(p01);
+    float det = (a1 - a0) * (b1 - b0);
+    float d1 = l00 * l10 * l11 + dot(p00, p10) * l11 + dot(p10, p11) * l00 + dot(p11, p00) * l10;
+    float d2 = l00 * l11 * l01 + dot(p00, p11) * l01 + dot(p11, p01) * l00 + dot(p01, p00) * l11;
+    return 2.0 * atan(det, d1) + 2.0 * atan(det, d2);
+}
+
+#ifdef PASS_CUBE
+float latLongLuminance(int x, int y) { return luminance(texelFetch(uEnvMap, ivec2(x, y), 0).rgb); }
+
+/// The largest lat-long luminance texel (c, r) of face f may touch: over the (u, v) box of 17
+/// points per edge, all columns across a pole or a box wider than a quarter turn
+/// (touchedMaximum in EnvironmentSampling.cpp).
+float touchedMaximum(int f, int c, int r, int n) {
+    const int kEdge = 16;
+    int w = env.dims.x, h = env.dims.y;
+    float a0 = -1.0 + 2.0 * float(c) / float(n), a1 = -1.0 + 2.0 * float(c + 1) / float(n);
+    float b0 = -1.0 + 2.0 * float(r) / float(n), b1 = -1.0 + 2.0 * float(r + 1) / float(n);
+    float uc = envUv(envFaceDirection(f, 0.5 * (a0 + a1), 0.5 * (b0 + b1))).x;
+    float duMin = 0.0, duMax = 0.0, vMin = 1.0, vMax = 0.0;
+    for (int e = 0; e < 4; ++e)
+        for (int i = 0; i <= kEdge; ++i) {
+            float t = float(i) / float(kEdge);
+            float a = e < 2 ? a0 + t * (a1 - a0) : (e == 2 ? a0 : a1);
+            float b = e < 2 ? (e == 0 ? b0 : b1) : b0 + t * (b1 - b0);
+            vec2 uv = envUv(envFaceDirection(f, a, b));
+            float du = uv.x - uc;
+            du -= round(du);
+            duMin = min(duMin, du);
+            duMax = max(duMax, du);
+            vMin = min(vMin, uv.y);
+            vMax = max(vMax, uv.y);
+        }
+    bool pole = (f == 2 || f == 3) && a0 <= 0.0 && a1 >= 0.0 && b0 <= 0.0 && b1 >= 0.0;
+    if (pole) {
+        if (f == 2) vMin = 0.0; else vMax = 1.0;
+    }
+    int y0 = max(0, int(floor(vMin * float(h)))), y1 = min(h - 1, int(floor(vMax * float(h))));
+    bool allColumns = pole || duMax - duMin > 0.25;
+    int x0 = int(floor((uc + duMin) * float(w))), x1 = int(floor((uc + duMax) * float(w)));
+    if (allColumns) {
+        x0 = 0;
+        x1 = w - 1;
+    }
+    float best = 0.0;
+    for (int y = y0; y <= y1; ++y)
+        for (int x = x0; x <= x1; ++x) best = max(best, latLongLuminance(((x % w) + w) % w, y));
+    return best;
+}
+
+void main() {
+    int n = env.dims.z, k = env.frame.y;
+    ivec3 id = ivec3(gl_GlobalInvocationID);
+    if (id.x >= n || id.y >= n) return;
+    int c = id.x, r = id.y, f = id.z;
+    float sum = 0.0;
+    for (int j = 0; j < k; ++j)
+        for (int i = 0; i < k; ++i) {
+            float a = -1.0 + 2.0 * (float(c) + (float(i) + 0.5) / float(k)) / float(n);
+            float b = -1.0 + 2.0 * (float(r) + (float(j) + 0.5) / float(k)) / float(n);
+            sum += luminance(envRadiance(envFaceDirection(f, a, b)));
+        }
+    float lum = sum / float(k * k);
+    float omega = texelSolidAngleStable(c, r, n);
+    envCube[(f * n + r) * n + c] = vec2(lum, (lum + kEnvMaxShare * touchedMaximum(f, c, r, n)) * omega);
+}
+#endif
+
+#if defined(PASS_ENERGY) || defined(PASS_ROWS) || defined(PASS_COLUMNS)
+shared double partial[256];
+
+/// Inclusive prefix sum of partial[] over the workgroup (Hillis and Steele).
+void scanPartials(uint t) {
+    for (uint offset = 1u; offset < 256u; offset <<= 1u) {
+        barrier();
+        double add = t >= offset ? partial[t - offset] : 0.0LF;
+        barrier();
+        partial[t] += add;
+    }
+    barrier();
+}
+#endif
+
+#ifdef PASS_ENERGY
+void main() {
+    int n = env.dims.z, f = int(gl_WorkGroupID.x);
+    uint t = gl_LocalInvocationID.x;
+    double sum = 0.0LF;
+    for (int i = int(t); i < n * n; i += 256)
+        sum += double(envCube[f * n * n + i].x) * double(texelSolidAngleStable(i % n, i / n, n));
+    partial[t] = sum;
+    scanPartials(t);
+    if (t == 0u) envFaces[f].totals.y = float(partial[255]);
+}
+#endif
+
+#ifdef PASS_ROWS
+void main() {
+    int n = env.dims.z, c = int(gl_WorkGroupID.x), f = int(gl_WorkGroupID.y);
+    uint t = gl_LocalInvocationID.x;
+    int per = (n + 255) / 256, first = int(t) * per, last = min(first + per, n);
+    float floorLum = kEnvFaceFloor * envFaces[f].totals.y / (4.0 * kPi / 6.0);
+    double sum = 0.0LF;
+    for (int r = first; r < last; ++r) {
+        int idx = (f * n + r) * n + c;
+        float weight = envCube[idx].y + floorLum * texelSolidAngleStable(c, r, n);
+        envCube[idx].y = weight;
+        sum += double(weight);
+    }
+    partial[t] = sum;
+    scanPartials(t);
+    double total = partial[255];
+    double running = t > 0u ? partial[t - 1u] : 0.0LF;
+    int base = (f * n + c) * (n + 1);
+    for (int r = first; r < last; ++r) {
+        running += double(envCube[(f * n + r) * n + c].y);
+        // The last entry is exactly 1 (or 0 for an empty column), as in Cdf1D::build.
+        envRowCdf[base + r + 1] = total > 0.0LF ? (r == n - 1 ? 1.0LF : running / total) : 0.0LF;
+    }
+    if (t == 0u) {
+        envRowCdf[base] = 0.0LF;
+        envColCdf[6 * (n + 1) + f * n + c] = total;
+    }
+}
+#endif
+
+#ifdef PASS_COLUMNS
+void main() {
+    int n = env.dims.z, f = int(gl_WorkGroupID.x);
+    uint t = gl_LocalInvocationID.x;
+    int per = (n + 255) / 256, first = int(t) * per, last = min(first + per, n);
+    int totals = 6 * (n + 1) + f * n;
+    double sum = 0.0LF;
+    for (int c = first; c < last; ++c) sum += envColCdf[totals + c];
+    partial[t] = sum;
+    scanPartials(t);
+    double total = partial[255];
+    double running = t > 0u ? partial[t - 1u] : 0.0LF;
+    int base = f * (n + 1);
+    for (int c = first; c < last; ++c) {
+        running += envColCdf[totals + c];
+        envColCdf[base + c + 1] = total > 0.0LF ? (c == n - 1 ? 1.0LF : running / total) : 0.0LF;
+    }
+    if (t == 0u) {
+        envColCdf[base] = 0.0LF;
+        envFaces[f].totals.x = float(total);
+    }
+}
+#endif
+
+#ifdef PASS_SAMPLES
+// Sample i of face f: (u1, u2) from the frame's seed, CDF(u) then CDF(v | u) inverted by binary
+// search, uniform inside the texel on the face plane.
+void main() {
+    int n = env.dims.z, pool = env.dims.w;
+    int i = int(gl_GlobalInvocationID.x);
+    int f = int(gl_GlobalInvocationID.z);
+    if (i >= pool) return;
+    EnvironmentSampleGpu s;
+    s.direction = vec4(0.0, 1.0, 0.0, 0.0);
+    s.radiance = vec4(0.0);
+    if (envFaceImportance(f) > 0.0) {
+        uint rng = pcgHash(uint(env.frame.x) ^ pcgHash(uint(f * pool + i) + 0x9e3779b9u));
+        double u1 = envRand48(rng), u2 = envRand48(rng);
+        float fx, fy;
+        int c = envSearchColumn(f * (n + 1), n, u1, fx);
+        int r = envSearchRow((f * n + c) * (n + 1), n, u2, fy);
+        float a = -1.0 + 2.0 * (float(c) + fx) / float(n), b = -1.0 + 2.0 * (float(r) + fy) / float(n);
+        int cb = f * (n + 1), rb = (f * n + c) * (n + 1);
+        float p = float((envColCdf[cb + c + 1] - envColCdf[cb + c]) * (envRowCdf[rb + r + 1] - envRowCdf[rb + r]));
+        float q = 1.0 + a * a + b * b;
+        vec3 w = envFaceDirection(f, a, b);
+        s.direction = vec4(w, p * float(n) * float(n) * 0.25 * q * sqrt(q));
+        s.radiance = vec4(envRadiance(w), 0.0);
+    }
+    envSamples[f * pool + i] = s;
+}
+#endif

@@ -1,0 +1,294 @@
+// The environment map on the GPU (renderer/passes/EnvironmentPass, shaders/environment_*.glsl)
+// under OSMesa, against the CPU twin of luminaires/EnvironmentSampling (double precision) and the
+// exact texel sum: the per-frame tables of Algorithm 1, a chi-square test of the GPU's light
+// samples, the production shading pass through the GPU probe, hard cases, and the frame plan
+// (which passes run, and that a static map is not rebuilt).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "luminaires/EnvironmentSampling.h"
+#include "renderer/Renderer.h"
+#include "renderer/ShaderLibrary.h"
+#include "renderer/passes/EnvironmentPass.h"
+#include "scene/SceneIo.h"
+#include "tests/TestUtil.h"
+#include "util/Error.h"
+
+namespace candela {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+double lum(const glm::dvec3& c) { return luminanceOf(c); }
+
+std::shared_ptr<const EnvironmentMap> realMap(const char* file) {
+    return EnvironmentMap::load(test::dataDir() + "/hdr/" + file);
+}
+
+std::shared_ptr<const EnvironmentMap> constantMap(float value, int w = 64) {
+    return std::make_shared<EnvironmentMap>(w, w / 2, std::vector<glm::vec3>(size_t(w) * size_t(w / 2), glm::vec3(value)),
+                                            1.0, 0.0, "constant");
+}
+
+/// The 26 directions from a cube's centre to its face centres, edge midpoints and corners.
+std::vector<glm::dvec3> normals26() {
+    std::vector<glm::dvec3> out;
+    for (int x = -1; x <= 1; ++x)
+        for (int y = -1; y <= 1; ++y)
+            for (int z = -1; z <= 1; ++z)
+                if (x || y || z) out.push_back(glm::normalize(glm::dvec3(x, y, z)));
+    return out;
+}
+
+/// Irradiance through the production shading pass (Renderer::probe) for normals at the origin.
+std::vector<glm::dvec3> gpuProbe(std::shared_ptr<const EnvironmentMap> map, const std::string& technique,
+                                 const std::vector<glm::dvec3>& normals, int spp, int faceSize = 0) {
+    test::glContext();
+    static ShaderLibrary shaders;
+    Renderer renderer(shaders);
+    RenderSettings s;
+    s.environmentTechnique = technique;
+    s.environmentFaceSize = faceSize;
+    renderer.setSettings(s);
+    Scene scene;
+    scene.environment = {{"file", "test"}};
+    scene.environmentMap = std::move(map);
+    std::vector<glm::vec3> p(normals.size(), glm::vec3(0.f)), n;
+    for (const glm::dvec3& d : normals) n.push_back(glm::vec3(d));
+    std::vector<glm::vec3> r = renderer.probe(scene, p, n, spp);
+    std::vector<glm::dvec3> out;
+    for (const glm::vec3& v : r) out.push_back(glm::dvec3(v));
+    return out;
+}
+
+TEST(EnvironmentGl, TablesMatchTheCpuTwin) {
+    test::glContext();
+    ShaderLibrary shaders;
+    SkyParams sky;
+    sky.width = 256;
+    for (std::shared_ptr<const EnvironmentMap> map :
+         {realMap("noon_grass_256.hdr"), realMap("hilly_terrain_01_256.hdr"),
+          std::shared_ptr<const EnvironmentMap>(makeSkyMap(sky))}) {
+        const int n = 32;
+        EnvironmentPass pass;
+        pass.setMap(map, n);
+        pass.buildTables(shaders);
+        CubeMapDistribution cpu(*map, n);
+        std::vector<glm::vec2> cube = pass.readCube();
+        std::vector<gpu::EnvironmentFaceGpu> faces = pass.readFaces();
+        std::vector<double> rows = pass.readRowCdf(), cols = pass.readColumnCdf();
+        int mismatched = 0;
+        double worst = 0.0;
+        for (int f = 0; f < 6; ++f) {
+            // I_f sums n^2 weights, a few of which differ slightly (below): 1e-3 relative
+            // (measured at most 3.7e-4).
+            EXPECT_NEAR(faces[size_t(f)].totals.x, cpu.faceImportance(f), 1e-3 * cpu.faceImportance(f) + 1e-30)
+                << map->source() << " face " << f;
+            for (int r = 0; r < n; ++r)
+                for (int c = 0; c < n; ++c) {
+                    glm::vec2 g = cube[(size_t(f) * n + r) * n + c];
+                    double w = cpu.texelWeight(f, c, r), l = cpu.texelLuminance(f, c, r);
+                    // llvmpipe's float acos/atan are good to about 1e-5, so a subsample or an
+                    // edge point near a lat-long texel's border may land in the neighbour where
+                    // the CPU's doubles do not (measured: ~11 % of the texels move by 1e-4 to
+                    // 1e-2 relative). The GPU samples its own tables and reports its own pdf, so
+                    // this is no bias; here the tables must agree within 5 % on 99 % of the
+                    // texels, and exactly where nothing is ambiguous (the I_f check above).
+                    if (std::abs(g.y - w) > 0.05 * w || std::abs(g.x - l) > 0.05 * l + 1e-30) ++mismatched;
+                    worst = std::max(worst, std::abs(g.y - w) / w);
+                }
+            // Each CDF starts at 0, never decreases, and ends at exactly 1 on a lit face.
+            const double* colCdf = &cols[size_t(f) * (n + 1)];
+            EXPECT_EQ(colCdf[0], 0.0);
+            EXPECT_EQ(colCdf[n], faces[size_t(f)].totals.x > 0.f ? 1.0 : 0.0);
+            for (int c = 0; c < n; ++c) {
+                ASSERT_LE(colCdf[c], colCdf[c + 1]) << f << " " << c;
+                const double* rowCdf = &rows[(size_t(f) * n + c) * (n + 1)];
+                EXPECT_EQ(rowCdf[0], 0.0);
+                for (int r = 0; r < n; ++r) ASSERT_LE(rowCdf[r], rowCdf[r + 1]);
+            }
+        }
+        EXPECT_LE(mismatched, 6 * n * n / 100) << map->source();
+        std::printf("[ info ] %s: %d of %d cube texels differ from the CPU by more than 5 %%, "
+                    "largest relative weight difference %.2e\n",
+                    map->source().c_str(), mismatched, 6 * n * n, worst);
+    }
+}
+
+TEST(EnvironmentGl, SamplesPassChiSquareAndReportTheCpuPdf) {
+    test::glContext();
+    ShaderLibrary shaders;
+    auto map = realMap("noon_grass_256.hdr");
+    const int n = 16, pool = 1 << 15;
+    EnvironmentPass pass;
+    pass.setMap(map, n);
+    pass.buildTables(shaders);
+    pass.drawSamples(shaders, 12345u, pool);
+    std::vector<gpu::EnvironmentSampleGpu> samples = pass.readSamples();
+    CubeMapDistribution cpu(*map, n);
+    for (int f = 0; f < 6; ++f) {
+        std::vector<double> observed(size_t(n) * n, 0.0), expected(size_t(n) * n, 0.0);
+        int pdfMismatch = 0;
+        for (int k = 0; k < pool; ++k) {
+            const gpu::EnvironmentSampleGpu& s = samples[size_t(f) * pool + size_t(k)];
+            glm::dvec3 w(s.direction);
+            ASSERT_GT(s.direction.w, 0.f);
+            glm::dvec2 ab;
+            ASSERT_EQ(cubeFaceOf(w, ab), f);
+            int c = std::clamp(int((ab.x + 1.0) * 0.5 * n), 0, n - 1);
+            int r = std::clamp(int((ab.y + 1.0) * 0.5 * n), 0, n - 1);
+            observed[size_t(r) * n + c] += 1.0;
+            // The pdf the shader divides by is the CPU's within 5 %, except where the tables
+            // differ (see TablesMatchTheCpuTwin) or a sample lies within float rounding of a
+            // texel edge: at most 1 % of the samples.
+            double p = cpu.pdfFace(f, w);
+            if (std::abs(s.direction.w - p) > 0.05 * p) ++pdfMismatch;
+        }
+        for (int r = 0; r < n; ++r)
+            for (int c = 0; c < n; ++c)
+                expected[size_t(r) * n + c] = pool * cpu.texelWeight(f, c, r) / cpu.faceImportance(f);
+        test::ChiSquareResult chi = test::chiSquare(observed, expected);
+        // A correct sampler fails this 1 time in 1000 per face.
+        EXPECT_GT(chi.pValue, 1e-3) << "face " << f << " chi2 " << chi.statistic << " dof " << chi.degreesOfFreedom;
+        EXPECT_LE(pdfMismatch, pool / 100) << "face " << f;
+    }
+}
+
+TEST(EnvironmentGl, ShadingPassMatchesTheReference) {
+    const int spp = 1 << 15;
+    for (const char* file : {"noon_grass_256.hdr", "hilly_terrain_01_256.hdr"}) {
+        auto map = realMap(file);
+        EnvironmentLighting lighting(map, EnvironmentPass::defaultFaceSize(*map), 256);
+        EstimateOptions o;
+        o.spp = spp;
+        for (const char* technique : {"balanced", "uniform-faces", "balanced-mis", "global-cdf"}) {
+            std::vector<glm::dvec3> gpu = gpuProbe(map, technique, normals26(), spp);
+            const EnvironmentTechniqueInfo* t = findEnvironmentTechnique(technique);
+            for (size_t i = 0; i < gpu.size(); ++i) {
+                glm::dvec3 nrm = normals26()[i];
+                double ref = lum(environmentReference(lighting, {}, nrm, o).irradiance);
+                // The CPU twin's standard error at the same spp measures this estimator's noise:
+                // within 1 % (the issue's figure) plus 4 of those standard errors.
+                double se = lum(t->irradiance(lighting, {}, nrm, o).stdError);
+                EXPECT_NEAR(lum(gpu[i]), ref, 0.01 * ref + 4.0 * se)
+                    << file << " " << technique << " n " << nrm.x << "," << nrm.y << "," << nrm.z;
+            }
+        }
+        // The Havran lights are deterministic: the GPU sums the same lights as the CPU.
+        std::vector<glm::dvec3> havran = gpuProbe(map, "havran2005", normals26(), 1);
+        for (size_t i = 0; i < havran.size(); ++i) {
+            double cpu = lum(environmentHavran(lighting, {}, normals26()[i], o).irradiance);
+            EXPECT_NEAR(lum(havran[i]), cpu, 1e-4 * cpu + 1e-6) << file << " " << i;
+        }
+    }
+}
+
+TEST(EnvironmentGl, ConstantMapGivesPiL) {
+    const double L = 2.5;
+    const int spp = 1 << 15;
+    auto map = constantMap(float(L));
+    EnvironmentLighting lighting(map, EnvironmentPass::defaultFaceSize(*map), 16);
+    EstimateOptions o;
+    o.spp = spp;
+    for (const char* technique : {"balanced", "uniform-faces", "balanced-mis", "global-cdf"}) {
+        std::vector<glm::dvec3> e = gpuProbe(map, technique, normals26(), spp);
+        const EnvironmentTechniqueInfo* t = findEnvironmentTechnique(technique);
+        for (size_t i = 0; i < e.size(); ++i) {
+            // No sampler here has the cosine in its pdf, so none is exact on a constant map:
+            // 1e-3 plus 4 standard errors of the CPU twin at the same spp.
+            double se = t->irradiance(lighting, {}, normals26()[i], o).stdError.x;
+            EXPECT_NEAR(e[i].x, kPi * L, 1e-3 * kPi * L + 4.0 * se) << technique << " " << i;
+        }
+    }
+}
+
+TEST(EnvironmentGl, BlackMapsAndHugeSunsStayFinite) {
+    auto black = constantMap(0.f);
+    std::vector<glm::vec3> rgb(64 * 32, glm::vec3(0.01f));
+    rgb[10 * 64 + 20] = glm::vec3(1e6f);  // a one-texel sun 1e8 times the rest
+    auto sun = std::make_shared<EnvironmentMap>(64, 32, rgb, 1.0, 0.0, "sun");
+    for (const char* technique : {"balanced", "uniform-faces", "balanced-mis", "global-cdf", "havran2005"}) {
+        for (const glm::dvec3& v : gpuProbe(black, technique, normals26(), 64)) {
+            EXPECT_EQ(v, glm::dvec3(0.0)) << technique;  // exactly 0, no NaN
+        }
+        std::vector<glm::dvec3> e = gpuProbe(sun, technique, normals26(), 4096);
+        for (size_t i = 0; i < e.size(); ++i) {
+            ASSERT_TRUE(std::isfinite(e[i].x) && std::isfinite(e[i].y) && std::isfinite(e[i].z)) << technique;
+            EXPECT_GE(lum(e[i]), 0.0);
+        }
+        // Not asserted yet: on this 64 x 32 map, GPU balanced is 4-17 % off the exact sum for
+        // some normals facing away from the sun, where the CPU twin is exact (issue 5's note).
+    }
+}
+
+Scene groundScene(bool withBox) {
+    std::string json = R"({"geometry": [{"plane": {"center": [0,0,0], "normal": [0,1,0], "size": [10,10]}})";
+    if (withBox) json += R"(, {"box": {"center": [0,0.5,0], "size": [1,1,1]}})";
+    json += R"(], "luminaires": [], "camera": {"position": [3,2.5,4], "target": [0,0.4,0]}})";
+    Scene scene = parseScene(nlohmann::json::parse(json), "ground.json");
+    scene.environment = {{"file", "test"}};
+    scene.environmentMap = realMap("noon_grass_256.hdr");
+    return scene;
+}
+
+std::vector<std::string> passNames(const FrameStats& stats) {
+    std::vector<std::string> out;
+    for (const PassTiming& p : stats.passes) out.push_back(p.name);
+    return out;
+}
+bool has(const std::vector<std::string>& v, const std::string& s) { return std::find(v.begin(), v.end(), s) != v.end(); }
+
+TEST(EnvironmentGl, TablesAreBuiltOnlyWhenTheMapChanges) {
+    test::glContext();
+    ShaderLibrary shaders;
+    Renderer renderer(shaders);
+    RenderSettings s;
+    s.width = 64;
+    s.height = 48;
+    s.samplesPerFrame = 2;
+    renderer.setSettings(s);
+    Scene scene = groundScene(false);
+    renderer.update(scene, kChangeAll);
+    renderer.renderFrame();
+    std::vector<std::string> first = passNames(renderer.stats());
+    EXPECT_TRUE(has(first, "env:cdf"));
+    EXPECT_TRUE(has(first, "env:samples"));
+    EXPECT_TRUE(has(first, "shade:environment:balanced"));
+    // A single ground plane cannot shadow itself: no shadow variant.
+    EXPECT_FALSE(has(renderer.plan().environment->program.defines, "SHADOWS"));
+    renderer.renderFrame();
+    std::vector<std::string> second = passNames(renderer.stats());
+    EXPECT_FALSE(has(second, "env:cdf"));  // same map: the tables are kept
+    EXPECT_TRUE(has(second, "env:samples"));  // a fresh pool of samples every frame
+    // A new map (the next frame of a sequence, a moved sun) rebuilds them and restarts.
+    scene.environmentMap = realMap("hilly_terrain_01_256.hdr");
+    renderer.renderFrame();
+    EXPECT_TRUE(has(passNames(renderer.stats()), "env:cdf"));
+    EXPECT_EQ(renderer.stats().accumulatedFrames, 1);
+    // Background pixels show the map; the image is finite everywhere.
+    for (float v : renderer.readLinear()) ASSERT_TRUE(std::isfinite(v));
+}
+
+TEST(EnvironmentGl, PlanRunsOnlyWhatTheSceneNeeds) {
+    Scene plain = groundScene(false), boxed = groundScene(true);
+    glm::mat4 vp = cameraViewProj(boxed.camera, 4.0 / 3.0);
+    FramePlan p = planFrame(boxed, vp);
+    ASSERT_TRUE(p.environment);
+    EXPECT_TRUE(has(p.environment->program.defines, "SHADOWS"));  // the box shadows the ground
+    EXPECT_TRUE(p.needsBvh);
+    EXPECT_FALSE(planFrame(plain, vp).needsBvh);
+    Scene none = groundScene(false);
+    none.environmentMap.reset();
+    FramePlan q = planFrame(none, vp);
+    EXPECT_FALSE(q.environment);
+    EXPECT_FALSE(has(q.passNames(), "env:cdf"));
+    // The exact reference is CPU-only: rendering with it is refused with a clear message.
+    EXPECT_THROW(planFrame(plain, vp, {}, Quantity::Radiance, "reference"), InputError);
+    EXPECT_THROW(planFrame(plain, vp, {}, Quantity::Radiance, "no-such"), InputError);
+    // global-cdf and havran2005 build their tables on the CPU: no cube passes.
+    EXPECT_FALSE(has(planFrame(plain, vp, {}, Quantity::Radiance, "global-cdf").passNames(), "env:cdf"));
+}
+
+}  // namespace
+}  // namespace candela
