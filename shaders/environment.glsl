@@ -85,27 +85,18 @@ double envRand48(inout uint state) {
     return hi + lo * (1.0LF / 16777216.0LF);
 }
 
-/// Index of the CDF piece holding u: cdf[i] <= u < cdf[i + 1] over cdf[base .. base + n]
-/// (non-empty pieces only), and u's fraction inside it.
-int envSearchRow(int base, int n, double u, out float fraction) {
+double envCdfAt(bool rows, int i) { return rows ? envRowCdf[i] : envColCdf[i]; }
+
+/// Index of the CDF piece holding u: cdf[i] <= u < cdf[i + 1] over cdf[base .. base + n] of the
+/// row tables (rows) or the column table (non-empty pieces only), and u's fraction inside it.
+int envSearch(bool rows, int base, int n, double u, out float fraction) {
     int lo = 0, hi = n;  // invariant: cdf[lo] <= u < cdf[hi] (cdf[n] = 1 > u)
     while (hi - lo > 1) {
         int mid = (lo + hi) >> 1;
-        if (envRowCdf[base + mid] <= u) lo = mid; else hi = mid;
+        if (envCdfAt(rows, base + mid) <= u) lo = mid; else hi = mid;
     }
-    double w = envRowCdf[base + lo + 1] - envRowCdf[base + lo];
-    fraction = w > 0.0LF ? clamp(float((u - envRowCdf[base + lo]) / w), 0.0, 1.0) : 0.5;
-    return lo;
-}
-
-int envSearchColumn(int base, int n, double u, out float fraction) {
-    int lo = 0, hi = n;
-    while (hi - lo > 1) {
-        int mid = (lo + hi) >> 1;
-        if (envColCdf[base + mid] <= u) lo = mid; else hi = mid;
-    }
-    double w = envColCdf[base + lo + 1] - envColCdf[base + lo];
-    fraction = w > 0.0LF ? clamp(float((u - envColCdf[base + lo]) / w), 0.0, 1.0) : 0.5;
+    double left = envCdfAt(rows, base + lo), w = envCdfAt(rows, base + lo + 1) - left;
+    fraction = w > 0.0LF ? clamp(float((u - left) / w), 0.0, 1.0) : 0.5;
     return lo;
 }
 

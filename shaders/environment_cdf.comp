@@ -192,8 +192,8 @@ void main() {
         uint rng = pcgHash(uint(env.frame.x) ^ pcgHash(uint(f * pool + i) + 0x9e3779b9u));
         double u1 = envRand48(rng), u2 = envRand48(rng);
         float fx, fy;
-        int c = envSearchColumn(f * (n + 1), n, u1, fx);
-        int r = envSearchRow((f * n + c) * (n + 1), n, u2, fy);
+        int c = envSearch(false, f * (n + 1), n, u1, fx);
+        int r = envSearch(true, (f * n + c) * (n + 1), n, u2, fy);
         float a = -1.0 + 2.0 * (float(c) + fx) / float(n), b = -1.0 + 2.0 * (float(r) + fy) / float(n);
         int cb = f * (n + 1), rb = (f * n + c) * (n + 1);
         float p = float((envColCdf[cb + c + 1] - envColCdf[cb + c]) * (envRowCdf[rb + r + 1] - envRowCdf[rb + r]));

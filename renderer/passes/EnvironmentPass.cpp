@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "renderer/passes/GBufferPass.h"
+#include "renderer/passes/ShadePass.h"
 
 namespace candela {
 
@@ -143,13 +144,7 @@ void EnvironmentPass::shade(ShaderLibrary& shaders, const ShadeStep& step, const
     mUniformBuffer.update(0, sizeof(mUniforms), &mUniforms);
     bindAll();
     glUseProgram(shaders.program(step.program));
-    for (int i = 0; i < 4; ++i) glBindTextureUnit(GLuint(i), gbuffer.texture(i).id());
-    glBindFramebuffer(GL_FRAMEBUFFER, target.id());
-    glViewport(0, 0, width, height);
-    glEnable(GL_BLEND);
-    glBlendFunc(GL_ONE, GL_ONE);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    glDisable(GL_BLEND);
+    ShadePass::drawAdditive(gbuffer, target, width, height);
 }
 
 std::vector<glm::vec2> EnvironmentPass::readCube() const {

@@ -13,6 +13,11 @@ void ShadePass::execute(ShaderLibrary& shaders, const ShadeStep& step, const gl:
     // Each luminaire has its own record buffer; the shader reads element 0.
     glProgramUniform1i(program, 0, 0);
     luminaire.bindBase(GL_SHADER_STORAGE_BUFFER, gpu::kBindingLuminaire);
+    drawAdditive(gbuffer, target, width, height);
+}
+
+void ShadePass::drawAdditive(const GBufferPass& gbuffer, const gl::Framebuffer& target, int width,
+                             int height) {
     for (int i = 0; i < 4; ++i) glBindTextureUnit(GLuint(i), gbuffer.texture(i).id());
     glBindFramebuffer(GL_FRAMEBUFFER, target.id());
     glViewport(0, 0, width, height);
