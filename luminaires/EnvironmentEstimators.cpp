@@ -51,6 +51,38 @@ double clippedCosine(double A, double B, double p0, double p1) {
     return sum;
 }
 
+/// The sum of Eq. (4)-(6): strategies of fractional sample counts, each sample weighted by
+/// beta_i (Eq. 5: 1 for i <= N, frac(N) for the last one), with the variance of the sum from each
+/// strategy's sample variance.
+struct FractionalSum {
+    glm::dvec3 sum{0.0}, variance{0.0};
+
+    /// Adds ceil(count) samples of draw() (a function returning one sample's value).
+    template <class Draw>
+    void add(double count, Draw&& draw) {
+        int total = int(std::ceil(count));
+        glm::dvec3 mean(0.0), m2(0.0);
+        double betaSq = 0.0;
+        for (int i = 1; i <= total; ++i) {
+            double beta = double(i) <= count ? 1.0 : count - std::floor(count);
+            glm::dvec3 y = draw();
+            sum += beta * y;
+            betaSq += beta * beta;
+            glm::dvec3 d = y - mean;
+            mean += d / double(i);
+            m2 += d * (y - mean);
+        }
+        if (total > 1) variance += betaSq * m2 / double(total - 1);
+    }
+    /// The estimate of the sum divided by N_s.
+    Estimate estimate(double ns) const {
+        Estimate e;
+        e.irradiance = sum / ns;
+        e.stdError = glm::sqrt(glm::max(variance, glm::dvec3(0.0))) / ns;
+        return e;
+    }
+};
+
 }  // namespace
 
 // Exact irradiance of the piecewise-constant map: E = sum_t L_t int_t max(0, n.w) dw. With
@@ -118,40 +150,24 @@ Estimate environmentFaceEstimate(const EnvironmentLighting& lighting, const glm:
     Random rng(options.seed);
     const double ns = options.spp;
     SampleCounts c;
-    glm::dvec3 sum(0.0), variance(0.0);
+    FractionalSum total;
     for (int f = 0; f < 6; ++f) {
         double nf = mu[size_t(f)] * ns;  // N_f(n) = mu_f(n) N_s, fractional (Eq. 4)
         if (!(nf > 0.0)) continue;
-        int count = int(std::ceil(nf));
-        glm::dvec3 mean(0.0), m2(0.0);
-        double betaSq = 0.0;
-        for (int i = 1; i <= count; ++i) {
-            // Eq. (5): beta_i = 1 for i <= N_f, frac(N_f) for the last one.
-            double beta = double(i) <= nf ? 1.0 : nf - std::floor(nf);
+        total.add(nf, [&] {
             double u1 = rng.uniform(), u2 = rng.uniform();
             DirectionSample s = cube.sampleFace(f, {u1, u2});
-            glm::dvec3 y(0.0);
             ++c.drawn;
-            if (s.pdf > 0.0) {
-                double cosine = glm::dot(n, s.w);
-                if (cosine > 0.0) {
-                    ++c.effective;
-                    if (visibleAlong(options, p, s.w))
-                        y = map.radiance(s.w) * cosine / (mu[size_t(f)] * s.pdf);
-                }
-            }
-            sum += beta * y;
-            betaSq += beta * beta;
-            glm::dvec3 d = y - mean;
-            mean += d / double(i);
-            m2 += d * (y - mean);
-        }
-        if (count > 1) variance += betaSq * m2 / double(count - 1);
+            if (!(s.pdf > 0.0)) return glm::dvec3(0.0);
+            double cosine = glm::dot(n, s.w);
+            if (!(cosine > 0.0)) return glm::dvec3(0.0);
+            ++c.effective;
+            if (!visibleAlong(options, p, s.w)) return glm::dvec3(0.0);
+            return map.radiance(s.w) * cosine / (mu[size_t(f)] * s.pdf);
+        });
     }
-    e.irradiance = sum / ns;
-    e.stdError = glm::sqrt(glm::max(variance, glm::dvec3(0.0))) / ns;
     if (counts) *counts = c;
-    return e;
+    return total.estimate(ns);
 }
 
 Estimate environmentBalanced(const EnvironmentLighting& lighting, const glm::dvec3& p,
@@ -218,22 +234,7 @@ Estimate environmentBalancedMis(const EnvironmentLighting& lighting, const glm::
     std::array<double, 6> mu = cube.balance(n);
     Random rng(options.seed);
     const double ns = options.spp;
-    glm::dvec3 sum(0.0), variance(0.0);
-    auto strategy = [&](double count, auto&& draw) {
-        int total = int(std::ceil(count));
-        glm::dvec3 mean(0.0), m2(0.0);
-        double betaSq = 0.0;
-        for (int i = 1; i <= total; ++i) {
-            double beta = double(i) <= count ? 1.0 : count - std::floor(count);
-            glm::dvec3 y = draw();
-            sum += beta * y;
-            betaSq += beta * beta;
-            glm::dvec3 d = y - mean;
-            mean += d / double(i);
-            m2 += d * (y - mean);
-        }
-        if (total > 1) variance += betaSq * m2 / double(total - 1);
-    };
+    FractionalSum total;
     auto weighted = [&](const glm::dvec3& w) {
         double cosine = glm::dot(n, w);
         if (!(cosine > 0.0) || !visibleAlong(options, p, w)) return glm::dvec3(0.0);
@@ -243,7 +244,7 @@ Estimate environmentBalancedMis(const EnvironmentLighting& lighting, const glm::
     for (int f = 0; f < 6; ++f) {
         double nf = 0.5 * mu[size_t(f)] * ns;
         if (!(nf > 0.0)) continue;
-        strategy(nf, [&] {
+        total.add(nf, [&] {
             double u1 = rng.uniform(), u2 = rng.uniform();
             DirectionSample s = cube.sampleFace(f, {u1, u2});
             return s.pdf > 0.0 ? weighted(s.w) : glm::dvec3(0.0);
@@ -256,7 +257,7 @@ Estimate environmentBalancedMis(const EnvironmentLighting& lighting, const glm::
         t = {1.0 + sign * n.x * n.x * aa, sign * c, -sign * n.x};
         b = {c, sign + n.y * n.y * aa, -n.y};
     }
-    strategy(0.5 * ns, [&] {
+    total.add(0.5 * ns, [&] {
         // Cosine-weighted hemisphere (Malley's method): pdf_B = cos / pi.
         double u1 = rng.uniform(), u2 = rng.uniform();
         double r = std::sqrt(u1), phi = 2.0 * kPi * u2;
@@ -264,8 +265,7 @@ Estimate environmentBalancedMis(const EnvironmentLighting& lighting, const glm::
                        std::sqrt(std::max(0.0, 1.0 - u1)) * n;
         return weighted(glm::normalize(w));
     });
-    e.irradiance = sum / ns;
-    e.stdError = glm::sqrt(glm::max(variance, glm::dvec3(0.0))) / ns;
+    e = total.estimate(ns);
     return e;
 }
 

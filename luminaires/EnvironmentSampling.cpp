@@ -3,18 +3,20 @@
 #include <algorithm>
 #include <cmath>
 
+#include "shaders/shared/GpuTypes.h"
+
 
 namespace candela {
 
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-/// Floor of a cube texel's luminance as a fraction of its face's mean (see CubeMapDistribution).
-constexpr double kFaceFloor = 1e-3;
-/// Share of the largest luminance a cube texel touches in its sampling weight: with it,
+/// Floor of a cube texel's luminance as a fraction of its face's mean (see CubeMapDistribution),
+/// and the share of the largest luminance a cube texel touches in its sampling weight: with it,
 /// L(w) / (mu_f pdf_L(w|f)) is bounded (L <= max <= weight / (kMaxShare Omega)), so a sun thinner
-/// than the supersampling cannot give rare huge samples.
-constexpr double kMaxShare = 0.1;
+/// than the supersampling cannot give rare huge samples. One definition for C++ and GLSL.
+constexpr double kFaceFloor = gpu::kEnvFaceFloor;
+constexpr double kMaxShare = gpu::kEnvMaxShare;
 
 const CubeFaceFrame kFaces[6] = {
     {{1, 0, 0}, {0, 0, 1}, {0, -1, 0}},  {{-1, 0, 0}, {0, 0, -1}, {0, -1, 0}},

@@ -148,9 +148,7 @@ void Renderer::renderFrame() {
     mStats.passes.clear();
     if (!mScene) return;
     // A new map (a sequence's next frame, a moved sun) restarts the accumulation.
-    if (mScene->environmentMap.get() != mEnvironment->map() &&
-        (mScene->environmentMap || mPlan.environment))
-        mPending |= kChangeEnvironment;
+    if (mScene->environmentMap.get() != mEnvironment->map()) mPending |= kChangeEnvironment;
     bool newAccumulation = false;
     if (mPending || mPointMode) {
         if (mPointMode || mGBuffer->width() != mSettings.width ||

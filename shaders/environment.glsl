@@ -66,15 +66,19 @@ ivec2 envTexelOf(vec3 w) {
 /// Radiance of the map towards w: exactly the texel's value (no filtering).
 vec3 envRadiance(vec3 w) { return texelFetch(uEnvMap, envTexelOf(w), 0).rgb; }
 
-/// Signed solid angle of [0, a] x [0, b] on the face plane at distance 1.
-float envCornerSolidAngle(float a, float b) { return atan(a * b, sqrt(1.0 + a * a + b * b)); }
-
-/// Exact solid angle of texel (col, row) of any face of N^2 texels.
+/// Exact solid angle of texel (col, row) of a face of N^2 texels, as two spherical triangles
+/// (Van Oosterom and Strackee 1983): the triple product of the corner vectors is da db exactly
+/// (the face plane is at distance 1), so nothing cancels in float, unlike a difference of
+/// corner atans.
 float envTexelSolidAngle(int col, int row, int n) {
     float a0 = -1.0 + 2.0 * float(col) / float(n), a1 = -1.0 + 2.0 * float(col + 1) / float(n);
     float b0 = -1.0 + 2.0 * float(row) / float(n), b1 = -1.0 + 2.0 * float(row + 1) / float(n);
-    return envCornerSolidAngle(a1, b1) - envCornerSolidAngle(a0, b1) -
-           envCornerSolidAngle(a1, b0) + envCornerSolidAngle(a0, b0);
+    vec3 p00 = vec3(a0, b0, 1.0), p10 = vec3(a1, b0, 1.0), p11 = vec3(a1, b1, 1.0), p01 = vec3(a0, b1, 1.0);
+    float l00 = length(p00), l10 = length(p10), l11 = length(p11), l01 = length(p01);
+    float det = (a1 - a0) * (b1 - b0);
+    float d1 = l00 * l10 * l11 + dot(p00, p10) * l11 + dot(p10, p11) * l00 + dot(p11, p00) * l10;
+    float d2 = l00 * l11 * l01 + dot(p00, p11) * l01 + dot(p11, p01) * l00 + dot(p01, p00) * l11;
+    return 2.0 * atan(det, d1) + 2.0 * atan(det, d2);
 }
 
 /// The CDFs are doubles, drawn with 48-bit uniforms: in float, a texel 1e8 times dimmer than a
@@ -103,19 +107,25 @@ int envSearch(bool rows, int base, int n, double u, out float fraction) {
 /// I_f of Eq. (3).
 float envFaceImportance(int f) { return envFaces[f].totals.x; }
 
-/// pdf_L(w | f) of a direction on face f (0 off the face or on a black face), 1/sr: the texel's
-/// probability (CDF differences, what the sampler draws) over its area on the face plane,
-/// times the plane-to-sphere Jacobian (1 + a^2 + b^2)^(3/2).
+/// pdf_L(w | f) of a point (a, b) of texel (c, r) of face f, 1/sr: the texel's probability (CDF
+/// differences, what the sampler draws) over its area on the face plane, times the
+/// plane-to-sphere Jacobian (1 + a^2 + b^2)^(3/2).
+float envTexelPdf(int f, int c, int r, vec2 ab) {
+    int n = env.dims.z;
+    int cb = f * (n + 1), rb = (f * n + c) * (n + 1);
+    float p = float((envColCdf[cb + c + 1] - envColCdf[cb + c]) * (envRowCdf[rb + r + 1] - envRowCdf[rb + r]));
+    float q = 1.0 + dot(ab, ab);
+    return p * float(n) * float(n) * 0.25 * q * sqrt(q);
+}
+
+/// pdf_L(w | f) of a direction (0 off the face or on a black face).
 float envPdfFace(int f, vec3 w) {
     vec2 ab;
     if (envFaceOf(w, ab) != f || !(envFaceImportance(f) > 0.0)) return 0.0;
     int n = env.dims.z;
     int c = clamp(int((ab.x + 1.0) * 0.5 * float(n)), 0, n - 1);
     int r = clamp(int((ab.y + 1.0) * 0.5 * float(n)), 0, n - 1);
-    int cb = f * (n + 1), rb = (f * n + c) * (n + 1);
-    float p = float((envColCdf[cb + c + 1] - envColCdf[cb + c]) * (envRowCdf[rb + r + 1] - envRowCdf[rb + r]));
-    float q = 1.0 + dot(ab, ab);
-    return p * float(n) * float(n) * 0.25 * q * sqrt(q);
+    return envTexelPdf(f, c, r, ab);
 }
 
 /// mu_f(n) of Eq. (3): F_f(n) I_f normalised, F_f(n) the sum over the face's four unit corner

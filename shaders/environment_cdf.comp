@@ -20,20 +20,6 @@ layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
 layout(local_size_x = 256, local_size_y = 1, local_size_z = 1) in;
 #endif
 
-/// Exact solid angle of the texel as two spherical triangles (Van Oosterom and Strackee 1983):
-/// the triple product of the corner vectors is da db exactly (the face plane is at distance 1),
-/// so nothing cancels in float, unlike a difference of corner atans.
-float texelSolidAngleStable(int col, int row, int n) {
-    float a0 = -1.0 + 2.0 * float(col) / float(n), a1 = -1.0 + 2.0 * float(col + 1) / float(n);
-    float b0 = -1.0 + 2.0 * float(row) / float(n), b1 = -1.0 + 2.0 * float(row + 1) / float(n);
-    vec3 p00 = vec3(a0, b0, 1.0), p10 = vec3(a1, b0, 1.0), p11 = vec3(a1, b1, 1.0), p01 = vec3(a0, b1, 1.0);
-    float l00 = length(p00), l10 = length(p10), l11 = length(p11), l01 = length(p01);
-    float det = (a1 - a0) * (b1 - b0);
-    float d1 = l00 * l10 * l11 + dot(p00, p10) * l11 + dot(p10, p11) * l00 + dot(p11, p00) * l10;
-    float d2 = l00 * l11 * l01 + dot(p00, p11) * l01 + dot(p11, p01) * l00 + dot(p01, p00) * l11;
-    return 2.0 * atan(det, d1) + 2.0 * atan(det, d2);
-}
-
 #ifdef PASS_CUBE
 float latLongLuminance(int x, int y) { return luminance(texelFetch(uEnvMap, ivec2(x, y), 0).rgb); }
 
@@ -90,7 +76,7 @@ void main() {
             sum += luminance(envRadiance(envFaceDirection(f, a, b)));
         }
     float lum = sum / float(k * k);
-    float omega = texelSolidAngleStable(c, r, n);
+    float omega = envTexelSolidAngle(c, r, n);
     envCube[(f * n + r) * n + c] = vec2(lum, (lum + kEnvMaxShare * touchedMaximum(f, c, r, n)) * omega);
 }
 #endif
@@ -116,7 +102,7 @@ void main() {
     uint t = gl_LocalInvocationID.x;
     double sum = 0.0LF;
     for (int i = int(t); i < n * n; i += 256)
-        sum += double(envCube[f * n * n + i].x) * double(texelSolidAngleStable(i % n, i / n, n));
+        sum += double(envCube[f * n * n + i].x) * double(envTexelSolidAngle(i % n, i / n, n));
     partial[t] = sum;
     scanPartials(t);
     if (t == 0u) envFaces[f].totals.y = float(partial[255]);
@@ -132,7 +118,7 @@ void main() {
     double sum = 0.0LF;
     for (int r = first; r < last; ++r) {
         int idx = (f * n + r) * n + c;
-        float weight = envCube[idx].y + floorLum * texelSolidAngleStable(c, r, n);
+        float weight = envCube[idx].y + floorLum * envTexelSolidAngle(c, r, n);
         envCube[idx].y = weight;
         sum += double(weight);
     }
@@ -195,11 +181,8 @@ void main() {
         int c = envSearch(false, f * (n + 1), n, u1, fx);
         int r = envSearch(true, (f * n + c) * (n + 1), n, u2, fy);
         float a = -1.0 + 2.0 * (float(c) + fx) / float(n), b = -1.0 + 2.0 * (float(r) + fy) / float(n);
-        int cb = f * (n + 1), rb = (f * n + c) * (n + 1);
-        float p = float((envColCdf[cb + c + 1] - envColCdf[cb + c]) * (envRowCdf[rb + r + 1] - envRowCdf[rb + r]));
-        float q = 1.0 + a * a + b * b;
         vec3 w = envFaceDirection(f, a, b);
-        s.direction = vec4(w, p * float(n) * float(n) * 0.25 * q * sqrt(q));
+        s.direction = vec4(w, envTexelPdf(f, c, r, vec2(a, b)));
         s.radiance = vec4(envRadiance(w), 0.0);
     }
     envSamples[f * pool + i] = s;

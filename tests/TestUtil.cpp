@@ -96,6 +96,15 @@ std::vector<std::byte> runComputeTest(const std::string& shader, const std::vect
     return result;
 }
 
+std::vector<glm::dvec3> cubeNormals26() {
+    std::vector<glm::dvec3> out;
+    for (int x = -1; x <= 1; ++x)
+        for (int y = -1; y <= 1; ++y)
+            for (int z = -1; z <= 1; ++z)
+                if (x || y || z) out.push_back(glm::normalize(glm::dvec3(x, y, z)));
+    return out;
+}
+
 std::string dataDir() { return CANDELA_TEST_DATA; }
 std::string sourceDir() { return CANDELA_SOURCE_DIR; }
 

@@ -1,6 +1,8 @@
 #pragma once
 // Helpers shared by the tests: statistics for sampler tests and a GL context for *_gltest.cpp.
 
+#include <glm/glm.hpp>
+
 #include <cstddef>
 #include <cstring>
 #include <memory>
@@ -46,6 +48,10 @@ std::vector<Out> runComputeTest(const std::string& shader, const std::vector<std
     std::memcpy(out.data(), bytes.data(), bytes.size());
     return out;
 }
+
+/// The 26 unit directions from the centre of a cube to its face centres, edge midpoints and
+/// corners (the normals the environment tests probe).
+std::vector<glm::dvec3> cubeNormals26();
 
 /// Folder of the test data (tests/data) and of the repository.
 std::string dataDir();

@@ -31,15 +31,6 @@ std::shared_ptr<const EnvironmentMap> constantMap(float value, int w = 64) {
                                             1.0, 0.0, "constant");
 }
 
-/// The 26 directions from a cube's centre to its face centres, edge midpoints and corners.
-std::vector<glm::dvec3> normals26() {
-    std::vector<glm::dvec3> out;
-    for (int x = -1; x <= 1; ++x)
-        for (int y = -1; y <= 1; ++y)
-            for (int z = -1; z <= 1; ++z)
-                if (x || y || z) out.push_back(glm::normalize(glm::dvec3(x, y, z)));
-    return out;
-}
 
 /// Irradiance through the production shading pass (Renderer::probe) for normals at the origin.
 std::vector<glm::dvec3> gpuProbe(std::shared_ptr<const EnvironmentMap> map, const std::string& technique,
@@ -163,10 +154,10 @@ TEST(EnvironmentGl, ShadingPassMatchesTheReference) {
         EstimateOptions o;
         o.spp = spp;
         for (const char* technique : {"balanced", "uniform-faces", "balanced-mis", "global-cdf"}) {
-            std::vector<glm::dvec3> gpu = gpuProbe(map, technique, normals26(), spp);
+            std::vector<glm::dvec3> gpu = gpuProbe(map, technique, test::cubeNormals26(), spp);
             const EnvironmentTechniqueInfo* t = findEnvironmentTechnique(technique);
             for (size_t i = 0; i < gpu.size(); ++i) {
-                glm::dvec3 nrm = normals26()[i];
+                glm::dvec3 nrm = test::cubeNormals26()[i];
                 double ref = lum(environmentReference(lighting, {}, nrm, o).irradiance);
                 // The CPU twin's standard error at the same spp measures this estimator's noise:
                 // within 1 % (the figure) plus 4 of those standard errors.
@@ -176,9 +167,9 @@ TEST(EnvironmentGl, ShadingPassMatchesTheReference) {
             }
         }
         // The Havran lights are deterministic: the GPU sums the same lights as the CPU.
-        std::vector<glm::dvec3> havran = gpuProbe(map, "havran2005", normals26(), 1);
+        std::vector<glm::dvec3> havran = gpuProbe(map, "havran2005", test::cubeNormals26(), 1);
         for (size_t i = 0; i < havran.size(); ++i) {
-            double cpu = lum(environmentHavran(lighting, {}, normals26()[i], o).irradiance);
+            double cpu = lum(environmentHavran(lighting, {}, test::cubeNormals26()[i], o).irradiance);
             EXPECT_NEAR(lum(havran[i]), cpu, 1e-4 * cpu + 1e-6) << file << " " << i;
         }
     }
@@ -192,12 +183,12 @@ TEST(EnvironmentGl, ConstantMapGivesPiL) {
     EstimateOptions o;
     o.spp = spp;
     for (const char* technique : {"balanced", "uniform-faces", "balanced-mis", "global-cdf"}) {
-        std::vector<glm::dvec3> e = gpuProbe(map, technique, normals26(), spp);
+        std::vector<glm::dvec3> e = gpuProbe(map, technique, test::cubeNormals26(), spp);
         const EnvironmentTechniqueInfo* t = findEnvironmentTechnique(technique);
         for (size_t i = 0; i < e.size(); ++i) {
             // No sampler here has the cosine in its pdf, so none is exact on a constant map:
             // 1e-3 plus 4 standard errors of the CPU twin at the same spp.
-            double se = t->irradiance(lighting, {}, normals26()[i], o).stdError.x;
+            double se = t->irradiance(lighting, {}, test::cubeNormals26()[i], o).stdError.x;
             EXPECT_NEAR(e[i].x, kPi * L, 1e-3 * kPi * L + 4.0 * se) << technique << " " << i;
         }
     }
@@ -209,10 +200,10 @@ TEST(EnvironmentGl, BlackMapsAndHugeSunsStayFinite) {
     rgb[10 * 64 + 20] = glm::vec3(1e6f);  // a one-texel sun 1e8 times the rest
     auto sun = std::make_shared<EnvironmentMap>(64, 32, rgb, 1.0, 0.0, "sun");
     for (const char* technique : {"balanced", "uniform-faces", "balanced-mis", "global-cdf", "havran2005"}) {
-        for (const glm::dvec3& v : gpuProbe(black, technique, normals26(), 64)) {
+        for (const glm::dvec3& v : gpuProbe(black, technique, test::cubeNormals26(), 64)) {
             EXPECT_EQ(v, glm::dvec3(0.0)) << technique;  // exactly 0, no NaN
         }
-        std::vector<glm::dvec3> e = gpuProbe(sun, technique, normals26(), 4096);
+        std::vector<glm::dvec3> e = gpuProbe(sun, technique, test::cubeNormals26(), 4096);
         for (size_t i = 0; i < e.size(); ++i) {
             ASSERT_TRUE(std::isfinite(e[i].x) && std::isfinite(e[i].y) && std::isfinite(e[i].z)) << technique;
             EXPECT_GE(lum(e[i]), 0.0);

@@ -35,15 +35,6 @@ std::shared_ptr<EnvironmentMap> makeMap(int w, int h, const TexelFn& fn, double 
     return std::make_shared<EnvironmentMap>(w, h, std::move(rgb), 1.0, rotationDeg, "test map");
 }
 
-/// The 26 directions from the centre of a cube to its face centres, edge midpoints and corners.
-std::vector<glm::dvec3> normals26() {
-    std::vector<glm::dvec3> out;
-    for (int x = -1; x <= 1; ++x)
-        for (int y = -1; y <= 1; ++y)
-            for (int z = -1; z <= 1; ++z)
-                if (x || y || z) out.push_back(glm::normalize(glm::dvec3(x, y, z)));
-    return out;
-}
 
 std::string inputError(const std::function<void()>& fn) {
     try {
@@ -95,7 +86,7 @@ TEST(Environment, BrightTexelLightsTheContractDirection) {
         double away = lum(environmentReference(lighting, {}, -d, {}).irradiance);
         EXPECT_GT(facing, 0.0);
         EXPECT_EQ(away, 0.0);
-        for (const glm::dvec3& n : normals26())
+        for (const glm::dvec3& n : test::cubeNormals26())
             EXPECT_LE(lum(environmentReference(lighting, {}, n, {}).irradiance), facing * (1 + 1e-12));
     }
     // Known directions: the top row is +Y, u = 0 is +X, u = 1/4 is +Z; rotation 90 turns +X to +Z.
@@ -180,7 +171,7 @@ TEST(Environment, ConstantMapGivesPiL) {
     EnvironmentLighting lighting(map, 16, 1024);
     EstimateOptions o;
     o.spp = 1 << 18;
-    for (const glm::dvec3& n : normals26()) {
+    for (const glm::dvec3& n : test::cubeNormals26()) {
         // The reference is exact up to the 8-point Gauss-Legendre rule on the horizon band.
         EXPECT_NEAR(lum(environmentReference(lighting, {}, n, o).irradiance), kPi * L, 1e-3 * kPi * L);
         for (const auto& t : environmentTechniques()) {
@@ -372,7 +363,7 @@ TEST(Environment, BalancedAgreesWithReferenceOnRealMaps) {
         EstimateOptions o;
         o.spp = 1 << 18;
         double worst = 0.0, worstSe = 0.0;
-        for (const glm::dvec3& n : normals26()) {
+        for (const glm::dvec3& n : test::cubeNormals26()) {
             double ref = lum(environmentReference(lighting, {}, n, o).irradiance);
             Estimate e = environmentBalanced(lighting, {}, n, o);
             double err = std::abs(lum(e.irradiance) - ref) / ref;
@@ -459,7 +450,7 @@ TEST(Environment, BlackFaceAndBlackMap) {
     auto black = makeMap(w, h, [](int, int) { return glm::vec3(0.f); });
     EnvironmentLighting dark(black, 16, 16);
     for (const auto& t : environmentTechniques())
-        for (const glm::dvec3& n : normals26()) {
+        for (const glm::dvec3& n : test::cubeNormals26()) {
             Estimate e = t.irradiance(dark, {}, n, o);
             EXPECT_EQ(e.irradiance, glm::dvec3(0.0)) << t.name;  // exactly 0, not NaN
             EXPECT_EQ(e.stdError, glm::dvec3(0.0)) << t.name;
@@ -478,7 +469,7 @@ TEST(Environment, SingleTexelSunAndPoles) {
     EstimateOptions o;
     o.spp = 1 << 16;
     double worst = 0.0;
-    for (const glm::dvec3& n : normals26()) {
+    for (const glm::dvec3& n : test::cubeNormals26()) {
         double ref = lum(environmentReference(lighting, {}, n, o).irradiance);
         Estimate e = environmentBalanced(lighting, {}, n, o);
         double err = std::abs(lum(e.irradiance) - ref);

@@ -19,6 +19,8 @@ std::vector<T> readBuffer(const gl::Buffer& buffer, size_t count) {
 
 }  // namespace
 
+EnvironmentPass::EnvironmentPass() : mUniformBuffer(sizeof(gpu::EnvironmentGpu), nullptr) {}
+
 int EnvironmentPass::defaultFaceSize(const EnvironmentMap& map) {
     return std::clamp(map.width() / 2, 8, 256);
 }
@@ -78,7 +80,6 @@ void EnvironmentPass::dispatch(ShaderLibrary& shaders, const char* pass, GLuint 
 
 void EnvironmentPass::buildTables(ShaderLibrary& shaders) {
     if (!mMap || mBuilt) return;
-    if (!mUniformBuffer.id()) mUniformBuffer = gl::Buffer(sizeof(gpu::EnvironmentGpu), nullptr);
     mUniformBuffer.update(0, sizeof(mUniforms), &mUniforms);
     bindAll();
     GLuint n = GLuint(mN);
@@ -140,7 +141,6 @@ void EnvironmentPass::shade(ShaderLibrary& shaders, const ShadeStep& step, const
                             const gl::Framebuffer& target, int width, int height, bool background) {
     if (!mMap) return;
     mUniforms.params.y = background ? 1.f : 0.f;
-    if (!mUniformBuffer.id()) mUniformBuffer = gl::Buffer(sizeof(gpu::EnvironmentGpu), nullptr);
     mUniformBuffer.update(0, sizeof(mUniforms), &mUniforms);
     bindAll();
     glUseProgram(shaders.program(step.program));

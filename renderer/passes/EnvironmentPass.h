@@ -21,6 +21,8 @@ class GBufferPass;
 
 class EnvironmentPass {
 public:
+    EnvironmentPass();  ///< Needs a current GL context.
+
     /// Face size used for a map when none is asked for: the CPU default (texels no larger than
     /// the lat-long map's at the equator) capped at 256, the paper's size.
     static int defaultFaceSize(const EnvironmentMap& map);

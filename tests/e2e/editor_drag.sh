@@ -88,8 +88,9 @@ e2e_spot_moved "$SHOTS/shot-000.png" "$SHOTS/shot-001.png" "$OX" "$OY" "$PX" "$P
 
 # Sidecars: parse, the luminaire moved in its horizontal plane, and its new position projects to
 # where the mouse was released (the renderer's camera model: lookAt + perspective, Y-up).
-python3 - "$SHOTS/shot-000.json" "$SHOTS/shot-001.json" "$NAME" "$PX" "$PY" <<'EOF' ||
+PYTHONPATH="$E2E_LIB" python3 - "$SHOTS/shot-000.json" "$SHOTS/shot-001.json" "$NAME" "$PX" "$PY" <<'EOF' ||
 import json, math, sys
+from camera import project
 before, after = (json.load(open(p)) for p in sys.argv[1:3])
 name, px, py = sys.argv[3], float(sys.argv[4]), float(sys.argv[5])
 for s in (before, after):
@@ -105,20 +106,7 @@ assert abs(d[1]) < 1e-6, f"the drag changed the height by {d[1]} m"
 assert math.hypot(d[0], d[2]) > 0.2, f"the luminaire moved only {math.hypot(d[0], d[2]):.3f} m"
 assert d[0] > 0, "dragging right should move the luminaire towards +x in this view"
 
-def sub(a, b): return [x - y for x, y in zip(a, b)]
-def dot(a, b): return sum(x * y for x, y in zip(a, b))
-def norm(a): return [x / math.sqrt(dot(a, a)) for x in a]
-def cross(a, b): return [a[1]*b[2]-a[2]*b[1], a[2]*b[0]-a[0]*b[2], a[0]*b[1]-a[1]*b[0]]
-cam = after["camera"]
-w, h = after["render_size"]
-f = norm(sub(cam["target"], cam["position"]))
-r = norm(cross(f, [0, 1, 0]))
-u = cross(r, f)
-v = sub(p1, cam["position"])
-x, y, z = dot(v, r), dot(v, u), dot(v, f)
-t = math.tan(math.radians(cam["fov_deg"]) / 2)
-sx = (x / (z * t * w / h) * 0.5 + 0.5) * w
-sy = (0.5 - y / (z * t) * 0.5) * h
+sx, sy = project(p1, after)
 print(f"editor_drag: new position projects to ({sx:.1f}, {sy:.1f}), mouse released at ({px}, {py})")
 assert abs(sx - px) < 4 and abs(sy - py) < 4, "the luminaire is not where it was dropped"
 EOF

@@ -166,9 +166,10 @@ save_scene drag
 # The lit spot on the floor below the LED moved with it (checked in the images), and the sidecars
 # and the saved scene hold the new position.
 read -r IW IH < <(identify -format '%w %h\n' "$SHOTS/shot-001.png")
-python3 - "$SHOTS/shot-000.json" "$SHOTS/shot-001.json" "$TMP/saved-drag.json" <<'EOF' \
+PYTHONPATH="$E2E_LIB" python3 - "$SHOTS/shot-000.json" "$SHOTS/shot-001.json" "$TMP/saved-drag.json" <<'EOF' \
     >"$TMP/spots.txt" || fail "sidecar / saved scene check after the drag"
 import json, math, sys
+from camera import project
 before, after, saved = (json.load(open(p)) for p in sys.argv[1:4])
 for s in (before, after):
     for key in ("camera", "luminaires", "render_size", "samples_per_pixel", "scene"):
@@ -182,23 +183,10 @@ assert d[0] > 0.2, f"the LED moved only {d[0]:.3f} m towards +x"
 assert all(abs(a - b) < 1e-9 for a, b in zip(p1, ps)), "the saved position differs from the sidecar's"
 assert led(saved)["type"] == "lightfield" and led(saved)["file"].endswith("osram-lertduw.lf.json")
 
-def sub(a, b): return [x - y for x, y in zip(a, b)]
-def dot(a, b): return sum(x * y for x, y in zip(a, b))
-def norm(a): return [x / math.sqrt(dot(a, a)) for x in a]
-def cross(a, b): return [a[1]*b[2]-a[2]*b[1], a[2]*b[0]-a[0]*b[2], a[0]*b[1]-a[1]*b[0]]
-def project(p, s):  # world point -> image pixel (the renderer's lookAt + perspective, Y-up)
-    cam = s["camera"]
-    w, h = s["render_size"]
-    f = norm(sub(cam["target"], cam["position"]))
-    r = norm(cross(f, [0, 1, 0]))
-    u = cross(r, f)
-    v = sub(p, cam["position"])
-    x, y, z = dot(v, r), dot(v, u), dot(v, f)
-    t = math.tan(math.radians(cam["fov_deg"]) / 2)
-    return round((x / (z * t * w / h) * 0.5 + 0.5) * w), round((0.5 - y / (z * t) * 0.5) * h)
+def pixel(p, s): return tuple(round(c) for c in project(p, s))
 # Floor points below the old and the new position, 6 cm towards the camera so that the box is
 # clear of the LED's own silhouette (the spot there is still near its peak).
-print(*project([p0[0], 0.0, p0[2] + 0.06], after), *project([p1[0], 0.0, p1[2] + 0.06], after))
+print(*pixel([p0[0], 0.0, p0[2] + 0.06], after), *pixel([p1[0], 0.0, p1[2] + 0.06], after))
 EOF
 read -r OX OY PX PY <"$TMP/spots.txt"
 for c in "$OX $OY" "$PX $PY"; do

@@ -9,6 +9,8 @@ XVFB_PID=
 EDITOR_PID=
 PASSED=0
 T0=$SECONDS
+# Python helpers for the scripts' checks (camera.py: where a world point lands in a screenshot).
+E2E_LIB=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 
 log() { echo "$E2E_NAME: [$((SECONDS - T0)) s] $*"; }
 
