@@ -10,8 +10,6 @@ namespace candela {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-/// Distance of the shadow-ray end point for distant light, metres.
-constexpr double kShadowDistance = 1e6;
 
 bool unitNormal(const glm::dvec3& n, glm::dvec3& out) {
     double len = glm::length(n);
@@ -21,7 +19,7 @@ bool unitNormal(const glm::dvec3& n, glm::dvec3& out) {
 }
 
 bool visibleAlong(const EstimateOptions& o, const glm::dvec3& p, const glm::dvec3& w) {
-    return !o.visibility || o.visibility->visible(p, p + kShadowDistance * w);
+    return !o.visibility || o.visibility->visibleToward(p, w);
 }
 
 /// Gauss-Legendre nodes and weights on [0, 1] (8 points, tabulated to 16 digits).

@@ -201,7 +201,7 @@ struct SampleCounts {
 };
 
 /// CPU irradiance at p for unit normal n from the environment (W/m2, lux for the sky). With
-/// options.visibility, stochastic estimators trace a shadow ray to p + 1e6 m along w.
+/// options.visibility, stochastic estimators trace a shadow ray from p along w to infinity.
 using EnvironmentIrradianceFn = Estimate (*)(const EnvironmentLighting& lighting,
                                              const glm::dvec3& p, const glm::dvec3& n,
                                              const EstimateOptions& options);

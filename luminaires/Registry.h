@@ -22,6 +22,9 @@ class Visibility {
 public:
     virtual ~Visibility() = default;
     virtual bool visible(const glm::dvec3& from, const glm::dvec3& to) const = 0;
+    /// Is the ray from `from` along the unit `dir` free of occluders out to infinity (a distant
+    /// light)? Implementations bias only its start.
+    virtual bool visibleToward(const glm::dvec3& from, const glm::dvec3& dir) const = 0;
 };
 
 struct EstimateOptions {

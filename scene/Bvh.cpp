@@ -246,8 +246,15 @@ bool Bvh::occluded(const glm::dvec3& from, const glm::dvec3& to) const {
     double eps = segmentEpsilon(distance);
     double tMin = eps, tMax = distance - eps;
     if (!(tMax > tMin)) return false;  // Shorter than the bias (or NaN): nothing in between.
-    glm::dvec3 dir = d / distance;
+    return occludedAlong(from, d / distance, tMin, tMax);
+}
 
+bool Bvh::occludedToward(const glm::dvec3& from, const glm::dvec3& dir) const {
+    return occludedAlong(from, dir, kRayEpsilon, std::numeric_limits<double>::infinity());
+}
+
+bool Bvh::occludedAlong(const glm::dvec3& from, const glm::dvec3& dir, double tMin, double tMax) const {
+    if (nodes.empty()) return false;
     int stack[kMaxDepth + 1];
     int top = 0;
     int node = 0;

@@ -13,7 +13,9 @@
 // Shadow-ray bias: occluded(from, to) tests the open segment shrunk by
 // eps = 1e-4 m * max(1, |to - from|) at both ends, so the surfaces the segment starts and ends
 // on (receiver and emitter) do not shadow themselves through rounding; occluders closer than eps
-// to either end are missed.
+// to either end are missed. occludedToward(from, dir) tests the ray to infinity (distant
+// lights: the environment), biased by kRayEpsilon at its start only; a segment of 1e6 m would
+// have skipped its first 100 m.
 
 #include <algorithm>
 #include <glm/glm.hpp>
@@ -40,6 +42,8 @@ struct Bvh {
     /// True when a triangle (either side) cuts the segment between from and to (metres), with
     /// the end bias described above.
     bool occluded(const glm::dvec3& from, const glm::dvec3& to) const;
+    /// True when a triangle cuts the ray from `from` along the unit `dir`, beyond kRayEpsilon.
+    bool occludedToward(const glm::dvec3& from, const glm::dvec3& dir) const;
 
     /// Two-sided Moller-Trumbore: does origin + t * dir hit the triangle with tMin < t < tMax?
     /// (t in metres for a unit dir.)
@@ -47,9 +51,14 @@ struct Bvh {
                            const glm::dvec3& dir, double tMin, double tMax);
     /// End bias of a segment of `distance` metres, metres.
     static double segmentEpsilon(double distance) { return 1e-4 * std::max(1.0, distance); }
+    /// Start bias of a ray to infinity, metres (a segment's bias for lengths up to 1 m).
+    static constexpr double kRayEpsilon = 1e-4;
 
     /// Inner levels on the longest root-to-leaf path (0 for a single leaf).
     int depth() const;
+
+  private:
+    bool occludedAlong(const glm::dvec3& from, const glm::dvec3& dir, double tMin, double tMax) const;
 };
 
 /// Visibility through a BVH, for the CPU estimators' EstimateOptions::visibility. Holds a
@@ -60,6 +69,9 @@ class BvhVisibility : public Visibility {
     explicit BvhVisibility(Bvh&&) = delete;
     bool visible(const glm::dvec3& from, const glm::dvec3& to) const override {
         return !mBvh.occluded(from, to);
+    }
+    bool visibleToward(const glm::dvec3& from, const glm::dvec3& dir) const override {
+        return !mBvh.occludedToward(from, dir);
     }
     const Bvh& bvh() const { return mBvh; }
 

@@ -47,17 +47,8 @@ bool bvhHitsTriangle(BvhTriangle tri, vec3 origin, vec3 dir, float tMin, float t
     return t > tMin && t < tMax;
 }
 
-/// True when scene geometry cuts the segment from `from` to `to` (metres), ignoring the first and
-/// last 1e-4 m * max(1, length) of it (shadow-ray bias, as Bvh::segmentEpsilon).
-bool bvhOccluded(vec3 from, vec3 to) {
-    vec3 d = to - from;
-    float dist = length(d);
-    float eps = 1e-4 * max(1.0, dist);
-    float tMin = eps;
-    float tMax = dist - eps;
-    if (!(tMax > tMin)) return false;
-    vec3 dir = d / dist;
-
+/// True when a triangle cuts origin + t * dir (unit dir) for tMin < t < tMax.
+bool bvhOccludedAlong(vec3 from, vec3 dir, float tMin, float tMax) {
     int stack[kBvhStackSize];
     int top = 0;
     int node = 0;
@@ -80,4 +71,23 @@ bool bvhOccluded(vec3 from, vec3 to) {
         node = stack[--top];
     }
     return false;
+}
+
+/// True when scene geometry cuts the segment from `from` to `to` (metres), ignoring the first and
+/// last 1e-4 m * max(1, length) of it (shadow-ray bias, as Bvh::segmentEpsilon).
+bool bvhOccluded(vec3 from, vec3 to) {
+    vec3 d = to - from;
+    float dist = length(d);
+    float eps = 1e-4 * max(1.0, dist);
+    float tMin = eps;
+    float tMax = dist - eps;
+    if (!(tMax > tMin)) return false;
+    return bvhOccludedAlong(from, d / dist, tMin, tMax);
+}
+
+/// True when scene geometry cuts the ray from `from` along the unit `dir` to infinity (distant
+/// light), ignoring its first 1e-4 m (Bvh::kRayEpsilon). A long segment would not do: its end
+/// bias grows with its length.
+bool bvhOccludedToward(vec3 from, vec3 dir) {
+    return bvhOccludedAlong(from, dir, 1e-4, 1e30);
 }

@@ -32,9 +32,8 @@ layout(location = 0) out vec4 outRadiance;
 
 float envVisibility(Surface s, vec3 w) {
 #ifdef SHADOWS
-    // Distant light: the ray runs 1e6 m, far beyond any scene Candela edits.
     vec3 from = shadowOrigin(s);
-    return bvhOccluded(from, from + w * 1e6) ? 0.0 : 1.0;
+    return bvhOccludedToward(from, w) ? 0.0 : 1.0;
 #else
     return 1.0;
 #endif

@@ -108,4 +108,15 @@ std::vector<glm::dvec3> cubeNormals26() {
 std::string dataDir() { return CANDELA_TEST_DATA; }
 std::string sourceDir() { return CANDELA_SOURCE_DIR; }
 
+double rectangleFormFactor(double x0, double x1, double z0, double z1, double h) {
+    // The rectangle [0, a] x [0, b] with a corner above the point: with X = a/h and Y = b/h,
+    // F = 1/(2 pi) [X/sqrt(1+X^2) atan(Y/sqrt(1+X^2)) + Y/sqrt(1+Y^2) atan(X/sqrt(1+Y^2))],
+    // odd in a and in b, so signed corners add up to any rectangle.
+    auto corner = [h](double a, double b) {
+        double X = a / h, Y = b / h, sx = std::sqrt(1.0 + X * X), sy = std::sqrt(1.0 + Y * Y);
+        return (X / sx * std::atan(Y / sx) + Y / sy * std::atan(X / sy)) / (2.0 * 3.14159265358979323846);
+    };
+    return corner(x1, z1) - corner(x0, z1) - corner(x1, z0) + corner(x0, z0);
+}
+
 }  // namespace candela::test

@@ -53,6 +53,11 @@ std::vector<Out> runComputeTest(const std::string& shader, const std::vector<std
 /// corners (the normals the environment tests probe).
 std::vector<glm::dvec3> cubeNormals26();
 
+/// Form factor from a point at the origin (normal +Y) to the rectangle [x0, x1] x [z0, z1] in the
+/// plane y = h > 0: the fraction of a uniform sky's irradiance the rectangle blocks. Closed form
+/// (the corner rectangle of Howell's catalogue, C-11) combined by superposition.
+double rectangleFormFactor(double x0, double x1, double z0, double z1, double h);
+
 /// Folder of the test data (tests/data) and of the repository.
 std::string dataDir();
 std::string sourceDir();

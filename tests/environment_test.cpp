@@ -16,6 +16,7 @@
 #include "luminaires/Environment.h"
 #include "luminaires/EnvironmentSampling.h"
 #include "luminaires/Random.h"
+#include "scene/Bvh.h"
 #include "scene/SceneIo.h"
 #include "tests/TestUtil.h"
 #include "util/Error.h"
@@ -429,6 +430,34 @@ TEST(Environment, SunBehindTheSurfaceWastesNoSample) {
     EXPECT_NEAR(ref, kPi, 1e-3 * kPi);  // the upper hemisphere is the unit sky
     EXPECT_NEAR(lum(eb.irradiance), ref, 4 * lum(eb.stdError) + 1e-3 * ref);
     EXPECT_NEAR(lum(eu.irradiance), ref, 4 * lum(eu.stdError) + 1e-3 * ref);
+}
+
+TEST(Environment, ARoofShadowsTheSky) {
+    // A thin box floating 1 m above the receiver: its silhouette from the origin is its bottom
+    // face, [-0.3, 0.7] x [-0.4, 0.2] at y = 1, so a unit sky gives pi (1 - F) with F the closed-
+    // form rectangle form factor. (Shadow rays once ran as 1e6 m segments whose end bias, 1e-4 of
+    // their length, skipped the first 100 m: this roof cast no shadow at all.)
+    Scene scene = parseScene(nlohmann::json::parse(R"({"geometry": [
+        {"box": {"center": [0.2, 1.025, -0.1], "size": [1.0, 0.05, 0.6]}}]})"), "roof.json");
+    Bvh bvh = Bvh::build(scene);
+    BvhVisibility visibility(bvh);
+    auto map = makeMap(64, 32, [](int, int) { return glm::vec3(1.f); });
+    EnvironmentLighting lighting(map, 16, 16);
+    EstimateOptions o;
+    o.spp = 1 << 16;
+    o.visibility = &visibility;
+    double F = test::rectangleFormFactor(-0.3, 0.7, -0.4, 0.2, 1.0);
+    double expected = kPi * (1.0 - F);
+    ASSERT_GT(F, 0.1);  // the test means something: the roof blocks a tenth of the sky or more
+    for (const char* name : {"balanced", "uniform-faces", "balanced-mis", "global-cdf"}) {
+        Estimate e = findEnvironmentTechnique(name)->irradiance(lighting, {}, glm::dvec3(0, 1, 0), o);
+        // 4 standard errors at 2^16 spp, plus 1e-3 for the float vertices of the box.
+        EXPECT_NEAR(lum(e.irradiance), expected, 4.0 * lum(e.stdError) + 1e-3 * expected) << name;
+    }
+    // Out from under it (5 m to the side) the roof blocks less than 1 % of the sky.
+    Estimate beside = environmentFaceEstimate(lighting, {5, 0, 0}, {0, 1, 0}, o,
+                                              lighting.cube().balance({0, 1, 0}), nullptr);
+    EXPECT_GT(lum(beside.irradiance), 0.99 * kPi - 4.0 * lum(beside.stdError));
 }
 
 TEST(Environment, BlackFaceAndBlackMap) {

@@ -575,6 +575,7 @@ public:
     bool visible(const glm::dvec3&, const glm::dvec3& to) const override {
         return glm::dot(to - mLight.pose.position, frameOf(mLight.pose).x) >= 0.0;
     }
+    bool visibleToward(const glm::dvec3&, const glm::dvec3&) const override { return true; }
 
 private:
     const LambertianRect& mLight;
@@ -583,6 +584,7 @@ private:
 class AllVisible final : public Visibility {
 public:
     bool visible(const glm::dvec3&, const glm::dvec3&) const override { return true; }
+    bool visibleToward(const glm::dvec3&, const glm::dvec3&) const override { return true; }
 };
 
 TEST(LambertianRect, VisibilityScalesBothEstimators) {
