@@ -175,6 +175,17 @@ Estimate environmentBalanced(const EnvironmentLighting& lighting, const glm::dve
     return environmentFaceEstimate(lighting, p, unit, options, lighting.cube().balance(unit), nullptr);
 }
 
+Estimate environmentBalancedInteger(const EnvironmentLighting& lighting, const glm::dvec3& p,
+                                    const glm::dvec3& n, const EstimateOptions& options) {
+    glm::dvec3 unit;
+    if (!unitNormal(n, unit) || options.spp <= 0) return {};
+    // N_f rounded to whole samples; the weights follow the counts actually drawn. A face whose
+    // count rounds to 0 is skipped: biased, and the count jumps as mu_f(n) crosses k + 1/2.
+    std::array<double, 6> mu = lighting.cube().balance(unit);
+    for (double& m : mu) m = std::round(m * options.spp) / options.spp;
+    return environmentFaceEstimate(lighting, p, unit, options, mu, nullptr);
+}
+
 Estimate environmentUniformFaces(const EnvironmentLighting& lighting, const glm::dvec3& p,
                                  const glm::dvec3& n, const EstimateOptions& options) {
     std::array<double, 6> mu;
@@ -286,6 +297,9 @@ static const EnvironmentTechniqueInfo kEnvironmentTechniques[] = {
      false, &environmentHavran, "TECHNIQUE_HAVRAN", Tables::Lights},
     {"balanced-mis", "balanced light samples and cosine samples, balance heuristic (Eq. 6)", true,
      &environmentBalancedMis, "TECHNIQUE_BALANCED_MIS", Tables::Cube},
+    {"balanced-integer", "balanced with N_f rounded to whole samples (biased, pops; the baseline of "
+     "the temporal-stability bench)", true, &environmentBalancedInteger,
+     "TECHNIQUE_BALANCED INTEGER_FACE_COUNTS", Tables::Cube},
 };
 
 std::span<const EnvironmentTechniqueInfo> environmentTechniques() { return kEnvironmentTechniques; }

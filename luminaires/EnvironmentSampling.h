@@ -211,7 +211,7 @@ struct EnvironmentTechniqueInfo {
     std::string_view description;  ///< One line for help.
     bool progressive;              ///< Stochastic.
     EnvironmentIrradianceFn irradiance;
-    std::string_view define;       ///< Variant of shaders/environment_shade.frag; empty: CPU only.
+    std::string_view define;       ///< Macros of shaders/environment_shade.frag (space-separated); empty: CPU only.
     /// What the GPU builds for it when the map changes: the cube-map CDFs (and then a pool of
     /// light samples every frame), the lat-long CDF (on the CPU), or the Havran lights (CPU).
     enum class Tables { None, Cube, LatLong, Lights } tables = Tables::None;

@@ -1,5 +1,7 @@
 #include "renderer/FramePlan.h"
 
+#include <sstream>
+
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "scene/Occlusion.h"
@@ -85,7 +87,9 @@ FramePlan planFrame(const Scene& scene, const glm::mat4& viewProj,
         step.shadows = environmentNeedsShadows(scene, viewProj);
         step.program.vertex = "fullscreen.vert";
         step.program.fragment = "environment_shade.frag";
-        step.program.defines.push_back(std::string(t->define));
+        // A technique's define may name several macros, separated by spaces.
+        std::istringstream macros{std::string(t->define)};
+        for (std::string macro; macros >> macro;) step.program.defines.push_back(macro);
         if (step.shadows) step.program.defines.push_back("SHADOWS");
         if (plan.glossy) step.program.defines.push_back("GLOSSY");
         // The Havran lights are a fixed set: every light (and its shadow ray) each frame.

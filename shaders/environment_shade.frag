@@ -1,6 +1,8 @@
 // Shades the G-buffer with the environment map (Algorithm 2 of Lu et al. 2013). Variants:
 //   TECHNIQUE_BALANCED       Eq. (4)-(5): N_f = mu_f(n) N_s fractional samples per face, mu_f of
 //                            Eq. (3), the last one weighted by beta = frac(N_f);
+//   INTEGER_FACE_COUNTS      with TECHNIQUE_BALANCED: N_f rounded to whole samples (the
+//                            popping baseline of the temporal-stability bench);
 //   TECHNIQUE_UNIFORM_FACES  the same with mu_f = 1/6 (Fig. 2's baseline);
 //   TECHNIQUE_BALANCED_MIS   Eq. (6): N_s/2 balanced light samples and N_s/2 BRDF samples
 //                            (cosine lobe, and the Phong lobe on glossy materials), balance
@@ -118,6 +120,10 @@ void main() {
     float mu[6];
 #ifdef TECHNIQUE_BALANCED
     envBalance(s.n, mu);
+#ifdef INTEGER_FACE_COUNTS
+    // The baseline the fractional counts replace: whole samples per face (biased, pops).
+    for (int f = 0; f < 6; ++f) mu[f] = round(mu[f] * float(ns)) / float(ns);
+#endif
 #else
     for (int f = 0; f < 6; ++f) mu[f] = 1.0 / 6.0;
 #endif

@@ -296,6 +296,57 @@ TEST(EnvironmentGl, ARoofShadowsTheGround) {
     }
 }
 
+TEST(EnvironmentGl, FractionalCountsChangeSmoothly) {
+    // Temporal stability of Eq. (4)-(5). Scaling the sky near the zenith changes the face
+    // energies, so mu_f(n) and N_f(n) move, while every face's CDF keeps its shape (a black band
+    // around the +Y face keeps the scaled texels out of the other faces' weights): with the same
+    // seed every frame, the light samples stay put. Fractional N_f (beta weights) then make each
+    // probe change smoothly, as the exact change does; whole counts pop when mu_f N_s crosses
+    // k + 1/2. Metric: the largest |step - exact step| over 26 normals and 40 steps, relative to E.
+    const int w = 64, h = 32, steps = 40, spp = 16;
+    auto mapAt = [&](int k) {
+        std::vector<glm::vec3> rgb(size_t(w) * h);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                double theta = kPi * (y + 0.5) / h, phi = 2.0 * kPi * (x + 0.5) / w;
+                double up = std::cos(theta), side = std::sin(theta) * std::max(std::abs(std::cos(phi)), std::abs(std::sin(phi)));
+                float v = 1.f + 3.f * float(x % 16 < 4);  // some structure in every face
+                if (up > side / 0.8) v *= float(1.0 + 0.03 * k);  // inside the +Y face
+                else if (up > side * 0.8) v = 0.f;               // the band around its border
+                rgb[size_t(y) * w + x] = glm::vec3(v);
+            }
+        return std::make_shared<EnvironmentMap>(w, h, std::move(rgb), 1.0, 0.0, "scaled");
+    };
+    std::vector<std::vector<double>> exact;
+    for (int k = 0; k < steps; ++k) {
+        EnvironmentLighting lighting(mapAt(k), 16, 16);
+        std::vector<double> e;
+        for (const glm::dvec3& n : test::cubeNormals26())
+            e.push_back(lum(environmentReference(lighting, {}, n, {}).irradiance));
+        exact.push_back(e);
+    }
+    auto worstJump = [&](const char* technique) {
+        std::vector<std::vector<glm::dvec3>> e;
+        for (int k = 0; k < steps; ++k) e.push_back(gpuProbe(mapAt(k), technique, test::cubeNormals26(), spp, 16));
+        double worst = 0.0;
+        for (int k = 0; k + 1 < steps; ++k)
+            for (size_t i = 0; i < exact[0].size(); ++i) {
+                double step = lum(e[k + 1][i]) - lum(e[k][i]), truth = exact[k + 1][i] - exact[k][i];
+                worst = std::max(worst, std::abs(step - truth) / exact[k][i]);
+            }
+        return worst;
+    };
+    double fractional = worstJump("balanced"), whole = worstJump("balanced-integer");
+    std::printf("[ info ] largest frame-to-frame deviation from the exact change: fractional N_f %.4f, "
+                "whole N_f %.4f\n", fractional, whole);
+    // Measured (llvmpipe): 0.024 against 0.18. What is left with fractional counts comes from the
+    // few cube texels that straddle the band and still change shape; whole counts jump by a
+    // sample's worth, about 1/16 of a noisy estimate. Deterministic (fixed seed): the bounds
+    // are twice the measured fractional figure, and a factor 3 between the two.
+    EXPECT_LT(fractional, 0.05);
+    EXPECT_LT(fractional, whole / 3.0);
+}
+
 TEST(EnvironmentGl, PlanRunsOnlyWhatTheSceneNeeds) {
     Scene plain = groundScene(false), boxed = groundScene(true);
     glm::mat4 vp = cameraViewProj(boxed.camera, 4.0 / 3.0);

@@ -105,6 +105,7 @@ double atError(const std::vector<Row>& rows, const std::string& technique, doubl
 
 int cmdBench(const Args& args) {
     if (std::find(args.begin(), args.end(), "--prost") != args.end()) return benchProst(args);
+    if (std::find(args.begin(), args.end(), "--environment") != args.end()) return benchEnvironment(args);
     std::string lfPath, outDir = "bench-lightfield";
     std::vector<int> sppList = {4, 8, 16, 32, 64, 128, 256, 512};
     int refSpp = 8192, width = 256, height = 192;

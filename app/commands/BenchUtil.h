@@ -27,5 +27,7 @@ bool runGnuplot(const std::string& dir, const std::string& output);
 
 /// `candela bench --prost`: the photometric-light evaluation of Prost (2019), Sec. 6.2.
 int benchProst(const Args& args);
+/// `candela bench --environment`: the environment techniques (app/commands/BenchEnvironment.cpp).
+int benchEnvironment(const Args& args);
 
 }  // namespace candela
