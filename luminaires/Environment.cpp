@@ -195,6 +195,26 @@ double sunNormalIlluminance(double h, double t) {
 
 }  // namespace
 
+std::shared_ptr<EnvironmentMap> EnvironmentMap::adjusted(double intensity, double rotationDeg) const {
+    return std::make_shared<EnvironmentMap>(mWidth, mHeight, mRgb, intensity, rotationDeg, mSource);
+}
+
+SunPosition sunPosition(double latitudeDeg, int dayOfYear, double solarHours) {
+    const double rad = kPi / 180.0;
+    double declination = 23.45 * rad * std::sin(2.0 * kPi * (284.0 + dayOfYear) / 365.0);
+    double hourAngle = 15.0 * rad * (solarHours - 12.0);
+    double lat = latitudeDeg * rad;
+    // East-north-up components of the unit vector to the sun.
+    double up = std::sin(lat) * std::sin(declination) + std::cos(lat) * std::cos(declination) * std::cos(hourAngle);
+    double east = -std::cos(declination) * std::sin(hourAngle);
+    double north = std::cos(lat) * std::sin(declination) - std::sin(lat) * std::cos(declination) * std::cos(hourAngle);
+    SunPosition out;
+    out.elevationDeg = std::asin(std::clamp(up, -1.0, 1.0)) / rad;
+    // Scene: x = east, z = -north; phi = atan2(z, x).
+    out.azimuthDeg = std::atan2(-north, east) / rad;
+    return out;
+}
+
 std::shared_ptr<EnvironmentMap> makeSkyMap(const SkyParams& sky, double intensity,
                                            double rotationDeg) {
     if (!(sky.sunElevationDeg >= 0.0 && sky.sunElevationDeg <= 90.0))

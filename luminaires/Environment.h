@@ -72,6 +72,9 @@ public:
     /// Integral of the luminance over the sphere (sum of luminance x solid angle), W/m2 sr * sr.
     double totalLuminancePower() const;
 
+    /// The same texels with another intensity and rotation (the editor's edits of a loaded file).
+    std::shared_ptr<EnvironmentMap> adjusted(double intensity, double rotationDeg) const;
+
 private:
     int mWidth = 0, mHeight = 0;
     std::vector<glm::vec3> mRgb;
@@ -107,6 +110,17 @@ constexpr double kSunAngularRadiusDeg = 0.265;
 /// Throws InputError for parameters outside their ranges.
 std::shared_ptr<EnvironmentMap> makeSkyMap(const SkyParams& sky, double intensity = 1.0,
                                            double rotationDeg = 0.0);
+
+/// Where the sun is at a place and time, for the editor's time-of-day control: declination
+/// (Cooper 1969) and the hour angle of apparent solar time, no refraction or equation of time.
+/// The compass maps to the scene as north = -Z, east = +X, so the returned azimuth is the
+/// scene's sun_azimuth_deg (phi from +X towards +Z): compass azimuth - 90 degrees. Elevation is
+/// negative at night.
+struct SunPosition {
+    double elevationDeg = 0.0;
+    double azimuthDeg = 0.0;
+};
+SunPosition sunPosition(double latitudeDeg, int dayOfYear, double solarHours);
 
 /// Frames of a dynamic environment: files matching a glob pattern (sorted by name), shown at
 /// `fps` frames per second and looping. Frames load on demand; the last one is cached.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "luminaires/Random.h"
 #include "shaders/shared/GpuTypes.h"
 
 
@@ -449,6 +450,78 @@ EnvironmentLighting::EnvironmentLighting(std::shared_ptr<const EnvironmentMap> m
       mGlobal(*mMap),
       mHavran(havranLights) {
     mHavran.update(*mMap);
+}
+
+glm::ivec2 SampleChart::faceCell(int face) {
+    static const glm::ivec2 kCells[6] = {{2, 1}, {0, 1}, {1, 0}, {1, 2}, {3, 1}, {1, 1}};
+    return kCells[face];
+}
+
+SampleChart sampleChart(const EnvironmentMap& map, const CubeMapDistribution& cube, const glm::dvec3& normal,
+                        int spp, bool balanced, uint64_t seed, int facePixels) {
+    SampleChart chart;
+    const int P = std::max(8, facePixels);
+    chart.facePixels = P;
+    chart.width = 4 * P;
+    chart.height = 3 * P;
+    chart.rgb.assign(size_t(chart.width) * size_t(chart.height) * 3, 40);  // the empty cells
+    double len = glm::length(normal);
+    glm::dvec3 n = len > 0.0 && std::isfinite(len) ? normal / len : glm::dvec3(0, 1, 0);
+    if (balanced) chart.mu = cube.balance(n);
+    else chart.mu.fill(1.0 / 6.0);
+
+    // The map: Reinhard against its mean luminance, dimmed so that the samples stand out.
+    double mean = map.totalLuminancePower() / (4.0 * kPi);
+    auto pixelOf = [&](int face, const glm::dvec2& ab) {
+        glm::ivec2 cell = SampleChart::faceCell(face);
+        int x = std::clamp(int((ab.x + 1.0) * 0.5 * P), 0, P - 1), y = std::clamp(int((ab.y + 1.0) * 0.5 * P), 0, P - 1);
+        return glm::ivec2(cell.x * P + x, cell.y * P + y);
+    };
+    auto put = [&](glm::ivec2 px, glm::dvec3 c) {
+        if (px.x < 0 || px.y < 0 || px.x >= chart.width || px.y >= chart.height) return;
+        unsigned char* o = &chart.rgb[(size_t(px.y) * size_t(chart.width) + size_t(px.x)) * 3];
+        for (int k = 0; k < 3; ++k) o[k] = (unsigned char)std::clamp(c[k] * 255.0 + 0.5, 0.0, 255.0);
+    };
+    for (int f = 0; f < 6; ++f) {
+        const CubeFaceFrame& fr = cubeFaceFrame(f);
+        double dim = chart.mu[size_t(f)] > 0.0 ? 0.55 : 0.2;
+        for (int y = 0; y < P; ++y)
+            for (int x = 0; x < P; ++x) {
+                double a = 2.0 * (x + 0.5) / P - 1.0, b = 2.0 * (y + 0.5) / P - 1.0;
+                glm::dvec3 L = map.radiance(fr.centre + a * fr.right + b * fr.down);
+                glm::dvec3 shown = mean > 0.0 ? L / (glm::dvec3(mean) + L) : glm::dvec3(0.0);
+                put(pixelOf(f, {a, b}), glm::pow(shown, glm::dvec3(1.0 / 2.2)) * dim);
+            }
+    }
+    // The normal, where it leaves the cube.
+    glm::dvec2 nab;
+    int nf = cubeFaceOf(n, nab);
+    if (nf >= 0) {
+        glm::ivec2 c = pixelOf(nf, nab);
+        for (int d = -5; d <= 5; ++d) put(c + glm::ivec2(d, 0), glm::dvec3(1.0)), put(c + glm::ivec2(0, d), glm::dvec3(1.0));
+    }
+    // The samples, drawn as the estimators draw them: ceil(N_f) per face (the last one weighted
+    // by frac(N_f)).
+    Random rng(seed);
+    for (int f = 0; f < 6; ++f) {
+        double nf = chart.mu[size_t(f)] * spp;
+        if (!(nf > 0.0) || !(cube.faceImportance(f) > 0.0)) continue;
+        int count = int(std::ceil(nf));
+        for (int k = 0; k < count; ++k) {
+            DirectionSample smp = cube.sampleFace(f, {rng.uniform(), rng.uniform()});
+            if (!(smp.pdf > 0.0)) continue;
+            ++chart.drawn[size_t(f)];
+            bool effective = glm::dot(n, smp.w) > 0.0;
+            chart.effective[size_t(f)] += effective;
+            glm::dvec2 ab;
+            int face = cubeFaceOf(smp.w, ab);
+            glm::ivec2 c = pixelOf(face, ab), lo = SampleChart::faceCell(face) * P, hi = lo + glm::ivec2(P - 1);
+            glm::dvec3 colour = effective ? glm::dvec3(0.2, 1.0, 0.3) : glm::dvec3(1.0, 0.2, 0.2);
+            for (int dy = -1; dy <= 1; ++dy)  // a 3 x 3 dot, kept inside its face's cell
+                for (int dx = -1; dx <= 1; ++dx) put(glm::clamp(c + glm::ivec2(dx, dy), lo, hi), colour);
+        }
+    }
+    return chart;
 }
 
 }  // namespace candela

@@ -241,4 +241,25 @@ Estimate environmentFaceEstimate(const EnvironmentLighting& lighting, const glm:
                                  const glm::dvec3& n, const EstimateOptions& options,
                                  const std::array<double, 6>& mu, SampleCounts* counts);
 
+/// Fig. 1-2 of Lu et al. (2013) for one receiver: the light samples its normal selects from each
+/// face (N_f = mu_f N_s, the last one fractional, as the estimators draw them) and which are
+/// effective (n . w > 0), drawn on the unfolded cube. The chart is a horizontal cross seen from
+/// inside, faces facePixels wide:
+///          [+Y]
+///     [-X] [-Z] [+X] [+Z]
+///          [-Y]
+/// The map is tone-mapped and dimmed (more so on faces with mu_f = 0); effective samples are
+/// green, wasted ones red, the normal a white cross.
+struct SampleChart {
+    int width = 0, height = 0;         ///< 4 x 3 faces of facePixels
+    int facePixels = 0;
+    std::vector<unsigned char> rgb;    ///< RGB8, row 0 at the top
+    std::array<double, 6> mu{};        ///< the faces' shares of the samples
+    std::array<int, 6> drawn{}, effective{};
+    /// Where face f sits in the cross, in faces (column, row).
+    static glm::ivec2 faceCell(int face);
+};
+SampleChart sampleChart(const EnvironmentMap& map, const CubeMapDistribution& cube, const glm::dvec3& normal,
+                        int spp, bool balanced, uint64_t seed, int facePixels = 64);
+
 }  // namespace candela

@@ -460,6 +460,71 @@ TEST(Environment, ARoofShadowsTheSky) {
     EXPECT_GT(lum(beside.irradiance), 0.99 * kPi - 4.0 * lum(beside.stdError));
 }
 
+TEST(Environment, SampleChartShowsSelectedAndEffectiveSamples) {
+    // Fig. 1-2 of the paper for a receiver facing up under a map whose sun is below the horizon.
+    const int w = 64, h = 32;
+    auto map = makeMap(w, h, [&](int x, int y) { return glm::vec3(x == 10 && y == h - 2 ? 1e6f : 1.f); });
+    CubeMapDistribution cube(*map, 16);
+    const int spp = 120;
+    auto colourAt = [](const SampleChart& c, int face, int x, int y) {
+        glm::ivec2 cell = SampleChart::faceCell(face);
+        const unsigned char* p = &c.rgb[(size_t(cell.y * c.facePixels + y) * size_t(c.width) + size_t(cell.x * c.facePixels + x)) * 3];
+        return glm::ivec3(p[0], p[1], p[2]);
+    };
+    auto marks = [&](const SampleChart& c, int face, bool green) {
+        int count = 0;
+        for (int y = 0; y < c.facePixels; ++y)
+            for (int x = 0; x < c.facePixels; ++x) {
+                glm::ivec3 v = colourAt(c, face, x, y);
+                count += green ? (v.y > 200 && v.x < 100) : (v.x > 200 && v.y < 100);
+            }
+        return count;
+    };
+    for (bool balanced : {true, false}) {
+        SampleChart c = sampleChart(*map, cube, {0, 1, 0}, spp, balanced, 5, 48);
+        EXPECT_EQ(c.width, 4 * 48);
+        EXPECT_EQ(c.height, 3 * 48);
+        int drawn = 0;
+        for (int f = 0; f < 6; ++f) {
+            // As the estimators draw them: ceil(N_f) per face.
+            EXPECT_EQ(c.drawn[size_t(f)], int(std::ceil(c.mu[size_t(f)] * spp))) << f;
+            EXPECT_LE(c.effective[size_t(f)], c.drawn[size_t(f)]);
+            drawn += c.drawn[size_t(f)];
+        }
+        EXPECT_GE(drawn, spp);
+        EXPECT_EQ(c.effective[2], c.drawn[2]);  // every +Y sample faces the receiver
+        EXPECT_EQ(c.effective[3], 0);           // no -Y sample does
+        EXPECT_EQ(marks(c, 3, true), 0);        // nothing green below
+        if (balanced) {
+            EXPECT_EQ(c.drawn[3], 0);           // the sun's face gets no sample (mu = 0)
+            EXPECT_EQ(marks(c, 3, false), 0);
+        } else {
+            EXPECT_EQ(c.drawn[3], spp / 6);
+            EXPECT_GT(marks(c, 3, false), 0);   // the wasted samples show in red
+        }
+        EXPECT_GT(marks(c, 2, true), 0);
+    }
+}
+
+TEST(Environment, SunPositionFollowsTheClock) {
+    // Day 81 has declination 0 in Cooper's formula (the equinox): the sun rises due east (+X) at
+    // 6 h, culminates due south (+Z) at 90 - latitude, sets due west (-X) at 18 h.
+    SunPosition noon = sunPosition(48.0, 81, 12.0);
+    EXPECT_NEAR(noon.elevationDeg, 42.0, 1e-6);
+    EXPECT_NEAR(noon.azimuthDeg, 90.0, 1e-6);
+    SunPosition rise = sunPosition(48.0, 81, 6.0), set = sunPosition(48.0, 81, 18.0);
+    EXPECT_NEAR(rise.elevationDeg, 0.0, 1e-6);
+    EXPECT_NEAR(rise.azimuthDeg, 0.0, 1e-6);
+    EXPECT_NEAR(set.elevationDeg, 0.0, 1e-6);
+    EXPECT_NEAR(std::abs(set.azimuthDeg), 180.0, 1e-6);
+    // The June solstice (declination 23.45): noon at 90 - 48 + 23.45; midnight below the horizon
+    // by 90 - 48 - 23.45 (the sun due north).
+    EXPECT_NEAR(sunPosition(48.0, 172, 12.0).elevationDeg, 65.45, 0.01);
+    EXPECT_NEAR(sunPosition(48.0, 172, 0.0).elevationDeg, -(90.0 - 48.0 - 23.45), 0.01);
+    // Southern hemisphere: the noon sun is due north (-Z).
+    EXPECT_NEAR(sunPosition(-33.9, 81, 12.0).azimuthDeg, -90.0, 1e-6);
+}
+
 TEST(Environment, BlackFaceAndBlackMap) {
     // Everything above 22.5 degrees of elevation black: the +Y face (down to 35.3 degrees at its
     // corners, one more texel of margin in the conservative max) is entirely black.

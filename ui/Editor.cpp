@@ -214,8 +214,10 @@ void Editor::buildUi() {
     PanelRect viewport{left, top, std::max(1.f, display.x - left - right), middle};
     PanelRect outline{0.f, top, left, std::floor(middle * 0.4f)};
     PanelRect inspector{0.f, top + outline.h, left, middle - outline.h};
-    PanelRect render{display.x - right, top, right, std::floor(middle * 0.36f)};
-    PanelRect measure{display.x - right, top + render.h, right, std::floor(middle * 0.4f)};
+    // With an environment the Render panel holds its section too and takes more of the column.
+    bool environment = state.scene.environmentMap != nullptr;
+    PanelRect render{display.x - right, top, right, std::floor(middle * (environment ? 0.58f : 0.36f))};
+    PanelRect measure{display.x - right, top + render.h, right, std::floor(middle * (environment ? 0.26f : 0.4f))};
     PanelRect stats{display.x - right, top + render.h + measure.h, right,
                     middle - render.h - measure.h};
     PanelRect status{0.f, top + middle, display.x, statusHeight};

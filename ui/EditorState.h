@@ -58,6 +58,23 @@ struct MeasureState {
     ToneMapOperator previousOperator = ToneMapOperator::Exponential;
 };
 
+/// The Environment section's controls that are not part of the scene file.
+struct EnvironmentUi {
+    double latitudeDeg = 48.1;   ///< Time of day: the site (default Munich).
+    int dayOfYear = 172;         ///< 21 June.
+    double solarHours = 14.0;    ///< Apparent solar time, hours.
+    bool playing = false;        ///< The time of day (sky) or the sequence advances.
+    float hoursPerSecond = 0.5f; ///< Playback speed of the time of day.
+    double sequenceSeconds = 0.0;
+    // The sample chart (Fig. 1-2 of Lu et al. 2013) for a normal chosen by its angles.
+    bool chartOpen = false;
+    float normalElevationDeg = 90.f, normalAzimuthDeg = 0.f;
+    int chartSpp = 64;
+    std::shared_ptr<void> chartTexture;  ///< A gl::Texture2D, made by the panel
+    std::string chartKey;                ///< What the texture shows (map, normal, spp)
+    std::string chartCounts;             ///< Selected / effective per face, as text
+};
+
 struct EditorState {
     Scene scene;
     int selectedLuminaire = -1;  ///< Index into scene.luminaires, or -1.
@@ -85,6 +102,7 @@ struct EditorState {
     ScreenLayout layout;
     PassTotals passes;
     MeasureState measure;  ///< The Measure panel's grid and legend text; kept across scenes.
+    EnvironmentUi environment;
     /// Test hook for --layout-file: screen rectangles (x0, y0, x1, y1, window pixels) of named
     /// widgets drawn this frame ("inspector.spin", "outline.add", ...), recorded by the panels
     /// and written out, then cleared, by the editor's layout writer each frame.

@@ -38,6 +38,8 @@ void lightFieldDetails(const LightFieldLuminaire& light, int& shownImage);
 void photometricDetails(const PhotometricLuminaire& light);
 /// Screenshot button, tone mapping, camera and sampling settings.
 bool renderPanel(EditorState& state, const PanelRect& rect);
+/// The Environment section of the Render panel (ui/EnvironmentPanel.cpp).
+bool environmentControls(EditorState& state);
 /// Quantity (radiance / illuminance), false colour with its legend (range in lux, log or linear,
 /// isolux levels) drawn as a colour bar, and the calculation grid (Emin, Eavg, Emax, U0) whose
 /// values it writes over the viewport (ui/MeasurePanel.cpp); its own settings are state.measure.

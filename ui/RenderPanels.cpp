@@ -130,6 +130,8 @@ bool renderPanel(EditorState& state, const PanelRect& rect) {
     changed = samplingControls(state) || changed;
     ImGui::Spacing();
     changed = cameraControls(state) || changed;
+    ImGui::Spacing();
+    changed = environmentControls(state) || changed;
     ImGui::PopItemWidth();
     ImGui::End();
     return changed;

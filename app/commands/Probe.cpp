@@ -7,6 +7,7 @@
 #include "app/commands/Commands.h"
 #include "luminaires/EnvironmentSampling.h"
 #include "luminaires/Registry.h"
+#include "renderer/ImageFile.h"
 #include "renderer/Renderer.h"
 #include "renderer/context/GlContext.h"
 #include "scene/Bvh.h"
@@ -75,6 +76,29 @@ std::vector<ProbePoint> readPoints(const std::string& path) {
 
 double lum(const glm::dvec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
 
+/// --show-samples: Fig. 1-2 of Lu et al. 2013 for the first point's normal, as an image, and
+/// the selected and effective samples per face on stderr (stdout stays the CSV).
+void writeSampleChart(const Scene& scene, const glm::dvec3& normal, std::string_view technique, int spp,
+                      const std::string& path) {
+    if (!scene.environmentMap) throw InputError("--show-samples: the scene has no environment");
+    bool balanced = technique != "uniform-faces";
+    const EnvironmentMap& map = *scene.environmentMap;
+    CubeMapDistribution cube(map, std::max(8, map.width() / 2));  // EnvironmentLighting's default
+    SampleChart chart = sampleChart(map, cube, normal, spp, balanced, 1, 96);
+    writeImage8(path, chart.width, chart.height, chart.rgb);
+    const char* names[6] = {"+X", "-X", "+Y", "-Y", "+Z", "-Z"};
+    int drawn = 0, effective = 0;
+    std::fprintf(stderr, "samples of %s at %d spp for n = (%.3f, %.3f, %.3f):\nface  share  selected  effective\n",
+                 balanced ? "balanced" : "uniform-faces", spp, normal.x, normal.y, normal.z);
+    for (int f = 0; f < 6; ++f) {
+        std::fprintf(stderr, "%-4s  %5.3f  %8d  %9d\n", names[f], chart.mu[size_t(f)], chart.drawn[size_t(f)],
+                     chart.effective[size_t(f)]);
+        drawn += chart.drawn[size_t(f)], effective += chart.effective[size_t(f)];
+    }
+    std::fprintf(stderr, "all   1.000  %8d  %9d (%.0f %% effective); chart in %s\n", drawn, effective,
+                 drawn ? 100.0 * effective / drawn : 0.0, path.c_str());
+}
+
 }  // namespace
 
 int cmdProbe(const Args& args) {
@@ -82,6 +106,8 @@ int cmdProbe(const Args& args) {
     EstimateOptions options;
     options.spp = 4096;
     bool withVisibility = false;
+    std::string chartPath;
+    int chartSpp = 64;
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
         if (a == "--points") pointsPath = flagValue(args, i);
@@ -90,6 +116,8 @@ int cmdProbe(const Args& args) {
         else if (a == "--spp") options.spp = parseInt(a, flagValue(args, i), 1, 1 << 26);
         else if (a == "--seed") options.seed = uint64_t(parseInt(a, flagValue(args, i), 0, 1 << 30));
         else if (a == "--visibility") withVisibility = true;
+        else if (a == "--show-samples") chartPath = flagValue(args, i);
+        else if (a == "--chart-spp") chartSpp = parseInt(a, flagValue(args, i), 1, 4096);
         else if (a == "--device") device = flagValue(args, i);
         else if (!a.empty() && a[0] == '-') throw InputError("probe: unknown option " + a);
         else if (scenePath.empty()) scenePath = a;
@@ -97,7 +125,8 @@ int cmdProbe(const Args& args) {
     }
     if (scenePath.empty() || pointsPath.empty())
         throw InputError("usage: candela probe scene.json --points pts.csv [--technique T] "
-                         "[--spp N] [--visibility] [--device cpu|gpu] [--seed S] [--env-technique T]");
+                         "[--spp N] [--visibility] [--device cpu|gpu] [--seed S] [--env-technique T] "
+                         "[--show-samples chart.png [--chart-spp N]]");
     if (device != "cpu" && device != "gpu")
         throw InputError("--device: expected cpu or gpu, got \"" + device + "\"");
     if (device == "gpu" && withVisibility)
@@ -185,6 +214,9 @@ int cmdProbe(const Args& args) {
         std::vector<glm::vec3> r = renderer.probe(scene, p, n, options.spp);
         for (size_t i = 0; i < points.size(); ++i) E[i] = glm::dvec3(r[i]);
     }
+
+    if (!chartPath.empty() && points.empty()) throw InputError("--show-samples: " + pointsPath + " has no points");
+    if (!chartPath.empty()) writeSampleChart(scene, points.front().n, envChosen->name, chartSpp, chartPath);
 
     std::printf("x,y,z,nx,ny,nz,E,E_r,E_g,E_b,E_stderr\n");
     for (size_t i = 0; i < points.size(); ++i) {
