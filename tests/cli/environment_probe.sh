@@ -52,5 +52,16 @@ expect "missing.json: environment.file: " "nowhere.exr" -- probe "$tmp/missing.j
 echo '{"environment": {"sky": {"turbidity": 50}}}' > "$tmp/badsky.json"
 expect "badsky.json: environment.sky.turbidity: expected a turbidity in [1.7, 10]" -- probe "$tmp/badsky.json" --points "$pts"
 
+# --show-samples: the Fig. 1-2 chart of the first point's normal; its per-face table (stderr)
+# adds up, every sample of a constant map counts once, and no more are effective than selected.
+"$binary" probe "$data/sky.json" --points "$pts" --show-samples "$tmp/chart.png" --chart-spp 60 \
+  >/dev/null 2>"$tmp/chart.txt"
+check "chart written: $(cat "$tmp/chart.txt")" '[ -s "$tmp/chart.png" ]'
+sums=$(awk '$1 ~ /^[+-][XYZ]$/ {d += $3; e += $4; if ($4 > $3) bad++} $1 == "all" {D = $3; E = $4}
+            END {print (d == D && e == E && !bad && D >= 60 && D <= 66) ? "ok" : "bad " d " " D " " e " " E}' "$tmp/chart.txt")
+check "chart counts add up: $sums" '[ "$sums" = ok ]'
+echo '{"geometry": []}' > "$tmp/noenv.json"
+expect "--show-samples: the scene has no environment" -- probe "$tmp/noenv.json" --points "$pts" --show-samples "$tmp/x.png"
+
 echo "$passed passed, $failures failed"
 [ $failures -eq 0 ]
