@@ -446,7 +446,7 @@ double HavranLights::probability(int light) const {
 EnvironmentLighting::EnvironmentLighting(std::shared_ptr<const EnvironmentMap> map, int faceSize,
                                          int havranLights)
     : mMap(std::move(map)),
-      mCube(*mMap, faceSize > 0 ? faceSize : std::max(8, mMap->width() / 2)),
+      mCube(*mMap, faceSize > 0 ? faceSize : defaultFaceSize(*mMap)),
       mGlobal(*mMap),
       mHavran(havranLights) {
     mHavran.update(*mMap);

@@ -22,6 +22,7 @@
 
 #include <glm/glm.hpp>
 
+#include <algorithm>
 #include <array>
 #include <deque>
 #include <memory>
@@ -182,6 +183,8 @@ public:
     /// equator, so a one-texel sun stays one or two cube texels (the paper used 256^2 faces).
     explicit EnvironmentLighting(std::shared_ptr<const EnvironmentMap> map, int faceSize = 0,
                                  int havranLights = 256);
+    /// The face size that faceSize 0 picks.
+    static int defaultFaceSize(const EnvironmentMap& map) { return std::max(8, map.width() / 2); }
     const EnvironmentMap& map() const { return *mMap; }
     const CubeMapDistribution& cube() const { return mCube; }
     const LatLongDistribution& global() const { return mGlobal; }

@@ -13,6 +13,7 @@
 #include "luminaires/EnvironmentSampling.h"
 #include "renderer/gl/GlFunctions.h"
 #include "renderer/gl/GlObjects.h"
+#include "renderer/passes/EnvironmentPass.h"
 #include "ui/ImGuiUtil.h"
 #include "ui/Panels.h"
 #include "util/Error.h"
@@ -101,8 +102,7 @@ bool skyControls(EditorState& state) {
     std::snprintf(clock, sizeof clock, "%02d:%02d", hh, mm);
     timeChanged = ImGui::SliderScalar("Solar time [h]", ImGuiDataType_Double, &ui.solarHours, &h0, &h1, clock) ||
                   timeChanged;
-    state.widgetRects.push_back({"environment.time", glm::vec4(ImGui::GetItemRectMin().x, ImGui::GetItemRectMin().y,
-                                                               ImGui::GetItemRectMax().x, ImGui::GetItemRectMax().y)});
+    recordRect(state, "environment.time");
     itemTooltip("Apparent solar time at the site; the sun's position follows (declination and hour angle)");
     if (ImGui::Button(ui.playing ? "Pause##sky" : "Play##sky")) ui.playing = !ui.playing;
     ImGui::SameLine();
@@ -167,7 +167,7 @@ void sampleChartControls(EditorState& state) {
                   ui.normalElevationDeg, ui.normalAzimuthDeg, ui.chartSpp, int(balanced));
     if (ui.chartKey != key || !ui.chartTexture) {
         const EnvironmentMap& map = *state.scene.environmentMap;
-        CubeMapDistribution cube(map, std::clamp(map.width() / 2, 8, 256));
+        CubeMapDistribution cube(map, EnvironmentPass::defaultFaceSize(map));  // as the renderer's
         double el = glm::radians(double(ui.normalElevationDeg)), az = glm::radians(double(ui.normalAzimuthDeg));
         glm::dvec3 n(std::cos(el) * std::cos(az), std::sin(el), std::cos(el) * std::sin(az));
         SampleChart chart = sampleChart(map, cube, n, ui.chartSpp, balanced, 1, 64);

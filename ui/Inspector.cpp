@@ -28,12 +28,6 @@ bool isCommonField(const std::string& key) {
     return false;
 }
 
-/// Test hook: the last item's screen rectangle under name, for the layout file.
-void recordRect(EditorState& state, std::string name) {
-    ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
-    state.widgetRects.emplace_back(std::move(name), glm::vec4(lo.x, lo.y, hi.x, hi.y));
-}
-
 /// Drag speed per pixel proportional to the value, so a radiance of 40 and a size of 0.3 both
 /// edit comfortably.
 float dragSpeed(double value) {

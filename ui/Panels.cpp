@@ -21,12 +21,6 @@ void requestSave(EditorState& state) {
         saveSceneFile(state, {});
 }
 
-/// Test hook: the last item's screen rectangle under name, for the layout file.
-void recordRect(EditorState& state, std::string name) {
-    ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
-    state.widgetRects.emplace_back(std::move(name), glm::vec4(lo.x, lo.y, hi.x, hi.y));
-}
-
 /// "plane #0", "box #5", "gltf chair.glb #7": the entry's shape key (or its name) and index.
 std::string geometryLabel(const GeometryItem& item, size_t index) {
     std::string label;
@@ -261,6 +255,11 @@ void statusBar(const EditorState& state, const Renderer& renderer, const PanelRe
     ImGui::SameLine(std::max(0.f, rect.w - rightWidth - 12.f));
     ImGui::TextUnformatted(right.c_str());
     ImGui::End();
+}
+
+void recordRect(EditorState& state, std::string name) {
+    ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
+    state.widgetRects.emplace_back(std::move(name), glm::vec4(lo.x, lo.y, hi.x, hi.y));
 }
 
 }  // namespace candela::ui

@@ -22,6 +22,9 @@ struct PanelRect {
 
 /// File menu (Open, Save, Save As, Quit) and keyboard shortcuts (Ctrl+O, Ctrl+S, Delete).
 /// barHeight receives the menu bar's height in pixels.
+/// Test hook: the last item's screen rectangle under name, for the layout file.
+void recordRect(EditorState& state, std::string name);
+
 bool mainMenuBar(EditorState& state, float& barHeight);
 /// The Open / Save As modals and the error modal.
 bool fileDialogs(EditorState& state);

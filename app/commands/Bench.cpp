@@ -76,31 +76,6 @@ Image render(Renderer& renderer, const Scene& scene, RenderSettings settings, co
     return img;
 }
 
-struct Row {
-    std::string technique;
-    int spp;
-    double shadeMs;
-    double rmse;     ///< Against the truth: the raw error with the reference's noise removed.
-    double deltaE;
-    double rawRmse;  ///< Against the reference image as it is.
-};
-
-/// Samples (or time) a technique needs to reach `error`, by log-log interpolation of its curve;
-/// NaN when the curve never gets there.
-double atError(const std::vector<Row>& rows, const std::string& technique, double error, bool time) {
-    std::vector<const Row*> curve;
-    for (const Row& r : rows)
-        if (r.technique == technique) curve.push_back(&r);
-    for (size_t i = 0; i + 1 < curve.size(); ++i) {
-        const Row &a = *curve[i], &b = *curve[i + 1];
-        if ((a.rmse - error) * (b.rmse - error) > 0.0 && !(a.rmse == error)) continue;
-        double xa = std::log(time ? a.shadeMs : a.spp), xb = std::log(time ? b.shadeMs : b.spp);
-        double t = (std::log(error) - std::log(a.rmse)) / (std::log(b.rmse) - std::log(a.rmse));
-        return std::exp(xa + t * (xb - xa));
-    }
-    return std::nan("");
-}
-
 }  // namespace
 
 int cmdBench(const Args& args) {
@@ -152,7 +127,7 @@ int cmdBench(const Args& args) {
     writeImage8((fs::path(outDir) / "reference.png").string(), width, height, ref.display);
     writeImageFloat((fs::path(outDir) / "reference.exr").string(), width, height, ref.linear);
 
-    std::vector<Row> rows;
+    std::vector<BenchRow> rows;
     const char* techniques[] = {"restricted-cdf", "uniform-restricted", "precomputed-global"};
     // Compile every variant before timing anything.
     for (const char* t : techniques) render(renderer, scene, settings, t, 1, 1);
@@ -162,9 +137,7 @@ int cmdBench(const Args& args) {
             Image img = render(renderer, scene, settings, t, spp, seed++);
             // The image and the reference are independent, so E|x - r|^2 = |x - t|^2 + |r - t|^2:
             // the reference's own noise is removed from the error against it.
-            double raw = relRmse(img.linear, ref.linear);
-            double corrected = std::sqrt(std::max(0.0, raw * raw - refNoise * refNoise));
-            Row r{t, spp, img.shadeMs, corrected, meanDeltaE(img.display, ref.display), raw};
+            BenchRow r = benchRow(t, spp, img.shadeMs, img.linear, img.display, ref.linear, ref.display, refNoise);
             rows.push_back(r);
             std::fprintf(stderr, "bench: %-20s %6d spp  %9.1f ms  rel. RMSE %.4f (raw %.4f)  Delta E %.3f\n", t,
                          spp, r.shadeMs, r.rmse, r.rawRmse, r.deltaE);
@@ -177,21 +150,15 @@ int cmdBench(const Args& args) {
     {
         render(renderer, scene, settings, "granier2003", 1, 1);  // compile
         Image img = render(renderer, scene, settings, "granier2003", 1, seed++);
-        double raw = relRmse(img.linear, ref.linear);
-        Row r{"granier2003", 1, img.shadeMs, std::sqrt(std::max(0.0, raw * raw - refNoise * refNoise)),
-              meanDeltaE(img.display, ref.display), raw};
+        BenchRow r = benchRow("granier2003", 1, img.shadeMs, img.linear, img.display, ref.linear, ref.display,
+                              refNoise);
         rows.push_back(r);
         std::fprintf(stderr, "bench: %-20s  1 frame  %9.1f ms  rel. RMSE %.4f  Delta E %.3f\n", "granier2003",
                      r.shadeMs, r.rmse, r.deltaE);
         writeImage8((fs::path(outDir) / "granier2003.png").string(), width, height, img.display);
     }
 
-    std::ofstream csv(fs::path(outDir) / "bench.csv");
-    csv << "technique,spp,gpu_ms,rel_rmse,mean_delta_e,rel_rmse_raw\n";
-    for (const Row& r : rows)
-        csv << r.technique << "," << r.spp << "," << r.shadeMs << "," << r.rmse << "," << r.deltaE << ","
-            << r.rawRmse << "\n";
-    csv.close();
+    writeBenchCsv((fs::path(outDir) / "bench.csv").string(), rows);
 
     // Ratios, measured side by side in this run.
     std::ostringstream summary;
@@ -206,11 +173,11 @@ int cmdBench(const Args& args) {
     summary << line << "context: " << context->description() << "\n";
     for (int spp : sppList) {
         double rc = 0, ur = 0, gl = 0;
-        for (const Row& r : rows)
+        for (const BenchRow& r : rows)
             if (r.spp == spp) (r.technique == "restricted-cdf" ? rc : r.technique == "uniform-restricted" ? ur : gl) = r.rmse;
         double need = atError(rows, "uniform-restricted", rc, false);
         double tRc = 0;
-        for (const Row& r : rows)
+        for (const BenchRow& r : rows)
             if (r.spp == spp && r.technique == "restricted-cdf") tRc = r.shadeMs;
         double tGl = atError(rows, "precomputed-global", rc, true);
         double tUr = atError(rows, "uniform-restricted", rc, true);
@@ -221,7 +188,7 @@ int cmdBench(const Args& args) {
                       formatRatio(need / spp).c_str(), formatRatio(tUr / tRc).c_str(), formatRatio(tGl / tRc).c_str());
         summary << line;
     }
-    for (const Row& r : rows)
+    for (const BenchRow& r : rows)
         if (r.technique == "granier2003") {
             std::snprintf(line, sizeof line,
                           "granier2003 (deterministic, approximate): rel. RMSE %.4f, Delta E %.3f in %.1f ms\n",

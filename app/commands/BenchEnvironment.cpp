@@ -78,30 +78,6 @@ Shot render(Renderer& renderer, const Scene& scene, RenderSettings settings, con
     return shot;
 }
 
-struct Row {
-    std::string technique;
-    int spp;
-    double shadeMs;
-    double rmse;  ///< Against the truth: the reference's own noise removed in quadrature.
-    double deltaE;
-    double rawRmse;
-};
-
-/// Samples (or GPU time) a technique needs to reach `error`: log-log interpolation along its
-/// curve; NaN when the sweep never gets there.
-double atError(const std::vector<Row>& rows, const std::string& technique, double error, bool time) {
-    std::vector<const Row*> c;
-    for (const Row& r : rows)
-        if (r.technique == technique) c.push_back(&r);
-    for (size_t i = 0; i + 1 < c.size(); ++i) {
-        if ((c[i]->rmse - error) * (c[i + 1]->rmse - error) > 0.0) continue;
-        double xa = std::log(time ? c[i]->shadeMs : c[i]->spp), xb = std::log(time ? c[i + 1]->shadeMs : c[i + 1]->spp);
-        double t = (std::log(error) - std::log(c[i]->rmse)) / (std::log(c[i + 1]->rmse) - std::log(c[i]->rmse));
-        return std::exp(xa + t * (xb - xa));
-    }
-    return std::nan("");
-}
-
 double median(std::vector<double> v) {
     if (v.empty()) return std::nan("");
     std::sort(v.begin(), v.end());
@@ -182,13 +158,10 @@ int benchEnvironment(const Args& args) {
 
     const char* techniques[] = {"balanced", "uniform-faces", "balanced-mis", "global-cdf"};
     for (const char* t : techniques) render(renderer, scene, settings, t, 1, 1);  // compile first
-    std::vector<Row> rows;
+    std::vector<BenchRow> rows;
     uint32_t seed = 7;
     auto addRow = [&](const std::string& t, int spp, const Shot& s) {
-        double raw = relRmse(s.linear, ref);
-        // Independent image and reference: E|x - r|^2 = |x - truth|^2 + |r - truth|^2.
-        Row r{t, spp, s.shadeMs, std::sqrt(std::max(0.0, raw * raw - refNoise * refNoise)),
-              meanDeltaE(s.display, refDisplay), raw};
+        BenchRow r = benchRow(t, spp, s.shadeMs, s.linear, s.display, ref, refDisplay, refNoise);
         rows.push_back(r);
         std::fprintf(stderr, "bench: %-14s %6d spp  %9.2f ms  rel. RMSE %.4f (raw %.4f)  Delta E %.3f\n",
                      t.c_str(), spp, r.shadeMs, r.rmse, r.rawRmse, r.deltaE);
@@ -207,20 +180,14 @@ int benchEnvironment(const Args& args) {
         addRow("havran2005", 1, s);
         writeImage8((out / "havran2005.png").string(), width, height, s.display);
     }
-    {
-        std::ofstream csv(out / "bench.csv");
-        csv << "technique,spp,gpu_ms,rel_rmse,mean_delta_e,rel_rmse_raw\n";
-        for (const Row& r : rows)
-            csv << r.technique << "," << r.spp << "," << r.shadeMs << "," << r.rmse << "," << r.deltaE << ","
-                << r.rawRmse << "\n";
-    }
+    writeBenchCsv((out / "bench.csv").string(), rows);
     std::snprintf(line, sizeof line,
                   "\n1. error against samples (reference: balanced-mis, %d spp, own noise %.5f removed in "
                   "quadrature)\n", refSpp, refNoise);
     summary << line;
     for (int spp : sppList) {
         double eb = 0, eu = 0, em = 0, eg = 0, tb = 0;
-        for (const Row& r : rows) {
+        for (const BenchRow& r : rows) {
             if (r.spp != spp) continue;
             if (r.technique == "balanced") eb = r.rmse, tb = r.shadeMs;
             else if (r.technique == "uniform-faces") eu = r.rmse;
@@ -238,7 +205,7 @@ int benchEnvironment(const Args& args) {
                       formatRatio(timeU / tb).c_str());
         summary << line;
     }
-    for (const Row& r : rows)
+    for (const BenchRow& r : rows)
         if (r.technique == "havran2005") {
             std::snprintf(line, sizeof line,
                           "havran2005 (256 lights, deterministic): rel. RMSE %.4f, Delta E %.3f in %.2f ms\n",
@@ -252,7 +219,6 @@ int benchEnvironment(const Args& args) {
     {
         std::ofstream csv(out / "rebuild.csv");
         csv << "face_size,spp,cdf_ms,samples_ms,shade_ms,upload_and_sky_ms\n";
-        Scene& moving = scene;  // the renderer sees each new map and rebuilds
         for (int faceSize : {128, 256}) {
             for (int spp : {16, 64}) {
                 RenderSettings s = settings;
@@ -264,8 +230,8 @@ int benchEnvironment(const Args& args) {
                 std::vector<double> cdf, samples, shade, cpu;
                 for (int frame = -1; frame < 8; ++frame) {  // frame -1 compiles and warms up
                     auto start = std::chrono::steady_clock::now();
-                    moving.environmentMap = skyAt(sky, sky.sunAzimuthDeg + 0.5 * (frame + 2));
-                    renderer.update(moving, kChangeEnvironment);
+                    scene.environmentMap = skyAt(sky, sky.sunAzimuthDeg + 0.5 * (frame + 2));  // rebuilt
+                    renderer.update(scene, kChangeEnvironment);
                     renderer.renderFrame();
                     double wall = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
                     double c = 0, smp = 0, sh = 0;

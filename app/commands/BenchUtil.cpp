@@ -1,8 +1,10 @@
 #include "app/commands/BenchUtil.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <sstream>
 
 #include "util/Error.h"
@@ -57,6 +59,36 @@ std::string formatRatio(double ratio) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "%.1fx", ratio);
     return buf;
+}
+
+BenchRow benchRow(std::string technique, int spp, double shadeMs, const std::vector<float>& linear,
+                  const std::vector<unsigned char>& display, const std::vector<float>& refLinear,
+                  const std::vector<unsigned char>& refDisplay, double refNoise) {
+    double raw = relRmse(linear, refLinear);
+    return {std::move(technique), spp, shadeMs, std::sqrt(std::max(0.0, raw * raw - refNoise * refNoise)),
+            meanDeltaE(display, refDisplay), raw};
+}
+
+double atError(const std::vector<BenchRow>& rows, const std::string& technique, double error, bool time) {
+    std::vector<const BenchRow*> c;
+    for (const BenchRow& r : rows)
+        if (r.technique == technique) c.push_back(&r);
+    for (size_t i = 0; i + 1 < c.size(); ++i) {
+        const BenchRow &a = *c[i], &b = *c[i + 1];
+        if ((a.rmse - error) * (b.rmse - error) > 0.0) continue;
+        double xa = std::log(time ? a.shadeMs : a.spp), xb = std::log(time ? b.shadeMs : b.spp);
+        double t = (std::log(error) - std::log(a.rmse)) / (std::log(b.rmse) - std::log(a.rmse));
+        return std::exp(xa + t * (xb - xa));
+    }
+    return std::nan("");
+}
+
+void writeBenchCsv(const std::string& path, const std::vector<BenchRow>& rows) {
+    std::ofstream csv(path);
+    csv << "technique,spp,gpu_ms,rel_rmse,mean_delta_e,rel_rmse_raw\n";
+    for (const BenchRow& r : rows)
+        csv << r.technique << "," << r.spp << "," << r.shadeMs << "," << r.rmse << "," << r.deltaE << ","
+            << r.rawRmse << "\n";
 }
 
 bool runGnuplot(const std::string& dir, const std::string& output) {

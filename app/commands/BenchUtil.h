@@ -22,6 +22,26 @@ double meanDeltaE(const std::vector<unsigned char>& x, const std::vector<unsigne
 std::vector<int> parseList(const std::string& text);
 /// "2.3x", or "n/a" for a ratio that could not be measured (NaN or infinite).
 std::string formatRatio(double ratio);
+/// One image of a bench's sweep, compared with the reference.
+struct BenchRow {
+    std::string technique;
+    int spp = 0;
+    double shadeMs = 0.0;  ///< GPU time of the shading passes, ms
+    double rmse = 0.0;     ///< Against the truth: the raw error with the reference's noise removed.
+    double deltaE = 0.0;   ///< Mean CIE76 Delta E of the tone-mapped images
+    double rawRmse = 0.0;  ///< Against the reference image as it is.
+};
+/// The row of an image (RGB float `linear`, sRGB8 `display`) against a reference whose own noise
+/// (relative RMSE against the truth) is refNoise. The two are independent, so
+/// E|x - r|^2 = |x - truth|^2 + |r - truth|^2: the reference's noise is removed in quadrature.
+BenchRow benchRow(std::string technique, int spp, double shadeMs, const std::vector<float>& linear,
+                  const std::vector<unsigned char>& display, const std::vector<float>& refLinear,
+                  const std::vector<unsigned char>& refDisplay, double refNoise);
+/// Samples (time: GPU ms) a technique needs to reach `error`: log-log interpolation along its
+/// rows; NaN when its sweep never gets there.
+double atError(const std::vector<BenchRow>& rows, const std::string& technique, double error, bool time);
+/// bench.csv: technique,spp,gpu_ms,rel_rmse,mean_delta_e,rel_rmse_raw.
+void writeBenchCsv(const std::string& path, const std::vector<BenchRow>& rows);
 /// Runs gnuplot on DIR/plot.gp writing DIR/OUTPUT; false (and a note on stdout) without gnuplot.
 bool runGnuplot(const std::string& dir, const std::string& output);
 

@@ -83,7 +83,7 @@ void writeSampleChart(const Scene& scene, const glm::dvec3& normal, std::string_
     if (!scene.environmentMap) throw InputError("--show-samples: the scene has no environment");
     bool balanced = technique != "uniform-faces";
     const EnvironmentMap& map = *scene.environmentMap;
-    CubeMapDistribution cube(map, std::max(8, map.width() / 2));  // EnvironmentLighting's default
+    CubeMapDistribution cube(map, EnvironmentLighting::defaultFaceSize(map));
     SampleChart chart = sampleChart(map, cube, normal, spp, balanced, 1, 96);
     writeImage8(path, chart.width, chart.height, chart.rgb);
     const char* names[6] = {"+X", "-X", "+Y", "-Y", "+Z", "-Z"};
