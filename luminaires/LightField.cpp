@@ -321,16 +321,8 @@ void LightFieldData::precompute() {
         }
         t.total = t.sat.back();
         t.marginalCdf.assign(w + 1, 0.0);
-        t.conditionalCdf.assign(w * (h + 1), 0.0);
         for (size_t i = 0; i <= w; ++i)
             t.marginalCdf[i] = t.total > 0.0 ? t.sat[h * (w + 1) + i] / t.total : double(i) / double(w);
-        for (size_t i = 0; i < w; ++i) {
-            double column = t.sat[h * (w + 1) + i + 1] - t.sat[h * (w + 1) + i];
-            for (size_t j = 0; j <= h; ++j) {
-                double below = t.sat[j * (w + 1) + i + 1] - t.sat[j * (w + 1) + i];
-                t.conditionalCdf[i * (h + 1) + j] = column > 0.0 ? below / column : double(j) / double(h);
-            }
-        }
         // Sec. 6.2: s_m with cdf_m(s) = 0.5 and cdf_m(t | s) = 0.5.
         t.median = 0.5 * (imageMin + imageMax);
         if (t.total > 0.0) {
@@ -338,10 +330,12 @@ void LightFieldData::precompute() {
             if (ci >= 0) {
                 double a = t.marginalCdf[size_t(ci)], b = t.marginalCdf[size_t(ci) + 1];
                 t.median.x = imageMin.x + (double(ci) + (0.5 - a) / (b - a)) * px.x;
-                const double* col = &t.conditionalCdf[size_t(ci) * (h + 1)];
-                int rj = findPiece(int(h), 0.5, [&](int k) { return col[k]; });
+                std::vector<double> col(h + 1);
+                for (size_t j = 0; j <= h; ++j) col[j] = t.conditionalCdf(size_t(ci), j, w, h);
+                int rj = findPiece(int(h), 0.5, [&](int k) { return col[size_t(k)]; });
                 if (rj >= 0)
-                    t.median.y = imageMin.y + (double(rj) + (0.5 - col[rj]) / (col[rj + 1] - col[rj])) * px.y;
+                    t.median.y = imageMin.y + (double(rj) + (0.5 - col[size_t(rj)]) /
+                                                                (col[size_t(rj) + 1] - col[size_t(rj)])) * px.y;
             }
         }
     }

@@ -40,9 +40,15 @@ struct LightFieldTables {
     std::vector<double> sat;
     /// Marginal CDF over columns, width+1 entries from 0 to 1 (Eq. 6, cdf_m(s)).
     std::vector<double> marginalCdf;
-    /// Conditional CDFs of t per column, width x (height+1), each from 0 to 1 (Eq. 6, cdf_m(t|s));
-    /// an all-zero column holds a uniform CDF.
-    std::vector<double> conditionalCdf;
+    /// Conditional CDF of t in column i at row boundary j (Eq. 6, cdf_m(t|s)), read from the SAT
+    /// (a column's running sum over its total) rather than stored: a stored copy would double the
+    /// tables' memory (50 MB for 11x9 images of 256^2) for nothing the sampler needs, since the
+    /// restricted CDFs of Eq. 8 come from the SAT too. An all-zero column gives a uniform CDF.
+    double conditionalCdf(size_t i, size_t j, size_t width, size_t height) const {
+        double column = sat[height * (width + 1) + i + 1] - sat[height * (width + 1) + i];
+        double below = sat[j * (width + 1) + i + 1] - sat[j * (width + 1) + i];
+        return column > 0.0 ? below / column : double(j) / double(height);
+    }
     double total = 0.0;            ///< Integral of C_m over S (C's unit times m2).
     glm::dvec2 median{0.0};        ///< s_m with cdf_m(s) = cdf_m(t|s) = 0.5 (Sec. 6.2), metres.
 };

@@ -303,6 +303,50 @@ TEST(LightField, BoxSamplerPassesChiSquare) {
     }
 }
 
+TEST(LightField, GlobalCdfsAndMediansMatchDirectSums) {
+    // Eq. 6's CDFs and Sec. 6.2's median s_m, read from the summed-area table, against running
+    // sums of the image's own pixels. Tolerance: rounding of ~1e5 float pixels summed in double.
+    auto lf = randomField(5);
+    const size_t w = size_t(lf->width), h = size_t(lf->height);
+    for (int m : {0, 6, 12}) {
+        const std::vector<float>& c = lf->images[size_t(m)].luminance;
+        const LightFieldTables& t = lf->tables[size_t(m)];
+        std::vector<double> column(w, 0.0);
+        double total = 0.0;
+        for (size_t j = 0; j < h; ++j)
+            for (size_t i = 0; i < w; ++i) column[i] += c[j * w + i];
+        for (double v : column) total += v;
+        ASSERT_GT(total, 0.0);
+        double left = 0.0;
+        size_t medianColumn = w;
+        for (size_t i = 0; i <= w; ++i) {
+            EXPECT_NEAR(t.marginalCdf[i], left / total, 1e-12) << "image " << m << " column " << i;
+            if (i < w) {
+                if (left / total <= 0.5 && (left + column[i]) / total > 0.5) medianColumn = i;
+                left += column[i];
+            }
+        }
+        ASSERT_LT(medianColumn, w);
+        for (size_t i : {size_t(0), medianColumn, w - 1}) {
+            double below = 0.0;
+            for (size_t j = 0; j <= h; ++j) {
+                double expected = column[i] > 0.0 ? below / column[i] : double(j) / double(h);
+                EXPECT_NEAR(t.conditionalCdf(i, j, w, h), expected, 1e-12) << "image " << m << " column " << i;
+                if (j < h) below += c[j * w + i];
+            }
+        }
+        // The median lies in the column where the marginal CDF crosses 0.5, and half of that
+        // column's energy lies below it.
+        glm::dvec2 px = lf->pixelSize();
+        EXPECT_GE(t.median.x, lf->imageMin.x + double(medianColumn) * px.x - 1e-12);
+        EXPECT_LE(t.median.x, lf->imageMin.x + double(medianColumn + 1) * px.x + 1e-12);
+        double rows = (t.median.y - lf->imageMin.y) / px.y, belowMedian = 0.0;
+        for (size_t j = 0; j < h; ++j)
+            belowMedian += c[j * w + medianColumn] * std::clamp(rows - double(j), 0.0, 1.0);
+        EXPECT_NEAR(belowMedian / column[medianColumn], 0.5, 1e-9) << "image " << m;
+    }
+}
+
 TEST(LightField, HardCasesStayFiniteAndExact) {
     auto lf = randomField(13);
     LightFieldLuminaire l = place(lf);

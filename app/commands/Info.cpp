@@ -1,9 +1,11 @@
 #include <cctype>
+#include <chrono>
 #include <cstdio>
 #include <memory>
 #include <filesystem>
 
 #include "app/commands/Commands.h"
+#include "luminaires/LightField.h"
 #include "luminaires/PhotometricLuminaire.h"
 #include "luminaires/Registry.h"
 #include "scene/GltfLoader.h"
@@ -53,6 +55,34 @@ static void printPhotometry(const std::string& path) {
     if (d.inputWatts > 0.0) std::printf("input power: %.4g W (%.1f lm/W)\n", d.inputWatts, flux / d.inputWatts);
 }
 
+/// `candela info NAME.lf.json`: the light field's model, basis, images, flux and table cost.
+static void printLightField(const std::string& path) {
+    auto start = std::chrono::steady_clock::now();
+    std::shared_ptr<LightFieldData> lf = LightFieldData::load(path);
+    double loadMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    const LightFieldData& d = *lf;
+    std::printf("light field: %s\n", path.c_str());
+    std::printf("model: %s, delta %.4g mm (U at local z = 0, S at z = delta)\n",
+                d.model == LightFieldData::Model::Canned ? "canned" : "goesele", d.delta * 1e3);
+    glm::dvec2 last = d.node(d.imageCount() - 1);
+    std::printf("basis: quadratic B-splines, %dx%d, spacing %.4g x %.4g mm, nodes [%.4g, %.4g] x [%.4g, %.4g] mm\n",
+                d.count.x, d.count.y, d.spacing.x * 1e3, d.spacing.y * 1e3, d.origin.x * 1e3, last.x * 1e3,
+                d.origin.y * 1e3, last.y * 1e3);
+    std::printf("images: %d of %dx%d pixels, %s, over [%.4g, %.4g] x [%.4g, %.4g] mm on S, unit %s\n",
+                d.imageCount(), d.width, d.height, d.rgb ? "RGB" : "luminance", d.imageMin.x * 1e3,
+                d.imageMax.x * 1e3, d.imageMin.y * 1e3, d.imageMax.y * 1e3, d.unit.c_str());
+    glm::dvec3 power = d.power();
+    bool photometric = d.unit == "cd/m2";
+    const char* unit = photometric ? "lm" : "W";
+    if (d.rgb)
+        std::printf("flux (quadrature of L cos cos / r^2 over U x S): R %.6g, G %.6g, B %.6g %s\n", power.x,
+                    power.y, power.z, unit);
+    else
+        std::printf("flux (quadrature of L cos cos / r^2 over U x S): %.6g %s\n", power.y, unit);
+    std::printf("load %.0f ms, of which precomputation (summed-area tables, CDFs, medians) %.1f ms\n",
+                loadMs, d.precomputeMs);
+}
+
 static void printMeshes(const Scene& scene) {
     size_t triangles = 0;
     for (const Mesh& m : scene.meshes) triangles += m.triangleCount();
@@ -70,12 +100,17 @@ static void printMeshes(const Scene& scene) {
 }
 
 int cmdInfo(const Args& args) {
-    if (args.size() != 1) throw InputError("usage: candela info FILE (.json scene, .gltf, .glb, .ies, .ldt)");
+    if (args.size() != 1) throw InputError("usage: candela info FILE (.json scene, .lf.json, .gltf, .glb, .ies, .ldt)");
     const std::string& path = args[0];
     std::string ext = std::filesystem::path(path).extension().string();
     for (char& c : ext) c = char(std::tolower((unsigned char)c));
     if (ext == ".ies" || ext == ".ldt") {
         printPhotometry(path);
+        return 0;
+    }
+    std::string name = std::filesystem::path(path).filename().string();
+    if (name.size() > 8 && name.compare(name.size() - 8, 8, ".lf.json") == 0) {
+        printLightField(path);
         return 0;
     }
     if (ext == ".json") {
@@ -105,7 +140,7 @@ int cmdInfo(const Args& args) {
         printMeshes(scene);
         return 0;
     }
-    throw InputError(path + ": unsupported file type \"" + ext + "\" (expected .json, .gltf, .glb, .ies or .ldt)");
+    throw InputError(path + ": unsupported file type \"" + ext + "\" (expected .json, .lf.json, .gltf, .glb, .ies or .ldt)");
 }
 
 }  // namespace candela

@@ -20,6 +20,8 @@ for t in restricted-cdf uniform-restricted precomputed-global; do
 done
 info=$("$binary" info "$data/scene.json" 2>&1)
 check "info lists the light field: $info" 'grep -q "3x3 images of 8x8 RGB" <<<"$info" && grep -q "flux" <<<"$info"'
+info=$("$binary" info "$data/tiny.lf.json" 2>&1)
+check "info describes the .lf.json itself: $info" 'grep -q "9 of 8x8 pixels, RGB" <<<"$info" && grep -q "3x3, spacing 20 x 20 mm" <<<"$info" && grep -q "^flux.* W$" <<<"$info" && grep -q "precomputation" <<<"$info"'
 err=$("$binary" info "$data/missing_file.json" 2>&1 >/dev/null); rc=$?
 check "missing light-field file (rc $rc): $err" '[ $rc -eq 1 ] && grep -q "nowhere.lf.json" <<<"$err"'
 # Rendering: a floor and the light field, no occluder and no glossy material, so exactly the
