@@ -221,22 +221,57 @@ Bvh Bvh::build(const Scene& scene) {
     return bvh;
 }
 
-bool Bvh::intersects(const gpu::BvhTriangle& triangle, const glm::dvec3& origin,
-                     const glm::dvec3& dir, double tMin, double tMax) {
+double Bvh::hitDistance(const gpu::BvhTriangle& triangle, const glm::dvec3& origin,
+                        const glm::dvec3& dir, double tMin, double tMax) {
     // Moller and Trumbore 1997, without back-face culling (triangles are two-sided).
     glm::dvec3 e1(triangle.e1), e2(triangle.e2);
     glm::dvec3 p = glm::cross(dir, e2);
     double det = glm::dot(e1, p);
-    if (std::abs(det) < 1e-20) return false;  // Ray parallel to the plane, or degenerate.
+    if (std::abs(det) < 1e-20) return -1.0;  // Ray parallel to the plane, or degenerate.
     double invDet = 1.0 / det;
     glm::dvec3 s = origin - glm::dvec3(triangle.v0);
     double u = glm::dot(s, p) * invDet;
-    if (u < 0.0 || u > 1.0) return false;
+    if (u < 0.0 || u > 1.0) return -1.0;
     glm::dvec3 q = glm::cross(s, e1);
     double v = glm::dot(dir, q) * invDet;
-    if (v < 0.0 || u + v > 1.0) return false;
+    if (v < 0.0 || u + v > 1.0) return -1.0;
     double t = glm::dot(e2, q) * invDet;
-    return t > tMin && t < tMax;
+    return t > tMin && t < tMax ? t : -1.0;
+}
+
+bool Bvh::intersects(const gpu::BvhTriangle& triangle, const glm::dvec3& origin,
+                     const glm::dvec3& dir, double tMin, double tMax) {
+    return hitDistance(triangle, origin, dir, tMin, tMax) >= 0.0;
+}
+
+std::optional<BvhHit> Bvh::closestHit(const glm::dvec3& origin, const glm::dvec3& dir) const {
+    if (nodes.empty()) return std::nullopt;
+    BvhHit best;
+    best.t = std::numeric_limits<double>::infinity();
+    // Depth first, every node whose box the ray meets before the best hit so far.
+    std::vector<int> stack{0};
+    while (!stack.empty()) {
+        const gpu::BvhNode& n = nodes[size_t(stack.back())];
+        stack.pop_back();
+        if (!hitsBox(n, origin, dir, kRayEpsilon, best.t)) continue;
+        int first = std::bit_cast<int32_t>(n.lo.w);
+        int count = std::bit_cast<int32_t>(n.hi.w);
+        if (count == 0) {
+            stack.push_back(first);
+            stack.push_back(first + 1);
+            continue;
+        }
+        for (int i = first; i < first + count; ++i) {
+            double t = hitDistance(triangles[size_t(i)], origin, dir, kRayEpsilon, best.t);
+            if (t >= 0.0) best.t = t, best.triangle = i;
+        }
+    }
+    if (best.triangle < 0) return std::nullopt;
+    const gpu::BvhTriangle& tri = triangles[size_t(best.triangle)];
+    best.point = origin + best.t * dir;
+    best.normal = glm::normalize(glm::cross(glm::dvec3(tri.e1), glm::dvec3(tri.e2)));
+    if (glm::dot(best.normal, dir) > 0.0) best.normal = -best.normal;
+    return best;
 }
 
 bool Bvh::occluded(const glm::dvec3& from, const glm::dvec3& to) const {

@@ -19,6 +19,7 @@
 
 #include <algorithm>
 #include <glm/glm.hpp>
+#include <optional>
 #include <vector>
 
 #include "luminaires/Registry.h"
@@ -26,6 +27,14 @@
 #include "shaders/shared/GpuTypes.h"
 
 namespace candela {
+
+/// The nearest surface along a ray (Bvh::closestHit).
+struct BvhHit {
+    double t = 0.0;           ///< Distance along the unit direction, metres.
+    glm::dvec3 point{0.0};    ///< World position, metres.
+    glm::dvec3 normal{0.0};   ///< Unit geometric normal, turned to face the ray's origin.
+    int triangle = -1;        ///< Index into Bvh::triangles.
+};
 
 struct Bvh {
     std::vector<gpu::BvhNode> nodes;          ///< Node 0 is the root; see the layout above.
@@ -45,10 +54,18 @@ struct Bvh {
     /// True when a triangle cuts the ray from `from` along the unit `dir`, beyond kRayEpsilon.
     bool occludedToward(const glm::dvec3& from, const glm::dvec3& dir) const;
 
+    /// The nearest triangle (either side) along the ray from `origin` along the unit `dir`,
+    /// beyond kRayEpsilon; empty when the ray leaves the scene. For picking (the editor, probe
+    /// --pixel), not for shading.
+    std::optional<BvhHit> closestHit(const glm::dvec3& origin, const glm::dvec3& dir) const;
+
     /// Two-sided Moller-Trumbore: does origin + t * dir hit the triangle with tMin < t < tMax?
     /// (t in metres for a unit dir.)
     static bool intersects(const gpu::BvhTriangle& triangle, const glm::dvec3& origin,
                            const glm::dvec3& dir, double tMin, double tMax);
+    /// The same test, giving the hit's t, or a negative value for no hit.
+    static double hitDistance(const gpu::BvhTriangle& triangle, const glm::dvec3& origin,
+                              const glm::dvec3& dir, double tMin, double tMax);
     /// End bias of a segment of `distance` metres, metres.
     static double segmentEpsilon(double distance) { return 1e-4 * std::max(1.0, distance); }
     /// Start bias of a ray to infinity, metres (a segment's bias for lengths up to 1 m).

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <bit>
+#include <limits>
 #include <random>
 
 #include "scene/GltfLoader.h"
@@ -186,6 +187,40 @@ TEST(Bvh, MatchesBruteForceInTheCornellBox) {
     // Both outcomes are common in this scene, so the comparison is meaningful.
     EXPECT_GT(blocked, kSegments / 10);
     EXPECT_LT(blocked, kSegments * 9 / 10);
+}
+
+TEST(Bvh, ClosestHitMatchesBruteForceInTheCornellBox) {
+    // closestHit against the nearest of every triangle's own hit, for rays from inside and
+    // outside the box; and the normal faces the ray's origin.
+    Scene scene = cornellScene();
+    Bvh bvh = Bvh::build(scene);
+    std::mt19937_64 rng(777);
+    std::uniform_real_distribution<double> u01(0.0, 1.0);
+    int hits = 0, misses = 0;
+    for (int i = 0; i < 4000; ++i) {
+        glm::dvec3 origin(-4.0 + 8.0 * u01(rng), -1.0 + 5.0 * u01(rng), -4.0 + 8.0 * u01(rng));
+        double z = 2.0 * u01(rng) - 1.0, phi = 6.283185307179586 * u01(rng), r = std::sqrt(1.0 - z * z);
+        glm::dvec3 dir(r * std::cos(phi), z, r * std::sin(phi));
+        double nearest = std::numeric_limits<double>::infinity();
+        int nearestTriangle = -1;
+        for (size_t k = 0; k < bvh.triangles.size(); ++k) {
+            double t = Bvh::hitDistance(bvh.triangles[k], origin, dir, Bvh::kRayEpsilon, nearest);
+            if (t >= 0.0) nearest = t, nearestTriangle = int(k);
+        }
+        std::optional<BvhHit> hit = bvh.closestHit(origin, dir);
+        ASSERT_EQ(hit.has_value(), nearestTriangle >= 0) << "ray " << i;
+        if (!hit) {
+            ++misses;
+            continue;
+        }
+        ++hits;
+        EXPECT_EQ(hit->t, nearest) << "ray " << i;  // the same triangle test: exactly equal
+        EXPECT_NEAR(glm::length(hit->point - (origin + nearest * dir)), 0.0, 1e-12);
+        EXPECT_NEAR(glm::length(hit->normal), 1.0, 1e-12);
+        EXPECT_LE(glm::dot(hit->normal, dir), 0.0) << "the normal must face the ray's origin";
+    }
+    EXPECT_GT(hits, 1000);  // both outcomes are common, so the comparison means something
+    EXPECT_GT(misses, 500);
 }
 
 }  // namespace

@@ -260,6 +260,27 @@ void Editor::updateTitle() {
     }
 }
 
+/// The Environment section's state for the layout file: time of day, playback, and the sample
+/// chart's picked pixel (window pixels) and normal.
+static nlohmann::json environmentUiJson(const EditorState& state) {
+    const EnvironmentUi& ui = state.environment;
+    const glm::vec4& v = state.layout.viewport;
+    const RenderSettings& s = state.settings;
+    double el = glm::radians(double(ui.normalElevationDeg)), az = glm::radians(double(ui.normalAzimuthDeg));
+    nlohmann::json chart = {
+        {"open", ui.chartOpen},
+        {"picking", ui.pickingPixel},
+        {"picked", ui.pixelPicked},
+        {"normal", {std::cos(el) * std::cos(az), std::sin(el), std::cos(el) * std::sin(az)}},
+        {"point", {ui.pickedPoint.x, ui.pickedPoint.y, ui.pickedPoint.z}},
+        {"pixel", vec2Json(v.x + float(ui.pickedPixel.x) * v.z / float(std::max(1, s.width)),
+                           v.y + float(ui.pickedPixel.y) * v.w / float(std::max(1, s.height)))},
+        {"counts", ui.chartCounts},
+    };
+    return {{"latitude_deg", ui.latitudeDeg}, {"day_of_year", ui.dayOfYear}, {"solar_hours", ui.solarHours},
+            {"playing", ui.playing}, {"chart", std::move(chart)}};
+}
+
 void Editor::writeLayout() {
     // The panels record named widgets' rectangles every frame; taken here so they never pile up.
     std::vector<std::pair<std::string, glm::vec4>> widgets;
@@ -314,6 +335,8 @@ void Editor::writeLayout() {
         {"status", state.status},
         {"error", state.modalError},
         {"widgets", std::move(widgetJson)},
+        {"environment", state.scene.environment},
+        {"environment_ui", environmentUiJson(state)},
     };
     std::string key = j.dump();
     if (key == mLastLayout && mFrame >= 5) return;

@@ -70,6 +70,12 @@ struct EnvironmentUi {
     bool chartOpen = false;
     float normalElevationDeg = 90.f, normalAzimuthDeg = 0.f;
     int chartSpp = 64;
+    /// Picking the chart's normal from the viewport: armed by the panel, taken by the next left
+    /// click on the viewport, which sets the normal to the surface seen through that pixel.
+    bool pickingPixel = false;
+    bool pixelPicked = false;
+    glm::dvec2 pickedPixel{0.0};  ///< Render pixels (x right, y down), at the click.
+    glm::dvec3 pickedPoint{0.0};  ///< World position seen there, metres.
     std::shared_ptr<void> chartTexture;  ///< A gl::Texture2D, made by the panel
     std::string chartKey;                ///< What the texture shows (map, normal, spp)
     std::string chartCounts;             ///< Selected / effective per face, as text

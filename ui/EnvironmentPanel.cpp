@@ -100,11 +100,13 @@ bool skyControls(EditorState& state) {
     int hh = int(ui.solarHours), mm = int((ui.solarHours - hh) * 60.0);
     char clock[32];
     std::snprintf(clock, sizeof clock, "%02d:%02d", hh, mm);
+    float sliderWidth = ImGui::CalcItemWidth();
     timeChanged = ImGui::SliderScalar("Solar time [h]", ImGuiDataType_Double, &ui.solarHours, &h0, &h1, clock) ||
                   timeChanged;
-    recordRect(state, "environment.time");
+    recordRect(state, "environment.time", sliderWidth);
     itemTooltip("Apparent solar time at the site; the sun's position follows (declination and hour angle)");
     if (ImGui::Button(ui.playing ? "Pause##sky" : "Play##sky")) ui.playing = !ui.playing;
+    recordRect(state, "environment.play");
     ImGui::SameLine();
     ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.6f);
     ImGui::SliderFloat("h/s", &ui.hoursPerSecond, 0.05f, 4.f, "%.2f h/s", ImGuiSliderFlags_Logarithmic);
@@ -118,9 +120,11 @@ bool skyControls(EditorState& state) {
         changed = true;
     }
     SunPosition sun = sunPosition(ui.latitudeDeg, ui.dayOfYear, ui.solarHours);
-    if (sun.elevationDeg < 0.0)
-        ImGui::TextColored(ImVec4(1.f, 0.75f, 0.3f, 1.f), "Sun %.1f deg below the horizon: shown at the horizon",
-                           -sun.elevationDeg);
+    if (sun.elevationDeg < 0.0) {
+        ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.f, 0.75f, 0.3f, 1.f));
+        ImGui::TextWrapped("Sun %.1f deg below the horizon: shown at the horizon", -sun.elevationDeg);
+        ImGui::PopStyleColor();
+    }
     return changed;
 }
 
@@ -158,12 +162,21 @@ bool sequenceControls(EditorState& state) {
 /// The sample chart for the chosen normal, remade when the map, normal or count changes.
 void sampleChartControls(EditorState& state) {
     EnvironmentUi& ui = state.environment;
-    ImGui::SliderFloat("Normal elevation [deg]", &ui.normalElevationDeg, -90.f, 90.f, "%.0f");
-    ImGui::SliderFloat("Normal azimuth [deg]", &ui.normalAzimuthDeg, -180.f, 180.f, "%.0f");
+    if (ImGui::Checkbox("Pick a pixel", &ui.pickingPixel) && ui.pickingPixel)
+        setStatus(state, "Click the viewport: the chart shows the samples of the surface seen there", false);
+    recordRect(state, "environment.pick_pixel");
+    itemTooltip("The next click on the viewport picks the surface seen through that pixel; the chart "
+                "then shows that pixel's normal");
+    if (ui.pixelPicked) {
+        ImGui::TextDisabled("pixel (%.0f, %.0f) at (%.2f, %.2f, %.2f) m", std::floor(ui.pickedPixel.x),
+                    std::floor(ui.pickedPixel.y), ui.pickedPoint.x, ui.pickedPoint.y, ui.pickedPoint.z);
+    }
+    if (ImGui::SliderFloat("Normal elevation [deg]", &ui.normalElevationDeg, -90.f, 90.f, "%.0f")) ui.pixelPicked = false;
+    if (ImGui::SliderFloat("Normal azimuth [deg]", &ui.normalAzimuthDeg, -180.f, 180.f, "%.0f")) ui.pixelPicked = false;
     ImGui::SliderInt("Samples N_s", &ui.chartSpp, 4, 512, "%d", ImGuiSliderFlags_Logarithmic);
     bool balanced = state.settings.environmentTechnique != "uniform-faces";
     char key[160];
-    std::snprintf(key, sizeof key, "%p %.2f %.2f %d %d", static_cast<const void*>(state.scene.environmentMap.get()),
+    std::snprintf(key, sizeof key, "%p %.4f %.4f %d %d", static_cast<const void*>(state.scene.environmentMap.get()),
                   ui.normalElevationDeg, ui.normalAzimuthDeg, ui.chartSpp, int(balanced));
     if (ui.chartKey != key || !ui.chartTexture) {
         const EnvironmentMap& map = *state.scene.environmentMap;
@@ -201,6 +214,7 @@ void sampleChartControls(EditorState& state) {
 }  // namespace
 
 bool environmentControls(EditorState& state) {
+    state.environment.chartOpen = false;
     if (!ImGui::CollapsingHeader("Environment", ImGuiTreeNodeFlags_DefaultOpen)) return false;
     Scene& scene = state.scene;
     if (!scene.environmentMap) {
@@ -259,7 +273,10 @@ bool environmentControls(EditorState& state) {
     if (scene.environment.contains("sky")) changed = skyControls(state) || changed;
     else if (scene.environmentSequence) changed = sequenceControls(state) || changed;
 
-    if (ImGui::TreeNode("Samples for a normal (Fig. 1-2)")) {
+    bool chartNode = ImGui::TreeNode("Samples for a pixel (Fig. 1-2)");
+    recordRect(state, "environment.chart");
+    if (chartNode) {
+        state.environment.chartOpen = true;
         if (state.scene.environmentMap) sampleChartControls(state);
         ImGui::TreePop();
     }

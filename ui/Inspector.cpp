@@ -275,6 +275,7 @@ bool inspectorPanel(EditorState& state, const PanelRect& rect) {
     bool changed = false;
     placeNextWindow(rect);
     ImGui::Begin("Inspector", nullptr, kPanelFlags);
+    recordPanelRect(state, "inspector");
     ImGui::PushItemWidth(-ImGui::GetFontSize() * 11.f);  // room for labels with units
     int lum = state.selectedLuminaire;
     int geo = state.selectedGeometry;

@@ -295,6 +295,7 @@ bool measurePanel(EditorState& state, const Renderer& renderer, const PanelRect&
     bool changed = false;
     placeNextWindow(rect);
     ImGui::Begin("Measure", nullptr, kPanelFlags);
+    recordPanelRect(state, "measure");
     ImGui::PushItemWidth(-ImGui::GetFontSize() * 8.5f);
     int quantity = int(s.quantity);
     changed = ImGui::RadioButton("Radiance", &quantity, 0) || changed;

@@ -151,6 +151,7 @@ bool outlinePanel(EditorState& state, const PanelRect& rect) {
     bool changed = false;
     placeNextWindow(rect);
     ImGui::Begin("Scene", nullptr, kPanelFlags);
+    recordPanelRect(state, "scene");
     Scene& scene = state.scene;
 
     std::string luminairesHeader =
@@ -257,8 +258,14 @@ void statusBar(const EditorState& state, const Renderer& renderer, const PanelRe
     ImGui::End();
 }
 
-void recordRect(EditorState& state, std::string name) {
+void recordPanelRect(EditorState& state, const std::string& name) {
+    ImVec2 lo = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+    state.widgetRects.emplace_back("panel." + name, glm::vec4(lo.x, lo.y, lo.x + size.x, lo.y + size.y));
+}
+
+void recordRect(EditorState& state, std::string name, float width) {
     ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
+    if (width > 0.f) hi.x = std::min(hi.x, lo.x + width);
     state.widgetRects.emplace_back(std::move(name), glm::vec4(lo.x, lo.y, hi.x, hi.y));
 }
 

@@ -20,11 +20,15 @@ struct PanelRect {
     float x = 0.f, y = 0.f, w = 0.f, h = 0.f;
 };
 
+/// Test hook: the last item's screen rectangle under name, for the layout file. With a width,
+/// only that much of it from the left (a slider's frame without its label).
+void recordRect(EditorState& state, std::string name, float width = -1.f);
+/// Records the current window's rectangle (inside ImGui::Begin/End) as "panel.NAME", so e2e
+/// tests can tell whether a recorded widget is scrolled out of its panel.
+void recordPanelRect(EditorState& state, const std::string& name);
+
 /// File menu (Open, Save, Save As, Quit) and keyboard shortcuts (Ctrl+O, Ctrl+S, Delete).
 /// barHeight receives the menu bar's height in pixels.
-/// Test hook: the last item's screen rectangle under name, for the layout file.
-void recordRect(EditorState& state, std::string name);
-
 bool mainMenuBar(EditorState& state, float& barHeight);
 /// The Open / Save As modals and the error modal.
 bool fileDialogs(EditorState& state);

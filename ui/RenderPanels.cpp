@@ -114,6 +114,7 @@ bool renderPanel(EditorState& state, const PanelRect& rect) {
     bool changed = false;
     placeNextWindow(rect);
     ImGui::Begin("Render", nullptr, kPanelFlags);
+    recordPanelRect(state, "render");
     if (ImGui::Button("Screenshot", ImVec2(-1.f, ImGui::GetFrameHeight() * 1.5f))) {
         state.screenshotRequested = true;
         changed = true;

@@ -93,11 +93,53 @@ bool continueLuminaireDrag(EditorState& state, const Renderer& renderer, const I
     return true;
 }
 
+/// Left click while the Environment panel's "Pick a pixel" is armed: the chart's normal becomes
+/// the one of the surface seen through that pixel (Fig. 1-2 of Lu et al. 2013 for a pixel).
+void pickChartPixel(EditorState& state, const Renderer& renderer, const ImageMapping& map,
+                    const ImVec2& mouse) {
+    EnvironmentUi& ui = state.environment;
+    ui.pickingPixel = false;
+    glm::dvec2 px = map.toRender(mouse);
+    Bvh bvh = Bvh::build(state.scene);
+    std::optional<BvhHit> hit = pickSurface(bvh, renderer.viewProj(), px.x, px.y, map.renderWidth, map.renderHeight);
+    if (!hit) {
+        setStatus(state, "That pixel sees no surface: pick another", true);
+        ui.pickingPixel = true;
+        return;
+    }
+    ui.pixelPicked = true;
+    ui.pickedPixel = px;
+    ui.pickedPoint = hit->point;
+    ui.normalElevationDeg = float(glm::degrees(std::asin(std::clamp(hit->normal.y, -1.0, 1.0))));
+    ui.normalAzimuthDeg = float(glm::degrees(std::atan2(hit->normal.z, hit->normal.x)));
+    char text[160];
+    std::snprintf(text, sizeof text, "Sample chart: pixel (%.0f, %.0f), normal (%.3f, %.3f, %.3f)",
+                  std::floor(px.x), std::floor(px.y), hit->normal.x, hit->normal.y, hit->normal.z);
+    setStatus(state, text, false);
+}
+
+/// A cross where the sample chart's pixel was picked, while the chart is shown.
+void drawPickedPixel(const EditorState& state, const ImageMapping& map) {
+    const EnvironmentUi& ui = state.environment;
+    if (!ui.pixelPicked || !ui.chartOpen) return;
+    ImVec2 c = map.toWindow(ui.pickedPixel);
+    ImDrawList* draw = ImGui::GetWindowDrawList();
+    for (auto [colour, width] : {std::pair{IM_COL32(0, 0, 0, 200), 3.f}, std::pair{IM_COL32(80, 255, 120, 255), 1.5f}}) {
+        draw->AddLine(ImVec2(c.x - 9.f, c.y), ImVec2(c.x - 3.f, c.y), colour, width);
+        draw->AddLine(ImVec2(c.x + 3.f, c.y), ImVec2(c.x + 9.f, c.y), colour, width);
+        draw->AddLine(ImVec2(c.x, c.y - 9.f), ImVec2(c.x, c.y - 3.f), colour, width);
+        draw->AddLine(ImVec2(c.x, c.y + 3.f), ImVec2(c.x, c.y + 9.f), colour, width);
+    }
+}
+
 bool handleInput(EditorState& state, const Renderer& renderer, const ImageMapping& map,
                  bool hovered) {
     const ImGuiIO& io = ImGui::GetIO();
     bool changed = false;
-    if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
+    if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && state.environment.pickingPixel &&
+        state.environment.chartOpen) {
+        pickChartPixel(state, renderer, map, io.MouseClickedPos[ImGuiMouseButton_Left]);
+    } else if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
         beginLeftDrag(state, renderer, map, io.MouseClickedPos[ImGuiMouseButton_Left]);
         changed = true;
     } else if (hovered && (ImGui::IsMouseClicked(ImGuiMouseButton_Right) ||
@@ -144,7 +186,9 @@ bool handleInput(EditorState& state, const Renderer& renderer, const ImageMappin
                   [&](Scene& s) { zoomCamera(s.camera, io.MouseWheel); });
         changed = true;
     }
-    if (hovered && state.drag.mode == DragMode::None) {
+    if (hovered && state.environment.pickingPixel && state.environment.chartOpen) {
+        ImGui::SetMouseCursor(ImGuiMouseCursor_Hand);
+    } else if (hovered && state.drag.mode == DragMode::None) {
         glm::dvec2 px = map.toRender(io.MousePos);
         if (renderer.pickLuminaire(state.scene, px.x, px.y) >= 0)
             ImGui::SetMouseCursor(ImGuiMouseCursor_Hand);
@@ -190,6 +234,7 @@ bool viewportPanel(EditorState& state, const Renderer& renderer, const PanelRect
 
     ImageMapping map{origin, size, renderer.settings().width, renderer.settings().height};
     drawOutlines(state, renderer, map);
+    drawPickedPixel(state, map);
     bool changed = handleInput(state, renderer, map, hovered);
     ImGui::End();
     return changed;

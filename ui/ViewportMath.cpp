@@ -31,6 +31,12 @@ Ray pixelRay(const glm::mat4& viewProj, double x, double y, int width, int heigh
     return ray;
 }
 
+std::optional<BvhHit> pickSurface(const Bvh& bvh, const glm::mat4& viewProj, double x, double y,
+                                  int width, int height) {
+    Ray ray = pixelRay(viewProj, x, y, width, height);
+    return bvh.closestHit(ray.origin, ray.dir);
+}
+
 std::optional<glm::dvec3> intersectHorizontal(const Ray& ray, double height) {
     if (std::abs(ray.dir.y) < 1e-9) return std::nullopt;
     double t = (height - ray.origin.y) / ray.dir.y;

@@ -6,6 +6,7 @@
 #include <glm/glm.hpp>
 #include <optional>
 
+#include "scene/Bvh.h"
 #include "scene/Scene.h"
 
 namespace candela::ui {
@@ -18,6 +19,12 @@ struct Ray {
 
 /// Ray through a render pixel (x right, y down, in render pixels, pixel centres at +0.5).
 Ray pixelRay(const glm::mat4& viewProj, double x, double y, int width, int height);
+
+/// The surface seen through a render pixel (x right, y down, centres at +0.5): the nearest
+/// triangle along pixelRay, its normal turned towards the camera. Empty when the pixel sees
+/// nothing. What the editor and `candela probe --pixel` pick.
+std::optional<BvhHit> pickSurface(const Bvh& bvh, const glm::mat4& viewProj, double x, double y,
+                                  int width, int height);
 
 /// Where the ray meets the horizontal plane y = height (metres); empty when the ray is parallel
 /// to it or points away from it.

@@ -22,6 +22,8 @@ int cmdPolar(const Args& args);
 
 /// Parses "WxH" (e.g. 512x512); throws InputError.
 void parseSize(const std::string& text, int& width, int& height);
+/// "A,B,.." as finite numbers; throws InputError naming the flag.
+std::vector<float> parseNumberList(const std::string& flag, const std::string& text);
 /// Value following a flag, or throws InputError naming the flag.
 const std::string& flagValue(const Args& args, size_t& i);
 int parseInt(const std::string& flag, const std::string& text, int min, int max);

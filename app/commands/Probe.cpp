@@ -11,7 +11,9 @@
 #include "renderer/Renderer.h"
 #include "renderer/context/GlContext.h"
 #include "scene/Bvh.h"
+#include "renderer/FramePlan.h"
 #include "scene/SceneIo.h"
+#include "ui/ViewportMath.h"
 #include "util/Error.h"
 
 namespace candela {
@@ -99,6 +101,26 @@ void writeSampleChart(const Scene& scene, const glm::dvec3& normal, std::string_
                  drawn ? 100.0 * effective / drawn : 0.0, path.c_str());
 }
 
+/// --pixel X,Y: the surface point and normal the camera sees through that pixel of a
+/// width x height render (x right, y down from the top-left, as in the rendered PNG).
+ProbePoint pixelPoint(const Scene& scene, const std::string& text, int width, int height) {
+    std::vector<float> xy = parseNumberList("--pixel", text);
+    if (xy.size() != 2 || xy[0] < 0 || xy[1] < 0 || xy[0] >= width || xy[1] >= height)
+        throw InputError("--pixel: expected X,Y inside the " + std::to_string(width) + "x" +
+                         std::to_string(height) + " image (see --size), got \"" + text + "\"");
+    int x = int(xy[0]), y = int(xy[1]);
+    Bvh bvh = Bvh::build(scene);
+    glm::mat4 viewProj = cameraViewProj(scene.camera, double(width) / double(height));
+    std::optional<BvhHit> hit = ui::pickSurface(bvh, viewProj, x + 0.5, y + 0.5, width, height);
+    if (!hit)
+        throw InputError("--pixel: pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") of " +
+                         std::to_string(width) + "x" + std::to_string(height) + " sees no surface");
+    std::fprintf(stderr, "pixel (%d, %d) of %dx%d sees (%.4f, %.4f, %.4f) m, normal (%.4f, %.4f, %.4f)\n", x, y,
+                 width, height, hit->point.x, hit->point.y, hit->point.z, hit->normal.x, hit->normal.y,
+                 hit->normal.z);
+    return {hit->point, hit->normal};
+}
+
 }  // namespace
 
 int cmdProbe(const Args& args) {
@@ -106,8 +128,8 @@ int cmdProbe(const Args& args) {
     EstimateOptions options;
     options.spp = 4096;
     bool withVisibility = false;
-    std::string chartPath;
-    int chartSpp = 64;
+    std::string chartPath, pixel;
+    int chartSpp = 64, width = 960, height = 540;
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
         if (a == "--points") pointsPath = flagValue(args, i);
@@ -117,14 +139,16 @@ int cmdProbe(const Args& args) {
         else if (a == "--seed") options.seed = uint64_t(parseInt(a, flagValue(args, i), 0, 1 << 30));
         else if (a == "--visibility") withVisibility = true;
         else if (a == "--show-samples") chartPath = flagValue(args, i);
+        else if (a == "--pixel") pixel = flagValue(args, i);
+        else if (a == "--size") parseSize(flagValue(args, i), width, height);
         else if (a == "--chart-spp") chartSpp = parseInt(a, flagValue(args, i), 1, 4096);
         else if (a == "--device") device = flagValue(args, i);
         else if (!a.empty() && a[0] == '-') throw InputError("probe: unknown option " + a);
         else if (scenePath.empty()) scenePath = a;
         else throw InputError("probe: unexpected argument " + a);
     }
-    if (scenePath.empty() || pointsPath.empty())
-        throw InputError("usage: candela probe scene.json --points pts.csv [--technique T] "
+    if (scenePath.empty() || pointsPath.empty() == pixel.empty())
+        throw InputError("usage: candela probe scene.json --points pts.csv|--pixel X,Y [--size WxH] [--technique T] "
                          "[--spp N] [--visibility] [--device cpu|gpu] [--seed S] [--env-technique T] "
                          "[--show-samples chart.png [--chart-spp N]]");
     if (device != "cpu" && device != "gpu")
@@ -134,7 +158,8 @@ int cmdProbe(const Args& args) {
                          "use the CPU probe (the default)");
 
     Scene scene = loadScene(scenePath);
-    std::vector<ProbePoint> points = readPoints(pointsPath);
+    std::vector<ProbePoint> points =
+        pixel.empty() ? readPoints(pointsPath) : std::vector<ProbePoint>{pixelPoint(scene, pixel, width, height)};
     // The environment's technique: --env-technique, else --technique when it names one of the
     // environment's, else the exact reference. --technique applies to the luminaires as before,
     // except that a name only the environment has leaves them on their own techniques.

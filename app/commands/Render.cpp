@@ -16,7 +16,27 @@ namespace candela {
 
 namespace {
 
-/// "A,B,.." as finite numbers; throws InputError naming the flag.
+
+/// The brightest pixel's luminance (lux in illuminance mode).
+float peakLuminance(const std::vector<float>& rgb) {
+    float peak = 0.f;
+    for (size_t i = 0; i + 2 < rgb.size(); i += 3)
+        peak = std::max(peak, 0.2126f * rgb[i] + 0.7152f * rgb[i + 1] + 0.0722f * rgb[i + 2]);
+    return peak;
+}
+
+}  // namespace
+
+void parseSize(const std::string& text, int& width, int& height) {
+    int w = 0, h = 0;
+    char x = 0, extra = 0;
+    if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w < 1 ||
+        h < 1 || w > 16384 || h > 16384)
+        throw InputError("--size: expected WIDTHxHEIGHT with each in 1..16384, got \"" + text + "\"");
+    width = w;
+    height = h;
+}
+
 std::vector<float> parseNumberList(const std::string& flag, const std::string& text) {
     std::vector<float> values;
     size_t start = 0;
@@ -37,26 +57,6 @@ std::vector<float> parseNumberList(const std::string& flag, const std::string& t
         start = comma + 1;
     }
     return values;
-}
-
-/// The brightest pixel's luminance (lux in illuminance mode).
-float peakLuminance(const std::vector<float>& rgb) {
-    float peak = 0.f;
-    for (size_t i = 0; i + 2 < rgb.size(); i += 3)
-        peak = std::max(peak, 0.2126f * rgb[i] + 0.7152f * rgb[i + 1] + 0.0722f * rgb[i + 2]);
-    return peak;
-}
-
-}  // namespace
-
-void parseSize(const std::string& text, int& width, int& height) {
-    int w = 0, h = 0;
-    char x = 0, extra = 0;
-    if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w < 1 ||
-        h < 1 || w > 16384 || h > 16384)
-        throw InputError("--size: expected WIDTHxHEIGHT with each in 1..16384, got \"" + text + "\"");
-    width = w;
-    height = h;
 }
 
 const std::string& flagValue(const Args& args, size_t& i) {

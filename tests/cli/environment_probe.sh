@@ -60,6 +60,20 @@ check "chart written: $(cat "$tmp/chart.txt")" '[ -s "$tmp/chart.png" ]'
 sums=$(awk '$1 ~ /^[+-][XYZ]$/ {d += $3; e += $4; if ($4 > $3) bad++} $1 == "all" {D = $3; E = $4}
             END {print (d == D && e == E && !bad && D >= 60 && D <= 66) ? "ok" : "bad " d " " D " " e " " E}' "$tmp/chart.txt")
 check "chart counts add up: $sums" '[ "$sums" = ok ]'
+# --pixel X,Y: the surface a pixel of the render sees. The camera (0,4,5) looks at the origin;
+# the centre pixel of 960x540 sees the front face of the unit box (z = 0.5, normal +Z) and a
+# pixel lower down the floor in front of it (y = 0, normal +Y); a pixel of sky is an error.
+"$binary" probe "$data/pixel.json" --pixel 480,270 --size 960x540 --technique balanced --spp 256 \
+  --show-samples "$tmp/pixel.png" >"$tmp/pixel.csv" 2>"$tmp/pixel.txt"
+face=$(awk -F, 'NR == 2 { z = $3 - 0.5; if (z < 0) z = -z; print (z < 1e-6 && $4 == 0 && $5 == 0 && $6 == 1) ? "ok" : $0 }' "$tmp/pixel.csv")
+check "centre pixel sees the box's front face: $face $(cat "$tmp/pixel.txt")" '[ "$face" = ok ]'
+behind=$(awk '$1 == "-Z" {print $3}' "$tmp/pixel.txt")
+check "nothing selected on the face behind the picked normal: $behind" '[ "$behind" = 0 ]'
+floor=$("$binary" probe "$data/pixel.json" --pixel 480,330 2>/dev/null | awk -F, 'NR == 2 { y = $2; if (y < 0) y = -y; print (y < 1e-6 && $5 == 1) ? "ok" : $0 }')
+check "a lower pixel sees the floor: $floor" '[ "$floor" = ok ]'
+expect "--pixel: pixel (10, 10) of 960x540 sees no surface" -- probe "$data/pixel.json" --pixel 10,10
+expect "--pixel: expected X,Y inside the 64x48 image" -- probe "$data/pixel.json" --pixel 64,0 --size 64x48
+expect "usage" -- probe "$data/pixel.json" --pixel 1,1 --points "$pts"
 echo '{"geometry": []}' > "$tmp/noenv.json"
 expect "--show-samples: the scene has no environment" -- probe "$tmp/noenv.json" --points "$pts" --show-samples "$tmp/x.png"
 

@@ -101,6 +101,22 @@ move_to() {
         "d['mouse'] is not None and abs(d['mouse'][0] - $1) < 1 and abs(d['mouse'][1] - $2) < 1"
 }
 
+# scroll_into_view WIDGET PANEL: scrolls the panel (its rectangle recorded as panel.PANEL) with
+# the mouse wheel until the recorded widget lies inside it, with a margin of 4 pixels.
+scroll_into_view() {
+    local widget=$1 panel=panel.$2 x y i where
+    for ((i = 0; i < 60; i++)); do
+        where=$(layout "'in' if w('$widget')[1] >= w('$panel')[1] + 24 and w('$widget')[3] <= w('$panel')[3] - 4 else ('down' if w('$widget')[3] > w('$panel')[3] - 4 else 'up')") ||
+            fail "no $widget or $panel in the layout"
+        [ "$where" = in ] && return 0
+        read -r x y < <(layout "'%d %d' % ((w('$panel')[0] + w('$panel')[2]) / 2, (w('$panel')[1] + w('$panel')[3]) / 2)")
+        move_to "$x" "$y"
+        if [ "$where" = down ]; then xdotool click 5; else xdotool click 4; fi
+        sleep 0.2
+    done
+    fail "could not scroll $widget into $panel"
+}
+
 # e2e_start_xvfb WxH: an X server that picks a free display number itself and reports it once
 # it is ready.
 e2e_start_xvfb() {
