@@ -214,7 +214,10 @@ struct RefContext {
     double f;       ///< delta / q.z: s(u) = u (1 - f) + p f
 };
 
-glm::dvec3 refIntegrand(const RefContext& c, glm::dvec2 u) {
+/// The integrand at u; `shadowed` tells whether a shadow ray removed it (for refCell's
+/// refinement along shadow edges).
+glm::dvec3 refIntegrand(const RefContext& c, glm::dvec2 u, bool& shadowed) {
+    shadowed = false;
     const Setup& s = *c.s;
     const LightFieldData& lf = *s.lf;
     glm::dvec2 sPos = u * (1.0 - c.f) + c.p * c.f;
@@ -224,11 +227,17 @@ glm::dvec3 refIntegrand(const RefContext& c, glm::dvec2 u) {
     double r2 = glm::dot(d, d), r = std::sqrt(r2);
     double cosR = glm::dot(s.n, d) / r;
     if (!(cosR > 0.0)) return glm::dvec3(0.0);
-    if (c.o->visibility && !c.o->visibility->visible(s.world, worldOf(s, sPos)))
+    if (c.o->visibility && !c.o->visibility->visible(s.world, worldOf(s, sPos))) {
+        shadowed = true;
         return glm::dvec3(0.0);
+    }
     // E = q.z int_U L cos_r / |u - q|^3 du: the solid angle of du seen from q is q.z du / r^3.
     return lum * lf.psi(c.m, u, sPos) * lf.colour(c.m, sPos) * (cosR * s.q.z / (r2 * r));
 }
+
+/// Deepest refinement along shadow edges: cells 2^-12 of a basis support across, so an edge's
+/// cells hold ~1e-3 of the support's energy in all (the edge's length over the cell width).
+constexpr int kShadowDepth = 12;
 
 glm::dvec3 refCell(const RefContext& c, glm::dvec2 lo, glm::dvec2 hi, int depth) {
     const Setup& s = *c.s;
@@ -248,11 +257,23 @@ glm::dvec3 refCell(const RefContext& c, glm::dvec2 lo, glm::dvec2 hi, int depth)
                refCell(c, {lo.x, mid.y}, {mid.x, hi.y}, depth + 1) + refCell(c, mid, hi, depth + 1);
     }
     glm::dvec3 sum(0.0);
+    int shadowedPoints = 0, litPoints = 0;
     for (int j = 0; j < 3; ++j)
         for (int i = 0; i < 3; ++i) {
             glm::dvec2 u = lo + 0.5 * (glm::dvec2(kGx[i], kGx[j]) + 1.0) * size;
-            sum += kGw[i] * kGw[j] * refIntegrand(c, u);
+            bool shadowed = false;
+            glm::dvec3 value = refIntegrand(c, u, shadowed);
+            sum += kGw[i] * kGw[j] * value;
+            shadowedPoints += shadowed;
+            litPoints += value != glm::dvec3(0.0);
         }
+    // A shadow edge crosses the cell (some points lit, some shadowed): the integrand jumps there,
+    // so halve the cell until the edge's cells are 2^-kShadowDepth of the support.
+    if (shadowedPoints > 0 && litPoints > 0 && depth < kShadowDepth) {
+        glm::dvec2 mid = 0.5 * (lo + hi);
+        return refCell(c, lo, mid, depth + 1) + refCell(c, {mid.x, lo.y}, {hi.x, mid.y}, depth + 1) +
+               refCell(c, {lo.x, mid.y}, {mid.x, hi.y}, depth + 1) + refCell(c, mid, hi, depth + 1);
+    }
     return sum * (0.25 * size.x * size.y);
 }
 

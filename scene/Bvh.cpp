@@ -231,10 +231,12 @@ double Bvh::hitDistance(const gpu::BvhTriangle& triangle, const glm::dvec3& orig
     double invDet = 1.0 / det;
     glm::dvec3 s = origin - glm::dvec3(triangle.v0);
     double u = glm::dot(s, p) * invDet;
-    if (u < 0.0 || u > 1.0) return -1.0;
+    // Barycentric slack: a ray through an edge or vertex shared by two triangles could miss
+    // both by rounding and leak out of a closed mesh; a hair of overlap closes it.
+    if (u < -kEdgeSlack || u > 1.0 + kEdgeSlack) return -1.0;
     glm::dvec3 q = glm::cross(s, e1);
     double v = glm::dot(dir, q) * invDet;
-    if (v < 0.0 || u + v > 1.0) return -1.0;
+    if (v < -kEdgeSlack || u + v > 1.0 + kEdgeSlack) return -1.0;
     double t = glm::dot(e2, q) * invDet;
     return t > tMin && t < tMax ? t : -1.0;
 }

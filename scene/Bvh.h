@@ -70,6 +70,9 @@ struct Bvh {
     static double segmentEpsilon(double distance) { return 1e-4 * std::max(1.0, distance); }
     /// Start bias of a ray to infinity, metres (a segment's bias for lengths up to 1 m).
     static constexpr double kRayEpsilon = 1e-4;
+    /// Barycentric slack of the triangle test (double here, 1e-6 in the float GLSL twin): rays
+    /// through a shared edge or vertex hit, so closed meshes do not leak (tests/visibility_test).
+    static constexpr double kEdgeSlack = 1e-9;
 
     /// Inner levels on the longest root-to-leaf path (0 for a single leaf).
     int depth() const;

@@ -163,6 +163,44 @@ void parsePlane(const nlohmann::json& item, const json::Where& where, size_t ind
     scene.meshes.push_back(std::move(mesh));
 }
 
+/// {"disc": {"center", "normal", "radius", "segments"}}: a flat, two-sided disc as a regular
+/// polygon (a fan of `segments` triangles, default 256) inscribed in the circle; its area is
+/// (segments / 2) sin(2 pi / segments) r^2, 1e-4 below pi r^2 at the default.
+void parseDisc(const nlohmann::json& item, const json::Where& where, size_t index, Scene& scene) {
+    json::checkKeys(item, {"disc", "name", "albedo", "specular", "roughness"}, where);
+    const json::Where at = where / "disc";
+    const nlohmann::json& spec = item["disc"];
+    json::checkKeys(spec, {"center", "normal", "radius", "segments"}, at);
+    glm::dvec3 center = json::optional(spec, "center", at, glm::dvec3(0.0), json::vec3);
+    glm::dvec3 n = glm::normalize(
+        json::optional(spec, "normal", at, glm::dvec3(0.0, 1.0, 0.0), json::direction));
+    if (!spec.contains("radius")) json::fail(at / "radius", "a radius in metres (missing)");
+    double radius = json::positive(spec["radius"], at / "radius");
+    double segmentsValue = json::optional(spec, "segments", at, 256.0, json::positive);
+    if (segmentsValue != std::floor(segmentsValue) || segmentsValue < 3 || segmentsValue > 65536)
+        json::fail(at / "segments", "a whole number of segments from 3 to 65536");
+    int segments = int(segmentsValue);
+
+    Mesh mesh;
+    mesh.material = addItemMaterial(item, where, "disc " + std::to_string(index), scene);
+    mesh.name = scene.materials[mesh.material].name;
+    mesh.shape = MeshShape::Plane;
+    glm::dvec3 u, v;
+    planeTangents(n, u, v);
+    mesh.positions.push_back(glm::vec3(center));
+    mesh.normals.push_back(glm::vec3(n));
+    for (int k = 0; k < segments; ++k) {
+        double a = 2.0 * 3.14159265358979323846 * double(k) / double(segments);
+        mesh.positions.push_back(glm::vec3(center + radius * (std::cos(a) * u + std::sin(a) * v)));
+        mesh.normals.push_back(glm::vec3(n));
+    }
+    // Counter-clockwise seen from the normal's side (u x v = n).
+    for (uint32_t k = 0; k < uint32_t(segments); ++k)
+        for (uint32_t i : {0u, 1u + k, 1u + (k + 1) % uint32_t(segments)}) mesh.indices.push_back(i);
+    mesh.computeBounds();
+    scene.meshes.push_back(std::move(mesh));
+}
+
 void parseBox(const nlohmann::json& item, const json::Where& where, size_t index, Scene& scene) {
     json::checkKeys(item, {"box", "name", "albedo", "specular", "roughness"}, where);
     const json::Where at = where / "box";
@@ -227,9 +265,9 @@ void parseGltfItem(const nlohmann::json& item, const json::Where& where, Scene& 
 void parseGeometryItem(const nlohmann::json& item, const json::Where& where, size_t index,
                        Scene& scene) {
     if (!item.is_object()) json::fail(where, "an object, got " + std::string(item.type_name()));
-    int kinds =
-        int(item.contains("gltf")) + int(item.contains("plane")) + int(item.contains("box"));
-    if (kinds != 1) json::fail(where, "exactly one of \"gltf\", \"plane\" or \"box\"");
+    int kinds = int(item.contains("gltf")) + int(item.contains("plane")) + int(item.contains("box")) +
+                int(item.contains("disc"));
+    if (kinds != 1) json::fail(where, "exactly one of \"gltf\", \"plane\", \"disc\" or \"box\"");
 
     GeometryItem geometry;
     geometry.source = item;
@@ -238,6 +276,8 @@ void parseGeometryItem(const nlohmann::json& item, const json::Where& where, siz
         parseGltfItem(item, where, scene);
     else if (item.contains("plane"))
         parsePlane(item, where, index, scene);
+    else if (item.contains("disc"))
+        parseDisc(item, where, index, scene);
     else
         parseBox(item, where, index, scene);
     for (size_t m = firstMesh; m < scene.meshes.size(); ++m) geometry.meshes.push_back(uint32_t(m));

@@ -39,10 +39,12 @@ bool bvhHitsTriangle(BvhTriangle tri, vec3 origin, vec3 dir, float tMin, float t
     float invDet = 1.0 / det;
     vec3 s = origin - tri.v0.xyz;
     float u = dot(s, p) * invDet;
-    if (u < 0.0 || u > 1.0) return false;
+    // Barycentric slack (Bvh::kEdgeSlack in float): rays through shared edges do not leak.
+    const float kEdgeSlack = 1e-6;
+    if (u < -kEdgeSlack || u > 1.0 + kEdgeSlack) return false;
     vec3 q = cross(s, e1);
     float v = dot(dir, q) * invDet;
-    if (v < 0.0 || u + v > 1.0) return false;
+    if (v < -kEdgeSlack || u + v > 1.0 + kEdgeSlack) return false;
     float t = dot(e2, q) * invDet;
     return t > tMin && t < tMax;
 }

@@ -223,6 +223,32 @@ TEST(SceneIo, PlaneTangentConventionAndWinding) {
     }
 }
 
+TEST(SceneIo, DiscIsARegularPolygonFacingItsNormal) {
+    Scene s = parse(R"({"geometry": [{"disc": {"center": [1,2,3], "normal": [0,0,-1], "radius": 0.5,
+                                                "segments": 64}}]})");
+    ASSERT_EQ(s.meshes.size(), 1u);
+    const Mesh& m = s.meshes[0];
+    EXPECT_EQ(m.shape, MeshShape::Plane);
+    ASSERT_EQ(m.triangleCount(), 64u);
+    double area = 0.0;
+    for (size_t t = 0; t < m.indices.size(); t += 3) {
+        glm::dvec3 a = m.positions[m.indices[t]], b = m.positions[m.indices[t + 1]], c = m.positions[m.indices[t + 2]];
+        glm::dvec3 cross = glm::cross(b - a, c - a);
+        area += 0.5 * glm::length(cross);
+        // Counter-clockwise seen from the normal's side; 1e-5: float vertices.
+        EXPECT_NEAR(glm::dot(glm::normalize(cross), glm::dvec3(0, 0, -1)), 1.0, 1e-5);
+    }
+    for (size_t i = 1; i < m.positions.size(); ++i) {
+        EXPECT_NEAR(glm::length(glm::dvec3(m.positions[i]) - glm::dvec3(1, 2, 3)), 0.5, 1e-6);
+        EXPECT_NEAR(m.positions[i].z, 3.f, 1e-6f);
+    }
+    // The inscribed 64-gon: (n / 2) sin(2 pi / n) r^2.
+    EXPECT_NEAR(area, 32.0 * std::sin(2.0 * 3.141592653589793 / 64.0) * 0.25, 1e-6);
+    EXPECT_CONTAINS(inputError([] { parse(R"({"geometry": [{"disc": {"radius": 0}}]})"); }), "t.json: geometry[0].disc.radius");
+    EXPECT_CONTAINS(inputError([] { parse(R"({"geometry": [{"disc": {"radius": 1, "segments": 2.5}}]})"); }), "t.json: geometry[0].disc.segments: expected a whole number of segments from 3 to 65536");
+    EXPECT_CONTAINS(inputError([] { parse(R"({"geometry": [{"disc": {"center": [0,0,0]}}]})"); }), "t.json: geometry[0].disc.radius");
+}
+
 TEST(SceneIo, BoxHasOutwardFlatFaces) {
     Scene s = parse(R"({"geometry": [{"box": {"center": [1,0.5,-1], "size": [2,1,0.5],
                                                "rotate_y_deg": 90}}]})");

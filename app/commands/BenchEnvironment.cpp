@@ -95,7 +95,7 @@ std::shared_ptr<const EnvironmentMap> skyAt(SkyParams sky, double azimuthDeg) {
 int benchEnvironment(const Args& args) {
     std::string source, outDir = "bench-environment";
     std::vector<int> sppList = {4, 8, 16, 32, 64, 128, 256, 512};
-    int refSpp = 16384, width = 480, height = 270, temporalFrames = 24, temporalSpp = 16;
+    int refSpp = 16384, width = 480, height = 270, temporalFrames = 24, temporalSpp = 16, repeats = 4;
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
         if (a == "--environment") source = flagValue(args, i);
@@ -104,11 +104,12 @@ int benchEnvironment(const Args& args) {
         else if (a == "--reference-spp") refSpp = parseInt(a, flagValue(args, i), 16, 1 << 22);
         else if (a == "--size") parseSize(flagValue(args, i), width, height);
         else if (a == "--frames") temporalFrames = parseInt(a, flagValue(args, i), 3, 10000);
+        else if (a == "--repeats") repeats = parseInt(a, flagValue(args, i), 1, 64);
         else throw InputError("bench: unknown option " + a);
     }
     if (source.empty())
         throw InputError("usage: candela bench --environment sky|MAP.hdr|MAP.exr [--out DIR] [--spp 4,8,...] "
-                         "[--reference-spp N] [--size WxH] [--frames N]");
+                         "[--reference-spp N] [--size WxH] [--frames N] [--repeats K]");
     fs::create_directories(outDir);
     const fs::path out(outDir);
 
@@ -166,13 +167,24 @@ int benchEnvironment(const Args& args) {
         std::fprintf(stderr, "bench: %-14s %6d spp  %9.2f ms  rel. RMSE %.4f (raw %.4f)  Delta E %.3f\n",
                      t.c_str(), spp, r.shadeMs, r.rmse, r.rawRmse, r.deltaE);
     };
+    // Each point is the mean squared error of `repeats` images with independent seeds: the
+    // balanced techniques share one pool of light samples per face among all pixels of a frame,
+    // so part of a frame's error is common to every pixel and one image's rmse varies much
+    // from seed to seed (their spread goes in the CSV).
     for (const char* t : techniques)
         for (int spp : sppList) {
-            Shot s = render(renderer, scene, settings, t, spp, seed++);
-            addRow(t, spp, s);
-            if (spp == sppList.front() || spp == 64 || spp == sppList.back())
-                writeImage8((out / (std::string(t) + "_" + std::to_string(spp) + ".png")).string(), width, height,
-                            s.display);
+            std::vector<BenchRow> images;
+            for (int k = 0; k < repeats; ++k) {
+                Shot s = render(renderer, scene, settings, t, spp, seed++);
+                images.push_back(benchRow(t, spp, s.shadeMs, s.linear, s.display, ref, refDisplay, refNoise));
+                if (k == 0 && (spp == sppList.front() || spp == 64 || spp == sppList.back()))
+                    writeImage8((out / (std::string(t) + "_" + std::to_string(spp) + ".png")).string(), width,
+                                height, s.display);
+            }
+            BenchRow r = meanRow(images);
+            rows.push_back(r);
+            std::fprintf(stderr, "bench: %-14s %6d spp  %9.2f ms  rel. RMSE %.4f +- %.4f over %d images  Delta E %.3f\n",
+                         t, spp, r.shadeMs, r.rmse, r.rmseSpread, r.repeats, r.deltaE);
         }
     {
         render(renderer, scene, settings, "havran2005", 1, 1);  // compile; builds the lights
@@ -183,7 +195,8 @@ int benchEnvironment(const Args& args) {
     writeBenchCsv((out / "bench.csv").string(), rows);
     std::snprintf(line, sizeof line,
                   "\n1. error against samples (reference: balanced-mis, %d spp, own noise %.5f removed in "
-                  "quadrature)\n", refSpp, refNoise);
+                  "quadrature; each error the root mean square over %d images of independent seeds)\n",
+                  refSpp, refNoise, repeats);
     summary << line;
     for (int spp : sppList) {
         double eb = 0, eu = 0, em = 0, eg = 0, tb = 0;

@@ -85,10 +85,34 @@ double atError(const std::vector<BenchRow>& rows, const std::string& technique, 
 
 void writeBenchCsv(const std::string& path, const std::vector<BenchRow>& rows) {
     std::ofstream csv(path);
-    csv << "technique,spp,gpu_ms,rel_rmse,mean_delta_e,rel_rmse_raw\n";
+    csv << "technique,spp,gpu_ms,rel_rmse,mean_delta_e,rel_rmse_raw,repeats,rel_rmse_spread\n";
     for (const BenchRow& r : rows)
         csv << r.technique << "," << r.spp << "," << r.shadeMs << "," << r.rmse << "," << r.deltaE << ","
-            << r.rawRmse << "\n";
+            << r.rawRmse << "," << r.repeats << "," << r.rmseSpread << "\n";
+}
+
+BenchRow meanRow(const std::vector<BenchRow>& repeats) {
+    BenchRow mean;
+    if (repeats.empty()) return mean;
+    mean.technique = repeats.front().technique;
+    mean.spp = repeats.front().spp;
+    mean.repeats = int(repeats.size());
+    double mse = 0.0, rawMse = 0.0, sum = 0.0, sumSq = 0.0;
+    for (const BenchRow& r : repeats) {
+        mean.shadeMs += r.shadeMs;
+        mean.deltaE += r.deltaE;
+        mse += r.rmse * r.rmse;
+        rawMse += r.rawRmse * r.rawRmse;
+        sum += r.rmse;
+        sumSq += r.rmse * r.rmse;
+    }
+    double n = double(repeats.size());
+    mean.shadeMs /= n;
+    mean.deltaE /= n;
+    mean.rmse = std::sqrt(mse / n);
+    mean.rawRmse = std::sqrt(rawMse / n);
+    mean.rmseSpread = n > 1 ? std::sqrt(std::max(0.0, (sumSq - sum * sum / n) / (n - 1))) : 0.0;
+    return mean;
 }
 
 bool runGnuplot(const std::string& dir, const std::string& output) {

@@ -30,7 +30,13 @@ struct BenchRow {
     double rmse = 0.0;     ///< Against the truth: the raw error with the reference's noise removed.
     double deltaE = 0.0;   ///< Mean CIE76 Delta E of the tone-mapped images
     double rawRmse = 0.0;  ///< Against the reference image as it is.
+    int repeats = 1;       ///< Images (independent seeds) the row averages.
+    double rmseSpread = 0.0;  ///< Standard deviation of one image's rmse over those repeats.
 };
+/// The mean of independent repeats of one (technique, spp): mean squared errors (so rmse is the
+/// root of the expected squared error, as one image's rmse is of its own), mean Delta E and time,
+/// and the spread of single images' rmse.
+BenchRow meanRow(const std::vector<BenchRow>& repeats);
 /// The row of an image (RGB float `linear`, sRGB8 `display`) against a reference whose own noise
 /// (relative RMSE against the truth) is refNoise. The two are independent, so
 /// E|x - r|^2 = |x - truth|^2 + |r - truth|^2: the reference's noise is removed in quadrature.
@@ -40,7 +46,7 @@ BenchRow benchRow(std::string technique, int spp, double shadeMs, const std::vec
 /// Samples (time: GPU ms) a technique needs to reach `error`: log-log interpolation along its
 /// rows; NaN when its sweep never gets there.
 double atError(const std::vector<BenchRow>& rows, const std::string& technique, double error, bool time);
-/// bench.csv: technique,spp,gpu_ms,rel_rmse,mean_delta_e,rel_rmse_raw.
+/// bench.csv: technique,spp,gpu_ms,rel_rmse,mean_delta_e,rel_rmse_raw,repeats,rel_rmse_spread.
 void writeBenchCsv(const std::string& path, const std::vector<BenchRow>& rows);
 /// Runs gnuplot on DIR/plot.gp writing DIR/OUTPUT; false (and a note on stdout) without gnuplot.
 bool runGnuplot(const std::string& dir, const std::string& output);

@@ -11,6 +11,7 @@
 #include "renderer/Renderer.h"
 #include "renderer/context/GlContext.h"
 #include "scene/Bvh.h"
+#include "scene/EmbreeVisibility.h"
 #include "renderer/FramePlan.h"
 #include "scene/SceneIo.h"
 #include "ui/ViewportMath.h"
@@ -128,6 +129,7 @@ int cmdProbe(const Args& args) {
     EstimateOptions options;
     options.spp = 4096;
     bool withVisibility = false;
+    std::string visibilityBackend = "embree";
     std::string chartPath, pixel;
     int chartSpp = 64, width = 960, height = 540;
     for (size_t i = 0; i < args.size(); ++i) {
@@ -137,7 +139,10 @@ int cmdProbe(const Args& args) {
         else if (a == "--env-technique") envTechnique = flagValue(args, i);
         else if (a == "--spp") options.spp = parseInt(a, flagValue(args, i), 1, 1 << 26);
         else if (a == "--seed") options.seed = uint64_t(parseInt(a, flagValue(args, i), 0, 1 << 30));
-        else if (a == "--visibility") withVisibility = true;
+        else if (a == "--visibility") {
+            withVisibility = true;
+            if (i + 1 < args.size() && (args[i + 1] == "embree" || args[i + 1] == "bvh")) visibilityBackend = args[++i];
+        }
         else if (a == "--show-samples") chartPath = flagValue(args, i);
         else if (a == "--pixel") pixel = flagValue(args, i);
         else if (a == "--size") parseSize(flagValue(args, i), width, height);
@@ -149,7 +154,7 @@ int cmdProbe(const Args& args) {
     }
     if (scenePath.empty() || pointsPath.empty() == pixel.empty())
         throw InputError("usage: candela probe scene.json --points pts.csv|--pixel X,Y [--size WxH] [--technique T] "
-                         "[--spp N] [--visibility] [--device cpu|gpu] [--seed S] [--env-technique T] "
+                         "[--spp N] [--visibility [embree|bvh]] [--device cpu|gpu] [--seed S] [--env-technique T] "
                          "[--show-samples chart.png [--chart-spp N]]");
     if (device != "cpu" && device != "gpu")
         throw InputError("--device: expected cpu or gpu, got \"" + device + "\"");
@@ -197,13 +202,17 @@ int cmdProbe(const Args& args) {
 
     std::vector<glm::dvec3> E(points.size(), glm::dvec3(0.0)), var(points.size(), glm::dvec3(0.0));
     if (device == "cpu") {
+        // --visibility: shadow rays through Embree (the ray-traced reference); --visibility bvh:
+        // through Candela's own BVH, the one the GPU traverses.
         std::unique_ptr<Bvh> bvh;
-        std::unique_ptr<BvhVisibility> vis;
-        if (withVisibility) {
+        std::unique_ptr<Visibility> vis;
+        if (withVisibility && visibilityBackend == "bvh") {
             bvh = std::make_unique<Bvh>(Bvh::build(scene));
             vis = std::make_unique<BvhVisibility>(*bvh);
-            options.visibility = vis.get();
+        } else if (withVisibility) {
+            vis = std::make_unique<EmbreeVisibility>(scene);
         }
+        options.visibility = vis.get();
         std::unique_ptr<EnvironmentLighting> lighting;
         if (scene.environmentMap)
             lighting = std::make_unique<EnvironmentLighting>(scene.environmentMap);

@@ -1,0 +1,45 @@
+#pragma once
+// Ray-traced visibility through Intel Embree 3 (Debian's libembree-dev), for the CPU reference:
+// `candela probe --visibility` and the techniques' reference visibility in tests and benches.
+// It is a second, independent implementation of what scene/Bvh.h does for the GPU, and the tests
+// hold the two against each other.
+//
+// Same conventions as Bvh: triangles are two-sided; visible(from, to) tests the open segment
+// shrunk by Bvh::segmentEpsilon(|to - from|) at both ends; visibleToward(from, dir) the ray to
+// infinity beyond Bvh::kRayEpsilon. Embree works in single precision: coordinates of up to ~100 m
+// keep rounding (~1e-5 m) well inside those biases.
+//
+// Thread-safe after construction: the estimators may query it from several threads.
+
+#include <glm/glm.hpp>
+#include <memory>
+
+#include "luminaires/Registry.h"
+#include "scene/Scene.h"
+
+namespace candela {
+
+class EmbreeVisibility : public Visibility {
+public:
+    /// Builds an Embree scene of every mesh of `scene` (world space). Throws std::runtime_error
+    /// if Embree cannot create its device.
+    explicit EmbreeVisibility(const Scene& scene);
+    ~EmbreeVisibility() override;
+    EmbreeVisibility(const EmbreeVisibility&) = delete;
+    EmbreeVisibility& operator=(const EmbreeVisibility&) = delete;
+
+    bool visible(const glm::dvec3& from, const glm::dvec3& to) const override;
+    bool visibleToward(const glm::dvec3& from, const glm::dvec3& dir) const override;
+
+    /// Triangles in the Embree scene.
+    size_t triangleCount() const { return mTriangles; }
+
+private:
+    bool occluded(const glm::dvec3& origin, const glm::dvec3& dir, double tNear, double tFar) const;
+
+    struct Handles;
+    std::unique_ptr<Handles> mHandles;
+    size_t mTriangles = 0;
+};
+
+}  // namespace candela
