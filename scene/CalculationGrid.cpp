@@ -8,7 +8,7 @@
 #include <memory>
 
 #include "luminaires/Registry.h"
-#include "scene/Bvh.h"
+#include "scene/EmbreeVisibility.h"
 #include "scene/Scene.h"
 #include "util/Error.h"
 
@@ -109,13 +109,12 @@ GridResult computeGrid(const Scene& scene, const GridSpec& spec) {
                 " with a CPU estimator (available: " + techniqueNames(l->kind()) + ")");
         chosen.push_back(t);
     }
-    std::unique_ptr<Bvh> bvh;
-    std::unique_ptr<BvhVisibility> vis;
+    // Shadows through Embree, the ray-traced reference (README, "Visibility").
+    std::unique_ptr<EmbreeVisibility> vis;
     EstimateOptions options;
     options.spp = std::max(1, spec.spp);
     if (spec.visibility) {
-        bvh = std::make_unique<Bvh>(Bvh::build(scene));
-        vis = std::make_unique<BvhVisibility>(*bvh);
+        vis = std::make_unique<EmbreeVisibility>(scene);
         options.visibility = vis.get();
     }
 
