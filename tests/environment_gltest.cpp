@@ -208,8 +208,10 @@ TEST(EnvironmentGl, BlackMapsAndHugeSunsStayFinite) {
             ASSERT_TRUE(std::isfinite(e[i].x) && std::isfinite(e[i].y) && std::isfinite(e[i].z)) << technique;
             EXPECT_GE(lum(e[i]), 0.0);
         }
-        // Not asserted yet: on this 64 x 32 map, GPU balanced is 4-17 % off the exact sum for
-        // some normals facing away from the sun, where the CPU twin is exact (issue 5's note).
+        // Accuracy is not asserted here: for normals facing away from the sun, balanced and
+        // uniform-faces send nearly all of the sun's face's samples to the sun behind the
+        // surface, and one run misses that face's sky in front by 4-17 % (as the CPU twin does:
+        // unbiased over many runs, heavy-tailed in one; Environment.HugeSunOnAFaceHalfBehind...).
     }
 }
 
