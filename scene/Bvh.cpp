@@ -276,14 +276,23 @@ std::optional<BvhHit> Bvh::closestHit(const glm::dvec3& origin, const glm::dvec3
     return best;
 }
 
-bool Bvh::occluded(const glm::dvec3& from, const glm::dvec3& to) const {
-    if (nodes.empty()) return false;
+bool Bvh::segmentRay(const glm::dvec3& from, const glm::dvec3& to, glm::dvec3& dir, double& tMin,
+                     double& tMax) {
     glm::dvec3 d = to - from;
     double distance = glm::length(d);
     double eps = segmentEpsilon(distance);
-    double tMin = eps, tMax = distance - eps;
+    tMin = eps;
+    tMax = distance - eps;
     if (!(tMax > tMin)) return false;  // Shorter than the bias (or NaN): nothing in between.
-    return occludedAlong(from, d / distance, tMin, tMax);
+    dir = d / distance;
+    return true;
+}
+
+bool Bvh::occluded(const glm::dvec3& from, const glm::dvec3& to) const {
+    glm::dvec3 dir;
+    double tMin, tMax;
+    if (nodes.empty() || !segmentRay(from, to, dir, tMin, tMax)) return false;
+    return occludedAlong(from, dir, tMin, tMax);
 }
 
 bool Bvh::occludedToward(const glm::dvec3& from, const glm::dvec3& dir) const {

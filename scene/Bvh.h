@@ -68,6 +68,11 @@ struct Bvh {
                               const glm::dvec3& dir, double tMin, double tMax);
     /// End bias of a segment of `distance` metres, metres.
     static double segmentEpsilon(double distance) { return 1e-4 * std::max(1.0, distance); }
+    /// The ray a shadow segment from `from` to `to` tests: unit dir and tMin < t < tMax, shrunk by
+    /// segmentEpsilon at both ends. False when nothing is left to test (shorter than the bias,
+    /// or NaN). Shared by every visibility implementation, so all have the same bias.
+    static bool segmentRay(const glm::dvec3& from, const glm::dvec3& to, glm::dvec3& dir, double& tMin,
+                           double& tMax);
     /// Start bias of a ray to infinity, metres (a segment's bias for lengths up to 1 m).
     static constexpr double kRayEpsilon = 1e-4;
     /// Barycentric slack of the triangle test (double here, 1e-6 in the float GLSL twin): rays

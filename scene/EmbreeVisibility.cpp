@@ -71,11 +71,9 @@ bool EmbreeVisibility::occluded(const glm::dvec3& origin, const glm::dvec3& dir,
 }
 
 bool EmbreeVisibility::visible(const glm::dvec3& from, const glm::dvec3& to) const {
-    glm::dvec3 d = to - from;
-    double distance = glm::length(d);
-    double eps = Bvh::segmentEpsilon(distance);
-    if (!(distance - eps > eps)) return true;  // Shorter than the bias (or NaN): nothing between.
-    return !occluded(from, d / distance, eps, distance - eps);
+    glm::dvec3 dir;
+    double tMin, tMax;
+    return !Bvh::segmentRay(from, to, dir, tMin, tMax) || !occluded(from, dir, tMin, tMax);
 }
 
 bool EmbreeVisibility::visibleToward(const glm::dvec3& from, const glm::dvec3& dir) const {

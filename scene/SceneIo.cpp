@@ -113,7 +113,7 @@ glm::dvec3 positive3(const nlohmann::json& v, const json::Where& where) {
     return s;
 }
 
-/// Material of a plane or box entry; its name is the entry's "name" or `fallbackName`.
+/// Material of a procedural geometry entry (plane, disc, box); its name is the entry's "name" or `fallbackName`.
 uint32_t addItemMaterial(const nlohmann::json& item, const json::Where& where,
                          const std::string& fallbackName, Scene& scene) {
     Material material;
@@ -134,6 +134,16 @@ void planeTangents(const glm::dvec3& n, glm::dvec3& u, glm::dvec3& v) {
     v = glm::cross(n, u);
 }
 
+/// A mesh for a procedural geometry item: its material (from the item's fields), name and shape.
+Mesh itemMesh(const nlohmann::json& item, const json::Where& where, const std::string& label, MeshShape shape,
+              Scene& scene) {
+    Mesh mesh;
+    mesh.material = addItemMaterial(item, where, label, scene);
+    mesh.name = scene.materials[mesh.material].name;
+    mesh.shape = shape;
+    return mesh;
+}
+
 void parsePlane(const nlohmann::json& item, const json::Where& where, size_t index, Scene& scene) {
     json::checkKeys(item, {"plane", "name", "albedo", "specular", "roughness"}, where);
     const json::Where at = where / "plane";
@@ -145,10 +155,7 @@ void parsePlane(const nlohmann::json& item, const json::Where& where, size_t ind
     if (!spec.contains("size")) json::fail(at / "size", "[width, height] in metres (missing)");
     glm::dvec2 size = positive2(spec["size"], at / "size");
 
-    Mesh mesh;
-    mesh.material = addItemMaterial(item, where, "plane " + std::to_string(index), scene);
-    mesh.name = scene.materials[mesh.material].name;
-    mesh.shape = MeshShape::Plane;
+    Mesh mesh = itemMesh(item, where, "plane " + std::to_string(index), MeshShape::Plane, scene);
     glm::dvec3 u, v;
     planeTangents(n, u, v);
     glm::dvec3 hu = u * (0.5 * size.x), hv = v * (0.5 * size.y);
@@ -181,10 +188,7 @@ void parseDisc(const nlohmann::json& item, const json::Where& where, size_t inde
         json::fail(at / "segments", "a whole number of segments from 3 to 65536");
     int segments = int(segmentsValue);
 
-    Mesh mesh;
-    mesh.material = addItemMaterial(item, where, "disc " + std::to_string(index), scene);
-    mesh.name = scene.materials[mesh.material].name;
-    mesh.shape = MeshShape::Plane;
+    Mesh mesh = itemMesh(item, where, "disc " + std::to_string(index), MeshShape::Plane, scene);
     glm::dvec3 u, v;
     planeTangents(n, u, v);
     mesh.positions.push_back(glm::vec3(center));
@@ -213,10 +217,7 @@ void parseBox(const nlohmann::json& item, const json::Where& where, size_t index
     double angle = json::optional(spec, "rotate_y_deg", at, 0.0, json::number);
     glm::dmat3 rotation(glm::rotate(glm::dmat4(1.0), glm::radians(angle), glm::dvec3(0, 1, 0)));
 
-    Mesh mesh;
-    mesh.material = addItemMaterial(item, where, "box " + std::to_string(index), scene);
-    mesh.name = scene.materials[mesh.material].name;
-    mesh.shape = MeshShape::Convex;
+    Mesh mesh = itemMesh(item, where, "box " + std::to_string(index), MeshShape::Convex, scene);
     // Six faces, four vertices each (flat normals). For axis a, e_b x e_c = e_a with b = a + 1,
     // c = a + 2 (mod 3); swapping u and v on the negative face keeps u x v = outward normal.
     for (int a = 0; a < 3; ++a) {

@@ -266,12 +266,12 @@ static nlohmann::json environmentUiJson(const EditorState& state) {
     const EnvironmentUi& ui = state.environment;
     const glm::vec4& v = state.layout.viewport;
     const RenderSettings& s = state.settings;
-    double el = glm::radians(double(ui.normalElevationDeg)), az = glm::radians(double(ui.normalAzimuthDeg));
+    glm::dvec3 normal = ui.chartNormal();
     nlohmann::json chart = {
         {"open", ui.chartOpen},
         {"picking", ui.pickingPixel},
         {"picked", ui.pixelPicked},
-        {"normal", {std::cos(el) * std::cos(az), std::sin(el), std::cos(el) * std::sin(az)}},
+        {"normal", {normal.x, normal.y, normal.z}},
         {"point", {ui.pickedPoint.x, ui.pickedPoint.y, ui.pickedPoint.z}},
         {"pixel", vec2Json(v.x + float(ui.pickedPixel.x) * v.z / float(std::max(1, s.width)),
                            v.y + float(ui.pickedPixel.y) * v.w / float(std::max(1, s.height)))},

@@ -3,6 +3,7 @@
 // scene changes only through applyEdit() (and the few helpers built on it), which is where undo
 // will record its steps.
 
+#include <cmath>
 #include <filesystem>
 #include <functional>
 #include <glm/glm.hpp>
@@ -69,6 +70,11 @@ struct EnvironmentUi {
     // The sample chart (Fig. 1-2 of Lu et al. 2013) for a normal chosen by its angles.
     bool chartOpen = false;
     float normalElevationDeg = 90.f, normalAzimuthDeg = 0.f;
+    /// The chart's unit normal from its elevation and azimuth (phi from +X towards +Z).
+    glm::dvec3 chartNormal() const {
+        double el = glm::radians(double(normalElevationDeg)), az = glm::radians(double(normalAzimuthDeg));
+        return {std::cos(el) * std::cos(az), std::sin(el), std::cos(el) * std::sin(az)};
+    }
     int chartSpp = 64;
     /// Picking the chart's normal from the viewport: armed by the panel, taken by the next left
     /// click on the viewport, which sets the normal to the surface seen through that pixel.

@@ -57,6 +57,16 @@ void setEnvironment(EditorState& state, const char* label, nlohmann::json env) {
     }
 }
 
+/// A slider over the number object[key] (fallback when absent), written back when moved.
+bool jsonSlider(const char* label, nlohmann::json& object, const char* key, double fallback, double lo, double hi,
+                const char* tooltip = nullptr) {
+    double value = object.value(key, fallback);
+    bool moved = ImGui::SliderScalar(label, ImGuiDataType_Double, &value, &lo, &hi, "%.1f");
+    if (moved) object[key] = value;
+    if (tooltip) itemTooltip(tooltip);
+    return moved;
+}
+
 /// Puts the sun where the time-of-day controls say (at the horizon while it is below).
 void applyTimeOfDay(EditorState& state) {
     const EnvironmentUi& ui = state.environment;
@@ -72,23 +82,12 @@ bool skyControls(EditorState& state) {
     nlohmann::json env = state.scene.environment;
     nlohmann::json& sky = env["sky"];
     bool changed = false;
-    double elevation = sky.value("sun_elevation_deg", 30.0), azimuth = sky.value("sun_azimuth_deg", 120.0);
-    double turbidity = sky.value("turbidity", 3.0);
-    const double e0 = 0.0, e1 = 90.0, a0 = -180.0, a1 = 180.0, t0 = 1.7, t1 = 10.0;
-    if (ImGui::SliderScalar("Sun elevation [deg]", ImGuiDataType_Double, &elevation, &e0, &e1, "%.1f")) {
-        sky["sun_elevation_deg"] = elevation;
-        changed = true;
-    }
-    if (ImGui::SliderScalar("Sun azimuth [deg]", ImGuiDataType_Double, &azimuth, &a0, &a1, "%.1f")) {
-        sky["sun_azimuth_deg"] = azimuth;
-        changed = true;
-    }
-    itemTooltip("phi of the sun, from +X (east) towards +Z (south)");
-    if (ImGui::SliderScalar("Turbidity", ImGuiDataType_Double, &turbidity, &t0, &t1, "%.1f")) {
-        sky["turbidity"] = turbidity;
-        changed = true;
-    }
-    itemTooltip("Atmospheric turbidity (Preetham et al. 1999): 2 very clear, 3 clear, 6 hazy, 10 overcast-like haze");
+    changed |= jsonSlider("Sun elevation [deg]", sky, "sun_elevation_deg", 30.0, 0.0, 90.0);
+    changed |= jsonSlider("Sun azimuth [deg]", sky, "sun_azimuth_deg", 120.0, -180.0, 180.0,
+                          "phi of the sun, from +X (east) towards +Z (south)");
+    changed |= jsonSlider("Turbidity", sky, "turbidity", 3.0, 1.7, 10.0,
+                          "Atmospheric turbidity (Preetham et al. 1999): 2 very clear, 3 clear, 6 hazy, 10 "
+                          "overcast-like haze");
     if (changed) setEnvironment(state, "Sun", env);
 
     ImGui::TextDisabled("Time of day (north = -Z, east = +X)");
@@ -181,8 +180,7 @@ void sampleChartControls(EditorState& state) {
     if (ui.chartKey != key || !ui.chartTexture) {
         const EnvironmentMap& map = *state.scene.environmentMap;
         CubeMapDistribution cube(map, EnvironmentPass::defaultFaceSize(map));  // as the renderer's
-        double el = glm::radians(double(ui.normalElevationDeg)), az = glm::radians(double(ui.normalAzimuthDeg));
-        glm::dvec3 n(std::cos(el) * std::cos(az), std::sin(el), std::cos(el) * std::sin(az));
+        glm::dvec3 n = ui.chartNormal();
         SampleChart chart = sampleChart(map, cube, n, ui.chartSpp, balanced, 1, 64);
         std::vector<unsigned char> rgba(size_t(chart.width) * size_t(chart.height) * 4, 255);
         for (size_t i = 0; i < size_t(chart.width) * size_t(chart.height); ++i)
@@ -252,19 +250,14 @@ bool environmentControls(EditorState& state) {
     }
 
     nlohmann::json env = scene.environment;
-    double intensity = env.value("intensity", 1.0), rotation = env.value("rotation_deg", 0.0);
-    const double r0 = -180.0, r1 = 180.0;
+    double intensity = env.value("intensity", 1.0);
     bool edited = false;
     if (ImGui::DragScalar("Intensity", ImGuiDataType_Double, &intensity, 0.01f, nullptr, nullptr, "%.3g")) {
         env["intensity"] = std::max(0.0, intensity);
         edited = true;
     }
     itemTooltip("Multiplies every texel (dimensionless)");
-    if (ImGui::SliderScalar("Rotation [deg]", ImGuiDataType_Double, &rotation, &r0, &r1, "%.1f")) {
-        env["rotation_deg"] = rotation;
-        edited = true;
-    }
-    itemTooltip("Turns the map about +Y (added to phi)");
+    edited |= jsonSlider("Rotation [deg]", env, "rotation_deg", 0.0, -180.0, 180.0, "Turns the map about +Y (added to phi)");
     if (edited) {
         setEnvironment(state, "Environment", env);
         changed = true;

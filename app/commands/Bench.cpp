@@ -199,15 +199,13 @@ int cmdBench(const Args& args) {
     std::fputs(summary.str().c_str(), stdout);
 
     // Plots: error against GPU time, log-log.
+    const std::string kTechniques = "restricted-cdf uniform-restricted precomputed-global granier2003";
     std::ofstream gp(fs::path(outDir) / "plot.gp");
     gp << "set terminal pngcairo size 900,420 noenhanced\nset datafile separator ','\nset logscale xy\n"
           "set grid\nset key bottom left\nset multiplot layout 1,2\n"
           "set xlabel 'GPU time of the shading pass (ms)'\nset ylabel 'rel. RMSE (luminance, ref. noise removed)'\n"
-          "plot for [t in 'restricted-cdf uniform-restricted precomputed-global granier2003'] 'bench.csv' using "
-          "(strcol(1) eq t ? $3 : 1/0):4 with linespoints pointsize 1.5 title t\n"
-          "set ylabel 'mean Delta E (CIE76, tone-mapped)'\n"
-          "plot for [t in 'restricted-cdf uniform-restricted precomputed-global granier2003'] 'bench.csv' using "
-          "(strcol(1) eq t ? $3 : 1/0):5 with linespoints pointsize 1.5 title t\nunset multiplot\n";
+       << sweepPlot(kTechniques, 3, 4) << "set ylabel 'mean Delta E (CIE76, tone-mapped)'\n"
+       << sweepPlot(kTechniques, 3, 5) << "unset multiplot\n";
     gp.close();
     runGnuplot(outDir, "error_vs_time.png");
     std::printf("wrote %s/bench.csv and images\n", outDir.c_str());

@@ -349,12 +349,10 @@ int benchEnvironment(const Args& args) {
     gp << "set terminal pngcairo size 1350,420 noenhanced\nset datafile separator ','\nset logscale xy\n"
           "set grid\nset key bottom left\nset multiplot layout 1,3\n"
           "set xlabel 'samples per pixel'\nset ylabel 'rel. RMSE (luminance, ref. noise removed)'\n"
-          "plot for [t in 'balanced uniform-faces balanced-mis global-cdf'] 'bench.csv' using "
-          "(strcol(1) eq t ? $2 : 1/0):4 with linespoints pointsize 1.5 title t\n"
-          "set xlabel 'GPU time of the shading pass (ms)'\n"
-          "plot for [t in 'balanced uniform-faces balanced-mis global-cdf havran2005'] 'bench.csv' using "
-          "(strcol(1) eq t ? $3 : 1/0):4 with linespoints pointsize 1.5 title t\n"
-          "unset logscale\nset logscale y\nset xlabel 'frame (sun +0.01 deg each)'\n"
+       << sweepPlot("balanced uniform-faces balanced-mis global-cdf", 2, 4)
+       << "set xlabel 'GPU time of the shading pass (ms)'\n"
+       << sweepPlot("balanced uniform-faces balanced-mis global-cdf havran2005", 3, 4)
+       << "unset logscale\nset logscale y\nset xlabel 'frame (sun +0.01 deg each)'\n"
           "set ylabel 'frame-to-frame change (rel. RMS)'\nset key top right\n"
           "plot for [t in 'balanced balanced-integer balanced-fresh-seed uniform-faces havran2005'] 'temporal.csv' "
           "using (strcol(2) eq t && $1 == 0.01 ? $3 : 1/0):4 with linespoints title t.' (0.01 deg/frame)'\n"

@@ -97,22 +97,26 @@ BenchRow meanRow(const std::vector<BenchRow>& repeats) {
     mean.technique = repeats.front().technique;
     mean.spp = repeats.front().spp;
     mean.repeats = int(repeats.size());
-    double mse = 0.0, rawMse = 0.0, sum = 0.0, sumSq = 0.0;
+    double mse = 0.0, rawMse = 0.0, sum = 0.0;
     for (const BenchRow& r : repeats) {
         mean.shadeMs += r.shadeMs;
         mean.deltaE += r.deltaE;
         mse += r.rmse * r.rmse;
         rawMse += r.rawRmse * r.rawRmse;
         sum += r.rmse;
-        sumSq += r.rmse * r.rmse;
     }
     double n = double(repeats.size());
     mean.shadeMs /= n;
     mean.deltaE /= n;
     mean.rmse = std::sqrt(mse / n);
     mean.rawRmse = std::sqrt(rawMse / n);
-    mean.rmseSpread = n > 1 ? std::sqrt(std::max(0.0, (sumSq - sum * sum / n) / (n - 1))) : 0.0;
+    mean.rmseSpread = n > 1 ? std::sqrt(std::max(0.0, (mse - sum * sum / n) / (n - 1))) : 0.0;
     return mean;
+}
+
+std::string sweepPlot(const std::string& techniques, int xColumn, int yColumn) {
+    return "plot for [t in '" + techniques + "'] 'bench.csv' using (strcol(1) eq t ? $" + std::to_string(xColumn) +
+           " : 1/0):" + std::to_string(yColumn) + " with linespoints pointsize 1.5 title t\n";
 }
 
 bool runGnuplot(const std::string& dir, const std::string& output) {

@@ -48,6 +48,9 @@ BenchRow benchRow(std::string technique, int spp, double shadeMs, const std::vec
 double atError(const std::vector<BenchRow>& rows, const std::string& technique, double error, bool time);
 /// bench.csv: technique,spp,gpu_ms,rel_rmse,mean_delta_e,rel_rmse_raw,repeats,rel_rmse_spread.
 void writeBenchCsv(const std::string& path, const std::vector<BenchRow>& rows);
+/// A gnuplot `plot for` line drawing bench.csv's column yColumn against xColumn, one line per
+/// technique of the space-separated list.
+std::string sweepPlot(const std::string& techniques, int xColumn, int yColumn);
 /// Runs gnuplot on DIR/plot.gp writing DIR/OUTPUT; false (and a note on stdout) without gnuplot.
 bool runGnuplot(const std::string& dir, const std::string& output);
 
