@@ -150,6 +150,8 @@ public:
     void writeJson(nlohmann::json& out) const override;
     std::vector<std::byte> gpuData() const override;
     std::string describe() const override;
+    /// Per-cell maps (Sec. 6.2, luminaires/ShadowCells.h): items are the images.
+    ShadowLights shadowLights(int count) const override;
 
     /// Mean radiance over S of the rays parallel to the axis (u = s).
     glm::dvec3 displayRadiance() const override;

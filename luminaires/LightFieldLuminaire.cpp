@@ -6,6 +6,7 @@
 #include <mutex>
 
 #include "luminaires/LightField.h"
+#include "luminaires/ShadowCells.h"
 #include "shaders/shared/GpuTypes.h"
 
 #include <glm/gtc/packing.hpp>
@@ -193,6 +194,25 @@ std::vector<std::byte> LightFieldLuminaire::gpuData() const {
             colour[(m * pixels + k) * 2 + 1] = glm::packHalf2x16(glm::vec2(c.z, 0.f));
         }
     }
+    return out;
+}
+
+ShadowLights LightFieldLuminaire::shadowLights(int count) const {
+    const LightFieldData& lf = *data;
+    glm::ivec2 cells = lf.count + 2;
+    ShadowMapLayout layout = shadowMapLayout(lf, shadowMapGrid(cells, count));
+    glm::dvec3 x, y, z;
+    pose.frame(x, y, z);
+    ShadowLights out;
+    for (const ShadowMapLayout::Map& m : layout.mapList) {
+        out.lights.push_back(pose.position + m.light.x * x + m.light.y * y + m.light.z * z);
+        out.lit.push_back(m.lit ? 1 : 0);
+    }
+    out.sharesPerItem = 9;  // an image's n^2 cells lie in at most 9 maps
+    out.shares.resize(size_t(lf.imageCount()) * 9);
+    for (size_t m = 0; m < layout.perImage.size(); ++m)
+        for (size_t j = 0; j < layout.perImage[m].size(); ++j)
+            out.shares[m * 9 + j] = {layout.perImage[m][j].map, float(layout.perImage[m][j].weight)};
     return out;
 }
 

@@ -35,6 +35,23 @@ struct LightSample {
     double pdf = 0.0;          ///< Solid-angle density at p, 1/sr; 0 means "no sample".
 };
 
+/// Where a luminaire's shadow maps are rendered from and how its shading combines them
+/// (renderer/passes/ShadowMapPass.h). Shading splits the luminaire into items (a light field's
+/// images; the whole opening of a photometric light) and gives item i the visibility
+/// sum_j weight_j * V(map_j), over its sharesPerItem shares (weights summing to one).
+struct ShadowLights {
+    std::vector<glm::dvec3> lights;  ///< World position of each map's light, metres.
+    std::vector<char> lit;           ///< Per map: 0 when no item uses it (not rendered).
+    int sharesPerItem = 0;
+    struct Share {
+        int map = 0;
+        float weight = 0.f;  ///< 0 for padding.
+        bool operator==(const Share&) const = default;
+    };
+    std::vector<Share> shares;  ///< items x sharesPerItem.
+    bool operator==(const ShadowLights&) const = default;
+};
+
 class Luminaire {
 public:
     virtual ~Luminaire() = default;
@@ -68,6 +85,12 @@ public:
     }
     /// One line for `candela info` and the editor.
     virtual std::string describe() const = 0;
+    /// The shadow maps this luminaire's shading reads for about `count` maps (0: the kind's
+    /// natural count); empty (no lights) for a kind that traces shadow rays instead.
+    virtual ShadowLights shadowLights(int count) const {
+        (void)count;
+        return {};
+    }
 
     Pose pose;
     std::string name;

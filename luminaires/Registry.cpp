@@ -24,17 +24,23 @@ static const TechniqueInfo kTechniques[] = {
     {"lambertian-rect", "reference",
      "Monte Carlo, samples uniform in solid angle (Urena et al. 2013)", true,
      &lambertianRectReference, "lambertian_rect_shade.frag", "TECHNIQUE_REFERENCE"},
+    // The light-field GPU techniques read per-cell shadow maps (Sec. 6.2) when an occluder may
+    // block the luminaire; restricted-cdf-raytraced is the same sampler with a shadow ray per
+    // sample (the exact visibility the maps approximate, Fig. 7). On the CPU both trace rays.
     {"lightfield", "restricted-cdf",
-     "position-dependent restricted CDFs with balancing (Lu et al. 2015, Eq. 8, 12, 13)", true,
-     &lightFieldRestrictedCdf, "lightfield_shade.frag", "TECHNIQUE_RESTRICTED"},
+     "position-dependent restricted CDFs with balancing (Lu et al. 2015, Eq. 8, 12, 13); per-cell shadow maps",
+     true, &lightFieldRestrictedCdf, "lightfield_shade.frag", "TECHNIQUE_RESTRICTED", true},
+    {"lightfield", "restricted-cdf-raytraced",
+     "restricted-cdf with a shadow ray per sample (exact visibility; BVH on the GPU, Embree on the CPU)",
+     true, &lightFieldRestrictedCdf, "lightfield_shade.frag", "TECHNIQUE_RESTRICTED"},
     {"lightfield", "uniform-restricted", "uniform samples in the same restricted boxes (Fig. 12)",
-     true, &lightFieldUniformRestricted, "lightfield_shade.frag", "TECHNIQUE_UNIFORM"},
+     true, &lightFieldUniformRestricted, "lightfield_shade.frag", "TECHNIQUE_UNIFORM", true},
     {"lightfield", "precomputed-global",
      "one global CDF over all images, the same for every receiver (Fig. 11)", true,
-     &lightFieldPrecomputedGlobal, "lightfield_shade.frag", "TECHNIQUE_GLOBAL"},
+     &lightFieldPrecomputedGlobal, "lightfield_shade.frag", "TECHNIQUE_GLOBAL", true},
     {"lightfield", "granier2003",
      "one textured spot light per basis function (Granier et al. 2003, Eq. 14); approximate", false,
-     &lightFieldGranier2003, "lightfield_shade.frag", "TECHNIQUE_GRANIER"},
+     &lightFieldGranier2003, "lightfield_shade.frag", "TECHNIQUE_GRANIER", true},
     // CPU only (probe, tests, benches): no GPU pass.
     {"lightfield", "reference",
      "Gauss-Legendre quadrature of the exact model over U, split at knots and pixel edges", false,

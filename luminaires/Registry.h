@@ -50,6 +50,9 @@ struct TechniqueInfo {
     IrradianceFn irradiance;       ///< CPU estimator (probe, tests, parity).
     std::string_view shader;       ///< Fragment shader in shaders/ that shades with it.
     std::string_view define;       ///< Variant #define selecting this technique in that shader.
+    /// Where an occluder can block the luminaire: true reads shadow maps (SHADOW_MAPS, rendered
+    /// from Luminaire::shadowLights()), false traces a ray per sample through the BVH (SHADOWS).
+    bool shadowMaps = false;
 };
 
 /// Builds a luminaire from its scene-file entry (kind-specific fields; pose is read by the caller).

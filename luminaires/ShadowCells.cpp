@@ -1,8 +1,29 @@
 #include "luminaires/ShadowCells.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
 
 namespace candela {
+
+glm::ivec2 shadowMapGrid(glm::ivec2 cells, int count) {
+    if (count <= 0 || count >= cells.x * cells.y) return cells;
+    glm::ivec2 best = cells;
+    int bestMiss = 1 << 30;
+    double bestAspect = 1e300;
+    double aspect = double(cells.x) / double(cells.y);
+    for (int gx = 1; gx <= cells.x; ++gx) {
+        int gy = std::clamp(int(std::lround(double(count) / gx)), 1, cells.y);
+        int miss = std::abs(gx * gy - count);
+        double skew = std::abs(std::log(double(gx) / gy / aspect));
+        if (miss < bestMiss || (miss == bestMiss && skew < bestAspect)) {
+            best = {gx, gy};
+            bestMiss = miss;
+            bestAspect = skew;
+        }
+    }
+    return best;
+}
 
 ShadowMapLayout shadowMapLayout(const LightFieldData& lf, glm::ivec2 maps) {
     ShadowMapLayout layout;

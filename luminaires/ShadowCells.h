@@ -43,6 +43,11 @@ struct ShadowMapLayout {
     int mapCount() const { return maps.x * maps.y; }
 };
 
+/// The grid of maps for about `count` maps over `cells` (count <= 0 or at least the cells: one
+/// map per cell): G_x G_y as close to count as the grid allows, then G_x / G_y closest to the
+/// cells' aspect, each axis at most its cells.
+glm::ivec2 shadowMapGrid(glm::ivec2 cells, int count);
+
 /// The layout for `lf` with `maps` maps per axis (0 or more than the cells: one per cell).
 /// Needs lf's tables (precompute()) for the medians.
 ShadowMapLayout shadowMapLayout(const LightFieldData& lf, glm::ivec2 maps = glm::ivec2(0));

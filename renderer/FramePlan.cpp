@@ -18,6 +18,10 @@ glm::mat4 cameraViewProj(const Camera& c, double aspect) {
     return glm::mat4(proj * view);
 }
 
+std::string shadowPassName(const ShadeStep& step) {
+    return "shadow:" + step.name.substr(step.name.find(':') + 1, step.name.rfind(':') - step.name.find(':') - 1);
+}
+
 bool FramePlan::progressive() const {
     for (const auto& s : shading)
         if (s.progressive) return true;
@@ -26,6 +30,8 @@ bool FramePlan::progressive() const {
 
 std::vector<std::string> FramePlan::passNames() const {
     std::vector<std::string> names = {"gbuffer"};
+    for (const auto& s : shading)
+        if (s.shadowMaps) names.push_back(shadowPassName(s));
     if (environment && environmentTechnique->tables == EnvironmentTechniqueInfo::Tables::Cube) {
         names.push_back("env:cdf");
         names.push_back("env:samples");
@@ -61,14 +67,17 @@ FramePlan planFrame(const Scene& scene, const glm::mat4& viewProj,
         step.luminaire = int(i);
         step.technique = t;
         step.shadows = shadows[i];
+        step.shadowMaps = step.shadows && t->shadowMaps;
+        bool rays = step.shadows && !step.shadowMaps;
         step.program.vertex = "fullscreen.vert";
         step.program.fragment = std::string(t->shader);
         step.program.defines.push_back(std::string(t->define));
-        if (step.shadows) step.program.defines.push_back("SHADOWS");
+        if (step.shadowMaps) step.program.defines.push_back("SHADOW_MAPS");
+        if (rays) step.program.defines.push_back("SHADOWS");
         if (plan.glossy) step.program.defines.push_back("GLOSSY");
-        step.progressive = t->progressive || step.shadows || plan.glossy;
+        step.progressive = t->progressive || rays || plan.glossy;
         step.name = "shade:" + lum.name + ":" + name;
-        plan.needsBvh = plan.needsBvh || step.shadows;
+        plan.needsBvh = plan.needsBvh || rays;
         plan.shading.push_back(std::move(step));
     }
     if (scene.environmentMap) {

@@ -24,7 +24,9 @@ struct ShadeStep {
     int luminaire = -1;                     ///< Index into Scene::luminaires.
     const TechniqueInfo* technique = nullptr;
     ProgramKey program;                     ///< Shader file and variant defines.
-    bool shadows = false;                   ///< Traces shadow rays.
+    bool shadows = false;                   ///< An occluder may block the luminaire.
+    bool shadowMaps = false;                ///< ... and the technique reads shadow maps for it
+                                            ///< (else it traces a shadow ray per sample).
     bool progressive = false;               ///< Needs more than one frame to converge.
     std::string name;                       ///< "shade:Panel:analytic"
 };
@@ -34,12 +36,16 @@ struct FramePlan {
     /// The environment map's shading (luminaire -1, technique null), when the scene has one.
     std::optional<ShadeStep> environment;
     const EnvironmentTechniqueInfo* environmentTechnique = nullptr;
-    bool needsBvh = false;  ///< Some step traces shadows: build and upload the BVH.
+    bool needsBvh = false;  ///< Some step traces shadow rays: build and upload the BVH.
     bool glossy = false;
     bool progressive() const;
-    /// Pass names in execution order for a frame that starts a new accumulation.
+    /// Pass names in execution order for the first frame (shadow maps are rendered again only
+    /// when their luminaire or the geometry changes).
     std::vector<std::string> passNames() const;
 };
+
+/// "shadow:NAME": the pass that renders the shadow maps of a step's luminaire.
+std::string shadowPassName(const ShadeStep& step);
 
 /// World to clip transform of the camera for an image of the given aspect (width / height).
 glm::mat4 cameraViewProj(const Camera& camera, double aspect);

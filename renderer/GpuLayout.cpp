@@ -11,6 +11,8 @@ static_assert(sizeof(PhotometricGpu) == 8 * 16);
 static_assert(sizeof(EnvironmentGpu) == 4 * 16);
 static_assert(sizeof(EnvironmentFaceGpu) == 16);
 static_assert(sizeof(EnvironmentSampleGpu) == 2 * 16);
+static_assert(sizeof(ShadowMapsGpu) == 2 * 16);
+static_assert(sizeof(ShadowMapGpu) == 16);
 static_assert(sizeof(BvhNode) == 32);
 static_assert(sizeof(BvhTriangle) == 48);
 static_assert(sizeof(GBufferPass::Vertex) == 17 * sizeof(float));

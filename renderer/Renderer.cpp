@@ -51,7 +51,7 @@ void Renderer::setSettings(const RenderSettings& s) {
                    s.samplesPerFrame != o.samplesPerFrame || s.maxSamples != o.maxSamples ||
                    s.techniqueOverride != o.techniqueOverride || s.quantity != o.quantity ||
                    s.environmentTechnique != o.environmentTechnique ||
-                   s.environmentFaceSize != o.environmentFaceSize;
+                   s.environmentFaceSize != o.environmentFaceSize || !(s.shadowMaps == o.shadowMaps);
     bool display = s.toneMap != o.toneMap || s.exposure != o.exposure ||
                    s.fixedAverage != o.fixedAverage || s.legend != o.legend;
     mSettings = s;
@@ -112,11 +112,34 @@ void Renderer::runShading(int spp) {
     glBindVertexArray(mEmptyVao.id());
     if (mPlan.environment) runEnvironment(spp);
     for (const ShadeStep& step : mPlan.shading) {
+        if (step.shadowMaps) mShadowMaps.at(mScene->luminaires[size_t(step.luminaire)].get())->bind();
         timed(mStats, step.name, [&] {
             mShade->execute(mShaders, step, mLuminaireBuffers[size_t(step.luminaire)], *mGBuffer,
                             mAccumFbo, mGBuffer->width(), mGBuffer->height());
         });
     }
+}
+
+void Renderer::updateShadowMaps() {
+    std::map<const Luminaire*, std::unique_ptr<ShadowMaps>> kept;
+    for (const ShadeStep& step : mPlan.shading) {
+        if (!step.shadowMaps) continue;
+        const Luminaire* lum = mScene->luminaires[size_t(step.luminaire)].get();
+        std::unique_ptr<ShadowMaps> maps = std::move(mShadowMaps[lum]);
+        if (!maps) maps = std::make_unique<ShadowMaps>();
+        ShadowLights lights = lum->shadowLights(mSettings.shadowMaps.count);
+        if (maps->stale(lights, mSettings.shadowMaps, mGeometryGeneration)) {
+            if (mShadowGeometryGeneration != mGeometryGeneration) {
+                mShadowGeometry.set(*mScene);
+                mShadowGeometryGeneration = mGeometryGeneration;
+            }
+            timed(mStats, shadowPassName(step), [&] {
+                maps->render(mShaders, mShadowGeometry, lights, mSettings.shadowMaps, mGeometryGeneration);
+            });
+        }
+        kept[lum] = std::move(maps);
+    }
+    mShadowMaps = std::move(kept);
 }
 
 void Renderer::runEnvironment(int spp) {
@@ -160,6 +183,7 @@ void Renderer::renderFrame() {
         if (mPending & kChangeGeometry) {
             mGBuffer->setGeometry(*mScene);
             mBvh.reset();
+            ++mGeometryGeneration;
         }
         if (mPending & (kChangeGeometry | kChangeLuminaires)) {
             mGBuffer->setLuminaires(*mScene);
@@ -180,6 +204,7 @@ void Renderer::renderFrame() {
         mFrameUniforms.update(0, sizeof(u), &u);
         mFrameUniforms.bindBase(GL_UNIFORM_BUFFER, gpu::kBindingFrame);
         timed(mStats, "gbuffer", [&] { mGBuffer->execute(mShaders, mSettings.quantity); });
+        updateShadowMaps();
         mStats.converged = false;
     }
 
@@ -255,9 +280,10 @@ std::vector<glm::vec3> Renderer::probe(const Scene& scene, const std::vector<glm
     // Probes measure unshadowed irradiance on a Lambertian receiver: no shadow or glossy variant.
     auto unshadowed = [](ShadeStep& s) {
         std::erase_if(s.program.defines, [](const std::string& d) {
-            return d == "SHADOWS" || d == "GLOSSY";
+            return d == "SHADOWS" || d == "SHADOW_MAPS" || d == "GLOSSY";
         });
         s.shadows = false;
+        s.shadowMaps = false;
     };
     for (ShadeStep& s : mPlan.shading) {
         unshadowed(s);

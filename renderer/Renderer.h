@@ -13,8 +13,11 @@
 #include "renderer/FrameStats.h"
 #include "renderer/ShaderLibrary.h"
 #include "renderer/gl/GlObjects.h"
+#include "renderer/passes/ShadowMapPass.h"
 #include "renderer/passes/TonemapPass.h"
 #include "scene/Scene.h"
+
+#include <map>
 
 namespace candela {
 
@@ -46,6 +49,7 @@ struct RenderSettings {
     /// The environment's technique; empty: techniqueOverride if it names one, else "balanced".
     std::string environmentTechnique;
     int environmentFaceSize = 0;    ///< Cube faces of N^2 texels; 0: EnvironmentPass's default.
+    ShadowMapSettings shadowMaps;   ///< For techniques that read shadow maps.
 };
 
 /// What changed since the last frame (the editor sets these; all of them restart accumulation).
@@ -103,6 +107,8 @@ private:
     void uploadLuminaires();
     void runShading(int spp);
     void runEnvironment(int spp);
+    /// Renders the shadow maps that are missing or stale (timed as "shadow:NAME").
+    void updateShadowMaps();
 
     ShaderLibrary& mShaders;
     const Scene* mScene = nullptr;
@@ -123,6 +129,11 @@ private:
     gl::Buffer mFrameUniforms;
     gl::Buffer mBvhNodes, mBvhTris;
     std::vector<gl::Buffer> mLuminaireBuffers;  ///< One record buffer per luminaire.
+    ShadowGeometry mShadowGeometry;
+    int mGeometryGeneration = 0;        ///< Counts geometry changes.
+    int mShadowGeometryGeneration = -1; ///< The generation mShadowGeometry holds.
+    /// Each luminaire's maps, by luminaire (entries of luminaires that left are dropped).
+    std::map<const Luminaire*, std::unique_ptr<ShadowMaps>> mShadowMaps;
     gl::Texture2D mAccum;
     gl::Framebuffer mAccumFbo;
     gl::VertexArray mEmptyVao;

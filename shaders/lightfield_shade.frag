@@ -5,7 +5,10 @@
 //                         (Fig. 11 baseline, "precomputed global light importance sampling")
 //   TECHNIQUE_GRANIER     Granier et al. 2003, Eq. 14: one textured spot light per basis function
 //                         at its node, C_m averaged over the support's footprint (deterministic)
-//   SHADOWS               one shadow ray per sample through the scene BVH (exact visibility)
+//   SHADOWS               one shadow ray per sample through the scene BVH (exact visibility:
+//                         restricted-cdf-raytraced)
+//   SHADOW_MAPS           per-cell shadow maps (Sec. 6.2): each image C_m's samples are scaled
+//                         by its visibility v_m(p), averaged over the maps of its 9 cells
 //   GLOSSY                the scene has glossy materials: add the Phong lobe
 // K samples per pixel per frame are spread over the images in proportion to A_m(p) (Eq. 12) by
 // systematic sampling with one random offset per pixel and frame, which makes the counts the
@@ -19,6 +22,9 @@
 #include "lightfield.glsl"
 #ifdef SHADOWS
 #include "bvh_traverse.glsl"
+#endif
+#ifdef SHADOW_MAPS
+#include "shadow_maps.glsl"
 #endif
 
 layout(location = 0) uniform int uLuminaire;
@@ -35,6 +41,15 @@ vec3 brdf(Surface s, vec3 wi) {
 float visibility(Surface s, vec3 target) {
 #ifdef SHADOWS
     return bvhOccluded(shadowOrigin(s), target) ? 0.0 : 1.0;
+#else
+    return 1.0;
+#endif
+}
+
+/// v_m(p) of Sec. 6.2 from the shadow maps; 1 without them.
+float imageVisibility(Surface s, int m) {
+#ifdef SHADOW_MAPS
+    return shadowItemVisibility(m, s.p, s.n);
 #else
     return 1.0;
 #endif
@@ -72,6 +87,8 @@ vec3 shadeOnS(Surface s, vec3 q, vec3 nl, int K, vec2 shift, float offset) {
         int k0 = int(ceil(cum / total * float(K) - offset));
         cum += c;
         int k1 = int(ceil(cum / total * float(K) - offset));
+        float vm = k1 > k0 ? imageVisibility(s, m) : 0.0;
+        if (!(vm > 0.0)) continue;
         for (int k = k0; k < k1; ++k) {
             uint index = uint(k - k0 + 1);
             vec2 xi = fract(vec2(lfHalton2(index), lfHalton3(index)) + shift);
@@ -83,7 +100,7 @@ vec3 shadeOnS(Surface s, vec3 q, vec3 nl, int K, vec2 shift, float offset) {
             if (cosR <= 0.0) continue;
             vec3 wi = normalize(wl.x * lf.axisX.xyz + wl.y * lf.axisY.xyz + wl.z * lf.axisZ.xyz);
             float term = total * area * lfPsi(m, u, q.xy) * lfDelta() * cosR / (r * r * r);
-            sum += term * lfColour(m, q.xy) * brdf(s, wi) * visibility(s, toWorld(vec3(u, 0.0)));
+            sum += term * vm * lfColour(m, q.xy) * brdf(s, wi) * visibility(s, toWorld(vec3(u, 0.0)));
         }
     }
     return sum / float(K);
@@ -111,7 +128,7 @@ vec3 shadeGranier(Surface s, vec3 q, vec3 nl) {
         float model = lfPsi(m, node, centre) / 0.5625;  // Phi_m at its node is 0.75^2
         vec3 wi = normalize(wl.x * lf.axisX.xyz + wl.y * lf.axisY.xyz + wl.z * lf.axisZ.xyz);
         sum += phiIntegral * mean * model * cosR * cosL / (dist * dist) * lfColour(m, centre) * brdf(s, wi) *
-               visibility(s, toWorld(vec3(node, 0.0)));
+               visibility(s, toWorld(vec3(node, 0.0))) * imageVisibility(s, m);
     }
     return sum;
 }
@@ -185,8 +202,10 @@ void main() {
                 int Km = k1 - k0;
                 if (Km <= 0) continue;
                 int n = lf.options.x > 0 ? min(Km, lf.options.x) : Km;
+                float vm = imageVisibility(s, m);
+                if (!(vm > 0.0)) continue;
                 // Each slot is worth A / K; n samples stand for Km slots.
-                float weight = float(A) / float(K) * float(Km) / float(n);
+                float weight = vm * float(A) / float(K) * float(Km) / float(n);
 #ifdef TECHNIQUE_UNIFORM
                 float boxArea = (b.x - a.x) * (b.y - a.y);
 #endif

@@ -89,6 +89,9 @@ int cmdRender(const Args& args) {
             settings.environmentFaceSize = parseInt(a, flagValue(args, i), 4, 2048);
         else if (a == "--spp") spp = parseInt(a, flagValue(args, i), 1, 1 << 24);
         else if (a == "--size") parseSize(flagValue(args, i), settings.width, settings.height);
+        else if (a == "--shadow-maps") settings.shadowMaps.count = parseInt(a, flagValue(args, i), 0, 4096);
+        else if (a == "--shadow-map-size")
+            settings.shadowMaps.resolution = parseInt(a, flagValue(args, i), 8, 4096);
         else if (a == "--stats") printStats = true;
         else if (a == "--exposure") settings.exposure = parseNumberList(a, flagValue(args, i)).at(0);
         else if (a == "--false-colour") falseColour = true;
@@ -116,7 +119,8 @@ int cmdRender(const Args& args) {
     }
     if (scenePath.empty() || out.empty())
         throw InputError("usage: candela render scene.json --out img.png|img.exr [--technique T] "
-                         "[--env-technique T] [--env-face-size N] [--spp N] [--size WxH] [--stats]");
+                         "[--env-technique T] [--env-face-size N] [--spp N] [--size WxH] [--shadow-maps N] "
+                         "[--shadow-map-size R] [--stats]");
     if (falseColour) {
         settings.quantity = Quantity::Illuminance;
         settings.toneMap = ToneMapOperator::FalseColour;

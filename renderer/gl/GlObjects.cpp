@@ -53,6 +53,42 @@ Framebuffer::Framebuffer(std::initializer_list<const Texture2D*> colour, const T
         throw RuntimeError("framebuffer incomplete (status 0x" + std::to_string(status) + ")");
 }
 
+TextureArray::TextureArray(GLenum target, int width, int height, int layers, GLenum internalFormat)
+    : mWidth(width), mHeight(height), mLayers(layers) {
+    GLuint id = 0;
+    glCreateTextures(target, 1, &id);
+    mHandle = Handle<detail::deleteTexture>(id);
+    glTextureStorage3D(id, 1, internalFormat, width, height, layers);
+    bool depth = internalFormat == GL_DEPTH_COMPONENT32F || internalFormat == GL_DEPTH_COMPONENT24 ||
+                 internalFormat == GL_DEPTH_COMPONENT16;
+    GLint filter = depth ? GL_LINEAR : GL_NEAREST;
+    glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, filter);
+    glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, filter);
+    glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    if (depth) {
+        glTextureParameteri(id, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+        glTextureParameteri(id, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    }
+}
+
+Framebuffer Framebuffer::depthOnly() {
+    Framebuffer f;
+    GLuint id = 0;
+    glCreateFramebuffers(1, &id);
+    f.mHandle = Handle<detail::deleteFramebuffer>(id);
+    glNamedFramebufferDrawBuffer(id, GL_NONE);
+    glNamedFramebufferReadBuffer(id, GL_NONE);
+    return f;
+}
+
+void Framebuffer::attachDepthLayer(const TextureArray& array, int layer) {
+    glNamedFramebufferTextureLayer(id(), GL_DEPTH_ATTACHMENT, array.id(), 0, layer);
+    GLenum status = glCheckNamedFramebufferStatus(id(), GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE)
+        throw RuntimeError("shadow-map framebuffer incomplete (status 0x" + std::to_string(status) + ")");
+}
+
 VertexArray::VertexArray() {
     mHandle = Handle<detail::deleteVertexArray>(createName([](GLsizei n, GLuint* ids) {
         glCreateVertexArrays(n, ids);

@@ -76,11 +76,31 @@ private:
     GLenum mFormat = 0;
 };
 
+/// Layered texture with immutable storage: GL_TEXTURE_2D_ARRAY or GL_TEXTURE_CUBE_MAP_ARRAY
+/// (layers = 6 x cubes, face-major within a cube). Depth formats get linear filtering and
+/// GL_LEQUAL comparison, for shadow samplers (hardware 2 x 2 percentage-closer filtering).
+class TextureArray {
+public:
+    TextureArray() = default;
+    TextureArray(GLenum target, int width, int height, int layers, GLenum internalFormat);
+    GLuint id() const { return mHandle.id(); }
+    int width() const { return mWidth; }
+    int layers() const { return mLayers; }
+
+private:
+    Handle<detail::deleteTexture> mHandle;
+    int mWidth = 0, mHeight = 0, mLayers = 0;
+};
+
 class Framebuffer {
 public:
     Framebuffer() = default;
     /// Attaches colour textures in order and an optional depth texture; throws if incomplete.
     Framebuffer(std::initializer_list<const Texture2D*> colour, const Texture2D* depth);
+    /// A depth-only framebuffer (no colour buffer) for attachDepthLayer.
+    static Framebuffer depthOnly();
+    /// Renders depth into one layer of `array` from now on; throws if incomplete.
+    void attachDepthLayer(const TextureArray& array, int layer);
     GLuint id() const { return mHandle.id(); }
 
 private:

@@ -42,6 +42,21 @@ CANDELA_CONST int kBindingEnvFaces = 11;   // SSBO EnvironmentFaceGpu[6]
 CANDELA_CONST int kBindingEnvSamples = 12; // SSBO EnvironmentSampleGpu[6][pool]
 CANDELA_CONST int kBindingEnvExtra = 13;   // SSBO of global-cdf tables or Havran lights
 
+/// Shadow maps of the luminaire being shaded (renderer/passes/ShadowMapPass.h): the header and
+/// one ShadowMapGpu per map at kBindingShadowMaps, the shares at kBindingShadowShares (vec2
+/// (map, weight) per item and share, items x dims.z), the depth cube maps (6 layers per map,
+/// samplerCubeArrayShadow) on texture unit kUnitShadowMaps.
+CANDELA_CONST int kBindingShadowMaps = 14;
+CANDELA_CONST int kBindingShadowShares = 15;
+CANDELA_CONST int kUnitShadowMaps = 6;
+struct ShadowMapsGpu {
+    ivec4 dims;    // x = maps, y = face resolution (texels), z = shares per item, w unused
+    vec4 params;   // x = near, y = far (m); z = normal offset, w = depth offset (texels)
+};
+struct ShadowMapGpu {
+    vec4 light;    // xyz world position of the map's light (m); w = 1 if rendered
+};
+
 /// Texture unit of the lat-long environment map (RGB32F, intensity applied, row 0 = top, v = 0).
 CANDELA_CONST int kUnitEnvironmentMap = 5;
 

@@ -1,0 +1,123 @@
+#include "renderer/passes/ShadowMapPass.h"
+
+#include <algorithm>
+#include <cstring>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "shaders/shared/GpuTypes.h"
+
+namespace candela {
+
+void ShadowGeometry::set(const Scene& scene) {
+    std::vector<glm::vec3> positions;
+    std::vector<uint32_t> indices;
+    lo = glm::dvec3(1e300);
+    hi = glm::dvec3(-1e300);
+    for (const Mesh& mesh : scene.meshes) {
+        uint32_t base = uint32_t(positions.size());
+        for (const glm::vec3& p : mesh.positions) {
+            positions.push_back(p);
+            lo = glm::min(lo, glm::dvec3(p));
+            hi = glm::max(hi, glm::dvec3(p));
+        }
+        for (uint32_t i : mesh.indices) indices.push_back(base + i);
+    }
+    if (positions.empty()) lo = hi = glm::dvec3(0.0);
+    mIndexCount = GLsizei(indices.size());
+    mVao = gl::VertexArray();
+    if (indices.empty()) return;
+    mVertices = gl::Buffer(GLsizeiptr(positions.size() * sizeof(glm::vec3)), positions.data(), 0);
+    mIndices = gl::Buffer(GLsizeiptr(indices.size() * sizeof(uint32_t)), indices.data(), 0);
+    glVertexArrayVertexBuffer(mVao.id(), 0, mVertices.id(), 0, sizeof(glm::vec3));
+    glVertexArrayElementBuffer(mVao.id(), mIndices.id());
+    glEnableVertexArrayAttrib(mVao.id(), 0);
+    glVertexArrayAttribFormat(mVao.id(), 0, 3, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(mVao.id(), 0, 0);
+}
+
+void ShadowGeometry::draw() const {
+    if (mIndexCount == 0) return;
+    glBindVertexArray(mVao.id());
+    glDrawElements(GL_TRIANGLES, mIndexCount, GL_UNSIGNED_INT, nullptr);
+}
+
+bool ShadowMaps::stale(const ShadowLights& lights, const ShadowMapSettings& settings,
+                       int geometryGeneration) const {
+    return geometryGeneration != mGeneration || !(settings == mSettings) || !(lights == mLights);
+}
+
+void ShadowMaps::render(ShaderLibrary& shaders, const ShadowGeometry& geometry,
+                        const ShadowLights& lights, const ShadowMapSettings& settings,
+                        int geometryGeneration) {
+    mLights = lights;
+    mSettings = settings;
+    mGeneration = geometryGeneration;
+    int maps = std::max(1, mapCount());
+    int res = std::max(8, settings.resolution);
+    if (mDepth.layers() != 6 * maps || mDepth.width() != res) {
+        mDepth = gl::TextureArray(GL_TEXTURE_CUBE_MAP_ARRAY, res, res, 6 * maps, GL_DEPTH_COMPONENT32F);
+        mFbo = gl::Framebuffer::depthOnly();
+    }
+
+    // Far plane: beyond the farthest corner of the scene's bounds from any light.
+    double far = 1.0;
+    for (const glm::dvec3& l : lights.lights)
+        for (int c = 0; c < 8; ++c) {
+            glm::dvec3 corner((c & 1) ? geometry.hi.x : geometry.lo.x, (c & 2) ? geometry.hi.y : geometry.lo.y,
+                              (c & 4) ? geometry.hi.z : geometry.lo.z);
+            far = std::max(far, 1.01 * glm::length(corner - l) + 2.0 * kNear);
+        }
+
+    gpu::ShadowMapsGpu header{};
+    header.dims = glm::ivec4(mapCount(), res, lights.sharesPerItem, 0);
+    header.params = glm::vec4(float(kNear), float(far), settings.normalOffset, settings.depthOffset);
+    std::vector<gpu::ShadowMapGpu> records(static_cast<size_t>(maps));
+    for (size_t k = 0; k < lights.lights.size(); ++k)
+        records[k].light = glm::vec4(glm::vec3(lights.lights[k]), lights.lit[k] ? 1.f : 0.f);
+    std::vector<std::byte> bytes(sizeof(header) + records.size() * sizeof(gpu::ShadowMapGpu));
+    std::memcpy(bytes.data(), &header, sizeof(header));
+    std::memcpy(bytes.data() + sizeof(header), records.data(), records.size() * sizeof(gpu::ShadowMapGpu));
+    mHeader = gl::Buffer(GLsizeiptr(bytes.size()), bytes.data(), 0);
+    std::vector<glm::vec2> shares;
+    for (const ShadowLights::Share& s : lights.shares) shares.push_back({float(s.map), s.weight});
+    if (shares.empty()) shares.push_back(glm::vec2(0.f));
+    mShares = gl::Buffer(GLsizeiptr(shares.size() * sizeof(glm::vec2)), shares.data(), 0);
+
+    // The GL cube-map faces (+x, -x, +y, -y, +z, -z) seen from the light: forward and up as
+    // the cube-map lookup expects them, so that a face's texel (s, t) is where it stores depth.
+    static const glm::dvec3 kForward[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    static const glm::dvec3 kUp[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
+    glm::dmat4 proj = glm::perspective(glm::radians(90.0), 1.0, kNear, far);
+    ProgramKey key;
+    key.vertex = "shadow_depth.vert";
+    key.fragment = "shadow_depth.frag";
+    GLuint program = shaders.program(key);
+    glUseProgram(program);
+    glBindFramebuffer(GL_FRAMEBUFFER, mFbo.id());
+    glViewport(0, 0, res, res);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_CULL_FACE);
+    for (size_t k = 0; k < lights.lights.size(); ++k) {
+        for (int f = 0; f < 6; ++f) {
+            mFbo.attachDepthLayer(mDepth, int(k) * 6 + f);
+            glClear(GL_DEPTH_BUFFER_BIT);
+            if (!lights.lit[k]) continue;  // cleared to the far plane: read as lit
+            glm::dvec3 l = lights.lights[k];
+            glm::mat4 viewProj = glm::mat4(proj * glm::lookAt(l, l + kForward[f], kUp[f]));
+            glProgramUniformMatrix4fv(program, 0, 1, GL_FALSE, &viewProj[0][0]);
+            geometry.draw();
+        }
+    }
+    glDisable(GL_DEPTH_TEST);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void ShadowMaps::bind() const {
+    glBindTextureUnit(GLuint(gpu::kUnitShadowMaps), mDepth.id());
+    mHeader.bindBase(GL_SHADER_STORAGE_BUFFER, gpu::kBindingShadowMaps);
+    mShares.bindBase(GL_SHADER_STORAGE_BUFFER, gpu::kBindingShadowShares);
+}
+
+}  // namespace candela

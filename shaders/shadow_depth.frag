@@ -1,0 +1,2 @@
+// Depth only: the rasteriser writes gl_FragCoord.z.
+void main() {}
