@@ -218,6 +218,8 @@ struct EnvironmentTechniqueInfo {
     /// What the GPU builds for it when the map changes: the cube-map CDFs (and then a pool of
     /// light samples every frame), the lat-long CDF (on the CPU), or the Havran lights (CPU).
     enum class Tables { None, Cube, LatLong, Lights } tables = Tables::None;
+    /// Shadows from one directional shadow map per light (SHADOW_MAPS) instead of rays.
+    bool shadowMaps = false;
 };
 std::span<const EnvironmentTechniqueInfo> environmentTechniques();
 const EnvironmentTechniqueInfo* findEnvironmentTechnique(std::string_view name);

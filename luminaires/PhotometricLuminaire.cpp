@@ -207,6 +207,36 @@ std::vector<glm::dvec3> PhotometricLuminaire::outline() const {
     return out;
 }
 
+ShadowLights PhotometricLuminaire::shadowLights(int count) const {
+    glm::dvec3 ex, ey, ez;
+    photometricFrame(ex, ey, ez);
+    std::vector<glm::dvec2> points = {glm::dvec2(0.0)};
+    if (count != 1 && mPolygon.size() == 2) {
+        points.push_back(mPolygon[0]);
+        points.push_back(mPolygon[1]);
+    } else if (count != 1 && mPolygon.size() >= 3) {
+        glm::dvec2 lo(1e300), hi(-1e300);
+        for (const glm::dvec2& q : mPolygon) lo = glm::min(lo, q), hi = glm::max(hi, q);
+        for (glm::dvec2 corner : {lo, glm::dvec2(hi.x, lo.y), hi, glm::dvec2(lo.x, hi.y)}) {
+            glm::dvec2 best = mPolygon[0];
+            for (const glm::dvec2& q : mPolygon)
+                if (glm::length(q - corner) < glm::length(best - corner)) best = q;
+            points.push_back(best);
+        }
+    }
+    ShadowLights out;
+    int n = int(points.size());
+    out.sharesPerItem = n;
+    out.shares.assign(size_t(2 * n), {});
+    for (int k = 0; k < n; ++k) {
+        out.lights.push_back(pose.position + points[size_t(k)].x * ex + points[size_t(k)].y * ey);
+        out.lit.push_back(1);
+        out.shares[size_t(k)] = {k, 1.f / float(n)};
+    }
+    out.shares[size_t(n)] = {0, 1.f};  // item 1: the centre
+    return out;
+}
+
 glm::dvec3 PhotometricLuminaire::displayRadiance() const {
     glm::dvec3 ex, ey, ez;
     photometricFrame(ex, ey, ez);

@@ -40,6 +40,11 @@ public:
     std::vector<std::byte> gpuData() const override;
     std::string describe() const override;
     glm::dvec3 displayRadiance() const override;
+    /// Maps at the opening's centre and near its four corners (the polygon vertex closest to
+    /// each corner of its bounding rectangle; the two ends of a segment; the centre alone for a
+    /// point or for count 1). Item 0, the whole opening, averages them with equal weights;
+    /// item 1, the centre, reads the centre's map (the `point` technique).
+    ShadowLights shadowLights(int count) const override;
 
     /// The opening in the local z = 0 plane (metres), counter-clockwise about +z; empty for a
     /// point source.

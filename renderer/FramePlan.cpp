@@ -37,6 +37,7 @@ std::vector<std::string> FramePlan::passNames() const {
         names.push_back("env:samples");
     }
     for (const auto& s : shading) names.push_back(s.name);
+    if (environment && environment->shadowMaps) names.push_back("shadow:environment");
     if (environment) names.push_back(environment->name);
     names.push_back("resolve");
     names.push_back("tonemap");
@@ -94,17 +95,20 @@ FramePlan planFrame(const Scene& scene, const glm::mat4& viewProj,
                              "technique to render");
         ShadeStep step;
         step.shadows = environmentNeedsShadows(scene, viewProj);
+        step.shadowMaps = step.shadows && t->shadowMaps;
+        bool rays = step.shadows && !step.shadowMaps;
         step.program.vertex = "fullscreen.vert";
         step.program.fragment = "environment_shade.frag";
         // A technique's define may name several macros, separated by spaces.
         std::istringstream macros{std::string(t->define)};
         for (std::string macro; macros >> macro;) step.program.defines.push_back(macro);
-        if (step.shadows) step.program.defines.push_back("SHADOWS");
+        if (step.shadowMaps) step.program.defines.push_back("SHADOW_MAPS");
+        if (rays) step.program.defines.push_back("SHADOWS");
         if (plan.glossy) step.program.defines.push_back("GLOSSY");
         // The Havran lights are a fixed set: every light (and its shadow ray) each frame.
         step.progressive = t->progressive;
         step.name = "shade:environment:" + name;
-        plan.needsBvh = plan.needsBvh || step.shadows;
+        plan.needsBvh = plan.needsBvh || rays;
         plan.environment = std::move(step);
         plan.environmentTechnique = t;
     }

@@ -120,6 +120,14 @@ void Renderer::runShading(int spp) {
     }
 }
 
+const ShadowGeometry& Renderer::shadowGeometry() {
+    if (mShadowGeometryGeneration != mGeometryGeneration) {
+        mShadowGeometry.set(*mScene);
+        mShadowGeometryGeneration = mGeometryGeneration;
+    }
+    return mShadowGeometry;
+}
+
 void Renderer::updateShadowMaps() {
     std::map<const Luminaire*, std::unique_ptr<ShadowMaps>> kept;
     for (const ShadeStep& step : mPlan.shading) {
@@ -129,12 +137,9 @@ void Renderer::updateShadowMaps() {
         if (!maps) maps = std::make_unique<ShadowMaps>();
         ShadowLights lights = lum->shadowLights(mSettings.shadowMaps.count);
         if (maps->stale(lights, mSettings.shadowMaps, mGeometryGeneration)) {
-            if (mShadowGeometryGeneration != mGeometryGeneration) {
-                mShadowGeometry.set(*mScene);
-                mShadowGeometryGeneration = mGeometryGeneration;
-            }
+            const ShadowGeometry& geometry = shadowGeometry();
             timed(mStats, shadowPassName(step), [&] {
-                maps->render(mShaders, mShadowGeometry, lights, mSettings.shadowMaps, mGeometryGeneration);
+                maps->render(mShaders, geometry, lights, mSettings.shadowMaps, mGeometryGeneration);
             });
         }
         kept[lum] = std::move(maps);
@@ -157,6 +162,18 @@ void Renderer::runEnvironment(int spp) {
         mEnvironment->prepareGlobalCdf();
     } else if (tables == Tables::Lights) {
         mEnvironment->prepareHavran();
+        if (mPlan.environment->shadowMaps) {
+            std::vector<glm::dvec3> directions = mEnvironment->havranDirections();
+            if (mEnvironmentShadows.stale(directions, mSettings.shadowMaps, mGeometryGeneration)) {
+                const ShadowGeometry& geometry = shadowGeometry();
+                timed(mStats, "shadow:environment", [&] {
+                    mEnvironmentShadows.render(mShaders, geometry, directions, mSettings.shadowMaps,
+                                               mGeometryGeneration);
+                });
+                glBindVertexArray(mEmptyVao.id());
+            }
+            mEnvironmentShadows.bind();
+        }
     }
     bool background = !mPointMode && mSettings.quantity == Quantity::Radiance;
     timed(mStats, mPlan.environment->name, [&] {

@@ -109,6 +109,8 @@ private:
     void runEnvironment(int spp);
     /// Renders the shadow maps that are missing or stale (timed as "shadow:NAME").
     void updateShadowMaps();
+    /// mShadowGeometry for the current geometry.
+    const ShadowGeometry& shadowGeometry();
 
     ShaderLibrary& mShaders;
     const Scene* mScene = nullptr;
@@ -134,6 +136,7 @@ private:
     int mShadowGeometryGeneration = -1; ///< The generation mShadowGeometry holds.
     /// Each luminaire's maps, by luminaire (entries of luminaires that left are dropped).
     std::map<const Luminaire*, std::unique_ptr<ShadowMaps>> mShadowMaps;
+    DirectionalShadowMaps mEnvironmentShadows;  ///< The Havran lights' maps.
     gl::Texture2D mAccum;
     gl::Framebuffer mAccumFbo;
     gl::VertexArray mEmptyVao;

@@ -11,6 +11,7 @@
 //                            changes, as static-map renderers do), per-pixel samples;
 //   TECHNIQUE_HAVRAN         the filtered directional lights of Havran et al. 2005 (CPU);
 //   SHADOWS                  a shadow ray per sample through the scene BVH;
+//   SHADOW_MAPS              with TECHNIQUE_HAVRAN: one directional shadow map per light;
 //   GLOSSY                   the scene has glossy materials: add the Phong lobe.
 // The light samples of the face techniques are the pools drawn before shading
 // (environment_cdf.comp, PASS_SAMPLES), shared by all pixels; each pixel starts at a random
@@ -20,6 +21,9 @@
 #include "environment.glsl"
 #ifdef SHADOWS
 #include "bvh_traverse.glsl"
+#endif
+#ifdef SHADOW_MAPS
+#include "shadow_directional.glsl"
 #endif
 
 #if defined(TECHNIQUE_GLOBAL_CDF)
@@ -212,7 +216,12 @@ void main() {
         vec3 w = envLights[2 * k].xyz;
         float c = dot(s.n, w);
         if (!(c > 0.0)) continue;
-        result += envLights[2 * k + 1].rgb * brdf(s, w) * c * envVisibility(s, w);
+#ifdef SHADOW_MAPS
+        float v = directionalVisibility(k, s.p, s.n, w);
+#else
+        float v = envVisibility(s, w);
+#endif
+        result += envLights[2 * k + 1].rgb * brdf(s, w) * c * v;
     }
 #endif
     // Hard cases must never poison the accumulation: drop non-finite estimates.

@@ -5,6 +5,9 @@
 //   SHADOWS: the deterministic techniques are scaled by the irradiance-weighted visible fraction
 //            of a few random points on the opening per frame (refined progressively, consistent);
 //            the reference traces a shadow ray per sample.
+//   SHADOW_MAPS: the deterministic techniques are scaled by the visibility of the opening from
+//            the shadow maps at its centre and corners (their mean; the centre's alone for
+//            `point`), deterministic and converged in one frame.
 //   GLOSSY:  the Phong lobe through the area form: the reference's samples, or the same random
 //            points for the deterministic techniques.
 // Output: this frame's radiance estimate, added into the accumulation buffer.
@@ -12,6 +15,9 @@
 #include "photometric.glsl"
 #ifdef SHADOWS
 #include "bvh_traverse.glsl"
+#endif
+#ifdef SHADOW_MAPS
+#include "shadow_maps.glsl"
 #endif
 
 layout(location = 0) uniform int uLuminaire;
@@ -57,6 +63,10 @@ void stochasticExtras(Surface s, vec3 p, vec3 n, int count, inout uint rng, out 
     }
     if (sumE > 0.0) visibleFraction = sumEV / sumE;
     glossy /= float(max(count, 1));
+#endif
+#ifdef SHADOW_MAPS
+    visibleFraction = shadowItemVisibility(0, s.p, s.n);
+    glossy *= visibleFraction;
 #endif
 }
 
@@ -121,6 +131,9 @@ void main() {
 #ifdef TECHNIQUE_POINT
     // The point technique is a point light: its shadows and highlights come from the centre.
     float visibleFraction = visibleTo(s, vec3(0.0));
+#ifdef SHADOW_MAPS
+    visibleFraction = shadowItemVisibility(1, s.p, s.n);
+#endif
     vec3 glossy = vec3(0.0);
 #ifdef GLOSSY
     if ((s.flags & kMaterialGlossy) != 0) glossy = E * visibleFraction * glossyBrdf(s, normalize(phFromLocal(-p)));

@@ -79,8 +79,10 @@ int benchShadows(const Args& args) {
             counts.clear();
             for (int c : parseNumberList(a, flagValue(args, i))) counts.push_back(c);
         } else if (a == "--map-sizes") sizes = parseList(flagValue(args, i));
+        else if (a == "--count-at") fixedSize = parseInt(a, flagValue(args, i), 8, 4096);
+        else if (a == "--size-at") fixedCount = parseInt(a, flagValue(args, i), 0, 4096);
         else throw InputError("usage: candela bench --shadows [SCENE.json] [--out DIR] [--spp N] [--size WxH] "
-                              "[--maps 1,4,...,0] [--map-sizes 32,64,...]");
+                              "[--maps 1,4,...,0] [--map-sizes 32,64,...] [--count-at R] [--size-at N]");
     }
     Scene scene = loadScene(scenePath);
     bool any = false;

@@ -137,6 +137,13 @@ void EnvironmentPass::prepareHavran() {
     mExtraFor = mMap;
 }
 
+std::vector<glm::dvec3> EnvironmentPass::havranDirections() const {
+    std::vector<glm::dvec3> out;
+    if (mHavran)
+        for (const HavranLights::Light& l : mHavran->lights()) out.push_back(l.direction);
+    return out;
+}
+
 void EnvironmentPass::shade(ShaderLibrary& shaders, const ShadeStep& step, const GBufferPass& gbuffer,
                             const gl::Framebuffer& target, int width, int height, bool background) {
     if (!mMap) return;

@@ -37,6 +37,8 @@ public:
     /// What the global-cdf and havran2005 techniques read, built on the CPU for the current map.
     void prepareGlobalCdf();
     void prepareHavran();
+    /// Unit directions towards the Havran lights prepareHavran() uploaded (empty before).
+    std::vector<glm::dvec3> havranDirections() const;
     /// Shades the G-buffer into `target` (additive). background: show the map behind the scene.
     void shade(ShaderLibrary& shaders, const ShadeStep& step, const GBufferPass& gbuffer,
                const gl::Framebuffer& target, int width, int height, bool background);

@@ -120,4 +120,66 @@ void ShadowMaps::bind() const {
     mShares.bindBase(GL_SHADER_STORAGE_BUFFER, gpu::kBindingShadowShares);
 }
 
+bool DirectionalShadowMaps::stale(const std::vector<glm::dvec3>& directions, const ShadowMapSettings& settings,
+                                  int geometryGeneration) const {
+    return geometryGeneration != mGeneration || !(settings == mSettings) || directions != mDirections;
+}
+
+void DirectionalShadowMaps::render(ShaderLibrary& shaders, const ShadowGeometry& geometry,
+                                   const std::vector<glm::dvec3>& directions, const ShadowMapSettings& settings,
+                                   int geometryGeneration) {
+    mDirections = directions;
+    mSettings = settings;
+    mGeneration = geometryGeneration;
+    int count = std::max(1, int(directions.size()));
+    int res = std::max(8, settings.directionalResolution);
+    if (mDepth.layers() != count || mDepth.width() != res) {
+        mDepth = gl::TextureArray(GL_TEXTURE_2D_ARRAY, res, res, count, GL_DEPTH_COMPONENT32F);
+        mFbo = gl::Framebuffer::depthOnly();
+    }
+    // The bounding sphere of the scene's bounds, a little larger so nothing grazes the edges.
+    glm::dvec3 centre = 0.5 * (geometry.lo + geometry.hi);
+    double radius = std::max(1e-3, 0.5 * glm::length(geometry.hi - geometry.lo) * 1.01);
+    gpu::ShadowMapsGpu header{};
+    header.dims = glm::ivec4(int(directions.size()), res, 0, 0);
+    // x: world size of a texel (m); z, w: the offsets in texels.
+    header.params = glm::vec4(float(2.0 * radius / res), float(radius), settings.normalOffset, settings.depthOffset);
+    std::vector<glm::mat4> matrices;
+    glm::dmat4 proj = glm::ortho(-radius, radius, -radius, radius, 0.0, 2.0 * radius);
+    for (const glm::dvec3& w : directions) {
+        glm::dvec3 up = std::abs(w.y) < 0.9 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
+        matrices.push_back(glm::mat4(proj * glm::lookAt(centre + w * radius, centre, up)));
+    }
+    if (matrices.empty()) matrices.push_back(glm::mat4(1.f));
+    std::vector<std::byte> bytes(sizeof(header) + matrices.size() * sizeof(glm::mat4));
+    std::memcpy(bytes.data(), &header, sizeof(header));
+    std::memcpy(bytes.data() + sizeof(header), matrices.data(), matrices.size() * sizeof(glm::mat4));
+    mData = gl::Buffer(GLsizeiptr(bytes.size()), bytes.data(), 0);
+
+    ProgramKey key;
+    key.vertex = "shadow_depth.vert";
+    key.fragment = "shadow_depth.frag";
+    GLuint program = shaders.program(key);
+    glUseProgram(program);
+    glBindFramebuffer(GL_FRAMEBUFFER, mFbo.id());
+    glViewport(0, 0, res, res);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_CULL_FACE);
+    for (size_t k = 0; k < directions.size(); ++k) {
+        mFbo.attachDepthLayer(mDepth, int(k));
+        glClear(GL_DEPTH_BUFFER_BIT);
+        glProgramUniformMatrix4fv(program, 0, 1, GL_FALSE, &matrices[k][0][0]);
+        geometry.draw();
+    }
+    glDisable(GL_DEPTH_TEST);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void DirectionalShadowMaps::bind() const {
+    glBindTextureUnit(GLuint(gpu::kUnitDirectionalShadowMaps), mDepth.id());
+    mData.bindBase(GL_SHADER_STORAGE_BUFFER, gpu::kBindingDirectionalShadowMaps);
+}
+
 }  // namespace candela

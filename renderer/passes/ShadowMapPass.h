@@ -21,6 +21,7 @@ namespace candela {
 struct ShadowMapSettings {
     int count = 49;        ///< Maps per luminaire, about (0: the kind's natural count, one per cell).
     int resolution = 192;  ///< Texels along a cube face's edge.
+    int directionalResolution = 256;  ///< Texels along a directional map's edge.
     float normalOffset = 1.0f;  ///< Receiver offset along its normal, texels (shadow_maps.glsl).
     float depthOffset = 1.0f;   ///< Then towards the light, texels.
     bool operator==(const ShadowMapSettings&) const = default;
@@ -61,6 +62,27 @@ private:
     gl::TextureArray mDepth;
     gl::Framebuffer mFbo;
     gl::Buffer mHeader, mShares;
+};
+
+/// Directional shadow maps (the environment's Havran lights, one map per light): orthographic
+/// depth maps over the scene's bounding sphere, in one 2D array texture. Shading reads them
+/// through shaders/shadow_directional.glsl.
+class DirectionalShadowMaps {
+public:
+    bool stale(const std::vector<glm::dvec3>& directions, const ShadowMapSettings& settings,
+               int geometryGeneration) const;
+    /// directions: unit vectors towards each light.
+    void render(ShaderLibrary& shaders, const ShadowGeometry& geometry, const std::vector<glm::dvec3>& directions,
+                const ShadowMapSettings& settings, int geometryGeneration);
+    void bind() const;
+
+private:
+    std::vector<glm::dvec3> mDirections;
+    ShadowMapSettings mSettings;
+    int mGeneration = -1;
+    gl::TextureArray mDepth;
+    gl::Framebuffer mFbo;
+    gl::Buffer mData;
 };
 
 }  // namespace candela

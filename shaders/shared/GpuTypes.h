@@ -53,6 +53,12 @@ struct ShadowMapsGpu {
     ivec4 dims;    // x = maps, y = face resolution (texels), z = shares per item, w unused
     vec4 params;   // x = near, y = far (m); z = normal offset, w = depth offset (texels)
 };
+/// Directional shadow maps (one per Havran light): at kBindingDirectionalShadowMaps the header
+/// (dims.x = maps, dims.y = resolution; params.x = texel size (m), params.y = the bounding
+/// sphere's radius, params.zw = the offsets in texels) and one world-to-clip mat4 per map
+/// (orthographic); the depth maps (sampler2DArrayShadow) on kUnitDirectionalShadowMaps.
+CANDELA_CONST int kBindingDirectionalShadowMaps = 16;
+CANDELA_CONST int kUnitDirectionalShadowMaps = 7;
 struct ShadowMapGpu {
     vec4 light;    // xyz world position of the map's light (m); w = 1 if rendered
 };
