@@ -81,6 +81,29 @@ bool samplingControls(EditorState& state) {
         ImGui::EndCombo();
     }
     itemTooltip("Renders every luminaire whose kind has this technique with it");
+
+    // Shadow maps (renderer/passes/ShadowMapPass.h): what the light-field, photometric and
+    // Havran techniques read when an occluder can block them.
+    ShadowMapSettings& maps = s.shadowMaps;
+    if (ImGui::InputInt("Shadow maps", &maps.count, 1, 16)) {
+        maps.count = std::clamp(maps.count, 0, 4096);
+        changed = true;
+    }
+    itemTooltip(
+        "Per-cell shadow maps per light-field luminaire (Lu et al. 2015, Sec. 6.2); 0 = one per "
+        "cell of U, (W + 2) x (H + 2) for W x H images. The *-raytraced techniques trace a "
+        "shadow ray per sample instead, the exact visibility the maps approximate.");
+    const int sizes[] = {64, 128, 192, 256, 512, 1024};
+    const char* sizeNames[] = {"64^2", "128^2", "192^2", "256^2", "512^2", "1024^2"};
+    int size = 2;
+    for (int i = 0; i < 6; ++i)
+        if (maps.resolution == sizes[i]) size = i;
+    if (ImGui::Combo("Shadow-map faces", &size, sizeNames, 6)) {
+        maps.resolution = sizes[size];
+        changed = true;
+    }
+    itemTooltip("Texels per cube-map face of each shadow map; the edges of shadows move by about "
+                "a texel (the bias), so finer faces are closer to the ray-traced truth");
     return changed;
 }
 
