@@ -101,6 +101,14 @@ move_to() {
         "d['mouse'] is not None and abs(d['mouse'][0] - $1) < 1 and abs(d['mouse'][1] - $2) < 1"
 }
 
+# wait_frames N: until the editor has drawn N more frames, so the layout file shows the effect of
+# the input sent before (under load a frame can take longer than any fixed sleep).
+wait_frames() {
+    local f
+    f=$(layout "d['frame']")
+    wait_until "$1 more frames" "d['frame'] >= $f + $1"
+}
+
 # scroll_into_view WIDGET PANEL: scrolls the panel (its rectangle recorded as panel.PANEL) with
 # the mouse wheel until the recorded widget lies inside it, with a margin of 4 pixels.
 scroll_into_view() {
@@ -112,7 +120,7 @@ scroll_into_view() {
         read -r x y < <(layout "'%d %d' % ((w('$panel')[0] + w('$panel')[2]) / 2, (w('$panel')[1] + w('$panel')[3]) / 2)")
         move_to "$x" "$y"
         if [ "$where" = down ]; then xdotool click 5; else xdotool click 4; fi
-        sleep 0.2
+        wait_frames 2
     done
     fail "could not scroll $widget into $panel"
 }
