@@ -36,9 +36,10 @@ std::vector<std::string> FramePlan::passNames() const {
         names.push_back("env:cdf");
         names.push_back("env:samples");
     }
-    for (const auto& s : shading) names.push_back(s.name);
+    // Renderer::runShading shades the environment first, then each luminaire.
     if (environment && environment->shadowMaps) names.push_back("shadow:environment");
     if (environment) names.push_back(environment->name);
+    for (const auto& s : shading) names.push_back(s.name);
     names.push_back("resolve");
     names.push_back("tonemap");
     return names;

@@ -441,3 +441,32 @@ TEST(ShadowMaps, OccluderBetweenUAndSShadowsNothing) {
 
 }  // namespace
 }  // namespace candela
+
+namespace candela {
+namespace {
+
+TEST(ShadowMaps, PlannedPassesAreThoseOfTheFirstFrameInOrder) {
+    test::glContext();
+    ShaderLibrary shaders;
+    Renderer renderer(shaders);
+    RenderSettings s;
+    s.width = 32;
+    s.height = 18;
+    s.samplesPerFrame = 1;
+    s.environmentTechnique = "havran2005";
+    renderer.setSettings(s);
+    Scene scene = skyScene(true);
+    nlohmann::json lum = lightField("Headlight", {1.5, 1.2, 0}, {-1, -1, 0});
+    scene.luminaires.push_back(LightFieldLuminaire::parse(lum, {"test", ""}));
+    scene.luminaires.back()->pose = {{1.5, 1.2, 0}, {-1, -1, 0}, {0, 0, 1}};
+    scene.luminaires.back()->name = "Headlight";  // the scene reader sets these, not parse()
+    scene.luminaires.back()->technique = "restricted-cdf";
+    renderer.update(scene, kChangeAll);
+    renderer.renderFrame();
+    EXPECT_EQ(passNames(renderer.stats()), renderer.plan().passNames());
+    EXPECT_TRUE(has(renderer.plan().passNames(), "shadow:environment"));
+    EXPECT_TRUE(has(renderer.plan().passNames(), "shadow:Headlight"));
+}
+
+}  // namespace
+}  // namespace candela
