@@ -85,7 +85,15 @@ std::vector<float> illuminance(Renderer& renderer, const Scene& scene, const std
     return renderer.readLinear();
 }
 
-TEST(ShadowMaps, GridFollowsTheRequestedCount) {
+/// The GL tests share one context; each gets its own shader library and renderer.
+class ShadowMapsGl : public ::testing::Test {
+protected:
+    GlContext& context = test::glContext();  // first: the members below make GL objects
+    ShaderLibrary shaders;
+    Renderer renderer{shaders};
+};
+
+TEST(ShadowMapLayout, GridFollowsTheRequestedCount) {
     EXPECT_EQ(shadowMapGrid({13, 11}, 49), glm::ivec2(7, 7));  // the car headlight, the paper's 49
     EXPECT_EQ(shadowMapGrid({7, 7}, 49), glm::ivec2(7, 7));    // 5 x 5 images: one map per cell
     EXPECT_EQ(shadowMapGrid({13, 11}, 0), glm::ivec2(13, 11));
@@ -96,7 +104,7 @@ TEST(ShadowMaps, GridFollowsTheRequestedCount) {
     EXPECT_GE(g.x, g.y);  // the wider axis gets the more maps
 }
 
-TEST(ShadowMaps, LightFieldLightsLieOnSAndSharesSumToOne) {
+TEST(ShadowMapLayout, LightFieldLightsLieOnSAndSharesSumToOne) {
     Scene scene = headlightRoom(true);
     const Luminaire& lum = *scene.luminaires[0];
     ShadowLights lights = lum.shadowLights(49);
@@ -120,10 +128,7 @@ TEST(ShadowMaps, LightFieldLightsLieOnSAndSharesSumToOne) {
     }
 }
 
-TEST(ShadowMaps, RenderedOnlyWhenTheirLuminaireOrTheSceneChanges) {
-    test::glContext();
-    ShaderLibrary shaders;
-    Renderer renderer(shaders);
+TEST_F(ShadowMapsGl, RenderedOnlyWhenTheirLuminaireOrTheSceneChanges) {
     RenderSettings s;
     s.width = 32;
     s.height = 18;
@@ -176,10 +181,7 @@ TEST(ShadowMaps, RenderedOnlyWhenTheirLuminaireOrTheSceneChanges) {
     EXPECT_TRUE(has(renderer.plan().shading[0].program.defines, "SHADOWS"));
 }
 
-TEST(ShadowMaps, NoOccluderNoShadowPass) {
-    test::glContext();
-    ShaderLibrary shaders;
-    Renderer renderer(shaders);
+TEST_F(ShadowMapsGl, NoOccluderNoShadowPass) {
     RenderSettings s;
     s.width = 32;
     s.height = 18;
@@ -195,10 +197,7 @@ TEST(ShadowMaps, NoOccluderNoShadowPass) {
         EXPECT_EQ(v.find("shadow_depth"), std::string::npos) << v;
 }
 
-TEST(ShadowMaps, VisibilityAgreesWithRayTracingWithoutAcneOrLeaks) {
-    test::glContext();
-    ShaderLibrary shaders;
-    Renderer renderer(shaders);
+TEST_F(ShadowMapsGl, VisibilityAgreesWithRayTracingWithoutAcneOrLeaks) {
     const int spp = 32;
     std::vector<float> open = illuminance(renderer, headlightRoom(false), "restricted-cdf", spp);
     Scene room = headlightRoom(true);
@@ -236,10 +235,7 @@ TEST(ShadowMaps, VisibilityAgreesWithRayTracingWithoutAcneOrLeaks) {
     EXPECT_NEAR(sumMaps / sumRays, 1.0, 0.02);
 }
 
-TEST(ShadowMaps, LuminaireInAClosedBoxLightsNothingOutside) {
-    test::glContext();
-    ShaderLibrary shaders;
-    Renderer renderer(shaders);
+TEST_F(ShadowMapsGl, LuminaireInAClosedBoxLightsNothingOutside) {
     nlohmann::json doc = nlohmann::json::parse(R"({"geometry": [
         {"plane": {"center": [0, 0, 0], "normal": [0, 1, 0], "size": [8, 8]}},
         {"box": {"center": [0, 1.0, 0], "size": [0.6, 0.6, 0.6]}}],
@@ -261,11 +257,6 @@ TEST(ShadowMaps, LuminaireInAClosedBoxLightsNothingOutside) {
     EXPECT_GT(*std::max_element(open.begin(), open.end()), 1.f);
 }
 
-}  // namespace
-}  // namespace candela
-
-namespace candela {
-namespace {
 
 /// A ground with or without a box under a real sky map (noon, sun and grass), Havran's lights.
 Scene skyScene(bool box) {
@@ -291,10 +282,7 @@ std::vector<float> skyIlluminance(Renderer& renderer, const Scene& scene, const 
     return renderer.readLinear();
 }
 
-TEST(ShadowMaps, HavranLightsGetOneDirectionalMapEach) {
-    test::glContext();
-    ShaderLibrary shaders;
-    Renderer renderer(shaders);
+TEST_F(ShadowMapsGl, HavranLightsGetOneDirectionalMapEach) {
     Scene scene = skyScene(true);
     std::vector<float> maps = skyIlluminance(renderer, scene, "havran2005");
     ASSERT_TRUE(renderer.plan().environment);
@@ -339,11 +327,6 @@ TEST(ShadowMaps, HavranLightsGetOneDirectionalMapEach) {
     EXPECT_NEAR(sumMaps / sumRays, 1.0, 0.02);
 }
 
-}  // namespace
-}  // namespace candela
-
-namespace candela {
-namespace {
 
 /// The photometric room (resources/scenes/photometric.json: a pendant and a wall washer over a
 /// table), with or without its boxes (the table and other furniture, its only occluders).
@@ -360,10 +343,7 @@ Scene photometricRoom(bool occluders) {
     return parseScene(doc, path);
 }
 
-TEST(ShadowMaps, PhotometricLightsShadowFromTheirOpeningInOneFrame) {
-    test::glContext();
-    ShaderLibrary shaders;
-    Renderer renderer(shaders);
+TEST_F(ShadowMapsGl, PhotometricLightsShadowFromTheirOpeningInOneFrame) {
     Scene room = photometricRoom(true);
     ShadowLights lights = room.luminaires[0]->shadowLights(0);
     EXPECT_EQ(lights.lights.size(), 5u);  // centre and four corners of the opening
@@ -404,16 +384,8 @@ TEST(ShadowMaps, PhotometricLightsShadowFromTheirOpeningInOneFrame) {
     EXPECT_LT(fRays, 0.99);  // the occluders do block light (the test can fail)
 }
 
-}  // namespace
-}  // namespace candela
 
-namespace candela {
-namespace {
-
-TEST(ShadowMaps, OccluderBetweenUAndSShadowsNothing) {
-    test::glContext();
-    ShaderLibrary shaders;
-    Renderer renderer(shaders);
+TEST_F(ShadowMapsGl, OccluderBetweenUAndSShadowsNothing) {
     // The headlight 0.5 m over a floor with a post beside it (so the plan asks for shadows),
     // and a disc between its planes U and S (delta = 0.05 m), covering the whole aperture.
     nlohmann::json doc = nlohmann::json::parse(R"({"geometry": [
@@ -439,16 +411,8 @@ TEST(ShadowMaps, OccluderBetweenUAndSShadowsNothing) {
     EXPECT_GT(lit, 1000);
 }
 
-}  // namespace
-}  // namespace candela
 
-namespace candela {
-namespace {
-
-TEST(ShadowMaps, PlannedPassesAreThoseOfTheFirstFrameInOrder) {
-    test::glContext();
-    ShaderLibrary shaders;
-    Renderer renderer(shaders);
+TEST_F(ShadowMapsGl, PlannedPassesAreThoseOfTheFirstFrameInOrder) {
     RenderSettings s;
     s.width = 32;
     s.height = 18;

@@ -8,6 +8,37 @@
 
 namespace candela {
 
+namespace {
+
+/// An immutable buffer holding `header` followed by the elements of `array` (the std430 layout
+/// of a block with a fixed member and a runtime-sized array).
+template <class Header, class T>
+gl::Buffer headerAndArray(const Header& header, const std::vector<T>& array) {
+    std::vector<std::byte> bytes(sizeof(Header) + array.size() * sizeof(T));
+    std::memcpy(bytes.data(), &header, sizeof(Header));
+    std::memcpy(bytes.data() + sizeof(Header), array.data(), array.size() * sizeof(T));
+    return gl::Buffer(GLsizeiptr(bytes.size()), bytes.data(), 0);
+}
+
+/// Binds the depth-only program, `fbo` and a res x res viewport with depth testing, no culling
+/// (triangles are two-sided); returns the program, whose location 0 takes the view-projection.
+GLuint beginDepthPass(ShaderLibrary& shaders, const gl::Framebuffer& fbo, int res) {
+    ProgramKey key;
+    key.vertex = "shadow_depth.vert";
+    key.fragment = "shadow_depth.frag";
+    GLuint program = shaders.program(key);
+    glUseProgram(program);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
+    glViewport(0, 0, res, res);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_CULL_FACE);
+    return program;
+}
+
+}  // namespace
+
 void ShadowGeometry::set(const Scene& scene) {
     std::vector<glm::vec3> positions;
     std::vector<uint32_t> indices;
@@ -74,10 +105,7 @@ void ShadowMaps::render(ShaderLibrary& shaders, const ShadowGeometry& geometry,
     std::vector<gpu::ShadowMapGpu> records(static_cast<size_t>(maps));
     for (size_t k = 0; k < lights.lights.size(); ++k)
         records[k].light = glm::vec4(glm::vec3(lights.lights[k]), lights.lit[k] ? 1.f : 0.f);
-    std::vector<std::byte> bytes(sizeof(header) + records.size() * sizeof(gpu::ShadowMapGpu));
-    std::memcpy(bytes.data(), &header, sizeof(header));
-    std::memcpy(bytes.data() + sizeof(header), records.data(), records.size() * sizeof(gpu::ShadowMapGpu));
-    mHeader = gl::Buffer(GLsizeiptr(bytes.size()), bytes.data(), 0);
+    mHeader = headerAndArray(header, records);
     std::vector<glm::vec2> shares;
     for (const ShadowLights::Share& s : lights.shares) shares.push_back({float(s.map), s.weight});
     if (shares.empty()) shares.push_back(glm::vec2(0.f));
@@ -88,17 +116,7 @@ void ShadowMaps::render(ShaderLibrary& shaders, const ShadowGeometry& geometry,
     static const glm::dvec3 kForward[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
     static const glm::dvec3 kUp[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
     glm::dmat4 proj = glm::perspective(glm::radians(90.0), 1.0, kNear, far);
-    ProgramKey key;
-    key.vertex = "shadow_depth.vert";
-    key.fragment = "shadow_depth.frag";
-    GLuint program = shaders.program(key);
-    glUseProgram(program);
-    glBindFramebuffer(GL_FRAMEBUFFER, mFbo.id());
-    glViewport(0, 0, res, res);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
-    glDisable(GL_CULL_FACE);
+    GLuint program = beginDepthPass(shaders, mFbo, res);
     for (size_t k = 0; k < lights.lights.size(); ++k) {
         for (int f = 0; f < 6; ++f) {
             mFbo.attachDepthLayer(mDepth, int(k) * 6 + f);
@@ -151,22 +169,9 @@ void DirectionalShadowMaps::render(ShaderLibrary& shaders, const ShadowGeometry&
         matrices.push_back(glm::mat4(proj * glm::lookAt(centre + w * radius, centre, up)));
     }
     if (matrices.empty()) matrices.push_back(glm::mat4(1.f));
-    std::vector<std::byte> bytes(sizeof(header) + matrices.size() * sizeof(glm::mat4));
-    std::memcpy(bytes.data(), &header, sizeof(header));
-    std::memcpy(bytes.data() + sizeof(header), matrices.data(), matrices.size() * sizeof(glm::mat4));
-    mData = gl::Buffer(GLsizeiptr(bytes.size()), bytes.data(), 0);
+    mData = headerAndArray(header, matrices);
 
-    ProgramKey key;
-    key.vertex = "shadow_depth.vert";
-    key.fragment = "shadow_depth.frag";
-    GLuint program = shaders.program(key);
-    glUseProgram(program);
-    glBindFramebuffer(GL_FRAMEBUFFER, mFbo.id());
-    glViewport(0, 0, res, res);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
-    glDisable(GL_CULL_FACE);
+    GLuint program = beginDepthPass(shaders, mFbo, res);
     for (size_t k = 0; k < directions.size(); ++k) {
         mFbo.attachDepthLayer(mDepth, int(k));
         glClear(GL_DEPTH_BUFFER_BIT);
