@@ -10,11 +10,11 @@ namespace candela {
 // files; a new kind is one line in kKinds plus its model in luminaires/ and shaders.
 static const LuminaireKindInfo kKinds[] = {
     {"lambertian-rect", "uniformly emitting (Lambertian) rectangle", &LambertianRect::parse,
-     &LambertianRect::create, "analytic"},
+     &LambertianRect::create, "analytic", "analytic"},
     {"lightfield", "measured near-field luminaire (light field on two planes, Lu et al. 2015)",
-     &LightFieldLuminaire::parse, &LightFieldLuminaire::create, "restricted-cdf"},
+     &LightFieldLuminaire::parse, &LightFieldLuminaire::create, "restricted-cdf", "precomputed-global"},
     {"photometric", "far-field photometry (IES LM-63, EULUMDAT) on its luminous opening (Prost 2019)",
-     &PhotometricLuminaire::parse, &PhotometricLuminaire::create, "hybrid"},
+     &PhotometricLuminaire::parse, &PhotometricLuminaire::create, "hybrid", "scattered"},
 };
 
 static const TechniqueInfo kTechniques[] = {

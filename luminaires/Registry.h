@@ -67,6 +67,9 @@ struct LuminaireKindInfo {
     LuminaireParser parse;
     LuminaireFactory create;
     std::string_view defaultTechnique;
+    /// The editor's fallback while the user drags (renderer/LivePreview.h): cheap per sample and
+    /// close at one sample per pixel.
+    std::string_view previewTechnique;
 };
 
 std::span<const LuminaireKindInfo> luminaireKinds();

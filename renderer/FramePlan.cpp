@@ -45,6 +45,14 @@ std::vector<std::string> FramePlan::passNames() const {
     return names;
 }
 
+std::string overrideFor(const std::string& techniqueOverride, std::string_view kind) {
+    std::istringstream list(techniqueOverride);
+    for (std::string name; std::getline(list, name, ',');)
+        if (kind.empty() ? findEnvironmentTechnique(name) != nullptr : findTechnique(kind, name) != nullptr)
+            return name;
+    return {};
+}
+
 FramePlan planFrame(const Scene& scene, const glm::mat4& viewProj,
                     const std::string& techniqueOverride, Quantity quantity,
                     const std::string& environmentTechnique) {
@@ -53,9 +61,8 @@ FramePlan planFrame(const Scene& scene, const glm::mat4& viewProj,
     std::vector<bool> shadows = luminairesNeedingShadows(scene, viewProj);
     for (size_t i = 0; i < scene.luminaires.size(); ++i) {
         const Luminaire& lum = *scene.luminaires[i];
-        std::string name = lum.technique;
-        if (!techniqueOverride.empty() && findTechnique(lum.kind(), techniqueOverride))
-            name = techniqueOverride;
+        std::string name = overrideFor(techniqueOverride, lum.kind());
+        if (name.empty()) name = lum.technique;
         const TechniqueInfo* t = findTechnique(lum.kind(), name);
         if (!t)
             throw InputError("luminaire \"" + lum.name + "\": unknown technique \"" + name +
@@ -84,8 +91,8 @@ FramePlan planFrame(const Scene& scene, const glm::mat4& viewProj,
     }
     if (scene.environmentMap) {
         std::string name = environmentTechnique;
-        if (name.empty())
-            name = findEnvironmentTechnique(techniqueOverride) ? techniqueOverride : "balanced";
+        if (name.empty()) name = overrideFor(techniqueOverride, {});
+        if (name.empty()) name = "balanced";
         const EnvironmentTechniqueInfo* t = findEnvironmentTechnique(name);
         if (!t)
             throw InputError("environment: unknown technique \"" + name + "\" (available: " +

@@ -47,12 +47,16 @@ struct FramePlan {
 /// "shadow:NAME": the pass that renders the shadow maps of a step's luminaire.
 std::string shadowPassName(const ShadeStep& step);
 
+/// The first name of a comma-separated techniqueOverride that luminaire kind `kind` has (an
+/// environment technique when kind is empty); empty when none.
+std::string overrideFor(const std::string& techniqueOverride, std::string_view kind);
+
 /// World to clip transform of the camera for an image of the given aspect (width / height).
 glm::mat4 cameraViewProj(const Camera& camera, double aspect);
 
-/// techniqueOverride: if non-empty, used for every luminaire of a kind that has it, and for the
-/// environment if it names an environment technique and environmentTechnique is empty (then the
-/// environment uses "balanced").
+/// techniqueOverride: technique names separated by commas ("analytic,precomputed-global,point");
+/// each luminaire uses the first its kind has (its own technique when none), and the environment
+/// the first environment technique if environmentTechnique is empty (then "balanced" when none).
 /// In illuminance mode every receiver is white Lambertian: no GLOSSY variant whatever the
 /// materials. Throws InputError if a luminaire names a technique its kind does not have.
 FramePlan planFrame(const Scene& scene, const glm::mat4& viewProj,

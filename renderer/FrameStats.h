@@ -6,7 +6,9 @@ namespace candela {
 
 struct PassTiming {
     std::string name;
-    double gpuMs = 0.0;  ///< GPU time from a GL_TIME_ELAPSED query, milliseconds.
+    /// GPU time from a GL_TIME_ELAPSED query, milliseconds; on a software rasterizer (llvmpipe)
+    /// the wall time between glFinish calls around the pass (see Renderer.cpp, timed()).
+    double gpuMs = 0.0;
 };
 
 /// What the last frame did: exactly the passes that ran, with their GPU times.

@@ -36,7 +36,9 @@ struct RenderSettings {
     int height = 512;
     int samplesPerFrame = 4;        ///< Light samples per pixel per luminaire each frame.
     int maxSamples = 0;             ///< Stop refining at this many samples per pixel; 0 = never.
-    std::string techniqueOverride;  ///< Empty: each luminaire's own technique.
+    /// Empty: each luminaire's own technique. Else names separated by commas; each luminaire
+    /// uses the first its kind has (see planFrame).
+    std::string techniqueOverride;
     ToneMapOperator toneMap = ToneMapOperator::Exponential;
     float exposure = 1.0f;          ///< k of the operators in shaders/tonemap.frag.
     float fixedAverage = 0.0f;      ///< > 0: tone-map against this luminance, not the frame mean.

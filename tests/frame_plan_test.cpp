@@ -79,6 +79,24 @@ TEST(FramePlan, OneShadingPassPerLuminaireWithItsTechnique) {
     EXPECT_EQ(overridden.shading[0].name, "shade:Panel:reference");
 }
 
+TEST(FramePlan, OverrideListGivesEachKindTheFirstItHas) {
+    std::string photometric = R"({"type": "photometric", "name": "Pendant", "file": ")" CANDELA_SOURCE_DIR
+                              R"(/resources/luminaires/photometric/linear-pendant.ies", "position": [1,2.5,0],
+                                   "technique": "hybrid"})";
+    Scene scene = sceneFrom(kFloor, kPanel + "," + photometric);
+    // "point" is photometric only, "reference" both kinds': the rectangle takes reference.
+    FramePlan plan = planFrame(scene, view(scene), "point,reference");
+    EXPECT_EQ(plan.shading[0].name, "shade:Panel:reference");
+    EXPECT_EQ(plan.shading[1].name, "shade:Pendant:point");
+    // A list naming nothing of a kind leaves that luminaire its own technique.
+    FramePlan own = planFrame(scene, view(scene), "point,granier2003");
+    EXPECT_EQ(own.shading[0].name, "shade:Panel:analytic");
+    EXPECT_EQ(own.shading[1].name, "shade:Pendant:point");
+    EXPECT_EQ(overrideFor("point,reference", "lambertian-rect"), "reference");
+    EXPECT_EQ(overrideFor("point,havran2005", ""), "havran2005");
+    EXPECT_EQ(overrideFor("point", "lightfield"), "");
+}
+
 TEST(FramePlan, UnknownTechniqueIsAClearError) {
     Scene scene = sceneFrom(kFloor, kPanel);
     scene.luminaires[0]->technique = "magic";

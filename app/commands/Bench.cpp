@@ -82,6 +82,7 @@ int cmdBench(const Args& args) {
     if (std::find(args.begin(), args.end(), "--prost") != args.end()) return benchProst(args);
     if (std::find(args.begin(), args.end(), "--environment") != args.end()) return benchEnvironment(args);
     if (std::find(args.begin(), args.end(), "--shadows") != args.end()) return benchShadows(args);
+    if (std::find(args.begin(), args.end(), "--drag") != args.end()) return benchDrag(args);
     std::string lfPath, outDir = "bench-lightfield";
     std::vector<int> sppList = {4, 8, 16, 32, 64, 128, 256, 512};
     int refSpp = 8192, width = 256, height = 192;

@@ -58,6 +58,9 @@ bool runGnuplot(const std::string& dir, const std::string& output);
 int benchProst(const Args& args);
 /// `candela bench --environment`: the environment techniques (app/commands/BenchEnvironment.cpp).
 int benchEnvironment(const Args& args);
+/// `candela bench --drag`: the editor's frame rate while dragging and refinement after release
+/// (app/commands/BenchDrag.cpp).
+int benchDrag(const Args& args);
 /// `candela bench --shadows`: shadow maps against ray-traced visibility (app/commands/BenchShadows.cpp).
 int benchShadows(const Args& args);
 

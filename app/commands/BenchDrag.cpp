@@ -1,0 +1,262 @@
+// `candela bench --drag [SCENE] --out DIR`: how live the editor stays while a luminaire is
+// dragged, and how soon the image is right again after the user lets go (issue 7, "live while
+// moving"). For each luminaire of the scene in turn (by default the demo room with one luminaire
+// of each kind, resources/scenes/editor-room.json, at 960x540):
+//  - drag: it moves along a circle in its horizontal plane, one step per frame, rendered with the
+//    editor's preview settings (renderer/LivePreview.h), and for comparison with the full
+//    settings; the wall time of each frame, GPU finished, gives frames per second;
+//  - release: back at its place, the full settings refine progressively (as the editor does,
+//    samplesPerFrame 4); after every frame the tone-mapped image is compared with a reference
+//    (the same techniques at --reference-spp, another seed) and the clock, stopped while
+//    comparing, gives the seconds until the mean Delta E falls below 1.
+// Every image is tone-mapped against the reference's mean luminance, so Delta E measures noise
+// and bias, not a change of exposure. Writes drag.csv, release.csv, summary.txt and plot.png.
+// clang-format off
+#include "renderer/gl/GlFunctions.h"
+// clang-format on
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "app/commands/BenchUtil.h"
+#include "app/commands/Commands.h"
+#include "renderer/ImageFile.h"
+#include "renderer/LivePreview.h"
+#include "renderer/Renderer.h"
+#include "renderer/context/GlContext.h"
+#include "scene/SceneIo.h"
+#include "util/Error.h"
+
+namespace candela {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+constexpr double kTargetDeltaE = 1.0;  ///< The issue's "right again": mean Delta E below this.
+constexpr double kDragRadius = 0.4;    ///< Radius of the drag's circle, metres.
+
+double seconds(Clock::time_point a, Clock::time_point b) {
+    return std::chrono::duration<double>(b - a).count();
+}
+
+struct DragRow {
+    std::string luminaire, mode;  ///< mode: "preview" or "full"
+    int frames = 0;
+    double meanMs = 0.0, p95Ms = 0.0, worstMs = 0.0;
+    std::map<std::string, double> passMs;  ///< Mean GPU time per frame of each pass
+    double fps() const { return meanMs > 0.0 ? 1000.0 / meanMs : 0.0; }
+};
+
+struct ReleasePoint {
+    double seconds = 0.0;  ///< Since release, rendering only
+    int spp = 0;
+    double deltaE = 0.0, rmse = 0.0;
+};
+
+/// Renders `frames` frames while luminaire `index` of `scene` moves around its circle, showing
+/// `shown` (the scene itself, or its preview scene kept in step); the luminaire is back at its
+/// place afterwards.
+DragRow drag(Renderer& renderer, Scene& scene, Scene& shown, size_t index, const RenderSettings& settings,
+             int frames, const std::string& mode) {
+    Luminaire& lum = *scene.luminaires[index];
+    glm::dvec3 home = lum.pose.position;
+    renderer.setSettings(settings);
+    renderer.update(shown, kChangeAll);
+    renderer.renderFrame();  // the first frame after the switch (shadow maps of every luminaire)
+    glFinish();
+    std::vector<double> ms;
+    std::map<std::string, double> passMs;
+    for (int f = 1; f <= frames; ++f) {
+        double a = 2.0 * 3.14159265358979 * f / frames;
+        lum.pose.position = home + kDragRadius * glm::dvec3(std::sin(a), 0.0, 1.0 - std::cos(a));
+        auto start = Clock::now();
+        if (&shown != &scene) syncPreviewScene(shown, scene);
+        renderer.update(shown, kChangeLuminaires);
+        renderer.renderFrame();
+        glFinish();
+        ms.push_back(1000.0 * seconds(start, Clock::now()));
+        for (const auto& p : renderer.stats().passes) passMs[p.name] += p.gpuMs / frames;
+    }
+    lum.pose.position = home;
+    if (&shown != &scene) syncPreviewScene(shown, scene);
+    DragRow row;
+    row.luminaire = lum.name;
+    row.mode = mode;
+    row.frames = frames;
+    row.passMs = passMs;
+    for (double m : ms) row.meanMs += m / double(ms.size());
+    std::vector<double> sorted = ms;
+    std::sort(sorted.begin(), sorted.end());
+    row.p95Ms = sorted[std::min(sorted.size() - 1, size_t(0.95 * double(sorted.size())))];
+    row.worstMs = sorted.back();
+    return row;
+}
+
+}  // namespace
+
+int benchDrag(const Args& args) {
+    std::string scenePath = std::string(CANDELA_SOURCE_DIR) + "/resources/scenes/editor-room.json";
+    std::string outDir = "bench-drag";
+    int width = 960, height = 540, frames = 60, refSpp = 1024;
+    double timeout = 60.0;
+    PreviewPolicy policy;
+    int samplesPerFrame = 4;
+    for (size_t i = 0; i < args.size(); ++i) {
+        const std::string& a = args[i];
+        if (a == "--drag") {
+            if (i + 1 < args.size() && args[i + 1].rfind("--", 0) != 0) scenePath = args[++i];
+        } else if (a == "--out") outDir = flagValue(args, i);
+        else if (a == "--size") parseSize(flagValue(args, i), width, height);
+        else if (a == "--frames") frames = parseInt(a, flagValue(args, i), 4, 100000);
+        else if (a == "--reference-spp") refSpp = parseInt(a, flagValue(args, i), 16, 1 << 20);
+        else if (a == "--preview-scale") policy.scale = float(parseNumberList(a, flagValue(args, i)).at(0));
+        else if (a == "--preview-techniques") policy.techniques = flagValue(args, i);
+        else if (a == "--preview-spp") policy.samplesPerFrame = parseInt(a, flagValue(args, i), 1, 1024);
+        else if (a == "--samples-per-frame") samplesPerFrame = parseInt(a, flagValue(args, i), 1, 1024);
+        else if (a == "--timeout") timeout = parseInt(a, flagValue(args, i), 1, 100000);
+        else throw InputError("bench: unknown option " + a);
+    }
+    fs::create_directories(outDir);
+    Scene scene = loadScene(scenePath);
+    if (scene.luminaires.empty()) throw InputError(scenePath + ": bench --drag needs a scene with luminaires");
+    auto context = createOffscreenContext();
+    ShaderLibrary shaders;
+    Renderer renderer(shaders);
+
+    // The editor's settings (ui/Editor.cpp): 4 samples per frame up to 256.
+    RenderSettings full;
+    full.width = width;
+    full.height = height;
+    full.samplesPerFrame = samplesPerFrame;
+    full.maxSamples = 256;
+
+    // The reference: the scene's own techniques, converged, with another seed.
+    std::fprintf(stderr, "bench: reference, %d spp at %dx%d\n", refSpp, width, height);
+    RenderSettings refSettings = full;
+    refSettings.samplesPerFrame = 16;
+    refSettings.maxSamples = refSpp;
+    refSettings.seed = 977;
+    renderer.setSettings(refSettings);
+    renderer.update(scene, kChangeAll);
+    do renderer.renderFrame();
+    while (!renderer.converged());
+    std::vector<float> refLinear = renderer.readLinear();
+    double avg = 0.0;
+    for (size_t i = 0; i + 2 < refLinear.size(); i += 3) avg += luma(&refLinear[i]);
+    avg /= double(refLinear.size() / 3);
+    full.fixedAverage = refSettings.fixedAverage = float(avg);
+    renderer.setSettings(refSettings);
+    renderer.renderFrame();  // converged: tone-maps again with the fixed average
+    std::vector<unsigned char> refDisplay = renderer.readDisplay();
+    writeImage8((fs::path(outDir) / "reference.png").string(), width, height, refDisplay);
+
+    if (!(policy.scale > 0.f && policy.scale <= 1.f)) throw InputError("bench: --preview-scale must be in (0, 1]");
+    RenderSettings preview = previewSettings(full, policy);
+    std::fprintf(stderr, "bench: preview %dx%d, %d spp per frame, techniques %s, %d shadow map(s) of %d^2\n",
+                 preview.width, preview.height, preview.samplesPerFrame, preview.techniqueOverride.c_str(),
+                 preview.shadowMaps.count, preview.shadowMaps.resolution);
+
+    Scene shownWhileDragging = previewScene(scene);
+    std::vector<DragRow> drags;
+    std::ostringstream releaseCsv;
+    releaseCsv << "luminaire,seconds,spp,mean_delta_e,rel_rmse\n";
+    std::vector<std::pair<std::string, double>> releaseTimes;  // seconds to Delta E < 1 (NaN: never)
+    std::vector<std::pair<std::string, double>> finalDeltaE;
+    for (size_t i = 0; i < scene.luminaires.size(); ++i) {
+        const std::string name = scene.luminaires[i]->name;
+        // Compile every variant before timing anything.
+        renderer.setSettings(preview);
+        renderer.update(shownWhileDragging, kChangeAll);
+        renderer.renderFrame();
+        drags.push_back(drag(renderer, scene, shownWhileDragging, i, preview, frames, "preview"));
+        drags.push_back(drag(renderer, scene, scene, i, full, std::max(4, frames / 6), "full"));
+        for (const DragRow* r : {&drags[drags.size() - 2], &drags.back()})
+            std::fprintf(stderr, "bench: drag %-16s %-8s %5.1f fps (mean %.1f ms, 95th percentile %.1f ms)\n",
+                         name.c_str(), r->mode.c_str(), r->fps(), r->meanMs, r->p95Ms);
+        for (const auto& [pass, ms] : drags[drags.size() - 2].passMs)
+            std::fprintf(stderr, "bench:   preview pass %-40s %7.2f ms\n", pass.c_str(), ms);
+
+        // Release: drag a few preview frames, then let go at the luminaire's place.
+        drag(renderer, scene, shownWhileDragging, i, preview, 4, "preview");
+        renderer.setSettings(full);
+        renderer.update(scene, kChangeAll & ~kChangeGeometry);
+        double rendering = 0.0, reached = std::nan("");
+        ReleasePoint last;
+        while (rendering < timeout) {
+            auto start = Clock::now();
+            renderer.renderFrame();
+            glFinish();
+            rendering += seconds(start, Clock::now());
+            ReleasePoint p{rendering, renderer.stats().samplesPerPixel,
+                           meanDeltaE(renderer.readDisplay(), refDisplay), relRmse(renderer.readLinear(), refLinear)};
+            releaseCsv << '"' << name << "\"," << p.seconds << "," << p.spp << "," << p.deltaE << "," << p.rmse << "\n";
+            last = p;
+            if (std::isnan(reached) && p.deltaE < kTargetDeltaE) reached = p.seconds;
+            if (!std::isnan(reached) || renderer.converged()) break;
+        }
+        releaseTimes.emplace_back(name, reached);
+        finalDeltaE.emplace_back(name, last.deltaE);
+        std::fprintf(stderr, "bench: release %-16s Delta E < %.0f after %s (%d spp; Delta E %.2f)\n", name.c_str(),
+                     kTargetDeltaE, std::isnan(reached) ? "never" : (std::to_string(reached) + " s").c_str(), last.spp,
+                     last.deltaE);
+    }
+
+    std::ofstream csv(fs::path(outDir) / "drag.csv");
+    csv << "luminaire,mode,frames,mean_ms,p95_ms,worst_ms,fps\n";
+    for (const DragRow& r : drags)
+        csv << '"' << r.luminaire << "\"," << r.mode << "," << r.frames << "," << r.meanMs << "," << r.p95Ms << ","
+            << r.worstMs << "," << r.fps() << "\n";
+    csv.close();
+    std::ofstream(fs::path(outDir) / "release.csv") << releaseCsv.str();
+
+    std::ostringstream summary;
+    char line[320];
+    std::snprintf(line, sizeof line, "scene: %s at %dx%d\ncontext: %s\n", scenePath.c_str(), width, height,
+                  context->description().c_str());
+    summary << line;
+    std::snprintf(line, sizeof line,
+                  "preview while dragging: %dx%d, %d spp per frame, techniques %s, %d shadow map(s) of %d^2\n"
+                  "full: %dx%d, %d spp per frame up to %d, each luminaire's own technique\n"
+                  "reference: own techniques at %d spp, another seed\n",
+                  preview.width, preview.height, preview.samplesPerFrame, preview.techniqueOverride.c_str(),
+                  preview.shadowMaps.count, preview.shadowMaps.resolution, width, height, full.samplesPerFrame,
+                  full.maxSamples, refSpp);
+    summary << line;
+    for (size_t i = 0; i + 1 < drags.size(); i += 2) {
+        const DragRow& p = drags[i];
+        const DragRow& f = drags[i + 1];
+        double release = releaseTimes[i / 2].second;
+        std::snprintf(line, sizeof line,
+                      "%-16s dragging %5.1f fps (95th percentile frame %.1f ms; full settings %.1f fps, %s slower); "
+                      "after release Delta E < 1 in %s (Delta E at the end %.2f)\n",
+                      p.luminaire.c_str(), p.fps(), p.p95Ms, f.fps(), formatRatio(f.meanMs / p.meanMs).c_str(),
+                      std::isnan(release) ? "never (timeout or converged first)"
+                                          : (std::to_string(release).substr(0, 5) + " s").c_str(),
+                      finalDeltaE[i / 2].second);
+        summary << line;
+    }
+    std::ofstream(fs::path(outDir) / "summary.txt") << summary.str();
+    std::fputs(summary.str().c_str(), stdout);
+
+    std::ofstream gp(fs::path(outDir) / "plot.gp");
+    gp << "set terminal pngcairo size 900,420 noenhanced\nset datafile separator ','\nset logscale y\nset grid\n"
+           "set xlabel 'seconds after release (rendering only)'\nset ylabel 'mean Delta E against the reference'\n"
+           "set key top right\nset arrow from graph 0, first 1 to graph 1, first 1 nohead dt 2\nplot ";
+    for (size_t i = 0; i < scene.luminaires.size(); ++i)
+        gp << (i ? ", " : "") << "'release.csv' using (strcol(1) eq '" << scene.luminaires[i]->name
+            << "' ? $2 : 1/0):4 with linespoints title '" << scene.luminaires[i]->name << "'";
+    gp << "\n";
+    gp.close();
+    runGnuplot(outDir, "plot.png");
+    return 0;
+}
+
+}  // namespace candela
