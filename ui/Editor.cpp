@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "renderer/LivePreview.h"
 #include "renderer/Renderer.h"
 #include "renderer/ShaderLibrary.h"
 #include "renderer/context/GlContext.h"
@@ -154,11 +155,7 @@ void Editor::frame() {
         mLastShaderLog = log;
     }
 
-    mRenderer->setSettings(state.settings);
-    if (state.pendingChanges != kChangeNone) {
-        mRenderer->update(state.scene, state.pendingChanges);
-        state.pendingChanges = kChangeNone;
-    }
+    prepareRender();
     glDisable(GL_SCISSOR_TEST);
     try {
         // Frame 0 only lays out the UI, which sets the render size from the viewport panel.
@@ -198,6 +195,64 @@ void Editor::frame() {
     mIdleFrames = hadInput() ? 0 : mIdleFrames + 1;
     updateTitle();
     writeLayout();
+}
+
+void Editor::prepareRender() {
+    EditorState& state = *mState;
+    LivePreviewUi& preview = state.preview;
+    auto now = std::chrono::steady_clock::now();
+    double frameMs = std::chrono::duration<double, std::milli>(now - mLastFrame).count();
+    mLastFrame = now;
+    // A drag that has changed something (a click alone does not restart the refinement).
+    bool dragging = state.drag.mode != DragMode::None && preview.enabled &&
+                    (preview.active || state.pendingChanges != kChangeNone);
+    if (dragging) {
+        unsigned changes = state.pendingChanges;
+        if (!preview.active) {
+            // The preview starts: one frame's time is not the preview's yet.
+            preview.frameMs = preview.targetMs;
+        } else {
+            preview.frameMs = 0.7 * preview.frameMs + 0.3 * frameMs;
+            // Render time goes with the pixel count, the square of the scale.
+            if (preview.adaptive && (preview.frameMs > 1.15 * preview.targetMs || preview.frameMs < 0.7 * preview.targetMs))
+                preview.policy.scale = std::clamp(
+                    float(preview.policy.scale * std::sqrt(preview.targetMs / std::max(1.0, preview.frameMs))), 0.15f,
+                    0.5f);
+        }
+        if (!mPreviewScene || !syncPreviewScene(*mPreviewScene, state.scene)) {
+            try {
+                mPreviewScene = std::make_unique<Scene>(previewScene(state.scene));
+            } catch (const std::exception& e) {
+                setStatus(state, std::string("Live preview off: ") + e.what(), true);
+                preview.enabled = false;
+                mPreviewScene.reset();
+                prepareRender();
+                return;
+            }
+            changes = kChangeAll;
+        } else if (!preview.active) {
+            changes |= kChangeAll & ~kChangeGeometry;
+        }
+        RenderSettings settings = previewSettings(state.settings, preview.policy);
+        preview.width = settings.width;
+        preview.height = settings.height;
+        mRenderer->setSettings(settings);
+        if (changes != kChangeNone) mRenderer->update(*mPreviewScene, changes | kChangeLuminaires);
+        state.pendingChanges = kChangeNone;
+        preview.active = true;
+        return;
+    }
+    mRenderer->setSettings(state.settings);
+    if (preview.active) {
+        // Released: the edited scene with the full settings, refined from scratch.
+        state.pendingChanges |= kChangeAll & ~kChangeGeometry;
+        preview.active = false;
+    }
+    if (state.pendingChanges != kChangeNone) {
+        mRenderer->update(state.scene, state.pendingChanges);
+        state.pendingChanges = kChangeNone;
+    }
+    mPreviewScene.reset();  // the renderer no longer points at it
 }
 
 void Editor::buildUi() {
@@ -281,6 +336,24 @@ static nlohmann::json environmentUiJson(const EditorState& state) {
             {"playing", ui.playing}, {"chart", std::move(chart)}};
 }
 
+/// The technique of each shading step the renderer ran last ("Ceiling panel": "analytic").
+static nlohmann::json planTechniques(const Renderer& renderer) {
+    nlohmann::json out = nlohmann::json::object();
+    for (const ShadeStep& step : renderer.plan().shading) {
+        std::string name = step.name.substr(step.name.find(':') + 1);
+        size_t colon = name.rfind(':');
+        out[name.substr(0, colon)] = name.substr(colon + 1);
+    }
+    return out;
+}
+
+/// The passes of the last rendered frame with their times, ms.
+static nlohmann::json passTimes(const FrameStats& stats) {
+    nlohmann::json out = nlohmann::json::object();
+    for (const PassTiming& p : stats.passes) out[p.name] = std::round(p.gpuMs * 100.0) / 100.0;
+    return out;
+}
+
 void Editor::writeLayout() {
     // The panels record named widgets' rectangles every frame; taken here so they never pile up.
     std::vector<std::pair<std::string, glm::vec4>> widgets;
@@ -337,6 +410,10 @@ void Editor::writeLayout() {
         {"widgets", std::move(widgetJson)},
         {"environment", state.scene.environment},
         {"environment_ui", environmentUiJson(state)},
+        {"preview", {{"active", state.preview.active}, {"size", {state.preview.width, state.preview.height}},
+                     {"frame_ms", std::round(state.preview.frameMs * 10.0) / 10.0}}},
+        {"techniques", planTechniques(*mRenderer)},
+        {"passes", passTimes(stats)},
     };
     std::string key = j.dump();
     if (key == mLastLayout && mFrame >= 5) return;

@@ -3,12 +3,14 @@
 // viewport. One frame: poll events, refine the image (nothing when converged), build the UI,
 // draw, swap. A converged editor with no input sleeps in glfwWaitEventsTimeout.
 
+#include <chrono>
 #include <filesystem>
 #include <memory>
 #include <string>
 
 namespace candela {
 
+struct Scene;
 class WindowContext;
 class ShaderLibrary;
 class Renderer;
@@ -43,6 +45,9 @@ class Editor {
 
   private:
     void frame();
+    /// Hands the renderer the scene and settings of this frame: the preview scene and settings
+    /// while a drag is under way (renderer/LivePreview.h), else the edited scene.
+    void prepareRender();
     void buildUi();
     void takeScreenshot();
     void updateTitle();
@@ -54,6 +59,8 @@ class Editor {
     std::unique_ptr<Renderer> mRenderer;
     std::unique_ptr<EditorState> mState;
     std::unique_ptr<KeyLatch> mKeyLatch;
+    std::unique_ptr<Scene> mPreviewScene;  ///< What the renderer shows while dragging.
+    std::chrono::steady_clock::time_point mLastFrame;
     bool mImGuiReady = false;
     bool mRenderFailed = false;  ///< The last renderFrame() threw; shown, not spun on.
     int mFrame = 0;

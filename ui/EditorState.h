@@ -13,6 +13,7 @@
 #include <string_view>
 
 #include "luminaires/Registry.h"
+#include "renderer/LivePreview.h"
 #include "renderer/Renderer.h"
 #include "scene/CalculationGrid.h"
 #include "scene/Scene.h"
@@ -87,6 +88,17 @@ struct EnvironmentUi {
     std::string chartCounts;             ///< Selected / effective per face, as text
 };
 
+/// The fallback while the user drags (renderer/LivePreview.h) and what it did last.
+struct LivePreviewUi {
+    bool enabled = true;       ///< Render the preview while a drag is under way.
+    bool adaptive = true;      ///< Adjust the scale to hold targetMs per frame.
+    float targetMs = 45.f;     ///< Frame time the adaptive scale aims for, ms (about 22 fps).
+    PreviewPolicy policy;      ///< Its scale is the current one when adaptive.
+    bool active = false;       ///< This frame rendered the preview.
+    double frameMs = 0.0;      ///< Smoothed wall time of the editor's frames while previewing, ms.
+    int width = 0, height = 0; ///< Preview render size, pixels.
+};
+
 struct EditorState {
     Scene scene;
     int selectedLuminaire = -1;  ///< Index into scene.luminaires, or -1.
@@ -115,6 +127,7 @@ struct EditorState {
     PassTotals passes;
     MeasureState measure;  ///< The Measure panel's grid and legend text; kept across scenes.
     EnvironmentUi environment;
+    LivePreviewUi preview;
     /// Test hook for --layout-file: screen rectangles (x0, y0, x1, y1, window pixels) of named
     /// widgets drawn this frame ("inspector.spin", "outline.add", ...), recorded by the panels
     /// and written out, then cleared, by the editor's layout writer each frame.

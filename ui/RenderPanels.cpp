@@ -104,6 +104,30 @@ bool samplingControls(EditorState& state) {
     }
     itemTooltip("Texels per cube-map face of each shadow map; the edges of shadows move by about "
                 "a texel (the bias), so finer faces are closer to the ray-traced truth");
+
+    // The fallback while dragging (renderer/LivePreview.h); settings of the editor only: they
+    // change nothing of the image once the drag ends.
+    LivePreviewUi& live = state.preview;
+    ImGui::Checkbox("Live preview while dragging", &live.enabled);
+    recordRect(state, "render.preview");
+    itemTooltip(
+        "While a luminaire or the camera is dragged: light fields as their far field, Prost's "
+        "scattered sampling for photometric lights, one small shadow map each, one sample per "
+        "pixel at a reduced resolution. Letting go refines the chosen techniques again.");
+    if (live.enabled) {
+        ImGui::Checkbox("Hold the frame rate", &live.adaptive);
+        itemTooltip("Lower the preview's resolution until a frame takes the target time");
+        ImGui::SameLine();
+        ImGui::SetNextItemWidth(90.f);
+        ImGui::SliderFloat("##target", &live.targetMs, 20.f, 200.f, "%.0f ms");
+        if (!live.adaptive) {
+            ImGui::SliderFloat("Preview scale", &live.policy.scale, 0.1f, 1.f, "%.2f");
+            itemTooltip("Preview pixels per render pixel, per axis");
+        }
+        if (live.width > 0)
+            ImGui::TextDisabled("Last preview: %d x %d, %.0f ms per frame (%.1f fps)", live.width, live.height,
+                                live.frameMs, live.frameMs > 0.0 ? 1000.0 / live.frameMs : 0.0);
+    }
     return changed;
 }
 
