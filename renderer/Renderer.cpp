@@ -116,7 +116,7 @@ void Renderer::rebuildPlan() {
     }
 }
 
-void Renderer::runShading(int spp) {
+void Renderer::runShading(int spp, int row0, int rows) {
     gpu::FrameUniforms u{};
     u.viewProj = viewProj();
     u.invViewProj = glm::inverse(u.viewProj);
@@ -132,7 +132,18 @@ void Renderer::runShading(int spp) {
         mBvhTris.bindBase(GL_SHADER_STORAGE_BUFFER, gpu::kBindingBvhTris);
     }
     glBindVertexArray(mEmptyVao.id());
-    if (mPlan.environment) runEnvironment(spp);
+    int height = mGBuffer->height();
+    bool band = row0 > 0 || rows < height;
+    if (band) {
+        // GL counts rows from the bottom; bands go from the top of the image down.
+        glEnable(GL_SCISSOR_TEST);
+        glScissor(0, height - row0 - rows, mGBuffer->width(), rows);
+    }
+    if (mPlan.environment) runEnvironment(spp, row0 == 0);
+    if (band) {
+        glEnable(GL_SCISSOR_TEST);  // the environment's compute passes may have turned it off
+        glScissor(0, height - row0 - rows, mGBuffer->width(), rows);
+    }
     for (const ShadeStep& step : mPlan.shading) {
         if (step.shadowMaps) mShadowMaps.at(mScene->luminaires[size_t(step.luminaire)].get())->bind();
         timed(mStats, step.name, [&] {
@@ -140,6 +151,7 @@ void Renderer::runShading(int spp) {
                             mAccumFbo, mGBuffer->width(), mGBuffer->height());
         });
     }
+    glDisable(GL_SCISSOR_TEST);
 }
 
 const ShadowGeometry& Renderer::shadowGeometry() {
@@ -169,17 +181,19 @@ void Renderer::updateShadowMaps() {
     mShadowMaps = std::move(kept);
 }
 
-void Renderer::runEnvironment(int spp) {
+void Renderer::runEnvironment(int spp, bool newPass) {
     using Tables = EnvironmentTechniqueInfo::Tables;
     Tables tables = mPlan.environmentTechnique->tables;
     if (tables == Tables::Cube) {
         if (!mEnvironment->tablesBuilt())
             timed(mStats, "env:cdf", [&] { mEnvironment->buildTables(mShaders); });
         // Enough samples per face that a pixel whose faces balance to one face still draws
-        // distinct ones; a fresh pool every frame.
-        int pool = std::max(256, spp);
-        uint32_t seed = uint32_t(mSettings.seed) * 2654435761u ^ uint32_t(mFrames) * 40503u ^ 0x5bd1e995u;
-        timed(mStats, "env:samples", [&] { mEnvironment->drawSamples(mShaders, seed, pool); });
+        // distinct ones; a fresh pool every frame (every band of a frame shares it).
+        if (newPass) {
+            int pool = std::max(256, spp);
+            uint32_t seed = uint32_t(mSettings.seed) * 2654435761u ^ uint32_t(mFrames) * 40503u ^ 0x5bd1e995u;
+            timed(mStats, "env:samples", [&] { mEnvironment->drawSamples(mShaders, seed, pool); });
+        }
     } else if (tables == Tables::LatLong) {
         mEnvironment->prepareGlobalCdf();
     } else if (tables == Tables::Lights) {
@@ -248,19 +262,37 @@ void Renderer::renderFrame() {
     }
 
     int spp = mSettings.samplesPerFrame;
+    if (newAccumulation) mBandRow = 0;
     if (!mStats.converged) {
-        runShading(spp);
-        ++mFrames;
-        mNeedDisplay = true;
-        bool done = mPlan.progressive()
-                        ? mSettings.maxSamples > 0 && mFrames * spp >= mSettings.maxSamples
-                        : true;
-        mStats.converged = done;
+        int height = mGBuffer->height();
+        int rows = height - mBandRow;
+        if (mSettings.bandBudgetMs > 0.0 && mRowsPerMs > 0.0)
+            rows = std::clamp(int(mRowsPerMs * mSettings.bandBudgetMs), 1, height - mBandRow);
+        auto start = std::chrono::steady_clock::now();
+        runShading(spp, mBandRow, rows);
+        if (mSettings.bandBudgetMs > 0.0) {
+            glFinish();  // the band's real cost sets the next band's height
+            double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+            mRowsPerMs = double(rows) / std::max(ms, 1e-3);
+        }
+        mBandRow += rows;
+        // The first pass shows band by band (the rows not done yet are black); later passes
+        // show when complete, so the image never mixes sample counts.
+        if (mFrames == 0) mNeedDisplay = true;
+        if (mBandRow >= height) {
+            mBandRow = 0;
+            ++mFrames;
+            mNeedDisplay = true;
+            bool done = mPlan.progressive()
+                            ? mSettings.maxSamples > 0 && mFrames * spp >= mSettings.maxSamples
+                            : true;
+            mStats.converged = done;
+        }
     }
     if (mNeedDisplay) {
         glBindVertexArray(mEmptyVao.id());
         timed(mStats, "resolve",
-              [&] { mResolve->execute(mShaders, mAccum, mGBuffer->texture(gpu::kGBufferEmission), mFrames); });
+              [&] { mResolve->execute(mShaders, mAccum, mGBuffer->texture(gpu::kGBufferEmission), std::max(mFrames, 1)); });
         timed(mStats, "tonemap", [&] {
             mTonemap->execute(mShaders, mResolve->linear(), mResolve->luminance(),
                               mGBuffer->texture(gpu::kGBufferPosition),
@@ -336,7 +368,7 @@ std::vector<glm::vec3> Renderer::probe(const Scene& scene, const std::vector<glm
     glClearNamedFramebufferfv(mAccumFbo.id(), GL_COLOR, 0, zero);
     int perFrame = std::max(1, std::min(spp, 256));
     int frames = mPlan.progressive() ? std::max(1, (spp + perFrame - 1) / perFrame) : 1;
-    for (mFrames = 0; mFrames < frames; ++mFrames) runShading(perFrame);
+    for (mFrames = 0; mFrames < frames; ++mFrames) runShading(perFrame, 0, h);
     std::vector<glm::vec4> accum(static_cast<size_t>(w) * size_t(h), glm::vec4(0.f));
     glGetTextureImage(mAccum.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(accum.size() * sizeof(glm::vec4)),
                       accum.data());

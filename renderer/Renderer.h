@@ -52,6 +52,11 @@ struct RenderSettings {
     std::string environmentTechnique;
     int environmentFaceSize = 0;    ///< Cube faces of N^2 texels; 0: EnvironmentPass's default.
     ShadowMapSettings shadowMaps;   ///< For techniques that read shadow maps.
+    /// > 0: renderFrame() shades only a band of rows that takes about this long (ms), so an
+    /// interactive caller gets control back in time whatever one pass over the image costs; the
+    /// image shown is updated when a pass is complete (band by band during the first pass).
+    /// 0: every call shades the whole image (headless rendering, benches, tests).
+    double bandBudgetMs = 0.0;
 };
 
 /// What changed since the last frame (the editor sets these; all of them restart accumulation).
@@ -107,8 +112,10 @@ private:
     void rebuildPlan();
     void uploadGeometry();
     void uploadLuminaires();
-    void runShading(int spp);
-    void runEnvironment(int spp);
+    /// Shades rows [row0, row0 + rows) of the image (top row 0); the environment's per-frame
+    /// tables and samples are drawn when row0 is 0.
+    void runShading(int spp, int row0, int rows);
+    void runEnvironment(int spp, bool newPass);
     /// Renders the shadow maps that are missing or stale (timed as "shadow:NAME").
     void updateShadowMaps();
     /// mShadowGeometry for the current geometry.
@@ -121,6 +128,8 @@ private:
     FrameStats mStats;
     unsigned mPending = kChangeAll;
     int mFrames = 0;
+    int mBandRow = 0;            ///< Next row of the pass under way (banded refinement).
+    double mRowsPerMs = 0.0;     ///< Rows shaded per ms in the last band (0: not measured yet).
     bool mNeedDisplay = false;
     bool mPointMode = false;  ///< The G-buffer holds probe points, not a camera view.
 

@@ -83,6 +83,47 @@ TEST(Renderer, OccludedSceneTracesShadowsProgressively) {
                           "lambertian_rect_shade.frag[TECHNIQUE_ANALYTIC,SHADOWS]") != variants.end());
 }
 
+TEST(Renderer, BandedRefinementGivesTheSameImageAndShowsOnlyWholePasses) {
+    // The editor shades a pass in bands that fit its frame budget (RenderSettings::bandBudgetMs).
+    // Each pixel's random numbers depend on the pixel and the pass only, so the banded image must
+    // equal the whole-pass image exactly, and between passes the shown image must not change.
+    test::glContext();
+    Scene scene = sceneFrom(kFloor + "," + kTable, kPanel);
+    ShaderLibrary shaders;
+    Renderer renderer(shaders);
+    RenderSettings whole = small();
+    whole.maxSamples = 12;  // three passes of 4
+    renderer.setSettings(whole);
+    renderer.update(scene, kChangeAll);
+    do renderer.renderFrame();
+    while (!renderer.converged());
+    std::vector<float> expected = renderer.readLinear();
+
+    RenderSettings banded = whole;
+    banded.bandBudgetMs = 1e-6;  // after the first band's measurement: one row per call
+    renderer.setSettings(banded);
+    renderer.update(scene, kChangeAll);
+    int calls = 0;
+    std::vector<float> shownAfterPass1;
+    do {
+        renderer.renderFrame();
+        ++calls;
+        if (renderer.stats().accumulatedFrames == 1 && shownAfterPass1.empty()) shownAfterPass1 = renderer.readLinear();
+        if (renderer.stats().accumulatedFrames == 1 && !renderer.stats().passes.empty()) {
+            // Mid-way through pass 2: still pass 1's image.
+            ASSERT_EQ(renderer.readLinear(), shownAfterPass1) << "call " << calls;
+        }
+    } while (!renderer.converged() && calls < 10000);
+    ASSERT_TRUE(renderer.converged());
+    // The first call shades the whole image (nothing measured yet); then one row per call.
+    EXPECT_GT(calls, 2 * whole.height);
+    std::vector<float> got = renderer.readLinear();
+    ASSERT_EQ(got.size(), expected.size());
+    size_t differ = 0;
+    for (size_t i = 0; i < got.size(); ++i) differ += got[i] != expected[i];
+    EXPECT_EQ(differ, 0u);
+}
+
 TEST(Renderer, PixelRadianceMatchesTheClosedForm) {
     test::glContext();
     Scene scene = sceneFrom(kFloor, kPanel);

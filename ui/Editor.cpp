@@ -46,6 +46,7 @@ namespace {
 constexpr double kReloadIntervalS = 0.5;  ///< How often shader files are checked, seconds.
 constexpr double kIdleWaitS = 0.1;        ///< Longest sleep of an idle editor, seconds.
 constexpr int kBusyFramesAfterInput = 3;  ///< Frames drawn after input before sleeping.
+constexpr double kBandBudgetMs = 40.0;   ///< Longest shading work per editor frame, ms.
 constexpr float kLeftWidth = 330.f;       ///< Outline and inspector column, pixels.
 constexpr float kRightWidth = 330.f;      ///< Render and statistics column, pixels.
 
@@ -76,6 +77,9 @@ Editor::Editor(const EditorOptions& options) : mOptions(options) {
     mState->screenshotDir = options.screenshotDir;
     mState->settings.samplesPerFrame = 4;
     mState->settings.maxSamples = 256;
+    // A pass over the image can take seconds on a software rasterizer: shade it in bands of
+    // about this long, so input is read between them.
+    mState->settings.bandBudgetMs = kBandBudgetMs;
     if (!options.scenePath.empty()) openSceneFile(*mState, options.scenePath);
 
     IMGUI_CHECKVERSION();
