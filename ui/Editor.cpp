@@ -183,6 +183,14 @@ void Editor::frame() {
     ImGui_ImplGlfw_NewFrame();
     mKeyLatch->apply(mContext->window());
     ImGui::NewFrame();
+    {
+        // A new input gesture at each press or release: the edits of one drag are one undo step.
+        const ImGuiIO& io = ImGui::GetIO();
+        bool gesture = false;
+        for (int b = 0; b < 3; ++b) gesture = gesture || ImGui::IsMouseClicked(b) || ImGui::IsMouseReleased(b);
+        for (int k = 0; k < IM_ARRAYSIZE(io.KeysDown); ++k) gesture = gesture || ImGui::IsKeyPressed(k, false);
+        if (gesture) ++state.history.gesture;
+    }
     buildUi();
     ImGui::Render();
 
@@ -409,6 +417,9 @@ void Editor::writeLayout() {
         {"mouse_down", io.MouseDown[ImGuiMouseButton_Left]},  // as this frame's widgets saw it
         {"typing", io.WantTextInput},                        // a text field has the keyboard
         {"dirty", state.dirty},
+        {"undo", state.history.undo.empty() ? nlohmann::json(nullptr) : nlohmann::json(state.history.undo.back().label)},
+        {"undo_steps", state.history.undo.size()},
+        {"redo_steps", state.history.redo.size()},
         {"status", state.status},
         {"error", state.modalError},
         {"widgets", std::move(widgetJson)},

@@ -9,12 +9,85 @@
 
 namespace candela::ui {
 
+namespace {
+
+SceneSnapshot snapshot(const EditorState& state, bool geometry) {
+    const Scene& scene = state.scene;
+    SceneSnapshot out;
+    for (const auto& lum : scene.luminaires) out.luminaires.push_back(lum->clone());
+    out.camera = scene.camera;
+    out.environment = scene.environment;
+    out.environmentMap = scene.environmentMap;
+    out.environmentSequence = scene.environmentSequence;
+    out.hasGeometry = geometry;
+    if (geometry) {
+        out.geometry = scene.geometry;
+        out.meshes = scene.meshes;
+        out.materials = scene.materials;
+    }
+    out.selectedLuminaire = state.selectedLuminaire;
+    return out;
+}
+
+void restore(EditorState& state, SceneSnapshot& from) {
+    Scene& scene = state.scene;
+    scene.luminaires = std::move(from.luminaires);
+    scene.camera = from.camera;
+    scene.environment = std::move(from.environment);
+    scene.environmentMap = std::move(from.environmentMap);
+    scene.environmentSequence = std::move(from.environmentSequence);
+    if (from.hasGeometry) {
+        scene.geometry = std::move(from.geometry);
+        scene.meshes = std::move(from.meshes);
+        scene.materials = std::move(from.materials);
+    }
+    int n = int(scene.luminaires.size());
+    state.selectedLuminaire = from.selectedLuminaire < n ? from.selectedLuminaire : -1;
+    if (state.selectedGeometry >= int(scene.geometry.size())) state.selectedGeometry = -1;
+    state.drag = {};
+    state.inspectorError.clear();
+}
+
+/// Moves the top step of `from` to `to`, restoring its scene and keeping the current one.
+bool step(EditorState& state, std::vector<UndoStep>& from, std::vector<UndoStep>& to, const char* verb) {
+    if (from.empty()) return false;
+    UndoStep s = std::move(from.back());
+    from.pop_back();
+    UndoStep back{s.label, s.changes, -1, snapshot(state, s.before.hasGeometry)};
+    restore(state, s.before);
+    to.push_back(std::move(back));
+    state.pendingChanges |= s.changes;
+    state.dirty = true;
+    setStatus(state, std::string(verb) + " " + s.label);
+    return true;
+}
+
+}  // namespace
+
 void applyEdit(EditorState& state, std::string_view label, unsigned changes,
                const std::function<void(Scene&)>& edit) {
-    (void)label;  // Undo (a later issue) records a step per label here.
+    UndoHistory& h = state.history;
+    bool recorded = (changes & ~unsigned(kChangeCamera)) != 0;
+    bool merge = !h.undo.empty() && h.undo.back().label == label && h.undo.back().gesture == h.gesture;
+    if (recorded && !merge) {
+        h.undo.push_back({std::string(label), changes, h.gesture, snapshot(state, (changes & kChangeGeometry) != 0)});
+        if (h.undo.size() > UndoHistory::kMaxSteps) h.undo.erase(h.undo.begin());
+    }
+    if (recorded) {
+        h.undo.back().changes |= changes;
+        h.redo.clear();
+    }
     edit(state.scene);
     state.pendingChanges |= changes;
     state.dirty = true;
+}
+
+bool undo(EditorState& state) {
+    return step(state, state.history.undo, state.history.redo, "Undid");
+}
+
+bool redo(EditorState& state) {
+    return step(state, state.history.redo, state.history.undo, "Redid");
 }
 
 void setStatus(EditorState& state, std::string message, bool error) {
@@ -49,6 +122,7 @@ bool openSceneFile(EditorState& state, const std::string& path) {
         state.inspectorError.clear();
         state.pendingChanges = kChangeAll;
         state.dirty = false;
+        state.history = {};
         setStatus(state, "Opened " + path);
         return true;
     } catch (const std::exception& e) {

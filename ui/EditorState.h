@@ -99,6 +99,36 @@ struct LivePreviewUi {
     int width = 0, height = 0; ///< Preview render size, pixels.
 };
 
+/// What an undo step restores: the scene's editable state. Meshes and materials are kept only
+/// for steps that changed geometry (a luminaire move does not copy the room).
+struct SceneSnapshot {
+    std::vector<std::unique_ptr<Luminaire>> luminaires;
+    Camera camera;
+    nlohmann::json environment;
+    std::shared_ptr<const EnvironmentMap> environmentMap;
+    std::shared_ptr<EnvironmentSequence> environmentSequence;
+    bool hasGeometry = false;
+    std::vector<GeometryItem> geometry;
+    std::vector<Mesh> meshes;
+    std::vector<Material> materials;
+    int selectedLuminaire = -1;
+};
+
+struct UndoStep {
+    std::string label;      ///< "Move Ceiling panel"
+    unsigned changes = 0;   ///< What restoring it changes (ChangeFlags).
+    int gesture = 0;        ///< The input gesture that made it (edits of one gesture merge).
+    SceneSnapshot before;   ///< The scene before the step (after it, on the redo stack).
+};
+
+/// Undo and redo of every scene edit but camera navigation (orbit, pan, zoom), as in most
+/// modelling tools. Edits with the same label in one gesture (a drag, a slider held) are one step.
+struct UndoHistory {
+    std::vector<UndoStep> undo, redo;
+    int gesture = 0;  ///< Incremented by the editor at each mouse press or release and key press.
+    static constexpr size_t kMaxSteps = 200;
+};
+
 struct EditorState {
     Scene scene;
     int selectedLuminaire = -1;  ///< Index into scene.luminaires, or -1.
@@ -128,6 +158,7 @@ struct EditorState {
     MeasureState measure;  ///< The Measure panel's grid and legend text; kept across scenes.
     EnvironmentUi environment;
     LivePreviewUi preview;
+    UndoHistory history;
     /// Test hook for --layout-file: screen rectangles (x0, y0, x1, y1, window pixels) of named
     /// widgets drawn this frame ("inspector.spin", "outline.add", ...), recorded by the panels
     /// and written out, then cleared, by the editor's layout writer each frame.
@@ -135,9 +166,14 @@ struct EditorState {
 };
 
 /// The one path by which the scene changes: runs edit on the scene, tells the renderer what
-/// changed and marks the scene unsaved. label names the step ("Move Ceiling panel") for undo.
+/// changed, marks the scene unsaved and records an undo step named label ("Move Ceiling panel";
+/// camera-only changes are not recorded).
 void applyEdit(EditorState& state, std::string_view label, unsigned changes,
                const std::function<void(Scene&)>& edit);
+
+/// Undoes (redoes) the last step; false when there is none. The status bar names it.
+bool undo(EditorState& state);
+bool redo(EditorState& state);
 
 void setStatus(EditorState& state, std::string message, bool error = false);
 /// Turns the false-colour operator on (remembering the operator it replaces in

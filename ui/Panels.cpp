@@ -85,6 +85,14 @@ bool mainMenuBar(EditorState& state, float& barHeight) {
             if (ImGui::MenuItem("Quit")) state.quitRequested = true;
             ImGui::EndMenu();
         }
+        if (ImGui::BeginMenu("Edit")) {
+            const auto& h = state.history;
+            std::string undoLabel = h.undo.empty() ? "Undo" : "Undo " + h.undo.back().label;
+            std::string redoLabel = h.redo.empty() ? "Redo" : "Redo " + h.redo.back().label;
+            if (ImGui::MenuItem(undoLabel.c_str(), "Ctrl+Z", false, !h.undo.empty())) changed = undo(state) || changed;
+            if (ImGui::MenuItem(redoLabel.c_str(), "Ctrl+Y", false, !h.redo.empty())) changed = redo(state) || changed;
+            ImGui::EndMenu();
+        }
         barHeight = ImGui::GetWindowSize().y;
         ImGui::EndMainMenuBar();
     }
@@ -93,6 +101,9 @@ bool mainMenuBar(EditorState& state, float& barHeight) {
         // GLFW key codes equal ASCII for letters (the 1.86 backend indexes KeysDown by them).
         if (io.KeyCtrl && ImGui::IsKeyPressed('S', false)) requestSave(state);
         if (io.KeyCtrl && ImGui::IsKeyPressed('O', false)) state.files.openRequested = true;
+        if (io.KeyCtrl && !io.KeyShift && ImGui::IsKeyPressed('Z', false)) changed = undo(state) || changed;
+        if (io.KeyCtrl && (ImGui::IsKeyPressed('Y', false) || (io.KeyShift && ImGui::IsKeyPressed('Z', false))))
+            changed = redo(state) || changed;
         if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Delete), false) &&
             state.selectedLuminaire >= 0) {
             deleteLuminaire(state, state.selectedLuminaire);

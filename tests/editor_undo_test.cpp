@@ -1,0 +1,108 @@
+// Undo and redo of the editor's scene edits (ui/EditorState.h): every edit through applyEdit is
+// a step, a gesture's edits with one label merge, camera navigation is not recorded, and undoing
+// restores the scene exactly as it was (checked against the scene file's own serialisation).
+#include <gtest/gtest.h>
+
+#include "scene/SceneIo.h"
+#include "ui/EditorState.h"
+
+namespace candela::ui {
+namespace {
+
+EditorState demo() {
+    EditorState state;
+    EXPECT_TRUE(openSceneFile(state, CANDELA_SOURCE_DIR "/resources/scenes/editor-room.json"));
+    return state;
+}
+
+/// The scene as its file would hold it: what undo must bring back.
+std::string text(const EditorState& state) {
+    return sceneToJson(state.scene).dump();
+}
+
+void move(EditorState& state, int index, glm::dvec3 by) {
+    applyEdit(state, "Move " + state.scene.luminaires[size_t(index)]->name, kChangeLuminaires,
+              [&](Scene& s) { s.luminaires[size_t(index)]->pose.position += by; });
+}
+
+TEST(EditorUndo, ADragIsOneStepAndUndoRedoRestoreExactly) {
+    EditorState state = demo();
+    std::string original = text(state);
+    ++state.history.gesture;  // mouse press
+    for (int i = 0; i < 10; ++i) move(state, 1, {0.05, 0.0, 0.0});
+    ++state.history.gesture;  // release
+    std::string moved = text(state);
+    ASSERT_NE(moved, original);
+    EXPECT_EQ(state.history.undo.size(), 1u);
+    EXPECT_EQ(state.history.undo.back().label, "Move LED spot");
+
+    state.pendingChanges = kChangeNone;
+    ASSERT_TRUE(undo(state));
+    EXPECT_EQ(text(state), original);
+    EXPECT_NE(state.pendingChanges & kChangeLuminaires, 0u);  // the renderer hears of it
+    EXPECT_FALSE(undo(state));                                // nothing left
+    ASSERT_TRUE(redo(state));
+    EXPECT_EQ(text(state), moved);
+    EXPECT_FALSE(redo(state));
+}
+
+TEST(EditorUndo, StepsUndoInReverseOrderAndANewEditClearsRedo) {
+    EditorState state = demo();
+    std::vector<std::string> versions = {text(state)};
+    ++state.history.gesture;
+    move(state, 0, {0.0, 0.0, 0.5});
+    versions.push_back(text(state));
+    ++state.history.gesture;
+    int added = addLuminaire(state, *findKind("photometric"));
+    ASSERT_EQ(added, 3);
+    EXPECT_EQ(state.selectedLuminaire, 3);
+    versions.push_back(text(state));
+    ++state.history.gesture;
+    deleteLuminaire(state, 1);
+    versions.push_back(text(state));
+
+    for (int v = 2; v >= 0; --v) {
+        ASSERT_TRUE(undo(state));
+        EXPECT_EQ(text(state), versions[size_t(v)]) << "after undoing to version " << v;
+    }
+    EXPECT_LT(state.selectedLuminaire, int(state.scene.luminaires.size()));  // never dangling
+    ASSERT_TRUE(redo(state));
+    EXPECT_EQ(text(state), versions[1]);
+    ++state.history.gesture;
+    move(state, 2, {0.1, 0.0, 0.0});  // a new edit: the redo stack is gone
+    EXPECT_FALSE(redo(state));
+}
+
+TEST(EditorUndo, CameraNavigationIsNotAStepButMarksTheSceneUnsaved) {
+    EditorState state = demo();
+    applyEdit(state, "Orbit camera", kChangeCamera, [](Scene& s) { s.camera.position.x += 1.0; });
+    EXPECT_TRUE(state.history.undo.empty());
+    EXPECT_TRUE(state.dirty);
+}
+
+TEST(EditorUndo, GeometryStepsRestoreTheMeshes) {
+    EditorState state = demo();
+    std::string original = text(state);
+    size_t meshes = state.scene.meshes.size();
+    ++state.history.gesture;
+    applyEdit(state, "Delete geometry", kChangeGeometry, [](Scene& s) {
+        s.geometry.pop_back();
+        s.meshes.pop_back();
+    });
+    ASSERT_EQ(state.scene.meshes.size(), meshes - 1);
+    ASSERT_TRUE(undo(state));
+    EXPECT_EQ(state.scene.meshes.size(), meshes);
+    EXPECT_EQ(text(state), original);
+    EXPECT_NE(state.pendingChanges & kChangeGeometry, 0u);
+}
+
+TEST(EditorUndo, OpeningAnotherSceneForgetsTheHistory) {
+    EditorState state = demo();
+    ++state.history.gesture;
+    move(state, 0, {0.1, 0.0, 0.0});
+    ASSERT_TRUE(openSceneFile(state, CANDELA_SOURCE_DIR "/resources/scenes/demo.json"));
+    EXPECT_FALSE(undo(state));
+}
+
+}  // namespace
+}  // namespace candela::ui
