@@ -3,6 +3,9 @@
 // restores the scene exactly as it was (checked against the scene file's own serialisation).
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+#include <filesystem>
+
 #include "scene/SceneIo.h"
 #include "ui/EditorState.h"
 
@@ -10,6 +13,11 @@ namespace candela::ui {
 namespace {
 
 EditorState demo() {
+    // Opening a scene records it in the recent files: keep that out of the user's home.
+    static const bool isolated = [] {
+        return setenv("CANDELA_STATE_DIR", (std::filesystem::temp_directory_path() / "candela-undo-test").c_str(), 1) == 0;
+    }();
+    EXPECT_TRUE(isolated);
     EditorState state;
     EXPECT_TRUE(openSceneFile(state, CANDELA_SOURCE_DIR "/resources/scenes/editor-room.json"));
     return state;

@@ -25,6 +25,7 @@
 #include "ui/EditorState.h"
 #include "ui/KeyLatch.h"
 #include "ui/Panels.h"
+#include "ui/Project.h"
 #include "ui/Screenshot.h"
 #include "ui/ViewportMath.h"
 
@@ -51,6 +52,8 @@ constexpr float kLeftWidth = 330.f;       ///< Outline and inspector column, pix
 constexpr float kRightWidth = 330.f;      ///< Render and statistics column, pixels.
 
 /// True when this frame saw mouse motion, a wheel turn, or a button or key held down.
+double now0() { return glfwGetTime(); }
+
 bool hadInput() {
     const ImGuiIO& io = ImGui::GetIO();
     if (io.MouseDelta.x != 0.f || io.MouseDelta.y != 0.f || io.MouseWheel != 0.f ||
@@ -80,7 +83,11 @@ Editor::Editor(const EditorOptions& options) : mOptions(options) {
     // A pass over the image can take seconds on a software rasterizer: shade it in bands of
     // about this long, so input is read between them.
     mState->settings.bandBudgetMs = kBandBudgetMs;
-    if (!options.scenePath.empty()) openSceneFile(*mState, options.scenePath);
+    if (!options.scenePath.empty())
+        openSceneFile(*mState, options.scenePath);
+    else
+        restoreAutosave(*mState, "");
+    mAutosavedEdits = mState->edits;
 
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
@@ -99,6 +106,13 @@ Editor::Editor(const EditorOptions& options) : mOptions(options) {
 }
 
 Editor::~Editor() {
+    // A clean quit keeps unsaved edits in the autosave (restored next time) and drops a stale one.
+    if (mState) {
+        if (mState->dirty && mState->edits != mAutosavedEdits)
+            writeAutosave(*mState);
+        else if (!mState->dirty)
+            removeAutosave(mState->scene.path);
+    }
     if (mImGuiReady) {
         ImGui_ImplOpenGL3_Shutdown();
         ImGui_ImplGlfw_Shutdown();
@@ -138,6 +152,12 @@ void Editor::frame() {
         glfwWaitEventsTimeout(kIdleWaitS);
     else
         glfwPollEvents();
+
+    if (state.dirty && state.edits != mAutosavedEdits && now0() - mLastAutosave >= mOptions.autosaveSeconds) {
+        if (writeAutosave(state)) std::fprintf(stderr, "candela edit: autosaved to %s\n", autosavePath(state.scene.path).c_str());
+        mAutosavedEdits = state.edits;
+        mLastAutosave = now0();
+    }
 
     // Files dropped onto the window become luminaires (photometry or light fields).
     for (const std::string& path : gDropped) addLuminaireFromFile(state, path);

@@ -29,6 +29,7 @@ struct EditorOptions {
     /// luminaire positions (window pixels) are written here as JSON (atomically). Empty: off.
     std::filesystem::path layoutFile;
     int quitAfterFrames = 0;  ///< Test hook: exit after this many frames; 0 runs until closed.
+    double autosaveSeconds = 60.0;  ///< Unsaved edits are autosaved this often (ui/Project.h).
 };
 
 class Editor {
@@ -61,6 +62,8 @@ class Editor {
     std::unique_ptr<KeyLatch> mKeyLatch;
     std::unique_ptr<Scene> mPreviewScene;  ///< What the renderer shows while dragging.
     std::chrono::steady_clock::time_point mLastFrame;
+    double mLastAutosave = 0.0;  ///< glfwGetTime() of the last autosave check that wrote, s.
+    int mAutosavedEdits = 0;     ///< EditorState::edits at the last autosave.
     bool mImGuiReady = false;
     bool mRenderFailed = false;  ///< The last renderFrame() threw; shown, not spun on.
     int mFrame = 0;

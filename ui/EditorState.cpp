@@ -6,6 +6,7 @@
 
 #include "luminaires/Registry.h"
 #include "scene/SceneIo.h"
+#include "ui/Project.h"
 
 namespace candela::ui {
 
@@ -58,6 +59,7 @@ bool step(EditorState& state, std::vector<UndoStep>& from, std::vector<UndoStep>
     to.push_back(std::move(back));
     state.pendingChanges |= s.changes;
     state.dirty = true;
+    ++state.edits;
     setStatus(state, std::string(verb) + " " + s.label);
     return true;
 }
@@ -80,6 +82,7 @@ void applyEdit(EditorState& state, std::string_view label, unsigned changes,
     edit(state.scene);
     state.pendingChanges |= changes;
     state.dirty = true;
+    ++state.edits;
 }
 
 bool undo(EditorState& state) {
@@ -124,6 +127,8 @@ bool openSceneFile(EditorState& state, const std::string& path) {
         state.dirty = false;
         state.history = {};
         setStatus(state, "Opened " + path);
+        addRecentFile(path);
+        restoreAutosave(state, path);  // unsaved edits of a session that crashed
         return true;
     } catch (const std::exception& e) {
         reportError(state, std::string("Could not open scene: ") + e.what());
@@ -139,9 +144,12 @@ bool saveSceneFile(EditorState& state, const std::string& path) {
     }
     try {
         saveScene(state.scene, target);
+        removeAutosave(state.scene.path);  // the untitled one too, when saving it as a file
+        removeAutosave(target);
         state.scene.path = target;
         state.dirty = false;
         setStatus(state, "Saved " + target);
+        addRecentFile(target);
         return true;
     } catch (const std::exception& e) {
         reportError(state, std::string("Could not save scene: ") + e.what());

@@ -139,6 +139,7 @@ struct EditorState {
     float renderScale = 1.f;
     unsigned pendingChanges = kChangeAll;  ///< Scene changes not yet passed to the renderer.
     bool dirty = false;                    ///< Edits not yet saved.
+    int edits = 0;                         ///< Counts edits (and undos), for the autosave.
 
     std::filesystem::path screenshotDir = "candela-screenshots";
     bool screenshotRequested = false;  ///< Set by the Screenshot button; the editor takes it.

@@ -9,6 +9,7 @@
 #include <filesystem>
 
 #include "ui/ImGuiUtil.h"
+#include "ui/Project.h"
 
 namespace candela::ui {
 
@@ -81,6 +82,18 @@ bool mainMenuBar(EditorState& state, float& barHeight) {
             if (ImGui::MenuItem("Open...", "Ctrl+O")) state.files.openRequested = true;
             if (ImGui::MenuItem("Save", "Ctrl+S")) requestSave(state);
             if (ImGui::MenuItem("Save As...")) state.files.saveAsRequested = true;
+            if (ImGui::BeginMenu("Open Recent")) {
+                std::vector<std::string> recent = recentFiles();
+                if (recent.empty()) ImGui::TextDisabled("(none yet)");
+                for (const std::string& path : recent)
+                    if (ImGui::MenuItem(path.c_str())) changed = openSceneFile(state, path) || changed;
+                ImGui::EndMenu();
+            }
+            if (ImGui::MenuItem("Revert to Saved", nullptr, false, state.dirty && !state.scene.path.empty())) {
+                std::string path = state.scene.path;
+                removeAutosave(path);
+                changed = openSceneFile(state, path) || changed;
+            }
             ImGui::Separator();
             if (ImGui::MenuItem("Quit")) state.quitRequested = true;
             ImGui::EndMenu();

@@ -64,12 +64,14 @@ int cmdEdit(const Args& args) {
             options.screenshotDir = flagValue(args, i);
         else if (a == "--layout-file")
             options.layoutFile = flagValue(args, i);
+        else if (a == "--autosave-seconds")
+            options.autosaveSeconds = parseInt(a, flagValue(args, i), 1, 1 << 20);
         else if (a == "--quit-after-frames")
             options.quitAfterFrames = parseInt(a, flagValue(args, i), 1, 1 << 30);
         else if (!a.empty() && a[0] == '-')
             throw InputError("edit: unknown option " + a +
                              " (expected --size WxH, --screenshot-dir DIR, --layout-file FILE, "
-                             "--quit-after-frames N)");
+                             "--quit-after-frames N, --autosave-seconds S)");
         else if (options.scenePath.empty())
             options.scenePath = a;
         else

@@ -43,6 +43,8 @@ e2e_setup() {
     TMP=$(mktemp -d "${TMPDIR:-/tmp}/candela-e2e.XXXXXX")
     LAYOUT=$TMP/layout.json
     SHOTS=$TMP/shots
+    # Recent files and untitled autosaves go here, not into the user's ~/.local/state.
+    export CANDELA_STATE_DIR=$TMP/state
     trap e2e_cleanup EXIT
     local tool
     for tool in Xvfb xdotool python3 convert identify import; do
@@ -171,11 +173,11 @@ PY
 
 # e2e_start_editor SCENE WxH FIRST_LAYOUT_CONDITION: starts the editor on SCENE (screenshots into
 # SHOTS, layout into LAYOUT), waits until the layout satisfies the condition, and finds and
-# focuses its window (WID).
+# focuses its window (WID). E2E_EDITOR_ARGS adds options (e.g. --autosave-seconds 2).
 e2e_start_editor() {
     LIBGL_ALWAYS_SOFTWARE=1 timeout 280 "$CANDELA" edit "$1" --size "$2" \
         --screenshot-dir "$SHOTS" --layout-file "$LAYOUT" --quit-after-frames 1000000 \
-        >"$TMP/editor.log" 2>&1 &
+        ${E2E_EDITOR_ARGS:-} >>"$TMP/editor.log" 2>&1 &
     EDITOR_PID=$!
     wait_until "the editor's first layout" "$3"
     WID=$(timeout 30 xdotool search --sync --onlyvisible --name Candela | head -n 1) ||
