@@ -93,6 +93,8 @@ void Renderer::resize(int width, int height) {
     mTonemap->resize(width, height);
     mAccum = gl::Texture2D(width, height, GL_RGBA32F);
     mAccumFbo = gl::Framebuffer({&mAccum}, nullptr);
+    mStatic = gl::Texture2D(width, height, GL_RGBA32F);
+    mStaticFbo = gl::Framebuffer({&mStatic}, nullptr);
 }
 
 void Renderer::uploadLuminaires() {
@@ -145,10 +147,12 @@ void Renderer::runShading(int spp, int row0, int rows) {
         glScissor(0, height - row0 - rows, mGBuffer->width(), rows);
     }
     for (const ShadeStep& step : mPlan.shading) {
+        bool once = mShadeStaticOnce && !step.progressive;
+        if (once && mFrames > 0) continue;  // already in mStatic
         if (step.shadowMaps) mShadowMaps.at(mScene->luminaires[size_t(step.luminaire)].get())->bind();
         timed(mStats, step.name, [&] {
             mShade->execute(mShaders, step, mLuminaireBuffers[size_t(step.luminaire)], *mGBuffer,
-                            mAccumFbo, mGBuffer->width(), mGBuffer->height());
+                            once ? mStaticFbo : mAccumFbo, mGBuffer->width(), mGBuffer->height());
         });
     }
     glDisable(GL_SCISSOR_TEST);
@@ -252,6 +256,8 @@ void Renderer::renderFrame() {
         mFrames = 0;
         const float zero[4] = {0.f, 0.f, 0.f, 0.f};
         glClearNamedFramebufferfv(mAccumFbo.id(), GL_COLOR, 0, zero);
+        glClearNamedFramebufferfv(mStaticFbo.id(), GL_COLOR, 0, zero);
+        mShadeStaticOnce = mPlan.progressive();
         u.viewProj = viewProj();
         u.cameraPos = glm::vec4(glm::vec3(mScene->camera.position), 1.f);
         mFrameUniforms.update(0, sizeof(u), &u);
@@ -292,7 +298,7 @@ void Renderer::renderFrame() {
     if (mNeedDisplay) {
         glBindVertexArray(mEmptyVao.id());
         timed(mStats, "resolve",
-              [&] { mResolve->execute(mShaders, mAccum, mGBuffer->texture(gpu::kGBufferEmission), std::max(mFrames, 1)); });
+              [&] { mResolve->execute(mShaders, mAccum, mStatic, mGBuffer->texture(gpu::kGBufferEmission), std::max(mFrames, 1)); });
         timed(mStats, "tonemap", [&] {
             mTonemap->execute(mShaders, mResolve->linear(), mResolve->luminance(),
                               mGBuffer->texture(gpu::kGBufferPosition),
@@ -366,6 +372,7 @@ std::vector<glm::vec3> Renderer::probe(const Scene& scene, const std::vector<glm
     mPlan.needsBvh = false;
     const float zero[4] = {0.f, 0.f, 0.f, 0.f};
     glClearNamedFramebufferfv(mAccumFbo.id(), GL_COLOR, 0, zero);
+    mShadeStaticOnce = false;  // the probe reads the accumulation alone
     int perFrame = std::max(1, std::min(spp, 256));
     int frames = mPlan.progressive() ? std::max(1, (spp + perFrame - 1) / perFrame) : 1;
     for (mFrames = 0; mFrames < frames; ++mFrames) runShading(perFrame, 0, h);

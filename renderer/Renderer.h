@@ -150,6 +150,12 @@ private:
     DirectionalShadowMaps mEnvironmentShadows;  ///< The Havran lights' maps.
     gl::Texture2D mAccum;
     gl::Framebuffer mAccumFbo;
+    /// Deterministic steps of a progressive frame (a photometric `hybrid`, an unoccluded
+    /// `analytic`): shaded once per accumulation into here, added by the resolve undivided,
+    /// instead of again on every pass.
+    gl::Texture2D mStatic;
+    gl::Framebuffer mStaticFbo;
+    bool mShadeStaticOnce = false;  ///< This accumulation uses mStatic (camera view, progressive).
     gl::VertexArray mEmptyVao;
 };
 

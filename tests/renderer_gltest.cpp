@@ -124,6 +124,54 @@ TEST(Renderer, BandedRefinementGivesTheSameImageAndShowsOnlyWholePasses) {
     EXPECT_EQ(differ, 0u);
 }
 
+TEST(Renderer, DeterministicStepsOfAProgressiveFrameAreShadedOnce) {
+    // A photometric `hybrid` light (deterministic) beside a `reference` panel (Monte Carlo): the
+    // hybrid step runs in the first pass only and the resolve adds it once. The image must equal
+    // the panel's own image (the pendant dimmed to 1e-20, same step indices, so the same random
+    // numbers) plus the pendant's alone (a non-progressive frame: the ordinary path).
+    test::glContext();
+    const std::string pendant = R"({"type": "photometric", "name": "Pendant", "file": ")" CANDELA_SOURCE_DIR
+                                R"(/resources/luminaires/photometric/linear-pendant.ies", "position": [-0.5,2.2,0],
+                                "technique": "hybrid", "scale": SCALE})";
+    auto withScale = [&](const char* scale) {
+        std::string p = pendant;
+        p.replace(p.find("SCALE"), 5, scale);
+        return p;
+    };
+    const std::string panel =
+        R"({"type": "lambertian-rect", "name": "Panel", "size": [1, 0.5], "radiance": [10, 10, 10], "position": [0.8,2.5,-0.3], "technique": "reference"})";
+    ShaderLibrary shaders;
+    Renderer renderer(shaders);
+    RenderSettings s = small();
+    s.maxSamples = 12;
+    renderer.setSettings(s);
+    auto render = [&](const Scene& scene, std::vector<std::string>* passes2) {
+        renderer.update(scene, kChangeAll);
+        renderer.renderFrame();
+        renderer.renderFrame();
+        if (passes2) *passes2 = names(renderer.stats());
+        while (!renderer.converged()) renderer.renderFrame();
+        return renderer.readLinear();
+    };
+    Scene both = sceneFrom(kFloor, withScale("1.0") + "," + panel);
+    Scene panelOnly = sceneFrom(kFloor, withScale("1e-20") + "," + panel);  // scale must be > 0
+    Scene pendantOnly = sceneFrom(kFloor, withScale("1.0"));
+    std::vector<std::string> second;
+    std::vector<float> a = render(both, &second);
+    EXPECT_EQ(second, (std::vector<std::string>{"shade:Panel:reference", "resolve", "tonemap"}));
+    std::vector<float> b = render(panelOnly, nullptr);
+    std::vector<float> c = render(pendantOnly, nullptr);
+    ASSERT_EQ(a.size(), b.size());
+    double worst = 0.0, peak = 0.0;
+    for (size_t i = 0; i < a.size(); ++i) {
+        worst = std::max(worst, double(std::abs(a[i] - (b[i] + c[i]))));
+        peak = std::max(peak, double(a[i]));
+    }
+    ASSERT_GT(peak, 0.0);
+    // Float sums in another order: 1e-5 of the brightest pixel.
+    EXPECT_LT(worst, 1e-5 * peak) << "largest difference " << worst << " of " << peak;
+}
+
 TEST(Renderer, PixelRadianceMatchesTheClosedForm) {
     test::glContext();
     Scene scene = sceneFrom(kFloor, kPanel);

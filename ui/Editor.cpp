@@ -78,7 +78,9 @@ Editor::Editor(const EditorOptions& options) : mOptions(options) {
     mRenderer = std::make_unique<Renderer>(*mShaders);
     mState = std::make_unique<EditorState>();
     mState->screenshotDir = options.screenshotDir;
-    mState->settings.samplesPerFrame = 4;
+    // Many samples per pass: a pass pays a fixed cost per pixel (the light field's box
+    // integrals) that more samples share, and banding keeps the editor responsive anyway.
+    mState->settings.samplesPerFrame = 16;
     mState->settings.maxSamples = 256;
     // A pass over the image can take seconds on a software rasterizer: shade it in bands of
     // about this long, so input is read between them.

@@ -6,7 +6,7 @@
 //    editor's preview settings (renderer/LivePreview.h), and for comparison with the full
 //    settings; the wall time of each frame, GPU finished, gives frames per second;
 //  - release: back at its place, the full settings refine progressively (as the editor does,
-//    samplesPerFrame 4); after every frame the tone-mapped image is compared with a reference
+//    16 samples per pass); after every pass the tone-mapped image is compared with a reference
 //    (the same techniques at --reference-spp, another seed) and the clock, stopped while
 //    comparing, gives the seconds until the mean Delta E falls below 1.
 // Every image is tone-mapped against the reference's mean luminance, so Delta E measures noise
@@ -108,7 +108,7 @@ int benchDrag(const Args& args) {
     int width = 960, height = 540, frames = 60, refSpp = 1024;
     double timeout = 60.0;
     PreviewPolicy policy;
-    int samplesPerFrame = 4;
+    int samplesPerFrame = 16;  // as the editor (ui/Editor.cpp)
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
         if (a == "--drag") {
@@ -131,7 +131,7 @@ int benchDrag(const Args& args) {
     ShaderLibrary shaders;
     Renderer renderer(shaders);
 
-    // The editor's settings (ui/Editor.cpp): 4 samples per frame up to 256.
+    // The editor's settings (ui/Editor.cpp): 16 samples per pass up to 256.
     RenderSettings full;
     full.width = width;
     full.height = height;

@@ -15,13 +15,14 @@ void ResolvePass::resize(int width, int height) {
     mFbo = gl::Framebuffer({&mLinear, &mLuminance}, nullptr);
 }
 
-void ResolvePass::execute(ShaderLibrary& shaders, const gl::Texture2D& accum,
+void ResolvePass::execute(ShaderLibrary& shaders, const gl::Texture2D& accum, const gl::Texture2D& once,
                           const gl::Texture2D& emission, int frames) {
     GLuint program = shaders.program({"fullscreen.vert", "resolve.frag", "", {}});
     glUseProgram(program);
     glProgramUniform1f(program, 0, frames > 0 ? 1.f / float(frames) : 0.f);
     glBindTextureUnit(0, accum.id());
     glBindTextureUnit(1, emission.id());
+    glBindTextureUnit(2, once.id());
     glBindFramebuffer(GL_FRAMEBUFFER, mFbo.id());
     glViewport(0, 0, mWidth, mHeight);
     glDrawArrays(GL_TRIANGLES, 0, 3);

@@ -9,8 +9,9 @@ namespace candela {
 class ResolvePass {
 public:
     void resize(int width, int height);
-    void execute(ShaderLibrary& shaders, const gl::Texture2D& accum, const gl::Texture2D& emission,
-                 int frames);
+    /// linear = accum / frames + once + emission (once: deterministic steps shaded a single time).
+    void execute(ShaderLibrary& shaders, const gl::Texture2D& accum, const gl::Texture2D& once,
+                 const gl::Texture2D& emission, int frames);
     const gl::Texture2D& linear() const { return mLinear; }
     const gl::Texture2D& luminance() const { return mLuminance; }
 
