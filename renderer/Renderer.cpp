@@ -272,14 +272,16 @@ void Renderer::renderFrame() {
     if (!mStats.converged) {
         int height = mGBuffer->height();
         int rows = height - mBandRow;
-        if (mSettings.bandBudgetMs > 0.0 && mRowsPerMs > 0.0)
-            rows = std::clamp(int(mRowsPerMs * mSettings.bandBudgetMs), 1, height - mBandRow);
+        int width = mGBuffer->width();
+        if (mSettings.bandBudgetMs > 0.0 && mPixelsPerMs > 0.0)
+            rows = std::clamp(int(mPixelsPerMs * mSettings.bandBudgetMs / width), 1, height - mBandRow);
         auto start = std::chrono::steady_clock::now();
         runShading(spp, mBandRow, rows);
         if (mSettings.bandBudgetMs > 0.0) {
             glFinish();  // the band's real cost sets the next band's height
             double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-            mRowsPerMs = double(rows) / std::max(ms, 1e-3);
+            // Per pixel, so the rate carries over when the size changes (preview <-> full).
+            mPixelsPerMs = double(rows) * double(width) / std::max(ms, 1e-3);
         }
         mBandRow += rows;
         // The first pass shows band by band (the rows not done yet are black); later passes

@@ -129,7 +129,7 @@ private:
     unsigned mPending = kChangeAll;
     int mFrames = 0;
     int mBandRow = 0;            ///< Next row of the pass under way (banded refinement).
-    double mRowsPerMs = 0.0;     ///< Rows shaded per ms in the last band (0: not measured yet).
+    double mPixelsPerMs = 0.0;   ///< Pixels shaded per ms in the last band (0: not measured yet).
     bool mNeedDisplay = false;
     bool mPointMode = false;  ///< The G-buffer holds probe points, not a camera view.
 

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "renderer/ImageFile.h"
 #include "renderer/LivePreview.h"
 #include "renderer/Renderer.h"
 #include "renderer/ShaderLibrary.h"
@@ -223,6 +224,7 @@ void Editor::frame() {
     glClearColor(0.08f, 0.08f, 0.09f, 1.f);
     glClear(GL_COLOR_BUFFER_BIT);
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    if (state.windowShotRequested) takeWindowShot(fbWidth, fbHeight);
     glfwSwapBuffers(mContext->window());
 
     if (state.quitRequested) glfwSetWindowShouldClose(mContext->window(), GLFW_TRUE);
@@ -337,6 +339,34 @@ void Editor::takeScreenshot() {
     }
 }
 
+void Editor::takeWindowShot(int width, int height) {
+    EditorState& state = *mState;
+    state.windowShotRequested = false;
+    // The back buffer as drawn this frame, panels included (the README's guide images).
+    std::vector<unsigned char> rgba(size_t(width) * size_t(height) * 4);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+    std::vector<unsigned char> rgb(size_t(width) * size_t(height) * 3);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x)
+            for (int c = 0; c < 3; ++c)
+                rgb[(size_t(y) * size_t(width) + size_t(x)) * 3 + size_t(c)] =
+                    rgba[(size_t(height - 1 - y) * size_t(width) + size_t(x)) * 4 + size_t(c)];
+    char name[64];
+    std::snprintf(name, sizeof name, "window-%03d.png", state.windowShotsTaken);
+    std::string path = (state.screenshotDir / name).string();
+    try {
+        std::filesystem::create_directories(state.screenshotDir);
+        writeImage8(path, width, height, rgb);
+        ++state.windowShotsTaken;
+        std::printf("window image: %s\n", path.c_str());
+        std::fflush(stdout);
+        setStatus(state, "Window image written: " + path);
+    } catch (const std::exception& e) {
+        reportError(state, std::string("Window image failed: ") + e.what());
+    }
+}
+
 void Editor::updateTitle() {
     const EditorState& state = *mState;
     std::string name = state.scene.path.empty()
@@ -436,6 +466,7 @@ void Editor::writeLayout() {
         {"samples_per_pixel", stats.samplesPerPixel},
         {"converged", stats.converged},
         {"screenshots", state.screenshotsTaken},
+        {"window_images", state.windowShotsTaken},
         {"mouse_down", io.MouseDown[ImGuiMouseButton_Left]},  // as this frame's widgets saw it
         {"typing", io.WantTextInput},                        // a text field has the keyboard
         {"dirty", state.dirty},

@@ -51,6 +51,8 @@ class Editor {
     void prepareRender();
     void buildUi();
     void takeScreenshot();
+    /// Writes the whole window as drawn (screenshotDir/window-NNN.png).
+    void takeWindowShot(int width, int height);
     void updateTitle();
     void writeLayout();
 

@@ -1,6 +1,7 @@
 #include "ui/EditorState.h"
 
 #include <cctype>
+#include <cmath>
 #include <exception>
 #include <filesystem>
 
@@ -60,6 +61,7 @@ bool step(EditorState& state, std::vector<UndoStep>& from, std::vector<UndoStep>
     state.pendingChanges |= s.changes;
     state.dirty = true;
     ++state.edits;
+    if (s.changes & kChangeGeometry) ++state.geometryVersion;
     setStatus(state, std::string(verb) + " " + s.label);
     return true;
 }
@@ -83,6 +85,33 @@ void applyEdit(EditorState& state, std::string_view label, unsigned changes,
     state.pendingChanges |= changes;
     state.dirty = true;
     ++state.edits;
+    if (changes & kChangeGeometry) ++state.geometryVersion;
+}
+
+const Bvh& surfaceBvh(EditorState& state) {
+    PlacementUi& p = state.placement;
+    if (!p.surfaces || p.surfacesVersion != state.geometryVersion) {
+        p.surfaces = std::make_shared<const Bvh>(Bvh::build(state.scene));
+        p.surfacesVersion = state.geometryVersion;
+    }
+    return *p.surfaces;
+}
+
+Pose poseOnSurface(const Pose& pose, const glm::dvec3& point, const glm::dvec3& normal, bool aimAlongNormal,
+                   double clearance, double snap) {
+    Pose out = pose;
+    glm::dvec3 n = glm::normalize(normal);
+    glm::dvec3 p = point;
+    if (snap > 0.0) {
+        // Round the two coordinates along the surface (those other than the normal's largest).
+        glm::dvec3 a = glm::abs(n);
+        int axis = a.x >= a.y && a.x >= a.z ? 0 : a.y >= a.z ? 1 : 2;
+        for (int i = 0; i < 3; ++i)
+            if (i != axis) p[i] = std::round(p[i] / snap) * snap;
+    }
+    out.position = p + clearance * n;
+    out.aim = aimAlongNormal ? n : glm::dvec3(0.0, -1.0, 0.0);
+    return out;
 }
 
 bool undo(EditorState& state) {
@@ -126,6 +155,7 @@ bool openSceneFile(EditorState& state, const std::string& path) {
         state.pendingChanges = kChangeAll;
         state.dirty = false;
         state.history = {};
+        ++state.geometryVersion;
         setStatus(state, "Opened " + path);
         addRecentFile(path);
         restoreAutosave(state, path);  // unsaved edits of a session that crashed

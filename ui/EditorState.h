@@ -15,6 +15,7 @@
 #include "luminaires/Registry.h"
 #include "renderer/LivePreview.h"
 #include "renderer/Renderer.h"
+#include "scene/Bvh.h"
 #include "scene/CalculationGrid.h"
 #include "scene/Scene.h"
 #include "ui/Screenshot.h"
@@ -29,6 +30,7 @@ struct ViewportDrag {
     int luminaire = -1;          ///< Luminaire being moved (DragMode::Luminaire).
     double height = 0.0;         ///< Height of the horizontal drag plane, metres.
     glm::dvec3 grabOffset{0.0};  ///< Luminaire position minus the grabbed plane point, metres.
+    bool onSurfaces = false;     ///< The luminaire follows the surface under the mouse.
 };
 
 /// Where things are on screen this frame, in window pixels (x right, y down).
@@ -99,6 +101,18 @@ struct LivePreviewUi {
     int width = 0, height = 0; ///< Preview render size, pixels.
 };
 
+/// Placing luminaires on the scene's surfaces (the outline's Placement row and the viewport).
+struct PlacementUi {
+    bool armed = false;           ///< The next left click on a surface places the selected luminaire.
+    bool aimAlongNormal = true;   ///< Placed luminaires aim along the surface normal, else straight down.
+    bool alongSurfaces = false;   ///< Dragging moves a luminaire over the surfaces, not in its plane.
+    double clearance = 0.01;      ///< Distance from the surface, metres.
+    double snap = 0.1;            ///< Grid step with Ctrl held while dragging or placing, metres.
+    /// The scene's BVH for picking surfaces, rebuilt when geometryVersion moves on.
+    std::shared_ptr<const Bvh> surfaces;
+    int surfacesVersion = -1;
+};
+
 /// What an undo step restores: the scene's editable state. Meshes and materials are kept only
 /// for steps that changed geometry (a luminaire move does not copy the room).
 struct SceneSnapshot {
@@ -143,6 +157,8 @@ struct EditorState {
 
     std::filesystem::path screenshotDir = "candela-screenshots";
     bool screenshotRequested = false;  ///< Set by the Screenshot button; the editor takes it.
+    bool windowShotRequested = false;  ///< F12 or View > Save window image: the whole editor window.
+    int windowShotsTaken = 0;
     int screenshotsTaken = 0;
 
     std::string status;  ///< One line in the status bar.
@@ -160,6 +176,8 @@ struct EditorState {
     EnvironmentUi environment;
     LivePreviewUi preview;
     UndoHistory history;
+    PlacementUi placement;
+    int geometryVersion = 0;  ///< Moves on whenever the scene's meshes may have changed.
     /// Test hook for --layout-file: screen rectangles (x0, y0, x1, y1, window pixels) of named
     /// widgets drawn this frame ("inspector.spin", "outline.add", ...), recorded by the panels
     /// and written out, then cleared, by the editor's layout writer each frame.
@@ -201,6 +219,14 @@ int duplicateLuminaire(EditorState& state, int index);
 void deleteLuminaire(EditorState& state, int index);
 /// Replaces a luminaire by one built from edited fields, keeping its pose, name and technique.
 void replaceLuminaire(EditorState& state, int index, std::unique_ptr<Luminaire> replacement);
+
+/// The scene's BVH for surface picks (cached in state.placement until the geometry changes).
+const Bvh& surfaceBvh(EditorState& state);
+/// The pose of a luminaire put on a surface point: `clearance` off it along the normal, aimed
+/// along the normal or straight down, its C0 kept (made orthogonal by Pose::frame). With a snap
+/// step > 0 the position's coordinates across the surface's main axis are rounded to it.
+Pose poseOnSurface(const Pose& pose, const glm::dvec3& point, const glm::dvec3& normal, bool aimAlongNormal,
+                   double clearance, double snap);
 
 /// base, or "base 2", "base 3", ... whichever no luminaire of the scene uses yet.
 std::string uniqueLuminaireName(const Scene& scene, const std::string& base);

@@ -1,6 +1,7 @@
 // Menu bar, file dialogs, scene outline and status bar.
 #include "ui/Panels.h"
 
+#include <GLFW/glfw3.h>  // key codes only (GLFW_INCLUDE_NONE is set for the whole build)
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
@@ -106,6 +107,10 @@ bool mainMenuBar(EditorState& state, float& barHeight) {
             if (ImGui::MenuItem(redoLabel.c_str(), "Ctrl+Y", false, !h.redo.empty())) changed = redo(state) || changed;
             ImGui::EndMenu();
         }
+        if (ImGui::BeginMenu("View")) {
+            if (ImGui::MenuItem("Save window image", "F12")) state.windowShotRequested = true;
+            ImGui::EndMenu();
+        }
         barHeight = ImGui::GetWindowSize().y;
         ImGui::EndMainMenuBar();
     }
@@ -115,6 +120,7 @@ bool mainMenuBar(EditorState& state, float& barHeight) {
         if (io.KeyCtrl && ImGui::IsKeyPressed('S', false)) requestSave(state);
         if (io.KeyCtrl && ImGui::IsKeyPressed('O', false)) state.files.openRequested = true;
         if (io.KeyCtrl && !io.KeyShift && ImGui::IsKeyPressed('Z', false)) changed = undo(state) || changed;
+        if (ImGui::IsKeyPressed(GLFW_KEY_F12, false)) state.windowShotRequested = true;
         if (io.KeyCtrl && (ImGui::IsKeyPressed('Y', false) || (io.KeyShift && ImGui::IsKeyPressed('Z', false))))
             changed = redo(state) || changed;
         if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Delete), false) &&
@@ -169,6 +175,40 @@ bool fileDialogs(EditorState& state) {
         ImGui::EndPopup();
     }
     return changed;
+}
+
+/// The Placement rows under the luminaire list: place the selection on a clicked surface, how it
+/// is aimed there, dragging over surfaces, and the snap step (Ctrl).
+static void placementControls(EditorState& state, bool noSelection) {
+    PlacementUi& p = state.placement;
+    ImGui::BeginDisabled(noSelection);
+    if (ImGui::Button(p.armed ? "Click a surface..." : "Place on a surface")) p.armed = !p.armed;
+    recordRect(state, "outline.place");
+    itemTooltip("The next left click on a surface in the viewport puts the selected luminaire "
+                "there (Shift+click to place it again, Ctrl to snap, Escape to cancel)");
+    ImGui::EndDisabled();
+    if (noSelection) p.armed = false;
+    if (p.armed && ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false)) p.armed = false;
+    ImGui::SameLine();
+    ImGui::Checkbox("Over surfaces", &p.alongSurfaces);
+    recordRect(state, "outline.over_surfaces");
+    itemTooltip("Dragging a luminaire moves it over the surface under the mouse (aimed as "
+                "below) instead of in its horizontal plane");
+    int aim = p.aimAlongNormal ? 0 : 1;
+    ImGui::TextUnformatted("Aim:");
+    ImGui::SameLine();
+    if (ImGui::RadioButton("surface normal", aim == 0)) p.aimAlongNormal = true;
+    recordRect(state, "outline.aim_normal");
+    ImGui::SameLine();
+    if (ImGui::RadioButton("down", aim == 1)) p.aimAlongNormal = false;
+    recordRect(state, "outline.aim_down");
+    ImGui::SetNextItemWidth(80.f);
+    double minClear = 0.0, maxClear = 1.0, minSnap = 0.01, maxSnap = 2.0;
+    ImGui::SliderScalar("Clearance [m]", ImGuiDataType_Double, &p.clearance, &minClear, &maxClear, "%.3f");
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(70.f);
+    ImGui::SliderScalar("Snap [m]", ImGuiDataType_Double, &p.snap, &minSnap, &maxSnap, "%.2f");
+    itemTooltip("Grid step for positions while Ctrl is held (dragging or placing)");
 }
 
 bool outlinePanel(EditorState& state, const PanelRect& rect) {
@@ -235,6 +275,7 @@ bool outlinePanel(EditorState& state, const PanelRect& rect) {
             changed = true;
         }
         ImGui::EndDisabled();
+        placementControls(state, none);
     }
 
     std::string geometryHeader =

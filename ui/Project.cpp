@@ -60,6 +60,7 @@ bool restoreAutosave(EditorState& state, const std::string& scenePath) {
         state.pendingChanges = kChangeAll;
         state.dirty = true;
         state.history = {};
+        ++state.geometryVersion;
         setStatus(state, "Restored unsaved edits from the autosave " + autosave.string() +
                              " (File > Revert to Saved discards them)");
         return true;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 
 #include "ui/ImGuiUtil.h"
 #include "ui/Panels.h"
@@ -65,6 +66,12 @@ void beginLeftDrag(EditorState& state, const Renderer& renderer, const ImageMapp
     state.selectedLuminaire = hit;
     state.selectedGeometry = -1;
     const Luminaire& lum = *state.scene.luminaires[size_t(hit)];
+    if (state.placement.alongSurfaces) {
+        state.drag.mode = DragMode::Luminaire;
+        state.drag.luminaire = hit;
+        state.drag.onSurfaces = true;
+        return;
+    }
     Ray ray = pixelRay(renderer.viewProj(), px.x, px.y, map.renderWidth, map.renderHeight);
     auto grabbed = intersectHorizontal(ray, lum.pose.position.y);
     if (!grabbed) return;  // Seen exactly edge-on: selectable but not draggable from here.
@@ -81,16 +88,61 @@ bool continueLuminaireDrag(EditorState& state, const Renderer& renderer, const I
     int index = state.drag.luminaire;
     if (index < 0 || index >= int(state.scene.luminaires.size())) return false;
     glm::dvec2 px = map.toRender(mouse);
+    Luminaire& lum = *state.scene.luminaires[size_t(index)];
+    bool snap = ImGui::GetIO().KeyCtrl;  // Ctrl: positions on the placement grid
+    double step = snap ? state.placement.snap : 0.0;
+    if (state.drag.onSurfaces) {
+        const PlacementUi& p = state.placement;
+        auto hit = pickSurface(surfaceBvh(state), renderer.viewProj(), px.x, px.y, map.renderWidth, map.renderHeight);
+        if (!hit) return false;
+        Pose pose = poseOnSurface(lum.pose, hit->point, hit->normal, p.aimAlongNormal, p.clearance, step);
+        if (pose.position == lum.pose.position && pose.aim == lum.pose.aim) return false;
+        applyEdit(state, "Move " + lum.name, kChangeLuminaires,
+                  [&](Scene& s) { s.luminaires[size_t(index)]->pose = pose; });
+        return true;
+    }
     Ray ray = pixelRay(renderer.viewProj(), px.x, px.y, map.renderWidth, map.renderHeight);
     auto hit = intersectHorizontal(ray, state.drag.height);
     if (!hit || glm::length(*hit - ray.origin) > kMaxDragDistance) return false;
     glm::dvec3 position = *hit + state.drag.grabOffset;
+    if (step > 0.0) {
+        position.x = std::round(position.x / step) * step;
+        position.z = std::round(position.z / step) * step;
+    }
     position.y = state.drag.height;
-    Luminaire& lum = *state.scene.luminaires[size_t(index)];
     if (position == lum.pose.position) return false;
     applyEdit(state, "Move " + lum.name, kChangeLuminaires,
               [&](Scene& s) { s.luminaires[size_t(index)]->pose.position = position; });
     return true;
+}
+
+/// Left click while "Place on a surface" is armed: the selected luminaire moves onto the surface
+/// seen through the pixel (Shift keeps placement armed for the next click).
+void placeAtPixel(EditorState& state, const Renderer& renderer, const ImageMapping& map, const ImVec2& mouse) {
+    PlacementUi& p = state.placement;
+    int index = state.selectedLuminaire;
+    if (index < 0 || index >= int(state.scene.luminaires.size())) {
+        p.armed = false;
+        setStatus(state, "Select a luminaire to place first", true);
+        return;
+    }
+    glm::dvec2 px = map.toRender(mouse);
+    auto hit = pickSurface(surfaceBvh(state), renderer.viewProj(), px.x, px.y, map.renderWidth, map.renderHeight);
+    if (!hit) {
+        setStatus(state, "That pixel sees no surface: click a surface to place the luminaire", true);
+        return;
+    }
+    const ImGuiIO& io = ImGui::GetIO();
+    Luminaire& lum = *state.scene.luminaires[size_t(index)];
+    Pose pose = poseOnSurface(lum.pose, hit->point, hit->normal, p.aimAlongNormal, p.clearance,
+                              io.KeyCtrl ? p.snap : 0.0);
+    applyEdit(state, "Place " + lum.name, kChangeLuminaires,
+              [&](Scene& s) { s.luminaires[size_t(index)]->pose = pose; });
+    p.armed = io.KeyShift;
+    char text[200];
+    std::snprintf(text, sizeof text, "Placed %s at (%.2f, %.2f, %.2f) m, aimed (%.2f, %.2f, %.2f)", lum.name.c_str(),
+                  pose.position.x, pose.position.y, pose.position.z, pose.aim.x, pose.aim.y, pose.aim.z);
+    setStatus(state, text);
 }
 
 /// Left click while the Environment panel's "Pick a pixel" is armed: the chart's normal becomes
@@ -139,6 +191,9 @@ bool handleInput(EditorState& state, const Renderer& renderer, const ImageMappin
     if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && state.environment.pickingPixel &&
         state.environment.chartOpen) {
         pickChartPixel(state, renderer, map, io.MouseClickedPos[ImGuiMouseButton_Left]);
+    } else if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && state.placement.armed) {
+        placeAtPixel(state, renderer, map, io.MouseClickedPos[ImGuiMouseButton_Left]);
+        changed = true;
     } else if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
         beginLeftDrag(state, renderer, map, io.MouseClickedPos[ImGuiMouseButton_Left]);
         changed = true;
@@ -186,7 +241,7 @@ bool handleInput(EditorState& state, const Renderer& renderer, const ImageMappin
                   [&](Scene& s) { zoomCamera(s.camera, io.MouseWheel); });
         changed = true;
     }
-    if (hovered && state.environment.pickingPixel && state.environment.chartOpen) {
+    if (hovered && ((state.environment.pickingPixel && state.environment.chartOpen) || state.placement.armed)) {
         ImGui::SetMouseCursor(ImGuiMouseCursor_Hand);
     } else if (hovered && state.drag.mode == DragMode::None) {
         glm::dvec2 px = map.toRender(io.MousePos);

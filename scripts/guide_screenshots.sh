@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# Takes the README's user-guide images with the editor itself (View > Save window image, F12),
+# driven by real X input under Xvfb: docs/guide/{editor,preview,place}.png.
+# Usage: bash scripts/guide_screenshots.sh [build/candela]   (needs xvfb, xdotool, imagemagick)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+CANDELA=${1:-build/candela}
+CANDELA=$(cd "$(dirname "$CANDELA")" && pwd)/$(basename "$CANDELA")
+OUT=docs/guide
+TIMEOUT_S=120
+E2E_NAME=guide
+source tests/e2e/lib/harness.sh
+e2e_setup
+e2e_start_xvfb 1280x720
+mkdir -p "$OUT"
+
+# The demo room with one luminaire of each kind, seen from the door.
+e2e_start_editor "$PWD/resources/scenes/editor-room.json" 1280x720 "len(d['luminaires']) == 3 and d['frame'] >= 2"
+shot() {  # shot NAME: F12, then move the newest window image to docs/guide/NAME.png
+    local n
+    n=$(layout "d['window_images']")
+    xdotool key --window "$WID" F12
+    wait_until "window image $n" "d['window_images'] > $n"
+    mv "$SHOTS/window-$(printf %03d "$n").png" "$OUT/$1.png"
+    log "wrote $OUT/$1.png"
+}
+
+# 1. The editor after a few refinement passes.
+wait_until "some refinement" "d['samples_per_pixel'] >= 32"
+shot editor
+
+# 2. The live preview, mid-orbit (the mouse held down on empty floor).
+read -r VX VY VW VH < <(layout "'%d %d %d %d' % tuple(d['viewport'])")
+CX=$((VX + VW / 2)); CY=$((VY + VH * 4 / 5))
+move_to "$CX" "$CY"
+xdotool mousedown 1
+for i in 1 2 3 4 5 6; do xdotool mousemove --window "$WID" $((CX + 4 * i)) "$CY"; sleep 0.1; done
+wait_until "the preview" "d['preview']['active']"
+wait_frames 3
+shot preview
+xdotool mouseup 1
+xdotool key --window "$WID" ctrl+z 2>/dev/null || true  # orbits are not undone; harmless
+
+# 3. The pendant placed on the back wall ("Place on a surface", then a click on the wall).
+click_widget() {  # click_widget NAME: a left click in the middle of a recorded widget
+    local x y
+    read -r x y < <(layout "'%d %d' % (round((w('$1')[0] + w('$1')[2]) / 2), round((w('$1')[1] + w('$1')[3]) / 2))")
+    move_to "$x" "$y"
+    xdotool click 1
+}
+click_widget "outline.luminaire:Linear pendant"
+wait_until "the pendant selected" "d['selected'] == 'Linear pendant'"
+click_widget outline.place
+wait_frames 2
+move_to $((VX + VW / 2)) $((VY + VH / 3))
+xdotool click 1
+wait_until "the placement" "d['undo'] is not None and d['undo'].startswith('Place')"
+wait_until "refinement after the placement" "d['samples_per_pixel'] >= 32"
+shot place
+PASSED=1

@@ -1,0 +1,88 @@
+#!/usr/bin/env bash
+# End-to-end test of placing a luminaire on a surface and of undo / redo (issue 7, part 1), with
+# real X input under Xvfb:
+#   1. click the ceiling panel in the viewport (selects it), press "Place on a surface", click a
+#      point of the back wall: the panel sits 1 cm off the wall, aimed along its normal (+z);
+#   2. Ctrl+Z: the panel is back where it was; Ctrl+Y: on the wall again;
+#   3. Ctrl+S: the saved scene file holds the panel on the wall.
+# Usage: bash tests/e2e/editor_place.sh /path/to/candela /path/to/tests
+set -euo pipefail
+
+CANDELA=${1:?usage: editor_place.sh /path/to/candela /path/to/tests}
+TESTS=${2:?usage: editor_place.sh /path/to/candela /path/to/tests}
+SOURCE=$(cd "$TESTS/.." && pwd)
+TIMEOUT_S=60
+WALL_POINT="[0.6, 2.0, -3.0]"  # on the back wall (z = -3), seen by the camera below
+
+E2E_NAME=editor_place
+source "$(dirname "$0")/lib/harness.sh"
+e2e_setup
+e2e_start_xvfb 1280x800
+
+python3 - "$SOURCE/resources/scenes/demo.json" "$TMP/scene.json" <<'PY'
+import json, sys
+scene = json.load(open(sys.argv[1]))
+scene["camera"] = {"position": [0.0, 1.3, 2.6], "target": [0.0, 1.9, -1.0], "fov_deg": 60}
+scene["luminaires"][0]["c0"] = [0, 0, 1]
+json.dump(scene, open(sys.argv[2], "w"), indent=1)
+PY
+
+e2e_start_editor "$TMP/scene.json" 1280x800 "len(d['luminaires']) > 0 and d['frame'] >= 2"
+wait_until "a visible luminaire" "d['luminaires'][0]['screen'] is not None"
+NAME=$(layout "d['luminaires'][0]['name']")
+ORIGINAL=$(layout "json.dumps(d['luminaires'][0]['position'])")
+
+# --- 1. Select, arm, click the wall ---------------------------------------------------------------
+read -r LX LY < <(layout "'%d %d' % tuple(round(c) for c in d['luminaires'][0]['screen'])")
+move_to "$LX" "$LY"
+xdotool click 1
+wait_until "\"$NAME\" selected" "d['selected'] == '$NAME' and not d['dragging']"
+read -r PX PY < <(layout "'%d %d' % (round((w('outline.place')[0] + w('outline.place')[2]) / 2), round((w('outline.place')[1] + w('outline.place')[3]) / 2))")
+move_to "$PX" "$PY"
+xdotool click 1
+wait_frames 2
+# The wall point in window pixels, through the scene's camera and the viewport.
+read -r WX WY < <(python3 - "$LAYOUT" "$TMP/scene.json" "$WALL_POINT" "$(dirname "$0")/lib" <<'PY'
+import json, sys
+sys.path.insert(0, sys.argv[4])
+from camera import project
+d = json.load(open(sys.argv[1]))
+cam = json.load(open(sys.argv[2]))["camera"]
+x, y = project(json.loads(sys.argv[3]), {"camera": cam, "render_size": d["render_size"]})
+vx, vy, vw, vh = d["viewport"]
+print(round(vx + x * vw / d["render_size"][0]), round(vy + y * vh / d["render_size"][1]))
+PY
+)
+log "placing \"$NAME\" at the wall point, window ($WX, $WY)"
+move_to "$WX" "$WY"
+xdotool click 1
+wait_until "\"$NAME\" on the back wall" \
+    "abs(lum('$NAME')['position'][2] - (-2.99)) < 1e-6 and close(lum('$NAME')['aim'], [0, 0, 1], 1e-6)"
+ON_WALL=$(layout "json.dumps(lum('$NAME')['position'])")
+python3 -c "
+import json, sys
+p, q = json.loads('$ON_WALL'), json.loads('$WALL_POINT')
+sys.exit(0 if abs(p[0] - q[0]) < 0.05 and abs(p[1] - q[1]) < 0.05 else 1)" ||
+    fail "placed at $ON_WALL, clicked at the wall point $WALL_POINT"
+layout "d['undo'] == 'Place $NAME'" || fail "the placement is not the last undo step"
+log "placed at $ON_WALL, aimed +z"
+
+# --- 2. Undo and redo -----------------------------------------------------------------------------
+xdotool key --window "$WID" ctrl+z
+wait_until "undo" "json.dumps(lum('$NAME')['position']) == '$ORIGINAL'"
+xdotool key --window "$WID" ctrl+y
+wait_until "redo" "json.dumps(lum('$NAME')['position']) == '$ON_WALL'"
+log "undo and redo restore both positions exactly"
+
+# --- 3. Save --------------------------------------------------------------------------------------
+xdotool key --window "$WID" ctrl+s
+wait_until "the save" "not d['dirty']"
+python3 -c "
+import json, sys
+s = json.load(open('$TMP/scene.json'))
+l = next(l for l in s['luminaires'] if l['name'] == '$NAME')
+sys.exit(0 if l['position'] == json.loads('$ON_WALL') and l['aim'] == [0.0, 0.0, 1.0] else 1)" ||
+    fail "the saved scene does not hold the placed panel"
+
+PASSED=1
+echo "editor_place: PASS"

@@ -1,0 +1,58 @@
+// Placing luminaires on surfaces (ui/EditorState.h: poseOnSurface, surfaceBvh) and picking the
+// surface seen through a pixel of the demo room (ui/ViewportMath.h).
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+
+#include "renderer/FramePlan.h"
+#include "ui/EditorState.h"
+#include "ui/ViewportMath.h"
+
+namespace candela::ui {
+namespace {
+
+TEST(EditorPlacement, OnAWallAlongItsNormalOrDownWithClearanceAndSnap) {
+    Pose pose;
+    pose.c0 = {0.0, 0.0, 1.0};
+    const glm::dvec3 wall(-3.0, 1.234, 0.567), normal(1.0, 0.0, 0.0);
+    Pose a = poseOnSurface(pose, wall, normal, true, 0.01, 0.0);
+    EXPECT_NEAR(a.position.x, -2.99, 1e-12);
+    EXPECT_EQ(a.position.y, 1.234);
+    EXPECT_EQ(a.aim, normal);
+    EXPECT_EQ(a.c0, pose.c0);  // spin kept
+    Pose b = poseOnSurface(pose, wall, normal, false, 0.01, 0.0);
+    EXPECT_EQ(b.aim, glm::dvec3(0.0, -1.0, 0.0));
+    // Snapping rounds the coordinates along the wall (y, z), never the distance off it (x).
+    Pose c = poseOnSurface(pose, wall, normal, true, 0.01, 0.25);
+    EXPECT_NEAR(c.position.x, -2.99, 1e-12);
+    EXPECT_NEAR(c.position.y, 1.25, 1e-12);
+    EXPECT_NEAR(c.position.z, 0.5, 1e-12);
+}
+
+TEST(EditorPlacement, PickingTheDemoRoomsCeilingAimsDownAndTheBvhFollowsTheGeometry) {
+    setenv("CANDELA_STATE_DIR", (std::filesystem::temp_directory_path() / "candela-placement-test").c_str(), 1);
+    EditorState state;
+    ASSERT_TRUE(openSceneFile(state, CANDELA_SOURCE_DIR "/resources/scenes/demo.json"));
+    // Look straight up from the middle of the room: the centre pixel sees the ceiling (y = 3).
+    state.scene.camera = {{0.0, 1.5, 0.0}, {0.0, 3.0, 0.01}, 60.0};
+    glm::mat4 viewProj = cameraViewProj(state.scene.camera, 1.0);
+    auto hit = pickSurface(surfaceBvh(state), viewProj, 50.0, 50.0, 100, 100);
+    ASSERT_TRUE(hit.has_value());
+    EXPECT_NEAR(hit->point.y, 3.0, 1e-4);
+    Pose pose = poseOnSurface(state.scene.luminaires[0]->pose, hit->point, hit->normal, true, 0.02, 0.0);
+    EXPECT_NEAR(pose.position.y, 2.98, 1e-4);
+    EXPECT_NEAR(pose.aim.y, -1.0, 1e-9);  // the ceiling's normal, turned to the camera: down
+
+    const Bvh* before = &surfaceBvh(state);
+    EXPECT_EQ(&surfaceBvh(state), before);  // kept while the geometry stands
+    applyEdit(state, "Delete ceiling", kChangeGeometry, [](Scene& s) {
+        s.geometry.erase(s.geometry.begin() + 1);
+        s.meshes.erase(s.meshes.begin() + 1);
+    });
+    auto open = pickSurface(surfaceBvh(state), viewProj, 50.0, 50.0, 100, 100);
+    EXPECT_FALSE(open.has_value());  // the rebuilt BVH has no ceiling: the sky
+}
+
+}  // namespace
+}  // namespace candela::ui
