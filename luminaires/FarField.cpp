@@ -90,6 +90,31 @@ std::unique_ptr<PhotometricLuminaire> farFieldTwin(const LightFieldLuminaire& li
     return twin;
 }
 
+std::vector<unsigned char> footprintImage(const PhotometricData& data, int size, double height) {
+    size = std::max(size, 1);
+    std::vector<double> e(size_t(size) * size_t(size), 0.0);
+    double half = 2.5 * height, peak = 0.0;
+    for (int j = 0; j < size; ++j)
+        for (int i = 0; i < size; ++i) {
+            // Local photometric frame: +z the aim (down to the floor), +x C0, +y C90.
+            double x = -half + (i + 0.5) * 2.0 * half / size, y = half - (j + 0.5) * 2.0 * half / size;
+            glm::dvec3 d(x, y, height);
+            double r2 = glm::dot(d, d);
+            double value = data.intensity(d / std::sqrt(r2)) * height / (r2 * std::sqrt(r2));  // I cos / r^2
+            e[size_t(j) * size_t(size) + size_t(i)] = value;
+            peak = std::max(peak, value);
+        }
+    std::vector<unsigned char> rgb(size_t(size) * size_t(size) * 3, 0);
+    if (!(peak > 0.0)) return rgb;
+    for (size_t k = 0; k < e.size(); ++k) {
+        double t = e[k] > 0.0 ? std::clamp(1.0 + std::log10(e[k] / peak) / 3.0, 0.0, 1.0) : 0.0;
+        // Black through amber to white.
+        glm::dvec3 c(std::min(1.0, 1.6 * t), std::clamp(1.6 * t - 0.35, 0.0, 1.0), std::clamp(2.2 * t - 1.2, 0.0, 1.0));
+        for (int ch = 0; ch < 3; ++ch) rgb[3 * k + size_t(ch)] = (unsigned char)std::lround(255.0 * c[ch]);
+    }
+    return rgb;
+}
+
 void placeFarFieldTwin(PhotometricLuminaire& twin, const LightFieldLuminaire& light) {
     const LightFieldData& lf = *light.data;
     glm::dvec3 x, y, z;

@@ -7,6 +7,7 @@
 // the user drags (renderer/LivePreview.h). Not used for the final image.
 
 #include <memory>
+#include <vector>
 
 #include "luminaires/LightField.h"
 #include "luminaires/PhotometricLuminaire.h"
@@ -24,6 +25,12 @@ std::shared_ptr<const PhotometricData> farFieldPhotometry(const LightFieldData& 
 /// image rectangle, technique "scattered", with farFieldPhotometry of its data (computed once
 /// per light-field data and kept while that data lives).
 std::unique_ptr<PhotometricLuminaire> farFieldTwin(const LightFieldLuminaire& light);
+/// A thumbnail of what a far field casts: the illuminance on a floor `height` metres below it
+/// (aimed straight down, C0 along +x), over a square of half-side 2.5 height, size x size RGB8
+/// pixels, rows from +y down. Logarithmic over three decades below its brightest pixel, in a
+/// warm ramp; the opening's footprint is ignored (a point source).
+std::vector<unsigned char> footprintImage(const PhotometricData& data, int size, double height = 1.0);
+
 /// Moves a twin to where `light` now is (its pose, name and nothing else).
 void placeFarFieldTwin(PhotometricLuminaire& twin, const LightFieldLuminaire& light);
 

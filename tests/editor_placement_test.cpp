@@ -56,3 +56,35 @@ TEST(EditorPlacement, PickingTheDemoRoomsCeilingAimsDownAndTheBvhFollowsTheGeome
 
 }  // namespace
 }  // namespace candela::ui
+
+namespace candela::ui {
+namespace {
+
+TEST(EditorPlacement, SwapKeepsPoseAndNameAndIsOneUndoStep) {
+    setenv("CANDELA_STATE_DIR", (std::filesystem::temp_directory_path() / "candela-placement-test").c_str(), 1);
+    EditorState state;
+    ASSERT_TRUE(openSceneFile(state, CANDELA_SOURCE_DIR "/resources/scenes/editor-room.json"));
+    const Pose pose = state.scene.luminaires[0]->pose;  // the analytic ceiling panel
+    ASSERT_TRUE(swapLuminaireFile(state, 0, CANDELA_SOURCE_DIR "/resources/luminaires/photometric/prolicht-e30.ldt"));
+    const Luminaire& swapped = *state.scene.luminaires[0];
+    EXPECT_EQ(swapped.kind(), "photometric");
+    EXPECT_EQ(swapped.name, "Ceiling panel");
+    EXPECT_EQ(swapped.pose.position, pose.position);
+    EXPECT_EQ(swapped.pose.aim, pose.aim);
+    EXPECT_EQ(swapped.technique, "hybrid");  // "analytic" is not photometric: the kind's default
+    // A light field in place of the pendant keeps nothing of the photometric technique either.
+    ASSERT_TRUE(swapLuminaireFile(state, 2, CANDELA_SOURCE_DIR "/resources/luminaires/osram-lertduw.lf.json"));
+    EXPECT_EQ(state.scene.luminaires[2]->technique, "restricted-cdf");
+    // A file that cannot be read changes nothing and says why.
+    size_t steps = state.history.undo.size();
+    EXPECT_FALSE(swapLuminaireFile(state, 0, "/nonexistent/lamp.ies"));
+    EXPECT_EQ(state.history.undo.size(), steps);
+    EXPECT_NE(state.modalError.find("lamp.ies"), std::string::npos);
+    EXPECT_EQ(state.scene.luminaires[0]->kind(), "photometric");
+    ASSERT_TRUE(undo(state));
+    ASSERT_TRUE(undo(state));
+    EXPECT_EQ(state.scene.luminaires[0]->kind(), "lambertian-rect");
+}
+
+}  // namespace
+}  // namespace candela::ui

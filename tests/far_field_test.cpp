@@ -110,3 +110,34 @@ TEST(FarField, IntensityMatchesTheExactModelFarAway) {
 
 }  // namespace
 }  // namespace candela
+
+namespace candela {
+namespace {
+
+TEST(FarField, FootprintIsBrightestUnderADownlightAndFollowsItsC0) {
+    // A table lit only around gamma 30 deg in the C0 half-plane (C = 0): the bright spot of the
+    // floor image lies towards +x (C0), right of the centre, at tan(30) of the height.
+    PhotometricData d;
+    d.goniometer = Goniometer::C;
+    d.vertical = {0.0, 20.0, 30.0, 40.0, 180.0};
+    d.horizontal = {0.0, 20.0, 340.0, 360.0};
+    d.candela.assign(d.vertical.size() * d.horizontal.size(), 0.0);
+    for (size_t h : {size_t(0), size_t(3)}) d.candela[h * d.vertical.size() + 2] = 1000.0;
+    const int n = 101;
+    std::vector<unsigned char> img = footprintImage(d, n, 1.0);
+    ASSERT_EQ(img.size(), size_t(n * n * 3));
+    int best = 0;
+    for (int k = 1; k < n * n; ++k)
+        if (img[3 * size_t(k)] + img[3 * size_t(k) + 1] + img[3 * size_t(k) + 2] >
+            img[3 * size_t(best)] + img[3 * size_t(best) + 1] + img[3 * size_t(best) + 2])
+            best = k;
+    int row = best / n, col = best % n;
+    // Pixel centres span +-2.5 m in 101 pixels: tan(30 deg) = 0.577 m is 11.5 pixels right.
+    EXPECT_NEAR(col - n / 2, 11.5, 1.5);
+    EXPECT_NEAR(row - n / 2, 0.0, 1.5);
+    std::vector<unsigned char> dark = footprintImage(PhotometricData{}, 8);
+    for (unsigned char c : dark) EXPECT_EQ(c, 0);  // no light: black, no NaN
+}
+
+}  // namespace
+}  // namespace candela

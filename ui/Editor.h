@@ -25,7 +25,7 @@ struct EditorOptions {
     int width = 1280;       ///< Window width, screen pixels.
     int height = 800;       ///< Window height, screen pixels.
     std::filesystem::path screenshotDir = "candela-screenshots";
-    /// Test hook: after frames whose layout changed, the window, viewport, Screenshot button and
+    /// Test hook: after every frame, the window, viewport, Screenshot button, widgets and
     /// luminaire positions (window pixels) are written here as JSON (atomically). Empty: off.
     std::filesystem::path layoutFile;
     int quitAfterFrames = 0;  ///< Test hook: exit after this many frames; 0 runs until closed.
@@ -72,7 +72,6 @@ class Editor {
     int mIdleFrames = 0;            ///< Consecutive frames without input.
     double mLastReloadCheck = 0.0;  ///< glfwGetTime() of the last shader reload check, s.
     std::string mTitle;
-    std::string mLastLayout;     ///< Layout JSON last written, without the frame number.
     std::string mLastShaderLog;  ///< Shader error log at the last reload check.
 };
 

@@ -8,6 +8,7 @@
 #include "luminaires/Registry.h"
 #include "scene/SceneIo.h"
 #include "ui/Project.h"
+#include "util/Error.h"
 
 namespace candela::ui {
 
@@ -240,7 +241,7 @@ int addLuminaire(EditorState& state, const LuminaireKindInfo& kind) {
     }
 }
 
-int addLuminaireFromFile(EditorState& state, const std::string& path) {
+std::unique_ptr<Luminaire> luminaireFromFile(const std::string& path) {
     std::string lower = path;
     for (char& c : lower) c = char(std::tolower((unsigned char)c));
     auto endsWith = [&](const char* suffix) {
@@ -250,23 +251,46 @@ int addLuminaireFromFile(EditorState& state, const std::string& path) {
     const char* kind = endsWith(".ies") || endsWith(".ldt") ? "photometric"
                        : endsWith(".lf.json")               ? "lightfield"
                                                             : nullptr;
-    if (!kind) {
-        reportError(state, path + ": cannot add a luminaire from this file (expected .ies, .ldt or .lf.json)");
-        return -1;
-    }
-    const LuminaireKindInfo* info = findKind(kind);
+    if (!kind)
+        throw InputError(path + ": cannot make a luminaire from this file (expected .ies, .ldt or .lf.json)");
+    // Through the scene-file parser, so the file gets the same checks as a loaded scene's.
+    nlohmann::json entry = {{"type", kind}, {"file", path}};
+    std::unique_ptr<Luminaire> lum = findKind(kind)->parse(entry, json::Where{path, "file"});
+    std::string stem = std::filesystem::path(path).filename().string();
+    lum->name = stem.substr(0, stem.find('.'));
+    lum->technique = std::string(findKind(kind)->defaultTechnique);
+    return lum;
+}
+
+int addLuminaireFromFile(EditorState& state, const std::string& path) {
     try {
-        // Through the scene-file parser, so a dropped file gets the same checks as a loaded one.
-        nlohmann::json entry = {{"type", kind}, {"file", path}};
-        std::unique_ptr<Luminaire> lum = info->parse(entry, json::Where{path, "dropped file"});
-        std::string stem = std::filesystem::path(path).filename().string();
-        lum->name = stem.substr(0, stem.find('.'));
+        std::unique_ptr<Luminaire> lum = luminaireFromFile(path);
+        const LuminaireKindInfo* info = findKind(lum->kind());
         int index = insertLuminaire(state, *info, std::move(lum));
         if (index >= 0) setStatus(state, "Added " + state.scene.luminaires[size_t(index)]->name + " from " + path);
         return index;
     } catch (const std::exception& e) {
         reportError(state, e.what());
         return -1;
+    }
+}
+
+bool swapLuminaireFile(EditorState& state, int index, const std::string& path) {
+    if (index < 0 || index >= int(state.scene.luminaires.size())) return false;
+    try {
+        std::unique_ptr<Luminaire> lum = luminaireFromFile(path);
+        const Luminaire& old = *state.scene.luminaires[size_t(index)];
+        lum->pose = old.pose;
+        lum->name = old.name;
+        if (findTechnique(lum->kind(), old.technique)) lum->technique = old.technique;
+        std::string label = "Swap " + old.name;
+        applyEdit(state, label, kChangeLuminaires,
+                  [&](Scene& s) { s.luminaires[size_t(index)] = std::move(lum); });
+        setStatus(state, "Swapped " + state.scene.luminaires[size_t(index)]->name + " for " + path + " (pose kept)");
+        return true;
+    } catch (const std::exception& e) {
+        reportError(state, "Swap: " + std::string(e.what()));
+        return false;
     }
 }
 

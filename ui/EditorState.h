@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <glm/glm.hpp>
 #include <memory>
 #include <optional>
@@ -101,6 +102,28 @@ struct LivePreviewUi {
     int width = 0, height = 0; ///< Preview render size, pixels.
 };
 
+/// One luminaire file of the library panel.
+struct LibraryEntry {
+    std::string path;   ///< Absolute.
+    std::string label;  ///< File name.
+    std::string kind;   ///< "photometric" or "lightfield".
+};
+
+/// The Library panel: luminaire files under resources/luminaires and the folders the user adds
+/// (kept in the state folder's library.json), each with a thumbnail of what it casts.
+struct LibraryUi {
+    std::vector<std::string> folders;  ///< Added by the user, absolute.
+    std::vector<LibraryEntry> entries;
+    bool scanned = false;
+    std::string folderText;            ///< The "Add folder" field.
+    struct Thumbnail {
+        std::shared_ptr<void> texture;  ///< A gl::Texture2D, made by the panel.
+        std::string info;               ///< Flux and size, or why it failed.
+        bool failed = false;
+    };
+    std::map<std::string, Thumbnail> thumbnails;  ///< By path.
+};
+
 /// Placing luminaires on the scene's surfaces (the outline's Placement row and the viewport).
 struct PlacementUi {
     bool armed = false;           ///< The next left click on a surface places the selected luminaire.
@@ -177,6 +200,7 @@ struct EditorState {
     LivePreviewUi preview;
     UndoHistory history;
     PlacementUi placement;
+    LibraryUi library;
     int geometryVersion = 0;  ///< Moves on whenever the scene's meshes may have changed.
     /// Test hook for --layout-file: screen rectangles (x0, y0, x1, y1, window pixels) of named
     /// widgets drawn this frame ("inspector.spin", "outline.add", ...), recorded by the panels
@@ -214,6 +238,13 @@ int addLuminaire(EditorState& state, const LuminaireKindInfo& kind);
 /// .lf.json light field, placed like Add and selected. A file that fails to load is reported and
 /// nothing changes. Returns the new index or -1.
 int addLuminaireFromFile(EditorState& state, const std::string& path);
+/// Builds a luminaire from a file (.ies, .ldt or .lf.json) through the scene-file parser; throws
+/// InputError naming the file. Its name is the file's stem.
+std::unique_ptr<Luminaire> luminaireFromFile(const std::string& path);
+/// Swaps the luminaire behind an instance for one made from another file, keeping its pose and
+/// name, and its technique when the new kind has it (else the kind's default). One undo step;
+/// errors are reported and change nothing. Returns whether it swapped.
+bool swapLuminaireFile(EditorState& state, int index, const std::string& path);
 /// Copies the luminaire 0.25 m along +x with a fresh name; selects and returns the copy.
 int duplicateLuminaire(EditorState& state, int index);
 void deleteLuminaire(EditorState& state, int index);

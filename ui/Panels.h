@@ -35,6 +35,8 @@ bool fileDialogs(EditorState& state);
 
 /// Outline of geometry and luminaires (click to select) with Add / Duplicate / Delete.
 bool outlinePanel(EditorState& state, const PanelRect& rect);
+/// Luminaire files with thumbnails; Add (then click a surface) and Swap (ui/LibraryPanel.cpp).
+bool libraryPanel(EditorState& state, const PanelRect& rect);
 /// Fields of the selected luminaire (pose, technique, kind-specific values) or geometry.
 bool inspectorPanel(EditorState& state, const PanelRect& rect);
 /// Basis grid, one image and the flux of a light-field luminaire (ui/LightFieldPanel.cpp);

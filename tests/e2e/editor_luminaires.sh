@@ -66,6 +66,9 @@ widget_point() {
 # the pointer there drew the widget under it (a popup is placed only a frame after it appears).
 point_to() {
     local x y attempt
+    # Widgets of the inspector may lie below its fold (the left column is shared with the scene
+    # outline and the library): scroll them in first.
+    case "$1" in inspector.*) wait_until "the widget $1" "w('$1') is not None"; scroll_into_view "$1" inspector ;; esac
     for attempt in 1 2 3 4 5; do
         read -r x y < <(widget_point "$1" "${2:-12}")
         move_to "$x" "$y"

@@ -4,7 +4,8 @@
 #   1. click the ceiling panel in the viewport (selects it), press "Place on a surface", click a
 #      point of the back wall: the panel sits 1 cm off the wall, aimed along its normal (+z);
 #   2. Ctrl+Z: the panel is back where it was; Ctrl+Y: on the wall again;
-#   3. Ctrl+S: the saved scene file holds the panel on the wall.
+#   3. Library: Swap the panel for linear-pendant.ies: a photometric light with the same pose;
+#   4. Ctrl+S: the saved scene file holds it on the wall; 5. Ctrl+Z twice: everything undone.
 # Usage: bash tests/e2e/editor_place.sh /path/to/candela /path/to/tests
 set -euo pipefail
 
@@ -74,15 +75,35 @@ xdotool key --window "$WID" ctrl+y
 wait_until "redo" "json.dumps(lum('$NAME')['position']) == '$ON_WALL'"
 log "undo and redo restore both positions exactly"
 
-# --- 3. Save --------------------------------------------------------------------------------------
+# --- 3. Swap the panel for a photometric file from the Library, keeping its pose ------------------
+SWAP="library.swap:linear-pendant.ies"
+wait_until "the library entry" "w('$SWAP') is not None"
+scroll_into_view "$SWAP" library
+read -r SX SY < <(layout "'%d %d' % (round((w('$SWAP')[0] + w('$SWAP')[2]) / 2), round((w('$SWAP')[1] + w('$SWAP')[3]) / 2))")
+move_to "$SX" "$SY"
+xdotool click 1
+wait_until "the swap" "lum('$NAME')['type'] == 'photometric'"
+layout "json.dumps(lum('$NAME')['position']) == '$ON_WALL' and close(lum('$NAME')['aim'], [0, 0, 1], 1e-9)" ||
+    fail "the swap did not keep the pose"
+layout "d['undo'] == 'Swap $NAME'" || fail "the swap is not the last undo step"
+log "swapped for linear-pendant.ies, pose kept"
+
+# --- 4. Save --------------------------------------------------------------------------------------
 xdotool key --window "$WID" ctrl+s
 wait_until "the save" "not d['dirty']"
 python3 -c "
 import json, sys
 s = json.load(open('$TMP/scene.json'))
 l = next(l for l in s['luminaires'] if l['name'] == '$NAME')
-sys.exit(0 if l['position'] == json.loads('$ON_WALL') and l['aim'] == [0.0, 0.0, 1.0] else 1)" ||
-    fail "the saved scene does not hold the placed panel"
+sys.exit(0 if l['position'] == json.loads('$ON_WALL') and l['aim'] == [0.0, 0.0, 1.0] and
+         l['type'] == 'photometric' and l['file'].endswith('linear-pendant.ies') else 1)" ||
+    fail "the saved scene does not hold the placed, swapped luminaire"
+
+# --- 5. Undo everything: the scene as it was opened -----------------------------------------------
+xdotool key --window "$WID" ctrl+z
+wait_until "undoing the swap" "lum('$NAME')['type'] == 'lambertian-rect'"
+xdotool key --window "$WID" ctrl+z
+wait_until "undoing the placement" "json.dumps(lum('$NAME')['position']) == '$ORIGINAL' and d['undo_steps'] == 0"
 
 PASSED=1
 echo "editor_place: PASS"

@@ -1,0 +1,202 @@
+// The Library panel: the luminaire files under resources/luminaires and in folders the user adds,
+// each with a thumbnail of the light it casts on a floor 1 m below (luminaires/FarField.h:
+// footprintImage; a light field through its far field). Add puts one in the scene and arms
+// placement; Swap replaces the selected luminaire's file keeping its pose. Thumbnails are made
+// one per frame, only while the panel shows them.
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "luminaires/FarField.h"
+#include "luminaires/LightField.h"
+#include "luminaires/PhotometricLuminaire.h"
+#include "renderer/gl/GlFunctions.h"
+#include "renderer/gl/GlObjects.h"
+#include "scene/SceneIo.h"
+#include "ui/ImGuiUtil.h"
+#include "ui/Panels.h"
+#include "ui/Project.h"
+
+namespace candela::ui {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr int kThumbnailPixels = 48;  ///< Thumbnail side, pixels (shown at this size).
+
+fs::path libraryFile() { return stateDir() / "library.json"; }
+
+void loadFolders(LibraryUi& lib) {
+    std::ifstream in(libraryFile());
+    if (!in) return;
+    try {
+        for (const auto& f : nlohmann::json::parse(in).at("folders"))
+            if (f.is_string()) lib.folders.push_back(f.get<std::string>());
+    } catch (const std::exception&) {
+        // A damaged list starts again empty.
+    }
+}
+
+void saveFolders(EditorState& state) {
+    try {
+        fs::create_directories(stateDir());
+        writeFileAtomically(libraryFile().string(), nlohmann::json{{"folders", state.library.folders}}.dump(1) + "\n");
+    } catch (const std::exception& e) {
+        setStatus(state, std::string("Library folders not kept: ") + e.what(), true);
+    }
+}
+
+void scan(LibraryUi& lib) {
+    lib.entries.clear();
+    std::vector<std::string> roots = {std::string(CANDELA_SOURCE_DIR) + "/resources/luminaires"};
+    roots.insert(roots.end(), lib.folders.begin(), lib.folders.end());
+    for (const std::string& root : roots) {
+        std::error_code ec;
+        for (auto it = fs::recursive_directory_iterator(root, fs::directory_options::skip_permission_denied, ec);
+             !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
+            if (!it->is_regular_file(ec)) continue;
+            std::string name = it->path().filename().string(), lower = name;
+            for (char& c : lower) c = char(std::tolower((unsigned char)c));
+            auto ends = [&](const std::string& s) {
+                return lower.size() >= s.size() && lower.compare(lower.size() - s.size(), s.size(), s) == 0;
+            };
+            const char* kind = ends(".ies") || ends(".ldt") ? "photometric" : ends(".lf.json") ? "lightfield" : nullptr;
+            if (kind) lib.entries.push_back({fs::absolute(it->path()).lexically_normal().string(), name, kind});
+        }
+    }
+    std::sort(lib.entries.begin(), lib.entries.end(),
+              [](const LibraryEntry& a, const LibraryEntry& b) { return a.label < b.label; });
+    lib.scanned = true;
+}
+
+/// The thumbnail and one line of facts of a file (its flux), made once.
+void makeThumbnail(LibraryUi& lib, const LibraryEntry& entry) {
+    LibraryUi::Thumbnail& t = lib.thumbnails[entry.path];
+    try {
+        std::shared_ptr<const PhotometricData> table;
+        char info[160];
+        if (entry.kind == "lightfield") {
+            LightFieldLuminaire light;
+            light.data = LightFieldData::load(entry.path);
+            table = farFieldTwin(light)->data;
+            std::snprintf(info, sizeof info, "light field, %d x %d images, %.0f lm", light.data->count.x,
+                          light.data->count.y, light.data->cachedPower().y);
+        } else {
+            table = PhotometricLuminaire::load(entry.path);
+            std::snprintf(info, sizeof info, "%s, %.0f lm", table->format.c_str(), table->fluxFromTable());
+        }
+        std::vector<unsigned char> rgb = footprintImage(*table, kThumbnailPixels);
+        std::vector<unsigned char> rgba(size_t(kThumbnailPixels) * kThumbnailPixels * 4, 255);
+        for (size_t i = 0; i < size_t(kThumbnailPixels) * kThumbnailPixels; ++i)
+            for (int c = 0; c < 3; ++c) rgba[4 * i + size_t(c)] = rgb[3 * i + size_t(c)];
+        auto texture = std::make_shared<gl::Texture2D>(kThumbnailPixels, kThumbnailPixels, GL_RGBA8);
+        glTextureSubImage2D(texture->id(), 0, 0, 0, kThumbnailPixels, kThumbnailPixels, GL_RGBA, GL_UNSIGNED_BYTE,
+                            rgba.data());
+        t.texture = texture;
+        t.info = info;
+    } catch (const std::exception& e) {
+        t.failed = true;
+        t.info = e.what();
+    }
+}
+
+}  // namespace
+
+bool libraryPanel(EditorState& state, const PanelRect& rect) {
+    LibraryUi& lib = state.library;
+    if (!lib.scanned) {
+        loadFolders(lib);
+        scan(lib);
+    }
+    placeNextWindow(rect);
+    ImGui::Begin("Library", nullptr, kPanelFlags);
+    recordPanelRect(state, "library");
+    bool changed = false;
+    bool madeOne = false;  // at most one new thumbnail per frame
+    int selected = state.selectedLuminaire;
+    for (const LibraryEntry& entry : lib.entries) {
+        ImGui::PushID(entry.path.c_str());
+        auto found = lib.thumbnails.find(entry.path);
+        float rowTop = ImGui::GetCursorPosY();
+        if (found == lib.thumbnails.end() && !madeOne && ImGui::IsRectVisible(ImVec2(1.f, float(kThumbnailPixels)))) {
+            makeThumbnail(lib, entry);
+            madeOne = true;
+            found = lib.thumbnails.find(entry.path);
+        }
+        if (found != lib.thumbnails.end() && found->second.texture) {
+            auto* texture = static_cast<gl::Texture2D*>(found->second.texture.get());
+            ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(texture->id())),
+                         ImVec2(float(kThumbnailPixels), float(kThumbnailPixels)));
+            itemTooltip("Illuminance on a floor 1 m below it, aimed down, over 5 x 5 m (log scale, 3 decades)");
+        } else {
+            ImGui::Dummy(ImVec2(float(kThumbnailPixels), float(kThumbnailPixels)));
+        }
+        ImGui::SameLine();
+        ImGui::BeginGroup();
+        ImGui::TextUnformatted(entry.label.c_str());
+        if (found != lib.thumbnails.end()) {
+            if (found->second.failed)
+                ImGui::TextColored(errorColour(), "cannot read: %s", found->second.info.c_str());
+            else
+                ImGui::TextDisabled("%s", found->second.info.c_str());
+        }
+        if (ImGui::SmallButton("Add")) {
+            int index = addLuminaireFromFile(state, entry.path);
+            if (index >= 0) {
+                state.placement.armed = true;
+                setStatus(state, "Added " + state.scene.luminaires[size_t(index)]->name +
+                                     ": click a surface to place it (Escape keeps it where it is)");
+            }
+            changed = true;
+        }
+        recordRect(state, "library.add:" + entry.label);
+        itemTooltip(entry.path);
+        ImGui::SameLine();
+        ImGui::BeginDisabled(selected < 0);
+        if (ImGui::SmallButton("Swap")) changed = swapLuminaireFile(state, selected, entry.path) || changed;
+        recordRect(state, "library.swap:" + entry.label);
+        ImGui::EndDisabled();
+        itemTooltip("Replace the selected luminaire's file with this one, keeping its pose and name");
+        ImGui::EndGroup();
+        ImGui::SetCursorPosY(std::max(ImGui::GetCursorPosY(), rowTop + float(kThumbnailPixels) + 4.f));
+        ImGui::PopID();
+    }
+    ImGui::Separator();
+    ImGui::SetNextItemWidth(-70.f);
+    ImGui::InputTextWithHint("##folder", "folder with .ies / .ldt / .lf.json", &lib.folderText);
+    ImGui::SameLine();
+    if (ImGui::Button("Add folder")) {
+        std::error_code ec;
+        fs::path folder = fs::absolute(lib.folderText).lexically_normal();
+        if (lib.folderText.empty() || !fs::is_directory(folder, ec)) {
+            reportError(state, "Library: \"" + lib.folderText + "\" is not a folder");
+        } else if (std::find(lib.folders.begin(), lib.folders.end(), folder.string()) == lib.folders.end()) {
+            lib.folders.push_back(folder.string());
+            saveFolders(state);
+            scan(lib);
+            lib.folderText.clear();
+        }
+    }
+    for (size_t i = 0; i < lib.folders.size(); ++i) {
+        ImGui::PushID(int(i));
+        ImGui::TextDisabled("%s", lib.folders[i].c_str());
+        ImGui::SameLine();
+        if (ImGui::SmallButton("Remove")) {
+            lib.folders.erase(lib.folders.begin() + long(i));
+            saveFolders(state);
+            scan(lib);
+            ImGui::PopID();
+            break;
+        }
+        ImGui::PopID();
+    }
+    ImGui::End();
+    return changed;
+}
+
+}  // namespace candela::ui
