@@ -4,6 +4,7 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <set>
 
 #include "renderer/FramePlan.h"
 #include "ui/EditorState.h"
@@ -84,6 +85,33 @@ TEST(EditorPlacement, SwapKeepsPoseAndNameAndIsOneUndoStep) {
     ASSERT_TRUE(undo(state));
     ASSERT_TRUE(undo(state));
     EXPECT_EQ(state.scene.luminaires[0]->kind(), "lambertian-rect");
+}
+
+}  // namespace
+}  // namespace candela::ui
+
+namespace candela::ui {
+namespace {
+
+TEST(EditorPlacement, ArrayIsAGridOfCopiesAndOneUndoStep) {
+    setenv("CANDELA_STATE_DIR", (std::filesystem::temp_directory_path() / "candela-placement-test").c_str(), 1);
+    EditorState state;
+    ASSERT_TRUE(openSceneFile(state, CANDELA_SOURCE_DIR "/resources/scenes/editor-room.json"));
+    const Luminaire& source = *state.scene.luminaires[2];
+    glm::dvec3 origin = source.pose.position;
+    EXPECT_EQ(arrayLuminaire(state, 2, 3, 2, 1.2, 0.8), 5);
+    ASSERT_EQ(state.scene.luminaires.size(), 8u);
+    std::set<std::string> names;
+    for (const auto& lum : state.scene.luminaires) names.insert(lum->name);
+    EXPECT_EQ(names.size(), 8u);  // all distinct
+    // The last copy sits at (2 dx, 0, 1 dz) from the source, same aim and technique.
+    const Luminaire& last = *state.scene.luminaires.back();
+    EXPECT_NEAR(glm::length(last.pose.position - (origin + glm::dvec3(2.4, 0.0, 0.8))), 0.0, 1e-12);
+    EXPECT_EQ(last.pose.aim, state.scene.luminaires[2]->pose.aim);
+    EXPECT_EQ(last.technique, "hybrid");
+    EXPECT_EQ(arrayLuminaire(state, 2, 1, 1, 1.0, 1.0), 0);  // 1 x 1: nothing to add
+    ASSERT_TRUE(undo(state));
+    EXPECT_EQ(state.scene.luminaires.size(), 3u);
 }
 
 }  // namespace

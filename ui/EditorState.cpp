@@ -1,7 +1,9 @@
 #include "ui/EditorState.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <exception>
 #include <filesystem>
 
@@ -292,6 +294,34 @@ bool swapLuminaireFile(EditorState& state, int index, const std::string& path) {
         reportError(state, "Swap: " + std::string(e.what()));
         return false;
     }
+}
+
+int arrayLuminaire(EditorState& state, int index, int nx, int nz, double dx, double dz) {
+    if (index < 0 || index >= int(state.scene.luminaires.size())) return 0;
+    nx = std::clamp(nx, 1, 50);
+    nz = std::clamp(nz, 1, 50);
+    const Luminaire& source = *state.scene.luminaires[size_t(index)];
+    std::vector<std::unique_ptr<Luminaire>> copies;
+    Scene names;  // the scene's names plus the copies', for unique naming
+    for (const auto& lum : state.scene.luminaires) names.luminaires.push_back(lum->clone());
+    for (int k = 0; k < nz; ++k)
+        for (int i = 0; i < nx; ++i) {
+            if (i == 0 && k == 0) continue;  // the source itself
+            std::unique_ptr<Luminaire> copy = source.clone();
+            copy->pose.position += glm::dvec3(i * dx, 0.0, k * dz);
+            copy->name = uniqueLuminaireName(names, source.name);
+            names.luminaires.push_back(copy->clone());
+            copies.push_back(std::move(copy));
+        }
+    if (copies.empty()) return 0;
+    int added = int(copies.size());
+    char label[160];
+    std::snprintf(label, sizeof label, "Array %d x %d of %s", nx, nz, source.name.c_str());
+    applyEdit(state, label, kChangeLuminaires, [&](Scene& s) {
+        for (auto& copy : copies) s.luminaires.push_back(std::move(copy));
+    });
+    setStatus(state, std::string(label) + ": added " + std::to_string(added));
+    return added;
 }
 
 int duplicateLuminaire(EditorState& state, int index) {

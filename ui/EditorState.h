@@ -131,6 +131,8 @@ struct PlacementUi {
     bool alongSurfaces = false;   ///< Dragging moves a luminaire over the surfaces, not in its plane.
     double clearance = 0.01;      ///< Distance from the surface, metres.
     double snap = 0.1;            ///< Grid step with Ctrl held while dragging or placing, metres.
+    int arrayCount[2] = {3, 2};            ///< Array: luminaires along x and z.
+    double arraySpacing[2] = {1.2, 1.2};   ///< Array: distance between neighbours along x and z, metres.
     /// The scene's BVH for picking surfaces, rebuilt when geometryVersion moves on.
     std::shared_ptr<const Bvh> surfaces;
     int surfacesVersion = -1;
@@ -245,6 +247,11 @@ std::unique_ptr<Luminaire> luminaireFromFile(const std::string& path);
 /// name, and its technique when the new kind has it (else the kind's default). One undo step;
 /// errors are reported and change nothing. Returns whether it swapped.
 bool swapLuminaireFile(EditorState& state, int index, const std::string& path);
+/// Makes the luminaire the first of a grid of nx x nz identical ones, dx and dz metres apart
+/// along world x and z (at its height, same aim, spin and technique; names "NAME 2", ...), as one
+/// undo step, as designers lay out offices. Returns how many were added (0 for a 1 x 1 grid or a
+/// bad index; counts are clamped to 1..50 each).
+int arrayLuminaire(EditorState& state, int index, int nx, int nz, double dx, double dz);
 /// Copies the luminaire 0.25 m along +x with a fresh name; selects and returns the copy.
 int duplicateLuminaire(EditorState& state, int index);
 void deleteLuminaire(EditorState& state, int index);

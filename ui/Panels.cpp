@@ -209,6 +209,24 @@ static void placementControls(EditorState& state, bool noSelection) {
     ImGui::SetNextItemWidth(70.f);
     ImGui::SliderScalar("Snap [m]", ImGuiDataType_Double, &p.snap, &minSnap, &maxSnap, "%.2f");
     itemTooltip("Grid step for positions while Ctrl is held (dragging or placing)");
+    ImGui::SetNextItemWidth(90.f);
+    ImGui::InputInt2("##arraycount", p.arrayCount);
+    recordRect(state, "outline.array_count");
+    itemTooltip("Luminaires along x and along z");
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(100.f);
+    double minSpacing = 0.05, maxSpacing = 20.0;
+    ImGui::DragScalarN("##arrayspacing", ImGuiDataType_Double, p.arraySpacing, 2, 0.01f, &minSpacing, &maxSpacing,
+                       "%.2f");
+    itemTooltip("Spacing along x and along z, metres");
+    ImGui::SameLine();
+    ImGui::BeginDisabled(noSelection);
+    if (ImGui::Button("Array"))
+        arrayLuminaire(state, state.selectedLuminaire, p.arrayCount[0], p.arrayCount[1], p.arraySpacing[0],
+                       p.arraySpacing[1]);
+    recordRect(state, "outline.array");
+    ImGui::EndDisabled();
+    itemTooltip("Copies the selected luminaire into a grid (a row with one count 1), as one undo step");
 }
 
 bool outlinePanel(EditorState& state, const PanelRect& rect) {
