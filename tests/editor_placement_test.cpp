@@ -116,3 +116,41 @@ TEST(EditorPlacement, ArrayIsAGridOfCopiesAndOneUndoStep) {
 
 }  // namespace
 }  // namespace candela::ui
+
+namespace candela::ui {
+namespace {
+
+TEST(EditorPlacement, DroppedFilesBecomeLuminairesEnvironmentOrGeometry) {
+    setenv("CANDELA_STATE_DIR", (std::filesystem::temp_directory_path() / "candela-placement-test").c_str(), 1);
+    EditorState state;
+    ASSERT_TRUE(openSceneFile(state, CANDELA_SOURCE_DIR "/resources/scenes/demo.json"));
+    size_t meshes = state.scene.meshes.size(), items = state.scene.geometry.size();
+
+    ASSERT_TRUE(dropFile(state, CANDELA_SOURCE_DIR "/tests/data/hdr/noon_grass_256.hdr"));
+    ASSERT_TRUE(state.scene.environmentMap);
+    EXPECT_NE(state.pendingChanges & kChangeEnvironment, 0u);
+
+    ASSERT_TRUE(dropFile(state, CANDELA_SOURCE_DIR "/resources/gltf/cornellBox/cornellBox-2.80-Eevee-gltf.gltf"));
+    EXPECT_GT(state.scene.meshes.size(), meshes);
+    EXPECT_EQ(state.scene.geometry.size(), items + 1);
+    for (const Mesh& m : state.scene.meshes) EXPECT_LT(m.material, state.scene.materials.size());
+    for (uint32_t m : state.scene.geometry.back().meshes) EXPECT_LT(m, state.scene.meshes.size());
+
+    ASSERT_TRUE(dropFile(state, CANDELA_SOURCE_DIR "/resources/luminaires/photometric/floor-washlight.ies"));
+    EXPECT_EQ(state.scene.luminaires.back()->kind(), "photometric");
+    EXPECT_TRUE(state.placement.armed);  // the next click on a surface places it
+
+    size_t steps = state.history.undo.size();
+    EXPECT_FALSE(dropFile(state, "/tmp/notes.txt"));
+    EXPECT_NE(state.modalError.find("notes.txt"), std::string::npos);
+    EXPECT_FALSE(dropFile(state, "/nonexistent/sky.hdr"));
+    EXPECT_NE(state.modalError.find("sky.hdr"), std::string::npos);
+    EXPECT_EQ(state.history.undo.size(), steps);  // nothing changed
+
+    for (int i = 0; i < 3; ++i) ASSERT_TRUE(undo(state));
+    EXPECT_EQ(state.scene.meshes.size(), meshes);
+    EXPECT_FALSE(state.scene.environmentMap);
+}
+
+}  // namespace
+}  // namespace candela::ui

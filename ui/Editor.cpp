@@ -162,8 +162,8 @@ void Editor::frame() {
         mLastAutosave = now0();
     }
 
-    // Files dropped onto the window become luminaires (photometry or light fields).
-    for (const std::string& path : gDropped) addLuminaireFromFile(state, path);
+    // Files dropped onto the window: luminaires, an environment map, geometry (dropFile).
+    for (const std::string& path : gDropped) dropFile(state, path);
     gDropped.clear();
 
     double now = glfwGetTime();

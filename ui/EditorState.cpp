@@ -7,6 +7,7 @@
 #include <exception>
 #include <filesystem>
 
+#include "luminaires/Environment.h"
 #include "luminaires/Registry.h"
 #include "scene/SceneIo.h"
 #include "ui/Project.h"
@@ -274,6 +275,63 @@ int addLuminaireFromFile(EditorState& state, const std::string& path) {
     } catch (const std::exception& e) {
         reportError(state, e.what());
         return -1;
+    }
+}
+
+bool dropFile(EditorState& state, const std::string& path) {
+    std::string lower = path;
+    for (char& c : lower) c = char(std::tolower((unsigned char)c));
+    auto endsWith = [&](const char* suffix) {
+        std::string s(suffix);
+        return lower.size() >= s.size() && lower.compare(lower.size() - s.size(), s.size(), s) == 0;
+    };
+    std::string absolute = std::filesystem::absolute(path).lexically_normal().string();
+    try {
+        if (endsWith(".hdr") || endsWith(".exr")) {
+            nlohmann::json entry = {{"file", absolute}};
+            EnvironmentSource env = parseEnvironment(entry, json::Where{path, "dropped environment"},
+                                                     std::filesystem::path(absolute).parent_path().string());
+            applyEdit(state, "Environment " + std::filesystem::path(path).filename().string(), kChangeEnvironment,
+                      [&](Scene& s) {
+                          s.environment = entry;
+                          s.environmentMap = env.map;
+                          s.environmentSequence = env.sequence;
+                      });
+            setStatus(state, "Environment map: " + absolute);
+            return true;
+        }
+        if (endsWith(".gltf") || endsWith(".glb")) {
+            // Parsed as a one-entry scene, then appended: meshes, their materials, the entry.
+            nlohmann::json doc = {{"geometry", nlohmann::json::array({{{"gltf", absolute}}})}};
+            Scene part = parseScene(doc, absolute);
+            applyEdit(state, "Add " + std::filesystem::path(path).filename().string(), kChangeGeometry,
+                      [&](Scene& s) {
+                          uint32_t materialBase = uint32_t(s.materials.size());
+                          uint32_t meshBase = uint32_t(s.meshes.size());
+                          for (Material& m : part.materials) s.materials.push_back(std::move(m));
+                          for (Mesh& m : part.meshes) {
+                              m.material += materialBase;
+                              s.meshes.push_back(std::move(m));
+                          }
+                          for (GeometryItem& g : part.geometry) {
+                              for (uint32_t& m : g.meshes) m += meshBase;
+                              s.geometry.push_back(std::move(g));
+                          }
+                      });
+            setStatus(state, "Added geometry from " + absolute);
+            return true;
+        }
+        if (endsWith(".ies") || endsWith(".ldt") || endsWith(".lf.json")) {
+            int index = addLuminaireFromFile(state, absolute);
+            if (index >= 0) state.placement.armed = true;
+            return index >= 0;
+        }
+        reportError(state, path + ": cannot open a dropped file of this type (expected .ies, .ldt, .lf.json, .hdr, "
+                            ".exr, .gltf or .glb)");
+        return false;
+    } catch (const std::exception& e) {
+        reportError(state, e.what());
+        return false;
     }
 }
 

@@ -240,6 +240,10 @@ int addLuminaire(EditorState& state, const LuminaireKindInfo& kind);
 /// .lf.json light field, placed like Add and selected. A file that fails to load is reported and
 /// nothing changes. Returns the new index or -1.
 int addLuminaireFromFile(EditorState& state, const std::string& path);
+/// A file dropped onto the window: .ies / .ldt / .lf.json become a luminaire (then a click on a
+/// surface places it), .hdr / .exr the environment map, .gltf / .glb added geometry. One undo
+/// step; an unreadable or unsupported file is reported by name and changes nothing.
+bool dropFile(EditorState& state, const std::string& path);
 /// Builds a luminaire from a file (.ies, .ldt or .lf.json) through the scene-file parser; throws
 /// InputError naming the file. Its name is the file's stem.
 std::unique_ptr<Luminaire> luminaireFromFile(const std::string& path);
