@@ -10,6 +10,7 @@
 #include <imgui_impl_opengl3.h>
 
 #include <algorithm>
+#include <array>
 #include <cfloat>
 #include <cmath>
 #include <cstdio>
@@ -458,11 +459,15 @@ void Editor::writeLayout() {
         {"viewport", {v.x, v.y, v.z, v.w}},
         {"render_size", {settings.width, settings.height}},
         {"screenshot_button", vec2Json(layout.screenshotButton.x, layout.screenshotButton.y)},
+        {"gizmo", layout.gizmo ? nlohmann::json{{"aim", vec2Json(layout.aimKnob.x, layout.aimKnob.y)},
+                                                {"spin", vec2Json(layout.spinKnob.x, layout.spinKnob.y)}}
+                               : nlohmann::json(nullptr)},
         {"luminaires", std::move(lums)},
         {"selected", selected >= 0 && selected < int(state.scene.luminaires.size())
                          ? nlohmann::json(state.scene.luminaires[size_t(selected)]->name)
                          : nlohmann::json(nullptr)},
         {"dragging", state.drag.mode == DragMode::Luminaire},
+        {"drag_mode", std::array<const char*, 6>{"none", "orbit", "pan", "luminaire", "aim", "spin"}[size_t(state.drag.mode)]},
         {"mouse", io.MousePos.x > -FLT_MAX / 2 ? vec2Json(io.MousePos.x, io.MousePos.y)
                                                : nlohmann::json(nullptr)},
         {"samples_per_pixel", stats.samplesPerPixel},

@@ -23,7 +23,8 @@
 
 namespace candela::ui {
 
-enum class DragMode { None, Orbit, Pan, Luminaire };
+/// Aim and Spin: the rotation gizmo's handles of the selected luminaire (ui/Viewport.cpp).
+enum class DragMode { None, Orbit, Pan, Luminaire, Aim, Spin };
 
 /// A mouse interaction in the viewport that spans several frames.
 struct ViewportDrag {
@@ -39,6 +40,8 @@ struct ScreenLayout {
     glm::vec2 window{0.f};            ///< Window size.
     glm::vec4 viewport{0.f};          ///< Viewport image: x, y, width, height.
     glm::vec2 screenshotButton{0.f};  ///< Centre of the Screenshot button.
+    bool gizmo = false;               ///< The rotation gizmo is drawn (a luminaire is selected).
+    glm::vec2 aimKnob{0.f}, spinKnob{0.f};  ///< Its knobs.
 };
 
 /// The File menu's dialogs.

@@ -33,6 +33,58 @@ struct ImageMapping {
     }
 };
 
+constexpr double kAimHandleM = 0.35;  ///< Length of the aim handle, metres.
+constexpr double kSpinRingM = 0.22;   ///< Radius of the spin ring, metres.
+constexpr float kGrabPx = 9.f;        ///< How close a press must be to a handle's knob, pixels.
+
+/// Where the rotation gizmo's knobs of the selected luminaire are, in window pixels.
+struct Gizmo {
+    bool valid = false;
+    ImVec2 centre, aimKnob, spinKnob;
+    std::vector<ImVec2> ring;
+};
+
+Gizmo gizmo(const EditorState& state, const Renderer& renderer, const ImageMapping& map) {
+    Gizmo g;
+    int index = state.selectedLuminaire;
+    if (index < 0 || index >= int(state.scene.luminaires.size())) return g;
+    const Pose& pose = state.scene.luminaires[size_t(index)]->pose;
+    glm::dvec3 x, y, z;
+    pose.frame(x, y, z);
+    glm::mat4 viewProj = renderer.viewProj();
+    auto toWindow = [&](const glm::dvec3& p, ImVec2& out) {
+        auto px = projectToPixels(viewProj, p, map.renderWidth, map.renderHeight);
+        if (px) out = map.toWindow(*px);
+        return px.has_value();
+    };
+    if (!toWindow(pose.position, g.centre) || !toWindow(pose.position + kAimHandleM * z, g.aimKnob) ||
+        !toWindow(pose.position + kSpinRingM * x, g.spinKnob))
+        return g;
+    for (int i = 0; i <= 48; ++i) {
+        double a = 2.0 * 3.14159265358979 * i / 48;
+        ImVec2 p;
+        if (!toWindow(pose.position + kSpinRingM * (std::cos(a) * x + std::sin(a) * y), p)) return g;
+        g.ring.push_back(p);
+    }
+    g.valid = true;
+    return g;
+}
+
+/// The rotation gizmo: an aim handle (drag its knob onto what the luminaire should light) and a
+/// spin ring about the aim with a knob at C0 (drag it round; Ctrl snaps to 15 degrees).
+void drawGizmo(const Gizmo& g) {
+    if (!g.valid) return;
+    ImDrawList* draw = ImGui::GetWindowDrawList();
+    draw->AddPolyline(g.ring.data(), int(g.ring.size()), IM_COL32(90, 200, 255, 200), ImDrawFlags_None, 1.5f);
+    draw->AddLine(g.centre, g.aimKnob, IM_COL32(255, 120, 60, 230), 2.f);
+    draw->AddCircleFilled(g.aimKnob, 6.f, IM_COL32(255, 120, 60, 255));
+    draw->AddCircleFilled(g.spinKnob, 5.f, IM_COL32(90, 200, 255, 255));
+}
+
+float distance(const ImVec2& a, const ImVec2& b) {
+    return std::hypot(a.x - b.x, a.y - b.y);
+}
+
 void drawOutlines(const EditorState& state, const Renderer& renderer, const ImageMapping& map) {
     ImDrawList* draw = ImGui::GetWindowDrawList();
     glm::mat4 viewProj = renderer.viewProj();
@@ -56,8 +108,19 @@ void drawOutlines(const EditorState& state, const Renderer& renderer, const Imag
 void beginLeftDrag(EditorState& state, const Renderer& renderer, const ImageMapping& map,
                    const ImVec2& mouse) {
     glm::dvec2 px = map.toRender(mouse);
-    int hit = renderer.pickLuminaire(state.scene, px.x, px.y);
     state.drag = {};
+    Gizmo g = gizmo(state, renderer, map);
+    if (g.valid && distance(mouse, g.aimKnob) <= kGrabPx) {
+        state.drag.mode = DragMode::Aim;
+        state.drag.luminaire = state.selectedLuminaire;
+        return;
+    }
+    if (g.valid && distance(mouse, g.spinKnob) <= kGrabPx) {
+        state.drag.mode = DragMode::Spin;
+        state.drag.luminaire = state.selectedLuminaire;
+        return;
+    }
+    int hit = renderer.pickLuminaire(state.scene, px.x, px.y);
     if (hit < 0) {
         state.drag.mode = DragMode::Orbit;
         return;
@@ -113,6 +176,61 @@ bool continueLuminaireDrag(EditorState& state, const Renderer& renderer, const I
     if (position == lum.pose.position) return false;
     applyEdit(state, "Move " + lum.name, kChangeLuminaires,
               [&](Scene& s) { s.luminaires[size_t(index)]->pose.position = position; });
+    return true;
+}
+
+/// Aim handle: the luminaire turns to face the surface point under the mouse (or, over empty
+/// space, the point of the mouse ray at the handle's distance); C0 is kept as far as it can be.
+bool continueAimDrag(EditorState& state, const Renderer& renderer, const ImageMapping& map, const ImVec2& mouse) {
+    int index = state.drag.luminaire;
+    if (index < 0 || index >= int(state.scene.luminaires.size())) return false;
+    Luminaire& lum = *state.scene.luminaires[size_t(index)];
+    glm::dvec2 px = map.toRender(mouse);
+    Ray ray = pixelRay(renderer.viewProj(), px.x, px.y, map.renderWidth, map.renderHeight);
+    auto hit = pickSurface(surfaceBvh(state), renderer.viewProj(), px.x, px.y, map.renderWidth, map.renderHeight);
+    glm::dvec3 target = hit ? hit->point
+                            : ray.origin + ray.dir * glm::length(lum.pose.position - ray.origin);
+    glm::dvec3 aim = target - lum.pose.position;
+    if (!(glm::length(aim) > 1e-6)) return false;
+    aim = glm::normalize(aim);
+    if (aim == lum.pose.aim) return false;
+    applyEdit(state, "Aim " + lum.name, kChangeLuminaires, [&](Scene& s) { s.luminaires[size_t(index)]->pose.aim = aim; });
+    return true;
+}
+
+/// Spin ring: C0 turns about the aim to follow the mouse around the ring (Ctrl: 15 degree steps).
+bool continueSpinDrag(EditorState& state, const Renderer& renderer, const ImageMapping& map, const ImVec2& mouse) {
+    int index = state.drag.luminaire;
+    if (index < 0 || index >= int(state.scene.luminaires.size())) return false;
+    Luminaire& lum = *state.scene.luminaires[size_t(index)];
+    glm::dvec3 x, y, z;
+    lum.pose.frame(x, y, z);
+    glm::dvec2 px = map.toRender(mouse);
+    Ray ray = pixelRay(renderer.viewProj(), px.x, px.y, map.renderWidth, map.renderHeight);
+    double denom = glm::dot(ray.dir, z);
+    if (std::abs(denom) < 1e-9) return false;  // the ring seen edge-on
+    double t = glm::dot(lum.pose.position - ray.origin, z) / denom;
+    if (!(t > 0.0)) return false;
+    glm::dvec3 d = ray.origin + t * ray.dir - lum.pose.position;
+    // The angle from the current C0 in the ring's plane, then the new C0 at that angle.
+    double angle = std::atan2(glm::dot(d, y), glm::dot(d, x));
+    if (ImGui::GetIO().KeyCtrl) {
+        // Snap the spin (the inspector's, from world +X across the aim) to 15 degrees.
+        glm::dvec3 ref = std::abs(z.x) > 0.99 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0);
+        ref = glm::normalize(ref - glm::dot(ref, z) * z);
+        glm::dvec3 refY = glm::cross(z, ref);
+        glm::dvec3 c = std::cos(angle) * x + std::sin(angle) * y;
+        double spin = std::atan2(glm::dot(c, refY), glm::dot(c, ref));
+        double step = glm::radians(15.0);
+        spin = std::round(spin / step) * step;
+        glm::dvec3 c0 = std::cos(spin) * ref + std::sin(spin) * refY;
+        if (c0 == lum.pose.c0) return false;
+        applyEdit(state, "Spin " + lum.name, kChangeLuminaires, [&](Scene& s) { s.luminaires[size_t(index)]->pose.c0 = c0; });
+        return true;
+    }
+    if (std::abs(angle) < 1e-9) return false;
+    glm::dvec3 c0 = std::cos(angle) * x + std::sin(angle) * y;
+    applyEdit(state, "Spin " + lum.name, kChangeLuminaires, [&](Scene& s) { s.luminaires[size_t(index)]->pose.c0 = c0; });
     return true;
 }
 
@@ -212,6 +330,15 @@ bool handleInput(EditorState& state, const Renderer& renderer, const ImageMappin
             else
                 changed = continueLuminaireDrag(state, renderer, map, io.MousePos) || changed;
             break;
+        case DragMode::Aim:
+        case DragMode::Spin:
+            if (!ImGui::IsMouseDown(ImGuiMouseButton_Left))
+                state.drag = {};
+            else if (moved)
+                changed = (state.drag.mode == DragMode::Aim ? continueAimDrag(state, renderer, map, io.MousePos)
+                                                            : continueSpinDrag(state, renderer, map, io.MousePos)) ||
+                          changed;
+            break;
         case DragMode::Orbit:
             if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
                 state.drag = {};
@@ -245,8 +372,10 @@ bool handleInput(EditorState& state, const Renderer& renderer, const ImageMappin
         ImGui::SetMouseCursor(ImGuiMouseCursor_Hand);
     } else if (hovered && state.drag.mode == DragMode::None) {
         glm::dvec2 px = map.toRender(io.MousePos);
-        if (renderer.pickLuminaire(state.scene, px.x, px.y) >= 0)
-            ImGui::SetMouseCursor(ImGuiMouseCursor_Hand);
+        Gizmo g = gizmo(state, renderer, map);
+        bool onKnob = g.valid && (distance(io.MousePos, g.aimKnob) <= kGrabPx ||
+                                  distance(io.MousePos, g.spinKnob) <= kGrabPx);
+        if (onKnob || renderer.pickLuminaire(state.scene, px.x, px.y) >= 0) ImGui::SetMouseCursor(ImGuiMouseCursor_Hand);
     }
     return changed;
 }
@@ -289,6 +418,11 @@ bool viewportPanel(EditorState& state, const Renderer& renderer, const PanelRect
 
     ImageMapping map{origin, size, renderer.settings().width, renderer.settings().height};
     drawOutlines(state, renderer, map);
+    Gizmo handles = gizmo(state, renderer, map);
+    drawGizmo(handles);
+    state.layout.gizmo = handles.valid;
+    state.layout.aimKnob = glm::vec2(handles.aimKnob.x, handles.aimKnob.y);
+    state.layout.spinKnob = glm::vec2(handles.spinKnob.x, handles.spinKnob.y);
     drawPickedPixel(state, map);
     bool changed = handleInput(state, renderer, map, hovered);
     ImGui::End();

@@ -5,7 +5,8 @@
 #      point of the back wall: the panel sits 1 cm off the wall, aimed along its normal (+z);
 #   2. Ctrl+Z: the panel is back where it was; Ctrl+Y: on the wall again;
 #   3. Library: Swap the panel for linear-pendant.ies: a photometric light with the same pose;
-#   4. Ctrl+S: the saved scene file holds it on the wall; 5. Ctrl+Z twice: everything undone.
+#   4. drag the rotation gizmo's aim knob onto a floor point: the light aims at it (one step);
+#   5. Ctrl+S: the saved scene file holds all of it; 6. Ctrl+Z three times: everything undone.
 # Usage: bash tests/e2e/editor_place.sh /path/to/candela /path/to/tests
 set -euo pipefail
 
@@ -88,18 +89,62 @@ layout "json.dumps(lum('$NAME')['position']) == '$ON_WALL' and close(lum('$NAME'
 layout "d['undo'] == 'Swap $NAME'" || fail "the swap is not the last undo step"
 log "swapped for linear-pendant.ies, pose kept"
 
-# --- 4. Save --------------------------------------------------------------------------------------
+# --- 4. Rotate: drag the gizmo's aim knob onto a floor point; the light turns to face it ---------
+FLOOR_POINT="[0.3, 0.0, -1.2]"
+wait_until "the gizmo" "d['gizmo'] is not None"
+read -r AX AY < <(layout "'%d %d' % tuple(round(c) for c in d['gizmo']['aim'])")
+read -r FX FY < <(python3 - "$LAYOUT" "$TMP/scene.json" "$FLOOR_POINT" "$(dirname "$0")/lib" <<'PY'
+import json, sys
+sys.path.insert(0, sys.argv[4])
+from camera import project
+d = json.load(open(sys.argv[1]))
+cam = json.load(open(sys.argv[2]))["camera"]
+x, y = project(json.loads(sys.argv[3]), {"camera": cam, "render_size": d["render_size"]})
+vx, vy, vw, vh = d["viewport"]
+print(round(vx + x * vw / d["render_size"][0]), round(vy + y * vh / d["render_size"][1]))
+PY
+)
+move_to "$AX" "$AY"
+log "aim knob at ($AX, $AY), floor point at ($FX, $FY): $(layout "d['gizmo'], d['mouse'], d['luminaires'][0]['screen']")"
+xdotool mousedown 1
+wait_until "the aim knob grabbed" "d['drag_mode'] == 'aim'"
+for i in 1 2 3 4 5 6 7 8; do
+    xdotool mousemove --window "$WID" $((AX + (FX - AX) * i / 8)) $((AY + (FY - AY) * i / 8))
+    sleep 0.05
+done
+move_to "$FX" "$FY"
+wait_frames 2
+xdotool mouseup 1
+wait_until "the end of the aim drag" "not d['mouse_down']"
+python3 - "$LAYOUT" "$NAME" "$FLOOR_POINT" <<'PY' || fail "the luminaire does not aim at the floor point"
+import json, math, sys
+d = json.load(open(sys.argv[1]))
+l = next(l for l in d["luminaires"] if l["name"] == sys.argv[2])
+p, q = l["position"], json.loads(sys.argv[3])
+want = [b - a for a, b in zip(p, q)]
+n = math.sqrt(sum(c * c for c in want))
+cos = sum(a * b / n for a, b in zip(l["aim"], want))
+print(f"editor_place: aim {l['aim']}, towards the floor point: cos {cos:.5f}")
+# The mouse lands within a pixel of the point, about 4 m away: a few milliradians.
+sys.exit(0 if cos > 0.9995 else 1)
+PY
+layout "d['undo'] == 'Aim $NAME'" || fail "the aim drag is not one undo step named Aim"
+AIMED=$(layout "json.dumps(lum('$NAME')['aim'])")
+
+# --- 5. Save --------------------------------------------------------------------------------------
 xdotool key --window "$WID" ctrl+s
 wait_until "the save" "not d['dirty']"
 python3 -c "
 import json, sys
 s = json.load(open('$TMP/scene.json'))
 l = next(l for l in s['luminaires'] if l['name'] == '$NAME')
-sys.exit(0 if l['position'] == json.loads('$ON_WALL') and l['aim'] == [0.0, 0.0, 1.0] and
+sys.exit(0 if l['position'] == json.loads('$ON_WALL') and l['aim'] == json.loads('$AIMED') and
          l['type'] == 'photometric' and l['file'].endswith('linear-pendant.ies') else 1)" ||
     fail "the saved scene does not hold the placed, swapped luminaire"
 
-# --- 5. Undo everything: the scene as it was opened -----------------------------------------------
+# --- 6. Undo everything: the scene as it was opened -----------------------------------------------
+xdotool key --window "$WID" ctrl+z
+wait_until "undoing the aim" "close(lum('$NAME')['aim'], [0, 0, 1], 1e-9)"
 xdotool key --window "$WID" ctrl+z
 wait_until "undoing the swap" "lum('$NAME')['type'] == 'lambertian-rect'"
 xdotool key --window "$WID" ctrl+z
