@@ -114,3 +114,31 @@ TEST(EditorUndo, OpeningAnotherSceneForgetsTheHistory) {
 
 }  // namespace
 }  // namespace candela::ui
+
+namespace candela::ui {
+namespace {
+
+TEST(EditorUndo, MultiSelectionTogglesAndDeletesAsOneStep) {
+    EditorState state = demo();  // three luminaires
+    std::string original = text(state);
+    state.selectedLuminaire = 0;
+    toggleSelected(state, 2);
+    EXPECT_EQ(selectedLuminaires(state), (std::vector<int>{0, 2}));
+    EXPECT_EQ(state.selectedLuminaire, 2);  // the one added shows in the inspector
+    toggleSelected(state, 2);
+    EXPECT_EQ(selectedLuminaires(state), (std::vector<int>{0}));
+    toggleSelected(state, 1);
+    toggleSelected(state, 2);
+    ASSERT_EQ(selectedLuminaires(state).size(), 3u);
+    ++state.history.gesture;
+    deleteSelected(state);
+    EXPECT_TRUE(state.scene.luminaires.empty());
+    EXPECT_TRUE(selectedLuminaires(state).empty());
+    EXPECT_EQ(state.history.undo.back().label, "Delete 3 luminaires");
+    ASSERT_TRUE(undo(state));
+    EXPECT_EQ(text(state), original);
+    EXPECT_TRUE(state.alsoSelected.empty());  // no stale indices after the list changed
+}
+
+}  // namespace
+}  // namespace candela::ui

@@ -52,6 +52,7 @@ void restore(EditorState& state, SceneSnapshot& from) {
     if (state.selectedGeometry >= int(scene.geometry.size())) state.selectedGeometry = -1;
     state.drag = {};
     state.inspectorError.clear();
+    state.alsoSelected.clear();
 }
 
 /// Moves the top step of `from` to `to`, restoring its scene and keeping the current one.
@@ -153,6 +154,7 @@ bool openSceneFile(EditorState& state, const std::string& path) {
         state.scene = std::move(loaded);
         if (state.scene.path.empty()) state.scene.path = path;
         state.selectedLuminaire = -1;
+        state.alsoSelected.clear();
         state.selectedGeometry = -1;
         state.drag = {};
         state.inspectorError.clear();
@@ -228,6 +230,7 @@ int insertLuminaire(EditorState& state, const LuminaireKindInfo& kind, std::uniq
     applyEdit(state, label, kChangeLuminaires,
               [&](Scene& s) { s.luminaires.push_back(std::move(lum)); });
     state.selectedLuminaire = int(state.scene.luminaires.size()) - 1;
+    state.alsoSelected.clear();
     state.selectedGeometry = -1;
     state.inspectorError.clear();
     return state.selectedLuminaire;
@@ -354,6 +357,50 @@ bool swapLuminaireFile(EditorState& state, int index, const std::string& path) {
     }
 }
 
+std::vector<int> selectedLuminaires(const EditorState& state) {
+    std::vector<int> out;
+    int n = int(state.scene.luminaires.size());
+    if (state.selectedLuminaire >= 0 && state.selectedLuminaire < n) out.push_back(state.selectedLuminaire);
+    for (int i : state.alsoSelected)
+        if (i >= 0 && i < n && std::find(out.begin(), out.end(), i) == out.end()) out.push_back(i);
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+void toggleSelected(EditorState& state, int index) {
+    if (index < 0 || index >= int(state.scene.luminaires.size())) return;
+    std::vector<int> group = selectedLuminaires(state);
+    auto it = std::find(group.begin(), group.end(), index);
+    bool adding = it == group.end();
+    if (adding)
+        group.push_back(index);
+    else
+        group.erase(it);
+    state.selectedLuminaire = group.empty() ? -1 : adding ? index : group.front();
+    state.alsoSelected.clear();
+    for (int i : group)
+        if (i != state.selectedLuminaire) state.alsoSelected.push_back(i);
+    state.selectedGeometry = -1;
+    state.inspectorError.clear();
+}
+
+void deleteSelected(EditorState& state) {
+    std::vector<int> group = selectedLuminaires(state);
+    if (group.empty()) return;
+    if (group.size() == 1) {
+        deleteLuminaire(state, group.front());
+        return;
+    }
+    std::string label = "Delete " + std::to_string(group.size()) + " luminaires";
+    applyEdit(state, label, kChangeLuminaires, [&](Scene& s) {
+        for (auto it = group.rbegin(); it != group.rend(); ++it) s.luminaires.erase(s.luminaires.begin() + *it);
+    });
+    state.selectedLuminaire = -1;
+    state.alsoSelected.clear();
+    state.drag = {};
+    state.inspectorError.clear();
+}
+
 int arrayLuminaire(EditorState& state, int index, int nx, int nz, double dx, double dz) {
     if (index < 0 || index >= int(state.scene.luminaires.size())) return 0;
     nx = std::clamp(nx, 1, 50);
@@ -391,6 +438,7 @@ int duplicateLuminaire(EditorState& state, int index) {
     applyEdit(state, label, kChangeLuminaires,
               [&](Scene& s) { s.luminaires.push_back(std::move(copy)); });
     state.selectedLuminaire = int(state.scene.luminaires.size()) - 1;
+    state.alsoSelected.clear();
     state.inspectorError.clear();
     return state.selectedLuminaire;
 }
@@ -406,6 +454,7 @@ void deleteLuminaire(EditorState& state, int index) {
         --state.selectedLuminaire;
     if (state.drag.mode == DragMode::Luminaire) state.drag = {};
     state.inspectorError.clear();
+    state.alsoSelected.clear();
 }
 
 void replaceLuminaire(EditorState& state, int index, std::unique_ptr<Luminaire> replacement) {

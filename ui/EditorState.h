@@ -173,7 +173,10 @@ struct UndoHistory {
 
 struct EditorState {
     Scene scene;
-    int selectedLuminaire = -1;  ///< Index into scene.luminaires, or -1.
+    int selectedLuminaire = -1;  ///< Index into scene.luminaires, or -1: the one the inspector shows.
+    /// Further luminaires selected with Ctrl+click (outline or viewport); they move and are
+    /// deleted with the primary one. Cleared whenever the list of luminaires changes.
+    std::vector<int> alsoSelected;
     int selectedGeometry = -1;   ///< Index into scene.geometry, or -1.
 
     RenderSettings settings;  ///< What the renderer uses; the editor applies it every frame.
@@ -259,6 +262,12 @@ bool swapLuminaireFile(EditorState& state, int index, const std::string& path);
 /// undo step, as designers lay out offices. Returns how many were added (0 for a 1 x 1 grid or a
 /// bad index; counts are clamped to 1..50 each).
 int arrayLuminaire(EditorState& state, int index, int nx, int nz, double dx, double dz);
+/// The selected luminaires: the primary one and alsoSelected, valid indices, ascending.
+std::vector<int> selectedLuminaires(const EditorState& state);
+/// Ctrl+click: adds the luminaire to the selection, or removes it (the primary moves on).
+void toggleSelected(EditorState& state, int index);
+/// Deletes every selected luminaire as one undo step.
+void deleteSelected(EditorState& state);
 /// Copies the luminaire 0.25 m along +x with a fresh name; selects and returns the copy.
 int duplicateLuminaire(EditorState& state, int index);
 void deleteLuminaire(EditorState& state, int index);

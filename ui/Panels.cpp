@@ -125,7 +125,7 @@ bool mainMenuBar(EditorState& state, float& barHeight) {
             changed = redo(state) || changed;
         if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Delete), false) &&
             state.selectedLuminaire >= 0) {
-            deleteLuminaire(state, state.selectedLuminaire);
+            deleteSelected(state);
             changed = true;
         }
     }
@@ -242,12 +242,17 @@ bool outlinePanel(EditorState& state, const PanelRect& rect) {
         for (size_t i = 0; i < scene.luminaires.size(); ++i) {
             const Luminaire& lum = *scene.luminaires[i];
             ImGui::PushID(int(i));
-            bool selected = state.selectedLuminaire == int(i);
+            std::vector<int> group = selectedLuminaires(state);
+            bool selected = std::find(group.begin(), group.end(), int(i)) != group.end();
             std::string label = lum.name + "  [" + lum.technique + "]";
             bool clicked = ImGui::Selectable(label.c_str(), selected);
             recordRect(state, "outline.luminaire:" + lum.name);
-            if (clicked) {
+            if (clicked && ImGui::GetIO().KeyCtrl) {
+                toggleSelected(state, int(i));  // Ctrl+click: add to or remove from the selection
+                changed = true;
+            } else if (clicked) {
                 state.selectedLuminaire = int(i);
+                state.alsoSelected.clear();
                 state.selectedGeometry = -1;
                 state.inspectorError.clear();
                 changed = true;
@@ -289,7 +294,7 @@ bool outlinePanel(EditorState& state, const PanelRect& rect) {
         }
         ImGui::SameLine();
         if (ImGui::Button("Delete")) {
-            deleteLuminaire(state, state.selectedLuminaire);
+            deleteSelected(state);
             changed = true;
         }
         ImGui::EndDisabled();

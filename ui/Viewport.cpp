@@ -97,7 +97,8 @@ void drawOutlines(const EditorState& state, const Renderer& renderer, const Imag
             points.push_back(map.toWindow(*px));
         }
         if (points.size() != outline.size() || points.size() < 2) continue;
-        bool selected = int(i) == state.selectedLuminaire;
+        bool selected = int(i) == state.selectedLuminaire ||
+                        std::find(state.alsoSelected.begin(), state.alsoSelected.end(), int(i)) != state.alsoSelected.end();
         ImU32 colour = selected ? IM_COL32(255, 210, 40, 255) : IM_COL32(255, 255, 255, 70);
         draw->AddPolyline(points.data(), int(points.size()), colour, ImDrawFlags_Closed,
                           selected ? 2.f : 1.f);
@@ -125,7 +126,19 @@ void beginLeftDrag(EditorState& state, const Renderer& renderer, const ImageMapp
         state.drag.mode = DragMode::Orbit;
         return;
     }
+    if (ImGui::GetIO().KeyCtrl) {
+        toggleSelected(state, hit);  // Ctrl+click: add to or remove from the selection
+        return;
+    }
+    std::vector<int> group = selectedLuminaires(state);
+    bool inGroup = std::find(group.begin(), group.end(), hit) != group.end();
     if (state.selectedLuminaire != hit) state.inspectorError.clear();
+    // A press inside the selection drags all of it (the pressed one becomes the primary); a press
+    // outside selects that one alone.
+    state.alsoSelected.clear();
+    if (inGroup)
+        for (int i : group)
+            if (i != hit) state.alsoSelected.push_back(i);
     state.selectedLuminaire = hit;
     state.selectedGeometry = -1;
     const Luminaire& lum = *state.scene.luminaires[size_t(hit)];
@@ -174,8 +187,15 @@ bool continueLuminaireDrag(EditorState& state, const Renderer& renderer, const I
     }
     position.y = state.drag.height;
     if (position == lum.pose.position) return false;
-    applyEdit(state, "Move " + lum.name, kChangeLuminaires,
-              [&](Scene& s) { s.luminaires[size_t(index)]->pose.position = position; });
+    // The rest of the selection moves by the same step.
+    glm::dvec3 shift = position - lum.pose.position;
+    std::vector<int> group = selectedLuminaires(state);
+    if (std::find(group.begin(), group.end(), index) == group.end()) group = {index};
+    std::string label = group.size() > 1 ? "Move " + std::to_string(group.size()) + " luminaires" : "Move " + lum.name;
+    applyEdit(state, label, kChangeLuminaires, [&](Scene& s) {
+        for (int i : group) s.luminaires[size_t(i)]->pose.position += shift;
+        s.luminaires[size_t(index)]->pose.position = position;  // exactly where the mouse put it
+    });
     return true;
 }
 
