@@ -6,16 +6,9 @@
 #include <mutex>
 #include <vector>
 
+#include "luminaires/Environment.h"  // luminanceOf
+
 namespace candela {
-
-namespace {
-
-/// Rec. 709 luminance: the photometric table holds one channel; the colour goes to the tint.
-double luminance(const glm::dvec3& c) {
-    return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
-}
-
-}  // namespace
 
 std::shared_ptr<const PhotometricData> farFieldPhotometry(const LightFieldData& lf, double stepDeg, int points) {
     auto out = std::make_shared<PhotometricData>();
@@ -50,7 +43,7 @@ std::shared_ptr<const PhotometricData> farFieldPhotometry(const LightFieldData& 
             if (!(w.z > 1e-6)) continue;  // S emits towards +z only
             glm::dvec2 shift = lf.delta * glm::dvec2(w.x, w.y) / w.z;
             double sum = 0.0;
-            for (const glm::dvec2& s : centres) sum += luminance(lf.radiance(s - shift, s));
+            for (const glm::dvec2& s : centres) sum += luminanceOf(lf.radiance(s - shift, s));  // one channel; the colour goes to the tint
             out->candela[size_t(h) * size_t(nv) + size_t(v)] = std::max(0.0, sum * dA * w.z);
         }
     }
@@ -83,7 +76,7 @@ std::unique_ptr<PhotometricLuminaire> farFieldTwin(const LightFieldLuminaire& li
     twin->name = light.name;
     twin->technique = "scattered";
     glm::dvec3 power = lf.cachedPower();
-    double l = luminance(power);
+    double l = luminanceOf(power);
     twin->colour = l > 0.0 ? power / l : glm::dvec3(1.0);
     placeFarFieldTwin(*twin, light);
     twin->updateOpening();

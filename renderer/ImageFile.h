@@ -12,6 +12,19 @@ void writeImage8(const std::string& path, int width, int height,
                  const std::vector<unsigned char>& rgb);
 void writeImageFloat(const std::string& path, int width, int height, const std::vector<float>& rgb);
 
+/// RGB rows top to bottom from RGBA rows bottom to top (what glGetTextureImage and glReadPixels
+/// return): the alpha channel dropped.
+template <class T>
+std::vector<T> rgbTopDown(const std::vector<T>& rgba, int width, int height) {
+    std::vector<T> rgb(size_t(width) * size_t(height) * 3);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x)
+            for (int c = 0; c < 3; ++c)
+                rgb[(size_t(y) * size_t(width) + size_t(x)) * 3 + size_t(c)] =
+                    rgba[(size_t(height - 1 - y) * size_t(width) + size_t(x)) * 4 + size_t(c)];
+    return rgb;
+}
+
 /// Reads any OpenImageIO format as float RGB (tests compare images with it).
 std::vector<float> readImageFloat(const std::string& path, int& width, int& height);
 

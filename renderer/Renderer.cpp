@@ -6,6 +6,7 @@
 #include <cstring>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "renderer/ImageFile.h"
 #include "renderer/passes/EnvironmentPass.h"
 #include "renderer/passes/GBufferPass.h"
 #include "renderer/passes/ResolvePass.h"
@@ -147,7 +148,8 @@ void Renderer::runShading(int spp, int row0, int rows) {
         glScissor(0, height - row0 - rows, mGBuffer->width(), rows);
     }
     for (const ShadeStep& step : mPlan.shading) {
-        bool once = mShadeStaticOnce && !step.progressive;
+        // A deterministic step of a progressive camera frame (not a probe) goes to mStatic once.
+        bool once = !mPointMode && mPlan.progressive() && !step.progressive;
         if (once && mFrames > 0) continue;  // already in mStatic
         if (step.shadowMaps) mShadowMaps.at(mScene->luminaires[size_t(step.luminaire)].get())->bind();
         timed(mStats, step.name, [&] {
@@ -257,7 +259,6 @@ void Renderer::renderFrame() {
         const float zero[4] = {0.f, 0.f, 0.f, 0.f};
         glClearNamedFramebufferfv(mAccumFbo.id(), GL_COLOR, 0, zero);
         glClearNamedFramebufferfv(mStaticFbo.id(), GL_COLOR, 0, zero);
-        mShadeStaticOnce = mPlan.progressive();
         u.viewProj = viewProj();
         u.cameraPos = glm::vec4(glm::vec3(mScene->camera.position), 1.f);
         mFrameUniforms.update(0, sizeof(u), &u);
@@ -320,13 +321,7 @@ std::vector<float> Renderer::readLinear() const {
     int w = t.width(), h = t.height();
     std::vector<float> rgba(size_t(w) * size_t(h) * 4);
     glGetTextureImage(t.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(rgba.size() * sizeof(float)), rgba.data());
-    std::vector<float> rgb(size_t(w) * size_t(h) * 3);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x)
-            for (int c = 0; c < 3; ++c)
-                rgb[(size_t(y) * size_t(w) + size_t(x)) * 3 + size_t(c)] =
-                    rgba[(size_t(h - 1 - y) * size_t(w) + size_t(x)) * 4 + size_t(c)];
-    return rgb;
+    return rgbTopDown(rgba, w, h);
 }
 
 std::vector<unsigned char> Renderer::readDisplay() const {
@@ -334,13 +329,7 @@ std::vector<unsigned char> Renderer::readDisplay() const {
     int w = t.width(), h = t.height();
     std::vector<unsigned char> rgba(size_t(w) * size_t(h) * 4);
     glGetTextureImage(t.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(rgba.size()), rgba.data());
-    std::vector<unsigned char> rgb(size_t(w) * size_t(h) * 3);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x)
-            for (int c = 0; c < 3; ++c)
-                rgb[(size_t(y) * size_t(w) + size_t(x)) * 3 + size_t(c)] =
-                    rgba[(size_t(h - 1 - y) * size_t(w) + size_t(x)) * 4 + size_t(c)];
-    return rgb;
+    return rgbTopDown(rgba, w, h);
 }
 
 std::vector<glm::vec3> Renderer::probe(const Scene& scene, const std::vector<glm::vec3>& points,
@@ -374,7 +363,6 @@ std::vector<glm::vec3> Renderer::probe(const Scene& scene, const std::vector<glm
     mPlan.needsBvh = false;
     const float zero[4] = {0.f, 0.f, 0.f, 0.f};
     glClearNamedFramebufferfv(mAccumFbo.id(), GL_COLOR, 0, zero);
-    mShadeStaticOnce = false;  // the probe reads the accumulation alone
     int perFrame = std::max(1, std::min(spp, 256));
     int frames = mPlan.progressive() ? std::max(1, (spp + perFrame - 1) / perFrame) : 1;
     for (mFrames = 0; mFrames < frames; ++mFrames) runShading(perFrame, 0, h);

@@ -155,7 +155,6 @@ private:
     /// instead of again on every pass.
     gl::Texture2D mStatic;
     gl::Framebuffer mStaticFbo;
-    bool mShadeStaticOnce = false;  ///< This accumulation uses mStatic (camera view, progressive).
     gl::VertexArray mEmptyVao;
 };
 

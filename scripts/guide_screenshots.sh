@@ -42,12 +42,6 @@ xdotool mouseup 1
 xdotool key --window "$WID" ctrl+z 2>/dev/null || true  # orbits are not undone; harmless
 
 # 3. The pendant placed on the back wall ("Place on a surface", then a click on the wall).
-click_widget() {  # click_widget NAME: a left click in the middle of a recorded widget
-    local x y
-    read -r x y < <(layout "'%d %d' % (round((w('$1')[0] + w('$1')[2]) / 2), round((w('$1')[1] + w('$1')[3]) / 2))")
-    move_to "$x" "$y"
-    xdotool click 1
-}
 click_widget "outline.luminaire:Linear pendant"
 wait_until "the pendant selected" "d['selected'] == 'Linear pendant'"
 click_widget outline.place

@@ -349,18 +349,12 @@ void Editor::takeWindowShot(int width, int height) {
     std::vector<unsigned char> rgba(size_t(width) * size_t(height) * 4);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
-    std::vector<unsigned char> rgb(size_t(width) * size_t(height) * 3);
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x)
-            for (int c = 0; c < 3; ++c)
-                rgb[(size_t(y) * size_t(width) + size_t(x)) * 3 + size_t(c)] =
-                    rgba[(size_t(height - 1 - y) * size_t(width) + size_t(x)) * 4 + size_t(c)];
     char name[64];
     std::snprintf(name, sizeof name, "window-%03d.png", state.windowShotsTaken);
     std::string path = (state.screenshotDir / name).string();
     try {
         std::filesystem::create_directories(state.screenshotDir);
-        writeImage8(path, width, height, rgb);
+        writeImage8(path, width, height, rgbTopDown(rgba, width, height));
         ++state.windowShotsTaken;
         std::printf("window image: %s\n", path.c_str());
         std::fflush(stdout);
@@ -403,14 +397,13 @@ static nlohmann::json environmentUiJson(const EditorState& state) {
             {"playing", ui.playing}, {"chart", std::move(chart)}};
 }
 
-/// The technique of each shading step the renderer ran last ("Ceiling panel": "analytic").
-static nlohmann::json planTechniques(const Renderer& renderer) {
+/// The technique of each shading step of the renderer's plan ("Ceiling panel": "analytic"); the
+/// preview scene has the edited scene's luminaires in the same order.
+static nlohmann::json planTechniques(const Scene& scene, const Renderer& renderer) {
     nlohmann::json out = nlohmann::json::object();
-    for (const ShadeStep& step : renderer.plan().shading) {
-        std::string name = step.name.substr(step.name.find(':') + 1);
-        size_t colon = name.rfind(':');
-        out[name.substr(0, colon)] = name.substr(colon + 1);
-    }
+    for (const ShadeStep& step : renderer.plan().shading)
+        if (step.luminaire >= 0 && step.luminaire < int(scene.luminaires.size()))
+            out[scene.luminaires[size_t(step.luminaire)]->name] = std::string(step.technique->name);
     return out;
 }
 
@@ -487,7 +480,7 @@ void Editor::writeLayout() {
         {"environment_ui", environmentUiJson(state)},
         {"preview", {{"active", state.preview.active}, {"size", {state.preview.width, state.preview.height}},
                      {"frame_ms", std::round(state.preview.frameMs * 10.0) / 10.0}}},
-        {"techniques", planTechniques(*mRenderer)},
+        {"techniques", planTechniques(state.scene, *mRenderer)},
         {"passes", passTimes(stats)},
     };
     // Written every frame (an idle editor draws ten a second), so a test waiting for "N more

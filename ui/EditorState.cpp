@@ -193,11 +193,12 @@ bool saveSceneFile(EditorState& state, const std::string& path) {
     }
 }
 
-std::string uniqueLuminaireName(const Scene& scene, const std::string& base) {
+std::string uniqueLuminaireName(const Scene& scene, const std::string& base,
+                                const std::vector<std::string>& alsoTaken) {
     auto used = [&](const std::string& name) {
         for (const auto& lum : scene.luminaires)
             if (lum->name == name) return true;
-        return false;
+        return std::find(alsoTaken.begin(), alsoTaken.end(), name) != alsoTaken.end();
     };
     if (!used(base)) return base;
     for (int n = 2;; ++n) {
@@ -247,16 +248,25 @@ int addLuminaire(EditorState& state, const LuminaireKindInfo& kind) {
     }
 }
 
-std::unique_ptr<Luminaire> luminaireFromFile(const std::string& path) {
+FileKind fileKind(const std::string& path) {
     std::string lower = path;
     for (char& c : lower) c = char(std::tolower((unsigned char)c));
-    auto endsWith = [&](const char* suffix) {
-        std::string s(suffix);
-        return lower.size() >= s.size() && lower.compare(lower.size() - s.size(), s.size(), s) == 0;
+    auto endsWith = [&](std::string_view suffix) {
+        return lower.size() >= suffix.size() && lower.compare(lower.size() - suffix.size(), suffix.size(), suffix) == 0;
     };
-    const char* kind = endsWith(".ies") || endsWith(".ldt") ? "photometric"
-                       : endsWith(".lf.json")               ? "lightfield"
-                                                            : nullptr;
+    if (endsWith(".ies") || endsWith(".ldt")) return FileKind::Photometric;
+    if (endsWith(".lf.json")) return FileKind::LightField;
+    if (endsWith(".hdr") || endsWith(".exr")) return FileKind::Environment;
+    if (endsWith(".gltf") || endsWith(".glb")) return FileKind::Geometry;
+    return FileKind::Unknown;
+}
+
+const char* luminaireKindOf(FileKind kind) {
+    return kind == FileKind::Photometric ? "photometric" : kind == FileKind::LightField ? "lightfield" : nullptr;
+}
+
+std::unique_ptr<Luminaire> luminaireFromFile(const std::string& path) {
+    const char* kind = luminaireKindOf(fileKind(path));
     if (!kind)
         throw InputError(path + ": cannot make a luminaire from this file (expected .ies, .ldt or .lf.json)");
     // Through the scene-file parser, so the file gets the same checks as a loaded scene's.
@@ -282,15 +292,10 @@ int addLuminaireFromFile(EditorState& state, const std::string& path) {
 }
 
 bool dropFile(EditorState& state, const std::string& path) {
-    std::string lower = path;
-    for (char& c : lower) c = char(std::tolower((unsigned char)c));
-    auto endsWith = [&](const char* suffix) {
-        std::string s(suffix);
-        return lower.size() >= s.size() && lower.compare(lower.size() - s.size(), s.size(), s) == 0;
-    };
+    FileKind kind = fileKind(path);
     std::string absolute = std::filesystem::absolute(path).lexically_normal().string();
     try {
-        if (endsWith(".hdr") || endsWith(".exr")) {
+        if (kind == FileKind::Environment) {
             nlohmann::json entry = {{"file", absolute}};
             EnvironmentSource env = parseEnvironment(entry, json::Where{path, "dropped environment"},
                                                      std::filesystem::path(absolute).parent_path().string());
@@ -303,7 +308,7 @@ bool dropFile(EditorState& state, const std::string& path) {
             setStatus(state, "Environment map: " + absolute);
             return true;
         }
-        if (endsWith(".gltf") || endsWith(".glb")) {
+        if (kind == FileKind::Geometry) {
             // Parsed as a one-entry scene, then appended: meshes, their materials, the entry.
             nlohmann::json doc = {{"geometry", nlohmann::json::array({{{"gltf", absolute}}})}};
             Scene part = parseScene(doc, absolute);
@@ -324,7 +329,7 @@ bool dropFile(EditorState& state, const std::string& path) {
             setStatus(state, "Added geometry from " + absolute);
             return true;
         }
-        if (endsWith(".ies") || endsWith(".ldt") || endsWith(".lf.json")) {
+        if (luminaireKindOf(kind)) {
             int index = addLuminaireFromFile(state, absolute);
             if (index >= 0) state.placement.armed = true;
             return index >= 0;
@@ -407,15 +412,14 @@ int arrayLuminaire(EditorState& state, int index, int nx, int nz, double dx, dou
     nz = std::clamp(nz, 1, 50);
     const Luminaire& source = *state.scene.luminaires[size_t(index)];
     std::vector<std::unique_ptr<Luminaire>> copies;
-    Scene names;  // the scene's names plus the copies', for unique naming
-    for (const auto& lum : state.scene.luminaires) names.luminaires.push_back(lum->clone());
+    std::vector<std::string> names;  // the copies' names so far
     for (int k = 0; k < nz; ++k)
         for (int i = 0; i < nx; ++i) {
             if (i == 0 && k == 0) continue;  // the source itself
             std::unique_ptr<Luminaire> copy = source.clone();
             copy->pose.position += glm::dvec3(i * dx, 0.0, k * dz);
-            copy->name = uniqueLuminaireName(names, source.name);
-            names.luminaires.push_back(copy->clone());
+            copy->name = uniqueLuminaireName(state.scene, source.name, names);
+            names.push_back(copy->name);
             copies.push_back(std::move(copy));
         }
     if (copies.empty()) return 0;

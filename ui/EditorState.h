@@ -246,6 +246,13 @@ int addLuminaire(EditorState& state, const LuminaireKindInfo& kind);
 /// .lf.json light field, placed like Add and selected. A file that fails to load is reported and
 /// nothing changes. Returns the new index or -1.
 int addLuminaireFromFile(EditorState& state, const std::string& path);
+/// What a file holds, by its extension (case-insensitive): FileKind::Photometric (.ies, .ldt),
+/// LightField (.lf.json), Environment (.hdr, .exr), Geometry (.gltf, .glb), else Unknown.
+enum class FileKind { Unknown, Photometric, LightField, Environment, Geometry };
+FileKind fileKind(const std::string& path);
+/// The luminaire kind a file makes ("photometric", "lightfield"), or null.
+const char* luminaireKindOf(FileKind kind);
+
 /// A file dropped onto the window: .ies / .ldt / .lf.json become a luminaire (then a click on a
 /// surface places it), .hdr / .exr the environment map, .gltf / .glb added geometry. One undo
 /// step; an unreadable or unsupported file is reported by name and changes nothing.
@@ -283,6 +290,8 @@ Pose poseOnSurface(const Pose& pose, const glm::dvec3& point, const glm::dvec3& 
                    double clearance, double snap);
 
 /// base, or "base 2", "base 3", ... whichever no luminaire of the scene uses yet.
-std::string uniqueLuminaireName(const Scene& scene, const std::string& base);
+/// `alsoTaken` lists names about to be added (copies made in one step).
+std::string uniqueLuminaireName(const Scene& scene, const std::string& base,
+                                const std::vector<std::string>& alsoTaken = {});
 
 }  // namespace candela::ui

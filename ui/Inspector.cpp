@@ -15,6 +15,7 @@
 #include "scene/SceneIo.h"
 #include "ui/ImGuiUtil.h"
 #include "ui/Panels.h"
+#include "ui/ViewportMath.h"
 #include "util/JsonRead.h"
 
 namespace candela::ui {
@@ -172,9 +173,8 @@ bool poseFields(EditorState& state, int index) {
     // (world +Z when the aim is along X), counter-clockwise seen from the front of the luminaire.
     glm::dvec3 ex, ey, ez;
     lum.pose.frame(ex, ey, ez);
-    glm::dvec3 ref = std::abs(ez.x) > 0.99 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0);
-    ref = glm::normalize(ref - glm::dot(ref, ez) * ez);
-    glm::dvec3 refY = glm::cross(ez, ref);
+    glm::dvec3 ref, refY;
+    spinReference(ez, ref, refY);
     double spin = glm::degrees(std::atan2(glm::dot(ex, refY), glm::dot(ex, ref)));
     if (ImGui::DragScalar("Spin [deg]", ImGuiDataType_Double, &spin, 0.5f, nullptr, nullptr, "%.1f")) {
         double s = glm::radians(spin);

@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 
 #include "luminaires/FarField.h"
 #include "luminaires/LightField.h"
@@ -29,23 +28,11 @@ namespace {
 
 constexpr int kThumbnailPixels = 48;  ///< Thumbnail side, pixels (shown at this size).
 
-fs::path libraryFile() { return stateDir() / "library.json"; }
-
-void loadFolders(LibraryUi& lib) {
-    std::ifstream in(libraryFile());
-    if (!in) return;
-    try {
-        for (const auto& f : nlohmann::json::parse(in).at("folders"))
-            if (f.is_string()) lib.folders.push_back(f.get<std::string>());
-    } catch (const std::exception&) {
-        // A damaged list starts again empty.
-    }
-}
+constexpr const char* kLibraryFile = "library.json";  ///< In the state folder (ui/Project.h).
 
 void saveFolders(EditorState& state) {
     try {
-        fs::create_directories(stateDir());
-        writeFileAtomically(libraryFile().string(), nlohmann::json{{"folders", state.library.folders}}.dump(1) + "\n");
+        writeStateList(kLibraryFile, "folders", state.library.folders);
     } catch (const std::exception& e) {
         setStatus(state, std::string("Library folders not kept: ") + e.what(), true);
     }
@@ -60,13 +47,10 @@ void scan(LibraryUi& lib) {
         for (auto it = fs::recursive_directory_iterator(root, fs::directory_options::skip_permission_denied, ec);
              !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
             if (!it->is_regular_file(ec)) continue;
-            std::string name = it->path().filename().string(), lower = name;
-            for (char& c : lower) c = char(std::tolower((unsigned char)c));
-            auto ends = [&](const std::string& s) {
-                return lower.size() >= s.size() && lower.compare(lower.size() - s.size(), s.size(), s) == 0;
-            };
-            const char* kind = ends(".ies") || ends(".ldt") ? "photometric" : ends(".lf.json") ? "lightfield" : nullptr;
-            if (kind) lib.entries.push_back({fs::absolute(it->path()).lexically_normal().string(), name, kind});
+            const char* kind = luminaireKindOf(fileKind(it->path().string()));
+            if (kind)
+                lib.entries.push_back(
+                    {fs::absolute(it->path()).lexically_normal().string(), it->path().filename().string(), kind});
         }
     }
     std::sort(lib.entries.begin(), lib.entries.end(),
@@ -110,7 +94,7 @@ void makeThumbnail(LibraryUi& lib, const LibraryEntry& entry) {
 bool libraryPanel(EditorState& state, const PanelRect& rect) {
     LibraryUi& lib = state.library;
     if (!lib.scanned) {
-        loadFolders(lib);
+        lib.folders = readStateList(kLibraryFile, "folders");
         scan(lib);
     }
     placeNextWindow(rect);

@@ -14,8 +14,6 @@ namespace {
 
 constexpr size_t kMaxRecent = 10;
 
-fs::path recentPath() { return stateDir() / "recent.json"; }
-
 }  // namespace
 
 fs::path stateDir() {
@@ -75,18 +73,29 @@ void removeAutosave(const std::string& scenePath) {
     fs::remove(autosavePath(scenePath), ec);
 }
 
-std::vector<std::string> recentFiles() {
+std::vector<std::string> readStateList(const std::string& file, const char* key) {
     std::vector<std::string> out;
-    std::ifstream in(recentPath());
+    std::ifstream in(stateDir() / file);
     if (!in) return out;
     try {
-        nlohmann::json doc = nlohmann::json::parse(in);
-        std::error_code ec;
-        for (const auto& entry : doc.at("recent"))
-            if (entry.is_string() && fs::exists(entry.get<std::string>(), ec)) out.push_back(entry.get<std::string>());
+        nlohmann::json doc = nlohmann::json::parse(in);  // kept: the loop reads into it
+        for (const auto& entry : doc.at(key))
+            if (entry.is_string()) out.push_back(entry.get<std::string>());
     } catch (const std::exception&) {
-        // A damaged list is not worth an error: it starts again.
+        out.clear();  // a damaged list is not worth an error: it starts again
     }
+    return out;
+}
+
+void writeStateList(const std::string& file, const char* key, const std::vector<std::string>& list) {
+    fs::create_directories(stateDir());
+    writeFileAtomically((stateDir() / file).string(), nlohmann::json{{key, list}}.dump(1) + "\n");
+}
+
+std::vector<std::string> recentFiles() {
+    std::vector<std::string> out = readStateList("recent.json", "recent");
+    std::error_code ec;
+    std::erase_if(out, [&](const std::string& path) { return !fs::exists(path, ec); });
     return out;
 }
 
@@ -97,8 +106,7 @@ void addRecentFile(const std::string& path) {
     list.insert(list.begin(), absolute);
     if (list.size() > kMaxRecent) list.resize(kMaxRecent);
     try {
-        fs::create_directories(stateDir());
-        writeFileAtomically(recentPath().string(), nlohmann::json{{"recent", list}}.dump(1) + "\n");
+        writeStateList("recent.json", "recent", list);
     } catch (const std::exception&) {
         // The list is a convenience: a read-only state folder only loses it.
     }

@@ -30,6 +30,12 @@ bool restoreAutosave(EditorState& state, const std::string& scenePath);
 /// Removes the autosave of a scene (after it was saved, or on request).
 void removeAutosave(const std::string& scenePath);
 
+/// A list of strings kept in the state folder as {"KEY": [...]} in FILE (recent.json,
+/// library.json). Reading a missing or damaged file gives an empty list (it starts again);
+/// writing is atomic and throws InputError naming the file.
+std::vector<std::string> readStateList(const std::string& file, const char* key);
+void writeStateList(const std::string& file, const char* key, const std::vector<std::string>& list);
+
 /// Recently opened or saved scene files, newest first (at most 10; missing files dropped).
 std::vector<std::string> recentFiles();
 void addRecentFile(const std::string& path);

@@ -85,6 +85,14 @@ float distance(const ImVec2& a, const ImVec2& b) {
     return std::hypot(a.x - b.x, a.y - b.y);
 }
 
+/// The gizmo knob under the mouse: DragMode::Aim, Spin, or None.
+DragMode grabbed(const Gizmo& g, const ImVec2& mouse) {
+    if (!g.valid) return DragMode::None;
+    if (distance(mouse, g.aimKnob) <= kGrabPx) return DragMode::Aim;
+    if (distance(mouse, g.spinKnob) <= kGrabPx) return DragMode::Spin;
+    return DragMode::None;
+}
+
 void drawOutlines(const EditorState& state, const Renderer& renderer, const ImageMapping& map) {
     ImDrawList* draw = ImGui::GetWindowDrawList();
     glm::mat4 viewProj = renderer.viewProj();
@@ -106,18 +114,12 @@ void drawOutlines(const EditorState& state, const Renderer& renderer, const Imag
 }
 
 /// Left press: picks a luminaire (select it and start moving it) or starts an orbit.
-void beginLeftDrag(EditorState& state, const Renderer& renderer, const ImageMapping& map,
+void beginLeftDrag(EditorState& state, const Renderer& renderer, const ImageMapping& map, const Gizmo& g,
                    const ImVec2& mouse) {
     glm::dvec2 px = map.toRender(mouse);
     state.drag = {};
-    Gizmo g = gizmo(state, renderer, map);
-    if (g.valid && distance(mouse, g.aimKnob) <= kGrabPx) {
-        state.drag.mode = DragMode::Aim;
-        state.drag.luminaire = state.selectedLuminaire;
-        return;
-    }
-    if (g.valid && distance(mouse, g.spinKnob) <= kGrabPx) {
-        state.drag.mode = DragMode::Spin;
+    if (DragMode knob = grabbed(g, mouse); knob != DragMode::None) {
+        state.drag.mode = knob;
         state.drag.luminaire = state.selectedLuminaire;
         return;
     }
@@ -236,9 +238,8 @@ bool continueSpinDrag(EditorState& state, const Renderer& renderer, const ImageM
     double angle = std::atan2(glm::dot(d, y), glm::dot(d, x));
     if (ImGui::GetIO().KeyCtrl) {
         // Snap the spin (the inspector's, from world +X across the aim) to 15 degrees.
-        glm::dvec3 ref = std::abs(z.x) > 0.99 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0);
-        ref = glm::normalize(ref - glm::dot(ref, z) * z);
-        glm::dvec3 refY = glm::cross(z, ref);
+        glm::dvec3 ref, refY;
+        spinReference(z, ref, refY);
         glm::dvec3 c = std::cos(angle) * x + std::sin(angle) * y;
         double spin = std::atan2(glm::dot(c, refY), glm::dot(c, ref));
         double step = glm::radians(15.0);
@@ -322,7 +323,7 @@ void drawPickedPixel(const EditorState& state, const ImageMapping& map) {
     }
 }
 
-bool handleInput(EditorState& state, const Renderer& renderer, const ImageMapping& map,
+bool handleInput(EditorState& state, const Renderer& renderer, const ImageMapping& map, const Gizmo& g,
                  bool hovered) {
     const ImGuiIO& io = ImGui::GetIO();
     bool changed = false;
@@ -333,7 +334,7 @@ bool handleInput(EditorState& state, const Renderer& renderer, const ImageMappin
         placeAtPixel(state, renderer, map, io.MouseClickedPos[ImGuiMouseButton_Left]);
         changed = true;
     } else if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
-        beginLeftDrag(state, renderer, map, io.MouseClickedPos[ImGuiMouseButton_Left]);
+        beginLeftDrag(state, renderer, map, g, io.MouseClickedPos[ImGuiMouseButton_Left]);
         changed = true;
     } else if (hovered && (ImGui::IsMouseClicked(ImGuiMouseButton_Right) ||
                            ImGui::IsMouseClicked(ImGuiMouseButton_Middle))) {
@@ -392,10 +393,8 @@ bool handleInput(EditorState& state, const Renderer& renderer, const ImageMappin
         ImGui::SetMouseCursor(ImGuiMouseCursor_Hand);
     } else if (hovered && state.drag.mode == DragMode::None) {
         glm::dvec2 px = map.toRender(io.MousePos);
-        Gizmo g = gizmo(state, renderer, map);
-        bool onKnob = g.valid && (distance(io.MousePos, g.aimKnob) <= kGrabPx ||
-                                  distance(io.MousePos, g.spinKnob) <= kGrabPx);
-        if (onKnob || renderer.pickLuminaire(state.scene, px.x, px.y) >= 0) ImGui::SetMouseCursor(ImGuiMouseCursor_Hand);
+        if (grabbed(g, io.MousePos) != DragMode::None || renderer.pickLuminaire(state.scene, px.x, px.y) >= 0)
+            ImGui::SetMouseCursor(ImGuiMouseCursor_Hand);
     }
     return changed;
 }
@@ -444,7 +443,7 @@ bool viewportPanel(EditorState& state, const Renderer& renderer, const PanelRect
     state.layout.aimKnob = glm::vec2(handles.aimKnob.x, handles.aimKnob.y);
     state.layout.spinKnob = glm::vec2(handles.spinKnob.x, handles.spinKnob.y);
     drawPickedPixel(state, map);
-    bool changed = handleInput(state, renderer, map, hovered);
+    bool changed = handleInput(state, renderer, map, handles, hovered);
     ImGui::End();
     return changed;
 }

@@ -89,4 +89,10 @@ void zoomCamera(Camera& camera, double steps) {
     camera.position = camera.target + offset * (next / distance);
 }
 
+void spinReference(const glm::dvec3& z, glm::dvec3& ref, glm::dvec3& refY) {
+    ref = std::abs(z.x) > 0.99 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0);
+    ref = glm::normalize(ref - glm::dot(ref, z) * z);
+    refY = glm::cross(z, ref);
+}
+
 }  // namespace candela::ui

@@ -35,6 +35,10 @@ std::optional<glm::dvec3> intersectHorizontal(const Ray& ray, double height);
 std::optional<glm::dvec2> projectToPixels(const glm::mat4& viewProj, const glm::dvec3& point,
                                           int width, int height);
 
+/// The zero of a luminaire's spin about its unit aim z: world +X made orthogonal to z (+Z when z
+/// is along X), and refY = z x ref; spin s puts C0 at cos(s) ref + sin(s) refY.
+void spinReference(const glm::dvec3& z, glm::dvec3& ref, glm::dvec3& refY);
+
 /// Rotates the camera position about camera.target: yaw about world +Y, pitch about the camera's
 /// right axis, both in degrees. Pitch stops 1 deg short of straight up or down.
 void orbitCamera(Camera& camera, double yawDeg, double pitchDeg);

@@ -20,14 +20,7 @@ source "$(dirname "$0")/lib/harness.sh"
 e2e_setup
 e2e_start_xvfb 1280x800
 
-# The demo scene, camera raised to see the ceiling panel (as editor_drag.sh).
-python3 - "$SOURCE/resources/scenes/demo.json" "$TMP/scene.json" <<'PY'
-import json, sys
-scene = json.load(open(sys.argv[1]))
-scene["camera"] = {"position": [0.0, 1.3, 2.6], "target": [0.0, 1.9, -1.0], "fov_deg": 60}
-scene["luminaires"][0]["c0"] = [0, 0, 1]
-json.dump(scene, open(sys.argv[2], "w"), indent=1)
-PY
+raised_demo_scene "$SOURCE" "$TMP/scene.json"
 ORIGINAL=$(sha256sum "$TMP/scene.json")
 AUTOSAVE=$TMP/.scene.autosave.json
 

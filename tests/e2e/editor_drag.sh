@@ -27,14 +27,7 @@ e2e_start_xvfb 1280x800
 
 # --- Scene: the demo with the camera raised to see the ceiling panel, and the panel turned so ---
 # its short side runs across the image (a 150 px drag then clears its old footprint).
-python3 - "$SOURCE/resources/scenes/demo.json" "$TMP/scene.json" <<'EOF'
-import json, sys
-scene = json.load(open(sys.argv[1]))
-scene["camera"] = {"position": [0.0, 1.3, 2.6], "target": [0.0, 1.9, -1.0], "fov_deg": 60}
-lum = scene["luminaires"][0]
-lum["c0"] = [0, 0, 1]
-json.dump(scene, open(sys.argv[2], "w"), indent=1)
-EOF
+raised_demo_scene "$SOURCE" "$TMP/scene.json"
 
 # --- Editor ---------------------------------------------------------------------------------------
 e2e_start_editor "$TMP/scene.json" 1280x800 "len(d['luminaires']) > 0 and d['frame'] >= 2"

@@ -32,8 +32,9 @@ EOF
 
 e2e_start_editor "$TMP/scene.json" 1400x900 "d['frame'] >= 2 and w('environment.time') is not None"
 
-# Clicks the centre of the named widget, or the point a fraction FX of the way along it.
-click_widget() {
+# click_along NAME [FX]: clicks the centre of the named widget, or the point a fraction FX of the
+# way along it (a slider at a value), scrolled into the Render panel first.
+click_along() {
     local name=$1 fx=${2:-0.5} x y
     scroll_into_view "$name" render
     read -r x y < <(layout "'%d %d' % ((w('$name')[0] + $fx * (w('$name')[2] - w('$name')[0])), (w('$name')[1] + w('$name')[3]) / 2)")
@@ -62,7 +63,7 @@ def sun(lat, day, hours):
 
 # --- 1. The solar-time slider ------------------------------------------------------------------
 h0=$(layout "d['environment_ui']['solar_hours']")
-click_widget environment.time 0.8
+click_along environment.time 0.8
 wait_until "the time of day to change" "abs(d['environment_ui']['solar_hours'] - $h0) > 1"
 sleep 0.5
 layout "d['environment_ui']" >"$TMP/time.txt"
@@ -81,13 +82,13 @@ assert abs((az - sky["sun_azimuth_deg"] + 180) % 360 - 180) < 0.1
 EOF
 
 # --- 2. Play, then Pause -----------------------------------------------------------------------
-click_widget environment.play
+click_along environment.play
 wait_until "playback to start" "d['environment_ui']['playing']"
 h1=$(layout "d['environment_ui']['solar_hours']")
 a1=$(layout "d['environment']['sky']['sun_azimuth_deg']")
 wait_until "the time to advance while playing" "abs(d['environment_ui']['solar_hours'] - $h1) > 0.1"
 wait_until "the sun to move while playing" "abs(d['environment']['sky']['sun_azimuth_deg'] - $a1) > 0.5"
-click_widget environment.play
+click_along environment.play
 wait_until "playback to stop" "not d['environment_ui']['playing']"
 h2=$(layout "d['environment_ui']['solar_hours']")
 sleep 1.5
@@ -96,7 +97,7 @@ log "played from $h1 h to $h2 h; one and a half seconds after Pause: $h3 h"
 [ "$h2" = "$h3" ] || fail "the time of day still moves after Pause ($h2 -> $h3)"
 
 # --- 3. Pick pixels for the sample chart -------------------------------------------------------
-click_widget environment.chart 0.3
+click_along environment.chart 0.3
 wait_until "the chart to open" "d['environment_ui']['chart']['open'] and w('environment.pick_pixel') is not None"
 
 # Window pixel of a world point, through the layout's viewport and the renderer's camera.
@@ -114,7 +115,7 @@ EOF
 
 pick() {  # pick WORLD_POINT_JSON: arms the picker and clicks where that point shows
     local x y
-    click_widget environment.pick_pixel
+    click_along environment.pick_pixel
     wait_until "the picker to arm" "d['environment_ui']['chart']['picking']"
     read -r x y < <(to_window "$1")
     move_to "$x" "$y"

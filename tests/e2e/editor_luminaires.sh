@@ -55,38 +55,6 @@ click() {
     wait_until "the release on $3" "not d['mouse_down']"
 }
 
-# widget_point NAME [DX]: a point inside the named widget's frame, DX pixels from its left edge
-# (the rectangles include the label on the right), vertically centred. Waits for the widget.
-widget_point() {
-    wait_until "the widget $1" "w('$1') is not None"
-    layout "'%d %d' % (w('$1')[0] + ${2:-12}, round((w('$1')[1] + w('$1')[3]) / 2))"
-}
-
-# point_to NAME [DX]: moves the pointer into the named widget and makes sure the frame that saw
-# the pointer there drew the widget under it (a popup is placed only a frame after it appears).
-point_to() {
-    local x y attempt
-    # Widgets of the inspector may lie below its fold (the left column is shared with the scene
-    # outline and the library): scroll them in first.
-    case "$1" in inspector.*) wait_until "the widget $1" "w('$1') is not None"; scroll_into_view "$1" inspector ;; esac
-    for attempt in 1 2 3 4 5; do
-        read -r x y < <(widget_point "$1" "${2:-12}")
-        move_to "$x" "$y"
-        layout "w('$1') is not None and w('$1')[0] <= $x < w('$1')[2] and w('$1')[1] <= $y < w('$1')[3]" &&
-            return 0
-    done
-    fail "the widget $1 does not stay under the pointer"
-}
-
-# click_widget NAME [DX]: a left click inside the named widget.
-click_widget() {
-    point_to "$1" "${2:-12}"
-    xdotool mousedown 1
-    wait_until "the press on $1" "d['mouse_down']"
-    xdotool mouseup 1
-    wait_until "the release on $1" "not d['mouse_down']"
-}
-
 # Ctrl+S, then waits until the scene is saved (no unsaved edits, status "Saved ...").
 save_scene() {
     wait_until "no text field active before Ctrl+S" "not d['typing']"

@@ -21,13 +21,7 @@ source "$(dirname "$0")/lib/harness.sh"
 e2e_setup
 e2e_start_xvfb 1280x800
 
-python3 - "$SOURCE/resources/scenes/demo.json" "$TMP/scene.json" <<'PY'
-import json, sys
-scene = json.load(open(sys.argv[1]))
-scene["camera"] = {"position": [0.0, 1.3, 2.6], "target": [0.0, 1.9, -1.0], "fov_deg": 60}
-scene["luminaires"][0]["c0"] = [0, 0, 1]
-json.dump(scene, open(sys.argv[2], "w"), indent=1)
-PY
+raised_demo_scene "$SOURCE" "$TMP/scene.json"
 
 e2e_start_editor "$TMP/scene.json" 1280x800 "len(d['luminaires']) > 0 and d['frame'] >= 2"
 wait_until "a visible luminaire" "d['luminaires'][0]['screen'] is not None"
@@ -39,22 +33,10 @@ read -r LX LY < <(layout "'%d %d' % tuple(round(c) for c in d['luminaires'][0]['
 move_to "$LX" "$LY"
 xdotool click 1
 wait_until "\"$NAME\" selected" "d['selected'] == '$NAME' and not d['dragging']"
-read -r PX PY < <(layout "'%d %d' % (round((w('outline.place')[0] + w('outline.place')[2]) / 2), round((w('outline.place')[1] + w('outline.place')[3]) / 2))")
-move_to "$PX" "$PY"
-xdotool click 1
+click_widget outline.place
 wait_frames 2
 # The wall point in window pixels, through the scene's camera and the viewport.
-read -r WX WY < <(python3 - "$LAYOUT" "$TMP/scene.json" "$WALL_POINT" "$(dirname "$0")/lib" <<'PY'
-import json, sys
-sys.path.insert(0, sys.argv[4])
-from camera import project
-d = json.load(open(sys.argv[1]))
-cam = json.load(open(sys.argv[2]))["camera"]
-x, y = project(json.loads(sys.argv[3]), {"camera": cam, "render_size": d["render_size"]})
-vx, vy, vw, vh = d["viewport"]
-print(round(vx + x * vw / d["render_size"][0]), round(vy + y * vh / d["render_size"][1]))
-PY
-)
+read -r WX WY < <(window_point "$WALL_POINT" "$TMP/scene.json")
 log "placing \"$NAME\" at the wall point, window ($WX, $WY)"
 move_to "$WX" "$WY"
 xdotool click 1
@@ -78,11 +60,7 @@ log "undo and redo restore both positions exactly"
 
 # --- 3. Swap the panel for a photometric file from the Library, keeping its pose ------------------
 SWAP="library.swap:linear-pendant.ies"
-wait_until "the library entry" "w('$SWAP') is not None"
-scroll_into_view "$SWAP" library
-read -r SX SY < <(layout "'%d %d' % (round((w('$SWAP')[0] + w('$SWAP')[2]) / 2), round((w('$SWAP')[1] + w('$SWAP')[3]) / 2))")
-move_to "$SX" "$SY"
-xdotool click 1
+click_widget "$SWAP"
 wait_until "the swap" "lum('$NAME')['type'] == 'photometric'"
 layout "json.dumps(lum('$NAME')['position']) == '$ON_WALL' and close(lum('$NAME')['aim'], [0, 0, 1], 1e-9)" ||
     fail "the swap did not keep the pose"
@@ -93,17 +71,7 @@ log "swapped for linear-pendant.ies, pose kept"
 FLOOR_POINT="[0.3, 0.0, -1.2]"
 wait_until "the gizmo" "d['gizmo'] is not None"
 read -r AX AY < <(layout "'%d %d' % tuple(round(c) for c in d['gizmo']['aim'])")
-read -r FX FY < <(python3 - "$LAYOUT" "$TMP/scene.json" "$FLOOR_POINT" "$(dirname "$0")/lib" <<'PY'
-import json, sys
-sys.path.insert(0, sys.argv[4])
-from camera import project
-d = json.load(open(sys.argv[1]))
-cam = json.load(open(sys.argv[2]))["camera"]
-x, y = project(json.loads(sys.argv[3]), {"camera": cam, "render_size": d["render_size"]})
-vx, vy, vw, vh = d["viewport"]
-print(round(vx + x * vw / d["render_size"][0]), round(vy + y * vh / d["render_size"][1]))
-PY
-)
+read -r FX FY < <(window_point "$FLOOR_POINT" "$TMP/scene.json")
 move_to "$AX" "$AY"
 log "aim knob at ($AX, $AY), floor point at ($FX, $FY): $(layout "d['gizmo'], d['mouse'], d['luminaires'][0]['screen']")"
 xdotool mousedown 1

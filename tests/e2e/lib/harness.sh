@@ -3,7 +3,9 @@
 # wait for any one step), then calls e2e_setup, which makes TMP (with LAYOUT and SHOTS paths),
 # checks the tools and installs the cleanup. Later, e2e_start_xvfb WxH starts an X server and
 # exports DISPLAY; the caller starts the editor with --layout-file "$LAYOUT", sets EDITOR_PID and
-# WID, and sets PASSED=1 at the end. CANDELA_E2E_KEEP=1 keeps TMP after a pass too.
+# WID, and sets PASSED=1 at the end. CANDELA_E2E_KEEP=1 keeps TMP after a pass too. Helpers:
+# layout/wait_until (the layout file), move_to, click_widget (a recorded widget, scrolled into
+# its panel), window_point (a world point on screen), raised_demo_scene (the ceiling-panel view).
 
 XVFB_PID=
 EDITOR_PID=
@@ -125,6 +127,67 @@ scroll_into_view() {
         wait_frames 2
     done
     fail "could not scroll $widget into $panel"
+}
+
+# widget_point NAME [DX]: a point inside the named widget's frame, DX pixels from its left edge
+# (the rectangles include the label on the right), vertically centred. Waits for the widget.
+widget_point() {
+    wait_until "the widget $1" "w('$1') is not None"
+    layout "'%d %d' % (w('$1')[0] + ${2:-12}, round((w('$1')[1] + w('$1')[3]) / 2))"
+}
+
+# point_to NAME [DX]: moves the pointer into the named widget and makes sure the frame that saw
+# the pointer there drew the widget under it (a popup is placed only a frame after it appears).
+point_to() {
+    local x y attempt
+    # Widgets of the inspector and the library may lie below their panel's fold (the left column
+    # holds three panels): scroll them in first.
+    case "$1" in
+        inspector.* | library.*) wait_until "the widget $1" "w('$1') is not None"; scroll_into_view "$1" "${1%%.*}" ;;
+    esac
+    for attempt in 1 2 3 4 5; do
+        read -r x y < <(widget_point "$1" "${2:-12}")
+        move_to "$x" "$y"
+        layout "w('$1') is not None and w('$1')[0] <= $x < w('$1')[2] and w('$1')[1] <= $y < w('$1')[3]" &&
+            return 0
+    done
+    fail "the widget $1 does not stay under the pointer"
+}
+
+# click_widget NAME [DX]: a left click inside the named widget.
+click_widget() {
+    point_to "$1" "${2:-12}"
+    xdotool mousedown 1
+    wait_until "the press on $1" "d['mouse_down']"
+    xdotool mouseup 1
+    wait_until "the release on $1" "not d['mouse_down']"
+}
+
+# window_point "[X, Y, Z]" SCENE: the window pixel (rounded) where a world point (metres) shows,
+# through SCENE's camera and the viewport and render size of the layout file.
+window_point() {
+    python3 - "$LAYOUT" "$2" "$1" "$E2E_LIB" <<'PY'
+import json, sys
+sys.path.insert(0, sys.argv[4])
+from camera import project
+d = json.load(open(sys.argv[1]))
+cam = json.load(open(sys.argv[2]))["camera"]
+x, y = project(json.loads(sys.argv[3]), {"camera": cam, "render_size": d["render_size"]})
+vx, vy, vw, vh = d["viewport"]
+print(round(vx + x * vw / d["render_size"][0]), round(vy + y * vh / d["render_size"][1]))
+PY
+}
+
+# raised_demo_scene SOURCE OUT: the demo scene with the camera raised to see the ceiling panel,
+# and the panel turned so its short side runs across the image.
+raised_demo_scene() {
+    python3 - "$1/resources/scenes/demo.json" "$2" <<'PY'
+import json, sys
+scene = json.load(open(sys.argv[1]))
+scene["camera"] = {"position": [0.0, 1.3, 2.6], "target": [0.0, 1.9, -1.0], "fov_deg": 60}
+scene["luminaires"][0]["c0"] = [0, 0, 1]
+json.dump(scene, open(sys.argv[2], "w"), indent=1)
+PY
 }
 
 # e2e_start_xvfb WxH: an X server that picks a free display number itself and reports it once
