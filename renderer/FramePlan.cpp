@@ -47,9 +47,16 @@ std::vector<std::string> FramePlan::passNames() const {
 
 std::string overrideFor(const std::string& techniqueOverride, std::string_view kind) {
     std::istringstream list(techniqueOverride);
-    for (std::string name; std::getline(list, name, ',');)
+    for (std::string name; std::getline(list, name, ',');) {
+        // "KIND=NAME" applies to that kind only ("environment" for the environment).
+        if (size_t eq = name.find('='); eq != std::string::npos) {
+            std::string_view scope = std::string_view(name).substr(0, eq);
+            if (scope != (kind.empty() ? std::string_view("environment") : kind)) continue;
+            name = name.substr(eq + 1);
+        }
         if (kind.empty() ? findEnvironmentTechnique(name) != nullptr : findTechnique(kind, name) != nullptr)
             return name;
+    }
     return {};
 }
 

@@ -48,7 +48,9 @@ struct FramePlan {
 std::string shadowPassName(const ShadeStep& step);
 
 /// The first name of a comma-separated techniqueOverride that luminaire kind `kind` has (an
-/// environment technique when kind is empty); empty when none.
+/// environment technique when kind is empty); empty when none. An item "KIND=NAME" applies to
+/// that kind only ("environment=NAME" to the environment), so a list can give two kinds
+/// different techniques that both have ("lambertian-rect=reference,photometric=hybrid").
 std::string overrideFor(const std::string& techniqueOverride, std::string_view kind);
 
 /// World to clip transform of the camera for an image of the given aspect (width / height).

@@ -332,6 +332,17 @@ std::vector<unsigned char> Renderer::readDisplay() const {
     return rgbTopDown(rgba, w, h);
 }
 
+std::vector<unsigned char> Renderer::readEmitterMask() const {
+    const gl::Texture2D& t = mGBuffer->texture(gpu::kGBufferEmission);
+    int w = t.width(), h = t.height();
+    std::vector<float> rgba(size_t(w) * size_t(h) * 4);
+    glGetTextureImage(t.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(rgba.size() * sizeof(float)), rgba.data());
+    std::vector<float> rgb = rgbTopDown(rgba, w, h);
+    std::vector<unsigned char> mask(size_t(w) * size_t(h));
+    for (size_t i = 0; i < mask.size(); ++i) mask[i] = rgb[3 * i] > 0.f || rgb[3 * i + 1] > 0.f || rgb[3 * i + 2] > 0.f;
+    return mask;
+}
+
 std::vector<glm::vec3> Renderer::probe(const Scene& scene, const std::vector<glm::vec3>& points,
                                        const std::vector<glm::vec3>& normals, int spp, int width) {
     mScene = &scene;

@@ -95,6 +95,9 @@ public:
     std::vector<float> readLinear() const;
     /// Tone-mapped 8-bit RGB, rows top to bottom.
     std::vector<unsigned char> readDisplay() const;
+    /// Per pixel, rows top to bottom: 1 where the camera sees a luminaire's emitting surface
+    /// (the same emitted radiance in every image of the view, whatever the technique), else 0.
+    std::vector<unsigned char> readEmitterMask() const;
 
     /// Irradiance at points for normals through the production shading passes (albedo pi, so
     /// the radiance they write is E). Returns RGB per point, W/m2.

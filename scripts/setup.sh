@@ -6,6 +6,7 @@ packages=(
   libglfw3-dev libimgui-dev libglm-dev libtinygltf-dev libopenimageio-dev
   libosmesa6-dev libgl-dev libgtest-dev libbenchmark-dev nlohmann-json3-dev libembree-dev
   xvfb xdotool imagemagick x11-utils mesa-utils clang-format gnuplot-nox
+  fonts-dejavu-core openimageio-tools
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -95,6 +95,12 @@ TEST(FramePlan, OverrideListGivesEachKindTheFirstItHas) {
     EXPECT_EQ(overrideFor("point,reference", "lambertian-rect"), "reference");
     EXPECT_EQ(overrideFor("point,havran2005", ""), "havran2005");
     EXPECT_EQ(overrideFor("point", "lightfield"), "");
+    // Scoped items: both kinds have "reference", only the photometric one is asked to use it.
+    FramePlan scoped = planFrame(scene, view(scene), "photometric=reference,lambertian-rect=analytic");
+    EXPECT_EQ(scoped.shading[0].name, "shade:Panel:analytic");
+    EXPECT_EQ(scoped.shading[1].name, "shade:Pendant:reference");
+    EXPECT_EQ(overrideFor("photometric=reference", "lambertian-rect"), "");
+    EXPECT_EQ(overrideFor("lightfield=reference,environment=balanced-mis", ""), "balanced-mis");
 }
 
 TEST(FramePlan, UnknownTechniqueIsAClearError) {

@@ -18,12 +18,14 @@
 #include <string>
 #include <vector>
 
+#include "renderer/Comparison.h"
 #include "renderer/ImageFile.h"
 #include "renderer/LivePreview.h"
 #include "renderer/Renderer.h"
 #include "renderer/ShaderLibrary.h"
 #include "renderer/context/GlContext.h"
 #include "scene/SceneIo.h"
+#include "ui/ComparisonExport.h"
 #include "ui/EditorState.h"
 #include "ui/KeyLatch.h"
 #include "ui/Panels.h"
@@ -149,7 +151,8 @@ void Editor::frame() {
     // While a text field has the keyboard, refinement pauses: Dear ImGui 1.86 sees a key only if
     // it is still down at the next frame, and a slow GPU's frames would lose keystrokes.
     bool typing = ImGui::GetIO().WantTextInput;
-    bool settled = mRenderer->converged() || mRenderFailed || typing;
+    bool comparing = state.compare.layout != CompareLayout::Single;
+    bool settled = (comparing ? mComparison && mComparison->done() : mRenderer->converged()) || mRenderFailed || typing;
     bool idle = settled && mIdleFrames >= kBusyFramesAfterInput &&
                 state.pendingChanges == kChangeNone && !state.screenshotRequested;
     if (idle)
@@ -183,11 +186,16 @@ void Editor::frame() {
         mLastShaderLog = log;
     }
 
-    prepareRender();
+    if (comparing)
+        prepareComparison();
+    else
+        prepareRender();
     glDisable(GL_SCISSOR_TEST);
     try {
         // Frame 0 only lays out the UI, which sets the render size from the viewport panel.
-        if (mFrame > 0 && !typing) {
+        if (mFrame > 0 && !typing && comparing) {
+            mComparison->step(kBandBudgetMs);
+        } else if (mFrame > 0 && !typing) {
             mRenderer->renderFrame();
             state.passes.add(mRenderer->stats());
         }
@@ -202,6 +210,7 @@ void Editor::frame() {
     }
     // Requested last frame; taken now that the image shows the scene as it is.
     if (state.screenshotRequested) takeScreenshot();
+    if (state.compare.sheetRequested) exportSheet();
 
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
@@ -232,6 +241,51 @@ void Editor::frame() {
     mIdleFrames = hadInput() ? 0 : mIdleFrames + 1;
     updateTitle();
     writeLayout();
+}
+
+void Editor::prepareComparison() {
+    EditorState& state = *mState;
+    CompareUi& ui = state.compare;
+    if (!mComparison) {
+        mComparison = std::make_unique<Comparison>(*mShaders);
+        state.pendingChanges |= kChangeAll;
+    }
+    // Scene changes seen here are owed to the single view too, for when the comparison ends.
+    mComparisonChanges |= state.pendingChanges;
+    // Panes split the viewport (the wipe shows two at its full size).
+    RenderSettings shared = state.settings;
+    const glm::vec4& v = state.layout.viewport;
+    float w = v.z * state.renderScale, h = v.w * state.renderScale;
+    if (ui.layout != CompareLayout::Wipe) w *= 0.5f;
+    if (ui.layout == CompareLayout::Four) h *= 0.5f;
+    shared.width = std::max(1, int(std::lround(w)));
+    shared.height = std::max(1, int(std::lround(h)));
+    mComparison->configure(comparedPanes(ui), shared, ui.referenceSamples);
+    mComparison->setErrorScale(ui.errorScale);
+    mComparison->update(state.scene, state.pendingChanges);
+    state.pendingChanges = kChangeNone;
+}
+
+void Editor::exportSheet() {
+    EditorState& state = *mState;
+    CompareUi& ui = state.compare;
+    ui.sheetRequested = false;
+    if (!mComparison || ui.layout == CompareLayout::Single) {
+        setStatus(state, "Split the viewport into panes to export a comparison sheet", true);
+        return;
+    }
+    try {
+        std::vector<std::string> names;
+        for (size_t i = 0; i < mComparison->paneCount(); ++i) names.push_back(paneName(ui, i));
+        SheetFiles files = exportComparisonSheet(state.screenshotDir, *mComparison, state.scene, names, ui.showError);
+        std::printf("sheet: %s\nsheet: %s\nsheet: %s\n", files.png.c_str(), files.exr.c_str(), files.json.c_str());
+        std::fflush(stdout);
+        ++ui.sheetsTaken;
+        ui.lastSheet = files.png;
+        setStatus(state, "Comparison sheet written: " + files.png + " (+ .exr, .json)");
+    } catch (const std::exception& e) {
+        reportError(state, std::string("Comparison sheet failed: ") + e.what());
+    }
 }
 
 void Editor::prepareRender() {
@@ -280,6 +334,12 @@ void Editor::prepareRender() {
         return;
     }
     mRenderer->setSettings(state.settings);
+    if (mComparison) {
+        // The comparison ended: its memory goes, and the single view catches up on the edits.
+        mComparison.reset();
+        state.pendingChanges |= mComparisonChanges;
+        mComparisonChanges = kChangeNone;
+    }
     if (preview.active) {
         // Released: the edited scene with the full settings, refined from scratch.
         state.pendingChanges |= kChangeAll & ~kChangeGeometry;
@@ -315,12 +375,18 @@ void Editor::buildUi() {
                     middle - render.h - measure.h};
     PanelRect status{0.f, top + middle, display.x, statusHeight};
 
-    viewportPanel(state, *mRenderer, viewport);
+    bool comparing = state.compare.layout != CompareLayout::Single;
+    viewportPanel(state, *mRenderer, viewport, comparing ? mComparison.get() : nullptr);
     outlinePanel(state, outline);
     libraryPanel(state, library);
     inspectorPanel(state, inspector);
     renderPanel(state, render);
-    measurePanel(state, *mRenderer, measure);
+    // While comparing, the Compare panel takes the Measure panel's place.
+    if (comparing)
+        comparePanel(state, mComparison.get(), measure);
+    else
+        measurePanel(state, *mRenderer, measure);
+    accuracyWindow(state, comparing ? mComparison.get() : nullptr, viewport);
     statsPanel(state, *mRenderer, *mShaders, stats);
     statusBar(state, *mRenderer, status);
     fileDialogs(state);
@@ -407,6 +473,22 @@ static nlohmann::json planTechniques(const Scene& scene, const Renderer& rendere
     return out;
 }
 
+/// The comparison's layout, panes, results and exports (a sheet's sidecar has the same panes).
+static nlohmann::json compareState(const EditorState& state, const Comparison* comparison) {
+    const CompareUi& ui = state.compare;
+    const char* layouts[] = {"single", "two", "four", "wipe"};
+    nlohmann::json j = {{"layout", layouts[int(ui.layout)]}, {"error_map", ui.showError}, {"wipe", ui.wipe},
+                        {"sheets", ui.sheetsTaken}, {"last_sheet", ui.lastSheet}, {"plot_open", ui.plotOpen},
+                        {"bench_series", ui.benchSeries.size()}};
+    if (comparison && ui.layout != CompareLayout::Single) {
+        std::vector<std::string> names;
+        for (size_t i = 0; i < comparison->paneCount(); ++i) names.push_back(paneName(ui, i));
+        j.update(comparisonJson(*comparison, names));
+        j["done"] = comparison->done();
+    }
+    return j;
+}
+
 /// The passes of the last rendered frame with their times, ms.
 static nlohmann::json passTimes(const FrameStats& stats) {
     nlohmann::json out = nlohmann::json::object();
@@ -481,6 +563,7 @@ void Editor::writeLayout() {
         {"preview", {{"active", state.preview.active}, {"size", {state.preview.width, state.preview.height}},
                      {"frame_ms", std::round(state.preview.frameMs * 10.0) / 10.0}}},
         {"techniques", planTechniques(state.scene, *mRenderer)},
+        {"compare", compareState(state, mComparison.get())},
         {"passes", passTimes(stats)},
     };
     // Written every frame (an idle editor draws ten a second), so a test waiting for "N more

@@ -14,6 +14,7 @@ struct Scene;
 class WindowContext;
 class ShaderLibrary;
 class Renderer;
+class Comparison;
 
 namespace ui {
 
@@ -49,6 +50,11 @@ class Editor {
     /// Hands the renderer the scene and settings of this frame: the preview scene and settings
     /// while a drag is under way (renderer/LivePreview.h), else the edited scene.
     void prepareRender();
+    /// Hands the comparison its panes, size and the scene's changes (state.compare.layout is
+    /// not Single); the main renderer waits.
+    void prepareComparison();
+    /// Writes the comparison sheet (ui/ComparisonExport.h) into the screenshot folder.
+    void exportSheet();
     void buildUi();
     void takeScreenshot();
     /// Writes the whole window as drawn (screenshotDir/window-NNN.png).
@@ -63,6 +69,8 @@ class Editor {
     std::unique_ptr<EditorState> mState;
     std::unique_ptr<KeyLatch> mKeyLatch;
     std::unique_ptr<Scene> mPreviewScene;  ///< What the renderer shows while dragging.
+    std::unique_ptr<Comparison> mComparison;  ///< The panes, while the viewport is split.
+    unsigned mComparisonChanges = 0;          ///< Scene changes the comparison took (ChangeFlags).
     std::chrono::steady_clock::time_point mLastFrame;
     double mLastAutosave = 0.0;  ///< glfwGetTime() of the last autosave check that wrote, s.
     int mAutosavedEdits = 0;     ///< EditorState::edits at the last autosave.

@@ -3,6 +3,7 @@
 // scene changes only through applyEdit() (and the few helpers built on it), which is where undo
 // will record its steps.
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <functional>
@@ -14,11 +15,13 @@
 #include <string_view>
 
 #include "luminaires/Registry.h"
+#include "renderer/Comparison.h"
 #include "renderer/LivePreview.h"
 #include "renderer/Renderer.h"
 #include "scene/Bvh.h"
 #include "scene/CalculationGrid.h"
 #include "scene/Scene.h"
+#include "ui/AccuracyPlot.h"
 #include "ui/Screenshot.h"
 
 namespace candela::ui {
@@ -105,6 +108,39 @@ struct LivePreviewUi {
     int width = 0, height = 0; ///< Preview render size, pixels.
 };
 
+/// How the viewport shows the comparison (renderer/Comparison.h): one image (no comparison),
+/// 2 or 4 panes side by side, or two panes on either side of a wipe line.
+enum class CompareLayout { Single, Two, Four, Wipe };
+/// The comparison's controls (ui/ComparePanel.cpp); not part of the scene file (a sheet's
+/// sidecar records them).
+struct CompareUi {
+    CompareLayout layout = CompareLayout::Single;
+    /// Each pane's technique list and sample budget: A the scene's own techniques, B each kind's
+    /// fast preview technique, C and D other estimators of the same kinds.
+    std::array<PaneSpec, 4> panes = {PaneSpec{"", 64}, PaneSpec{"precomputed-global,scattered,analytic,balanced", 64},
+                                     PaneSpec{"uniform-restricted,mc-poisson-24,reference,uniform-faces", 64},
+                                     PaneSpec{"granier2003,point,analytic,global-cdf", 64}};
+    int referenceSamples = 512;  ///< The reference's sample budget, samples per pixel.
+    bool showError = false;      ///< Panes show their signed error map instead of the image.
+    float errorScale = 0.25f;    ///< Error map saturation, fraction of the reference's mean luminance.
+    float wipe = 0.5f;           ///< Wipe line position, fraction of the viewport's width.
+    int wipePanes[2] = {0, 1};   ///< The panes left and right of the wipe line.
+    bool wipeDragging = false;   ///< The wipe line follows the mouse.
+    // The accuracy-versus-time window.
+    bool plotOpen = false;
+    bool plotDeltaE = false;     ///< Plot mean Delta E instead of relative RMSE.
+    float budgetMs = 1000.f;     ///< The time budget the plot names a winner at, GPU ms.
+    std::vector<ErrorSeries> benchSeries;  ///< Curves read from `candela bench` CSV files.
+    std::string benchPath;                 ///< The window's CSV path field.
+    // Export.
+    bool sheetRequested = false;  ///< Export the comparison sheet after this frame's render.
+    int sheetsTaken = 0;
+    std::string lastSheet;        ///< PNG of the last sheet written.
+    /// Panes the layout shows.
+    int paneCount() const {
+        return layout == CompareLayout::Four ? 4 : layout == CompareLayout::Single ? 1 : 2;
+    }
+};
 /// One luminaire file of the library panel.
 struct LibraryEntry {
     std::string path;   ///< Absolute.
@@ -209,6 +245,7 @@ struct EditorState {
     UndoHistory history;
     PlacementUi placement;
     LibraryUi library;
+    CompareUi compare;
     int geometryVersion = 0;  ///< Moves on whenever the scene's meshes may have changed.
     /// Test hook for --layout-file: screen rectangles (x0, y0, x1, y1, window pixels) of named
     /// widgets drawn this frame ("inspector.spin", "outline.add", ...), recorded by the panels

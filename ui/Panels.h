@@ -2,6 +2,8 @@
 // The editor's panels: free functions over EditorState that return whether they changed it.
 // They read the renderer and shader library (statistics, picking) but never own GL objects.
 
+#include <imgui.h>
+
 #include <string>
 
 #include "renderer/Renderer.h"
@@ -57,8 +59,23 @@ bool measurePanel(EditorState& state, const Renderer& renderer, const PanelRect&
 void statsPanel(const EditorState& state, const Renderer& renderer, const ShaderLibrary& shaders,
                 const PanelRect& rect);
 /// The rendered image; picking, luminaire dragging and camera orbit / pan / zoom.
-bool viewportPanel(EditorState& state, const Renderer& renderer, const PanelRect& rect);
+/// With a comparison (state.compare.layout not Single) the panes instead, and only camera input.
+bool viewportPanel(EditorState& state, const Renderer& renderer, const PanelRect& rect,
+                   const Comparison* comparison = nullptr);
 void statusBar(const EditorState& state, const Renderer& renderer, const PanelRect& rect);
+
+/// The comparison (ui/ComparePanel.cpp). The panes a comparison renders for the layout (the
+/// two either side of a wipe), and the letter of the pane it shows at that index.
+std::vector<PaneSpec> comparedPanes(const CompareUi& ui);
+std::string paneName(const CompareUi& ui, size_t pane);
+/// The viewport's layout bar (Single, 2 panes, 4 panes, Wipe; error map, plot, export).
+bool compareToolbar(EditorState& state);
+/// Draws the panes (image or error map, labels, the wipe line, which it also drags).
+void compareView(EditorState& state, const Comparison& comparison, ImVec2 origin, ImVec2 size, bool hovered);
+/// Each pane's techniques per kind and sample budget, the reference, results, export.
+bool comparePanel(EditorState& state, const Comparison* comparison, const PanelRect& rect);
+/// The accuracy-versus-time window (when state.compare.plotOpen), placed over the viewport.
+void accuracyWindow(EditorState& state, const Comparison* comparison, const PanelRect& viewport);
 
 /// " [unit]" for a scene-file field name ("radiance" -> " [W/(m2 sr)]"), or "" if unknown.
 const char* fieldUnit(const std::string& key);

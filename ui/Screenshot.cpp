@@ -57,6 +57,22 @@ void writeFileAtomic(const fs::path& path, const std::string& text) {
     }
 }
 
+fs::path nextFreeStem(const fs::path& dir, const std::string& prefix) {
+    for (int n = 0; n < 100000; ++n) {
+        char number[16];
+        std::snprintf(number, sizeof number, "-%03d", n);
+        fs::path stem = dir / (prefix + number);
+        bool taken = false;
+        for (const char* ext : {".png", ".exr", ".json"}) {
+            fs::path p = stem;
+            p += ext;
+            taken = taken || fs::exists(p);
+        }
+        if (!taken) return stem;
+    }
+    throw InputError(dir.string() + ": no free " + prefix + "-NNN name left");
+}
+
 nlohmann::json cameraToJsonObject(const Camera& camera) {
     auto vec = [](const glm::dvec3& v) { return nlohmann::json::array({v.x, v.y, v.z}); };
     return {{"position", vec(camera.position)},
@@ -76,23 +92,6 @@ std::string utcTimestamp() {
     return text;
 }
 
-/// First NNN for which none of shot-NNN.{png,exr,json} exists.
-fs::path nextShotStem(const fs::path& dir) {
-    for (int n = 0; n < 100000; ++n) {
-        char name[32];
-        std::snprintf(name, sizeof name, "shot-%03d", n);
-        fs::path stem = dir / name;
-        bool taken = false;
-        for (const char* ext : {".png", ".exr", ".json"}) {
-            fs::path p = stem;
-            p += ext;
-            taken = taken || fs::exists(p);
-        }
-        if (!taken) return stem;
-    }
-    throw InputError(dir.string() + ": no free shot-NNN name left");
-}
-
 nlohmann::json passesJson(const std::vector<PassTiming>& passes) {
     nlohmann::json out = nlohmann::json::array();
     for (const PassTiming& p : passes) out.push_back({{"name", p.name}, {"gpu_ms", p.gpuMs}});
@@ -106,7 +105,7 @@ ScreenshotFiles writeScreenshot(const fs::path& dir, const Scene& scene, const R
     std::error_code ec;
     fs::create_directories(dir, ec);
     if (ec) throw InputError(dir.string() + ": cannot create folder (" + ec.message() + ")");
-    fs::path stem = nextShotStem(dir);
+    fs::path stem = nextFreeStem(dir, "shot");
     ScreenshotFiles files;
     files.png = stem.string() + ".png";
     files.exr = stem.string() + ".exr";

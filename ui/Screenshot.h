@@ -47,6 +47,10 @@ ScreenshotFiles writeScreenshot(const std::filesystem::path& dir, const Scene& s
 /// Throws InputError naming the file on failure.
 void writeFileAtomic(const std::filesystem::path& path, const std::string& text);
 
+/// First DIR/PREFIX-NNN (NNN = 000, 001, ...) for which none of PREFIX-NNN.{png,exr,json} exists.
+/// Throws InputError naming dir when all 100000 are taken.
+std::filesystem::path nextFreeStem(const std::filesystem::path& dir, const std::string& prefix);
+
 /// The camera as a scene-file JSON object (position, target, fov_deg).
 nlohmann::json cameraToJsonObject(const Camera& camera);
 

@@ -323,11 +323,16 @@ void drawPickedPixel(const EditorState& state, const ImageMapping& map) {
     }
 }
 
+/// Mouse input over the image. cameraOnly (comparison panes): a left press orbits, nothing is
+/// picked or placed.
 bool handleInput(EditorState& state, const Renderer& renderer, const ImageMapping& map, const Gizmo& g,
-                 bool hovered) {
+                 bool hovered, bool cameraOnly = false) {
     const ImGuiIO& io = ImGui::GetIO();
     bool changed = false;
-    if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && state.environment.pickingPixel &&
+    if (cameraOnly && hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
+        state.drag = {};
+        if (!state.compare.wipeDragging) state.drag.mode = DragMode::Orbit;
+    } else if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && state.environment.pickingPixel &&
         state.environment.chartOpen) {
         pickChartPixel(state, renderer, map, io.MouseClickedPos[ImGuiMouseButton_Left]);
     } else if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && state.placement.armed) {
@@ -389,7 +394,9 @@ bool handleInput(EditorState& state, const Renderer& renderer, const ImageMappin
                   [&](Scene& s) { zoomCamera(s.camera, io.MouseWheel); });
         changed = true;
     }
-    if (hovered && ((state.environment.pickingPixel && state.environment.chartOpen) || state.placement.armed)) {
+    if (cameraOnly) {
+        if (hovered && state.compare.wipeDragging) ImGui::SetMouseCursor(ImGuiMouseCursor_ResizeEW);
+    } else if (hovered && ((state.environment.pickingPixel && state.environment.chartOpen) || state.placement.armed)) {
         ImGui::SetMouseCursor(ImGuiMouseCursor_Hand);
     } else if (hovered && state.drag.mode == DragMode::None) {
         glm::dvec2 px = map.toRender(io.MousePos);
@@ -401,7 +408,7 @@ bool handleInput(EditorState& state, const Renderer& renderer, const ImageMappin
 
 }  // namespace
 
-bool viewportPanel(EditorState& state, const Renderer& renderer, const PanelRect& rect) {
+bool viewportPanel(EditorState& state, const Renderer& renderer, const PanelRect& rect, const Comparison* comparison) {
     placeNextWindow(rect);
     ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(0.f, 0.f));
     ImGui::PushStyleVar(ImGuiStyleVar_WindowBorderSize, 0.f);
@@ -409,6 +416,8 @@ bool viewportPanel(EditorState& state, const Renderer& renderer, const PanelRect
                  kPanelFlags | ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoScrollbar |
                      ImGuiWindowFlags_NoScrollWithMouse | ImGuiWindowFlags_NoBringToFrontOnFocus);
     ImGui::PopStyleVar(2);
+    bool changed = compareToolbar(state);
+    ImGui::SetCursorPos(ImVec2(0.f, ImGui::GetFrameHeight() + 4.f));
 
     ImVec2 avail = ImGui::GetContentRegionAvail();
     ImVec2 size(std::max(1.f, std::floor(avail.x)), std::max(1.f, std::floor(avail.y)));
@@ -424,6 +433,14 @@ bool viewportPanel(EditorState& state, const Renderer& renderer, const PanelRect
                                ImGuiButtonFlags_MouseButtonMiddle);
     bool hovered = ImGui::IsItemHovered();
 
+    if (comparison && state.compare.layout != CompareLayout::Single) {
+        compareView(state, *comparison, origin, size, hovered);
+        state.layout.gizmo = false;
+        ImageMapping map{origin, size, renderer.settings().width, renderer.settings().height};
+        changed = handleInput(state, renderer, map, Gizmo{}, hovered, true) || changed;
+        ImGui::End();
+        return changed;
+    }
     ImDrawList* draw = ImGui::GetWindowDrawList();
     ImVec2 corner(origin.x + size.x, origin.y + size.y);
     GLuint texture = renderer.displayTexture().id();
@@ -443,7 +460,7 @@ bool viewportPanel(EditorState& state, const Renderer& renderer, const PanelRect
     state.layout.aimKnob = glm::vec2(handles.aimKnob.x, handles.aimKnob.y);
     state.layout.spinKnob = glm::vec2(handles.spinKnob.x, handles.spinKnob.y);
     drawPickedPixel(state, map);
-    bool changed = handleInput(state, renderer, map, handles, hovered);
+    changed = handleInput(state, renderer, map, handles, hovered) || changed;
     ImGui::End();
     return changed;
 }

@@ -11,40 +11,6 @@
 
 namespace candela {
 
-double luma(const float* c) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; }
-
-/// sqrt(sum (x - r)^2 / sum r^2) over pixel luminances.
-double relRmse(const std::vector<float>& x, const std::vector<float>& r) {
-    double num = 0.0, den = 0.0;
-    for (size_t i = 0; i + 2 < r.size(); i += 3) {
-        double d = luma(&x[i]) - luma(&r[i]);
-        num += d * d;
-        den += luma(&r[i]) * luma(&r[i]);
-    }
-    return den > 0.0 ? std::sqrt(num / den) : 0.0;
-}
-
-/// sRGB8 to CIELAB (D65).
-glm::dvec3 lab(const unsigned char* c) {
-    auto lin = [](double v) {
-        v /= 255.0;
-        return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
-    };
-    double r = lin(c[0]), g = lin(c[1]), b = lin(c[2]);
-    double X = (0.4124 * r + 0.3576 * g + 0.1805 * b) / 0.95047;
-    double Y = 0.2126 * r + 0.7152 * g + 0.0722 * b;
-    double Z = (0.0193 * r + 0.1192 * g + 0.9505 * b) / 1.08883;
-    auto f = [](double t) { return t > 216.0 / 24389.0 ? std::cbrt(t) : (24389.0 / 27.0 * t + 16.0) / 116.0; };
-    return {116.0 * f(Y) - 16.0, 500.0 * (f(X) - f(Y)), 200.0 * (f(Y) - f(Z))};
-}
-
-double meanDeltaE(const std::vector<unsigned char>& x, const std::vector<unsigned char>& r) {
-    double sum = 0.0;
-    size_t n = r.size() / 3;
-    for (size_t i = 0; i < n; ++i) sum += glm::length(lab(&x[3 * i]) - lab(&r[3 * i]));
-    return n ? sum / double(n) : 0.0;
-}
-
 std::vector<int> parseList(const std::string& text) {
     std::vector<int> out;
     std::stringstream ss(text);

@@ -6,10 +6,12 @@
 #include <fstream>
 
 #include "app/commands/Commands.h"
+#include "renderer/Comparison.h"
 #include "renderer/ImageFile.h"
 #include "renderer/Renderer.h"
 #include "renderer/context/GlContext.h"
 #include "scene/SceneIo.h"
+#include "ui/ComparisonExport.h"
 #include "util/Error.h"
 
 namespace candela {
@@ -75,14 +77,71 @@ int parseInt(const std::string& flag, const std::string& text, int min, int max)
                      std::to_string(max) + ", got \"" + text + "\"");
 }
 
+namespace {
+
+/// "--pane LIST[:SPP]": a pane's technique list and its sample budget (default spp).
+PaneSpec parsePane(const std::string& text, int spp) {
+    PaneSpec pane{text, spp};
+    size_t colon = text.rfind(':');
+    if (colon != std::string::npos) {
+        pane.technique = text.substr(0, colon);
+        pane.samples = parseInt("--pane", text.substr(colon + 1), 1, 1 << 20);
+    }
+    return pane;
+}
+
+/// `candela render --pane ... --sheet DIR`: the editor's comparison, headless, to its sheet.
+int renderComparison(const std::string& scenePath, const RenderSettings& settings, const std::vector<PaneSpec>& panes,
+                     int referenceSpp, const std::string& dir, bool errorMaps) {
+    Scene scene = loadScene(scenePath);
+    auto context = createOffscreenContext();
+    ShaderLibrary shaders;
+    Comparison comparison(shaders);
+    comparison.configure(panes, settings, referenceSpp);
+    comparison.update(scene, kChangeAll);
+    auto start = std::chrono::steady_clock::now();
+    while (!comparison.done()) {
+        comparison.step(0.0);
+        std::string line = "\rcompare: reference " + std::to_string(comparison.referenceSpp()) + "/" +
+                           std::to_string(referenceSpp) + " spp";
+        for (size_t i = 0; i < comparison.paneCount(); ++i)
+            line += ", " + std::string(1, char('A' + i)) + " " + std::to_string(comparison.result(i).spp) + " spp";
+        std::fprintf(stderr, "%s", line.c_str());
+    }
+    std::fprintf(stderr, "\n");
+    std::vector<std::string> names;
+    for (size_t i = 0; i < panes.size(); ++i) names.emplace_back(1, char('A' + i));
+    ui::SheetFiles files = ui::exportComparisonSheet(dir, comparison, scene, names, errorMaps);
+    double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::printf("pane,techniques,spp,gpu_ms,mean_delta_e,rel_rmse\n");
+    for (size_t i = 0; i < comparison.paneCount(); ++i) {
+        const PaneResult& r = comparison.result(i);
+        std::printf("%s,%s,%d,%.3f,%.4f,%.5f\n", names[i].c_str(),
+                    techniqueSummary(comparison.paneRenderer(i).plan()).c_str(), r.spp, r.gpuMs, r.latest.deltaE,
+                    r.latest.relRmse);
+    }
+    std::printf("reference: %d spp, own noise (rel. RMSE) %.5f\n", comparison.referenceSpp(),
+                comparison.referenceNoise());
+    std::printf("wrote %s\nwrote %s\nwrote %s\n(%.1f s)\n", files.png.c_str(), files.exr.c_str(), files.json.c_str(),
+                seconds);
+    return 0;
+}
+
+}  // namespace
+
 int cmdRender(const Args& args) {
-    std::string scenePath, out, statsPath;
+    std::string scenePath, out, statsPath, sheetDir;
     RenderSettings settings;
-    int spp = 64;
-    bool printStats = false, falseColour = false, haveLegend = false;
+    int spp = 64, referenceSpp = 512;
+    std::vector<std::string> paneTexts;
+    bool printStats = false, falseColour = false, haveLegend = false, errorMaps = false;
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
         if (a == "--out") out = flagValue(args, i);
+        else if (a == "--pane") paneTexts.push_back(flagValue(args, i));
+        else if (a == "--sheet") sheetDir = flagValue(args, i);
+        else if (a == "--reference-spp") referenceSpp = parseInt(a, flagValue(args, i), 1, 1 << 20);
+        else if (a == "--error-maps") errorMaps = true;
         else if (a == "--technique") settings.techniqueOverride = flagValue(args, i);
         else if (a == "--env-technique") settings.environmentTechnique = flagValue(args, i);
         else if (a == "--env-face-size")
@@ -117,10 +176,23 @@ int cmdRender(const Args& args) {
         else if (scenePath.empty()) scenePath = a;
         else throw InputError("render: unexpected argument " + a);
     }
+    if (!paneTexts.empty() || !sheetDir.empty()) {
+        // The comparison sheet: panes, a reference, errors (the editor's Export sheet).
+        if (scenePath.empty() || sheetDir.empty() || paneTexts.empty() || paneTexts.size() > 4)
+            throw InputError("usage: candela render scene.json --sheet DIR --pane TECHNIQUES[:SPP] (1 to 4 times) "
+                             "[--reference-spp N] [--spp N] [--size WxH] [--error-maps]");
+        if (!out.empty()) throw InputError("--out: a comparison writes its sheet into --sheet DIR instead");
+        std::vector<PaneSpec> panes;
+        for (const std::string& p : paneTexts) panes.push_back(parsePane(p, spp));
+        settings.samplesPerFrame = 16;
+        return renderComparison(scenePath, settings, panes, referenceSpp, sheetDir, errorMaps);
+    }
     if (scenePath.empty() || out.empty())
         throw InputError("usage: candela render scene.json --out img.png|img.exr [--technique T] "
                          "[--env-technique T] [--env-face-size N] [--spp N] [--size WxH] [--shadow-maps N] "
-                         "[--shadow-map-size R] [--stats]");
+                         "[--shadow-map-size R] [--stats]\n"
+                         "       candela render scene.json --sheet DIR --pane TECHNIQUES[:SPP] [--pane ...] "
+                         "[--reference-spp N] [--error-maps]");
     if (falseColour) {
         settings.quantity = Quantity::Illuminance;
         settings.toneMap = ToneMapOperator::FalseColour;

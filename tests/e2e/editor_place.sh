@@ -6,7 +6,13 @@
 #   2. Ctrl+Z: the panel is back where it was; Ctrl+Y: on the wall again;
 #   3. Library: Swap the panel for linear-pendant.ies: a photometric light with the same pose;
 #   4. drag the rotation gizmo's aim knob onto a floor point: the light aims at it (one step);
-#   5. Ctrl+S: the saved scene file holds all of it; 6. Ctrl+Z three times: everything undone.
+#   5. Ctrl+S: the saved scene file holds all of it;
+#   6. split the viewport into 2 panes, give pane B the photometric "point" technique in the
+#      Compare panel: both panes render and are measured against the reference;
+#   7. Export sheet: sheet-000.{png,exr,json}; the sidecar names both techniques, the images have
+#      the sheet's size, and each pane's mean Delta E against the reference, recomputed here from
+#      the PNG's tiles, is the one the sidecar (and the label) reports;
+#   8. back to a single view; Ctrl+Z three times: everything undone.
 # Usage: bash tests/e2e/editor_place.sh /path/to/candela /path/to/tests
 set -euo pipefail
 
@@ -110,7 +116,77 @@ sys.exit(0 if l['position'] == json.loads('$ON_WALL') and l['aim'] == json.loads
          l['type'] == 'photometric' and l['file'].endswith('linear-pendant.ies') else 1)" ||
     fail "the saved scene does not hold the placed, swapped luminaire"
 
-# --- 6. Undo everything: the scene as it was opened -----------------------------------------------
+# --- 6. Split the view into two techniques -------------------------------------------------------
+click_widget viewport.two
+wait_until "two panes" "d['compare']['layout'] == 'two' and len(d['compare'].get('panes', [])) == 2"
+# Pane B's photometric technique: the combo in the Compare panel, then "point" in its list.
+wait_until "pane B's photometric combo" "w('compare.pane1.photometric') is not None"
+scroll_into_view compare.pane1.photometric compare
+click_widget compare.pane1.photometric
+click_widget compare.pane1.photometric.point
+wait_until "pane B on point" "d['compare']['panes'][1]['technique'] == 'photometric=point'"
+wait_until "both panes measured against the reference" \
+    "all(p['measured'] and p['done'] for p in d['compare']['panes'])"
+log "panes: $(layout "[(p['techniques'], p['spp'], round(p['gpu_ms']), p['mean_delta_e']) for p in d['compare']['panes']]")"
+layout "'point' not in d['compare']['panes'][0]['techniques'] and 'point' in d['compare']['panes'][1]['techniques']" ||
+    fail "the panes do not show the two techniques"
+layout "not d['dirty']" || fail "splitting the view changed the scene"
+
+# --- 7. Export the comparison sheet ---------------------------------------------------------------
+click_widget viewport.export_sheet
+wait_until "the sheet" "d['compare']['sheets'] == 1"
+SHEET="$SHOTS/sheet-000"
+wait_for_file "$SHEET.json"
+[ -s "$SHEET.png" ] && [ -s "$SHEET.exr" ] || fail "sheet-000.png/.exr missing"
+read -r SW SH < <(python3 -c "import json; print(*json.load(open('$SHEET.json'))['sheet_size'])")
+[ "$(identify -format '%w %h' "$SHEET.png")" = "$SW $SH" ] || fail "sheet PNG size is not $SW x $SH"
+iinfo "$SHEET.exr" | grep -q ": *$SW x *$SH, 3 channel, float" || fail "sheet EXR is not $SW x $SH float RGB: $(iinfo "$SHEET.exr")"
+# The tiles of the PNG as raw RGB bytes (ImageMagick), for the checks below.
+for t in 0 1 2; do
+    read -r X Y W H < <(python3 -c "import json; print(*json.load(open('$SHEET.json'))['tile_rects'][$t])")
+    convert "$SHEET.png" -crop "${W}x${H}+${X}+${Y}" +repage -depth 8 "rgb:$TMP/tile$t.rgb"
+done
+python3 - "$SHEET.json" "$TMP" <<'PY' || fail "the sheet does not hold the panes as measured"
+import json, sys
+j = json.load(open(sys.argv[1]))
+tiles = [open(f"{sys.argv[2]}/tile{t}.rgb", "rb").read() for t in range(3)]
+a, b = j["panes"]
+ok = (a["name"], b["name"]) == ("A", "B") and j["tiles"] == ["A", "B", "reference"]
+ok = ok and "point" in b["techniques"] and b["technique"] == "photometric=point"
+ok = ok and j["scene"]["luminaires"] and j["reference"]["spp"] > 0 and a["series"] and b["series"]
+# Mean CIE76 Delta E of each pane's tile against the reference tile, computed here from the
+# PNG's bytes (sRGB D65 to CIELAB, written anew in Python): the sidecar's figure was measured in
+# C++ on the same tone-mapped images, so the two agree to rounding (Lab kept as float there).
+def lab(table, r, g, b):
+    r, g, b = table[r], table[g], table[b]
+    x = (0.4124 * r + 0.3576 * g + 0.1805 * b) / 0.95047
+    y = 0.2126 * r + 0.7152 * g + 0.0722 * b
+    z = (0.0193 * r + 0.1192 * g + 0.9505 * b) / 1.08883
+    f = lambda t: t ** (1 / 3) if t > 216 / 24389 else (24389 / 27 * t + 16) / 116
+    return 116 * f(y) - 16, 500 * (f(x) - f(y)), 200 * (f(y) - f(z))
+table = [c / 12.92 if c <= 0.04045 else ((c + 0.055) / 1.055) ** 2.4 for c in (v / 255 for v in range(256))]
+cache = {}
+def lab_of(p):
+    if p not in cache: cache[p] = lab(table, *p)
+    return cache[p]
+def mean_delta_e(x, r):
+    n, total = len(r) // 3, 0.0
+    for i in range(0, 3 * n, 3):
+        p, q = lab_of(tuple(x[i:i + 3])), lab_of(tuple(r[i:i + 3]))
+        total += ((p[0] - q[0]) ** 2 + (p[1] - q[1]) ** 2 + (p[2] - q[2]) ** 2) ** 0.5
+    return total / n
+ea, eb = mean_delta_e(tiles[0], tiles[2]), mean_delta_e(tiles[1], tiles[2])
+print(f"editor_place: Delta E from the sheet's PNG: A {ea:.4f} (sidecar {a['mean_delta_e']:.4f}), "
+      f"B {eb:.4f} (sidecar {b['mean_delta_e']:.4f})")
+ok = ok and abs(ea - a["mean_delta_e"]) < 0.01 and abs(eb - b["mean_delta_e"]) < 0.01
+# The two techniques differ visibly (the point light's bias near the lamp).
+ok = ok and abs(ea - eb) > 0.1 and tiles[0] != tiles[1]
+sys.exit(0 if ok else 1)
+PY
+click_widget viewport.single
+wait_until "a single view" "d['compare']['layout'] == 'single' and 'panes' not in d['compare']"
+
+# --- 8. Undo everything: the scene as it was opened -----------------------------------------------
 xdotool key --window "$WID" ctrl+z
 wait_until "undoing the aim" "close(lum('$NAME')['aim'], [0, 0, 1], 1e-9)"
 xdotool key --window "$WID" ctrl+z
