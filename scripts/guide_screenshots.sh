@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Takes the README's user-guide images with the editor itself (View > Save window image, F12),
-# driven by real X input under Xvfb: docs/guide/{editor,preview,place}.png.
+# driven by real X input under Xvfb: docs/guide/{editor,preview,place,compare,wipe}.png.
 # Usage: bash scripts/guide_screenshots.sh [build/candela]   (needs xvfb, xdotool, imagemagick)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -14,7 +14,10 @@ e2e_setup
 e2e_start_xvfb 1280x720
 mkdir -p "$OUT"
 
-# The demo room with one luminaire of each kind, seen from the door.
+# The demo room with one luminaire of each kind, seen from the door. No autosave: it would be
+# written beside the scene in resources/ and restored by the next run.
+rm -f resources/scenes/.editor-room.autosave.json
+E2E_EDITOR_ARGS="--autosave-seconds 1000000"
 e2e_start_editor "$PWD/resources/scenes/editor-room.json" 1280x720 "len(d['luminaires']) == 3 and d['frame'] >= 2"
 shot() {  # shot NAME: F12, then move the newest window image to docs/guide/NAME.png
     local n
@@ -51,4 +54,23 @@ xdotool click 1
 wait_until "the placement" "d['undo'] is not None and d['undo'].startswith('Place')"
 wait_until "refinement after the placement" "d['samples_per_pixel'] >= 32"
 shot place
+xdotool key --window "$WID" ctrl+z  # the pendant back above the table for the comparison
+wait_until "the placement undone" "d['undo_steps'] == 0"
+
+# 4. Two panes: the scene's techniques (A) against the drag preview's (B), the accuracy plot open.
+click_widget viewport.two
+wait_until "both panes measured" "d['compare']['layout'] == 'two' and all(p['measured'] for p in d['compare']['panes'])"
+click_widget viewport.plot
+wait_until "the plot" "d['compare']['plot_open']"
+wait_until "a second measurement of each pane" "all(len(p['series']) >= 2 for p in d['compare']['panes'])"
+shot compare
+
+# 5. The wipe with error maps.
+click_widget viewport.plot
+click_widget viewport.wipe
+click_widget viewport.error_map
+wait_until "the wipe's panes measured" "d['compare']['layout'] == 'wipe' and d['compare']['error_map'] and all(p['measured'] for p in d['compare']['panes'])"
+move_to $((VX + VW / 3)) $((VY + VH / 2))  # no tooltip in the picture
+wait_frames 3
+shot wipe
 PASSED=1

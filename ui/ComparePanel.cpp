@@ -74,19 +74,23 @@ std::string formatMs(double ms) {
     return text;
 }
 
-/// The pane's second label line: its samples, time and errors (or what it waits for).
-std::string resultLine(const Comparison& c, size_t i) {
+/// The pane's label: its techniques, its samples and time, its errors (or what it waits for).
+std::vector<std::string> paneLabel(const CompareUi& ui, const Comparison& c, size_t i) {
     const PaneResult& r = c.result(i);
     const Renderer& renderer = c.paneRenderer(i);
     std::string spp = renderer.plan().progressive()
                           ? std::to_string(r.spp) + (r.done ? "" : " / " + std::to_string(c.spec(i).samples)) + " spp"
                           : std::string("exact");
-    std::string line = spp + " \xc2\xb7 " + formatMs(r.gpuMs);
-    if (!r.measured) return line + " \xc2\xb7 measuring...";
+    std::vector<std::string> lines = {paneName(ui, i) + "  " + techniqueSummary(renderer.plan()),
+                                      spp + " \xc2\xb7 " + formatMs(r.gpuMs) + " GPU"};
     char text[96];
-    std::snprintf(text, sizeof text, " \xc2\xb7 \xce\x94" "E %.2f \xc2\xb7 rel. RMSE %.2f %%", r.latest.deltaE,
-                  100.0 * r.latest.relRmse);
-    return line + text;
+    if (r.measured)
+        std::snprintf(text, sizeof text, "\xce\x94" "E %.2f \xc2\xb7 rel. RMSE %.2f %%", r.latest.deltaE,
+                      100.0 * r.latest.relRmse);
+    else
+        std::snprintf(text, sizeof text, "measuring...");
+    lines.emplace_back(text);
+    return lines;
 }
 
 /// The reference's progress: samples, noise, time.
@@ -192,10 +196,7 @@ void compareView(EditorState& state, const Comparison& c, ImVec2 origin, ImVec2 
         GLuint error = c.errorMap(i).id();
         return textureId(ui.showError && error ? error : c.paneRenderer(i).displayTexture().id());
     };
-    auto labels = [&](size_t i) {
-        return std::vector<std::string>{paneName(ui, i) + "  " + techniqueSummary(c.paneRenderer(i).plan()),
-                                        resultLine(c, i)};
-    };
+    auto labels = [&](size_t i) { return paneLabel(ui, c, i); };
     const ImU32 accent = IM_COL32(255, 200, 60, 255);
     if (ui.layout == CompareLayout::Wipe && c.paneCount() >= 2) {
         const ImGuiIO& io = ImGui::GetIO();
@@ -213,8 +214,8 @@ void compareView(EditorState& state, const Comparison& c, ImVec2 origin, ImVec2 
         draw->AddLine(ImVec2(x, origin.y), ImVec2(x, corner.y), IM_COL32(255, 255, 255, 220), 2.f);
         draw->AddCircleFilled(ImVec2(x, origin.y + 0.5f * size.y), 7.f, IM_COL32(255, 255, 255, 230));
         state.widgetRects.emplace_back("compare.wipe", glm::vec4(x - 2.f, origin.y, x + 2.f, corner.y));
-        labelBox(draw, ImVec2(origin.x + 6.f, corner.y - 6.f), false, true, labels(0), accent);
-        labelBox(draw, ImVec2(corner.x - 6.f, corner.y - 6.f), true, true, labels(1), accent);
+        labelBox(draw, ImVec2(origin.x + 6.f, origin.y + 6.f), false, false, labels(0), accent);
+        labelBox(draw, ImVec2(corner.x - 6.f, origin.y + 6.f), true, false, labels(1), accent);
         for (size_t i = 0; i < 2; ++i)
             state.widgetRects.emplace_back("compare.pane" + std::to_string(i),
                                            glm::vec4(origin.x, origin.y, corner.x, corner.y));
@@ -226,12 +227,12 @@ void compareView(EditorState& state, const Comparison& c, ImVec2 origin, ImVec2 
             ImVec2 hi(std::floor(lo.x + w), std::floor(lo.y + h));
             draw->AddImage(texture(i), lo, hi, ImVec2(0.f, 1.f), ImVec2(1.f, 0.f));
             draw->AddRect(lo, hi, IM_COL32(10, 10, 12, 255), 0.f, 0, 2.f);
-            labelBox(draw, ImVec2(lo.x + 6.f, hi.y - 6.f), false, true, labels(i), accent);
+            labelBox(draw, ImVec2(lo.x + 6.f, lo.y + 6.f), false, false, labels(i), accent);
             state.widgetRects.emplace_back("compare.pane" + std::to_string(i), glm::vec4(lo.x, lo.y, hi.x, hi.y));
         }
     }
-    labelBox(draw, ImVec2(corner.x - 6.f, origin.y + 6.f), true, false, {referenceLine(c)}, IM_COL32(120, 200, 255, 255));
-    if (ui.showError) errorLegend(draw, ImVec2(corner.x, origin.y + 80.f), ui.errorScale);
+    labelBox(draw, ImVec2(corner.x - 6.f, corner.y - 6.f), true, true, {referenceLine(c)}, IM_COL32(120, 200, 255, 255));
+    if (ui.showError) errorLegend(draw, ImVec2(corner.x, corner.y - 20.f), ui.errorScale);
 }
 
 bool comparePanel(EditorState& state, const Comparison* c, const PanelRect& rect) {
@@ -248,7 +249,11 @@ bool comparePanel(EditorState& state, const Comparison* c, const PanelRect& rect
     itemTooltip(std::string("Each kind's unbiased technique with exact (ray-traced) visibility: ") +
                 Comparison::kReferenceTechniques + ". Every pane's error is measured against it, its own "
                 "noise (from the image at half its samples) removed from the relative RMSE.");
-    if (c) ImGui::TextDisabled("%s", referenceLine(*c).c_str());
+    if (c) {
+        ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+        ImGui::TextWrapped("%s", referenceLine(*c).c_str());
+        ImGui::PopStyleColor();
+    }
     changed = ImGui::SliderFloat("Error map range", &ui.errorScale, 0.01f, 2.f, "+-%.2f", ImGuiSliderFlags_Logarithmic) ||
               changed;
     itemTooltip("The error maps saturate at this fraction of the reference's mean luminance");
@@ -319,7 +324,11 @@ bool comparePanel(EditorState& state, const Comparison* c, const PanelRect& rect
     recordRect(state, "compare.export");
     ImGui::SameLine();
     if (ImGui::Button("Accuracy plot")) ui.plotOpen = !ui.plotOpen;
-    if (!ui.lastSheet.empty()) ImGui::TextDisabled("Last sheet: %s", ui.lastSheet.c_str());
+    if (!ui.lastSheet.empty()) {
+        ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+        ImGui::TextWrapped("Last sheet: %s", ui.lastSheet.c_str());
+        ImGui::PopStyleColor();
+    }
     ImGui::PopItemWidth();
     ImGui::End();
     return changed;
@@ -351,13 +360,22 @@ void accuracyWindow(EditorState& state, const Comparison* c, const PanelRect& vi
     ImGui::SliderFloat("Budget", &ui.budgetMs, 1.f, 100000.f, "%.0f ms", ImGuiSliderFlags_Logarithmic);
     recordRect(state, "plot.budget");
     itemTooltip("GPU time you can spend on the image: the plot names the technique with the lowest error there");
-    Winner w = winnerAt(series, ui.budgetMs, metric);
-    if (w.series >= 0)
-        ImGui::Text("At %s: %s wins, %s %.3g%s", formatMs(ui.budgetMs).c_str(), series[size_t(w.series)].label.c_str(),
-                    ui.plotDeltaE ? "\xce\x94" "E" : "rel. RMSE", ui.plotDeltaE ? w.error : 100.0 * w.error,
-                    ui.plotDeltaE ? "" : " %");
-    else
-        ImGui::TextDisabled("No technique has a measurement within %s yet", formatMs(ui.budgetMs).c_str());
+    // The winner on this view, and separately among the bench curves (measured on their own
+    // scenes, they rank techniques but are not errors of this image).
+    size_t viewCount = series.size() - ui.benchSeries.size();
+    std::vector<ErrorSeries> view(series.begin(), series.begin() + std::ptrdiff_t(viewCount));
+    auto announce = [&](const std::vector<ErrorSeries>& among, const char* where, std::string& winner) {
+        Winner w = winnerAt(among, ui.budgetMs, metric);
+        winner = w.series >= 0 ? among[size_t(w.series)].label : std::string();
+        if (w.series >= 0)
+            ImGui::Text("At %s %s: %s wins, %s %.3g%s", formatMs(ui.budgetMs).c_str(), where, winner.c_str(),
+                        ui.plotDeltaE ? "\xce\x94" "E" : "rel. RMSE", ui.plotDeltaE ? w.error : 100.0 * w.error,
+                        ui.plotDeltaE ? "" : " %");
+        else
+            ImGui::TextDisabled("%s: no technique has a measurement within %s yet", where, formatMs(ui.budgetMs).c_str());
+    };
+    announce(view, "on this view", ui.winner);
+    if (!ui.benchSeries.empty()) announce(ui.benchSeries, "in the bench CSVs", ui.benchWinner);
     float csvHeight = ImGui::GetFrameHeightWithSpacing() + 4.f;
     accuracyPlot("##accuracy", series, metric, ui.budgetMs, ImVec2(-1.f, ImGui::GetContentRegionAvail().y - csvHeight));
     recordRect(state, "plot.area");

@@ -101,6 +101,16 @@ Editor::Editor(const EditorOptions& options) : mOptions(options) {
     io.IniFilename = nullptr;  // deterministic layout: no imgui.ini
     io.LogFilename = nullptr;
     ImGui::StyleColorsDark();
+    // Dear ImGui's built-in font, with the Greek capital delta of "Delta E" merged in from DejaVu
+    // Sans (fonts-dejavu-core) when it is installed.
+    io.Fonts->AddFontDefault();
+    const char* dejaVu = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+    if (std::filesystem::is_regular_file(dejaVu)) {
+        ImFontConfig merge;
+        merge.MergeMode = true;
+        static const ImWchar kDelta[] = {0x0394, 0x0394, 0};
+        io.Fonts->AddFontFromFileTTF(dejaVu, 13.f, &merge, kDelta);
+    }
     ImGui::GetStyle().WindowRounding = 0.f;
     mKeyLatch = std::make_unique<KeyLatch>();
     mKeyLatch->install(mContext->window());  // before the backend, which chains to it
@@ -479,7 +489,8 @@ static nlohmann::json compareState(const EditorState& state, const Comparison* c
     const char* layouts[] = {"single", "two", "four", "wipe"};
     nlohmann::json j = {{"layout", layouts[int(ui.layout)]}, {"error_map", ui.showError}, {"wipe", ui.wipe},
                         {"sheets", ui.sheetsTaken}, {"last_sheet", ui.lastSheet}, {"plot_open", ui.plotOpen},
-                        {"bench_series", ui.benchSeries.size()}};
+                        {"bench_series", ui.benchSeries.size()}, {"budget_ms", ui.budgetMs}, {"winner", ui.winner},
+                        {"bench_winner", ui.benchWinner}};
     if (comparison && ui.layout != CompareLayout::Single) {
         std::vector<std::string> names;
         for (size_t i = 0; i < comparison->paneCount(); ++i) names.push_back(paneName(ui, i));

@@ -129,9 +129,11 @@ struct CompareUi {
     // The accuracy-versus-time window.
     bool plotOpen = false;
     bool plotDeltaE = false;     ///< Plot mean Delta E instead of relative RMSE.
-    float budgetMs = 1000.f;     ///< The time budget the plot names a winner at, GPU ms.
+    float budgetMs = 5000.f;     ///< The time budget the plot names a winner at, GPU ms.
     std::vector<ErrorSeries> benchSeries;  ///< Curves read from `candela bench` CSV files.
     std::string benchPath;                 ///< The window's CSV path field.
+    std::string winner;                    ///< This view's series that wins at budgetMs (empty: none).
+    std::string benchWinner;               ///< The bench curve that wins there.
     // Export.
     bool sheetRequested = false;  ///< Export the comparison sheet after this frame's render.
     int sheetsTaken = 0;

@@ -189,6 +189,12 @@ void statsPanel(const EditorState& state, const Renderer& renderer, const Shader
                 const PanelRect& rect) {
     placeNextWindow(rect);
     ImGui::Begin("Frame statistics", nullptr, kPanelFlags);
+    if (state.compare.layout != CompareLayout::Single) {
+        ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.f, 0.8f, 0.3f, 1.f));
+        ImGui::TextWrapped("The single view waits while the viewport is split: each pane's samples, GPU time "
+                           "and errors are in the Compare panel and on the pane.");
+        ImGui::PopStyleColor();
+    }
     const FrameStats& stats = renderer.stats();
     const RenderSettings& settings = renderer.settings();
     ImGui::Text("Render size: %d x %d px", settings.width, settings.height);

@@ -12,7 +12,8 @@
 #   7. Export sheet: sheet-000.{png,exr,json}; the sidecar names both techniques, the images have
 #      the sheet's size, and each pane's mean Delta E against the reference, recomputed here from
 #      the PNG's tiles, is the one the sidecar (and the label) reports;
-#   8. back to a single view; Ctrl+Z three times: everything undone.
+#   8. the accuracy plot with a bench CSV's curves added names a winner at its budget;
+#   9. back to a single view; Ctrl+Z three times: everything undone.
 # Usage: bash tests/e2e/editor_place.sh /path/to/candela /path/to/tests
 set -euo pipefail
 
@@ -183,10 +184,31 @@ ok = ok and abs(ea - a["mean_delta_e"]) < 0.01 and abs(eb - b["mean_delta_e"]) <
 ok = ok and abs(ea - eb) > 0.1 and tiles[0] != tiles[1]
 sys.exit(0 if ok else 1)
 PY
+# The accuracy plot: the panes' curves, and a bench CSV's added; a winner at the 5 s budget.
+click_widget viewport.plot
+wait_until "the plot" "d['compare']['plot_open'] and w('plot.csv') is not None"
+click_widget plot.csv
+xdotool type --delay 20 "$SOURCE/docs/bench/lightfield-car/bench.csv"
+xdotool key Return
+wait_until "the bench curves" "d['compare']['bench_series'] == 4"
+wait_until "winners at the budget" "d['compare']['winner'] != '' and d['compare']['bench_winner'] != ''"
+log "plot at $(layout "d['compare']['budget_ms']") ms: this view's winner $(layout "d['compare']['winner']"), the bench's $(layout "d['compare']['bench_winner']")"
+# On this view both panes are done within the budget (their last GPU times are below it): the
+# winner is the one with the lower relative RMSE.
+python3 - "$LAYOUT" <<'PY' || fail "the plot's winner is not the pane with the lower error"
+import json, sys
+d = json.load(open(sys.argv[1]))["compare"]
+a, b = d["panes"]
+assert max(a["series"][-1]["gpu_ms"], b["series"][-1]["gpu_ms"]) < d["budget_ms"]
+best = min((a, b), key=lambda p: p["series"][-1]["rel_rmse"])
+sys.exit(0 if d["winner"].startswith(best["name"] + " ") else 1)
+PY
+click_widget viewport.plot
+wait_until "the plot closed" "not d['compare']['plot_open']"
 click_widget viewport.single
 wait_until "a single view" "d['compare']['layout'] == 'single' and 'panes' not in d['compare']"
 
-# --- 8. Undo everything: the scene as it was opened -----------------------------------------------
+# --- 9. Undo everything: the scene as it was opened -----------------------------------------------
 xdotool key --window "$WID" ctrl+z
 wait_until "undoing the aim" "close(lum('$NAME')['aim'], [0, 0, 1], 1e-9)"
 xdotool key --window "$WID" ctrl+z
