@@ -60,6 +60,28 @@ std::string overrideFor(const std::string& techniqueOverride, std::string_view k
     return {};
 }
 
+void checkTechniqueList(const std::string& techniqueOverride) {
+    std::istringstream list(techniqueOverride);
+    for (std::string item; std::getline(list, item, ',');) {
+        size_t eq = item.find('=');
+        std::string kind = eq == std::string::npos ? std::string() : item.substr(0, eq);
+        std::string name = eq == std::string::npos ? item : item.substr(eq + 1);
+        if (eq != std::string::npos) {
+            bool environment = kind == "environment";
+            if (!environment && !findKind(kind))
+                throw InputError("technique list \"" + techniqueOverride + "\": unknown kind \"" + kind + "\" in \"" +
+                                 item + "\" (kinds: lambertian-rect, lightfield, photometric, environment)");
+            if (environment ? !findEnvironmentTechnique(name) : !findTechnique(kind, name))
+                throw InputError("technique list \"" + techniqueOverride + "\": " + kind + " has no technique \"" + name +
+                                 "\" (available: " + (environment ? environmentTechniqueNames() : techniqueNames(kind)) + ")");
+            continue;
+        }
+        bool known = findEnvironmentTechnique(name) != nullptr;
+        for (const LuminaireKindInfo& k : luminaireKinds()) known = known || findTechnique(k.kind, name) != nullptr;
+        if (!known) throw InputError("technique list \"" + techniqueOverride + "\": no kind has a technique \"" + name + "\"");
+    }
+}
+
 FramePlan planFrame(const Scene& scene, const glm::mat4& viewProj,
                     const std::string& techniqueOverride, Quantity quantity,
                     const std::string& environmentTechnique) {

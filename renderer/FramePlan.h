@@ -53,6 +53,11 @@ std::string shadowPassName(const ShadeStep& step);
 /// different techniques that both have ("lambertian-rect=reference,photometric=hybrid").
 std::string overrideFor(const std::string& techniqueOverride, std::string_view kind);
 
+/// Checks a techniqueOverride list: every item names a technique of some kind or of the
+/// environment, and every "KIND=NAME" a kind ("environment" included) that has NAME. Throws
+/// InputError naming the item otherwise (a typo would silently leave luminaires their own).
+void checkTechniqueList(const std::string& techniqueOverride);
+
 /// World to clip transform of the camera for an image of the given aspect (width / height).
 glm::mat4 cameraViewProj(const Camera& camera, double aspect);
 

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Takes the README's user-guide images with the editor itself (View > Save window image, F12),
-# driven by real X input under Xvfb: docs/guide/{editor,preview,place,compare,wipe}.png.
+# driven by real X input under Xvfb: docs/guide/{editor,preview,place,compare,wipe}.png; and the
+# comparison sheet `candela render --pane ... --sheet` writes headless: docs/guide/sheet.png.
 # Usage: bash scripts/guide_screenshots.sh [build/candela]   (needs xvfb, xdotool, imagemagick)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -73,4 +74,11 @@ wait_until "the wipe's panes measured" "d['compare']['layout'] == 'wipe' and d['
 move_to $((VX + VW / 3)) $((VY + VH / 2))  # no tooltip in the picture
 wait_frames 3
 shot wipe
+
+# 6. The same comparison headless, four panes, as a labelled sheet.
+"$CANDELA" render "$PWD/resources/scenes/editor-room.json" --sheet "$TMP/sheet" --pane "" \
+    --pane "precomputed-global,scattered" --pane "granier2003,point" --pane "uniform-restricted,mc-poisson-24" \
+    --size 320x180 --spp 64 --reference-spp 256
+cp "$TMP/sheet/sheet-000.png" "$OUT/sheet.png"
+log "wrote $OUT/sheet.png"
 PASSED=1

@@ -103,6 +103,21 @@ TEST(FramePlan, OverrideListGivesEachKindTheFirstItHas) {
     EXPECT_EQ(overrideFor("lightfield=reference,environment=balanced-mis", ""), "balanced-mis");
 }
 
+TEST(FramePlan, TechniqueListsAreChecked) {
+    EXPECT_NO_THROW(checkTechniqueList(""));
+    EXPECT_NO_THROW(checkTechniqueList("point,reference,havran2005"));
+    EXPECT_NO_THROW(checkTechniqueList("lightfield=restricted-cdf-raytraced,environment=balanced-mis"));
+    for (const char* bad : {"magic", "point,magic", "photometric=restricted-cdf", "lamp=point", "environment=point"}) {
+        try {
+            checkTechniqueList(bad);
+            ADD_FAILURE() << bad << ": expected an InputError";
+        } catch (const InputError& e) {
+            std::string what = e.what();
+            EXPECT_NE(what.find(bad), std::string::npos) << what;
+        }
+    }
+}
+
 TEST(FramePlan, UnknownTechniqueIsAClearError) {
     Scene scene = sceneFrom(kFloor, kPanel);
     scene.luminaires[0]->technique = "magic";

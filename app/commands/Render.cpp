@@ -87,6 +87,7 @@ PaneSpec parsePane(const std::string& text, int spp) {
         pane.technique = text.substr(0, colon);
         pane.samples = parseInt("--pane", text.substr(colon + 1), 1, 1 << 20);
     }
+    checkTechniqueList(pane.technique);
     return pane;
 }
 
