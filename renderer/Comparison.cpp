@@ -113,8 +113,8 @@ void Comparison::configure(const std::vector<PaneSpec>& panes, const RenderSetti
             restartPane(pane);
         }
         pane.renderer->setSettings(paneSettings(i));
-        if (toneChanged && pane.result.measured) remeasureAll();
     }
+    if (toneChanged) remeasureAll();  // Delta E is taken through the tone mapping
 }
 
 void Comparison::update(const Scene& scene, unsigned changes) {
@@ -349,6 +349,7 @@ void Comparison::measure(Pane& pane, Snapshot& shot) {
 }
 
 void Comparison::remeasureAll() {
+    if (mReference.linear.empty()) return;  // nothing to measure against yet
     for (Pane& pane : mPanes) {
         if (pane.snapshots.empty()) continue;
         pane.result.series.clear();

@@ -318,8 +318,8 @@ size_t addGeneratedItem(Scene& scene, nlohmann::json item, const Material& mater
     return index;
 }
 
-/// Rewrites relative glTF paths of `doc` written for a scene in folder of `fromPath` so they
-/// resolve from the folder of `toPath`. Paths stay as written when the folder does not change.
+/// Rewrites relative glTF, luminaire and environment paths of `doc` written for a scene in the
+/// folder of `fromPath` so they resolve from the folder of `toPath`. Paths stay as written when the folder does not change.
 void rebaseGltfPaths(nlohmann::json& doc, const std::string& fromPath, const std::string& toPath) {
     fs::path fromDir = fs::absolute(fs::path(fromPath).parent_path()).lexically_normal();
     fs::path toDir = fs::absolute(fs::path(toPath).parent_path()).lexically_normal();
@@ -327,6 +327,16 @@ void rebaseGltfPaths(nlohmann::json& doc, const std::string& fromPath, const std
     for (nlohmann::json& item : doc["geometry"]) {
         auto it = item.find("gltf");
         if (it == item.end() || !it->is_string()) continue;
+        fs::path file(it->get<std::string>());
+        if (file.is_absolute()) continue;
+        fs::path target = (fromDir / file).lexically_normal();
+        fs::path relative = target.lexically_relative(toDir);
+        *it = (relative.empty() ? target : relative).generic_string();
+    }
+    // Luminaire files (photometry, light fields), relative to the scene file, likewise.
+    for (nlohmann::json& entry : doc["luminaires"]) {
+        auto it = entry.find("file");
+        if (it == entry.end() || !it->is_string()) continue;
         fs::path file(it->get<std::string>());
         if (file.is_absolute()) continue;
         fs::path target = (fromDir / file).lexically_normal();

@@ -377,6 +377,27 @@ TEST(SceneIo, SaveToAnotherFolderRebasesRelativeGltfPaths) {
     expectSameScene(first, second);
 }
 
+TEST(SceneIo, SaveToAnotherFolderRebasesRelativeLuminaireFiles) {
+    TempDir tmp;
+    fs::create_directories(tmp.path() / "photometry");
+    fs::create_directories(tmp.path() / "scenes");
+    fs::copy_file(data("photometric/lambert.ies"), tmp.path() / "photometry/lambert.ies");
+    fs::path path = tmp.path() / "scenes/lamp.json";
+    std::ofstream(path) << R"({"luminaires": [{"type": "photometric", "name": "Lamp",
+        "file": "../photometry/lambert.ies", "position": [0, 2, 0]}]})";
+    Scene first = loadScene(path.string());
+    fs::create_directories(tmp.path() / "elsewhere/deeper");
+    fs::path moved = tmp.path() / "elsewhere/deeper/moved.json";
+    saveScene(first, moved.string());
+    nlohmann::json saved = nlohmann::json::parse(readText(moved));
+    EXPECT_EQ(saved["luminaires"][0]["file"], "../../photometry/lambert.ies");
+    Scene second = loadScene(moved.string());  // throws if the file no longer resolves
+    ASSERT_EQ(second.luminaires.size(), 1u);
+    // Saved in place, the path stays as written.
+    saveScene(first, path.string());
+    EXPECT_EQ(nlohmann::json::parse(readText(path))["luminaires"][0]["file"], "../photometry/lambert.ies");
+}
+
 TEST(SceneIo, SaveLeavesNoTemporaryFile) {
     TempDir tmp;
     Scene scene = loadScene(data("scenes/roundtrip.json"));

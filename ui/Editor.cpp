@@ -405,6 +405,10 @@ void Editor::buildUi() {
 void Editor::takeScreenshot() {
     EditorState& state = *mState;
     state.screenshotRequested = false;
+    if (state.compare.layout != CompareLayout::Single) {
+        exportSheet();  // what the viewport shows is the comparison: its sheet
+        return;
+    }
     try {
         ScreenshotFiles files =
             writeScreenshot(state.screenshotDir, state.scene, *mRenderer, state.passes);
