@@ -308,6 +308,11 @@ void Comparison::measureNow() {
     }
 }
 
+bool Comparison::measurable() const {
+    return mReference.frames > 0 &&
+           std::all_of(mPanes.begin(), mPanes.end(), [](const Pane& p) { return p.frames > 0; });
+}
+
 const std::vector<float>& Comparison::paneImage(size_t pane) const {
     static const std::vector<float> kNone;
     const Pane& p = mPanes[pane];

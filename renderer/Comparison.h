@@ -94,6 +94,8 @@ class Comparison {
     /// against the reference as it is now, so the images below, their results and the series
     /// agree (what an export shows).
     void measureNow();
+    /// Whether measureNow has images to measure: the reference and every pane have a pass.
+    bool measurable() const;
     /// A pane's last measured image (RGB float, rows top to bottom; empty until it has one).
     const std::vector<float>& paneImage(size_t pane) const;
     /// The reference image the last measurements used.

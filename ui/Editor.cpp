@@ -161,7 +161,14 @@ void Editor::frame() {
     // While a text field has the keyboard, refinement pauses: Dear ImGui 1.86 sees a key only if
     // it is still down at the next frame, and a slow GPU's frames would lose keystrokes.
     bool typing = ImGui::GetIO().WantTextInput;
-    bool comparing = state.compare.layout != CompareLayout::Single;
+    // While the camera is dragged over split panes, the viewport shows the live preview of the
+    // single view (the panes would restart every frame and show nothing); letting go splits it
+    // again and the panes refine the new view.
+    bool split = state.compare.layout != CompareLayout::Single;
+    bool navigating = split && mComparison && state.preview.enabled &&
+                      (state.drag.mode == DragMode::Orbit || state.drag.mode == DragMode::Pan);
+    mPreviewingSplit = navigating;
+    bool comparing = split && !navigating;
     bool settled = (comparing ? mComparison && mComparison->done() : mRenderer->converged()) || mRenderFailed || typing;
     bool idle = settled && mIdleFrames >= kBusyFramesAfterInput &&
                 state.pendingChanges == kChangeNone && !state.screenshotRequested;
@@ -196,10 +203,25 @@ void Editor::frame() {
         mLastShaderLog = log;
     }
 
-    if (comparing)
+    if (comparing) {
+        state.pendingChanges |= mComparisonOwed;  // what changed while navigating
+        mComparisonOwed = kChangeNone;
+        if (state.preview.active) {
+            // Navigation ended: the single view shows the preview still and will refine anew.
+            state.preview.active = false;
+            mComparisonChanges |= kChangeAll & ~kChangeGeometry;
+        }
         prepareComparison();
-    else
+    } else {
+        if (navigating) {
+            // The single view catches up on what changed while it waited, and the panes are
+            // owed what changes now.
+            state.pendingChanges |= mComparisonChanges;
+            mComparisonChanges = kChangeNone;
+            mComparisonOwed |= state.pendingChanges;
+        }
         prepareRender();
+    }
     glDisable(GL_SCISSOR_TEST);
     try {
         // Frame 0 only lays out the UI, which sets the render size from the viewport panel.
@@ -284,6 +306,12 @@ void Editor::exportSheet() {
         setStatus(state, "Split the viewport into panes to export a comparison sheet", true);
         return;
     }
+    if (!mComparison->measurable()) {
+        // Taken as soon as every pane and the reference have a pass over the image.
+        ui.sheetRequested = true;
+        setStatus(state, "The comparison sheet is written when the reference and every pane have a pass");
+        return;
+    }
     try {
         std::vector<std::string> names;
         for (size_t i = 0; i < mComparison->paneCount(); ++i) names.push_back(paneName(ui, i));
@@ -344,7 +372,7 @@ void Editor::prepareRender() {
         return;
     }
     mRenderer->setSettings(state.settings);
-    if (mComparison) {
+    if (mComparison && state.compare.layout == CompareLayout::Single) {
         // The comparison ended: its memory goes, and the single view catches up on the edits.
         mComparison.reset();
         state.pendingChanges |= mComparisonChanges;
@@ -385,18 +413,18 @@ void Editor::buildUi() {
                     middle - render.h - measure.h};
     PanelRect status{0.f, top + middle, display.x, statusHeight};
 
-    bool comparing = state.compare.layout != CompareLayout::Single;
+    bool comparing = state.compare.layout != CompareLayout::Single && !mPreviewingSplit;
     viewportPanel(state, *mRenderer, viewport, comparing ? mComparison.get() : nullptr);
     outlinePanel(state, outline);
     libraryPanel(state, library);
     inspectorPanel(state, inspector);
     renderPanel(state, render);
     // While comparing, the Compare panel takes the Measure panel's place.
-    if (comparing)
+    if (state.compare.layout != CompareLayout::Single)
         comparePanel(state, mComparison.get(), measure);
     else
         measurePanel(state, *mRenderer, measure);
-    accuracyWindow(state, comparing ? mComparison.get() : nullptr, viewport);
+    accuracyWindow(state, state.compare.layout != CompareLayout::Single ? mComparison.get() : nullptr, viewport);
     statsPanel(state, *mRenderer, *mShaders, stats);
     statusBar(state, *mRenderer, status);
     fileDialogs(state);

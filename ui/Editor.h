@@ -71,6 +71,8 @@ class Editor {
     std::unique_ptr<Scene> mPreviewScene;  ///< What the renderer shows while dragging.
     std::unique_ptr<Comparison> mComparison;  ///< The panes, while the viewport is split.
     unsigned mComparisonChanges = 0;          ///< Scene changes the comparison took (ChangeFlags).
+    unsigned mComparisonOwed = 0;             ///< Changes made while navigating the split view.
+    bool mPreviewingSplit = false;            ///< The split view shows the preview while navigating.
     std::chrono::steady_clock::time_point mLastFrame;
     double mLastAutosave = 0.0;  ///< glfwGetTime() of the last autosave check that wrote, s.
     int mAutosavedEdits = 0;     ///< EditorState::edits at the last autosave.

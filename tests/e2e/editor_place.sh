@@ -132,8 +132,20 @@ log "panes: $(layout "[(p['techniques'], p['spp'], round(p['gpu_ms']), p['mean_d
 layout "'point' not in d['compare']['panes'][0]['techniques'] and 'point' in d['compare']['panes'][1]['techniques']" ||
     fail "the panes do not show the two techniques"
 layout "not d['dirty']" || fail "splitting the view changed the scene"
+# Orbiting the split view shows the live preview while the mouse is down, then the panes again,
+# refined for the new view.
+read -r VX VY VW VH < <(layout "'%d %d %d %d' % tuple(d['viewport'])")
+CAMERA=$(layout "json.dumps(d['compare']['panes'][0]['series'][-1])")
+move_to $((VX + VW / 2)) $((VY + VH - 40))
+xdotool mousedown 1
+for i in 1 2 3 4 5; do xdotool mousemove --window "$WID" $((VX + VW / 2 + 6 * i)) $((VY + VH - 40)); sleep 0.05; done
+wait_until "the preview while orbiting the split view" "d['preview']['active'] and d['drag_mode'] == 'orbit'"
+xdotool mouseup 1
+wait_until "the panes again, restarted for the new view" \
+    "not d['mouse_down'] and 'panes' in d['compare'] and not d['preview']['active'] and json.dumps(d['compare']['panes'][0]['series'][-1:]) != json.dumps([$CAMERA])"
 
 # --- 7. Export the comparison sheet ---------------------------------------------------------------
+# Pressed at once: the editor writes it when the reference and both panes have a pass.
 click_widget viewport.export_sheet
 wait_until "the sheet" "d['compare']['sheets'] == 1"
 SHEET="$SHOTS/sheet-000"
