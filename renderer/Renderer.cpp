@@ -94,15 +94,64 @@ void Renderer::resize(int width, int height) {
     mTonemap->resize(width, height);
     mAccum = gl::Texture2D(width, height, GL_RGBA32F);
     mAccumFbo = gl::Framebuffer({&mAccum}, nullptr);
-    mStatic = gl::Texture2D(width, height, GL_RGBA32F);
-    mStaticFbo = gl::Framebuffer({&mStatic}, nullptr);
+    mAccumulations.clear();  // made again at the new size
+    mEnvironmentAccumulation = Accumulation{};
+    mPass.clear();
+}
+
+Renderer::Accumulation& Renderer::accumulationOf(int step) {
+    Accumulation& a = step < 0 ? mEnvironmentAccumulation
+                               : mAccumulations[mScene->luminaires[size_t(mPlan.shading[size_t(step)].luminaire)].get()];
+    if (a.texture.width() != mGBuffer->width() || a.texture.height() != mGBuffer->height()) {
+        a.texture = gl::Texture2D(mGBuffer->width(), mGBuffer->height(), GL_RGBA32F);
+        a.fbo = gl::Framebuffer({&a.texture}, nullptr);
+        a.working = gl::Texture2D(mGBuffer->width(), mGBuffer->height(), GL_RGBA32F);
+        a.workingFbo = gl::Framebuffer({&a.working}, nullptr);
+        const float zero[4] = {0.f, 0.f, 0.f, 0.f};
+        glClearNamedFramebufferfv(a.fbo.id(), GL_COLOR, 0, zero);
+        glClearNamedFramebufferfv(a.workingFbo.id(), GL_COLOR, 0, zero);
+        a.frames = 0;
+        a.key.clear();
+    }
+    return a;
+}
+
+int Renderer::stepOf(const Luminaire* lum) const {
+    if (!lum) return mPlan.environment ? -1 : -2;
+    for (size_t i = 0; i < mPlan.shading.size(); ++i)
+        if (mScene->luminaires[size_t(mPlan.shading[i].luminaire)].get() == lum) return int(i);
+    return -2;
+}
+
+bool Renderer::refines(int step) {
+    const ShadeStep& s = step < 0 ? *mPlan.environment : mPlan.shading[size_t(step)];
+    bool progressive = step < 0 ? mPlan.environmentTechnique->progressive : s.progressive;
+    int frames = accumulationOf(step).frames;
+    if (!progressive) return frames == 0;
+    return mSettings.maxSamples <= 0 || frames * mSettings.samplesPerFrame < mSettings.maxSamples;
+}
+
+std::vector<const Luminaire*> Renderer::choosePass() {
+    std::vector<int> steps;
+    if (mPlan.environment) steps.push_back(-1);
+    for (size_t i = 0; i < mPlan.shading.size(); ++i) steps.push_back(int(i));
+    int fewest = -1;
+    for (int st : steps)
+        if (refines(st) && (fewest < 0 || accumulationOf(st).frames < fewest)) fewest = accumulationOf(st).frames;
+    std::vector<const Luminaire*> pass;
+    for (int st : steps)
+        if (refines(st) && accumulationOf(st).frames == fewest)
+            pass.push_back(st < 0 ? nullptr : mScene->luminaires[size_t(mPlan.shading[size_t(st)].luminaire)].get());
+    return pass;
 }
 
 void Renderer::uploadLuminaires() {
     mLuminaireBuffers.clear();
+    mRecords.clear();
     for (const auto& lum : mScene->luminaires) {
         std::vector<std::byte> data = lum->gpuData();
         mLuminaireBuffers.emplace_back(GLsizeiptr(data.size()), data.data());
+        mRecords.push_back(std::move(data));
     }
 }
 
@@ -119,17 +168,20 @@ void Renderer::rebuildPlan() {
     }
 }
 
-void Renderer::runShading(int spp, int row0, int rows) {
+void Renderer::setFrameUniforms(int frame, int spp) {
     gpu::FrameUniforms u{};
     u.viewProj = viewProj();
     u.invViewProj = glm::inverse(u.viewProj);
     u.cameraPos = glm::vec4(glm::vec3(mScene->camera.position), 1.f);
-    u.frameInfo = glm::ivec4(mFrames, spp, 0, mPlan.needsBvh ? 1 : 0);
+    u.frameInfo = glm::ivec4(frame, spp, 0, mPlan.needsBvh ? 1 : 0);
     u.seeds = glm::ivec4(int(mSettings.seed), 0, 0, 0);
     u.viewport = glm::vec4(float(mGBuffer->width()), float(mGBuffer->height()),
                            1.f / float(mGBuffer->width()), 1.f / float(mGBuffer->height()));
     mFrameUniforms.update(0, sizeof(u), &u);
     mFrameUniforms.bindBase(GL_UNIFORM_BUFFER, gpu::kBindingFrame);
+}
+
+void Renderer::runShading(int spp, int row0, int rows) {
     if (mBvh) {
         mBvhNodes.bindBase(GL_SHADER_STORAGE_BUFFER, gpu::kBindingBvhNodes);
         mBvhTris.bindBase(GL_SHADER_STORAGE_BUFFER, gpu::kBindingBvhTris);
@@ -137,24 +189,37 @@ void Renderer::runShading(int spp, int row0, int rows) {
     glBindVertexArray(mEmptyVao.id());
     int height = mGBuffer->height();
     bool band = row0 > 0 || rows < height;
-    if (band) {
+    auto scissor = [&] {
         // GL counts rows from the bottom; bands go from the top of the image down.
+        if (!band) return;
         glEnable(GL_SCISSOR_TEST);
         glScissor(0, height - row0 - rows, mGBuffer->width(), rows);
+    };
+    // Probe mode: every step into mAccum, pass mFrames. Else the pass's steps, each into its
+    // own accumulation with its own pass count (the seeds of its random numbers).
+    std::vector<int> steps;
+    if (mPointMode) {
+        if (mPlan.environment) steps.push_back(-1);
+        for (size_t i = 0; i < mPlan.shading.size(); ++i) steps.push_back(int(i));
+    } else {
+        for (const Luminaire* lum : mPass)
+            if (int st = stepOf(lum); st >= -1) steps.push_back(st);
     }
-    if (mPlan.environment) runEnvironment(spp, row0 == 0);
-    if (band) {
-        glEnable(GL_SCISSOR_TEST);  // the environment's compute passes may have turned it off
-        glScissor(0, height - row0 - rows, mGBuffer->width(), rows);
-    }
-    for (const ShadeStep& step : mPlan.shading) {
-        // A deterministic step of a progressive camera frame (not a probe) goes to mStatic once.
-        bool once = !mPointMode && mPlan.progressive() && !step.progressive;
-        if (once && mFrames > 0) continue;  // already in mStatic
+    for (int st : steps) {
+        Accumulation* acc = mPointMode ? nullptr : &accumulationOf(st);
+        int frame = mPointMode ? mFrames : acc->frames;
+        const gl::Framebuffer& target = mPointMode ? mAccumFbo : acc->workingFbo;
+        setFrameUniforms(frame, spp);
+        scissor();
+        if (st < 0) {
+            runEnvironment(spp, row0 == 0, frame, target);
+            continue;
+        }
+        const ShadeStep& step = mPlan.shading[size_t(st)];
         if (step.shadowMaps) mShadowMaps.at(mScene->luminaires[size_t(step.luminaire)].get())->bind();
         timed(mStats, step.name, [&] {
-            mShade->execute(mShaders, step, mLuminaireBuffers[size_t(step.luminaire)], *mGBuffer,
-                            once ? mStaticFbo : mAccumFbo, mGBuffer->width(), mGBuffer->height());
+            mShade->execute(mShaders, step, mLuminaireBuffers[size_t(step.luminaire)], *mGBuffer, target,
+                            mGBuffer->width(), mGBuffer->height());
         });
     }
     glDisable(GL_SCISSOR_TEST);
@@ -187,7 +252,7 @@ void Renderer::updateShadowMaps() {
     mShadowMaps = std::move(kept);
 }
 
-void Renderer::runEnvironment(int spp, bool newPass) {
+void Renderer::runEnvironment(int spp, bool newPass, int frame, const gl::Framebuffer& target) {
     using Tables = EnvironmentTechniqueInfo::Tables;
     Tables tables = mPlan.environmentTechnique->tables;
     if (tables == Tables::Cube) {
@@ -197,7 +262,7 @@ void Renderer::runEnvironment(int spp, bool newPass) {
         // distinct ones; a fresh pool every frame (every band of a frame shares it).
         if (newPass) {
             int pool = std::max(256, spp);
-            uint32_t seed = uint32_t(mSettings.seed) * 2654435761u ^ uint32_t(mFrames) * 40503u ^ 0x5bd1e995u;
+            uint32_t seed = uint32_t(mSettings.seed) * 2654435761u ^ uint32_t(frame) * 40503u ^ 0x5bd1e995u;
             timed(mStats, "env:samples", [&] { mEnvironment->drawSamples(mShaders, seed, pool); });
         }
     } else if (tables == Tables::LatLong) {
@@ -219,7 +284,7 @@ void Renderer::runEnvironment(int spp, bool newPass) {
     }
     bool background = !mPointMode && mSettings.quantity == Quantity::Radiance;
     timed(mStats, mPlan.environment->name, [&] {
-        mEnvironment->shade(mShaders, *mPlan.environment, *mGBuffer, mAccumFbo, mGBuffer->width(),
+        mEnvironment->shade(mShaders, *mPlan.environment, *mGBuffer, target, mGBuffer->width(),
                             mGBuffer->height(), background);
     });
     // The shading passes bind their own G-buffer units; restore the frame block.
@@ -229,9 +294,8 @@ void Renderer::runEnvironment(int spp, bool newPass) {
 void Renderer::renderFrame() {
     mStats.passes.clear();
     if (!mScene) return;
-    // A new map (a sequence's next frame, a moved sun) restarts the accumulation.
+    // A new map (a sequence's next frame, a moved sun) restarts the environment's accumulation.
     if (mScene->environmentMap.get() != mEnvironment->map()) mPending |= kChangeEnvironment;
-    bool newAccumulation = false;
     if (mPending || mPointMode) {
         if (mPointMode || mGBuffer->width() != mSettings.width ||
             mGBuffer->height() != mSettings.height) {
@@ -248,28 +312,71 @@ void Renderer::renderFrame() {
             mGBuffer->setLuminaires(*mScene);
             uploadLuminaires();
         }
+        // What every accumulation depends on: the view, the geometry (shadows), the settings.
+        bool everything = (mPending & (kChangeCamera | kChangeGeometry | kChangeSettings)) != 0;
+        bool environment = everything || (mPending & kChangeEnvironment) != 0;
         rebuildPlan();
         mPending = kChangeNone;
-        newAccumulation = true;
-    }
 
-    gpu::FrameUniforms u{};
-    if (newAccumulation) {
-        mFrames = 0;
-        const float zero[4] = {0.f, 0.f, 0.f, 0.f};
-        glClearNamedFramebufferfv(mAccumFbo.id(), GL_COLOR, 0, zero);
-        glClearNamedFramebufferfv(mStaticFbo.id(), GL_COLOR, 0, zero);
+        gpu::FrameUniforms u{};
         u.viewProj = viewProj();
         u.cameraPos = glm::vec4(glm::vec3(mScene->camera.position), 1.f);
         mFrameUniforms.update(0, sizeof(u), &u);
         mFrameUniforms.bindBase(GL_UNIFORM_BUFFER, gpu::kBindingFrame);
+        // Luminaires only mark their own pixels in the G-buffer (GBufferPass), so drawing it again
+        // for a moved luminaire leaves what the others shade as it was.
         timed(mStats, "gbuffer", [&] { mGBuffer->execute(mShaders, mSettings.quantity); });
         updateShadowMaps();
+
+        // Each accumulation restarts when what it was shaded for changed: everything after a
+        // camera, geometry or settings change, else a luminaire whose record, technique or
+        // variant differs (a moved one), the environment when its map changed.
+        const float zero[4] = {0.f, 0.f, 0.f, 0.f};
+        // A pass under way is dropped (what it shaded so far was kept apart, in `working`).
+        for (const Luminaire* lum : mPass)
+            if (int st = stepOf(lum); st >= -1) glClearNamedFramebufferfv(accumulationOf(st).workingFbo.id(), GL_COLOR, 0, zero);
+        mPass.clear();
+        mBandRow = 0;
+        auto restart = [&](Accumulation& a, std::vector<std::byte> key) {
+            glClearNamedFramebufferfv(a.fbo.id(), GL_COLOR, 0, zero);
+            glClearNamedFramebufferfv(a.workingFbo.id(), GL_COLOR, 0, zero);
+            a.frames = 0;
+            a.key = std::move(key);
+        };
+        std::map<const Luminaire*, Accumulation> kept;
+        std::vector<const Luminaire*> restarted;
+        for (size_t i = 0; i < mPlan.shading.size(); ++i) {
+            const ShadeStep& step = mPlan.shading[i];
+            const Luminaire* lum = mScene->luminaires[size_t(step.luminaire)].get();
+            std::vector<std::byte> key = mRecords[size_t(step.luminaire)];
+            for (const std::string& part : {step.name, std::string(step.technique->name)})
+                for (char c : part) key.push_back(std::byte(c));
+            for (const std::string& d : step.program.defines)
+                for (char c : d + ";") key.push_back(std::byte(c));
+            Accumulation& a = accumulationOf(int(i));
+            if (everything || a.key != key) {
+                restart(a, std::move(key));
+                restarted.push_back(lum);
+            }
+            kept[lum] = std::move(a);
+        }
+        mAccumulations = std::move(kept);  // luminaires that left the scene are dropped
+        if (mPlan.environment) {
+            Accumulation& a = accumulationOf(-1);
+            if (environment || a.key.empty()) {
+                restart(a, {std::byte(1)});
+                restarted.push_back(nullptr);
+            }
+        }
         mStats.converged = false;
+        mNeedDisplay = true;
     }
 
     int spp = mSettings.samplesPerFrame;
-    if (newAccumulation) mBandRow = 0;
+    if (mBandRow == 0 && !mStats.converged) {
+        mPass = choosePass();
+        mStats.converged = mPass.empty();
+    }
     if (!mStats.converged) {
         int height = mGBuffer->height();
         int rows = height - mBandRow;
@@ -285,32 +392,70 @@ void Renderer::renderFrame() {
             mPixelsPerMs = double(rows) * double(width) / std::max(ms, 1e-3);
         }
         mBandRow += rows;
-        // The first pass shows band by band (the rows not done yet are black); later passes
-        // show when complete, so the image never mixes sample counts.
-        if (mFrames == 0) mNeedDisplay = true;
+        // A step's first pass shows band by band (rows not done yet lack its light); later
+        // passes show when complete, so the image never mixes sample counts.
+        for (const Luminaire* lum : mPass)
+            if (int st = stepOf(lum); st >= -1 && accumulationOf(st).frames == 0) mNeedDisplay = true;
         if (mBandRow >= height) {
+            // The pass is complete: each step's working image joins its accumulation.
             mBandRow = 0;
-            ++mFrames;
+            const float zero[4] = {0.f, 0.f, 0.f, 0.f};
+            GLuint add = mShaders.program({"fullscreen.vert", "accumulate.frag", "", {}});
+            glUseProgram(add);
+            glProgramUniform1f(add, 0, 1.f);
+            glBindVertexArray(mEmptyVao.id());
+            glEnable(GL_BLEND);
+            glBlendFunc(GL_ONE, GL_ONE);
+            for (const Luminaire* lum : mPass)
+                if (int st = stepOf(lum); st >= -1) {
+                    Accumulation& a = accumulationOf(st);
+                    glBindFramebuffer(GL_FRAMEBUFFER, a.fbo.id());
+                    glViewport(0, 0, width, height);
+                    glBindTextureUnit(0, a.working.id());
+                    glDrawArrays(GL_TRIANGLES, 0, 3);
+                    glClearNamedFramebufferfv(a.workingFbo.id(), GL_COLOR, 0, zero);
+                    ++a.frames;
+                }
+            glDisable(GL_BLEND);
+            mPass.clear();
             mNeedDisplay = true;
-            bool done = mPlan.progressive()
-                            ? mSettings.maxSamples > 0 && mFrames * spp >= mSettings.maxSamples
-                            : true;
-            mStats.converged = done;
+            bool more = false;
+            if (mPlan.environment) more = more || refines(-1);
+            for (size_t i = 0; i < mPlan.shading.size(); ++i) more = more || refines(int(i));
+            mStats.converged = !more;
         }
     }
     if (mNeedDisplay) {
+        std::vector<ResolvePass::Term> terms;
+        auto term = [&](int st) {
+            // A step's first pass shows as it is shaded; later ones when complete.
+            Accumulation& a = accumulationOf(st);
+            terms.push_back(a.frames == 0 ? ResolvePass::Term{&a.working, 1.f}
+                                          : ResolvePass::Term{&a.texture, 1.f / float(a.frames)});
+        };
+        if (mPlan.environment) term(-1);
+        for (size_t i = 0; i < mPlan.shading.size(); ++i) term(int(i));
         glBindVertexArray(mEmptyVao.id());
         timed(mStats, "resolve",
-              [&] { mResolve->execute(mShaders, mAccum, mStatic, mGBuffer->texture(gpu::kGBufferEmission), std::max(mFrames, 1)); });
+              [&] { mResolve->execute(mShaders, terms, mGBuffer->texture(gpu::kGBufferEmission)); });
         timed(mStats, "tonemap", [&] {
             mTonemap->execute(mShaders, mResolve->linear(), mResolve->luminance(),
                               mGBuffer->texture(gpu::kGBufferPosition),
-                              mGBuffer->texture(gpu::kGBufferAlbedo), mSettings);
+                              mGBuffer->texture(gpu::kGBufferEmission), mSettings);
         });
         mNeedDisplay = false;
     }
-    mStats.accumulatedFrames = mFrames;
-    mStats.samplesPerPixel = mPlan.progressive() ? mFrames * spp : 0;
+    // Statistics: the least refined step's passes (what every pixel has at least).
+    int fewest = -1, fewestProgressive = -1;
+    auto count = [&](int st, bool progressive) {
+        int f = accumulationOf(st).frames;
+        if (fewest < 0 || f < fewest) fewest = f;
+        if (progressive && (fewestProgressive < 0 || f < fewestProgressive)) fewestProgressive = f;
+    };
+    if (mPlan.environment) count(-1, mPlan.environmentTechnique->progressive);
+    for (size_t i = 0; i < mPlan.shading.size(); ++i) count(int(i), mPlan.shading[i].progressive);
+    mStats.accumulatedFrames = std::max(fewest, 0);
+    mStats.samplesPerPixel = mPlan.progressive() ? std::max(fewestProgressive, 0) * spp : 0;
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
@@ -337,9 +482,11 @@ std::vector<unsigned char> Renderer::readEmitterMask() const {
     int w = t.width(), h = t.height();
     std::vector<float> rgba(size_t(w) * size_t(h) * 4);
     glGetTextureImage(t.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(rgba.size() * sizeof(float)), rgba.data());
-    std::vector<float> rgb = rgbTopDown(rgba, w, h);
+    // Alpha marks a luminaire's pixel from either side (shaders/gbuffer.frag); rows bottom-up.
     std::vector<unsigned char> mask(size_t(w) * size_t(h));
-    for (size_t i = 0; i < mask.size(); ++i) mask[i] = rgb[3 * i] > 0.f || rgb[3 * i + 1] > 0.f || rgb[3 * i + 2] > 0.f;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            mask[size_t(y) * size_t(w) + size_t(x)] = rgba[(size_t(h - 1 - y) * size_t(w) + size_t(x)) * 4 + 3] > 0.5f;
     return mask;
 }
 

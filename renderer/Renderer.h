@@ -4,6 +4,7 @@
 // current GL 4.5 context. Nothing runs that the scene does not need, and a converged image with
 // no change costs no pass at all.
 
+#include <cstddef>
 #include <memory>
 #include <cstdint>
 #include <string>
@@ -95,8 +96,8 @@ public:
     std::vector<float> readLinear() const;
     /// Tone-mapped 8-bit RGB, rows top to bottom.
     std::vector<unsigned char> readDisplay() const;
-    /// Per pixel, rows top to bottom: 1 where the camera sees a luminaire's emitting surface
-    /// (the same emitted radiance in every image of the view, whatever the technique), else 0.
+    /// Per pixel, rows top to bottom: 1 where the camera sees a luminaire (either side; the
+    /// same emitted radiance in every image of the view, whatever the technique), else 0.
     std::vector<unsigned char> readEmitterMask() const;
 
     /// Irradiance at points for normals through the production shading passes (albedo pi, so
@@ -115,10 +116,32 @@ private:
     void rebuildPlan();
     void uploadGeometry();
     void uploadLuminaires();
-    /// Shades rows [row0, row0 + rows) of the image (top row 0); the environment's per-frame
-    /// tables and samples are drawn when row0 is 0.
+    /// One luminaire's (or the environment's) estimates, summed over its own passes: moving a
+    /// luminaire restarts its accumulation alone, and the others keep theirs.
+    struct Accumulation {
+        gl::Texture2D texture;         ///< Complete passes, summed.
+        gl::Framebuffer fbo;
+        gl::Texture2D working;         ///< The pass under way (added to texture when complete,
+        gl::Framebuffer workingFbo;    ///< dropped when the pass is abandoned).
+        int frames = 0;                ///< Complete passes in texture.
+        std::vector<std::byte> key;    ///< What it was shaded for (GPU record, technique, variant).
+    };
+    /// The accumulation of a step of the plan (-1: the environment).
+    Accumulation& accumulationOf(int step);
+    /// Whether the step still refines: a progressive one below maxSamples, a deterministic one
+    /// not shaded yet.
+    bool refines(int step);
+    /// The steps the next pass shades: those that still refine with the fewest passes, so a
+    /// luminaire that restarted catches up with the others first.
+    std::vector<const Luminaire*> choosePass();
+    /// Step index of a pass entry (nullptr: the environment, -1); -2 when it left the plan.
+    int stepOf(const Luminaire* lum) const;
+    void setFrameUniforms(int frame, int spp);
+    /// Shades rows [row0, row0 + rows) of the image (top row 0) for the pass's steps (all steps
+    /// into mAccum in probe mode); the environment's per-frame tables and samples are drawn when
+    /// row0 is 0.
     void runShading(int spp, int row0, int rows);
-    void runEnvironment(int spp, bool newPass);
+    void runEnvironment(int spp, bool newPass, int frame, const gl::Framebuffer& target);
     /// Renders the shadow maps that are missing or stale (timed as "shadow:NAME").
     void updateShadowMaps();
     /// mShadowGeometry for the current geometry.
@@ -130,7 +153,7 @@ private:
     FramePlan mPlan;
     FrameStats mStats;
     unsigned mPending = kChangeAll;
-    int mFrames = 0;
+    int mFrames = 0;             ///< Passes of a probe (probe mode only).
     int mBandRow = 0;            ///< Next row of the pass under way (banded refinement).
     double mPixelsPerMs = 0.0;   ///< Pixels shaded per ms in the last band (0: not measured yet).
     bool mNeedDisplay = false;
@@ -151,13 +174,14 @@ private:
     /// Each luminaire's maps, by luminaire (entries of luminaires that left are dropped).
     std::map<const Luminaire*, std::unique_ptr<ShadowMaps>> mShadowMaps;
     DirectionalShadowMaps mEnvironmentShadows;  ///< The Havran lights' maps.
-    gl::Texture2D mAccum;
+    gl::Texture2D mAccum;        ///< Probe mode: every step's estimates.
     gl::Framebuffer mAccumFbo;
-    /// Deterministic steps of a progressive frame (a photometric `hybrid`, an unoccluded
-    /// `analytic`): shaded once per accumulation into here, added by the resolve undivided,
-    /// instead of again on every pass.
-    gl::Texture2D mStatic;
-    gl::Framebuffer mStaticFbo;
+    /// Each luminaire's accumulation (deterministic steps hold their one pass: shaded once, not
+    /// again on every pass), and the environment's.
+    std::map<const Luminaire*, Accumulation> mAccumulations;
+    Accumulation mEnvironmentAccumulation;
+    std::vector<std::vector<std::byte>> mRecords;  ///< Each luminaire's GPU record, as uploaded.
+    std::vector<const Luminaire*> mPass;  ///< Steps of the pass under way (nullptr: environment).
     gl::VertexArray mEmptyVao;
 };
 

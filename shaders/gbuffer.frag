@@ -1,4 +1,6 @@
-// Writes position, normal, material and emission. Normals face the camera (two-sided surfaces);
+// Writes position, normal, material and emission. Luminaires are drawn after the scene into the
+// emission attachment only (GBufferPass), so the other attachments describe the surface behind
+// them and no luminaire's shading depends on where another one is. Normals face the camera (two-sided surfaces);
 // emitters show their radiance only from their emitting side. In illuminance mode every other
 // surface becomes a white Lambertian receiver of albedo pi (no glossy lobe), so the unchanged
 // shading passes write (albedo / pi) E = E, the irradiance; emitters show nothing (their
@@ -38,5 +40,6 @@ void main() {
     }
     outAlbedo = vec4(albedo, float(flags));
     outSpecular = vec4(specular, 0.0);
-    outEmission = vec4(emission, 1.0);
+    // Alpha marks a luminaire's pixel (either side): the resolve shows its emission there.
+    outEmission = vec4(emission, emitter ? 1.0 : 0.0);
 }

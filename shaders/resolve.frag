@@ -1,19 +1,19 @@
-// Mean of the accumulated estimates, plus the deterministic steps shaded once (Renderer::mStatic),
-// plus the emitters seen directly: the linear HDR image.
+// The linear HDR image: the sum of the luminaires' and the environment's mean estimates
+// (Renderer sums its per-luminaire accumulations into uAccum first), or, where the camera sees a
+// luminaire, its emission alone (the G-buffer's emission alpha marks those pixels).
 // Also writes its luminance for the exposure average (mip-mapped by the renderer).
 #include "common.glsl"
 layout(binding = 0) uniform sampler2D uAccum;
 layout(binding = 1) uniform sampler2D gEmission;
-layout(binding = 2) uniform sampler2D uOnce;
-layout(location = 0) uniform float uInvFrames;
+layout(location = 0) uniform float uScale;
 
 layout(location = 0) out vec4 outLinear;
 layout(location = 1) out float outLuminance;
 
 void main() {
     ivec2 px = ivec2(gl_FragCoord.xy);
-    vec3 c = texelFetch(uAccum, px, 0).rgb * uInvFrames + texelFetch(uOnce, px, 0).rgb +
-             texelFetch(gEmission, px, 0).rgb;
+    vec4 emission = texelFetch(gEmission, px, 0);
+    vec3 c = emission.a > 0.5 ? emission.rgb : texelFetch(uAccum, px, 0).rgb * uScale;
     outLinear = vec4(c, 1.0);
     outLuminance = luminance(c);
 }

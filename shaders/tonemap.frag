@@ -11,7 +11,7 @@
 layout(binding = 0) uniform sampler2D uLinear;
 layout(binding = 1) uniform sampler2D uLuminance;  // full mip chain; top level = mean
 layout(binding = 2) uniform sampler2D gPosition;   // w = 1 where a surface was hit
-layout(binding = 3) uniform sampler2D gAlbedo;     // w = material flags
+layout(binding = 3) uniform sampler2D gEmission;   // a = 1 where a luminaire is seen
 layout(location = 0) uniform int uOperator;         // 0 exponential, 1 Reinhard, 2 false colour
 layout(location = 1) uniform float uExposure;
 layout(location = 2) uniform float uFixedAverage;  // > 0: use instead of the frame mean
@@ -64,8 +64,8 @@ float contourCoverage(float v, ivec2 px) {
 
 vec3 falseColourPixel(vec3 c) {
     ivec2 px = ivec2(gl_FragCoord.xy);
+    if (texelFetch(gEmission, px, 0).a > 0.5) return vec3(0.75);
     if (texelFetch(gPosition, px, 0).w == 0.0) return vec3(0.12);
-    if ((int(texelFetch(gAlbedo, px, 0).w + 0.5) & kMaterialEmitter) != 0) return vec3(0.75);
     float v = legendPosition(luminance(c), uLegendMin, uLegendMax, uLogScale);
     vec3 colour = falseColour(v);
     // Dark lines on the light half of the scale, light lines on the dark half.

@@ -124,6 +124,57 @@ TEST(Renderer, BandedRefinementGivesTheSameImageAndShowsOnlyWholePasses) {
     EXPECT_EQ(differ, 0u);
 }
 
+TEST(Renderer, MovingOneLuminaireRefinesOnlyIt) {
+    // Two panels over a floor, both in view: A closed form (deterministic), B Monte Carlo. After
+    // both converge, A moves (in place, as the editor's drag does): only A is shaded again, and
+    // the image equals a fresh render of the moved scene (B's accumulation is kept: the same
+    // passes with the same random numbers a fresh render draws). The pixels A covered before now
+    // show the floor, lit by both, as the fresh render has them.
+    test::glContext();
+    const std::string a =
+        R"({"type": "lambertian-rect", "name": "A", "size": [0.6, 0.4], "radiance": [10, 10, 10], "position": [-0.6,1.2,0.5], "aim": [0,-1,0], "technique": "analytic"})";
+    const std::string b =
+        R"({"type": "lambertian-rect", "name": "B", "size": [1, 0.5], "radiance": [5, 8, 10], "position": [0.8,2.5,-0.3], "technique": "reference"})";
+    const std::string camera = R"({"position": [0, 2.5, 3.5], "target": [0, 0.3, 0], "fov_deg": 60})";
+    Scene scene = sceneFrom(kFloor, a + "," + b, camera);
+    ShaderLibrary shaders;
+    Renderer renderer(shaders);
+    RenderSettings s = small();
+    s.maxSamples = 16;
+    renderer.setSettings(s);
+    renderer.update(scene, kChangeAll);
+    do renderer.renderFrame();
+    while (!renderer.converged());
+    std::vector<unsigned char> maskBefore = renderer.readEmitterMask();
+    scene.luminaires[0]->pose.position = glm::dvec3(0.7, 1.2, 0.9);
+    renderer.update(scene, kChangeLuminaires);
+    renderer.renderFrame();
+    EXPECT_EQ(names(renderer.stats()), (std::vector<std::string>{"gbuffer", "shade:A:analytic", "resolve", "tonemap"}));
+    EXPECT_TRUE(renderer.converged());
+    std::vector<float> moved = renderer.readLinear();
+    std::vector<unsigned char> maskAfter = renderer.readEmitterMask();
+
+    Renderer fresh(shaders);
+    fresh.setSettings(s);
+    fresh.update(scene, kChangeAll);
+    do fresh.renderFrame();
+    while (!fresh.converged());
+    std::vector<float> expected = fresh.readLinear();
+    ASSERT_EQ(moved.size(), expected.size());
+    double worst = 0.0, peak = 0.0;
+    int uncovered = 0;
+    for (size_t i = 0; i < moved.size(); ++i) {
+        worst = std::max(worst, double(std::abs(moved[i] - expected[i])));
+        peak = std::max(peak, double(expected[i]));
+    }
+    for (size_t p = 0; p < maskBefore.size(); ++p) uncovered += maskBefore[p] && !maskAfter[p];
+    int before = 0;
+    for (unsigned char m : maskBefore) before += m;
+    EXPECT_GT(uncovered, 5) << "A covered " << before << " pixels";  // A's old place is in view, now the floor
+    // The same estimates summed in another order: 1e-5 of the brightest pixel.
+    EXPECT_LT(worst, 1e-5 * peak) << "largest difference " << worst << " of " << peak;
+}
+
 TEST(Renderer, DeterministicStepsOfAProgressiveFrameAreShadedOnce) {
     // A photometric `hybrid` light (deterministic) beside a `reference` panel (Monte Carlo): the
     // hybrid step runs in the first pass only and the resolve adds it once. The image must equal

@@ -140,6 +140,8 @@ Editor::~Editor() {
         glfwSetWindowUserPointer(mContext->window(), nullptr);
     }
     // GL objects go before the context that owns them.
+    mComparison.reset();
+    mPreviewRenderer.reset();
     mRenderer.reset();
     mShaders.reset();
     mState.reset();
@@ -169,7 +171,7 @@ void Editor::frame() {
                       (state.drag.mode == DragMode::Orbit || state.drag.mode == DragMode::Pan);
     mPreviewingSplit = navigating;
     bool comparing = split && !navigating;
-    bool settled = (comparing ? mComparison && mComparison->done() : mRenderer->converged()) || mRenderFailed || typing;
+    bool settled = (comparing ? mComparison && mComparison->done() : shownRenderer().converged()) || mRenderFailed || typing;
     bool idle = settled && mIdleFrames >= kBusyFramesAfterInput &&
                 state.pendingChanges == kChangeNone && !state.screenshotRequested;
     if (idle)
@@ -207,9 +209,10 @@ void Editor::frame() {
         state.pendingChanges |= mComparisonOwed;  // what changed while navigating
         mComparisonOwed = kChangeNone;
         if (state.preview.active) {
-            // Navigation ended: the single view shows the preview still and will refine anew.
+            // Navigation ended: the single view owes the full renderer what changed meanwhile.
             state.preview.active = false;
-            mComparisonChanges |= kChangeAll & ~kChangeGeometry;
+            mComparisonChanges |= mFullOwed;
+            mFullOwed = kChangeNone;
         }
         prepareComparison();
     } else {
@@ -228,8 +231,8 @@ void Editor::frame() {
         if (mFrame > 0 && !typing && comparing) {
             mComparison->step(kBandBudgetMs);
         } else if (mFrame > 0 && !typing) {
-            mRenderer->renderFrame();
-            state.passes.add(mRenderer->stats());
+            shownRenderer().renderFrame();
+            state.passes.add(shownRenderer().stats());
         }
         mRenderFailed = false;
     } catch (const std::exception& e) {
@@ -273,6 +276,10 @@ void Editor::frame() {
     mIdleFrames = hadInput() ? 0 : mIdleFrames + 1;
     updateTitle();
     writeLayout();
+}
+
+Renderer& Editor::shownRenderer() {
+    return mState->preview.active && mPreviewRenderer ? *mPreviewRenderer : *mRenderer;
 }
 
 void Editor::prepareComparison() {
@@ -365,8 +372,15 @@ void Editor::prepareRender() {
         RenderSettings settings = previewSettings(state.settings, preview.policy);
         preview.width = settings.width;
         preview.height = settings.height;
-        mRenderer->setSettings(settings);
-        if (changes != kChangeNone) mRenderer->update(*mPreviewScene, changes | kChangeLuminaires);
+        // The preview has its own renderer: the full one keeps every luminaire's accumulation,
+        // and after the drag refines only what the drag changed.
+        if (!mPreviewRenderer) {
+            mPreviewRenderer = std::make_unique<Renderer>(*mShaders);
+            changes = kChangeAll;
+        }
+        mPreviewRenderer->setSettings(settings);
+        if (changes != kChangeNone) mPreviewRenderer->update(*mPreviewScene, changes | kChangeLuminaires);
+        mFullOwed |= state.pendingChanges;
         state.pendingChanges = kChangeNone;
         preview.active = true;
         return;
@@ -379,8 +393,10 @@ void Editor::prepareRender() {
         mComparisonChanges = kChangeNone;
     }
     if (preview.active) {
-        // Released: the edited scene with the full settings, refined from scratch.
-        state.pendingChanges |= kChangeAll & ~kChangeGeometry;
+        // Released: the full renderer takes what the drag changed (a moved luminaire refines
+        // alone; a moved camera refines everything).
+        state.pendingChanges |= mFullOwed;
+        mFullOwed = kChangeNone;
         preview.active = false;
     }
     if (state.pendingChanges != kChangeNone) {
@@ -414,7 +430,7 @@ void Editor::buildUi() {
     PanelRect status{0.f, top + middle, display.x, statusHeight};
 
     bool comparing = state.compare.layout != CompareLayout::Single && !mPreviewingSplit;
-    viewportPanel(state, *mRenderer, viewport, comparing ? mComparison.get() : nullptr);
+    viewportPanel(state, shownRenderer(), viewport, comparing ? mComparison.get() : nullptr);
     outlinePanel(state, outline);
     libraryPanel(state, library);
     inspectorPanel(state, inspector);
@@ -423,10 +439,10 @@ void Editor::buildUi() {
     if (state.compare.layout != CompareLayout::Single)
         comparePanel(state, mComparison.get(), measure);
     else
-        measurePanel(state, *mRenderer, measure);
+        measurePanel(state, shownRenderer(), measure);
     accuracyWindow(state, state.compare.layout != CompareLayout::Single ? mComparison.get() : nullptr, viewport);
-    statsPanel(state, *mRenderer, *mShaders, stats);
-    statusBar(state, *mRenderer, status);
+    statsPanel(state, shownRenderer(), *mShaders, stats);
+    statusBar(state, shownRenderer(), status);
     fileDialogs(state);
 }
 
@@ -548,8 +564,9 @@ void Editor::writeLayout() {
     const ScreenLayout& layout = state.layout;
     int width = 0, height = 0;
     glfwGetWindowSize(mContext->window(), &width, &height);
-    const RenderSettings& settings = mRenderer->settings();
-    glm::mat4 viewProj = mRenderer->viewProj();
+    const Renderer& shown = shownRenderer();
+    const RenderSettings& settings = shown.settings();
+    glm::mat4 viewProj = shown.viewProj();
     const glm::vec4& v = layout.viewport;
 
     nlohmann::json lums = nlohmann::json::array();
@@ -567,7 +584,7 @@ void Editor::writeLayout() {
         lums.push_back(std::move(entry));
     }
     const ImGuiIO& io = ImGui::GetIO();
-    const FrameStats& stats = mRenderer->stats();
+    const FrameStats& stats = shown.stats();
     int selected = state.selectedLuminaire;
     // Named widgets drawn this frame (see EditorState::widgetRects): x0, y0, x1, y1.
     nlohmann::json widgetJson = nlohmann::json::object();
@@ -605,7 +622,7 @@ void Editor::writeLayout() {
         {"environment_ui", environmentUiJson(state)},
         {"preview", {{"active", state.preview.active}, {"size", {state.preview.width, state.preview.height}},
                      {"frame_ms", std::round(state.preview.frameMs * 10.0) / 10.0}}},
-        {"techniques", planTechniques(state.scene, *mRenderer)},
+        {"techniques", planTechniques(state.scene, shown)},
         {"compare", compareState(state, mComparison.get())},
         {"passes", passTimes(stats)},
     };

@@ -53,6 +53,8 @@ class Editor {
     /// Hands the comparison its panes, size and the scene's changes (state.compare.layout is
     /// not Single); the main renderer waits.
     void prepareComparison();
+    /// The renderer whose image the viewport shows: the preview's while a drag is previewed.
+    Renderer& shownRenderer();
     /// Writes the comparison sheet (ui/ComparisonExport.h) into the screenshot folder.
     void exportSheet();
     void buildUi();
@@ -68,7 +70,9 @@ class Editor {
     std::unique_ptr<Renderer> mRenderer;
     std::unique_ptr<EditorState> mState;
     std::unique_ptr<KeyLatch> mKeyLatch;
-    std::unique_ptr<Scene> mPreviewScene;  ///< What the renderer shows while dragging.
+    std::unique_ptr<Scene> mPreviewScene;  ///< What the preview renderer shows while dragging.
+    std::unique_ptr<Renderer> mPreviewRenderer;  ///< Renders the live preview (renderer/LivePreview.h).
+    unsigned mFullOwed = 0;  ///< Changes made during a drag, owed to mRenderer (ChangeFlags).
     std::unique_ptr<Comparison> mComparison;  ///< The panes, while the viewport is split.
     unsigned mComparisonChanges = 0;          ///< Scene changes the comparison took (ChangeFlags).
     unsigned mComparisonOwed = 0;             ///< Changes made while navigating the split view.

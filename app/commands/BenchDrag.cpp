@@ -5,10 +5,12 @@
 //  - drag: it moves along a circle in its horizontal plane, one step per frame, rendered with the
 //    editor's preview settings (renderer/LivePreview.h), and for comparison with the full
 //    settings; the wall time of each frame, GPU finished, gives frames per second;
-//  - release: back at its place, the full settings refine progressively (as the editor does,
-//    16 samples per pass); after every pass the tone-mapped image is compared with a reference
-//    (the same techniques at --reference-spp, another seed) and the clock, stopped while
-//    comparing, gives the seconds until the mean Delta E falls below 1.
+//  - release: the editor's full renderer (apart from the preview's) had the luminaire where it
+//    was grabbed, refined; it is let go at its place and the full settings refine (16 samples
+//    per pass), only the moved luminaire (each luminaire keeps its own accumulation), and, for
+//    comparison, everything; after every pass the tone-mapped image is compared with a
+//    reference (the same techniques at --reference-spp, another seed) and the clock, stopped
+//    while comparing, gives the seconds until the mean Delta E falls below 1.
 // Every image is tone-mapped against the reference's mean luminance, so Delta E measures noise
 // and bias, not a change of exposure. Writes drag.csv, release.csv, summary.txt and plot.png.
 // clang-format off
@@ -167,8 +169,11 @@ int benchDrag(const Args& args) {
     Scene shownWhileDragging = previewScene(scene);
     std::vector<DragRow> drags;
     std::ostringstream releaseCsv;
-    releaseCsv << "luminaire,seconds,spp,mean_delta_e,rel_rmse\n";
+    releaseCsv << "luminaire,refines,seconds,spp,mean_delta_e,rel_rmse\n";
     std::vector<std::pair<std::string, double>> releaseTimes;  // seconds to Delta E < 1 (NaN: never)
+    std::vector<std::pair<std::string, double>> restartTimes;  // the same when everything restarts
+    Renderer fullRenderer(shaders);  // the editor's full renderer, apart from the preview's
+    bool first = true;
     std::vector<std::pair<std::string, double>> finalDeltaE;
     for (size_t i = 0; i < scene.luminaires.size(); ++i) {
         const std::string name = scene.luminaires[i]->name;
@@ -184,29 +189,47 @@ int benchDrag(const Args& args) {
         for (const auto& [pass, ms] : drags[drags.size() - 2].passMs)
             std::fprintf(stderr, "bench:   preview pass %-40s %7.2f ms\n", pass.c_str(), ms);
 
-        // Release: drag a few preview frames, then let go at the luminaire's place.
-        drag(renderer, scene, shownWhileDragging, i, preview, 4, "preview");
-        renderer.setSettings(full);
-        renderer.update(scene, kChangeAll & ~kChangeGeometry);
-        double rendering = 0.0, reached = std::nan("");
-        ReleasePoint last;
-        while (rendering < timeout) {
-            auto start = Clock::now();
-            renderer.renderFrame();
-            glFinish();
-            rendering += seconds(start, Clock::now());
-            ReleasePoint p{rendering, renderer.stats().samplesPerPixel,
-                           meanDeltaE(renderer.readDisplay(), refDisplay), relRmse(renderer.readLinear(), refLinear)};
-            releaseCsv << '"' << name << "\"," << p.seconds << "," << p.spp << "," << p.deltaE << "," << p.rmse << "\n";
-            last = p;
-            if (std::isnan(reached) && p.deltaE < kTargetDeltaE) reached = p.seconds;
-            if (!std::isnan(reached) || renderer.converged()) break;
+        // Release, as in the editor: the full renderer (its own, apart from the preview's) shows
+        // the luminaire where it was grabbed, a quarter round its circle, refined to the
+        // editor's 256 spp (untimed: the user was looking at it); the preview renders the drag;
+        // the luminaire is let go at its place. Then the full renderer refines (a) only the
+        // moved luminaire, every other one keeping its accumulation, and (b) for comparison,
+        // everything from scratch (what the editor did before per-luminaire accumulation).
+        Luminaire& moved = *scene.luminaires[i];
+        glm::dvec3 home = moved.pose.position;
+        for (const char* how : {"moved only", "everything"}) {
+            bool everything = std::string(how) == "everything";
+            moved.pose.position = home + kDragRadius * glm::dvec3(1.0, 0.0, 1.0);
+            fullRenderer.setSettings(full);
+            fullRenderer.update(scene, first ? kChangeAll : kChangeLuminaires);
+            first = false;
+            do fullRenderer.renderFrame();
+            while (!fullRenderer.converged());
+            moved.pose.position = home;
+            drag(renderer, scene, shownWhileDragging, i, preview, 4, "preview");
+            fullRenderer.update(scene, everything ? kChangeAll & ~kChangeGeometry : kChangeLuminaires);
+            double rendering = 0.0, reached = std::nan("");
+            ReleasePoint last;
+            while (rendering < timeout) {
+                auto start = Clock::now();
+                fullRenderer.renderFrame();
+                glFinish();
+                rendering += seconds(start, Clock::now());
+                ReleasePoint p{rendering, fullRenderer.stats().samplesPerPixel,
+                               meanDeltaE(fullRenderer.readDisplay(), refDisplay),
+                               relRmse(fullRenderer.readLinear(), refLinear)};
+                releaseCsv << '"' << name << "\"," << how << "," << p.seconds << "," << p.spp << "," << p.deltaE << ","
+                           << p.rmse << "\n";
+                last = p;
+                if (std::isnan(reached) && p.deltaE < kTargetDeltaE) reached = p.seconds;
+                if (!std::isnan(reached) || fullRenderer.converged()) break;
+            }
+            (everything ? restartTimes : releaseTimes).emplace_back(name, reached);
+            if (!everything) finalDeltaE.emplace_back(name, last.deltaE);
+            std::fprintf(stderr, "bench: release %-16s (%s refines) Delta E < %.0f after %s (Delta E %.2f)\n", name.c_str(),
+                         how, kTargetDeltaE, std::isnan(reached) ? "never" : (std::to_string(reached) + " s").c_str(),
+                         last.deltaE);
         }
-        releaseTimes.emplace_back(name, reached);
-        finalDeltaE.emplace_back(name, last.deltaE);
-        std::fprintf(stderr, "bench: release %-16s Delta E < %.0f after %s (%d spp; Delta E %.2f)\n", name.c_str(),
-                     kTargetDeltaE, std::isnan(reached) ? "never" : (std::to_string(reached) + " s").c_str(), last.spp,
-                     last.deltaE);
     }
 
     std::ofstream csv(fs::path(outDir) / "drag.csv");
@@ -233,14 +256,17 @@ int benchDrag(const Args& args) {
     for (size_t i = 0; i + 1 < drags.size(); i += 2) {
         const DragRow& p = drags[i];
         const DragRow& f = drags[i + 1];
-        double release = releaseTimes[i / 2].second;
+        double release = releaseTimes[i / 2].second, restart = restartTimes[i / 2].second;
+        auto secondsText = [](double t) {
+            return std::isnan(t) ? std::string("never (timeout or converged first)") : std::to_string(t).substr(0, 5) + " s";
+        };
         std::snprintf(line, sizeof line,
                       "%-16s dragging %5.1f fps (95th percentile frame %.1f ms; full settings %.1f fps, %s slower); "
-                      "after release Delta E < 1 in %s (Delta E at the end %.2f)\n",
+                      "after release Delta E < 1 in %s refining it alone (Delta E at the end %.2f), %s refining "
+                      "everything (%s longer)\n",
                       p.luminaire.c_str(), p.fps(), p.p95Ms, f.fps(), formatRatio(f.meanMs / p.meanMs).c_str(),
-                      std::isnan(release) ? "never (timeout or converged first)"
-                                          : (std::to_string(release).substr(0, 5) + " s").c_str(),
-                      finalDeltaE[i / 2].second);
+                      secondsText(release).c_str(), finalDeltaE[i / 2].second, secondsText(restart).c_str(),
+                      formatRatio(restart / release).c_str());
         summary << line;
     }
     std::ofstream(fs::path(outDir) / "summary.txt") << summary.str();
@@ -251,8 +277,10 @@ int benchDrag(const Args& args) {
            "set xlabel 'seconds after release (rendering only)'\nset ylabel 'mean Delta E against the reference'\n"
            "set key top right\nset arrow from graph 0, first 1 to graph 1, first 1 nohead dt 2\nplot ";
     for (size_t i = 0; i < scene.luminaires.size(); ++i)
-        gp << (i ? ", " : "") << "'release.csv' using (strcol(1) eq '" << scene.luminaires[i]->name
-            << "' ? $2 : 1/0):4 with linespoints title '" << scene.luminaires[i]->name << "'";
+        for (const char* how : {"moved only", "everything"})
+            gp << (i || std::string(how) == "everything" ? ", " : "") << "'release.csv' using (strcol(1) eq '"
+               << scene.luminaires[i]->name << "' && strcol(2) eq '" << how << "' ? $3 : 1/0):5 with linespoints title '"
+               << scene.luminaires[i]->name << " (" << how << ")'";
     gp << "\n";
     gp.close();
     runGnuplot(outDir, "plot.png");

@@ -97,9 +97,16 @@ void GBufferPass::execute(ShaderLibrary& shaders, Quantity quantity) {
     glDisable(GL_BLEND);
     for (const Draw* d : {&mScene, &mLuminaires}) {
         if (!d->indexCount) continue;
+        // Luminaires only mark and light their pixels in the emission attachment: position,
+        // normal and material stay those of the surface behind, so moving one luminaire leaves
+        // every other luminaire's shading as it was (Renderer accumulates per luminaire).
+        bool luminaires = d == &mLuminaires;
+        for (int i = 0; i < gpu::kGBufferCount; ++i)
+            if (i != gpu::kGBufferEmission) glColorMaski(GLuint(i), !luminaires, !luminaires, !luminaires, !luminaires);
         glBindVertexArray(d->vao.id());
         glDrawElements(GL_TRIANGLES, d->indexCount, GL_UNSIGNED_INT, nullptr);
     }
+    for (int i = 0; i < gpu::kGBufferCount; ++i) glColorMaski(GLuint(i), GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glDisable(GL_DEPTH_TEST);
 }
 

@@ -13,18 +13,33 @@ void ResolvePass::resize(int width, int height) {
     mLuminance = gl::Texture2D(width, height, GL_R32F, levels);
     glTextureParameteri(mLuminance.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
     mFbo = gl::Framebuffer({&mLinear, &mLuminance}, nullptr);
+    mSum = gl::Texture2D(width, height, GL_RGBA32F);
+    mSumFbo = gl::Framebuffer({&mSum}, nullptr);
 }
 
-void ResolvePass::execute(ShaderLibrary& shaders, const gl::Texture2D& accum, const gl::Texture2D& once,
-                          const gl::Texture2D& emission, int frames) {
+void ResolvePass::execute(ShaderLibrary& shaders, const std::vector<Term>& terms, const gl::Texture2D& emission) {
+    const float zero[4] = {0.f, 0.f, 0.f, 0.f};
+    glClearNamedFramebufferfv(mSumFbo.id(), GL_COLOR, 0, zero);
+    glBindFramebuffer(GL_FRAMEBUFFER, mSumFbo.id());
+    glViewport(0, 0, mWidth, mHeight);
+    GLuint add = shaders.program({"fullscreen.vert", "accumulate.frag", "", {}});
+    glUseProgram(add);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE);
+    for (const Term& t : terms) {
+        if (!t.accumulation) continue;
+        glProgramUniform1f(add, 0, t.scale);
+        glBindTextureUnit(0, t.accumulation->id());
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
+    glDisable(GL_BLEND);
+
     GLuint program = shaders.program({"fullscreen.vert", "resolve.frag", "", {}});
     glUseProgram(program);
-    glProgramUniform1f(program, 0, frames > 0 ? 1.f / float(frames) : 0.f);
-    glBindTextureUnit(0, accum.id());
+    glProgramUniform1f(program, 0, 1.f);
+    glBindTextureUnit(0, mSum.id());
     glBindTextureUnit(1, emission.id());
-    glBindTextureUnit(2, once.id());
     glBindFramebuffer(GL_FRAMEBUFFER, mFbo.id());
-    glViewport(0, 0, mWidth, mHeight);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glGenerateTextureMipmap(mLuminance.id());
 }

@@ -1,5 +1,9 @@
 #pragma once
-// Accumulated mean plus directly seen emission: the linear HDR image and its luminance mips.
+// The linear HDR image and its luminance mips: the sum of the accumulated means of every
+// luminaire (and of the environment), each its accumulation over its own number of passes,
+// with directly seen luminaires' emission in their pixels.
+
+#include <vector>
 
 #include "renderer/ShaderLibrary.h"
 #include "renderer/gl/GlObjects.h"
@@ -8,16 +12,22 @@ namespace candela {
 
 class ResolvePass {
 public:
+    /// A term of the sum: accumulated estimates and 1 / the passes they hold.
+    struct Term {
+        const gl::Texture2D* accumulation = nullptr;
+        float scale = 1.f;
+    };
+
     void resize(int width, int height);
-    /// linear = accum / frames + once + emission (once: deterministic steps shaded a single time).
-    void execute(ShaderLibrary& shaders, const gl::Texture2D& accum, const gl::Texture2D& once,
-                 const gl::Texture2D& emission, int frames);
+    /// linear = sum of the terms (shaders/accumulate.frag), or the emission where the
+    /// G-buffer's emission alpha marks a luminaire (shaders/resolve.frag).
+    void execute(ShaderLibrary& shaders, const std::vector<Term>& terms, const gl::Texture2D& emission);
     const gl::Texture2D& linear() const { return mLinear; }
     const gl::Texture2D& luminance() const { return mLuminance; }
 
 private:
-    gl::Texture2D mLinear, mLuminance;
-    gl::Framebuffer mFbo;
+    gl::Texture2D mLinear, mLuminance, mSum;
+    gl::Framebuffer mFbo, mSumFbo;
     int mWidth = 0, mHeight = 0;
 };
 

@@ -100,7 +100,7 @@ void TonemapPass::resize(int width, int height) {
 
 void TonemapPass::execute(ShaderLibrary& shaders, const gl::Texture2D& linear,
                           const gl::Texture2D& luminance, const gl::Texture2D& position,
-                          const gl::Texture2D& albedo, const RenderSettings& settings) {
+                          const gl::Texture2D& emission, const RenderSettings& settings) {
     GLuint program = shaders.program({"fullscreen.vert", "tonemap.frag", "", {}});
     glUseProgram(program);
     glProgramUniform1i(program, 0, int(settings.toneMap));
@@ -118,7 +118,7 @@ void TonemapPass::execute(ShaderLibrary& shaders, const gl::Texture2D& linear,
     glBindTextureUnit(0, linear.id());
     glBindTextureUnit(1, luminance.id());
     glBindTextureUnit(2, position.id());
-    glBindTextureUnit(3, albedo.id());
+    glBindTextureUnit(3, emission.id());
     glBindFramebuffer(GL_FRAMEBUFFER, mFbo.id());
     glViewport(0, 0, mWidth, mHeight);
     glDrawArrays(GL_TRIANGLES, 0, 3);

@@ -41,10 +41,10 @@ FalseColourLegend sanitizedLegend(FalseColourLegend legend);
 class TonemapPass {
   public:
     void resize(int width, int height);
-    /// position and albedo: the G-buffer's (false colour greys out background and luminaires).
+    /// position and emission: the G-buffer's (false colour greys out background and luminaires).
     void execute(ShaderLibrary& shaders, const gl::Texture2D& linear,
                  const gl::Texture2D& luminance, const gl::Texture2D& position,
-                 const gl::Texture2D& albedo, const RenderSettings& settings);
+                 const gl::Texture2D& emission, const RenderSettings& settings);
     const gl::Texture2D& display() const { return mDisplay; }
 
   private:
