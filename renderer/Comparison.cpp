@@ -121,7 +121,9 @@ void Comparison::update(const Scene& scene, unsigned changes) {
     bool newScene = mScene != &scene;
     mScene = &scene;
     if (changes == kChangeNone && !newScene) return;
-    unsigned all = newScene ? kChangeAll : changes;
+    // Every image starts over (kChangeSettings restarts every accumulation of a renderer): a
+    // pane's GPU time is that of the image it shows, not of a kept part of it.
+    unsigned all = newScene ? kChangeAll : changes | kChangeSettings;
     mReference.renderer->update(scene, all);
     restartReference();
     for (Pane& pane : mPanes) {

@@ -108,8 +108,8 @@ class Comparison {
     struct Snapshot {
         ErrorPoint point;
         std::vector<float> linear;
-        double toneAverage = 0.0;           ///< What display and labL were made with.
-        std::vector<glm::vec3> lab;         ///< CIELAB of the tone-mapped image.
+        double toneAverage = 0.0;           ///< The tone-mapping average lab was made with.
+        std::vector<glm::vec3> lab;         ///< CIELAB of the tone-mapped image (cached).
     };
     struct Pane {
         PaneSpec spec;

@@ -95,12 +95,11 @@ std::vector<std::string> paneLabel(const CompareUi& ui, const Comparison& c, siz
 
 /// The reference's progress: samples, noise, time.
 std::string referenceLine(const Comparison& c) {
-    char text[160];
-    double noise = c.referenceNoise();
+    char noise[32], text[160];
+    if (std::isfinite(c.referenceNoise())) std::snprintf(noise, sizeof noise, "%.2f %%", 100.0 * c.referenceNoise());
+    else std::snprintf(noise, sizeof noise, "(after 2 passes)");
     std::snprintf(text, sizeof text, "Reference %d / %d spp \xc2\xb7 %s \xc2\xb7 noise %s", c.referenceSpp(),
-                  c.referenceSamples(), formatMs(c.referenceGpuMs()).c_str(),
-                  std::isfinite(noise) ? (std::to_string(int(std::lround(noise * 1000.0)) / 10.0).substr(0, 4) + " %").c_str()
-                                       : "(after 2 passes)");
+                  c.referenceSamples(), formatMs(c.referenceGpuMs()).c_str(), noise);
     return text;
 }
 
