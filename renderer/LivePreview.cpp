@@ -13,6 +13,7 @@ RenderSettings previewSettings(const RenderSettings& full, const PreviewPolicy& 
     s.width = std::max(1, int(std::lround(full.width * policy.scale)));
     s.height = std::max(1, int(std::lround(full.height * policy.scale)));
     s.samplesPerFrame = policy.samplesPerFrame;
+    s.catchUpPasses = 1;  // a drag frame's time counts: the moved luminaire takes the usual samples
     s.maxSamples = full.maxSamples > 0 ? std::min(full.maxSamples, policy.maxSamples) : policy.maxSamples;
     std::string list = policy.techniques;
     for (const LuminaireKindInfo& kind : luminaireKinds()) {

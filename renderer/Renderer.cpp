@@ -111,6 +111,7 @@ Renderer::Accumulation& Renderer::accumulationOf(int step) {
         glClearNamedFramebufferfv(a.fbo.id(), GL_COLOR, 0, zero);
         glClearNamedFramebufferfv(a.workingFbo.id(), GL_COLOR, 0, zero);
         a.frames = 0;
+        a.samples = 0;
         a.key.clear();
     }
     return a;
@@ -126,22 +127,41 @@ int Renderer::stepOf(const Luminaire* lum) const {
 bool Renderer::refines(int step) {
     const ShadeStep& s = step < 0 ? *mPlan.environment : mPlan.shading[size_t(step)];
     bool progressive = step < 0 ? mPlan.environmentTechnique->progressive : s.progressive;
-    int frames = accumulationOf(step).frames;
-    if (!progressive) return frames == 0;
-    return mSettings.maxSamples <= 0 || frames * mSettings.samplesPerFrame < mSettings.maxSamples;
+    const Accumulation& a = accumulationOf(step);
+    if (!progressive) return a.frames == 0;
+    return mSettings.maxSamples <= 0 || a.samples < mSettings.maxSamples;
 }
 
 std::vector<const Luminaire*> Renderer::choosePass() {
     std::vector<int> steps;
     if (mPlan.environment) steps.push_back(-1);
     for (size_t i = 0; i < mPlan.shading.size(); ++i) steps.push_back(int(i));
-    int fewest = -1;
-    for (int st : steps)
-        if (refines(st) && (fewest < 0 || accumulationOf(st).frames < fewest)) fewest = accumulationOf(st).frames;
+    // The samples the others have reached: the most of any progressive step not catching up
+    // itself; with none, the sample budget.
+    int fewest = -1, ahead = 0;
+    for (int st : steps) {
+        const Accumulation& a = accumulationOf(st);
+        bool progressive = st < 0 ? mPlan.environmentTechnique->progressive : mPlan.shading[size_t(st)].progressive;
+        if (progressive && !a.catchingUp) ahead = std::max(ahead, a.samples);
+        if (refines(st) && (fewest < 0 || a.samples < fewest)) fewest = a.samples;
+    }
+    if (ahead == 0) ahead = std::max(mSettings.maxSamples, 0);
     std::vector<const Luminaire*> pass;
-    for (int st : steps)
-        if (refines(st) && accumulationOf(st).frames == fewest)
-            pass.push_back(st < 0 ? nullptr : mScene->luminaires[size_t(mPlan.shading[size_t(st)].luminaire)].get());
+    bool catchUp = true;
+    for (int st : steps) {
+        Accumulation& a = accumulationOf(st);
+        if (!refines(st) || a.samples != fewest) continue;
+        a.catchingUp = a.catchingUp && a.samples < ahead;
+        catchUp = catchUp && a.catchingUp;
+        pass.push_back(st < 0 ? nullptr : mScene->luminaires[size_t(mPlan.shading[size_t(st)].luminaire)].get());
+    }
+    // A luminaire that restarted alone (one that moved) catches up with the others in passes
+    // of up to catchUpPasses passes' samples (RenderSettings::catchUpPasses).
+    int spf = mSettings.samplesPerFrame;
+    mPassSpp = spf;
+    if (catchUp && !pass.empty())
+        mPassSpp = std::clamp(ahead - std::max(fewest, 0), spf, std::max(1, mSettings.catchUpPasses) * spf);
+    if (mSettings.maxSamples > 0) mPassSpp = std::max(1, std::min(mPassSpp, mSettings.maxSamples - std::max(fewest, 0)));
     return pass;
 }
 
@@ -341,6 +361,7 @@ void Renderer::renderFrame() {
             glClearNamedFramebufferfv(a.fbo.id(), GL_COLOR, 0, zero);
             glClearNamedFramebufferfv(a.workingFbo.id(), GL_COLOR, 0, zero);
             a.frames = 0;
+            a.samples = 0;
             a.key = std::move(key);
         };
         std::map<const Luminaire*, Accumulation> kept;
@@ -356,6 +377,7 @@ void Renderer::renderFrame() {
             Accumulation& a = accumulationOf(int(i));
             if (everything || a.key != key) {
                 restart(a, std::move(key));
+                a.catchingUp = !everything;
                 restarted.push_back(lum);
             }
             kept[lum] = std::move(a);
@@ -365,6 +387,7 @@ void Renderer::renderFrame() {
             Accumulation& a = accumulationOf(-1);
             if (environment || a.key.empty()) {
                 restart(a, {std::byte(1)});
+                a.catchingUp = !everything;
                 restarted.push_back(nullptr);
             }
         }
@@ -372,11 +395,11 @@ void Renderer::renderFrame() {
         mNeedDisplay = true;
     }
 
-    int spp = mSettings.samplesPerFrame;
     if (mBandRow == 0 && !mStats.converged) {
         mPass = choosePass();
         mStats.converged = mPass.empty();
     }
+    int spp = mPassSpp;
     if (!mStats.converged) {
         int height = mGBuffer->height();
         int rows = height - mBandRow;
@@ -397,12 +420,13 @@ void Renderer::renderFrame() {
         for (const Luminaire* lum : mPass)
             if (int st = stepOf(lum); st >= -1 && accumulationOf(st).frames == 0) mNeedDisplay = true;
         if (mBandRow >= height) {
-            // The pass is complete: each step's working image joins its accumulation.
+            // The pass is complete: each step's working image (the pass's estimate) joins its
+            // accumulation weighted by the pass's samples.
             mBandRow = 0;
             const float zero[4] = {0.f, 0.f, 0.f, 0.f};
             GLuint add = mShaders.program({"fullscreen.vert", "accumulate.frag", "", {}});
             glUseProgram(add);
-            glProgramUniform1f(add, 0, 1.f);
+            glProgramUniform1f(add, 0, float(spp));
             glBindVertexArray(mEmptyVao.id());
             glEnable(GL_BLEND);
             glBlendFunc(GL_ONE, GL_ONE);
@@ -415,6 +439,7 @@ void Renderer::renderFrame() {
                     glDrawArrays(GL_TRIANGLES, 0, 3);
                     glClearNamedFramebufferfv(a.workingFbo.id(), GL_COLOR, 0, zero);
                     ++a.frames;
+                    a.samples += spp;
                 }
             glDisable(GL_BLEND);
             mPass.clear();
@@ -431,7 +456,7 @@ void Renderer::renderFrame() {
             // A step's first pass shows as it is shaded; later ones when complete.
             Accumulation& a = accumulationOf(st);
             terms.push_back(a.frames == 0 ? ResolvePass::Term{&a.working, 1.f}
-                                          : ResolvePass::Term{&a.texture, 1.f / float(a.frames)});
+                                          : ResolvePass::Term{&a.texture, 1.f / float(a.samples)});
         };
         if (mPlan.environment) term(-1);
         for (size_t i = 0; i < mPlan.shading.size(); ++i) term(int(i));
@@ -446,16 +471,16 @@ void Renderer::renderFrame() {
         mNeedDisplay = false;
     }
     // Statistics: the least refined step's passes (what every pixel has at least).
-    int fewest = -1, fewestProgressive = -1;
+    int fewest = -1, fewestSamples = -1;
     auto count = [&](int st, bool progressive) {
-        int f = accumulationOf(st).frames;
-        if (fewest < 0 || f < fewest) fewest = f;
-        if (progressive && (fewestProgressive < 0 || f < fewestProgressive)) fewestProgressive = f;
+        const Accumulation& a = accumulationOf(st);
+        if (fewest < 0 || a.frames < fewest) fewest = a.frames;
+        if (progressive && (fewestSamples < 0 || a.samples < fewestSamples)) fewestSamples = a.samples;
     };
     if (mPlan.environment) count(-1, mPlan.environmentTechnique->progressive);
     for (size_t i = 0; i < mPlan.shading.size(); ++i) count(int(i), mPlan.shading[i].progressive);
     mStats.accumulatedFrames = std::max(fewest, 0);
-    mStats.samplesPerPixel = mPlan.progressive() ? std::max(fewestProgressive, 0) * spp : 0;
+    mStats.samplesPerPixel = mPlan.progressive() ? std::max(fewestSamples, 0) : 0;
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 

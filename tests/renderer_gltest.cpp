@@ -175,6 +175,63 @@ TEST(Renderer, MovingOneLuminaireRefinesOnlyIt) {
     EXPECT_LT(worst, 1e-5 * peak) << "largest difference " << worst << " of " << peak;
 }
 
+TEST(Renderer, AMovedLuminaireCatchesUpInLargerPasses) {
+    // A Monte Carlo panel moves after both panels converged at 24 spp (4 per pass): it alone is
+    // shaded, 12 spp in its first pass (RenderSettings::catchUpPasses = 3 passes' worth), then
+    // the 12 left. Passes of different sizes are weighted by their samples: the image matches a
+    // fresh 24-spp render within the two renders' own noise (measured by two fresh seeds).
+    test::glContext();
+    const std::string a =
+        R"({"type": "lambertian-rect", "name": "A", "size": [0.6, 0.4], "radiance": [10, 10, 10], "position": [-0.6,1.2,0.5], "aim": [0,-1,0], "technique": "analytic"})";
+    const std::string b =
+        R"({"type": "lambertian-rect", "name": "B", "size": [1, 0.5], "radiance": [5, 8, 10], "position": [0.8,2.5,-0.3], "technique": "reference"})";
+    Scene scene = sceneFrom(kFloor, a + "," + b);
+    ShaderLibrary shaders;
+    RenderSettings s = small();
+    s.maxSamples = 24;
+    auto converge = [&](Renderer& r) {
+        do r.renderFrame();
+        while (!r.converged());
+        return r.readLinear();
+    };
+    Renderer renderer(shaders);
+    renderer.setSettings(s);
+    renderer.update(scene, kChangeAll);
+    converge(renderer);
+    scene.luminaires[1]->pose.position = glm::dvec3(0.2, 2.3, 0.4);
+    renderer.update(scene, kChangeLuminaires);
+    renderer.renderFrame();
+    EXPECT_EQ(names(renderer.stats()), (std::vector<std::string>{"gbuffer", "shade:B:reference", "resolve", "tonemap"}));
+    EXPECT_EQ(renderer.stats().samplesPerPixel, 12);
+    renderer.renderFrame();
+    EXPECT_EQ(renderer.stats().samplesPerPixel, 24);
+    EXPECT_TRUE(renderer.converged());
+    std::vector<float> moved = renderer.readLinear();
+
+    std::vector<std::vector<float>> fresh;
+    for (uint32_t seed : {0u, 7u}) {
+        Renderer r(shaders);
+        RenderSettings f = s;
+        f.seed = seed;
+        r.setSettings(f);
+        r.update(scene, kChangeAll);
+        fresh.push_back(converge(r));
+    }
+    auto rel = [](const std::vector<float>& x, const std::vector<float>& y) {
+        double num = 0.0, den = 0.0;
+        for (size_t i = 0; i < x.size(); ++i) {
+            num += double(x[i] - y[i]) * double(x[i] - y[i]);
+            den += double(y[i]) * double(y[i]);
+        }
+        return std::sqrt(num / den);
+    };
+    double noise = rel(fresh[0], fresh[1]);  // two independent 24-spp images
+    ASSERT_GT(noise, 0.0);
+    // Same noise level when the weights are right; a pass counted as one sample (weights 1/2
+    // instead of 12/24 each) would still agree, but 1/passes for 24 spp in 2 passes would not.
+    EXPECT_LT(rel(moved, fresh[1]), 1.5 * noise) << "noise " << noise;
+}
+
 TEST(Renderer, DeterministicStepsOfAProgressiveFrameAreShadedOnce) {
     // A photometric `hybrid` light (deterministic) beside a `reference` panel (Monte Carlo): the
     // hybrid step runs in the first pass only and the resolve adds it once. The image must equal
