@@ -470,16 +470,19 @@ void Renderer::renderFrame() {
         });
         mNeedDisplay = false;
     }
-    // Statistics: the least refined step's passes (what every pixel has at least).
-    int fewest = -1, fewestSamples = -1;
+    // Statistics: the least refined progressive step's passes and samples (what every pixel
+    // has at least; deterministic steps hold their one pass), or the one pass of a frame of
+    // deterministic steps only.
+    int fewest = -1, fewestProgressive = -1, fewestSamples = -1;
     auto count = [&](int st, bool progressive) {
         const Accumulation& a = accumulationOf(st);
         if (fewest < 0 || a.frames < fewest) fewest = a.frames;
+        if (progressive && (fewestProgressive < 0 || a.frames < fewestProgressive)) fewestProgressive = a.frames;
         if (progressive && (fewestSamples < 0 || a.samples < fewestSamples)) fewestSamples = a.samples;
     };
     if (mPlan.environment) count(-1, mPlan.environmentTechnique->progressive);
     for (size_t i = 0; i < mPlan.shading.size(); ++i) count(int(i), mPlan.shading[i].progressive);
-    mStats.accumulatedFrames = std::max(fewest, 0);
+    mStats.accumulatedFrames = std::max(fewestProgressive >= 0 ? fewestProgressive : fewest, 0);
     mStats.samplesPerPixel = mPlan.progressive() ? std::max(fewestSamples, 0) : 0;
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }

@@ -100,6 +100,24 @@ TEST(Comparison, ExactTechniqueErrsByTheReferenceNoiseAndBiasedOneByMore) {
     EXPECT_LT(exact.latest.deltaE, mc.latest.deltaE);
 }
 
+TEST(Comparison, MixedDeterministicAndProgressiveLuminairesRefineToTheBudget) {
+    // A closed-form panel beside a Monte Carlo one in every image: the deterministic one holds
+    // its single pass while the other refines, and the pane still reaches its budget and ends.
+    test::glContext();
+    Scene scene = panelScene();
+    std::string second = R"({"type": "lambertian-rect", "name": "B", "size": [0.5, 0.5], "radiance": [4, 4, 4],
+                            "position": [-1, 2, 0.5], "technique": "reference"})";
+    scene.luminaires.push_back(parseLuminaire(nlohmann::json::parse(second), {"test.json", "luminaires[1]"}));
+    ShaderLibrary shaders;
+    Comparison c(shaders);
+    c.configure({{"", 32}}, shared(), 32);
+    c.update(scene, kChangeAll);
+    runToEnd(c);
+    EXPECT_EQ(c.result(0).spp, 32);
+    EXPECT_EQ(c.result(0).series.size(), 4u);  // passes 1, 2, 4, 8 of 4 spp
+    EXPECT_EQ(c.referenceSpp(), 32);
+}
+
 TEST(Comparison, MeasuresAtDoublingSamplesWithGrowingTime) {
     test::glContext();
     Scene scene = panelScene();
