@@ -75,7 +75,12 @@ move_to $((VX + VW / 3)) $((VY + VH / 2))  # no tooltip in the picture
 wait_frames 3
 shot wipe
 
-# 6. The same comparison headless, four panes, as a labelled sheet.
+# 6. The same comparison headless, four panes, as a labelled sheet (the editor closed first: its
+# reference would share the two cores and inflate the sheet's times, which are wall times on
+# llvmpipe).
+kill "$EDITOR_PID" 2>/dev/null || true
+wait "$EDITOR_PID" 2>/dev/null || true
+EDITOR_PID=""
 "$CANDELA" render "$PWD/resources/scenes/editor-room.json" --sheet "$TMP/sheet" --pane "" \
     --pane "precomputed-global,scattered" --pane "granier2003,point" --pane "uniform-restricted,mc-poisson-24" \
     --size 320x180 --spp 64 --reference-spp 256
