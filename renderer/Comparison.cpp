@@ -149,14 +149,13 @@ void Comparison::restartReference() {
     r.frames = 0;
     r.spp = 0;
     r.gpuMs = 0.0;
-    r.linear.clear();
-    r.linearFrames = 0;
+    r.image.set({});
+    r.imageFrames = 0;
     r.displayStale = false;
     r.half.clear();
     r.halfFrames = 0;
     r.noise2 = -1.0;
     r.noiseSpp = 0;
-    r.lab.clear();
     r.emitters.clear();
     mToneAverage = 0.0;
 }
@@ -165,7 +164,7 @@ bool Comparison::panesDone() const {
     return std::all_of(mPanes.begin(), mPanes.end(), [](const Pane& p) { return p.result.done; });
 }
 
-bool Comparison::referenceDone() const { return mReference.renderer->converged() && !mReference.linear.empty(); }
+bool Comparison::referenceDone() const { return mReference.renderer->converged() && !mReference.image.empty(); }
 
 double Comparison::referenceNoise() const {
     const Reference& r = mReference;
@@ -199,7 +198,7 @@ void Comparison::step(double budgetMs) {
     if (!mScene) return;
     size_t active = 0;
     for (const Pane& pane : mPanes) active += pane.result.done ? 0 : 1;
-    bool referenceActive = !mReference.renderer->converged() || mReference.linear.empty();
+    bool referenceActive = !mReference.renderer->converged() || mReference.image.empty();
     size_t shares = active + (referenceActive ? 1 : 0);
     double share = shares > 0 ? budgetMs / double(shares) : 0.0;
 
@@ -241,10 +240,10 @@ void Comparison::snapshot(Pane& pane) {
     Snapshot shot;
     shot.point.timeMs = pane.passGpuMs;  // the image is that of the last complete pass
     shot.point.spp = pane.result.spp;
-    shot.linear = pane.renderer->readLinear();
+    shot.image.set(pane.renderer->readLinear());
     pane.snapshotFrames = pane.frames;
     pane.snapshots.push_back(std::move(shot));
-    if (mReference.linear.empty()) return;  // measured when the reference has a pass
+    if (mReference.image.empty()) return;  // measured when the reference has a pass
     measure(pane, pane.snapshots.back());
     pane.result.series.push_back(pane.snapshots.back().point);
     updateErrorMap(pane, pane.snapshots.back());
@@ -255,30 +254,29 @@ void Comparison::referenceAdvanced() {
     const FrameStats& stats = r.renderer->stats();
     r.spp = stats.samplesPerPixel;
     bool done = r.renderer->converged();
-    bool first = r.linear.empty();
+    bool first = r.image.empty();
     // Measured again when its passes double (and at the first and the last): each pane's
     // measurements then use the better reference without paying for them at every pass.
     if (!first && !done && !powerOfTwo(r.frames)) return;
-    r.linear = r.renderer->readLinear();
-    r.linearFrames = r.frames;
-    r.lab.clear();  // of the previous image
+    r.image.set(r.renderer->readLinear());
+    r.imageFrames = r.frames;
     if (first) r.emitters = r.renderer->readEmitterMask();
     if (powerOfTwo(r.frames)) {
         if (!r.half.empty() && r.halfFrames * 2 == r.frames) {
             // ref_N - ref_(N/2) = (B - A) / 2 for the two halves A, B of the samples: its
             // expected square is the variance of ref_N itself.
-            double e = relRmse(r.half, r.linear, r.emitters);
+            double e = relRmse(r.half, r.image.linear(), r.emitters);
             r.noise2 = e * e;
             r.noiseSpp = r.spp;
         }
-        r.half = r.linear;
+        r.half = r.image.linear();
         r.halfFrames = r.frames;
     }
     if (!r.renderer->plan().progressive()) {
         r.noise2 = 0.0;  // deterministic: exact for its model
         r.noiseSpp = std::max(1, r.spp);
     }
-    setToneAverage(meanLuminance(r.linear));
+    setToneAverage(meanLuminance(r.image.linear()));
     remeasureAll();
 }
 
@@ -296,12 +294,11 @@ void Comparison::setToneAverage(double average) {
 
 void Comparison::measureNow() {
     Reference& r = mReference;
-    if (r.frames > 0 && r.frames != r.linearFrames) {
-        r.linear = r.renderer->readLinear();
-        r.linearFrames = r.frames;
-        r.lab.clear();
+    if (r.frames > 0 && r.frames != r.imageFrames) {
+        r.image.set(r.renderer->readLinear());
+        r.imageFrames = r.frames;
         if (r.emitters.empty()) r.emitters = r.renderer->readEmitterMask();
-        setToneAverage(meanLuminance(r.linear));
+        setToneAverage(meanLuminance(r.image.linear()));
         remeasureAll();
     }
     for (Pane& pane : mPanes) {
@@ -318,7 +315,7 @@ bool Comparison::measurable() const {
 const std::vector<float>& Comparison::paneImage(size_t pane) const {
     static const std::vector<float> kNone;
     const Pane& p = mPanes[pane];
-    return p.snapshots.empty() ? kNone : p.snapshots.back().linear;
+    return p.snapshots.empty() ? kNone : p.snapshots.back().image.linear();
 }
 
 std::vector<unsigned char> Comparison::toneMapped(const std::vector<float>& linear) const {
@@ -326,28 +323,22 @@ std::vector<unsigned char> Comparison::toneMapped(const std::vector<float>& line
     return toneMapSrgb8(linear, average, mShared.exposure, mShared.toneMap == ToneMapOperator::Reinhard);
 }
 
-const std::vector<glm::vec3>& Comparison::labOf(Snapshot& shot) {
-    if (shot.lab.empty() || shot.toneAverage != mToneAverage) {
-        bool reinhard = mShared.toneMap == ToneMapOperator::Reinhard;
-        shot.lab = labImage(toneMapSrgb8(shot.linear, mToneAverage, mShared.exposure, reinhard));
-        shot.toneAverage = mToneAverage;
+const std::vector<glm::vec3>& Comparison::Measured::lab(const Comparison& c) {
+    if (mLab.empty() || mLabAverage != c.mToneAverage) {
+        mLab = labImage(c.toneMapped(mLinear));
+        mLabAverage = c.mToneAverage;
     }
-    return shot.lab;
+    return mLab;
 }
 
 void Comparison::measure(Pane& pane, Snapshot& shot) {
     Reference& r = mReference;
-    if (r.lab.empty() || r.labAverage != mToneAverage) {
-        bool reinhard = mShared.toneMap == ToneMapOperator::Reinhard;
-        r.lab = labImage(toneMapSrgb8(r.linear, mToneAverage, mShared.exposure, reinhard));
-        r.labAverage = mToneAverage;
-    }
-    double raw = relRmse(shot.linear, r.linear, r.emitters);
+    double raw = relRmse(shot.image.linear(), r.image.linear(), r.emitters);
     double noise = referenceNoise();
     // The pane and the reference are independent: E|x - r|^2 = |x - truth|^2 + |r - truth|^2.
     double corrected = std::isfinite(noise) ? std::sqrt(std::max(0.0, raw * raw - noise * noise)) : raw;
     shot.point.relRmse = corrected;
-    shot.point.deltaE = meanDistance(labOf(shot), r.lab);
+    shot.point.deltaE = meanDistance(shot.image.lab(*this), r.image.lab(*this));
     if (&shot == &pane.snapshots.back()) {
         pane.result.latest = shot.point;
         pane.result.rawRelRmse = raw;
@@ -356,7 +347,7 @@ void Comparison::measure(Pane& pane, Snapshot& shot) {
 }
 
 void Comparison::remeasureAll() {
-    if (mReference.linear.empty()) return;  // nothing to measure against yet
+    if (mReference.image.empty()) return;  // nothing to measure against yet
     for (Pane& pane : mPanes) {
         if (pane.snapshots.empty()) continue;
         pane.result.series.clear();
@@ -369,8 +360,9 @@ void Comparison::remeasureAll() {
 }
 
 void Comparison::updateErrorMap(Pane& pane, const Snapshot& shot) {
-    const std::vector<float>& ref = mReference.linear;
-    if (ref.size() != shot.linear.size() || !(mToneAverage > 0.0)) return;
+    const std::vector<float>& ref = mReference.image.linear();
+    const std::vector<float>& linear = shot.image.linear();
+    if (ref.size() != linear.size() || !(mToneAverage > 0.0)) return;
     int w = pane.renderer->settings().width, h = pane.renderer->settings().height;
     if (size_t(w) * size_t(h) * 3 != ref.size()) return;
     double scale = double(mErrorScale) * mToneAverage;
@@ -380,7 +372,7 @@ void Comparison::updateErrorMap(Pane& pane, const Snapshot& shot) {
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
             size_t i = (size_t(y) * size_t(w) + size_t(x)) * 3;
-            double e = (luma(&shot.linear[i]) - luma(&ref[i])) / scale;
+            double e = (luma(&linear[i]) - luma(&ref[i])) / scale;
             if (!std::isfinite(e)) e = 0.0;
             e = std::clamp(e, -1.0, 1.0);
             glm::dvec3 c = e >= 0.0 ? e * above : -e * below;

@@ -99,17 +99,32 @@ class Comparison {
     /// A pane's last measured image (RGB float, rows top to bottom; empty until it has one).
     const std::vector<float>& paneImage(size_t pane) const;
     /// The reference image the last measurements used.
-    const std::vector<float>& referenceImage() const { return mReference.linear; }
+    const std::vector<float>& referenceImage() const { return mReference.image.linear(); }
     /// An image of the view as the errors see it: tone-mapped (the operator and exposure of the
     /// shared settings) against the reference's mean luminance, sRGB8 rows top to bottom.
     std::vector<unsigned char> toneMapped(const std::vector<float>& linear) const;
 
   private:
+    /// A linear image and, made on demand, the CIELAB of it tone-mapped as Delta E sees it.
+    class Measured {
+      public:
+        void set(std::vector<float> linear) {
+            mLinear = std::move(linear);
+            mLab.clear();  // of the image it replaces
+        }
+        const std::vector<float>& linear() const { return mLinear; }
+        bool empty() const { return mLinear.empty(); }
+        /// Its CIELAB tone-mapped against `average` (cached per average).
+        const std::vector<glm::vec3>& lab(const Comparison& c);
+
+      private:
+        std::vector<float> mLinear;
+        std::vector<glm::vec3> mLab;
+        double mLabAverage = 0.0;  ///< The tone-mapping average mLab was made with.
+    };
     struct Snapshot {
         ErrorPoint point;
-        std::vector<float> linear;
-        double toneAverage = 0.0;           ///< The tone-mapping average lab was made with.
-        std::vector<glm::vec3> lab;         ///< CIELAB of the tone-mapped image (cached).
+        Measured image;
     };
     struct Pane {
         PaneSpec spec;
@@ -130,14 +145,12 @@ class Comparison {
         int spp = 0;
         double gpuMs = 0.0;
         bool displayStale = false;
-        std::vector<float> linear;      ///< At the last measurement.
-        int linearFrames = 0;           ///< frames when linear was read.
+        Measured image;                 ///< At the last measurement.
+        int imageFrames = 0;            ///< frames when image was read.
         std::vector<float> half;        ///< At the last power-of-two pass count.
         int halfFrames = 0;
         double noise2 = -1.0;           ///< Relative MSE of noise at noiseSpp; < 0 unknown.
         int noiseSpp = 0;
-        std::vector<glm::vec3> lab;
-        double labAverage = 0.0;
         /// Pixels that see a luminaire: left out of the relative RMSE, whose sum of squares
         /// they would dominate with an emitted radiance every image shares exactly.
         std::vector<unsigned char> emitters;
@@ -155,7 +168,6 @@ class Comparison {
     void updateErrorMap(Pane& pane, const Snapshot& shot);
     void restartPane(Pane& pane);
     void restartReference();
-    const std::vector<glm::vec3>& labOf(Snapshot& shot);
     void setToneAverage(double average);
 
     ShaderLibrary& mShaders;

@@ -99,9 +99,23 @@ void Renderer::resize(int width, int height) {
     mPass.clear();
 }
 
+std::vector<int> Renderer::planSteps() const {
+    std::vector<int> steps;
+    if (mPlan.environment) steps.push_back(-1);
+    for (size_t i = 0; i < mPlan.shading.size(); ++i) steps.push_back(int(i));
+    return steps;
+}
+
+const Luminaire* Renderer::luminaireOf(int step) const {
+    return step < 0 ? nullptr : mScene->luminaires[size_t(mPlan.shading[size_t(step)].luminaire)].get();
+}
+
+bool Renderer::progressiveStep(int step) const {
+    return step < 0 ? mPlan.environmentTechnique->progressive : mPlan.shading[size_t(step)].progressive;
+}
+
 Renderer::Accumulation& Renderer::accumulationOf(int step) {
-    Accumulation& a = step < 0 ? mEnvironmentAccumulation
-                               : mAccumulations[mScene->luminaires[size_t(mPlan.shading[size_t(step)].luminaire)].get()];
+    Accumulation& a = step < 0 ? mEnvironmentAccumulation : mAccumulations[luminaireOf(step)];
     if (a.texture.width() != mGBuffer->width() || a.texture.height() != mGBuffer->height()) {
         a.texture = gl::Texture2D(mGBuffer->width(), mGBuffer->height(), GL_RGBA32F);
         a.fbo = gl::Framebuffer({&a.texture}, nullptr);
@@ -120,29 +134,24 @@ Renderer::Accumulation& Renderer::accumulationOf(int step) {
 int Renderer::stepOf(const Luminaire* lum) const {
     if (!lum) return mPlan.environment ? -1 : -2;
     for (size_t i = 0; i < mPlan.shading.size(); ++i)
-        if (mScene->luminaires[size_t(mPlan.shading[i].luminaire)].get() == lum) return int(i);
+        if (luminaireOf(int(i)) == lum) return int(i);
     return -2;
 }
 
 bool Renderer::refines(int step) {
-    const ShadeStep& s = step < 0 ? *mPlan.environment : mPlan.shading[size_t(step)];
-    bool progressive = step < 0 ? mPlan.environmentTechnique->progressive : s.progressive;
     const Accumulation& a = accumulationOf(step);
-    if (!progressive) return a.frames == 0;
+    if (!progressiveStep(step)) return a.frames == 0;
     return mSettings.maxSamples <= 0 || a.samples < mSettings.maxSamples;
 }
 
 std::vector<const Luminaire*> Renderer::choosePass() {
-    std::vector<int> steps;
-    if (mPlan.environment) steps.push_back(-1);
-    for (size_t i = 0; i < mPlan.shading.size(); ++i) steps.push_back(int(i));
+    std::vector<int> steps = planSteps();
     // The samples the others have reached: the most of any progressive step not catching up
     // itself; with none, the sample budget.
     int fewest = -1, ahead = 0;
     for (int st : steps) {
         const Accumulation& a = accumulationOf(st);
-        bool progressive = st < 0 ? mPlan.environmentTechnique->progressive : mPlan.shading[size_t(st)].progressive;
-        if (progressive && !a.catchingUp) ahead = std::max(ahead, a.samples);
+        if (progressiveStep(st) && !a.catchingUp) ahead = std::max(ahead, a.samples);
         if (refines(st) && (fewest < 0 || a.samples < fewest)) fewest = a.samples;
     }
     if (ahead == 0) ahead = std::max(mSettings.maxSamples, 0);
@@ -153,7 +162,7 @@ std::vector<const Luminaire*> Renderer::choosePass() {
         if (!refines(st) || a.samples != fewest) continue;
         a.catchingUp = a.catchingUp && a.samples < ahead;
         catchUp = catchUp && a.catchingUp;
-        pass.push_back(st < 0 ? nullptr : mScene->luminaires[size_t(mPlan.shading[size_t(st)].luminaire)].get());
+        pass.push_back(luminaireOf(st));
     }
     // A luminaire that restarted alone (one that moved) catches up with the others in passes
     // of up to catchUpPasses passes' samples (RenderSettings::catchUpPasses).
@@ -219,8 +228,7 @@ void Renderer::runShading(int spp, int row0, int rows) {
     // own accumulation with its own pass count (the seeds of its random numbers).
     std::vector<int> steps;
     if (mPointMode) {
-        if (mPlan.environment) steps.push_back(-1);
-        for (size_t i = 0; i < mPlan.shading.size(); ++i) steps.push_back(int(i));
+        steps = planSteps();
     } else {
         for (const Luminaire* lum : mPass)
             if (int st = stepOf(lum); st >= -1) steps.push_back(st);
@@ -424,42 +432,30 @@ void Renderer::renderFrame() {
             // accumulation weighted by the pass's samples.
             mBandRow = 0;
             const float zero[4] = {0.f, 0.f, 0.f, 0.f};
-            GLuint add = mShaders.program({"fullscreen.vert", "accumulate.frag", "", {}});
-            glUseProgram(add);
-            glProgramUniform1f(add, 0, float(spp));
             glBindVertexArray(mEmptyVao.id());
-            glEnable(GL_BLEND);
-            glBlendFunc(GL_ONE, GL_ONE);
             for (const Luminaire* lum : mPass)
                 if (int st = stepOf(lum); st >= -1) {
                     Accumulation& a = accumulationOf(st);
-                    glBindFramebuffer(GL_FRAMEBUFFER, a.fbo.id());
-                    glViewport(0, 0, width, height);
-                    glBindTextureUnit(0, a.working.id());
-                    glDrawArrays(GL_TRIANGLES, 0, 3);
+                    addScaled(mShaders, a.fbo, width, height, {{&a.working, float(spp)}});
                     glClearNamedFramebufferfv(a.workingFbo.id(), GL_COLOR, 0, zero);
                     ++a.frames;
                     a.samples += spp;
                 }
-            glDisable(GL_BLEND);
             mPass.clear();
             mNeedDisplay = true;
             bool more = false;
-            if (mPlan.environment) more = more || refines(-1);
-            for (size_t i = 0; i < mPlan.shading.size(); ++i) more = more || refines(int(i));
+            for (int st : planSteps()) more = more || refines(st);
             mStats.converged = !more;
         }
     }
     if (mNeedDisplay) {
         std::vector<ResolvePass::Term> terms;
-        auto term = [&](int st) {
+        for (int st : planSteps()) {
             // A step's first pass shows as it is shaded; later ones when complete.
             Accumulation& a = accumulationOf(st);
             terms.push_back(a.frames == 0 ? ResolvePass::Term{&a.working, 1.f}
                                           : ResolvePass::Term{&a.texture, 1.f / float(a.samples)});
-        };
-        if (mPlan.environment) term(-1);
-        for (size_t i = 0; i < mPlan.shading.size(); ++i) term(int(i));
+        }
         glBindVertexArray(mEmptyVao.id());
         timed(mStats, "resolve",
               [&] { mResolve->execute(mShaders, terms, mGBuffer->texture(gpu::kGBufferEmission)); });
@@ -474,14 +470,13 @@ void Renderer::renderFrame() {
     // has at least; deterministic steps hold their one pass), or the one pass of a frame of
     // deterministic steps only.
     int fewest = -1, fewestProgressive = -1, fewestSamples = -1;
-    auto count = [&](int st, bool progressive) {
+    for (int st : planSteps()) {
         const Accumulation& a = accumulationOf(st);
+        bool progressive = progressiveStep(st);
         if (fewest < 0 || a.frames < fewest) fewest = a.frames;
         if (progressive && (fewestProgressive < 0 || a.frames < fewestProgressive)) fewestProgressive = a.frames;
         if (progressive && (fewestSamples < 0 || a.samples < fewestSamples)) fewestSamples = a.samples;
-    };
-    if (mPlan.environment) count(-1, mPlan.environmentTechnique->progressive);
-    for (size_t i = 0; i < mPlan.shading.size(); ++i) count(int(i), mPlan.shading[i].progressive);
+    }
     mStats.accumulatedFrames = std::max(fewestProgressive >= 0 ? fewestProgressive : fewest, 0);
     mStats.samplesPerPixel = mPlan.progressive() ? std::max(fewestSamples, 0) : 0;
     glBindFramebuffer(GL_FRAMEBUFFER, 0);

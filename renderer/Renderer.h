@@ -134,6 +134,11 @@ private:
         bool catchingUp = false;       ///< Restarted alone: behind the others, larger passes.
         std::vector<std::byte> key;    ///< What it was shaded for (GPU record, technique, variant).
     };
+    /// The plan's steps: -1 for the environment (when it has one), then 0, 1, ... shading.
+    std::vector<int> planSteps() const;
+    /// The luminaire a step shades (null for the environment, -1).
+    const Luminaire* luminaireOf(int step) const;
+    bool progressiveStep(int step) const;
     /// The accumulation of a step of the plan (-1: the environment).
     Accumulation& accumulationOf(int step);
     /// Whether the step still refines: a progressive one below maxSamples, a deterministic one

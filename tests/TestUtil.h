@@ -2,12 +2,15 @@
 // Helpers shared by the tests: statistics for sampler tests and a GL context for *_gltest.cpp.
 
 #include <glm/glm.hpp>
+#include <gtest/gtest.h>
 
 #include <cstddef>
 #include <cstring>
 #include <memory>
 #include <string>
 #include <vector>
+
+#include "util/Error.h"
 
 namespace candela {
 class GlContext;
@@ -28,6 +31,18 @@ struct ChiSquareResult {
 /// below 5 are pooled into one cell (the usual validity rule). The expected counts should sum
 /// to the number of samples; mass outside the cells may be passed as one more cell.
 ChiSquareResult chiSquare(const std::vector<double>& observed, const std::vector<double>& expected);
+
+/// The message of the InputError that `f` throws (a test failure if it throws none).
+template <class F>
+std::string inputError(F f) {
+    try {
+        f();
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    ADD_FAILURE() << "expected an InputError";
+    return {};
+}
 
 /// One OSMesa context for the whole GL test binary (created on first use).
 GlContext& glContext();

@@ -13,6 +13,7 @@
 #include "renderer/ImageFile.h"
 #include "ui/ComparisonSheet.h"
 #include "util/Error.h"
+#include "tests/TestUtil.h"
 
 namespace candela::ui {
 namespace {
@@ -21,17 +22,7 @@ namespace fs = std::filesystem;
 
 constexpr const char* kDejaVuSans = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
 
-/// The message of the InputError that `f` throws (a test failure if it throws none).
-template <class F>
-std::string inputError(F f) {
-    try {
-        f();
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    ADD_FAILURE() << "expected an InputError";
-    return {};
-}
+using test::inputError;
 
 #define EXPECT_CONTAINS(text, part) \
     EXPECT_NE(std::string(text).find(part), std::string::npos) << "in: " << (text)

@@ -124,6 +124,12 @@ TEST(Renderer, BandedRefinementGivesTheSameImageAndShowsOnlyWholePasses) {
     EXPECT_EQ(differ, 0u);
 }
 
+/// Two panels for the per-luminaire tests: A low and closed-form (deterministic), B Monte Carlo.
+const std::string kLowPanelA =
+    R"({"type": "lambertian-rect", "name": "A", "size": [0.6, 0.4], "radiance": [10, 10, 10], "position": [-0.6,1.2,0.5], "aim": [0,-1,0], "technique": "analytic"})";
+const std::string kMonteCarloPanelB =
+    R"({"type": "lambertian-rect", "name": "B", "size": [1, 0.5], "radiance": [5, 8, 10], "position": [0.8,2.5,-0.3], "technique": "reference"})";
+
 TEST(Renderer, MovingOneLuminaireRefinesOnlyIt) {
     // Two panels over a floor, both in view: A closed form (deterministic), B Monte Carlo. After
     // both converge, A moves (in place, as the editor's drag does): only A is shaded again, and
@@ -131,10 +137,7 @@ TEST(Renderer, MovingOneLuminaireRefinesOnlyIt) {
     // passes with the same random numbers a fresh render draws). The pixels A covered before now
     // show the floor, lit by both, as the fresh render has them.
     test::glContext();
-    const std::string a =
-        R"({"type": "lambertian-rect", "name": "A", "size": [0.6, 0.4], "radiance": [10, 10, 10], "position": [-0.6,1.2,0.5], "aim": [0,-1,0], "technique": "analytic"})";
-    const std::string b =
-        R"({"type": "lambertian-rect", "name": "B", "size": [1, 0.5], "radiance": [5, 8, 10], "position": [0.8,2.5,-0.3], "technique": "reference"})";
+    const std::string a = kLowPanelA, b = kMonteCarloPanelB;
     const std::string camera = R"({"position": [0, 2.5, 3.5], "target": [0, 0.3, 0], "fov_deg": 60})";
     Scene scene = sceneFrom(kFloor, a + "," + b, camera);
     ShaderLibrary shaders;
@@ -181,10 +184,7 @@ TEST(Renderer, AMovedLuminaireCatchesUpInLargerPasses) {
     // the 12 left. Passes of different sizes are weighted by their samples: the image matches a
     // fresh 24-spp render within the two renders' own noise (measured by two fresh seeds).
     test::glContext();
-    const std::string a =
-        R"({"type": "lambertian-rect", "name": "A", "size": [0.6, 0.4], "radiance": [10, 10, 10], "position": [-0.6,1.2,0.5], "aim": [0,-1,0], "technique": "analytic"})";
-    const std::string b =
-        R"({"type": "lambertian-rect", "name": "B", "size": [1, 0.5], "radiance": [5, 8, 10], "position": [0.8,2.5,-0.3], "technique": "reference"})";
+    const std::string a = kLowPanelA, b = kMonteCarloPanelB;
     Scene scene = sceneFrom(kFloor, a + "," + b);
     ShaderLibrary shaders;
     RenderSettings s = small();

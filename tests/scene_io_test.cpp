@@ -12,6 +12,7 @@
 
 #include "scene/SceneIo.h"
 #include "util/Error.h"
+#include "tests/TestUtil.h"
 
 namespace candela {
 namespace {
@@ -22,17 +23,7 @@ std::string data(const std::string& relative) {
     return std::string(CANDELA_TEST_DATA) + "/" + relative;
 }
 
-/// The message of the InputError that `f` throws (a test failure if it throws none).
-template <class F>
-std::string inputError(F f) {
-    try {
-        f();
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    ADD_FAILURE() << "expected an InputError";
-    return {};
-}
+using test::inputError;
 
 #define EXPECT_CONTAINS(text, part) \
     EXPECT_NE(std::string(text).find(part), std::string::npos) << "in: " << (text)

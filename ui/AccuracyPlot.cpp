@@ -258,23 +258,33 @@ ImU32 seriesColour(size_t index) {
     return kPalette[index % std::size(kPalette)];
 }
 
-std::string timeTickLabel(double ms) {
+namespace {
+
+/// A time in ms or s with `digits` significant digits.
+std::string timeLabel(double ms, int digits) {
     char text[64];
     if (std::abs(ms) >= 1000.0)
-        std::snprintf(text, sizeof text, "%g s", ms / 1000.0);
+        std::snprintf(text, sizeof text, "%.*g s", digits, ms / 1000.0);
     else
-        std::snprintf(text, sizeof text, "%g ms", ms);
+        std::snprintf(text, sizeof text, "%.*g ms", digits, ms);
     return text;
 }
 
-std::string metricTickLabel(double value, ErrorMetric metric) {
+/// A value of the metric (relative RMSE in percent) with `digits` significant digits.
+std::string metricLabel(double value, ErrorMetric metric, int digits) {
     char text[64];
     if (metric == ErrorMetric::RelRmse)
-        std::snprintf(text, sizeof text, "%g%%", value * 100.0);
+        std::snprintf(text, sizeof text, "%.*g%%", digits, value * 100.0);
     else
-        std::snprintf(text, sizeof text, "%g", value);
+        std::snprintf(text, sizeof text, "%.*g", digits, value);
     return text;
 }
+
+}  // namespace
+
+std::string timeTickLabel(double ms) { return timeLabel(ms, 6); }
+
+std::string metricTickLabel(double value, ErrorMetric metric) { return metricLabel(value, metric, 6); }
 
 // ---------------------------------------------------------------------------------------------
 // Drawing.
@@ -325,23 +335,9 @@ int decadeStride(double lo, double hi) {
     return std::max(1, (int(hi - lo) + 9) / 10);
 }
 
-std::string timeText(double ms) {
-    char text[64];
-    if (ms >= 1000.0)
-        std::snprintf(text, sizeof text, "%.4g s", ms / 1000.0);
-    else
-        std::snprintf(text, sizeof text, "%.4g ms", ms);
-    return text;
-}
+std::string timeText(double ms) { return timeLabel(ms, 4); }
 
-std::string errorText(double value, ErrorMetric metric) {
-    char text[64];
-    if (metric == ErrorMetric::RelRmse)
-        std::snprintf(text, sizeof text, "%.3g%%", value * 100.0);
-    else
-        std::snprintf(text, sizeof text, "%.3g", value);
-    return text;
-}
+std::string errorText(double value, ErrorMetric metric) { return metricLabel(value, metric, 3); }
 
 void addText(ImDrawList* draw, ImVec2 at, ImU32 colour, const std::string& text) {
     draw->AddText(at, colour, text.c_str(), text.c_str() + text.size());

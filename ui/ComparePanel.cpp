@@ -11,6 +11,7 @@
 #include <string>
 
 #include "luminaires/EnvironmentSampling.h"
+#include "ui/ComparisonExport.h"
 #include "ui/ImGuiUtil.h"
 #include "ui/Panels.h"
 
@@ -66,13 +67,6 @@ std::vector<std::string> gpuTechniques(const std::string& kind) {
     return out;
 }
 
-/// "850 ms", "2.31 s".
-std::string formatMs(double ms) {
-    char text[32];
-    if (ms < 1000.0) std::snprintf(text, sizeof text, "%.0f ms", ms);
-    else std::snprintf(text, sizeof text, "%.2f s", ms / 1000.0);
-    return text;
-}
 
 /// The pane's label: its techniques, its samples and time, its errors (or what it waits for).
 std::vector<std::string> paneLabel(const CompareUi& ui, const Comparison& c, size_t i) {
@@ -82,7 +76,7 @@ std::vector<std::string> paneLabel(const CompareUi& ui, const Comparison& c, siz
                           ? std::to_string(r.spp) + (r.done ? "" : " / " + std::to_string(c.spec(i).samples)) + " spp"
                           : std::string("exact");
     std::vector<std::string> lines = {paneName(ui, i) + "  " + techniqueSummary(renderer.plan()),
-                                      spp + " \xc2\xb7 " + formatMs(r.gpuMs) + " GPU"};
+                                      spp + " \xc2\xb7 " + formatMs(r.gpuMs, 0) + " GPU"};
     char text[96];
     if (r.measured)
         std::snprintf(text, sizeof text, "\xce\x94" "E %.2f \xc2\xb7 rel. RMSE %.2f %%", r.latest.deltaE,
@@ -99,7 +93,7 @@ std::string referenceLine(const Comparison& c) {
     if (std::isfinite(c.referenceNoise())) std::snprintf(noise, sizeof noise, "%.2f %%", 100.0 * c.referenceNoise());
     else std::snprintf(noise, sizeof noise, "(after 2 passes)");
     std::snprintf(text, sizeof text, "Reference %d / %d spp \xc2\xb7 %s \xc2\xb7 noise %s", c.referenceSpp(),
-                  c.referenceSamples(), formatMs(c.referenceGpuMs()).c_str(), noise);
+                  c.referenceSamples(), formatMs(c.referenceGpuMs(), 0).c_str(), noise);
     return text;
 }
 
@@ -310,7 +304,7 @@ bool comparePanel(EditorState& state, const Comparison* c, const PanelRect& rect
                 ImGui::Text("%s %s", paneName(ui, i).c_str(), r.done ? "" : "...");
                 itemTooltip(techniqueSummary(c->paneRenderer(i).plan()));
                 ImGui::TableNextColumn();
-                ImGui::TextUnformatted(formatMs(r.gpuMs).c_str());
+                ImGui::TextUnformatted(formatMs(r.gpuMs, 0).c_str());
                 ImGui::TableNextColumn();
                 if (r.measured) ImGui::Text("%.2f", r.latest.deltaE);
                 ImGui::TableNextColumn();
@@ -367,11 +361,11 @@ void accuracyWindow(EditorState& state, const Comparison* c, const PanelRect& vi
         Winner w = winnerAt(among, ui.budgetMs, metric);
         winner = w.series >= 0 ? among[size_t(w.series)].label : std::string();
         if (w.series >= 0)
-            ImGui::Text("At %s %s: %s wins, %s %.3g%s", formatMs(ui.budgetMs).c_str(), where, winner.c_str(),
+            ImGui::Text("At %s %s: %s wins, %s %.3g%s", formatMs(ui.budgetMs, 0).c_str(), where, winner.c_str(),
                         ui.plotDeltaE ? "\xce\x94" "E" : "rel. RMSE", ui.plotDeltaE ? w.error : 100.0 * w.error,
                         ui.plotDeltaE ? "" : " %");
         else
-            ImGui::TextDisabled("%s: no technique has a measurement within %s yet", where, formatMs(ui.budgetMs).c_str());
+            ImGui::TextDisabled("%s: no technique has a measurement within %s yet", where, formatMs(ui.budgetMs, 0).c_str());
     };
     announce(view, "on this view", ui.winner);
     if (!ui.benchSeries.empty()) announce(ui.benchSeries, "in the bench CSVs", ui.benchWinner);

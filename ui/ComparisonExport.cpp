@@ -1,23 +1,15 @@
 #include "ui/ComparisonExport.h"
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <ctime>
 
 #include "scene/SceneIo.h"
+#include "ui/Screenshot.h"
 #include "util/Error.h"
 
 namespace candela::ui {
 
 namespace {
-
-std::string formatMs(double ms) {
-    char text[32];
-    if (ms < 1000.0) std::snprintf(text, sizeof text, "%.1f ms", ms);
-    else std::snprintf(text, sizeof text, "%.2f s", ms / 1000.0);
-    return text;
-}
 
 nlohmann::json seriesJson(const std::vector<ErrorPoint>& series) {
     nlohmann::json out = nlohmann::json::array();
@@ -29,16 +21,14 @@ nlohmann::json seriesJson(const std::vector<ErrorPoint>& series) {
 /// A number for JSON: null where it is not finite (JSON has no NaN).
 nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
-std::string utcTimestamp() {
-    std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
-    std::tm tm{};
-    gmtime_r(&now, &tm);
+}  // namespace
+
+std::string formatMs(double ms, int msDecimals) {
     char text[32];
-    std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &tm);
+    if (ms < 1000.0) std::snprintf(text, sizeof text, "%.*f ms", msDecimals, ms);
+    else std::snprintf(text, sizeof text, "%.2f s", ms / 1000.0);
     return text;
 }
-
-}  // namespace
 
 nlohmann::json comparisonJson(const Comparison& c, const std::vector<std::string>& paneNames) {
     nlohmann::json panes = nlohmann::json::array();

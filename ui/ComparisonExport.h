@@ -17,6 +17,9 @@
 
 namespace candela::ui {
 
+/// A GPU time for labels: "850.0 ms" (msDecimals after the point) below a second, "2.31 s" above.
+std::string formatMs(double ms, int msDecimals = 1);
+
 /// The sidecar's description of the comparison: panes (name, technique list, techniques used,
 /// budget, results and measured series), the reference, the shared settings.
 nlohmann::json comparisonJson(const Comparison& comparison, const std::vector<std::string>& paneNames);

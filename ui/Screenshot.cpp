@@ -80,9 +80,6 @@ nlohmann::json cameraToJsonObject(const Camera& camera) {
             {"fov_deg", camera.fovDeg}};
 }
 
-namespace {
-
-/// UTC time as ISO 8601, e.g. "2024-05-01T12:34:56Z".
 std::string utcTimestamp() {
     std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
     std::tm tm{};
@@ -91,6 +88,8 @@ std::string utcTimestamp() {
     std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &tm);
     return text;
 }
+
+namespace {
 
 nlohmann::json passesJson(const std::vector<PassTiming>& passes) {
     nlohmann::json out = nlohmann::json::array();

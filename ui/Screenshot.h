@@ -51,6 +51,9 @@ void writeFileAtomic(const std::filesystem::path& path, const std::string& text)
 /// Throws InputError naming dir when all 100000 are taken.
 std::filesystem::path nextFreeStem(const std::filesystem::path& dir, const std::string& prefix);
 
+/// UTC time as ISO 8601, e.g. "2024-05-01T12:34:56Z" (the sidecars' timestamps).
+std::string utcTimestamp();
+
 /// The camera as a scene-file JSON object (position, target, fov_deg).
 nlohmann::json cameraToJsonObject(const Camera& camera);
 

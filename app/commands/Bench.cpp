@@ -119,9 +119,7 @@ int cmdBench(const Args& args) {
     Image ref = half1;
     for (size_t i = 0; i < ref.linear.size(); ++i) ref.linear[i] = 0.5f * (half1.linear[i] + half2.linear[i]);
     double refNoise = 0.5 * relRmse(half1.linear, half2.linear);  // of the mean of both halves
-    double avg = 0.0;
-    for (size_t i = 0; i + 2 < ref.linear.size(); i += 3) avg += luma(&ref.linear[i]);
-    avg /= double(ref.linear.size() / 3);
+    double avg = meanLuminance(ref.linear);
     settings.fixedAverage = float(avg);  // every image tone-mapped against the reference's mean
     // Re-tone-map the reference with that average: one more (cheap, converged) render.
     Image refShown = render(renderer, scene, settings, "restricted-cdf", refSpp / 2, 1000001);

@@ -151,9 +151,7 @@ int benchDrag(const Args& args) {
     do renderer.renderFrame();
     while (!renderer.converged());
     std::vector<float> refLinear = renderer.readLinear();
-    double avg = 0.0;
-    for (size_t i = 0; i + 2 < refLinear.size(); i += 3) avg += luma(&refLinear[i]);
-    avg /= double(refLinear.size() / 3);
+    double avg = meanLuminance(refLinear);
     full.fixedAverage = refSettings.fixedAverage = float(avg);
     renderer.setSettings(refSettings);
     renderer.renderFrame();  // converged: tone-maps again with the fixed average

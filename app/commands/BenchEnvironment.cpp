@@ -149,9 +149,7 @@ int benchEnvironment(const Args& args) {
     std::vector<float> ref(half1.linear.size());
     for (size_t i = 0; i < ref.size(); ++i) ref[i] = 0.5f * (half1.linear[i] + half2.linear[i]);
     double refNoise = 0.5 * relRmse(half1.linear, half2.linear);
-    double avg = 0.0;
-    for (size_t i = 0; i + 2 < ref.size(); i += 3) avg += luma(&ref[i]);
-    avg /= double(ref.size() / 3);
+    double avg = meanLuminance(ref);
     settings.fixedAverage = float(avg);  // every image tone-mapped against the reference's mean
     std::vector<unsigned char> refDisplay = render(renderer, scene, settings, "balanced-mis", refSpp / 2, 1000001).display;
     writeImage8((out / "reference.png").string(), width, height, refDisplay);

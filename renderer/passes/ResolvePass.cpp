@@ -20,19 +20,7 @@ void ResolvePass::resize(int width, int height) {
 void ResolvePass::execute(ShaderLibrary& shaders, const std::vector<Term>& terms, const gl::Texture2D& emission) {
     const float zero[4] = {0.f, 0.f, 0.f, 0.f};
     glClearNamedFramebufferfv(mSumFbo.id(), GL_COLOR, 0, zero);
-    glBindFramebuffer(GL_FRAMEBUFFER, mSumFbo.id());
-    glViewport(0, 0, mWidth, mHeight);
-    GLuint add = shaders.program({"fullscreen.vert", "accumulate.frag", "", {}});
-    glUseProgram(add);
-    glEnable(GL_BLEND);
-    glBlendFunc(GL_ONE, GL_ONE);
-    for (const Term& t : terms) {
-        if (!t.accumulation) continue;
-        glProgramUniform1f(add, 0, t.scale);
-        glBindTextureUnit(0, t.accumulation->id());
-        glDrawArrays(GL_TRIANGLES, 0, 3);
-    }
-    glDisable(GL_BLEND);
+    addScaled(shaders, mSumFbo, mWidth, mHeight, terms);
 
     GLuint program = shaders.program({"fullscreen.vert", "resolve.frag", "", {}});
     glUseProgram(program);
@@ -40,8 +28,26 @@ void ResolvePass::execute(ShaderLibrary& shaders, const std::vector<Term>& terms
     glBindTextureUnit(0, mSum.id());
     glBindTextureUnit(1, emission.id());
     glBindFramebuffer(GL_FRAMEBUFFER, mFbo.id());
+    glViewport(0, 0, mWidth, mHeight);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glGenerateTextureMipmap(mLuminance.id());
+}
+
+void addScaled(ShaderLibrary& shaders, const gl::Framebuffer& target, int width, int height,
+               const std::vector<ResolvePass::Term>& terms) {
+    GLuint add = shaders.program({"fullscreen.vert", "accumulate.frag", "", {}});
+    glUseProgram(add);
+    glBindFramebuffer(GL_FRAMEBUFFER, target.id());
+    glViewport(0, 0, width, height);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE);
+    for (const ResolvePass::Term& t : terms) {
+        if (!t.accumulation) continue;
+        glProgramUniform1f(add, 0, t.scale);
+        glBindTextureUnit(0, t.accumulation->id());
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
+    glDisable(GL_BLEND);
 }
 
 }  // namespace candela

@@ -31,4 +31,9 @@ private:
     int mWidth = 0, mHeight = 0;
 };
 
+/// Adds each term's accumulation times its scale into target's first attachment (width x height),
+/// by blending (shaders/accumulate.frag): the resolve's sum, and a pass joining an accumulation.
+void addScaled(ShaderLibrary& shaders, const gl::Framebuffer& target, int width, int height,
+               const std::vector<ResolvePass::Term>& terms);
+
 }  // namespace candela
