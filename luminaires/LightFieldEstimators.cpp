@@ -348,8 +348,12 @@ Estimate lightFieldGranier2003(const Luminaire& l, const glm::dvec3& p, const gl
         glm::dvec2 centre = 0.5 * (a + b);
         // The goesele model's factor at the node (1 for canned): Psi / Phi there.
         double model = lf.psi(m, node, centre) / std::max(lf.basis(m, node), 1e-300);
-        if (o.visibility && !o.visibility->visible(p, s.light->pose.position + node.x * s.x + node.y * s.y))
-            continue;
+        // The spot light's shadow ray ends where its ray to the receiver leaves the luminaire,
+        // on S (what lies between U and S is the measured luminaire itself, README "Visibility").
+        if (o.visibility) {
+            glm::dvec3 onS = glm::dvec3(s.q.x, s.q.y, s.q.z) + (lf.delta - s.q.z) / (-s.q.z) * d;
+            if (!o.visibility->visible(p, worldOf(s, glm::dvec2(onS.x, onS.y)))) continue;
+        }
         e.irradiance += phiIntegral * mean * model * lf.colour(m, centre) * (cosR * cosL / (dist * dist));
     }
     return e;

@@ -7,6 +7,12 @@
 //   solid-angle E = Int_Omega L(w) cos(theta_p) dw,  L = I / (A |cos theta_L|)  (Eq. 2.46)
 // The area form is finite everywhere, including receivers in the opening's plane; the solid-angle
 // form is what structured, MRP and scattered sampling approximate.
+//
+// Visibility (EstimateOptions::visibility), as the GPU's SHADOWS variant: `reference` traces a
+// shadow ray per sample; `point` the one ray to the centre; the other deterministic techniques
+// multiply their unshadowed value by the irradiance-weighted visible fraction of `spp` random
+// points on the opening, R = sum(E_i V_i) / sum(E_i) (consistent; exactly 1 where every ray is
+// free, exactly 0 where none is); a segment's 16 Gauss points each trace their own ray.
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -27,11 +33,21 @@ struct Setup {
     glm::dvec3 p;  ///< Receiver, local frame (opening centre at the origin).
     glm::dvec3 n;  ///< Receiver's unit normal, local frame.
     glm::dvec3 x, y, z;  ///< The photometric frame (world directions of local axes).
+    glm::dvec3 pWorld;   ///< Receiver, world, metres.
+    const Visibility* visibility = nullptr;  ///< null: no shadowing.
+
+    /// Whether the opening's local point q is free of occluders from the receiver.
+    bool visible(const glm::dvec3& q) const {
+        return !visibility || visibility->visible(pWorld, light->pose.position + q.x * x + q.y * y + q.z * z);
+    }
 };
 
-Setup makeSetup(const Luminaire& l, const glm::dvec3& pWorld, const glm::dvec3& nWorld) {
+Setup makeSetup(const Luminaire& l, const glm::dvec3& pWorld, const glm::dvec3& nWorld,
+                const Visibility* visibility = nullptr) {
     Setup s;
     s.light = static_cast<const PhotometricLuminaire*>(&l);
+    s.pWorld = pWorld;
+    s.visibility = visibility;
     s.light->photometricFrame(s.x, s.y, s.z);
     glm::dvec3 d = pWorld - l.pose.position;
     s.p = {glm::dot(d, s.x), glm::dot(d, s.y), glm::dot(d, s.z)};
@@ -84,7 +100,7 @@ bool degenerate(const Setup& s, double& e) {
     const auto& poly = s.light->polygon();
     if (poly.size() >= 3) return false;
     if (poly.empty()) {
-        e = pointIrradiance(s, glm::dvec3(0.0));
+        e = s.visible(glm::dvec3(0.0)) ? pointIrradiance(s, glm::dvec3(0.0)) : 0.0;
         return true;
     }
     static const double node[8] = {0.0950125098376374, 0.2816035507792589, 0.4580167776572274,
@@ -98,7 +114,9 @@ bool degenerate(const Setup& s, double& e) {
     for (int i = 0; i < 8; ++i)
         for (double sign : {-1.0, 1.0}) {
             double t = 0.5 + 0.5 * sign * node[i];
-            e += 0.5 * weight[i] * pointIrradiance(s, a + t * (b - a));
+            glm::dvec3 q = a + t * (b - a);
+            double point = pointIrradiance(s, q);
+            if (point > 0.0 && s.visible(q)) e += 0.5 * weight[i] * point;
         }
     return true;
 }
@@ -136,13 +154,6 @@ double areaFormFixed(const Setup& s, const std::vector<glm::dvec2>& points) {
         ++inside;
     }
     return inside > 0 ? sum / inside : 0.0;
-}
-
-Estimate poisson(const Luminaire& l, const glm::dvec3& p, const glm::dvec3& n, int count) {
-    Setup s = makeSetup(l, p, n);
-    double e;
-    if (degenerate(s, e)) return withColour(s, e);
-    return withColour(s, areaFormFixed(s, poissonSet(count)));
 }
 
 /// Closest point of polygon q (vectors from the receiver) to the point `target` in its plane.
@@ -200,20 +211,104 @@ double scatteredValue(const Setup& s, int* flips = nullptr) {
     return std::isfinite(e) ? e : 0.0;
 }
 
-/// The shared start of the solid-angle techniques: the setup, the answer for a zero-area opening
-/// (returned in `early`), and the opening clipped at the receiver's horizon. False when `early`
-/// is the estimate.
-bool visibleOpening(const Luminaire& l, const glm::dvec3& p, const glm::dvec3& n, Setup& s,
-                    Polygon& visible, Estimate& early) {
-    s = makeSetup(l, p, n);
-    double e;
-    if (degenerate(s, e)) {
-        early = withColour(s, e);
-        return false;
+/// Irradiance-weighted visible fraction of the opening from the receiver, R = sum(E_i V_i) /
+/// sum(E_i) over `spp` random points uniform on the opening (area form), and its standard error
+/// by the delta method: sqrt(sum E_i^2 (V_i - R)^2) / sum E_i, where with V in {0, 1}
+/// sum E_i^2 (V_i - R)^2 = (1 - 2R) sum(E_i^2 V_i) + R^2 sum(E_i^2).
+double visibleFraction(const Setup& s, const EstimateOptions& o, double& stdError) {
+    stdError = 0.0;
+    if (!s.visibility || o.spp <= 0) return 1.0;
+    glm::dvec2 lo, hi;
+    bounds(*s.light, lo, hi);
+    Random rng(o.seed ^ 0x7f4a7c159e3779b9ull);
+    double sumE = 0.0, sumEV = 0.0, sumE2 = 0.0, sumE2V = 0.0;
+    for (int k = 0; k < o.spp; ++k) {
+        glm::dvec2 q = lo + glm::dvec2(rng.uniform(), rng.uniform()) * (hi - lo);
+        if (!s.light->contains(q)) continue;
+        double e = pointIrradiance(s, glm::dvec3(q, 0.0));
+        if (!(e > 0.0)) continue;
+        sumE += e;
+        sumE2 += e * e;
+        if (s.visible(glm::dvec3(q, 0.0))) {
+            sumEV += e;
+            sumE2V += e * e;
+        }
     }
-    visible = spherical::clip(openingFromReceiver(s), s.n);
-    early = withColour(s, 0.0);
-    return visible.count >= 3;
+    if (!(sumE > 0.0)) return 1.0;  // no point sends light here: nothing to shadow
+    double r = sumEV / sumE;
+    stdError = std::sqrt(std::max(0.0, (1.0 - 2.0 * r) * sumE2V + r * r * sumE2)) / sumE;
+    return r;
+}
+
+/// A deterministic technique's unshadowed irradiance (lux) for a receiver of an opening with area.
+using Unshadowed = double (*)(const Setup&);
+
+/// The deterministic techniques: a zero-area opening by its own law (each point's ray traced),
+/// else the technique's value times the visible fraction (exactly the value when nothing
+/// occludes, exactly 0 when every ray is blocked).
+Estimate deterministic(const Luminaire& l, const glm::dvec3& p, const glm::dvec3& n,
+                       const EstimateOptions& o, Unshadowed value) {
+    Setup s = makeSetup(l, p, n, o.visibility);
+    double e;
+    if (degenerate(s, e)) return withColour(s, e);
+    e = value(s);
+    if (!(e > 0.0) || !s.visibility) return withColour(s, e);
+    double se;
+    double r = visibleFraction(s, o, se);
+    return withColour(s, e * r, e * se);
+}
+
+double structuredValue(const Setup& s) {
+    // Eq. (4.3) with the corners and the barycentre of the horizon-clipped opening (Lagarde and
+    // de Rousiers 2014), as if uniform in its solid angle.
+    Polygon visible = spherical::clip(openingFromReceiver(s), s.n);
+    if (visible.count < 3) return 0.0;
+    double omega = spherical::solidAngle(visible);
+    glm::dvec3 centre(0.0);
+    double sum = 0.0;
+    for (int i = 0; i < visible.count; ++i) {
+        centre += visible.v[size_t(i)];
+        sum += solidAngleIntegrand(s, glm::normalize(visible.v[size_t(i)]));
+    }
+    centre /= double(visible.count);
+    sum += solidAngleIntegrand(s, glm::normalize(centre));
+    return omega * sum / double(visible.count + 1);
+}
+
+double mrpValue(const Setup& s) {
+    // Drobot's most representative point (2014): the half-vector of the closest point and the
+    // normal point, back on the opening's plane and clamped to the opening; one sample, Eq. (4.3).
+    Polygon visible = spherical::clip(openingFromReceiver(s), s.n);
+    if (visible.count < 3) return 0.0;
+    double tol = 1e-9 * s.light->size();
+    glm::dvec3 pc = spherical::closestPoint(visible, tol).point;
+    double h = -s.p.z;  // plane of the opening: z = h relative to the receiver
+    glm::dvec3 pn = pc;
+    if (std::abs(s.n.z) > 1e-12) {
+        double t = h / s.n.z;
+        if (t > 0.0) pn = closestTo(visible, t * s.n, tol).point;
+    }
+    glm::dvec3 half = glm::normalize(pc) + glm::normalize(pn);
+    glm::dvec3 pm = pc;
+    if (std::abs(half.z) > 1e-12 && h / half.z > 0.0) pm = closestTo(visible, (h / half.z) * half, tol).point;
+    double lm = glm::length(pm);
+    if (!(lm > 0.0)) return 0.0;
+    return spherical::solidAngle(visible) * solidAngleIntegrand(s, pm / lm);
+}
+
+double scatteredOnly(const Setup& s) { return scatteredValue(s); }
+double poisson24Value(const Setup& s) { return areaFormFixed(s, poissonSet(24)); }
+double poisson40Value(const Setup& s) { return areaFormFixed(s, poissonSet(40)); }
+
+double hybridValue(const Setup& s) {
+    // Scattered sampling near the opening, where a fixed point set shows light bumps, the
+    // 24-point Poisson set from 1.5 opening sizes on, a smooth blend between (Prost Sec. 6.6;
+    // the distances are where `candela bench --prost` shows the bumps fade).
+    double distance = glm::length(spherical::closestPoint(openingFromReceiver(s), 0.0).point);
+    double w = hybridWeight(distance, s.light->size());
+    double near = w < 1.0 ? scatteredValue(s) : 0.0;
+    double far = w > 0.0 ? areaFormFixed(s, poissonSet(24)) : 0.0;
+    return (1.0 - w) * near + w * far;
 }
 
 }  // namespace
@@ -251,15 +346,18 @@ double hybridWeight(double distance, double size) {
 }
 
 Estimate photometricPoint(const Luminaire& l, const glm::dvec3& p, const glm::dvec3& n,
-                          const EstimateOptions&) {
-    Setup s = makeSetup(l, p, n);
-    return withColour(s, pointIrradiance(s, glm::dvec3(0.0)));
+                          const EstimateOptions& o) {
+    // A point light: its shadow is the centre's.
+    Setup s = makeSetup(l, p, n, o.visibility);
+    double e = pointIrradiance(s, glm::dvec3(0.0));
+    return withColour(s, e > 0.0 && s.visible(glm::dvec3(0.0)) ? e : 0.0);
 }
 
 Estimate photometricReference(const Luminaire& l, const glm::dvec3& p, const glm::dvec3& n,
                               const EstimateOptions& options) {
-    // Eq. (6.3): points uniform on the bounding rectangle, those outside the opening count 0.
-    Setup s = makeSetup(l, p, n);
+    // Eq. (6.3): points uniform on the bounding rectangle, those outside the opening count 0;
+    // with visibility, a shadow ray per sample.
+    Setup s = makeSetup(l, p, n, options.visibility);
     double e;
     if (degenerate(s, e)) return withColour(s, e);
     if (options.spp <= 0) return withColour(s, 0.0);
@@ -271,6 +369,7 @@ Estimate photometricReference(const Luminaire& l, const glm::dvec3& p, const glm
     for (int k = 0; k < options.spp; ++k) {
         glm::dvec2 q = lo + glm::dvec2(rng.uniform(), rng.uniform()) * (hi - lo);
         double f = s.light->contains(q) ? ratio * pointIrradiance(s, glm::dvec3(q, 0.0)) : 0.0;
+        if (f > 0.0 && !s.visible(glm::dvec3(q, 0.0))) f = 0.0;
         double delta = f - mean;
         mean += delta / double(k + 1);
         m2 += delta * (f - mean);
@@ -280,80 +379,33 @@ Estimate photometricReference(const Luminaire& l, const glm::dvec3& p, const glm
 }
 
 Estimate photometricPoisson24(const Luminaire& l, const glm::dvec3& p, const glm::dvec3& n,
-                              const EstimateOptions&) {
-    return poisson(l, p, n, 24);
+                              const EstimateOptions& o) {
+    return deterministic(l, p, n, o, &poisson24Value);
 }
 
 Estimate photometricPoisson40(const Luminaire& l, const glm::dvec3& p, const glm::dvec3& n,
-                              const EstimateOptions&) {
-    return poisson(l, p, n, 40);
+                              const EstimateOptions& o) {
+    return deterministic(l, p, n, o, &poisson40Value);
 }
 
 Estimate photometricStructured(const Luminaire& l, const glm::dvec3& p, const glm::dvec3& n,
-                               const EstimateOptions&) {
-    // Eq. (4.3) with the corners and the barycentre of the horizon-clipped opening (Lagarde and
-    // de Rousiers 2014), as if uniform in its solid angle.
-    Setup s;
-    Polygon visible;
-    Estimate early;
-    if (!visibleOpening(l, p, n, s, visible, early)) return early;
-    double omega = spherical::solidAngle(visible);
-    glm::dvec3 centre(0.0);
-    double sum = 0.0;
-    for (int i = 0; i < visible.count; ++i) {
-        centre += visible.v[size_t(i)];
-        sum += solidAngleIntegrand(s, glm::normalize(visible.v[size_t(i)]));
-    }
-    centre /= double(visible.count);
-    sum += solidAngleIntegrand(s, glm::normalize(centre));
-    return withColour(s, omega * sum / double(visible.count + 1));
+                               const EstimateOptions& o) {
+    return deterministic(l, p, n, o, &structuredValue);
 }
 
 Estimate photometricMrp(const Luminaire& l, const glm::dvec3& p, const glm::dvec3& n,
-                        const EstimateOptions&) {
-    // Drobot's most representative point (2014): the half-vector of the closest point and the
-    // normal point, back on the opening's plane and clamped to the opening; one sample, Eq. (4.3).
-    Setup s;
-    Polygon visible;
-    Estimate early;
-    if (!visibleOpening(l, p, n, s, visible, early)) return early;
-    double tol = 1e-9 * s.light->size();
-    glm::dvec3 pc = spherical::closestPoint(visible, tol).point;
-    double h = -s.p.z;  // plane of the opening: z = h relative to the receiver
-    glm::dvec3 pn = pc;
-    if (std::abs(s.n.z) > 1e-12) {
-        double t = h / s.n.z;
-        if (t > 0.0) pn = closestTo(visible, t * s.n, tol).point;
-    }
-    glm::dvec3 half = glm::normalize(pc) + glm::normalize(pn);
-    glm::dvec3 pm = pc;
-    if (std::abs(half.z) > 1e-12 && h / half.z > 0.0) pm = closestTo(visible, (h / half.z) * half, tol).point;
-    double lm = glm::length(pm);
-    if (!(lm > 0.0)) return withColour(s, 0.0);
-    return withColour(s, spherical::solidAngle(visible) * solidAngleIntegrand(s, pm / lm));
+                        const EstimateOptions& o) {
+    return deterministic(l, p, n, o, &mrpValue);
 }
 
 Estimate photometricScattered(const Luminaire& l, const glm::dvec3& p, const glm::dvec3& n,
-                              const EstimateOptions&) {
-    Setup s = makeSetup(l, p, n);
-    double e;
-    if (degenerate(s, e)) return withColour(s, e);
-    return withColour(s, scatteredValue(s));
+                              const EstimateOptions& o) {
+    return deterministic(l, p, n, o, &scatteredOnly);
 }
 
 Estimate photometricHybrid(const Luminaire& l, const glm::dvec3& p, const glm::dvec3& n,
-                           const EstimateOptions&) {
-    // Scattered sampling near the opening, where a fixed point set shows light bumps, the
-    // 24-point Poisson set from 1.5 opening sizes on, a smooth blend between (Prost Sec. 6.6;
-    // the distances are where `candela bench --prost` shows the bumps fade).
-    Setup s = makeSetup(l, p, n);
-    double e;
-    if (degenerate(s, e)) return withColour(s, e);
-    double distance = glm::length(spherical::closestPoint(openingFromReceiver(s), 0.0).point);
-    double w = hybridWeight(distance, s.light->size());
-    double near = w < 1.0 ? scatteredValue(s) : 0.0;
-    double far = w > 0.0 ? areaFormFixed(s, poissonSet(24)) : 0.0;
-    return withColour(s, (1.0 - w) * near + w * far);
+                           const EstimateOptions& o) {
+    return deterministic(l, p, n, o, &hybridValue);
 }
 
 }  // namespace candela
