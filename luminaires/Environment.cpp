@@ -412,6 +412,28 @@ SkyParams readSky(const nlohmann::json& v, const json::Where& at) {
 
 }  // namespace
 
+namespace {
+
+/// The optional "unit" of a map or sequence: "W/(m2 sr)" (the default) or "cd/m2".
+Quantities readUnit(const nlohmann::json& v, const json::Where& where) {
+    if (!v.contains("unit")) return Quantities::Radiometric;
+    std::string unit = json::string(v["unit"], where / "unit");
+    if (unit == "cd/m2") return Quantities::Photometric;
+    if (unit != "W/(m2 sr)") json::fail(where / "unit", "\"W/(m2 sr)\" or \"cd/m2\", got \"" + unit + "\"");
+    return Quantities::Radiometric;
+}
+
+}  // namespace
+
+Quantities environmentQuantities(const nlohmann::json& environment) {
+    if (!environment.is_object()) return Quantities::Radiometric;
+    if (environment.contains("sky")) return Quantities::Photometric;
+    auto unit = environment.find("unit");
+    return unit != environment.end() && unit->is_string() && unit->get<std::string>() == "cd/m2"
+               ? Quantities::Photometric
+               : Quantities::Radiometric;
+}
+
 EnvironmentSource parseEnvironment(const nlohmann::json& v, const json::Where& where,
                                    const std::string& baseDir) {
     if (!v.is_object())
@@ -423,7 +445,8 @@ EnvironmentSource parseEnvironment(const nlohmann::json& v, const json::Where& w
     double rotation = json::optional(v, "rotation_deg", where, 0.0, json::number);
     EnvironmentSource out;
     if (v.contains("file")) {
-        json::checkKeys(v, {"file", "intensity", "rotation_deg"}, where);
+        json::checkKeys(v, {"file", "intensity", "rotation_deg", "unit"}, where);
+        readUnit(v, where);
         std::string file = resolve(json::string(v["file"], where / "file"), baseDir);
         out.map = withWhere(where / "file",
                             [&] { return EnvironmentMap::load(file, intensity, rotation); });
@@ -432,7 +455,8 @@ EnvironmentSource parseEnvironment(const nlohmann::json& v, const json::Where& w
         SkyParams sky = readSky(v["sky"], where / "sky");
         out.map = withWhere(where / "sky", [&] { return makeSkyMap(sky, intensity, rotation); });
     } else {
-        json::checkKeys(v, {"sequence", "fps", "intensity", "rotation_deg"}, where);
+        json::checkKeys(v, {"sequence", "fps", "intensity", "rotation_deg", "unit"}, where);
+        readUnit(v, where);
         std::string pattern = resolve(json::string(v["sequence"], where / "sequence"), baseDir);
         double fps = json::optional(v, "fps", where, 10.0, json::positive);
         out.sequence = withWhere(where / "sequence", [&] {

@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "luminaires/Units.h"
 #include "util/JsonRead.h"
 
 namespace candela {
@@ -155,10 +156,15 @@ struct EnvironmentSource {
     std::shared_ptr<EnvironmentSequence> sequence;     ///< Only for {"sequence": ...}.
 };
 
-/// Parses {"file": F, "intensity": k, "rotation_deg": a}, {"sky": {...}, "intensity", ...} or
-/// {"sequence": "frames/*.exr", "fps": f, ...}; relative paths resolve against `baseDir`.
+/// Parses {"file": F, "intensity": k, "rotation_deg": a, "unit": U}, {"sky": {...}, "intensity",
+/// ...} or {"sequence": "frames/*.exr", "fps": f, ...}; relative paths resolve against `baseDir`.
+/// A file or sequence is in "W/(m2 sr)" (the default) or "cd/m2" ("unit"); the sky is in cd/m2.
 /// Errors name the scene file and the field (and the image file for image errors).
 EnvironmentSource parseEnvironment(const nlohmann::json& v, const json::Where& where,
                                    const std::string& baseDir);
+
+/// The unit system of a scene's (already validated) "environment" field: the sky is
+/// photometric, a file or a sequence whatever its "unit" says (radiometric by default).
+Quantities environmentQuantities(const nlohmann::json& environment);
 
 }  // namespace candela

@@ -227,14 +227,14 @@ glm::dvec2 readSize(const nlohmann::json& v, const json::Where& where) {
     return size;
 }
 
-/// Reads "radiance": three non-negative numbers, W/(m2 sr), of at most kMaxRadiance.
-glm::dvec3 readRadiance(const nlohmann::json& v, const json::Where& where) {
+/// Reads "radiance" (W/(m2 sr)) or "luminance" (cd/m2): three non-negative numbers of at most
+/// kMaxRadiance.
+glm::dvec3 readEmitted(const nlohmann::json& v, const json::Where& where, const char* what) {
     glm::dvec3 radiance = json::vec3(v, where);
     for (int i = 0; i < 3; ++i)
         if (!(radiance[i] >= 0.0 && radiance[i] <= kMaxRadiance))
-            json::fail(where[size_t(i)],
-                       "a non-negative radiance of at most 1e20 W/(m2 sr), got " +
-                           v[size_t(i)].dump());
+            json::fail(where[size_t(i)], std::string("a non-negative ") + what + " of at most 1e20, got " +
+                                             v[size_t(i)].dump());
     return radiance;
 }
 
@@ -304,7 +304,7 @@ std::vector<glm::dvec3> LambertianRect::outline() const {
 
 void LambertianRect::writeJson(nlohmann::json& out) const {
     out["size"] = {size.x, size.y};
-    out["radiance"] = {emitted.x, emitted.y, emitted.z};
+    out[luminous ? "luminance" : "radiance"] = {emitted.x, emitted.y, emitted.z};
 }
 
 std::vector<std::byte> LambertianRect::gpuData() const {
@@ -326,23 +326,30 @@ std::vector<std::byte> LambertianRect::gpuData() const {
 std::string LambertianRect::describe() const {
     glm::dvec3 p = power();
     char text[256];
-    int n = std::snprintf(text, sizeof(text), "lambertian-rect %.2f x %.2f m, L = (%g, %g, %g) "
-                          "W/(m2 sr), power ", size.x, size.y, emitted.x, emitted.y, emitted.z);
+    Quantities q = quantities();
+    int n = std::snprintf(text, sizeof(text), "lambertian-rect %.2f x %.2f m, L = (%g, %g, %g) %s, %s ", size.x,
+                          size.y, emitted.x, emitted.y, emitted.z, radianceUnit(q),
+                          luminous ? "flux" : "power");
     std::string out(text, size_t(std::clamp(n, 0, int(sizeof(text)) - 1)));
     if (p.x == p.y && p.y == p.z)
-        n = std::snprintf(text, sizeof(text), "%.1f W", p.x);
+        n = std::snprintf(text, sizeof(text), "%.1f %s", p.x, fluxUnit(q));
     else
-        n = std::snprintf(text, sizeof(text), "(%.1f, %.1f, %.1f) W", p.x, p.y, p.z);
+        n = std::snprintf(text, sizeof(text), "(%.1f, %.1f, %.1f) %s", p.x, p.y, p.z, fluxUnit(q));
     return out + std::string(text, size_t(std::clamp(n, 0, int(sizeof(text)) - 1)));
 }
 
 std::unique_ptr<Luminaire> LambertianRect::parse(const nlohmann::json& entry,
                                                  const json::Where& where) {
     json::checkKeys(entry, {"type", "name", "position", "aim", "c0", "technique", "size",
-                            "radiance"}, where);
+                            "radiance", "luminance"}, where);
     auto light = std::make_unique<LambertianRect>();
     light->size = json::optional(entry, "size", where, light->size, readSize);
-    light->emitted = json::optional(entry, "radiance", where, light->emitted, readRadiance);
+    if (entry.contains("radiance") && entry.contains("luminance"))
+        json::fail(where / "luminance", "either \"radiance\" (W/(m2 sr)) or \"luminance\" (cd/m2), not both");
+    light->luminous = entry.contains("luminance");
+    const char* key = light->luminous ? "luminance" : "radiance";
+    if (entry.contains(key))
+        light->emitted = readEmitted(entry[key], where / key, light->luminous ? "luminance (cd/m2)" : "radiance (W/(m2 sr))");
     return light;
 }
 

@@ -11,12 +11,17 @@ namespace candela {
 class LambertianRect final : public Luminaire {
 public:
     glm::dvec2 size{1.0, 0.5};     ///< Width along local x (c0), height along local y, metres.
-    glm::dvec3 emitted{10.0};      ///< Radiance to the +aim side, W/(m2 sr), RGB.
+    glm::dvec3 emitted{10.0};      ///< Radiance to the +aim side, W/(m2 sr), RGB (cd/m2 if luminous).
+    /// Given as a luminance ("luminance" in cd/m2) rather than a radiance ("radiance", W/(m2 sr)).
+    bool luminous = false;
 
     std::string_view kind() const override { return "lambertian-rect"; }
     std::unique_ptr<Luminaire> clone() const override;
     glm::dvec3 radiance(const glm::dvec3& x, const glm::dvec3& w) const override;
     glm::dvec3 power() const override;
+    Quantities quantities() const override {
+        return luminous ? Quantities::Photometric : Quantities::Radiometric;
+    }
     /// Uniform in the solid angle of the rectangle seen from p (Urena, Fajardo, King 2013);
     /// pdf = 1 / solidAngle(p), or no sample (pdf 0) when p is not in front of the emitting side.
     LightSample sample(const glm::dvec3& p, const glm::dvec2& u) const override;

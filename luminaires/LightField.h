@@ -142,6 +142,10 @@ public:
     /// x on S (world), w the direction of travel: L of the ray through x from U.
     glm::dvec3 radiance(const glm::dvec3& x, const glm::dvec3& w) const override;
     glm::dvec3 power() const override;
+    /// Photometric when the file's unit is cd/m2 (lm, lx), else radiometric.
+    Quantities quantities() const override {
+        return data && data->unit == "cd/m2" ? Quantities::Photometric : Quantities::Radiometric;
+    }
     /// A point on S by the balanced restricted sampler (image chosen with probability A_m / A
     /// from u.x, then s in its box); pdf is the marginal solid-angle density over all images.
     LightSample sample(const glm::dvec3& p, const glm::dvec2& u) const override;

@@ -12,6 +12,8 @@
 #include <string_view>
 #include <vector>
 
+#include "luminaires/Units.h"
+
 namespace candela {
 
 /// Placement of a luminaire: local +z is `aim`, local +x is `c0` made orthogonal to aim,
@@ -63,8 +65,11 @@ public:
     /// Radiance leaving emitter point x in unit direction w (away from the luminaire),
     /// W/(m2 sr), RGB. Zero off the emitter and on its back side.
     virtual glm::dvec3 radiance(const glm::dvec3& x, const glm::dvec3& w) const = 0;
-    /// Total emitted power in closed form (or exact quadrature), W per channel.
+    /// Total emitted power in closed form (or exact quadrature), W per channel (lm for a
+    /// photometric source, quantities()).
     virtual glm::dvec3 power() const = 0;
+    /// The unit system of its numbers: radiometric (W, W/(m2 sr)) or photometric (lm, cd/m2).
+    virtual Quantities quantities() const = 0;
     /// Samples a point on the emitter as seen from receiver p; u in [0,1)^2.
     virtual LightSample sample(const glm::dvec3& p, const glm::dvec2& u) const = 0;
     /// Solid-angle pdf of sample() at p for the unit direction wi.

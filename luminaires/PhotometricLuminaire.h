@@ -31,6 +31,7 @@ public:
     glm::dvec3 radiance(const glm::dvec3& x, const glm::dvec3& w) const override;
     /// Flux from the table (exact quadrature of the interpolant) times scale, lm per channel.
     glm::dvec3 power() const override;
+    Quantities quantities() const override { return Quantities::Photometric; }
     /// Uniform in area on the opening (the reference's density, Eq. 6.3), as a solid-angle pdf;
     /// pdf 0 in the opening's plane.
     LightSample sample(const glm::dvec3& p, const glm::dvec2& u) const override;

@@ -115,6 +115,7 @@ FramePlan planFrame(const Scene& scene, const glm::mat4& viewProj,
         if (plan.glossy) step.program.defines.push_back("GLOSSY");
         step.progressive = t->progressive || rays || plan.glossy;
         step.name = "shade:" + lum.name + ":" + name;
+        step.unitScale = float(scene.unitScale(lum));
         plan.needsBvh = plan.needsBvh || rays;
         plan.shading.push_back(std::move(step));
     }
@@ -145,6 +146,7 @@ FramePlan planFrame(const Scene& scene, const glm::mat4& viewProj,
         // The Havran lights are a fixed set: every light (and its shadow ray) each frame.
         step.progressive = t->progressive;
         step.name = "shade:environment:" + name;
+        step.unitScale = float(scene.environmentUnitScale());
         plan.needsBvh = plan.needsBvh || rays;
         plan.environment = std::move(step);
         plan.environmentTechnique = t;

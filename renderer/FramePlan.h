@@ -29,6 +29,9 @@ struct ShadeStep {
                                             ///< (else it traces a shadow ray per sample).
     bool progressive = false;               ///< Needs more than one frame to converge.
     std::string name;                       ///< "shade:Panel:analytic"
+    /// Multiplies what the step writes: 683 lm/W for a radiometric source in a mixed scene
+    /// (Scene::unitScale), else 1.
+    float unitScale = 1.f;
 };
 
 struct FramePlan {

@@ -382,6 +382,8 @@ void Renderer::renderFrame() {
                 for (char c : part) key.push_back(std::byte(c));
             for (const std::string& d : step.program.defines)
                 for (char c : d + ";") key.push_back(std::byte(c));
+            const auto* scale = reinterpret_cast<const std::byte*>(&step.unitScale);
+            key.insert(key.end(), scale, scale + sizeof step.unitScale);
             Accumulation& a = accumulationOf(int(i));
             if (everything || a.key != key) {
                 restart(a, std::move(key));
@@ -393,8 +395,12 @@ void Renderer::renderFrame() {
         mAccumulations = std::move(kept);  // luminaires that left the scene are dropped
         if (mPlan.environment) {
             Accumulation& a = accumulationOf(-1);
-            if (environment || a.key.empty()) {
-                restart(a, {std::byte(1)});
+            // Its key is its unit conversion: adding or removing a luminaire of the other unit
+            // system changes it.
+            const auto* scale = reinterpret_cast<const std::byte*>(&mPlan.environment->unitScale);
+            std::vector<std::byte> key(scale, scale + sizeof(float));
+            if (environment || a.key != key) {
+                restart(a, std::move(key));
                 a.catchingUp = !everything;
                 restarted.push_back(nullptr);
             }

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <memory>
 
+#include "luminaires/EnvironmentSampling.h"
 #include "luminaires/Registry.h"
 #include "scene/EmbreeVisibility.h"
 #include "scene/Scene.h"
@@ -25,10 +26,6 @@ int uAxis(int axis) {
 }
 int vAxis(int axis) {
     return axis == 2 ? 1 : 2;
-}
-
-double luminanceOf(const glm::dvec3& c) {
-    return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
 }
 
 }  // namespace
@@ -65,15 +62,15 @@ std::vector<double> gridCoordinates(double lo, double hi, double spacing) {
     return out;
 }
 
-GridSummary summariseGrid(const std::vector<double>& lux) {
+GridSummary summariseGrid(const std::vector<double>& E) {
     GridSummary s;
-    s.count = lux.size();
-    if (lux.empty()) return s;
-    s.eMin = *std::min_element(lux.begin(), lux.end());
-    s.eMax = *std::max_element(lux.begin(), lux.end());
+    s.count = E.size();
+    if (E.empty()) return s;
+    s.eMin = *std::min_element(E.begin(), E.end());
+    s.eMax = *std::max_element(E.begin(), E.end());
     double sum = 0.0;
-    for (double e : lux) sum += e;
-    s.eAvg = sum / double(lux.size());
+    for (double e : E) sum += e;
+    s.eAvg = sum / double(E.size());
     s.u0 = s.eAvg > 0.0 ? s.eMin / s.eAvg : 0.0;
     s.minOverMax = s.eMax > 0.0 ? s.eMin / s.eMax : 0.0;
     return s;
@@ -99,9 +96,21 @@ GridResult computeGrid(const Scene& scene, const GridSpec& spec) {
     double nv = std::floor((spec.hi.y - spec.lo.y) / spec.spacing) + 1.0;
     if (nu * nv > kMaxGridPoints)
         throw InputError("--spacing: " + std::to_string(spec.spacing) + " m gives over 1e6 points");
+    // The environment's technique, as `candela probe` chooses it.
+    const EnvironmentTechniqueInfo* envChosen = nullptr;
+    if (scene.environmentMap) {
+        std::string name = spec.environmentTechnique;
+        if (name.empty()) name = findEnvironmentTechnique(spec.technique) ? spec.technique : "reference";
+        envChosen = findEnvironmentTechnique(name);
+        if (!envChosen)
+            throw InputError("--env-technique: \"" + name + "\" is not an environment technique (available: " +
+                             environmentTechniqueNames() + ")");
+    }
     std::vector<const TechniqueInfo*> chosen;
     for (const auto& l : scene.luminaires) {
         std::string name = spec.technique.empty() ? l->technique : spec.technique;
+        if (!spec.technique.empty() && !findTechnique(l->kind(), name) && findEnvironmentTechnique(name))
+            name = l->technique;  // a name only the environment has leaves luminaires on their own
         const TechniqueInfo* t = findTechnique(l->kind(), name);
         if (!t || !t->irradiance)
             throw InputError(
@@ -120,6 +129,12 @@ GridResult computeGrid(const Scene& scene, const GridSpec& spec) {
 
     GridResult r;
     r.spec = spec;
+    r.units = scene.units();
+    std::vector<double> scales;  // 683 lm/W for a radiometric luminaire in a mixed scene
+    for (const auto& l : scene.luminaires) scales.push_back(scene.unitScale(*l));
+    std::unique_ptr<EnvironmentLighting> lighting;
+    if (envChosen) lighting = std::make_unique<EnvironmentLighting>(scene.environmentMap);
+    double envScale = scene.environmentUnitScale();
     r.u = gridCoordinates(spec.lo.x, spec.hi.x, spec.spacing);
     r.v = gridCoordinates(spec.lo.y, spec.hi.y, spec.spacing);
     glm::dvec3 n = spec.plane.normal();
@@ -128,14 +143,21 @@ GridResult computeGrid(const Scene& scene, const GridSpec& spec) {
             glm::dvec3 p = spec.plane.point(r.u[i], r.v[j]);
             glm::dvec3 e(0.0), var(0.0);
             size_t index = j * r.u.size() + i;
+            if (lighting) {
+                EstimateOptions o = options;
+                o.seed = 1000003ull * index + 999983ull;
+                Estimate est = envChosen->irradiance(*lighting, p, n, o);
+                e += envScale * est.irradiance;
+                var += envScale * envScale * est.stdError * est.stdError;
+            }
             for (size_t k = 0; k < scene.luminaires.size(); ++k) {
                 EstimateOptions o = options;
                 o.seed = 1000003ull * index + k + 1;
                 Estimate est = chosen[k]->irradiance(*scene.luminaires[k], p, n, o);
-                e += est.irradiance;
-                var += est.stdError * est.stdError;
+                e += scales[k] * est.irradiance;
+                var += scales[k] * scales[k] * est.stdError * est.stdError;
             }
-            r.lux.push_back(luminanceOf(e));
+            r.E.push_back(luminanceOf(e));
             r.stdError.push_back(luminanceOf(glm::sqrt(var)));
         }
     return r;

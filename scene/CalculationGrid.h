@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "luminaires/Units.h"
+
 namespace candela {
 
 struct Scene;
@@ -34,6 +36,9 @@ struct GridSpec {
     int spp = 1024;               ///< Samples per point and luminaire for stochastic techniques.
     bool visibility = false;      ///< Shadow rays through the scene's BVH.
     std::string technique;        ///< Empty: each luminaire's own technique.
+    /// The environment's technique (luminaires/EnvironmentSampling.h); empty: `technique` if it
+    /// names an environment technique, else the exact `reference`.
+    std::string environmentTechnique;
 };
 
 /// Point coordinates along one axis: floor(len / spacing) points (at least 1) spacing apart,
@@ -43,19 +48,20 @@ std::vector<double> gridCoordinates(double lo, double hi, double spacing);
 struct GridResult {
     GridSpec spec;
     std::vector<double> u, v;      ///< Point coordinates along u (columns) and v (rows), metres.
-    std::vector<double> lux;       ///< Illuminance at point (i, j) in lux[j * u.size() + i], lx
-                                   ///< (W/m2 for radiometric luminaires), luminance-weighted.
-    std::vector<double> stdError;  ///< Standard error of each value, lx (0 for exact techniques).
+    UnitSystem units;              ///< What E is in: lx, or W/m2 for a radiometric scene.
+    std::vector<double> E;         ///< Illuminance at point (i, j) in E[j * u.size() + i], in
+                                   ///< units.irradiance(), luminance-weighted.
+    std::vector<double> stdError;  ///< Standard error of each value (0 for exact techniques).
 };
 
 struct GridSummary {
     size_t count = 0;
-    double eMin = 0.0, eAvg = 0.0, eMax = 0.0;  ///< Lux.
+    double eMin = 0.0, eAvg = 0.0, eMax = 0.0;  ///< In the grid's unit (GridResult::units).
     double u0 = 0.0;                            ///< Uniformity Emin / Eavg (0 when Eavg is 0).
     double minOverMax = 0.0;                    ///< Emin / Emax (0 when Emax is 0).
 };
 
-GridSummary summariseGrid(const std::vector<double>& lux);
+GridSummary summariseGrid(const std::vector<double>& E);
 /// The scene's bounds projected on the plane, or throws InputError when it has no geometry.
 void defaultGridExtent(const Scene& scene, GridSpec& spec);
 /// Checks the spec (finite extent with hi > lo, spacing > 0, at most 1e6 points) and evaluates

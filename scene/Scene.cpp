@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "luminaires/Environment.h"
+
 namespace candela {
 
 float Material::phongExponent() const {
@@ -60,6 +62,22 @@ glm::vec3 Scene::boundsMax() const {
         any = true;
     }
     return hi;
+}
+
+UnitSystem Scene::units() const {
+    bool photometric = false, radiometric = false;
+    auto count = [&](Quantities q) { (q == Quantities::Photometric ? photometric : radiometric) = true; };
+    for (const auto& l : luminaires) count(l->quantities());
+    if (!environment.is_null()) count(environmentQuantities(environment));
+    return unitSystemOf(photometric, radiometric);
+}
+
+double Scene::unitScale(const Luminaire& luminaire) const {
+    return units().scale(luminaire.quantities());
+}
+
+double Scene::environmentUnitScale() const {
+    return environment.is_null() ? 1.0 : units().scale(environmentQuantities(environment));
 }
 
 bool Scene::hasGlossy() const {

@@ -85,6 +85,14 @@ struct Scene {
     glm::vec3 boundsMin() const;
     glm::vec3 boundsMax() const;
     bool hasGlossy() const;
+
+    /// The unit system results are reported in: photometric (lx) when any source is, with a
+    /// mixed scene's radiometric sources converted at 683 lm/W (luminaires/Units.h).
+    UnitSystem units() const;
+    /// Factor on a luminaire's (or the environment's) contribution in those units: 683 lm/W for
+    /// a radiometric source in a mixed scene, else 1.
+    double unitScale(const Luminaire& luminaire) const;
+    double environmentUnitScale() const;
 };
 
 }  // namespace candela

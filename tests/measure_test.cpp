@@ -209,13 +209,13 @@ TEST(CalculationGrid, EachPointIsTheRegistrysEstimate) {
     GridResult r = computeGrid(scene, spec);
     ASSERT_EQ(r.u.size(), 4u);
     ASSERT_EQ(r.v.size(), 3u);
-    ASSERT_EQ(r.lux.size(), 12u);
+    ASSERT_EQ(r.E.size(), 12u);
     for (size_t j = 0; j < r.v.size(); ++j)
         for (size_t i = 0; i < r.u.size(); ++i) {
             glm::dvec3 p(r.u[i], 0.75, r.v[j]);
             Estimate e = lambertianRectAnalytic(*scene.luminaires[0], p, {0, 1, 0}, {});
             // The same double-precision function: equal but for the luminance weighting's sum.
-            EXPECT_NEAR(r.lux[j * r.u.size() + i], e.irradiance.y, 1e-12 * e.irradiance.y);
+            EXPECT_NEAR(r.E[j * r.u.size() + i], e.irradiance.y, 1e-12 * e.irradiance.y);
         }
     spec.spacing = 0.0;
     EXPECT_THROW(computeGrid(scene, spec), InputError);

@@ -361,5 +361,39 @@ TEST(Renderer, ReceiversInTheLightsPlaneStayFinite) {
     for (float v : rgb) ASSERT_TRUE(std::isfinite(v));
 }
 
+TEST(Renderer, AMixedSceneShowsRadiometricLightAt683LumensPerWatt) {
+    // The same panel (W/(m2 sr)) alone, and beside a photometric lamp that emits nothing (colour
+    // 0): the second scene is mixed, reports lux, and shows the panel's light and emission 683
+    // times brighter, in the image and through the GPU probe (float: 1e-5 relative).
+    test::glContext();
+    Scene alone = sceneFrom(kFloor, kPanel);
+    std::string dark = R"({"type": "photometric", "name": "Dark", "file": ")" + test::dataDir() +
+                       R"(/photometric/lambert.ies", "colour": [0, 0, 0], "position": [1, 2, 0], "technique": "point"})";
+    Scene mixed = sceneFrom(kFloor, kPanel + "," + dark);
+    ASSERT_FALSE(alone.units().converted);
+    ASSERT_TRUE(mixed.units().converted);
+    ShaderLibrary shaders;
+    auto linear = [&](const Scene& scene) {
+        Renderer renderer(shaders);
+        renderer.setSettings(small());
+        renderer.update(scene, kChangeAll);
+        do renderer.renderFrame();
+        while (!renderer.converged());
+        return renderer.readLinear();
+    };
+    std::vector<float> a = linear(alone), b = linear(mixed);
+    ASSERT_EQ(a.size(), b.size());
+    float brightest = *std::max_element(a.begin(), a.end());
+    ASSERT_GT(brightest, 0.f);
+    for (size_t i = 0; i < a.size(); ++i)
+        ASSERT_NEAR(b[i], 683.f * a[i], 1e-5f * 683.f * brightest) << "value " << i;
+    Renderer renderer(shaders);
+    renderer.setSettings(small());
+    std::vector<glm::vec3> p = {{0.2f, 0.f, -0.3f}}, n = {{0.f, 1.f, 0.f}};
+    float ea = renderer.probe(alone, p, n, 1)[0].y, eb = renderer.probe(mixed, p, n, 1)[0].y;
+    EXPECT_GT(ea, 0.f);
+    EXPECT_NEAR(eb, 683.f * ea, 1e-5f * 683.f * ea);
+}
+
 }  // namespace
 }  // namespace candela

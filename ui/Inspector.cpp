@@ -212,7 +212,23 @@ bool luminaireInspector(EditorState& state, int index) {
 
     try {
         nlohmann::json entry = luminaireToJson(*state.scene.luminaires[size_t(index)]);
-        if (editKindFields(state, entry)) {
+        bool edited = false;
+        if (entry.contains("radiance") || entry.contains("luminance")) {
+            // A Lambertian rectangle's emission is a radiance (W/(m2 sr)) or a luminance (cd/m2):
+            // switching keeps the numbers and changes what they mean (and the scene's units).
+            int luminous = entry.contains("luminance") ? 1 : 0;
+            const char* items[] = {"radiance [W/(m2 sr)]", "luminance [cd/m2]"};
+            if (ImGui::Combo("Emits", &luminous, items, 2)) {
+                const char* from = luminous ? "radiance" : "luminance";
+                entry[luminous ? "luminance" : "radiance"] = entry[from];
+                entry.erase(from);
+                edited = true;
+            }
+            itemTooltip("Radiometric (W) or photometric (lm, lx) emission; a scene mixing both converts "
+                        "radiometric sources at 683 lm/W and says so");
+        }
+        edited = editKindFields(state, entry) || edited;
+        if (edited) {
             json::Where where{state.scene.path.empty() ? "(editor)" : state.scene.path,
                               "luminaires[" + std::to_string(index) + "]"};
             // The same parser as scene loading: common fields, then the kind's own.
@@ -232,7 +248,9 @@ bool luminaireInspector(EditorState& state, int index) {
         photometricDetails(*ph);
     } else {
         glm::dvec3 power = shown.power();
-        ImGui::Text("Power [W]: %.4g  %.4g  %.4g", power.x, power.y, power.z);
+        bool luminous = shown.quantities() == Quantities::Photometric;
+        ImGui::Text("%s [%s]: %.4g  %.4g  %.4g", luminous ? "Flux" : "Power", fluxUnit(shown.quantities()), power.x,
+                    power.y, power.z);
     }
     if (!state.inspectorError.empty()) errorText(state.inspectorError);
 

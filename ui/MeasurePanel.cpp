@@ -98,7 +98,8 @@ bool legendControls(EditorState& state, MeasureState& measure, const Renderer& r
     FalseColourLegend& legend = s.legend;
     bool changed = false;
     bool illuminance = s.quantity == Quantity::Illuminance;
-    const char* unit = illuminance ? "lx" : "cd/m2";
+    UnitSystem units = state.scene.units();
+    const char* unit = illuminance ? units.irradiance() : units.radiance();
     std::string minLabel = std::string("Min [") + unit + "]",
                 maxLabel = std::string("Max [") + unit + "]";
     float speed = std::max(0.01f, 0.005f * (legend.max - legend.min));
@@ -135,7 +136,8 @@ bool legendControls(EditorState& state, MeasureState& measure, const Renderer& r
     legend = sanitizedLegend(legend);
     colourBar(legend, unit);
     if (!illuminance)
-        ImGui::TextDisabled("Radiance mode: the scale shows luminance (cd/m2 or W/(m2 sr))");
+        ImGui::TextDisabled("Radiance mode: the scale shows %s", units.photometric ? "luminance" : "radiance");
+    if (units.converted) ImGui::TextDisabled("Mixed scene: %s", units.note().c_str());
     return changed;
 }
 
@@ -175,7 +177,7 @@ void computeNow(const EditorState& state, MeasureState& measure) {
         if (!measure.extentSet) defaultGridExtent(state.scene, measure.grid);
         measure.extentSet = true;
         measure.result = computeGrid(state.scene, measure.grid);
-        measure.summary = summariseGrid(measure.result->lux);
+        measure.summary = summariseGrid(measure.result->E);
         measure.error.clear();
     } catch (const std::exception& e) {
         measure.error = e.what();
@@ -239,13 +241,15 @@ void gridControls(EditorState& state, MeasureState& measure) {
             ImGui::TableNextColumn();
             ImGui::Text(format, value);
         };
-        row("Emin", "%.4g lx", s.eMin);
-        row("Eavg", "%.4g lx", s.eAvg);
-        row("Emax", "%.4g lx", s.eMax);
+        std::string format = std::string("%.4g ") + r.units.irradiance();
+        row("Emin", format.c_str(), s.eMin);
+        row("Eavg", format.c_str(), s.eAvg);
+        row("Emax", format.c_str(), s.eMax);
         row("U0 = Emin/Eavg", "%.3f", s.u0);
         row("Emin/Emax", "%.3f", s.minOverMax);
         ImGui::EndTable();
     }
+    if (r.units.converted) ImGui::TextDisabled("(%s)", r.units.note().c_str());
     ImGui::Checkbox("Values in the viewport", &measure.showValues);
 }
 
@@ -258,7 +262,7 @@ void drawGridValues(const EditorState& state, const MeasureState& measure,
     int width = renderer.settings().width, height = renderer.settings().height;
     ImDrawList* draw = ImGui::GetForegroundDrawList();
     draw->PushClipRect(ImVec2(v.x, v.y), ImVec2(v.x + v.z, v.y + v.w), true);
-    bool labels = r.lux.size() <= kMaxLabelledPoints;
+    bool labels = r.E.size() <= kMaxLabelledPoints;
     char text[32];
     std::vector<ImVec4> drawn;  ///< Label boxes drawn so far: x0, y0, x1, y1 in window pixels.
     glm::mat4 viewProj = renderer.viewProj();
@@ -270,7 +274,7 @@ void drawGridValues(const EditorState& state, const MeasureState& measure,
                       v.y + float(px->y) * v.w / float(height));
             draw->AddCircleFilled(at, 2.f, IM_COL32(255, 255, 255, 230));
             if (!labels) continue;
-            std::snprintf(text, sizeof text, "%.3g", r.lux[j * r.u.size() + i]);
+            std::snprintf(text, sizeof text, "%.3g", r.E[j * r.u.size() + i]);
             ImVec2 size = ImGui::CalcTextSize(text);
             ImVec2 lo(at.x - 0.5f * size.x - 1.f, at.y + 3.f);
             ImVec4 box(lo.x, lo.y, lo.x + size.x + 2.f, lo.y + size.y);
@@ -304,7 +308,7 @@ bool measurePanel(EditorState& state, const Renderer& renderer, const PanelRect&
     s.quantity = Quantity(quantity);
     itemTooltip(
         "Illuminance: every surface becomes a white Lambertian receiver and each pixel "
-        "shows the irradiance on it, lx (W/m2 for radiometric luminaires)");
+        "shows the illuminance on it, lx (W/m2 in a scene of radiometric sources only)");
     bool falseColour = s.toneMap == ToneMapOperator::FalseColour;
     if (ImGui::Checkbox("False colour", &falseColour)) {
         setFalseColour(state, falseColour);

@@ -58,6 +58,7 @@ const char* fieldUnit(const std::string& key) {
         {"height", " [m]"},     {"length", " [m]"},
         {"radius", " [m]"},     {"diameter", " [m]"},
         {"distance", " [m]"},   {"radiance", " [W/(m2 sr)]"},
+        {"luminance", " [cd/m2]"},
         {"power", " [W]"},      {"irradiance", " [W/m2]"},
         {"intensity", " [cd]"}, {"lumens", " [lm]"},
         {"flux", " [lm]"},      {"illuminance", " [lx]"},

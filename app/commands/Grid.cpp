@@ -51,32 +51,36 @@ void printGrid(const GridResult& r, const GridSummary& s) {
         p.axisName().c_str(), p.offset, p.sign > 0 ? "+" : "-", p.axisName().c_str(),
         p.uName().c_str(), g.lo.x, g.hi.x, p.vName().c_str(), g.lo.y, g.hi.y, g.spacing, r.u.size(),
         r.v.size());
-    std::printf(
-        "illuminance E [lx] (W/m2 for radiometric luminaires); rows %s [m], columns %s [m]\n",
-        p.vName().c_str(), p.uName().c_str());
+    const UnitSystem& units = r.units;
+    std::printf("%s E [%s]%s%s; rows %s [m], columns %s [m]\n",
+                units.photometric ? "illuminance" : "irradiance", units.irradiance(),
+                units.converted ? ", " : "", units.note().c_str(), p.vName().c_str(), p.uName().c_str());
     std::printf("%7s\\%s", p.vName().c_str(), p.uName().c_str());
     for (double u : r.u) std::printf(" %9.3f", u);
     std::printf("\n");
     for (size_t j = 0; j < r.v.size(); ++j) {
         std::printf("%9.3f", r.v[j]);
-        for (size_t i = 0; i < r.u.size(); ++i) std::printf(" %9.4g", r.lux[j * r.u.size() + i]);
+        for (size_t i = 0; i < r.u.size(); ++i) std::printf(" %9.4g", r.E[j * r.u.size() + i]);
         std::printf("\n");
     }
     std::printf("points: %zu\n", s.count);
-    std::printf("Emin: %.6g lx\nEavg: %.6g lx\nEmax: %.6g lx\n", s.eMin, s.eAvg, s.eMax);
+    const char* unit = units.irradiance();
+    std::printf("Emin: %.6g %s\nEavg: %.6g %s\nEmax: %.6g %s\n", s.eMin, unit, s.eAvg, unit, s.eMax, unit);
     std::printf("U0 (Emin/Eavg): %.4f\nEmin/Emax: %.4f\n", s.u0, s.minOverMax);
 }
 
 void writeCsv(const std::string& path, const GridResult& r) {
     std::ofstream out(path);
     if (!out) throw InputError(path + ": cannot write the CSV file");
-    out << "x,y,z,E_lx,E_stderr\n";
+    // The unit is in the column names: _lx, or _W_m2 for a radiometric scene.
+    std::string unit = r.units.photometric ? "_lx" : "_W_m2";
+    out << "x,y,z,E" << unit << ",E_stderr" << unit << "\n";
     char line[160];
     for (size_t j = 0; j < r.v.size(); ++j)
         for (size_t i = 0; i < r.u.size(); ++i) {
             glm::dvec3 q = r.spec.plane.point(r.u[i], r.v[j]);
             size_t k = j * r.u.size() + i;
-            std::snprintf(line, sizeof line, "%.9g,%.9g,%.9g,%.10g,%.4g\n", q.x, q.y, q.z, r.lux[k],
+            std::snprintf(line, sizeof line, "%.9g,%.9g,%.9g,%.10g,%.4g\n", q.x, q.y, q.z, r.E[k],
                           r.stdError[k]);
             out << line;
         }
@@ -120,6 +124,8 @@ int cmdGrid(const Args& args) {
             spec.spp = parseInt(a, flagValue(args, i), 1, 1 << 24);
         else if (a == "--technique")
             spec.technique = flagValue(args, i);
+        else if (a == "--env-technique")
+            spec.environmentTechnique = flagValue(args, i);
         else if (a == "--visibility")
             spec.visibility = true;
         else if (a == "--csv")
@@ -134,14 +140,14 @@ int cmdGrid(const Args& args) {
     if (scenePath.empty() || !havePlane)
         throw InputError(
             "usage: candela grid scene.json --plane y=0.8 [--extent u0,v0,u1,v1] "
-            "[--spacing 0.25] [--spp N] [--technique T] [--visibility] [--csv out.csv]");
+            "[--spacing 0.25] [--spp N] [--technique T] [--env-technique T] [--visibility] [--csv out.csv]");
     if (!(spec.spacing > 0.0))
         throw InputError("--spacing: expected a positive number of metres, got " +
                          std::to_string(spec.spacing));
     Scene scene = loadScene(scenePath);
     if (!haveExtent) defaultGridExtent(scene, spec);
     GridResult result = computeGrid(scene, spec);
-    GridSummary summary = summariseGrid(result.lux);
+    GridSummary summary = summariseGrid(result.E);
     printGrid(result, summary);
     if (!csvPath.empty()) {
         writeCsv(csvPath, result);

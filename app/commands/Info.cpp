@@ -127,6 +127,10 @@ int cmdInfo(const Args& args) {
                         l->technique.c_str(), t ? std::string(t->description).c_str() : "?");
         }
         std::printf("environment: %s\n", scene.environment.is_null() ? "none" : scene.environment.dump().c_str());
+        UnitSystem units = scene.units();
+        std::printf("units: %s (%s)%s%s\n", units.photometric ? "photometric" : "radiometric",
+                    units.photometric ? "lm, cd, cd/m2, lx" : "W, W/sr, W/(m2 sr), W/m2", units.converted ? "; " : "",
+                    units.note().c_str());
         const Camera& c = scene.camera;
         std::printf("camera: at (%.3f, %.3f, %.3f) m looking at (%.3f, %.3f, %.3f) m, fov %.1f deg\n",
                     c.position.x, c.position.y, c.position.z, c.target.x, c.target.y, c.target.z,

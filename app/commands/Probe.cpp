@@ -221,15 +221,17 @@ int cmdProbe(const Args& args) {
                 EstimateOptions o = options;
                 o.seed = options.seed * 1000003ull + i * 7919ull + 999983ull;
                 Estimate e = envChosen->irradiance(*lighting, points[i].p, points[i].n, o);
-                E[i] += e.irradiance;
-                var[i] += e.stdError * e.stdError;
+                double k = scene.environmentUnitScale();
+                E[i] += k * e.irradiance;
+                var[i] += k * k * e.stdError * e.stdError;
             }
             for (size_t k = 0; k < scene.luminaires.size(); ++k) {
                 EstimateOptions o = options;
                 o.seed = options.seed * 1000003ull + i * 7919ull + k;
                 Estimate e = chosen[k]->irradiance(*scene.luminaires[k], points[i].p, points[i].n, o);
-                E[i] += e.irradiance;
-                var[i] += e.stdError * e.stdError;
+                double scale = scene.unitScale(*scene.luminaires[k]);
+                E[i] += scale * e.irradiance;
+                var[i] += scale * scale * e.stdError * e.stdError;
             }
         }
     } else {
@@ -252,6 +254,9 @@ int cmdProbe(const Args& args) {
     if (!chartPath.empty() && points.empty()) throw InputError("--show-samples: " + pointsPath + " has no points");
     if (!chartPath.empty()) writeSampleChart(scene, points.front().n, envChosen->name, chartSpp, chartPath);
 
+    // The columns are a stable contract; their unit goes to stderr (and the README).
+    UnitSystem units = scene.units();
+    std::fprintf(stderr, "probe: E, E_r, E_g, E_b and E_stderr in %s\n", units.irradianceLabel().c_str());
     std::printf("x,y,z,nx,ny,nz,E,E_r,E_g,E_b,E_stderr\n");
     for (size_t i = 0; i < points.size(); ++i) {
         const ProbePoint& q = points[i];

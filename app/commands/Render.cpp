@@ -236,12 +236,15 @@ int cmdRender(const Args& args) {
             renderer.renderFrame();  // converged: tone mapping only, with the new legend
         }
         FalseColourLegend legend = sanitizedLegend(settings.legend);
-        std::printf("false colour: %g .. %g lx (%s)", legend.min, legend.max,
+        const char* unit = scene.units().irradiance();
+        std::printf("false colour: %g .. %g %s (%s)", legend.min, legend.max, unit,
                     legend.logScale ? "log" : "linear");
         std::vector<float> levels = contourLevels(legend);
         for (size_t k = 0; k < levels.size(); ++k)
             std::printf("%s%g", k ? ", " : ", isolux at ", levels[k]);
-        std::printf("%s\n", levels.empty() ? ", no isolux lines" : " lx");
+        std::printf("%s%s", levels.empty() ? ", no isolux lines" : " ", levels.empty() ? "" : unit);
+        if (scene.units().converted) std::printf(" (%s)", scene.units().note().c_str());
+        std::printf("\n");
     }
     double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
@@ -251,6 +254,12 @@ int cmdRender(const Args& args) {
         writeImageFloat(out, settings.width, settings.height, renderer.readLinear());
     std::printf("wrote %s (%dx%d, %d frames, %.3f s)\n", out.c_str(), settings.width,
                 settings.height, frames, seconds);
+    if (ext != ".png") {
+        UnitSystem units = scene.units();
+        bool illuminance = settings.quantity == Quantity::Illuminance;
+        std::printf("linear values in %s%s%s\n", illuminance ? units.irradiance() : units.radiance(),
+                    units.converted ? ", " : "", units.note().c_str());
+    }
     if (printStats) {
         std::printf("context: %s\n", context->description().c_str());
         std::printf("pass,gpu_ms_total\n");

@@ -151,7 +151,7 @@ void EnvironmentPass::shade(ShaderLibrary& shaders, const ShadeStep& step, const
     mUniformBuffer.update(0, sizeof(mUniforms), &mUniforms);
     bindAll();
     glUseProgram(shaders.program(step.program));
-    ShadePass::drawAdditive(gbuffer, target, width, height);
+    ShadePass::drawAdditive(gbuffer, target, width, height, step.unitScale);
 }
 
 std::vector<glm::vec2> EnvironmentPass::readCube() const {

@@ -13,16 +13,18 @@ void ShadePass::execute(ShaderLibrary& shaders, const ShadeStep& step, const gl:
     // Each luminaire has its own record buffer; the shader reads element 0.
     glProgramUniform1i(program, 0, 0);
     luminaire.bindBase(GL_SHADER_STORAGE_BUFFER, gpu::kBindingLuminaire);
-    drawAdditive(gbuffer, target, width, height);
+    drawAdditive(gbuffer, target, width, height, step.unitScale);
 }
 
 void ShadePass::drawAdditive(const GBufferPass& gbuffer, const gl::Framebuffer& target, int width,
-                             int height) {
+                             int height, float scale) {
     for (int i = 0; i < 4; ++i) glBindTextureUnit(GLuint(i), gbuffer.texture(i).id());
     glBindFramebuffer(GL_FRAMEBUFFER, target.id());
     glViewport(0, 0, width, height);
     glEnable(GL_BLEND);
-    glBlendFunc(GL_ONE, GL_ONE);
+    // target += scale * colour (the unit conversion of a mixed scene; alpha keeps its weight 1).
+    glBlendColor(scale, scale, scale, 1.f);
+    glBlendFunc(GL_CONSTANT_COLOR, GL_ONE);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glDisable(GL_BLEND);
 }

@@ -14,9 +14,10 @@ class GBufferPass;
 class ShadePass {
 public:
     /// Binds the G-buffer to units 0-3 and adds one full-screen triangle of the current program
-    /// into `target` (every shading pass, the environment's too).
+    /// into `target` times `scale` (every shading pass, the environment's too; the scale is the
+    /// step's unit conversion, ShadeStep::unitScale).
     static void drawAdditive(const GBufferPass& gbuffer, const gl::Framebuffer& target, int width,
-                             int height);
+                             int height, float scale = 1.f);
     void execute(ShaderLibrary& shaders, const ShadeStep& step, const gl::Buffer& luminaire,
                  const GBufferPass& gbuffer, const gl::Framebuffer& target, int width, int height);
 };

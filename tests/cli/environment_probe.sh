@@ -13,12 +13,12 @@ check() { if eval "$2"; then passed=$((passed + 1)); else failures=$((failures +
 source "$2/cli/lib/expect.sh"
 
 pts="$data/points.csv"
-out=$("$binary" probe "$data/constant.json" --points "$pts" 2>&1)
+out=$("$binary" probe "$data/constant.json" --points "$pts" 2>/dev/null)
 bad=$(tail -n +2 <<<"$out" | awk -F, '{ d = $7 - 6.283185307; if (d < 0) d = -d; if (d > 1e-5 || $11 != 0) print NR ": " $0 }')
 check "reference gives 2 pi exactly: $out" '[ -z "$bad" ] && [ $(wc -l <<<"$out") -eq 5 ]'
 for t in balanced uniform-faces global-cdf balanced-mis reference havran2005; do
   for flag in --technique --env-technique; do
-    out=$("$binary" probe "$data/constant.json" --points "$pts" $flag $t --spp 20000 2>&1)
+    out=$("$binary" probe "$data/constant.json" --points "$pts" $flag $t --spp 20000 2>/dev/null)
     # havran2005 is a deterministic approximation (256 lights): within 1 %.
     bad=$(tail -n +2 <<<"$out" | awk -F, -v t=$t '{ e = $7; se = $11; tol = (t == "havran2005" ? 0.01 : 0.005) * 6.283185307 + 4 * se;
         d = e - 6.283185307; if (d < 0) d = -d; if (d > tol || e != e) print NR ": " e " (tol " tol ")" }')
@@ -27,13 +27,13 @@ for t in balanced uniform-faces global-cdf balanced-mis reference havran2005; do
 done
 # With a panel: the environment's 2 pi plus the panel's closed form; an environment technique
 # name leaves the panel on its own technique (analytic, exact).
-ref=$("$binary" probe "$data/constant_with_panel.json" --points "$pts" 2>&1)
+ref=$("$binary" probe "$data/constant_with_panel.json" --points "$pts" 2>/dev/null)
 check "panel + environment: up-facing gets more than 2 pi, down-facing exactly 2 pi: $ref" \
   'awk -F, "NR==2 && \$7 > 8.5 {ok++} NR==4 && \$7 > 6.283185 && \$7 < 6.283186 {ok++} END {exit ok != 2}" <<<"$ref"'
-out=$("$binary" probe "$data/constant_with_panel.json" --points "$pts" --technique balanced --spp 50000 2>&1)
+out=$("$binary" probe "$data/constant_with_panel.json" --points "$pts" --technique balanced --spp 50000 2>/dev/null)
 bad=$(paste -d, <(tail -n +2 <<<"$out") <(tail -n +2 <<<"$ref") | awk -F, '{ d = $7 - $18; if (d < 0) d = -d; if (d > 4 * $11 + 0.005 * $18) print NR ": " $7 " vs " $18 }')
 check "--technique balanced with a panel agrees with the reference: $bad" '[ -z "$bad" ]'
-out=$("$binary" probe "$data/sky.json" --points "$pts" 2>&1)
+out=$("$binary" probe "$data/sky.json" --points "$pts" 2>/dev/null)
 check "a sky gives daylight illuminance upwards: $out" 'awk -F, "NR==2 && \$7 > 40000 && \$7 < 110000 {ok=1} END {exit !ok}" <<<"$out"'
 
 expect "--env-technique" "not-a-technique" "balanced" -- probe "$data/constant.json" --points "$pts" --env-technique not-a-technique
@@ -41,7 +41,7 @@ expect "--env-technique" "runs on the CPU only" -- probe "$data/constant.json" -
 # The GPU probe runs the production passes: 2 pi within 1 % (its noise at 16384 spp is below
 # 0.3 %, the CPU twin's standard error at that count) for each GPU technique.
 for t in balanced uniform-faces balanced-mis global-cdf havran2005; do
-  out=$("$binary" probe "$data/constant.json" --points "$pts" --device gpu --env-technique $t --spp 16384 2>&1)
+  out=$("$binary" probe "$data/constant.json" --points "$pts" --device gpu --env-technique $t --spp 16384 2>/dev/null)
   bad=$(tail -n +2 <<<"$out" | awk -F, '{ d = $7 - 6.283185307; if (d < 0) d = -d; if (d > 0.01 * 6.283185307 || $7 != $7) print NR ": " $7 }')
   check "GPU $t gives 2 pi: $out" '[ -z "$bad" ] && [ $(wc -l <<<"$out") -eq 5 ]'
 done

@@ -55,9 +55,10 @@ eavg = sum(values) / len(values)
 # form is double precision: 1e-5 relative.
 for key, want in (("Emin", emin), ("Eavg", eavg), ("Emax", emax)):
     got = num(key)
-    print("%s: candela %.6g lx, closed form %.6g lx, rel. error %.1e (tolerance 1e-5)" % (key, got, want, abs(got - want) / want))
+    print("%s: candela %.6g W/m2, closed form %.6g W/m2, rel. error %.1e (tolerance 1e-5)" % (key, got, want, abs(got - want) / want))
     if abs(got - want) > 1e-5 * want: fail.append("%s %g, want %g" % (key, got, want))
-    if "lx" not in summary[key]: fail.append("%s without its unit lx" % key)
+    # The panel is radiometric (W/(m2 sr)): the whole scene reports W/m2, never lx.
+    if "W/m2" not in summary[key] or "lx" in summary[key]: fail.append("%s without its unit W/m2" % key)
 # Ratios printed with 4 decimals: 6e-5 absolute.
 for key, want in (("U0 (Emin/Eavg)", emin / eavg), ("Emin/Emax", emin / emax)):
     got = num(key)
@@ -72,7 +73,8 @@ point = L * 0.04 * (H * H / r2) ** 2 / (H * H)
 if abs(best[0] - point) > 0.01 * point: fail.append("point-source check %g vs %g" % (best[0], point))
 # CSV: header and one row per point, 10 significant digits.
 csv = open(sys.argv[2]).read().split()
-if csv[0] != "x,y,z,E_lx,E_stderr": fail.append("CSV header %s" % csv[0])
+if csv[0] != "x,y,z,E_W_m2,E_stderr_W_m2": fail.append("CSV header %s" % csv[0])
+if not any(l.startswith("irradiance E [W/m2]") for l in text): fail.append("no 'irradiance E [W/m2]' header")
 for line in csv[1:]:
     x, y, z, e, se = map(float, line.split(","))
     if y != 0.0 or abs(e - exact(x, z)) > 1e-8 * exact(x, z) or se != 0.0:
@@ -89,10 +91,43 @@ fi
 
 # The back side of the floor (facing down, away from the panel) receives nothing: U0 is 0.
 if "$binary" grid "$data/plane.json" --plane -y=0 --extent -1,-1,1,1 --spacing 1 >"$out/down.txt" 2>&1 &&
-    grep -q "^Emax: 0 lx" "$out/down.txt" && grep -q "^U0 (Emin/Eavg): 0.0000" "$out/down.txt"; then
+    grep -q "^Emax: 0 W/m2" "$out/down.txt" && grep -q "^U0 (Emin/Eavg): 0.0000" "$out/down.txt"; then
   passed=$((passed + 1))
 else
   echo "FAIL: grid on the floor's back side: $(cat "$out/down.txt")"
+  failures=$((failures + 1))
+fi
+
+# The photometric room (two real luminaires, IES and LDT): with --visibility the points under
+# the table (1.6 x 0.9 m top at 0.75 m, centred on (0, -0.5)) lose the pendant's light, the
+# ones beyond it keep theirs; without it nothing changes (issue 17: the CPU estimators ignored
+# occluders for photometric luminaires).
+room="$2/../resources/scenes/photometric.json"
+if "$binary" grid "$room" --plane y=0.0 --extent -0.6,-0.8,0.6,-0.2 --spacing 0.2 >"$out/open.txt" 2>&1 &&
+    "$binary" grid "$room" --plane y=0.0 --extent -0.6,-0.8,0.6,-0.2 --spacing 0.2 --visibility >"$out/vis.txt" 2>&1 &&
+    "$binary" grid "$room" --plane y=0.0 --extent -0.6,1.2,0.6,1.6 --spacing 0.2 >"$out/open2.txt" 2>&1 &&
+    "$binary" grid "$room" --plane y=0.0 --extent -0.6,1.2,0.6,1.6 --spacing 0.2 --visibility >"$out/vis2.txt" 2>&1; then
+  python3 - "$out/open.txt" "$out/vis.txt" "$out/open2.txt" "$out/vis2.txt" <<'PY' || failures=$((failures + 1))
+import sys
+def summary(path):
+    d = dict(l.split(":", 1) for l in open(path).read().splitlines() if l.startswith("E"))
+    return {k: float(v.split()[0]) for k, v in d.items() if k in ("Emin", "Eavg", "Emax")}, open(path).read()
+(o, to), (v, tv), (o2, _), (v2, _) = (summary(p) for p in sys.argv[1:5])
+fail = []
+# Under the table only the wall washer's light through the open sides is left: far below the
+# unshadowed minimum (159 lx).
+if not v["Eavg"] < 0.5 * o["Emin"]: fail.append("under the table: Eavg %g with visibility vs Emin %g without" % (v["Eavg"], o["Emin"]))
+# Beyond the table nothing blocks either luminaire: the same values (4-digit output, 1e-4).
+for k in ("Emin", "Eavg", "Emax"):
+    if abs(v2[k] - o2[k]) > 1e-4 * o2[k]: fail.append("beyond the table %s %g vs %g" % (k, v2[k], o2[k]))
+if "illuminance E [lx]" not in tv: fail.append("the photometric room is not reported in lx")
+print("photometric room under the table: Eavg %.4g lx with --visibility, %.4g lx without" % (v["Eavg"], o["Eavg"]))
+for f in fail: print("FAIL:", f)
+sys.exit(1 if fail else 0)
+PY
+  [ $? -eq 0 ] && passed=$((passed + 1))
+else
+  echo "FAIL: grid on the photometric room: $(cat "$out/vis.txt")"
   failures=$((failures + 1))
 fi
 
@@ -115,7 +150,7 @@ expect "--technique" "magic" -- grid "$data/plane.json" --plane y=0 --technique 
 # render --false-colour: the illuminance picture with the legend it used; bad legends refused.
 if "$binary" render "$data/plane.json" --out "$out/fc.png" --size 64x48 --false-colour \
     --legend 0,5 --isolux 1,2,3 >"$out/fc.txt" 2>&1 && [ -s "$out/fc.png" ] &&
-    grep -q "false colour: 0 .. 5 lx (linear), isolux at 1, 2, 3 lx" "$out/fc.txt"; then
+    grep -q "false colour: 0 .. 5 W/m2 (linear), isolux at 1, 2, 3 W/m2" "$out/fc.txt"; then
   passed=$((passed + 1))
 else
   echo "FAIL: render --false-colour: $(cat "$out/fc.txt")"

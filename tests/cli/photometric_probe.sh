@@ -27,7 +27,7 @@ PY
 )
 for device in cpu gpu; do
   for t in reference point scattered mc-poisson-24 hybrid; do
-    out=$("$binary" probe "$data/probe_scene.json" --points "$data/far_points.csv" --technique "$t" --spp 20000 --device $device 2>&1)
+    out=$("$binary" probe "$data/probe_scene.json" --points "$data/far_points.csv" --technique "$t" --spp 20000 --device $device 2>/dev/null)
     bad=$(paste -d, <(tail -n +2 <<<"$out") <(echo "$law") | awk -F, '{
         e = $7; se = $11; r = $12; tol = 0.01 * r + 4 * se;
         d = e - r; if (d < 0) d = -d; if (d > tol || e != e) print NR ": " e " vs " r " (tol " tol ")" }')
