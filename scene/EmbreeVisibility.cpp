@@ -31,7 +31,8 @@ EmbreeVisibility::EmbreeVisibility(const Scene& scene) : mHandles(std::make_uniq
     // closed), and high build quality (a reference, built once per scene).
     rtcSetSceneFlags(mHandles->scene, RTC_SCENE_FLAG_ROBUST);
     rtcSetSceneBuildQuality(mHandles->scene, RTC_BUILD_QUALITY_HIGH);
-    for (const Mesh& mesh : scene.meshes) {
+    for (size_t m = 0; m < scene.meshes.size(); ++m) {
+        const Mesh& mesh = scene.meshes[m];
         if (mesh.triangleCount() == 0) continue;
         RTCGeometry geometry = rtcNewGeometry(mHandles->device, RTC_GEOMETRY_TYPE_TRIANGLE);
         auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
@@ -42,7 +43,9 @@ EmbreeVisibility::EmbreeVisibility(const Scene& scene) : mHandles(std::make_uniq
             for (int k = 0; k < 3; ++k) vertices[3 * i + size_t(k)] = mesh.positions[i][k];
         for (size_t i = 0; i < mesh.indices.size(); ++i) indices[i] = mesh.indices[i];
         rtcCommitGeometry(geometry);
-        rtcAttachGeometry(mHandles->scene, geometry);
+        unsigned id = rtcAttachGeometry(mHandles->scene, geometry);
+        if (id >= mMeshOfGeometry.size()) mMeshOfGeometry.resize(id + 1, 0);
+        mMeshOfGeometry[id] = uint32_t(m);
         rtcReleaseGeometry(geometry);
         mTriangles += mesh.triangleCount();
     }
@@ -68,6 +71,27 @@ bool EmbreeVisibility::occluded(const glm::dvec3& origin, const glm::dvec3& dir,
     ray.flags = 0;
     rtcOccluded1(mHandles->scene, &context, &ray);
     return ray.tfar == -std::numeric_limits<float>::infinity();  // Embree's mark of a hit
+}
+
+bool EmbreeVisibility::intersect(const glm::dvec3& origin, const glm::dvec3& dir, Hit& hit) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit rh{};
+    rh.ray.org_x = float(origin.x), rh.ray.org_y = float(origin.y), rh.ray.org_z = float(origin.z);
+    rh.ray.dir_x = float(dir.x), rh.ray.dir_y = float(dir.y), rh.ray.dir_z = float(dir.z);
+    rh.ray.tnear = float(Bvh::kRayEpsilon);
+    rh.ray.tfar = std::numeric_limits<float>::infinity();
+    rh.ray.mask = 0xffffffffu;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(mHandles->scene, &context, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID || rh.hit.geomID >= mMeshOfGeometry.size()) return false;
+    hit.t = rh.ray.tfar;
+    hit.mesh = mMeshOfGeometry[rh.hit.geomID];
+    hit.triangle = rh.hit.primID;
+    hit.u = rh.hit.u;
+    hit.v = rh.hit.v;
+    return true;
 }
 
 bool EmbreeVisibility::visible(const glm::dvec3& from, const glm::dvec3& to) const {

@@ -12,7 +12,9 @@
 // Thread-safe after construction: the estimators may query it from several threads.
 
 #include <glm/glm.hpp>
+#include <cstdint>
 #include <memory>
+#include <vector>
 
 #include "luminaires/Registry.h"
 #include "scene/Scene.h"
@@ -31,6 +33,16 @@ public:
     bool visible(const glm::dvec3& from, const glm::dvec3& to) const override;
     bool visibleToward(const glm::dvec3& from, const glm::dvec3& dir) const override;
 
+    /// The first surface along a ray from `origin` (biased by Bvh::kRayEpsilon) in the unit
+    /// direction `dir`: false when it escapes. For the final gather of interreflected light.
+    struct Hit {
+        double t = 0.0;          ///< Distance along dir, metres.
+        uint32_t mesh = 0;       ///< Index into Scene::meshes.
+        uint32_t triangle = 0;   ///< Triangle of that mesh.
+        double u = 0.0, v = 0.0; ///< Barycentrics: p = (1-u-v) a + u b + v c.
+    };
+    bool intersect(const glm::dvec3& origin, const glm::dvec3& dir, Hit& hit) const;
+
     /// Triangles in the Embree scene.
     size_t triangleCount() const { return mTriangles; }
 
@@ -40,6 +52,7 @@ private:
     struct Handles;
     std::unique_ptr<Handles> mHandles;
     size_t mTriangles = 0;
+    std::vector<uint32_t> mMeshOfGeometry;  ///< Embree geometry id -> Scene::meshes index.
 };
 
 }  // namespace candela

@@ -1,0 +1,328 @@
+#include "scene/Radiosity.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <thread>
+
+#include "scene/EmbreeVisibility.h"
+#include "scene/Scene.h"
+
+namespace candela {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+/// Largest number of divisions of one triangle edge (a 1 km plane at 1 cm patches stops here).
+constexpr uint32_t kMaxSubdivisions = 256;
+
+double luminance(const glm::dvec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+
+/// Runs body(i) for i in [0, count) on `threads` threads, in chunks taken in order; stops early
+/// when `progress` is cancelled (returns false then). Progress is reported from the calling thread.
+template <class Body>
+bool parallelFor(size_t count, int threads, const Progress& progress, Body&& body) {
+    std::atomic<size_t> next{0}, done{0};
+    std::atomic<bool> stop{false};
+    const size_t chunk = std::max<size_t>(1, count / (64 * size_t(std::max(1, threads))));
+    auto work = [&] {
+        while (!stop.load(std::memory_order_relaxed)) {
+            size_t begin = next.fetch_add(chunk);
+            if (begin >= count) return;
+            size_t end = std::min(count, begin + chunk);
+            for (size_t i = begin; i < end; ++i) body(i);
+            done.fetch_add(end - begin);
+            if (progress.cancelled()) stop = true;
+        }
+    };
+    std::vector<std::thread> pool;
+    for (int t = 1; t < threads; ++t) pool.emplace_back(work);
+    work();
+    for (auto& t : pool) t.join();
+    if (progress.report && !stop) progress.report(1.0);
+    return !stop && !progress.cancelled();
+}
+
+/// The form factor from a point x with unit normal n to the triangle (a, b, c), all in metres:
+/// 1 / pi times Lambert's integral of cos over the part of the triangle above x's horizon.
+double pointTriangleFormFactor(const glm::dvec3& x, const glm::dvec3& n, const glm::dvec3& a, const glm::dvec3& b,
+                               const glm::dvec3& c) {
+    glm::dvec3 in[3] = {a - x, b - x, c - x}, poly[4];
+    int count = 0;
+    for (int i = 0; i < 3; ++i) {
+        const glm::dvec3& p = in[i];
+        const glm::dvec3& q = in[(i + 1) % 3];
+        double dp = glm::dot(n, p), dq = glm::dot(n, q);
+        if (dp >= 0.0) poly[count++] = p;
+        if ((dp >= 0.0) != (dq >= 0.0)) poly[count++] = p + (dp / (dp - dq)) * (q - p);
+    }
+    if (count < 3) return 0.0;
+    double sum = 0.0;
+    for (int i = 0; i < count; ++i) {
+        glm::dvec3 cr = glm::cross(poly[i], poly[(i + 1) % count]);
+        double lc = glm::length(cr);
+        if (!(lc > 0.0)) continue;
+        sum += std::atan2(lc, glm::dot(poly[i], poly[(i + 1) % count])) * glm::dot(n, cr) / lc;
+    }
+    double f = 0.5 * std::abs(sum) / kPi;
+    return std::isfinite(f) ? f : 0.0;
+}
+
+/// Index of sub-triangle (i, j) of a triangle divided n times per edge (rows j of 2 (n - j) - 1
+/// triangles: up(i) then down(i)).
+uint32_t localIndex(uint32_t i, uint32_t j, bool down, uint32_t n) {
+    return 2 * n * j - j * j + 2 * i + (down ? 1 : 0);
+}
+
+}  // namespace
+
+int workerThreads(int requested) {
+    if (requested > 0) return requested;
+    return std::max(1, int(std::thread::hardware_concurrency()));
+}
+
+RadiosityMesh RadiosityMesh::build(const Scene& scene, const RadiositySettings& settings) {
+    RadiosityMesh out;
+    double total = 0.0;
+    for (const Mesh& m : scene.meshes)
+        for (size_t t = 0; t + 2 < m.indices.size(); t += 3) {
+            glm::dvec3 a(m.positions[m.indices[t]]), b(m.positions[m.indices[t + 1]]), c(m.positions[m.indices[t + 2]]);
+            total += 0.5 * glm::length(glm::cross(b - a, c - a));
+        }
+    // A quad of edge h splits into two patches of h^2 / 2.
+    out.patchSize = settings.patchSize > 0.0 ? settings.patchSize
+                                             : std::sqrt(2.0 * total / double(std::max(1, settings.targetPatches)));
+    double h = std::max(out.patchSize, 1e-9);
+    // Vertices are welded within a mesh and a flat surface: the key is the position rounded to a
+    // millionth of the patch size; vertices with one key but normals apart stay separate.
+    double quantum = 1e-6 * h;
+    std::map<std::tuple<int64_t, int64_t, int64_t, uint32_t>, std::vector<uint32_t>> weld;
+    std::vector<glm::dvec3> vertexNormal;
+    auto vertexOf = [&](const glm::dvec3& p, const glm::dvec3& normal, uint32_t mesh) {
+        auto key = std::make_tuple(std::llround(p.x / quantum), std::llround(p.y / quantum), std::llround(p.z / quantum), mesh);
+        std::vector<uint32_t>& same = weld[key];
+        for (uint32_t v : same)
+            if (glm::dot(vertexNormal[v], normal) > 0.999) return v;
+        uint32_t v = uint32_t(out.vertices.size());
+        out.vertices.push_back(p);
+        vertexNormal.push_back(normal);
+        same.push_back(v);
+        return v;
+    };
+
+    out.splits.resize(scene.meshes.size());
+    for (size_t mi = 0; mi < scene.meshes.size(); ++mi) {
+        const Mesh& m = scene.meshes[mi];
+        glm::dvec3 albedo = m.material < scene.materials.size() ? glm::dvec3(scene.materials[m.material].albedo)
+                                                                : glm::dvec3(0.0);
+        albedo = glm::clamp(albedo, 0.0, 1.0);
+        for (size_t t = 0; t + 2 < m.indices.size(); t += 3) {
+            uint32_t ia = m.indices[t], ib = m.indices[t + 1], ic = m.indices[t + 2];
+            glm::dvec3 a(m.positions[ia]), b(m.positions[ib]), c(m.positions[ic]);
+            glm::dvec3 g = glm::cross(b - a, c - a);
+            double twiceArea = glm::length(g);
+            Split split;
+            split.firstPatch = uint32_t(out.patches.size());
+            if (!(twiceArea > 1e-18) || !std::isfinite(twiceArea)) {
+                split.subdivisions = 0;  // degenerate: no patch
+                out.splits[mi].push_back(split);
+                continue;
+            }
+            glm::dvec3 normal = g / twiceArea;
+            // The reflecting side: the vertex normals' side where the mesh has them, else the
+            // winding's (counter-clockwise seen from outside).
+            bool flip = false;
+            if (ia < m.normals.size() && ib < m.normals.size() && ic < m.normals.size()) {
+                glm::dvec3 nv = glm::dvec3(m.normals[ia]) + glm::dvec3(m.normals[ib]) + glm::dvec3(m.normals[ic]);
+                flip = glm::dot(nv, normal) < 0.0;
+            }
+            if (flip) normal = -normal;
+            double longest = std::max({glm::length(b - a), glm::length(c - b), glm::length(a - c)});
+            uint32_t n = uint32_t(std::clamp(std::ceil(longest / h - 1e-9), 1.0, double(kMaxSubdivisions)));
+            split.subdivisions = n;
+            out.splits[mi].push_back(split);
+            // Grid points a + i/n (b - a) + j/n (c - a), i + j <= n.
+            std::vector<uint32_t> grid(size_t(n + 1) * size_t(n + 2) / 2);
+            auto gridIndex = [n](uint32_t i, uint32_t j) { return size_t(j) * (2 * n + 3 - j) / 2 + i; };
+            for (uint32_t j = 0; j <= n; ++j)
+                for (uint32_t i = 0; i + j <= n; ++i) {
+                    glm::dvec3 p = a + (double(i) / n) * (b - a) + (double(j) / n) * (c - a);
+                    grid[gridIndex(i, j)] = vertexOf(p, normal, uint32_t(mi));
+                }
+            double patchArea = 0.5 * twiceArea / double(n * n);
+            auto add = [&](uint32_t v0, uint32_t v1, uint32_t v2) {
+                Patch p;
+                p.vertex = flip ? std::array<uint32_t, 3>{v0, v2, v1} : std::array<uint32_t, 3>{v0, v1, v2};
+                p.centroid = (out.vertices[v0] + out.vertices[v1] + out.vertices[v2]) / 3.0;
+                p.normal = normal;
+                p.area = patchArea;
+                p.albedo = albedo;
+                out.patches.push_back(p);
+            };
+            for (uint32_t j = 0; j < n; ++j)
+                for (uint32_t i = 0; i + j < n; ++i) {
+                    add(grid[gridIndex(i, j)], grid[gridIndex(i + 1, j)], grid[gridIndex(i, j + 1)]);
+                    if (i + j < n - 1)
+                        add(grid[gridIndex(i + 1, j)], grid[gridIndex(i + 1, j + 1)], grid[gridIndex(i, j + 1)]);
+                }
+        }
+    }
+    // Patches around each vertex.
+    std::vector<uint32_t> counts(out.vertices.size() + 1, 0);
+    for (const Patch& p : out.patches)
+        for (uint32_t v : p.vertex) ++counts[v + 1];
+    out.vertexStart.assign(out.vertices.size() + 1, 0);
+    for (size_t v = 0; v < out.vertices.size(); ++v) out.vertexStart[v + 1] = out.vertexStart[v] + counts[v + 1];
+    out.vertexPatches.assign(out.vertexStart.back(), 0);
+    std::vector<uint32_t> fill(out.vertexStart.begin(), out.vertexStart.end() - 1);
+    for (uint32_t p = 0; p < out.patches.size(); ++p)
+        for (uint32_t v : out.patches[p].vertex) out.vertexPatches[fill[v]++] = p;
+    return out;
+}
+
+uint32_t RadiosityMesh::patchAt(uint32_t mesh, uint32_t triangle, double u, double v, glm::dvec3& weights) const {
+    const Split& s = splits.at(mesh).at(triangle);
+    uint32_t n = s.subdivisions;
+    if (n == 0) {
+        weights = glm::dvec3(1.0 / 3.0);
+        return UINT32_MAX;
+    }
+    double fu = std::clamp(u, 0.0, 1.0) * n, fv = std::clamp(v, 0.0, 1.0) * n;
+    uint32_t j = std::min(uint32_t(fv), n - 1);
+    uint32_t i = std::min(uint32_t(fu), n - 1 - j);
+    double r = std::clamp(fu - i, 0.0, 1.0), q = std::clamp(fv - j, 0.0, 1.0);
+    bool down = r + q > 1.0 && i + j < n - 1;
+    uint32_t index = s.firstPatch + localIndex(i, j, down, n);
+    // Weights of the patch's corners in the order of the grid points that made it.
+    if (down)
+        weights = {1.0 - q, r + q - 1.0, 1.0 - r};
+    else
+        weights = {std::max(0.0, 1.0 - r - q), r, q};
+    // A patch stored with the other winding (its vertices 1 and 2 swapped).
+    const Patch& p = patches[index];
+    glm::dvec3 e1 = vertices[p.vertex[1]] - vertices[p.vertex[0]], e2 = vertices[p.vertex[2]] - vertices[p.vertex[0]];
+    if (glm::dot(glm::cross(e1, e2), p.normal) < 0.0) std::swap(weights.y, weights.z);
+    return index;
+}
+
+bool RadiosityMesh::reflects() const {
+    for (const Patch& p : patches)
+        if (p.albedo.x + p.albedo.y + p.albedo.z > 0.0) return true;
+    return false;
+}
+
+double RadiosityMesh::totalArea() const {
+    double a = 0.0;
+    for (const Patch& p : patches) a += p.area;
+    return a;
+}
+
+bool TransferMatrix::build(const RadiosityMesh& mesh, const EmbreeVisibility& visibility, int threads,
+                           const Progress& progress) {
+    size = mesh.patches.size();
+    t.assign(size * size, 0.f);
+    const auto& patches = mesh.patches;
+    const auto& vertices = mesh.vertices;
+    std::atomic<size_t> rows{0};
+    Progress inner = progress;
+    inner.report = nullptr;
+    int workers = workerThreads(threads);
+    std::thread::id caller = std::this_thread::get_id();
+    return parallelFor(size, workers, inner, [&](size_t j) {
+        const RadiosityMesh::Patch& shooter = patches[j];
+        if (shooter.area > 0.0) {
+            for (size_t k = 0; k < size; ++k) {
+                if (k == j) continue;
+                const RadiosityMesh::Patch& receiver = patches[k];
+                // A receiver reflects on its normal's side only: the shooter must be in front.
+                if (!(glm::dot(receiver.normal, shooter.centroid - receiver.centroid) > 0.0)) continue;
+                double f = pointTriangleFormFactor(shooter.centroid, shooter.normal, vertices[receiver.vertex[0]],
+                                                   vertices[receiver.vertex[1]], vertices[receiver.vertex[2]]);
+                if (!(f > 0.0)) continue;
+                if (!visibility.visible(shooter.centroid, receiver.centroid)) continue;
+                t[k * size + j] = float(shooter.area * f / receiver.area);
+            }
+        }
+        size_t done = rows.fetch_add(1) + 1;
+        if (progress.report && std::this_thread::get_id() == caller && done % 64 == 0)
+            progress.report(double(done) / double(size));
+    });
+}
+
+bool directOnPatches(const RadiosityMesh& mesh, const PointEstimator& estimate, const EstimateOptions& options,
+                     int threads, std::vector<glm::dvec3>& out, const Progress& progress) {
+    out.assign(mesh.patches.size(), glm::dvec3(0.0));
+    static const double kRule[3][3] = {{2.0 / 3.0, 1.0 / 6.0, 1.0 / 6.0},
+                                       {1.0 / 6.0, 2.0 / 3.0, 1.0 / 6.0},
+                                       {1.0 / 6.0, 1.0 / 6.0, 2.0 / 3.0}};
+    std::atomic<size_t> count{0};
+    std::thread::id caller = std::this_thread::get_id();
+    Progress inner = progress;
+    inner.report = nullptr;
+    return parallelFor(mesh.patches.size(), workerThreads(threads), inner, [&](size_t i) {
+        const RadiosityMesh::Patch& p = mesh.patches[i];
+        glm::dvec3 sum(0.0);
+        for (int q = 0; q < 3; ++q) {
+            glm::dvec3 x = kRule[q][0] * mesh.vertices[p.vertex[0]] + kRule[q][1] * mesh.vertices[p.vertex[1]] +
+                           kRule[q][2] * mesh.vertices[p.vertex[2]];
+            EstimateOptions o = options;
+            o.seed = options.seed * 0x9E3779B97F4A7C15ull + uint64_t(i) * 3 + uint64_t(q) + 1;
+            Estimate e = estimate(x, p.normal, o);
+            if (std::isfinite(e.irradiance.x + e.irradiance.y + e.irradiance.z)) sum += e.irradiance;
+        }
+        out[i] = sum / 3.0;
+        size_t done = count.fetch_add(1) + 1;
+        if (progress.report && std::this_thread::get_id() == caller && done % 256 == 0)
+            progress.report(double(done) / double(mesh.patches.size()));
+    });
+}
+
+int solveRadiosity(const TransferMatrix& transfer, const RadiosityMesh& mesh, const std::vector<glm::dvec3>& direct,
+                   std::vector<glm::dvec3>& indirect, double tolerance, int threads, const Progress& progress) {
+    const size_t n = mesh.patches.size();
+    if (indirect.size() != n) indirect.assign(n, glm::dvec3(0.0));
+    if (n == 0 || transfer.size != n) return 0;
+    std::vector<glm::dvec3> exitance(n), next(n);
+    int workers = workerThreads(threads);
+    const int kMaxIterations = 100000;  // rho < 1 converges long before; a guard only
+    for (int iteration = 1; iteration <= kMaxIterations; ++iteration) {
+        // M_j = rho_j (E_dir + E_ind), then E_ind'_k = sum_j T_kj M_j.
+        for (size_t j = 0; j < n; ++j) exitance[j] = mesh.patches[j].albedo * (direct[j] + indirect[j]);
+        Progress quiet;
+        quiet.cancel = progress.cancel;
+        bool finished = parallelFor(n, workers, quiet, [&](size_t k) {
+            const float* row = &transfer.t[k * n];
+            glm::dvec3 sum(0.0);
+            for (size_t j = 0; j < n; ++j)
+                if (row[j] != 0.f) sum += double(row[j]) * exitance[j];
+            next[k] = sum;
+        });
+        if (!finished) return -1;
+        double change = 0.0, flux = 0.0;
+        for (size_t k = 0; k < n; ++k) {
+            change += mesh.patches[k].area * std::abs(luminance(next[k] - indirect[k]));
+            flux += mesh.patches[k].area * luminance(next[k]);
+        }
+        indirect.swap(next);
+        if (!(flux > 0.0) || change <= tolerance * flux) return iteration;
+    }
+    return kMaxIterations;
+}
+
+std::vector<glm::dvec3> vertexValues(const RadiosityMesh& mesh, const std::vector<glm::dvec3>& perPatch) {
+    std::vector<glm::dvec3> out(mesh.vertices.size(), glm::dvec3(0.0));
+    for (size_t v = 0; v < mesh.vertices.size(); ++v) {
+        glm::dvec3 sum(0.0);
+        double area = 0.0;
+        for (uint32_t k = mesh.vertexStart[v]; k < mesh.vertexStart[v + 1]; ++k) {
+            uint32_t p = mesh.vertexPatches[k];
+            sum += mesh.patches[p].area * perPatch[p];
+            area += mesh.patches[p].area;
+        }
+        out[v] = area > 0.0 ? sum / area : glm::dvec3(0.0);
+    }
+    return out;
+}
+
+}  // namespace candela

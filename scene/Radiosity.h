@@ -1,0 +1,119 @@
+#pragma once
+// Diffuse interreflection by radiosity over patches of the scene's surfaces (issue 17, part 3),
+// in double precision on the CPU, with Embree visibility.
+//
+// The surfaces are cut into small triangles (patches). Each patch reflects on the side its normal
+// faces (a plane's `normal`, a box's outside, a glTF mesh's winding), diffusely, with its
+// material's `albedo` (a glossy material reflects its diffuse part; specular interreflection and
+// transmission are not modelled). Light arrives at each patch directly from every source, each
+// through its own CPU estimator (luminaires/Registry.h) at three points of the patch, and from the
+// other patches through form factors:
+//
+//   F_jk  = the form factor from patch j's centroid to patch k's triangle (Lambert's polygon
+//           formula after clipping at j's horizon), times the visibility of the centroids;
+//   T_kj  = A_j F_jk / A_k: the part of the flux leaving j that lands on k, per unit area of k;
+//   E_ind = T (rho o (E_dir + E_ind)), solved by iteration (rho < 1 makes it converge).
+//
+// T spreads each patch's flux over the others, so in a closed room (where every row of F sums to
+// one) no energy is created or lost: the area-weighted mean illuminance over all surfaces is
+// exactly Phi / (S (1 - rho)) for uniform rho, the validation suite's integrating cube.
+//
+// E_ind is linear in E_dir, so each source's share can be updated alone (Interreflection.h).
+
+#include <glm/glm.hpp>
+
+#include <array>
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "luminaires/Registry.h"
+
+namespace candela {
+
+struct Scene;
+class EmbreeVisibility;
+
+struct RadiositySettings {
+    /// The patch edge is chosen so the scene's surfaces give about this many patches.
+    int targetPatches = 2500;
+    /// > 0: this longest patch edge (metres) instead.
+    double patchSize = 0.0;
+};
+
+/// The scene's surfaces as patches, with vertices shared between the patches of one flat surface
+/// (for smooth display) but not across creases.
+struct RadiosityMesh {
+    struct Patch {
+        std::array<uint32_t, 3> vertex{};  ///< Counter-clockwise seen from the normal's side.
+        glm::dvec3 centroid{0.0};          ///< Metres.
+        glm::dvec3 normal{0.0};            ///< Unit, the reflecting side.
+        double area = 0.0;                 ///< m2.
+        glm::dvec3 albedo{0.0};            ///< Diffuse reflectance, RGB in [0, 1].
+    };
+    std::vector<glm::dvec3> vertices;  ///< Metres.
+    std::vector<Patch> patches;
+    double patchSize = 0.0;            ///< Longest edge asked for, metres.
+
+    /// Where each mesh triangle's patches start and how many times its edges were divided:
+    /// triangle t of mesh m has subdivisions^2 patches from firstPatch on.
+    struct Split {
+        uint32_t firstPatch = 0;
+        uint32_t subdivisions = 1;
+    };
+    std::vector<std::vector<Split>> splits;  ///< [mesh][triangle]
+
+    /// The patches around each vertex (compressed rows: vertexPatches[vertexStart[v] ..
+    /// vertexStart[v + 1]]).
+    std::vector<uint32_t> vertexStart, vertexPatches;
+
+    /// Patches of the scene's meshes, `settings` choosing their size.
+    static RadiosityMesh build(const Scene& scene, const RadiositySettings& settings);
+    /// The patch that holds the point of barycentric (u, v) (Embree's: p = (1-u-v) a + u b + v c)
+    /// on triangle `triangle` of mesh `mesh`, and the point's barycentrics within that patch.
+    uint32_t patchAt(uint32_t mesh, uint32_t triangle, double u, double v, glm::dvec3& weights) const;
+    /// True when some patch reflects light (a non-zero albedo).
+    bool reflects() const;
+    double totalArea() const;
+};
+
+/// Cooperative cancellation and progress of a long computation (all optional).
+struct Progress {
+    const std::atomic<bool>* cancel = nullptr;       ///< Stop early when it becomes true.
+    std::function<void(double fraction)> report;     ///< 0..1, from the calling thread.
+    bool cancelled() const { return cancel && cancel->load(std::memory_order_relaxed); }
+};
+
+/// T of the header comment: N x N single-precision transfer coefficients, row k the receiver.
+struct TransferMatrix {
+    size_t size = 0;
+    std::vector<float> t;  ///< t[k * size + j] = A_j F_jk V_jk / A_k.
+    /// Builds it with one shadow ray between each pair of patch centroids (biased 1e-4 m off the
+    /// surfaces), over `threads` threads (0: the hardware's). Returns false when cancelled.
+    bool build(const RadiosityMesh& mesh, const EmbreeVisibility& visibility, int threads,
+               const Progress& progress = {});
+};
+
+/// Direct irradiance on every patch from one source, in the scene's units, RGB: the mean of its
+/// estimator at three points of the patch (the degree-2 rule with barycentrics (2/3, 1/6, 1/6)
+/// and permutations), each with `options` (seeded per patch and point) and Embree visibility.
+/// `estimate` is the source's estimator at (p, n). Returns false when cancelled.
+using PointEstimator = std::function<Estimate(const glm::dvec3& p, const glm::dvec3& n, const EstimateOptions& o)>;
+bool directOnPatches(const RadiosityMesh& mesh, const PointEstimator& estimate, const EstimateOptions& options,
+                     int threads, std::vector<glm::dvec3>& out, const Progress& progress = {});
+
+/// Solves E_ind = T (rho o (E_dir + E_ind)) for the patches' interreflected irradiance, starting
+/// from `indirect` (zero, or a previous solution of a nearby problem), until an iteration adds
+/// less than `tolerance` of the flux reflected so far. Returns the iterations it took (-1 when
+/// cancelled).
+int solveRadiosity(const TransferMatrix& transfer, const RadiosityMesh& mesh, const std::vector<glm::dvec3>& direct,
+                   std::vector<glm::dvec3>& indirect, double tolerance, int threads, const Progress& progress = {});
+
+/// Per-vertex values for display: the area-weighted mean of the patches around each vertex.
+std::vector<glm::dvec3> vertexValues(const RadiosityMesh& mesh, const std::vector<glm::dvec3>& perPatch);
+
+/// Threads to use for `requested` (0: the hardware's, at least 1).
+int workerThreads(int requested);
+
+}  // namespace candela
