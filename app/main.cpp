@@ -41,7 +41,10 @@ const char* kUsage =
     "  grid scene.json --plane y=0.8 [--extent u0,v0,u1,v1] [--spacing 0.25] [--spp N] [--csv F]\n"
     "                                    illuminance (lx) on a calculation grid; Emin, Eavg, Emax, U0\n"
     "  polar FILE.ies|FILE.ldt [--out polar.png] [--step DEG]\n"
-    "                                    polar candela diagram (C0-C180, C90-C270) and its table\n";
+    "                                    polar candela diagram (C0-C180, C90-C270) and its table\n"
+    "  validate [--case NAME]... [--list]\n"
+    "                                    the validation suite: integrating cube and sphere,\n"
+    "                                    direct light and an obstruction against closed forms\n";
 
 }  // namespace
 
@@ -61,6 +64,7 @@ int main(int argc, char** argv) {
         if (command == "bench") return candela::cmdBench(args);
         if (command == "grid") return candela::cmdGrid(args);
         if (command == "polar") return candela::cmdPolar(args);
+        if (command == "validate") return candela::cmdValidate(args);
         std::fprintf(stderr, "candela: unknown command \"%s\"\n%s", command.c_str(), kUsage);
         return 2;
     } catch (const std::exception& e) {

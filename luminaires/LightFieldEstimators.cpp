@@ -267,6 +267,17 @@ glm::dvec3 refCell(const RefContext& c, glm::dvec2 lo, glm::dvec2 hi, int depth)
             shadowedPoints += shadowed;
             litPoints += value != glm::dvec3(0.0);
         }
+    // The Gauss points lie inside the cell (the outer ones 11 % of its width from its edges): a
+    // shadow edge there would go unseen. The corners and edge midpoints tell too.
+    if (c.o->visibility && depth < kShadowDepth && (shadowedPoints == 0 || litPoints == 0))
+        for (double fy : {0.0, 0.5, 1.0})
+            for (double fx : {0.0, 0.5, 1.0}) {
+                if (fx == 0.5 && fy == 0.5) continue;
+                bool shadowed = false;
+                glm::dvec3 value = refIntegrand(c, lo + glm::dvec2(fx, fy) * size, shadowed);
+                shadowedPoints += shadowed;
+                litPoints += value != glm::dvec3(0.0);
+            }
     // A shadow edge crosses the cell (some points lit, some shadowed): the integrand jumps there,
     // so halve the cell until the edge's cells are 2^-kShadowDepth of the support.
     if (shadowedPoints > 0 && litPoints > 0 && depth < kShadowDepth) {

@@ -5,11 +5,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <atomic>
 #include <memory>
+#include <thread>
 
 #include "luminaires/EnvironmentSampling.h"
 #include "luminaires/Registry.h"
 #include "scene/EmbreeVisibility.h"
+#include "scene/Interreflection.h"
 #include "scene/Scene.h"
 #include "util/Error.h"
 
@@ -62,6 +65,52 @@ std::vector<double> gridCoordinates(double lo, double hi, double spacing) {
     return out;
 }
 
+namespace {
+
+/// The interreflected part of every point: the radiosity solution, then a final gather of spp
+/// rays per point (over the hardware's threads), added to E with its standard error.
+void addIndirect(const Scene& scene, const GridSpec& spec, GridResult& r,
+                 const std::function<void(const std::string&)>& status) {
+    InterreflectionOptions o;
+    o.mesh.targetPatches = spec.patches;
+    o.technique = spec.technique;
+    Interreflection ir(scene, o);
+    auto say = [&](const std::string& s) {
+        if (status) status(s);
+    };
+    say("interreflection: " + std::to_string(ir.mesh().patches.size()) + " patches, form factors");
+    Progress progress;
+    if (!ir.compute(progress)) throw InputError("interreflection: cancelled");
+    say("interreflection: solved in " + std::to_string(ir.lastIterations()) + " iterations; final gather at " +
+        std::to_string(r.u.size() * r.v.size()) + " points");
+    size_t count = r.u.size() * r.v.size();
+    r.indirect.assign(count, 0.0);
+    r.indirectStdError.assign(count, 0.0);
+    std::atomic<size_t> next{0};
+    auto work = [&] {
+        for (size_t index; (index = next.fetch_add(1)) < count;) {
+            size_t i = index % r.u.size(), j = index / r.u.size();
+            EstimateOptions g;
+            g.spp = std::max(1, spec.spp);
+            g.seed = 7777ull * index + 13;
+            Estimate e = ir.gather(spec.plane.point(r.u[i], r.v[j]), spec.plane.normal(), g);
+            r.indirect[index] = luminanceOf(e.irradiance);
+            r.indirectStdError[index] = luminanceOf(e.stdError);
+        }
+    };
+    std::vector<std::thread> pool;
+    for (int t = 1; t < workerThreads(0); ++t) pool.emplace_back(work);
+    work();
+    for (auto& t : pool) t.join();
+    r.hasIndirect = true;
+    for (size_t k = 0; k < count; ++k) {
+        r.E[k] = r.direct[k] + r.indirect[k];
+        r.stdError[k] = std::sqrt(r.directStdError[k] * r.directStdError[k] + r.indirectStdError[k] * r.indirectStdError[k]);
+    }
+}
+
+}  // namespace
+
 GridSummary summariseGrid(const std::vector<double>& E) {
     GridSummary s;
     s.count = E.size();
@@ -85,7 +134,8 @@ void defaultGridExtent(const Scene& scene, GridSpec& spec) {
     spec.hi = {hi[uAxis(a)], hi[vAxis(a)]};
 }
 
-GridResult computeGrid(const Scene& scene, const GridSpec& spec) {
+GridResult computeGrid(const Scene& scene, const GridSpec& spec,
+                       const std::function<void(const std::string& status)>& status) {
     if (!(spec.spacing > 0.0) || !std::isfinite(spec.spacing))
         throw InputError("--spacing: expected a positive number of metres");
     for (double x : {spec.lo.x, spec.lo.y, spec.hi.x, spec.hi.y})
@@ -122,7 +172,7 @@ GridResult computeGrid(const Scene& scene, const GridSpec& spec) {
     std::unique_ptr<EmbreeVisibility> vis;
     EstimateOptions options;
     options.spp = std::max(1, spec.spp);
-    if (spec.visibility) {
+    if (spec.visibility || spec.indirect) {
         vis = std::make_unique<EmbreeVisibility>(scene);
         options.visibility = vis.get();
     }
@@ -157,9 +207,12 @@ GridResult computeGrid(const Scene& scene, const GridSpec& spec) {
                 e += scales[k] * est.irradiance;
                 var += scales[k] * scales[k] * est.stdError * est.stdError;
             }
-            r.E.push_back(luminanceOf(e));
-            r.stdError.push_back(luminanceOf(glm::sqrt(var)));
+            r.direct.push_back(luminanceOf(e));
+            r.directStdError.push_back(luminanceOf(glm::sqrt(var)));
         }
+    r.E = r.direct;
+    r.stdError = r.directStdError;
+    if (spec.indirect) addIndirect(scene, spec, r, status);
     return r;
 }
 

@@ -4,6 +4,7 @@
 // and its summary (EN 12464-1 style: Emin, Eavg, Emax, U0).
 
 #include <cstddef>
+#include <functional>
 #include <glm/glm.hpp>
 #include <string>
 #include <vector>
@@ -39,6 +40,10 @@ struct GridSpec {
     /// The environment's technique (luminaires/EnvironmentSampling.h); empty: `technique` if it
     /// names an environment technique, else the exact `reference`.
     std::string environmentTechnique;
+    /// Adds interreflected light (scene/Interreflection.h: radiosity and a final gather of
+    /// `spp` rays per point); turns visibility on, since reflected light needs the geometry.
+    bool indirect = false;
+    int patches = 4000;  ///< About this many radiosity patches for the interreflection.
 };
 
 /// Point coordinates along one axis: floor(len / spacing) points (at least 1) spacing apart,
@@ -50,8 +55,12 @@ struct GridResult {
     std::vector<double> u, v;      ///< Point coordinates along u (columns) and v (rows), metres.
     UnitSystem units;              ///< What E is in: lx, or W/m2 for a radiometric scene.
     std::vector<double> E;         ///< Illuminance at point (i, j) in E[j * u.size() + i], in
-                                   ///< units.irradiance(), luminance-weighted.
+                                   ///< units.irradiance(), luminance-weighted: direct plus
+                                   ///< interreflected when hasIndirect.
     std::vector<double> stdError;  ///< Standard error of each value (0 for exact techniques).
+    bool hasIndirect = false;      ///< Interreflected light was computed (GridSpec::indirect).
+    std::vector<double> direct, directStdError;      ///< The direct part alone (always filled).
+    std::vector<double> indirect, indirectStdError;  ///< The interreflected part (hasIndirect).
 };
 
 struct GridSummary {
@@ -66,6 +75,8 @@ GridSummary summariseGrid(const std::vector<double>& E);
 void defaultGridExtent(const Scene& scene, GridSpec& spec);
 /// Checks the spec (finite extent with hi > lo, spacing > 0, at most 1e6 points) and evaluates
 /// every point; throws InputError on bad values or a luminaire without a CPU estimator.
-GridResult computeGrid(const Scene& scene, const GridSpec& spec);
+/// `status` (optional) hears what it is doing, for progress on long grids.
+GridResult computeGrid(const Scene& scene, const GridSpec& spec,
+                       const std::function<void(const std::string& status)>& status = {});
 
 }  // namespace candela

@@ -93,7 +93,7 @@ RadiosityMesh RadiosityMesh::build(const Scene& scene, const RadiositySettings& 
     // A quad of edge h splits into two patches of h^2 / 2.
     out.patchSize = settings.patchSize > 0.0 ? settings.patchSize
                                              : std::sqrt(2.0 * total / double(std::max(1, settings.targetPatches)));
-    double h = std::max(out.patchSize, 1e-9);
+    double h = std::max(out.patchSize, 1e-9), patchArea = 0.5 * h * h;
     // Vertices are welded within a mesh and a flat surface: the key is the position rounded to a
     // millionth of the patch size; vertices with one key but normals apart stay separate.
     double quantum = 1e-6 * h;
@@ -138,8 +138,11 @@ RadiosityMesh RadiosityMesh::build(const Scene& scene, const RadiositySettings& 
                 flip = glm::dot(nv, normal) < 0.0;
             }
             if (flip) normal = -normal;
+            // n^2 patches of about the patch area (half a square's triangle of edge h gets n = s / h),
+            // and no patch edge over 1.5 h (slivers, such as a disc's fan, get split lengthwise).
             double longest = std::max({glm::length(b - a), glm::length(c - b), glm::length(a - c)});
-            uint32_t n = uint32_t(std::clamp(std::ceil(longest / h - 1e-9), 1.0, double(kMaxSubdivisions)));
+            double divisions = std::max(std::sqrt(0.5 * twiceArea / patchArea), longest / (1.5 * h));
+            uint32_t n = uint32_t(std::clamp(std::ceil(divisions - 1e-9), 1.0, double(kMaxSubdivisions)));
             split.subdivisions = n;
             out.splits[mi].push_back(split);
             // Grid points a + i/n (b - a) + j/n (c - a), i + j <= n.
@@ -150,13 +153,13 @@ RadiosityMesh RadiosityMesh::build(const Scene& scene, const RadiositySettings& 
                     glm::dvec3 p = a + (double(i) / n) * (b - a) + (double(j) / n) * (c - a);
                     grid[gridIndex(i, j)] = vertexOf(p, normal, uint32_t(mi));
                 }
-            double patchArea = 0.5 * twiceArea / double(n * n);
+            double area = 0.5 * twiceArea / double(n * n);
             auto add = [&](uint32_t v0, uint32_t v1, uint32_t v2) {
                 Patch p;
                 p.vertex = flip ? std::array<uint32_t, 3>{v0, v2, v1} : std::array<uint32_t, 3>{v0, v1, v2};
                 p.centroid = (out.vertices[v0] + out.vertices[v1] + out.vertices[v2]) / 3.0;
                 p.normal = normal;
-                p.area = patchArea;
+                p.area = area;
                 p.albedo = albedo;
                 out.patches.push_back(p);
             };
@@ -167,6 +170,18 @@ RadiosityMesh RadiosityMesh::build(const Scene& scene, const RadiositySettings& 
                         add(grid[gridIndex(i + 1, j)], grid[gridIndex(i + 1, j + 1)], grid[gridIndex(i, j + 1)]);
                 }
         }
+    }
+    // A convex room: no vertex behind any patch (within rounding of the coordinates).
+    double extent = 0.0;
+    for (const glm::dvec3& v : out.vertices) extent = std::max(extent, glm::length(v));
+    out.convexRoom = !out.patches.empty();
+    for (size_t p = 0; p < out.patches.size() && out.convexRoom; ++p) {
+        const Patch& patch = out.patches[p];
+        for (const glm::dvec3& v : out.vertices)
+            if (glm::dot(patch.normal, v - patch.centroid) < -1e-9 * std::max(1.0, extent)) {
+                out.convexRoom = false;
+                break;
+            }
     }
     // Patches around each vertex.
     std::vector<uint32_t> counts(out.vertices.size() + 1, 0);
@@ -237,10 +252,13 @@ bool TransferMatrix::build(const RadiosityMesh& mesh, const EmbreeVisibility& vi
                 const RadiosityMesh::Patch& receiver = patches[k];
                 // A receiver reflects on its normal's side only: the shooter must be in front.
                 if (!(glm::dot(receiver.normal, shooter.centroid - receiver.centroid) > 0.0)) continue;
-                double f = pointTriangleFormFactor(shooter.centroid, shooter.normal, vertices[receiver.vertex[0]],
-                                                   vertices[receiver.vertex[1]], vertices[receiver.vertex[2]]);
+                const glm::dvec3& a = vertices[receiver.vertex[0]];
+                const glm::dvec3& b = vertices[receiver.vertex[1]];
+                const glm::dvec3& c = vertices[receiver.vertex[2]];
+                // From the shooter's centroid: over a closed room the row sums to exactly one.
+                double f = pointTriangleFormFactor(shooter.centroid, shooter.normal, a, b, c);
                 if (!(f > 0.0)) continue;
-                if (!visibility.visible(shooter.centroid, receiver.centroid)) continue;
+                if (!mesh.convexRoom && !visibility.visible(shooter.centroid, receiver.centroid)) continue;
                 t[k * size + j] = float(shooter.area * f / receiver.area);
             }
         }

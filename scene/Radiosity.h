@@ -55,6 +55,10 @@ struct RadiosityMesh {
     std::vector<glm::dvec3> vertices;  ///< Metres.
     std::vector<Patch> patches;
     double patchSize = 0.0;            ///< Longest edge asked for, metres.
+    /// Every patch sees every other unobstructed: all vertices lie on or in front of every
+    /// patch's plane (a convex room seen from inside, such as a closed box or sphere). Then the
+    /// form factors need no shadow rays.
+    bool convexRoom = false;
 
     /// Where each mesh triangle's patches start and how many times its edges were divided:
     /// triangle t of mesh m has subdivisions^2 patches from firstPatch on.

@@ -5,6 +5,8 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
+#include <map>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
@@ -209,15 +211,18 @@ void parseBox(const nlohmann::json& item, const json::Where& where, size_t index
     json::checkKeys(item, {"box", "name", "albedo", "specular", "roughness"}, where);
     const json::Where at = where / "box";
     const nlohmann::json& spec = item["box"];
-    json::checkKeys(spec, {"center", "size", "rotate_y_deg"}, at);
+    json::checkKeys(spec, {"center", "size", "rotate_y_deg", "inside"}, at);
     glm::dvec3 center = json::optional(spec, "center", at, glm::dvec3(0.0), json::vec3);
     if (!spec.contains("size"))
         json::fail(at / "size", "[x, y, z] edge lengths in metres (missing)");
     glm::dvec3 half = 0.5 * positive3(spec["size"], at / "size");
     double angle = json::optional(spec, "rotate_y_deg", at, 0.0, json::number);
     glm::dmat3 rotation(glm::rotate(glm::dmat4(1.0), glm::radians(angle), glm::dvec3(0, 1, 0)));
+    // "inside": a room seen from within: the faces look inwards (they reflect light inside).
+    bool inside = json::optional(spec, "inside", at, false, json::boolean);
 
-    Mesh mesh = itemMesh(item, where, "box " + std::to_string(index), MeshShape::Convex, scene);
+    Mesh mesh = itemMesh(item, where, "box " + std::to_string(index), inside ? MeshShape::General : MeshShape::Convex,
+                         scene);
     // Six faces, four vertices each (flat normals). For axis a, e_b x e_c = e_a with b = a + 1,
     // c = a + 2 (mod 3); swapping u and v on the negative face keeps u x v = outward normal.
     for (int a = 0; a < 3; ++a) {
@@ -232,11 +237,65 @@ void parseBox(const nlohmann::json& item, const json::Where& where, size_t index
             for (glm::dvec3 corner :
                  {faceCenter - u - v, faceCenter + u - v, faceCenter + u + v, faceCenter - u + v}) {
                 mesh.positions.push_back(glm::vec3(center + rotation * corner));
-                mesh.normals.push_back(glm::vec3(rotation * n));
+                mesh.normals.push_back(glm::vec3(rotation * (inside ? -n : n)));
             }
-            for (uint32_t k : {0u, 1u, 2u, 0u, 2u, 3u}) mesh.indices.push_back(base + k);
+            if (inside)
+                for (uint32_t k : {0u, 2u, 1u, 0u, 3u, 2u}) mesh.indices.push_back(base + k);
+            else
+                for (uint32_t k : {0u, 1u, 2u, 0u, 2u, 3u}) mesh.indices.push_back(base + k);
         }
     }
+    mesh.computeBounds();
+    scene.meshes.push_back(std::move(mesh));
+}
+
+/// {"sphere": {"center", "radius", "subdivisions", "inside"}}: a geodesic polyhedron (an
+/// icosahedron whose faces are split in four `subdivisions` times, default 3: 1280 nearly equal
+/// triangles, vertices on the sphere), facing out, or in ("inside": true, a spherical room).
+void parseSphere(const nlohmann::json& item, const json::Where& where, size_t index, Scene& scene) {
+    json::checkKeys(item, {"sphere", "name", "albedo", "specular", "roughness"}, where);
+    const json::Where at = where / "sphere";
+    const nlohmann::json& spec = item["sphere"];
+    json::checkKeys(spec, {"center", "radius", "subdivisions", "inside"}, at);
+    glm::dvec3 center = json::optional(spec, "center", at, glm::dvec3(0.0), json::vec3);
+    if (!spec.contains("radius")) json::fail(at / "radius", "a radius in metres (missing)");
+    double radius = json::positive(spec["radius"], at / "radius");
+    double levels = json::optional(spec, "subdivisions", at, 3.0, json::number);
+    if (levels != std::floor(levels) || levels < 0 || levels > 7)
+        json::fail(at / "subdivisions", "a whole number from 0 to 7 (20 x 4^n triangles)");
+    bool inside = json::optional(spec, "inside", at, false, json::boolean);
+    Mesh mesh = itemMesh(item, where, "sphere " + std::to_string(index), inside ? MeshShape::General : MeshShape::Convex,
+                         scene);
+    // The icosahedron: (0, +-1, +-t) and its cyclic permutations, t the golden ratio.
+    const double t = (1.0 + std::sqrt(5.0)) / 2.0;
+    std::vector<glm::dvec3> dirs = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
+                                    {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+    for (glm::dvec3& d : dirs) d = glm::normalize(d);
+    std::vector<std::array<uint32_t, 3>> faces = {
+        {0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+        {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8}, {3, 8, 9}, {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
+    for (int level = 0; level < int(levels); ++level) {
+        std::map<std::pair<uint32_t, uint32_t>, uint32_t> midpoints;
+        auto middle = [&](uint32_t a, uint32_t b) {
+            auto key = std::minmax(a, b);
+            auto it = midpoints.find(key);
+            if (it != midpoints.end()) return it->second;
+            dirs.push_back(glm::normalize(dirs[a] + dirs[b]));
+            return midpoints[key] = uint32_t(dirs.size() - 1);
+        };
+        std::vector<std::array<uint32_t, 3>> finer;
+        for (const auto& f : faces) {
+            uint32_t ab = middle(f[0], f[1]), bc = middle(f[1], f[2]), ca = middle(f[2], f[0]);
+            finer.insert(finer.end(), {{f[0], ab, ca}, {f[1], bc, ab}, {f[2], ca, bc}, {ab, bc, ca}});
+        }
+        faces = std::move(finer);
+    }
+    for (const glm::dvec3& d : dirs) {
+        mesh.positions.push_back(glm::vec3(center + radius * d));
+        mesh.normals.push_back(glm::vec3(inside ? -d : d));
+    }
+    // The faces are counter-clockwise seen from outside; a room turns them round.
+    for (const auto& f : faces) mesh.indices.insert(mesh.indices.end(), {f[0], inside ? f[2] : f[1], inside ? f[1] : f[2]});
     mesh.computeBounds();
     scene.meshes.push_back(std::move(mesh));
 }
@@ -267,8 +326,8 @@ void parseGeometryItem(const nlohmann::json& item, const json::Where& where, siz
                        Scene& scene) {
     if (!item.is_object()) json::fail(where, "an object, got " + std::string(item.type_name()));
     int kinds = int(item.contains("gltf")) + int(item.contains("plane")) + int(item.contains("box")) +
-                int(item.contains("disc"));
-    if (kinds != 1) json::fail(where, "exactly one of \"gltf\", \"plane\", \"disc\" or \"box\"");
+                int(item.contains("disc")) + int(item.contains("sphere"));
+    if (kinds != 1) json::fail(where, "exactly one of \"gltf\", \"plane\", \"disc\", \"box\" or \"sphere\"");
 
     GeometryItem geometry;
     geometry.source = item;
@@ -279,6 +338,8 @@ void parseGeometryItem(const nlohmann::json& item, const json::Where& where, siz
         parsePlane(item, where, index, scene);
     else if (item.contains("disc"))
         parseDisc(item, where, index, scene);
+    else if (item.contains("sphere"))
+        parseSphere(item, where, index, scene);
     else
         parseBox(item, where, index, scene);
     for (size_t m = firstMesh; m < scene.meshes.size(); ++m) geometry.meshes.push_back(uint32_t(m));

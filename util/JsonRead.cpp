@@ -31,6 +31,11 @@ double number(const nlohmann::json& v, const Where& where) {
     return x;
 }
 
+bool boolean(const nlohmann::json& v, const Where& where) {
+    if (!v.is_boolean()) fail(where, "true or false, got " + v.dump());
+    return v.get<bool>();
+}
+
 double positive(const nlohmann::json& v, const Where& where) {
     double x = number(v, where);
     if (!(x > 0.0)) fail(where, "a positive number, got " + v.dump());

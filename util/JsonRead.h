@@ -27,6 +27,7 @@ glm::dvec2 vec2(const nlohmann::json& v, const Where& where);
 /// A non-zero vector (directions such as aim): rejects zero length.
 glm::dvec3 direction(const nlohmann::json& v, const Where& where);
 std::string string(const nlohmann::json& v, const Where& where);
+bool boolean(const nlohmann::json& v, const Where& where);
 /// Requires an object and rejects keys not in `allowed` (catches typos such as "positon").
 void checkKeys(const nlohmann::json& object, std::initializer_list<const char*> allowed,
                const Where& where);

@@ -19,6 +19,7 @@ int cmdConvert(const Args& args);
 int cmdBench(const Args& args);
 int cmdGrid(const Args& args);
 int cmdPolar(const Args& args);
+int cmdValidate(const Args& args);
 
 /// Parses "WxH" (e.g. 512x512); throws InputError.
 void parseSize(const std::string& text, int& width, int& height);

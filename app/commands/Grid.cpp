@@ -67,6 +67,19 @@ void printGrid(const GridResult& r, const GridSummary& s) {
     const char* unit = units.irradiance();
     std::printf("Emin: %.6g %s\nEavg: %.6g %s\nEmax: %.6g %s\n", s.eMin, unit, s.eAvg, unit, s.eMax, unit);
     std::printf("U0 (Emin/Eavg): %.4f\nEmin/Emax: %.4f\n", s.u0, s.minOverMax);
+    if (!r.hasIndirect) {
+        std::printf("light: direct only (interreflected light: --indirect)\n");
+        return;
+    }
+    // Em (the mean) and U0 of each part, as design tools report them.
+    auto part = [&](const char* name, const std::vector<double>& values) {
+        GridSummary p = summariseGrid(values);
+        std::printf("%-15s Emin %.6g %s, Em %.6g %s, Emax %.6g %s, U0 %.4f\n", name, p.eMin, unit, p.eAvg, unit,
+                    p.eMax, unit, p.u0);
+    };
+    part("direct:", r.direct);
+    part("interreflected:", r.indirect);
+    part("total:", r.E);
 }
 
 void writeCsv(const std::string& path, const GridResult& r) {
@@ -74,15 +87,23 @@ void writeCsv(const std::string& path, const GridResult& r) {
     if (!out) throw InputError(path + ": cannot write the CSV file");
     // The unit is in the column names: _lx, or _W_m2 for a radiometric scene.
     std::string unit = r.units.photometric ? "_lx" : "_W_m2";
-    out << "x,y,z,E" << unit << ",E_stderr" << unit << "\n";
+    out << "x,y,z,E" << unit << ",E_stderr" << unit;
+    if (r.hasIndirect)
+        out << ",E_direct" << unit << ",E_direct_stderr" << unit << ",E_indirect" << unit << ",E_indirect_stderr" << unit;
+    out << "\n";
     char line[160];
     for (size_t j = 0; j < r.v.size(); ++j)
         for (size_t i = 0; i < r.u.size(); ++i) {
             glm::dvec3 q = r.spec.plane.point(r.u[i], r.v[j]);
             size_t k = j * r.u.size() + i;
-            std::snprintf(line, sizeof line, "%.9g,%.9g,%.9g,%.10g,%.4g\n", q.x, q.y, q.z, r.E[k],
-                          r.stdError[k]);
+            std::snprintf(line, sizeof line, "%.9g,%.9g,%.9g,%.10g,%.4g", q.x, q.y, q.z, r.E[k], r.stdError[k]);
             out << line;
+            if (r.hasIndirect) {
+                std::snprintf(line, sizeof line, ",%.10g,%.4g,%.10g,%.4g", r.direct[k], r.directStdError[k],
+                              r.indirect[k], r.indirectStdError[k]);
+                out << line;
+            }
+            out << "\n";
         }
     if (!out) throw InputError(path + ": write failed");
 }
@@ -128,6 +149,10 @@ int cmdGrid(const Args& args) {
             spec.environmentTechnique = flagValue(args, i);
         else if (a == "--visibility")
             spec.visibility = true;
+        else if (a == "--indirect")
+            spec.indirect = true;
+        else if (a == "--patches")
+            spec.patches = parseInt(a, flagValue(args, i), 16, 50000);
         else if (a == "--csv")
             csvPath = flagValue(args, i);
         else if (!a.empty() && a[0] == '-')
@@ -140,13 +165,14 @@ int cmdGrid(const Args& args) {
     if (scenePath.empty() || !havePlane)
         throw InputError(
             "usage: candela grid scene.json --plane y=0.8 [--extent u0,v0,u1,v1] "
-            "[--spacing 0.25] [--spp N] [--technique T] [--env-technique T] [--visibility] [--csv out.csv]");
+            "[--spacing 0.25] [--spp N] [--technique T] [--env-technique T] [--visibility] [--indirect [--patches N]] "
+            "[--csv out.csv]");
     if (!(spec.spacing > 0.0))
         throw InputError("--spacing: expected a positive number of metres, got " +
                          std::to_string(spec.spacing));
     Scene scene = loadScene(scenePath);
     if (!haveExtent) defaultGridExtent(scene, spec);
-    GridResult result = computeGrid(scene, spec);
+    GridResult result = computeGrid(scene, spec, [](const std::string& s) { std::fprintf(stderr, "grid: %s\n", s.c_str()); });
     GridSummary summary = summariseGrid(result.E);
     printGrid(result, summary);
     if (!csvPath.empty()) {

@@ -12,6 +12,7 @@
 #include "renderer/context/GlContext.h"
 #include "scene/Bvh.h"
 #include "scene/EmbreeVisibility.h"
+#include "scene/Interreflection.h"
 #include "renderer/FramePlan.h"
 #include "scene/SceneIo.h"
 #include "ui/ViewportMath.h"
@@ -128,7 +129,8 @@ int cmdProbe(const Args& args) {
     std::string scenePath, pointsPath, technique, envTechnique, device = "cpu";
     EstimateOptions options;
     options.spp = 4096;
-    bool withVisibility = false;
+    bool withVisibility = false, indirect = false;
+    int patches = 4000;
     std::string visibilityBackend = "embree";
     std::string chartPath, pixel;
     int chartSpp = 64, width = 960, height = 540;
@@ -143,6 +145,8 @@ int cmdProbe(const Args& args) {
             withVisibility = true;
             if (i + 1 < args.size() && (args[i + 1] == "embree" || args[i + 1] == "bvh")) visibilityBackend = args[++i];
         }
+        else if (a == "--indirect") indirect = true;
+        else if (a == "--patches") patches = parseInt(a, flagValue(args, i), 16, 50000);
         else if (a == "--show-samples") chartPath = flagValue(args, i);
         else if (a == "--pixel") pixel = flagValue(args, i);
         else if (a == "--size") parseSize(flagValue(args, i), width, height);
@@ -154,10 +158,18 @@ int cmdProbe(const Args& args) {
     }
     if (scenePath.empty() || pointsPath.empty() == pixel.empty())
         throw InputError("usage: candela probe scene.json --points pts.csv|--pixel X,Y [--size WxH] [--technique T] "
-                         "[--spp N] [--visibility [embree|bvh]] [--device cpu|gpu] [--seed S] [--env-technique T] "
+                         "[--spp N] [--visibility [embree|bvh]] [--indirect [--patches N]] [--device cpu|gpu] [--seed S] "
+                         "[--env-technique T] "
                          "[--show-samples chart.png [--chart-spp N]]");
     if (device != "cpu" && device != "gpu")
         throw InputError("--device: expected cpu or gpu, got \"" + device + "\"");
+    if (device == "gpu" && indirect)
+        throw InputError("--device gpu: --indirect is computed on the CPU only (the default device)");
+    // Interreflected light needs the geometry, so it brings shadows for the direct light too.
+    if (indirect && !withVisibility) {
+        withVisibility = true;
+        visibilityBackend = "embree";
+    }
     if (device == "gpu" && withVisibility)
         throw InputError("--device gpu: --visibility is not available on the GPU probe yet; "
                          "use the CPU probe (the default)");
@@ -213,6 +225,18 @@ int cmdProbe(const Args& args) {
             vis = std::make_unique<EmbreeVisibility>(scene);
         }
         options.visibility = vis.get();
+        // --indirect: the radiosity solution, then a final gather of --spp rays per point whose
+        // standard error joins the direct light's (scene/Interreflection.h).
+        std::unique_ptr<Interreflection> interreflection;
+        if (indirect) {
+            InterreflectionOptions io;
+            io.mesh.targetPatches = patches;
+            io.technique = technique;
+            io.environmentTechnique = envTechnique;
+            interreflection = std::make_unique<Interreflection>(scene, io);
+            std::fprintf(stderr, "probe: interreflection over %zu patches\n", interreflection->mesh().patches.size());
+            interreflection->compute();
+        }
         std::unique_ptr<EnvironmentLighting> lighting;
         if (scene.environmentMap)
             lighting = std::make_unique<EnvironmentLighting>(scene.environmentMap);
@@ -224,6 +248,13 @@ int cmdProbe(const Args& args) {
                 double k = scene.environmentUnitScale();
                 E[i] += k * e.irradiance;
                 var[i] += k * k * e.stdError * e.stdError;
+            }
+            if (interreflection) {
+                EstimateOptions o = options;
+                o.seed = options.seed * 1000003ull + i * 7919ull + 424242ull;
+                Estimate e = interreflection->gather(points[i].p, points[i].n, o);
+                E[i] += e.irradiance;
+                var[i] += e.stdError * e.stdError;
             }
             for (size_t k = 0; k < scene.luminaires.size(); ++k) {
                 EstimateOptions o = options;
@@ -256,7 +287,8 @@ int cmdProbe(const Args& args) {
 
     // The columns are a stable contract; their unit goes to stderr (and the README).
     UnitSystem units = scene.units();
-    std::fprintf(stderr, "probe: E, E_r, E_g, E_b and E_stderr in %s\n", units.irradianceLabel().c_str());
+    std::fprintf(stderr, "probe: E, E_r, E_g, E_b and E_stderr in %s%s\n", units.irradianceLabel().c_str(),
+                 indirect ? ", direct plus interreflected light" : "");
     std::printf("x,y,z,nx,ny,nz,E,E_r,E_g,E_b,E_stderr\n");
     for (size_t i = 0; i < points.size(); ++i) {
         const ProbePoint& q = points[i];

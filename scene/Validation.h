@@ -1,0 +1,48 @@
+#pragma once
+// The validation suite (issue 17, part 4): analytic cases of the kind lighting-design software is
+// validated with (CIE 171:2006, Section 5), each computed by Candela's own CPU path and compared
+// with a closed form that shares none of its code:
+//
+// - an integrating cube (a closed 2 m room of uniform reflectance rho): the area-weighted mean
+//   illuminance over all its inner surfaces is Phi / (S (1 - rho)), exactly, for any luminaire
+//   (energy balance), here a photometric point source, a photometric area source and a measured
+//   light field, rho = 0, 0.2, 0.5, 0.8;
+// - a closed, finely tessellated sphere of uniform rho with a point source off its centre: the
+//   interreflected part is rho Phi / (A (1 - rho)) at every point, however uneven the direct light;
+// - direct light: an isotropic point source over a plane (I cos^3 / h^2), a Lambertian rectangle
+//   over a parallel and a perpendicular plane (Howell's configuration factors);
+// - an obstruction: a table between a luminaire and the work plane.
+//
+// `candela validate` prints them as a table; tests/validation_test.cpp runs each as a ctest.
+
+#include <string>
+#include <vector>
+
+namespace candela {
+
+struct ValidationResult {
+    std::string name;         ///< Case id, e.g. "cube-point-rho0.5".
+    std::string description;  ///< One line: what is compared.
+    std::string unit;         ///< Of expected and measured ("lx").
+    double expected = 0.0;
+    double measured = 0.0;    ///< For cases over many points: the one that deviates most.
+    double deviation = 0.0;   ///< (measured - expected) / expected.
+    double tolerance = 0.0;   ///< Largest |deviation| that passes.
+    bool pass = false;
+    double seconds = 0.0;     ///< Wall time of the case.
+    std::string detail;       ///< What else was measured (patches, iterations, points).
+};
+
+/// Every case, in the order `candela validate` prints them.
+std::vector<std::string> validationCases();
+/// Runs one case; throws InputError for an unknown name (naming the known ones).
+ValidationResult runValidationCase(const std::string& name);
+
+/// Howell's configuration factor from a planar element to a parallel rectangle [x0, x1] x
+/// [y0, y1] at height h (corner superposition of catalogue C-11; signed corners).
+double parallelRectangleFactor(double x0, double x1, double y0, double y1, double h);
+/// Howell's configuration factor from a planar element to a rectangle in a plane perpendicular to
+/// it: the element at the origin with normal +x, the rectangle in the plane x = 0... see the .cpp.
+double perpendicularRectangleFactor(double y0, double y1, double z0, double z1, double c);
+
+}  // namespace candela
