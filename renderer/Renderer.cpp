@@ -9,6 +9,7 @@
 #include "renderer/ImageFile.h"
 #include "renderer/passes/EnvironmentPass.h"
 #include "renderer/passes/GBufferPass.h"
+#include "renderer/passes/IndirectPass.h"
 #include "renderer/passes/ResolvePass.h"
 #include "renderer/passes/ShadePass.h"
 #include "renderer/passes/TonemapPass.h"
@@ -59,6 +60,7 @@ Renderer::Renderer(ShaderLibrary& shaders)
       mResolve(std::make_unique<ResolvePass>()),
       mTonemap(std::make_unique<TonemapPass>()),
       mEnvironment(std::make_unique<EnvironmentPass>()),
+      mIndirect(std::make_unique<IndirectPass>()),
       mFrameUniforms(sizeof(gpu::FrameUniforms), nullptr) {}
 
 Renderer::~Renderer() = default;
@@ -83,6 +85,14 @@ void Renderer::setSettings(const RenderSettings& s) {
     if (display) mNeedDisplay = true;
 }
 
+void Renderer::setIndirect(std::shared_ptr<const RadiosityMesh> mesh, std::vector<glm::vec3> vertexIrradiance) {
+    mIndirectMesh = std::move(mesh);
+    mIndirectIrradiance = std::move(vertexIrradiance);
+    mIndirectUpload = true;
+}
+
+bool Renderer::hasIndirect() const { return mIndirectUpload ? mIndirectMesh != nullptr : mIndirect->hasLight(); }
+
 glm::mat4 Renderer::viewProj() const {
     return cameraViewProj(mScene ? mScene->camera : Camera{},
                           double(mSettings.width) / double(std::max(1, mSettings.height)));
@@ -92,6 +102,8 @@ void Renderer::resize(int width, int height) {
     mGBuffer->resize(width, height);
     mResolve->resize(width, height);
     mTonemap->resize(width, height);
+    mIndirect->resize(width, height);
+    mIndirectDirty = true;
     mAccum = gl::Texture2D(width, height, GL_RGBA32F);
     mAccumFbo = gl::Framebuffer({&mAccum}, nullptr);
     mAccumulations.clear();  // made again at the new size
@@ -342,6 +354,7 @@ void Renderer::renderFrame() {
         }
         // What every accumulation depends on: the view, the geometry (shadows), the settings.
         bool everything = (mPending & (kChangeCamera | kChangeGeometry | kChangeSettings)) != 0;
+        mIndirectDirty = mIndirectDirty || everything;  // the interreflected light's image too
         bool environment = everything || (mPending & kChangeEnvironment) != 0;
         rebuildPlan();
         mPending = kChangeNone;
@@ -409,6 +422,20 @@ void Renderer::renderFrame() {
         mNeedDisplay = true;
     }
 
+    // Interreflected light: its image again only when the solution or the view changed.
+    if (mIndirectUpload) {
+        mIndirect->set(mIndirectMesh, mIndirectIrradiance);
+        mIndirectUpload = false;
+        mIndirectDirty = true;
+        mNeedDisplay = true;
+    }
+    if (mIndirectDirty && mIndirect->hasLight() && !mPointMode) {
+        mFrameUniforms.bindBase(GL_UNIFORM_BUFFER, gpu::kBindingFrame);
+        setFrameUniforms(0, 1);
+        timed(mStats, "indirect", [&] { mIndirect->execute(mShaders, *mGBuffer); });
+        mNeedDisplay = true;
+    }
+    mIndirectDirty = false;
     if (mBandRow == 0 && !mStats.converged) {
         mPass = choosePass();
         mStats.converged = mPass.empty();
@@ -462,6 +489,7 @@ void Renderer::renderFrame() {
             terms.push_back(a.frames == 0 ? ResolvePass::Term{&a.working, 1.f}
                                           : ResolvePass::Term{&a.texture, 1.f / float(a.samples)});
         }
+        if (mIndirect->hasLight()) terms.push_back(ResolvePass::Term{&mIndirect->image(), 1.f});
         glBindVertexArray(mEmptyVao.id());
         timed(mStats, "resolve",
               [&] { mResolve->execute(mShaders, terms, mGBuffer->texture(gpu::kGBufferEmission)); });

@@ -27,7 +27,9 @@ class ShadePass;
 class ResolvePass;
 class TonemapPass;
 class EnvironmentPass;
+class IndirectPass;
 struct Bvh;
+struct RadiosityMesh;
 
 /// FalseColour maps the values (lux in illuminance mode) through `RenderSettings::legend`.
 enum class ToneMapOperator { Exponential = 0, Reinhard = 1, FalseColour = 2 };
@@ -112,6 +114,12 @@ public:
     /// (width > 0: the points form a width x (count / width) image, row-major, so more than the
     /// largest texture width fit; the shading passes' GPU times are in stats() afterwards.)
 
+    /// Interreflected light to add to the image (scene/InterreflectionWorker.h): the patches and
+    /// their vertices' interreflected irradiance in the scene's units; a null mesh removes it.
+    /// The "indirect" pass draws it again only when this or the view changes.
+    void setIndirect(std::shared_ptr<const RadiosityMesh> mesh, std::vector<glm::vec3> vertexIrradiance);
+    bool hasIndirect() const;
+
     glm::mat4 viewProj() const;
     /// Pick: index of the luminaire under the pixel (x right, y down), or -1.
     int pickLuminaire(const Scene& scene, double x, double y) const;
@@ -177,6 +185,10 @@ private:
     std::unique_ptr<ResolvePass> mResolve;
     std::unique_ptr<TonemapPass> mTonemap;
     std::unique_ptr<EnvironmentPass> mEnvironment;
+    std::unique_ptr<IndirectPass> mIndirect;
+    std::shared_ptr<const RadiosityMesh> mIndirectMesh;  ///< Handed over, not uploaded yet...
+    std::vector<glm::vec3> mIndirectIrradiance;          ///< ... while mIndirectUpload is set.
+    bool mIndirectUpload = false, mIndirectDirty = false;
     std::unique_ptr<Bvh> mBvh;
     gl::Buffer mFrameUniforms;
     gl::Buffer mBvhNodes, mBvhTris;

@@ -15,13 +15,16 @@ constexpr double kPi = 3.14159265358979323846;
 }  // namespace
 
 struct Interreflection::Source {
-    const Luminaire* luminaire = nullptr;               ///< null: the environment
+    std::vector<std::byte> key;                         ///< What its direct light depends on.
+    std::shared_ptr<const Luminaire> luminaire;         ///< Its own copy; null: the environment
     IrradianceFn irradiance = nullptr;
     const EnvironmentTechniqueInfo* environment = nullptr;
+    std::shared_ptr<const EnvironmentLighting> lighting;
     double scale = 1.0;                                 ///< The scene's unit conversion.
+    int spp = 0;                                        ///< Samples of `direct`.
+    std::vector<glm::dvec3> direct;                     ///< Per patch.
 
-    Estimate estimate(const EnvironmentLighting* lighting, const glm::dvec3& p, const glm::dvec3& n,
-                      const EstimateOptions& o) const {
+    Estimate estimate(const glm::dvec3& p, const glm::dvec3& n, const EstimateOptions& o) const {
         Estimate e = luminaire ? irradiance(*luminaire, p, n, o) : environment->irradiance(*lighting, p, n, o);
         e.irradiance *= scale;
         e.stdError *= scale;
@@ -29,35 +32,19 @@ struct Interreflection::Source {
     }
 };
 
+namespace {
+
+void append(std::vector<std::byte>& key, const void* data, size_t bytes) {
+    const auto* b = static_cast<const std::byte*>(data);
+    key.insert(key.end(), b, b + bytes);
+}
+void append(std::vector<std::byte>& key, const std::string& text) { append(key, text.data(), text.size() + 1); }
+
+}  // namespace
+
 Interreflection::Interreflection(const Scene& scene, const InterreflectionOptions& options)
-    : mScene(scene), mOptions(options), mVisibility(std::make_unique<EmbreeVisibility>(scene)) {
-    for (const auto& l : scene.luminaires) {
-        // As `candela probe --technique`: the named technique where the kind has it, else the
-        // luminaire's own.
-        std::string name = findTechnique(l->kind(), options.technique) ? options.technique : l->technique;
-        const TechniqueInfo* t = findTechnique(l->kind(), name);
-        if (!t || !t->irradiance)
-            throw InputError("--technique: \"" + name + "\" is not a technique of " + std::string(l->kind()) +
-                             " with a CPU estimator (available: " + techniqueNames(l->kind()) + ")");
-        Source s;
-        s.luminaire = l.get();
-        s.irradiance = t->irradiance;
-        s.scale = scene.unitScale(*l);
-        mSources.push_back(s);
-    }
-    if (scene.environmentMap) {
-        std::string name = options.environmentTechnique.empty() ? "balanced-mis" : options.environmentTechnique;
-        Source s;
-        s.environment = findEnvironmentTechnique(name);
-        if (!s.environment)
-            throw InputError("--env-technique: \"" + name + "\" is not an environment technique (available: " +
-                             environmentTechniqueNames() + ")");
-        s.scale = scene.environmentUnitScale();
-        mLighting = std::make_unique<EnvironmentLighting>(scene.environmentMap);
-        mSources.push_back(s);
-    }
+    : mGeometry(scene), mOptions(options), mVisibility(std::make_unique<EmbreeVisibility>(scene)) {
     mMesh = RadiosityMesh::build(scene, options.mesh);
-    mDirect.assign(mSources.size(), std::vector<glm::dvec3>(mMesh.patches.size(), glm::dvec3(0.0)));
     mDirectTotal.assign(mMesh.patches.size(), glm::dvec3(0.0));
     mIndirect.assign(mMesh.patches.size(), glm::dvec3(0.0));
     mIndirectVertices.assign(mMesh.vertices.size(), glm::dvec3(0.0));
@@ -66,6 +53,12 @@ Interreflection::Interreflection(const Scene& scene, const InterreflectionOption
 Interreflection::~Interreflection() = default;
 
 size_t Interreflection::sourceCount() const { return mSources.size(); }
+
+int Interreflection::samples() const {
+    int fewest = 0;
+    for (size_t i = 0; i < mSources.size(); ++i) fewest = i == 0 ? mSources[i].spp : std::min(fewest, mSources[i].spp);
+    return fewest;
+}
 
 bool Interreflection::hasInterreflection() const {
     if (!mMesh.reflects()) return false;
@@ -79,62 +72,134 @@ bool Interreflection::buildTransfer(const Progress& progress) {
     return mTransferBuilt;
 }
 
-bool Interreflection::updateSource(size_t source, int spp, const Progress& progress) {
-    if (source >= mSources.size()) return true;
-    if (!mTransferBuilt && !buildTransfer(progress)) return false;
+bool Interreflection::computeDirect(Source& s, int spp, std::vector<glm::dvec3>& out, const Progress& progress) const {
     EstimateOptions o;
-    o.spp = spp > 0 ? spp : mOptions.directSpp;
-    o.seed = 0x5eed0000ull + source * 7919ull + uint64_t(o.spp);
+    o.spp = spp;
+    o.seed = 0x5eed0000ull + uint64_t(spp);
+    for (std::byte b : s.key) o.seed = o.seed * 131ull + uint64_t(b);
     o.visibility = mVisibility.get();
-    const Source& s = mSources[source];
-    const EnvironmentLighting* lighting = mLighting.get();
-    std::vector<glm::dvec3> fresh;
-    bool done = directOnPatches(
-        mMesh, [&](const glm::dvec3& p, const glm::dvec3& n, const EstimateOptions& opt) { return s.estimate(lighting, p, n, opt); },
-        o, mOptions.threads, fresh, progress);
-    if (!done) return false;
-    // E_ind is linear in E_dir: solve for the change and add it (the other sources keep theirs).
-    std::vector<glm::dvec3> change(fresh.size()), delta;
-    for (size_t i = 0; i < fresh.size(); ++i) change[i] = fresh[i] - mDirect[source][i];
+    return directOnPatches(
+        mMesh, [&](const glm::dvec3& p, const glm::dvec3& n, const EstimateOptions& opt) { return s.estimate(p, n, opt); },
+        o, mOptions.threads, out, progress);
+}
+
+bool Interreflection::solveChange(const std::vector<glm::dvec3>& change, const Progress& progress) {
+    // E_ind is linear in E_dir: solve for the change and add it.
+    std::vector<glm::dvec3> delta;
     int iterations = solveRadiosity(mTransfer, mMesh, change, delta, mOptions.tolerance, mOptions.threads, progress);
     if (iterations < 0) return false;
     mLastIterations = iterations;
-    for (size_t i = 0; i < fresh.size(); ++i) {
+    for (size_t i = 0; i < change.size(); ++i) {
         mDirectTotal[i] += change[i];
-        mIndirect[i] += delta[i];
-        mIndirect[i] = glm::max(mIndirect[i], glm::dvec3(0.0));  // rounding of differences
+        mIndirect[i] = glm::max(mIndirect[i] + delta[i], glm::dvec3(0.0));  // rounding of differences
+        mDirectTotal[i] = glm::max(mDirectTotal[i], glm::dvec3(0.0));
     }
-    mDirect[source] = std::move(fresh);
     mIndirectVertices = vertexValues(mMesh, mIndirect);
     return true;
 }
 
-bool Interreflection::compute(const Progress& progress) {
+bool Interreflection::sync(const Scene& scene, int spp, const Progress& progress) {
     if (!mTransferBuilt && !buildTransfer(progress)) return false;
-    // All sources at once: one solve for their sum.
-    EstimateOptions o;
-    o.spp = mOptions.directSpp;
-    o.visibility = mVisibility.get();
-    std::vector<glm::dvec3> sum(mMesh.patches.size(), glm::dvec3(0.0));
-    for (size_t s = 0; s < mSources.size(); ++s) {
-        o.seed = 0x5eed0000ull + s * 7919ull + uint64_t(o.spp);
-        const Source& src = mSources[s];
-        const EnvironmentLighting* lighting = mLighting.get();
-        bool done = directOnPatches(
-            mMesh,
-            [&](const glm::dvec3& p, const glm::dvec3& n, const EstimateOptions& opt) { return src.estimate(lighting, p, n, opt); },
-            o, mOptions.threads, mDirect[s], progress);
-        if (!done) return false;
-        for (size_t i = 0; i < sum.size(); ++i) sum[i] += mDirect[s][i];
+    spp = spp > 0 ? spp : mOptions.directSpp;
+    // The sources of `scene`, each with the key of what its light depends on.
+    std::vector<Source> fresh;
+    for (const auto& l : scene.luminaires) {
+        // As `candela probe --technique`: the named technique where the kind has it, else the
+        // luminaire's own.
+        std::string name = findTechnique(l->kind(), mOptions.technique) ? mOptions.technique : l->technique;
+        const TechniqueInfo* t = findTechnique(l->kind(), name);
+        if (!t || !t->irradiance)
+            throw InputError("--technique: \"" + name + "\" is not a technique of " + std::string(l->kind()) +
+                             " with a CPU estimator (available: " + techniqueNames(l->kind()) + ")");
+        Source s;
+        s.irradiance = t->irradiance;
+        s.scale = scene.unitScale(*l);
+        nlohmann::json fields;
+        l->writeJson(fields);
+        append(s.key, std::string(l->kind()) + ":" + name + ":" + fields.dump());
+        std::vector<std::byte> record = l->gpuData();
+        s.key.insert(s.key.end(), record.begin(), record.end());
+        append(s.key, &l->pose, sizeof l->pose);
+        append(s.key, &s.scale, sizeof s.scale);
+        fresh.push_back(std::move(s));
     }
-    mDirectTotal = sum;
-    std::vector<glm::dvec3> indirect;
-    int iterations = solveRadiosity(mTransfer, mMesh, mDirectTotal, indirect, mOptions.tolerance, mOptions.threads, progress);
-    if (iterations < 0) return false;
-    mLastIterations = iterations;
-    mIndirect = std::move(indirect);
-    mIndirectVertices = vertexValues(mMesh, mIndirect);
+    if (scene.environmentMap) {
+        std::string name = mOptions.environmentTechnique.empty() ? "balanced-mis" : mOptions.environmentTechnique;
+        Source s;
+        s.environment = findEnvironmentTechnique(name);
+        if (!s.environment)
+            throw InputError("--env-technique: \"" + name + "\" is not an environment technique (available: " +
+                             environmentTechniqueNames() + ")");
+        s.scale = scene.environmentUnitScale();
+        append(s.key, "environment:" + name + ":" + scene.environment.dump());
+        const EnvironmentMap* map = scene.environmentMap.get();
+        append(s.key, &map, sizeof map);
+        append(s.key, &s.scale, sizeof s.scale);
+        fresh.push_back(std::move(s));
+    }
+    // Unchanged sources keep their light; the others get theirs now.
+    std::vector<bool> taken(mSources.size(), false);
+    for (Source& s : fresh) {
+        for (size_t i = 0; i < mSources.size(); ++i)
+            if (!taken[i] && mSources[i].key == s.key) {
+                taken[i] = true;
+                s.luminaire = mSources[i].luminaire;
+                s.direct = std::move(mSources[i].direct);
+                s.spp = mSources[i].spp;
+                s.lighting = mSources[i].lighting;
+                break;
+            }
+        if (s.spp > 0) continue;
+        if (!s.environment) s.luminaire = scene.luminaires[size_t(&s - fresh.data())]->clone();
+        if (s.environment && !s.lighting) s.lighting = std::make_shared<EnvironmentLighting>(scene.environmentMap);
+        if (!computeDirect(s, spp, s.direct, progress)) {
+            // Cancelled: keep the old sources (their light is still in the solution).
+            for (size_t i = 0; i < mSources.size(); ++i)
+                for (Source& f : fresh)
+                    if (taken[i] && f.key == mSources[i].key && !f.direct.empty()) mSources[i].direct = std::move(f.direct);
+            return false;
+        }
+        s.spp = spp;
+    }
+    std::vector<glm::dvec3> change(mMesh.patches.size(), glm::dvec3(0.0));
+    for (const Source& s : fresh)
+        for (size_t i = 0; i < change.size(); ++i) change[i] += s.direct[i];
+    for (size_t i = 0; i < change.size(); ++i) change[i] -= mDirectTotal[i];
+    mSources = std::move(fresh);
+    if (!solveChange(change, progress)) {
+        // The solution lags the sources: solve for the whole direct light next time.
+        mDirectTotal.assign(mMesh.patches.size(), glm::dvec3(0.0));
+        mIndirect.assign(mMesh.patches.size(), glm::dvec3(0.0));
+        for (Source& s : mSources) s.spp = 0;
+        return false;
+    }
     return true;
+}
+
+bool Interreflection::refine(int spp, const Progress& progress) {
+    std::vector<glm::dvec3> change(mMesh.patches.size(), glm::dvec3(0.0));
+    bool any = false;
+    for (Source& s : mSources) {
+        if (s.spp >= spp) continue;
+        std::vector<glm::dvec3> better;
+        if (!computeDirect(s, spp, better, progress)) return false;
+        for (size_t i = 0; i < change.size(); ++i) change[i] += better[i] - s.direct[i];
+        s.direct = std::move(better);
+        s.spp = spp;
+        any = true;
+    }
+    if (!any) return true;
+    if (!solveChange(change, progress)) {
+        for (Source& s : mSources) s.spp = 0;  // out of step: the next sync recomputes
+        mDirectTotal.assign(mMesh.patches.size(), glm::dvec3(0.0));
+        mIndirect.assign(mMesh.patches.size(), glm::dvec3(0.0));
+        return false;
+    }
+    return true;
+}
+
+bool Interreflection::compute(const Progress& progress) {
+    return buildTransfer(progress) && sync(mGeometry, mOptions.directSpp, progress);
 }
 
 glm::dvec3 Interreflection::directAt(const glm::dvec3& x, const glm::dvec3& n, const EstimateOptions& o) const {
@@ -142,8 +207,24 @@ glm::dvec3 Interreflection::directAt(const glm::dvec3& x, const glm::dvec3& n, c
     for (size_t s = 0; s < mSources.size(); ++s) {
         EstimateOptions so = o;
         so.seed = o.seed * 31ull + s;
-        Estimate e = mSources[s].estimate(mLighting.get(), x, n, so);
+        Estimate e = mSources[s].estimate(x, n, so);
         if (std::isfinite(e.irradiance.x + e.irradiance.y + e.irradiance.z)) sum += e.irradiance;
+    }
+    return sum;
+}
+
+glm::dvec3 Interreflection::fromPatches(const glm::dvec3& p, const glm::dvec3& normal) const {
+    double len = glm::length(normal);
+    if (!(len > 0.0)) return glm::dvec3(0.0);
+    glm::dvec3 n = normal / len, sum(0.0);
+    for (size_t j = 0; j < mMesh.patches.size(); ++j) {
+        const RadiosityMesh::Patch& q = mMesh.patches[j];
+        if (!(q.albedo.x + q.albedo.y + q.albedo.z > 0.0)) continue;
+        if (!(glm::dot(q.normal, p - q.centroid) > 0.0)) continue;  // p behind its reflecting side
+        double f = pointTriangleFormFactor(p, n, mMesh.vertices[q.vertex[0]], mMesh.vertices[q.vertex[1]],
+                                           mMesh.vertices[q.vertex[2]]);
+        if (!(f > 0.0) || !mVisibility->visible(p, q.centroid)) continue;
+        sum += f * q.albedo * (mDirectTotal[j] + mIndirect[j]);
     }
     return sum;
 }

@@ -48,30 +48,38 @@ struct InterreflectionOptions {
 
 class Interreflection {
 public:
-    /// Sets up the patches and the sources of `scene` (which must outlive this object); throws
-    /// InputError for a technique without a CPU estimator. Nothing heavy runs yet.
+    /// The patches and the shadow-ray scene of `scene`'s geometry (its luminaires and
+    /// environment join with sync()). Nothing heavy runs yet.
     Interreflection(const Scene& scene, const InterreflectionOptions& options);
     ~Interreflection();
 
-    /// Everything, in order: the transfer matrix, every source's direct light, the solution.
-    /// False when cancelled.
+    /// Everything for `scene` (the one given to the constructor), in order: the transfer matrix,
+    /// every source's direct light at options.directSpp, the solution. False when cancelled.
     bool compute(const Progress& progress = {});
     /// The form factors (once per geometry).
     bool buildTransfer(const Progress& progress = {});
-    /// Source s's direct light on the patches at `spp` samples (0: options.directSpp), and the
-    /// solution updated for the change (by solving for the difference). Sources are the
-    /// luminaires in scene order, then the environment when there is one.
-    bool updateSource(size_t source, int spp, const Progress& progress = {});
+    /// Takes the sources of `scene` (the same geometry; copies of its luminaires are kept): a
+    /// source whose luminaire (or environment) is unchanged keeps its direct light, a new or
+    /// changed one gets it computed at `spp` samples, a removed one is taken out, and the
+    /// solution is updated by solving for the change alone. Throws InputError for a technique
+    /// without a CPU estimator. False when cancelled (then call it again).
+    bool sync(const Scene& scene, int spp, const Progress& progress = {});
+    /// Recomputes the sources whose direct light has fewer than `spp` samples (the progressive
+    /// refinement after a first, quick sync). False when cancelled.
+    bool refine(int spp, const Progress& progress = {});
     size_t sourceCount() const;
+    /// Fewest samples of any source's direct light (0 without sources).
+    int samples() const;
 
     const RadiosityMesh& mesh() const { return mMesh; }
     const EmbreeVisibility& visibility() const { return *mVisibility; }
+    bool transferBuilt() const { return mTransferBuilt; }
     /// Per patch, RGB in the scene's units: the direct light summed over sources, and the
     /// interreflected light.
     const std::vector<glm::dvec3>& direct() const { return mDirectTotal; }
     const std::vector<glm::dvec3>& indirect() const { return mIndirect; }
     /// The interreflected irradiance per vertex (display: Gouraud over the patches).
-    std::vector<glm::dvec3> indirectAtVertices() const { return vertexValues(mMesh, mIndirect); }
+    const std::vector<glm::dvec3>& indirectAtVertices() const { return mIndirectVertices; }
     /// Iterations of the last solve.
     int lastIterations() const { return mLastIterations; }
     /// False when no surface reflects (every albedo 0) or no patch sees another: E_ind is 0.
@@ -81,23 +89,29 @@ public:
     /// options.seed; options.visibility is ignored: Embree is used). `directSpp` samples for
     /// each source's estimate at the hit points.
     Estimate gather(const glm::dvec3& p, const glm::dvec3& n, const EstimateOptions& options, int directSpp = 16) const;
+    /// The interreflected irradiance at p from the patches' solution alone (each patch's
+    /// reflected light rho (E_dir + E_ind), Lambert's form factor from p, a shadow ray to its
+    /// centroid): deterministic, smooth and fast (the editor's grid, the bench's work plane).
+    glm::dvec3 fromPatches(const glm::dvec3& p, const glm::dvec3& n) const;
 
 private:
     struct Source;
     /// Every source's direct irradiance at point x with normal n, in the scene's units.
     glm::dvec3 directAt(const glm::dvec3& x, const glm::dvec3& n, const EstimateOptions& o) const;
+    /// The direct light of source s at `spp` samples into s's patch values.
+    bool computeDirect(Source& s, int spp, std::vector<glm::dvec3>& out, const Progress& progress) const;
+    /// Adds the solution of a change of the direct light to the indirect one.
+    bool solveChange(const std::vector<glm::dvec3>& change, const Progress& progress);
 
-    const Scene& mScene;
+    const Scene& mGeometry;
     InterreflectionOptions mOptions;
     std::unique_ptr<EmbreeVisibility> mVisibility;
-    std::unique_ptr<EnvironmentLighting> mLighting;
     std::vector<Source> mSources;
     RadiosityMesh mMesh;
     TransferMatrix mTransfer;
     bool mTransferBuilt = false;
-    std::vector<std::vector<glm::dvec3>> mDirect;  ///< [source][patch]
     std::vector<glm::dvec3> mDirectTotal, mIndirect;
-    std::vector<glm::dvec3> mIndirectVertices;     ///< For the gather's interpolation.
+    std::vector<glm::dvec3> mIndirectVertices;     ///< For display and the gather's interpolation.
     int mLastIterations = 0;
 };
 

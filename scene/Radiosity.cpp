@@ -44,8 +44,14 @@ bool parallelFor(size_t count, int threads, const Progress& progress, Body&& bod
     return !stop && !progress.cancelled();
 }
 
-/// The form factor from a point x with unit normal n to the triangle (a, b, c), all in metres:
-/// 1 / pi times Lambert's integral of cos over the part of the triangle above x's horizon.
+/// Index of sub-triangle (i, j) of a triangle divided n times per edge (rows j of 2 (n - j) - 1
+/// triangles: up(i) then down(i)).
+uint32_t localIndex(uint32_t i, uint32_t j, bool down, uint32_t n) {
+    return 2 * n * j - j * j + 2 * i + (down ? 1 : 0);
+}
+
+}  // namespace
+
 double pointTriangleFormFactor(const glm::dvec3& x, const glm::dvec3& n, const glm::dvec3& a, const glm::dvec3& b,
                                const glm::dvec3& c) {
     glm::dvec3 in[3] = {a - x, b - x, c - x}, poly[4];
@@ -68,14 +74,6 @@ double pointTriangleFormFactor(const glm::dvec3& x, const glm::dvec3& n, const g
     double f = 0.5 * std::abs(sum) / kPi;
     return std::isfinite(f) ? f : 0.0;
 }
-
-/// Index of sub-triangle (i, j) of a triangle divided n times per edge (rows j of 2 (n - j) - 1
-/// triangles: up(i) then down(i)).
-uint32_t localIndex(uint32_t i, uint32_t j, bool down, uint32_t n) {
-    return 2 * n * j - j * j + 2 * i + (down ? 1 : 0);
-}
-
-}  // namespace
 
 int workerThreads(int requested) {
     if (requested > 0) return requested;

@@ -117,6 +117,11 @@ int solveRadiosity(const TransferMatrix& transfer, const RadiosityMesh& mesh, co
 /// Per-vertex values for display: the area-weighted mean of the patches around each vertex.
 std::vector<glm::dvec3> vertexValues(const RadiosityMesh& mesh, const std::vector<glm::dvec3>& perPatch);
 
+/// The form factor from a point x with unit normal n to the triangle (a, b, c), all in metres:
+/// 1 / pi times Lambert's integral of cos over the part of the triangle above x's horizon.
+double pointTriangleFormFactor(const glm::dvec3& x, const glm::dvec3& n, const glm::dvec3& a, const glm::dvec3& b,
+                               const glm::dvec3& c);
+
 /// Threads to use for `requested` (0: the hardware's, at least 1).
 int workerThreads(int requested);
 

@@ -81,7 +81,7 @@ TEST(Interreflection, MovingOneLuminaireUpdatesItsShareAlone) {
     ASSERT_TRUE(live.compute());
     std::vector<glm::dvec3> before = live.indirect();
     s.luminaires[1]->pose.position = {1.2, 2.7, -0.8};
-    ASSERT_TRUE(live.updateSource(1, 0));
+    ASSERT_TRUE(live.sync(s, o.directSpp));
     Interreflection fresh(s, o);
     ASSERT_TRUE(fresh.compute());
     double largest = 0.0, changed = 0.0;

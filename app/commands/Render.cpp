@@ -9,6 +9,8 @@
 #include "renderer/Comparison.h"
 #include "renderer/ImageFile.h"
 #include "renderer/Renderer.h"
+#include "scene/Interreflection.h"
+#include "scene/InterreflectionWorker.h"
 #include "renderer/context/GlContext.h"
 #include "scene/SceneIo.h"
 #include "ui/ComparisonExport.h"
@@ -135,7 +137,8 @@ int cmdRender(const Args& args) {
     RenderSettings settings;
     int spp = 64, referenceSpp = 512;
     std::vector<std::string> paneTexts;
-    bool printStats = false, falseColour = false, haveLegend = false, errorMaps = false;
+    bool printStats = false, falseColour = false, haveLegend = false, errorMaps = false, indirect = true;
+    int patches = 4000;
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
         if (a == "--out") out = flagValue(args, i);
@@ -153,6 +156,11 @@ int cmdRender(const Args& args) {
         else if (a == "--shadow-map-size")
             settings.shadowMaps.resolution = parseInt(a, flagValue(args, i), 8, 4096);
         else if (a == "--stats") printStats = true;
+        else if (a == "--indirect") {
+            std::string v = flagValue(args, i);
+            if (v != "on" && v != "off") throw InputError("--indirect: expected on or off, got \"" + v + "\"");
+            indirect = v == "on";
+        } else if (a == "--patches") patches = parseInt(a, flagValue(args, i), 16, 50000);
         else if (a == "--exposure") settings.exposure = parseNumberList(a, flagValue(args, i)).at(0);
         else if (a == "--false-colour") falseColour = true;
         else if (a == "--log") settings.legend.logScale = true;
@@ -214,6 +222,29 @@ int cmdRender(const Args& args) {
     renderer.update(scene, kChangeAll);
 
     auto start = std::chrono::steady_clock::now();
+    // Interreflected light (on unless --indirect off), computed first on the CPU: only where
+    // some surface reflects onto another (README, "Interreflected light").
+    std::string indirectLine = "interreflection: off (--indirect off)";
+    if (indirect) {
+        InterreflectionOptions io;
+        io.mesh.targetPatches = patches;
+        io.technique = settings.techniqueOverride.find(',') == std::string::npos ? settings.techniqueOverride : "";
+        io.directSpp = InterreflectionWorker::kFineSpp;
+        Interreflection ir(scene, io);
+        if (ir.mesh().reflects() && ir.compute() && ir.hasInterreflection()) {
+            std::vector<glm::vec3> v;
+            for (const glm::dvec3& e : ir.indirectAtVertices()) v.push_back(glm::vec3(e));
+            renderer.setIndirect(std::make_shared<RadiosityMesh>(ir.mesh()), std::move(v));
+            char text[160];
+            std::snprintf(text, sizeof text, "interreflection: %zu patches, %d iterations, %.2f s", ir.mesh().patches.size(),
+                          ir.lastIterations(),
+                          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+            indirectLine = text;
+        } else {
+            indirectLine = "interreflection: none (no surface reflects onto another)";
+        }
+        std::fprintf(stderr, "render: %s\n", indirectLine.c_str());
+    }
     std::vector<PassTiming> totals;
     int frames = 0;
     do {
@@ -262,6 +293,7 @@ int cmdRender(const Args& args) {
     }
     if (printStats) {
         std::printf("context: %s\n", context->description().c_str());
+        std::printf("%s\n", indirectLine.c_str());
         std::printf("pass,gpu_ms_total\n");
         for (const auto& p : totals) std::printf("%s,%.3f\n", p.name.c_str(), p.gpuMs);
         std::printf("variants:");
