@@ -24,6 +24,7 @@
 #include "renderer/Renderer.h"
 #include "renderer/ShaderLibrary.h"
 #include "renderer/context/GlContext.h"
+#include "scene/InterreflectionWorker.h"
 #include "scene/SceneIo.h"
 #include "ui/ComparisonExport.h"
 #include "ui/EditorState.h"
@@ -139,6 +140,7 @@ Editor::~Editor() {
         glfwSetDropCallback(mContext->window(), nullptr);
         glfwSetWindowUserPointer(mContext->window(), nullptr);
     }
+    mInterreflection.reset();  // stops its thread
     // GL objects go before the context that owns them.
     mComparison.reset();
     mPreviewRenderer.reset();
@@ -205,6 +207,7 @@ void Editor::frame() {
         mLastShaderLog = log;
     }
 
+    updateInterreflection();
     if (comparing) {
         state.pendingChanges |= mComparisonOwed;  // what changed while navigating
         mComparisonOwed = kChangeNone;
@@ -276,6 +279,42 @@ void Editor::frame() {
     mIdleFrames = hadInput() ? 0 : mIdleFrames + 1;
     updateTitle();
     writeLayout();
+}
+
+void Editor::updateInterreflection() {
+    EditorState& state = *mState;
+    InterreflectionUi& ui = state.interreflection;
+    if (!mInterreflection) mInterreflection = std::make_unique<InterreflectionWorker>();
+    if (ui.enabled != mIndirectEnabled) {
+        mInterreflection->setEnabled(ui.enabled);
+        mIndirectEnabled = ui.enabled;
+    }
+    // What its light depends on: the surfaces (geometry, materials), the luminaires and the
+    // environment; the camera and the render settings change nothing of it.
+    unsigned mask = kChangeGeometry | kChangeLuminaires | kChangeEnvironment;
+    if (!mInterreflectionStarted || (state.pendingChanges & mask) != 0) {
+        mInterreflection->update(state.scene, !mInterreflectionStarted || (state.pendingChanges & kChangeGeometry) != 0);
+        mInterreflectionStarted = true;
+    }
+    if (mInterreflection->version() != mIndirectVersion) {
+        InterreflectionWorker::Snapshot s = mInterreflection->latest();
+        if (s.version != mIndirectVersion) {
+            mRenderer->setIndirect(s.mesh, s.vertexIrradiance);
+            if (mPreviewRenderer) mPreviewRenderer->setIndirect(s.mesh, s.vertexIrradiance);
+            mIndirectVersion = s.version;
+            ui.present = s.mesh != nullptr;
+            ui.converged = s.converged;
+            ui.patches = s.patches;
+            ui.version = s.version;
+            ++ui.updates;
+        }
+    }
+    InterreflectionWorker::Status st = mInterreflection->status();
+    ui.busy = st.busy;
+    ui.stage = st.stage;
+    ui.progress = st.progress;
+    ui.lastSeconds = st.lastSeconds;
+    ui.error = st.error;
 }
 
 Renderer& Editor::shownRenderer() {
@@ -377,6 +416,8 @@ void Editor::prepareRender() {
         if (!mPreviewRenderer) {
             mPreviewRenderer = std::make_unique<Renderer>(*mShaders);
             changes = kChangeAll;
+            InterreflectionWorker::Snapshot s = mInterreflection->latest();
+            mPreviewRenderer->setIndirect(s.mesh, s.vertexIrradiance);
         }
         mPreviewRenderer->setSettings(settings);
         if (changes != kChangeNone) mPreviewRenderer->update(*mPreviewScene, changes | kChangeLuminaires);
@@ -622,6 +663,11 @@ void Editor::writeLayout() {
         {"environment_ui", environmentUiJson(state)},
         {"preview", {{"active", state.preview.active}, {"size", {state.preview.width, state.preview.height}},
                      {"frame_ms", std::round(state.preview.frameMs * 10.0) / 10.0}}},
+        {"interreflection", {{"enabled", state.interreflection.enabled}, {"busy", state.interreflection.busy},
+                             {"present", state.interreflection.present},
+                             {"converged", state.interreflection.converged},
+                             {"version", state.interreflection.version}, {"updates", state.interreflection.updates},
+                             {"patches", state.interreflection.patches}, {"stage", state.interreflection.stage}}},
         {"techniques", planTechniques(state.scene, shown)},
         {"compare", compareState(state, mComparison.get())},
         {"passes", passTimes(stats)},

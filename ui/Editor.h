@@ -15,6 +15,7 @@ class WindowContext;
 class ShaderLibrary;
 class Renderer;
 class Comparison;
+class InterreflectionWorker;
 
 namespace ui {
 
@@ -63,6 +64,9 @@ class Editor {
     void takeWindowShot(int width, int height);
     void updateTitle();
     void writeLayout();
+    /// Hands the interreflection worker this frame's scene changes, and its newest solution to
+    /// the renderers; mirrors its state into EditorState::interreflection for the panels.
+    void updateInterreflection();
 
     EditorOptions mOptions;
     std::unique_ptr<WindowContext> mContext;
@@ -74,6 +78,11 @@ class Editor {
     std::unique_ptr<Renderer> mPreviewRenderer;  ///< Renders the live preview (renderer/LivePreview.h).
     unsigned mFullOwed = 0;  ///< Changes made during a drag, owed to mRenderer (ChangeFlags).
     std::unique_ptr<Comparison> mComparison;  ///< The panes, while the viewport is split.
+    /// Interreflected light, computed on its own thread (scene/InterreflectionWorker.h).
+    std::unique_ptr<InterreflectionWorker> mInterreflection;
+    uint64_t mIndirectVersion = 0;  ///< The solution the renderers were handed (0: none yet).
+    bool mInterreflectionStarted = false;  ///< The worker was handed a scene.
+    bool mIndirectEnabled = true;   ///< The worker's switch as last set.
     unsigned mComparisonChanges = 0;          ///< Scene changes the comparison took (ChangeFlags).
     unsigned mComparisonOwed = 0;             ///< Changes made while navigating the split view.
     bool mPreviewingSplit = false;            ///< The split view shows the preview while navigating.

@@ -108,6 +108,22 @@ struct LivePreviewUi {
     int width = 0, height = 0; ///< Preview render size, pixels.
 };
 
+/// Interreflected light (scene/InterreflectionWorker.h): the user's switch, and what the
+/// editor's worker reported this frame (the panels read it from here).
+struct InterreflectionUi {
+    bool enabled = true;        ///< Off: no interreflection is computed or shown.
+    bool busy = false;          ///< The worker is computing.
+    bool present = false;       ///< The image holds interreflected light.
+    bool converged = false;     ///< The shown solution is refined and nothing is left to do.
+    std::string stage;          ///< What the worker does ("form factors", "direct light", ...).
+    double progress = 0.0;      ///< Of that stage, 0..1.
+    double lastSeconds = 0.0;   ///< Wall time of the worker's last job.
+    std::string error;          ///< Its last failure, else empty.
+    size_t patches = 0;         ///< Patches of the shown solution.
+    uint64_t version = 0;       ///< Of the solution the renderer shows.
+    int updates = 0;            ///< Solutions handed to the renderer so far.
+};
+
 /// How the viewport shows the comparison (renderer/Comparison.h): one image (no comparison),
 /// 2 or 4 panes side by side, or two panes on either side of a wipe line.
 enum class CompareLayout { Single, Two, Four, Wipe };
@@ -244,6 +260,7 @@ struct EditorState {
     MeasureState measure;  ///< The Measure panel's grid and legend text; kept across scenes.
     EnvironmentUi environment;
     LivePreviewUi preview;
+    InterreflectionUi interreflection;
     UndoHistory history;
     PlacementUi placement;
     LibraryUi library;

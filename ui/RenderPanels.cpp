@@ -38,6 +38,32 @@ bool toneMappingControls(EditorState& state) {
     return changed;
 }
 
+/// "Interreflection: ..." for the panels: what the worker does or what the image holds.
+std::string interreflectionLine(const InterreflectionUi& ir) {
+    char text[200];
+    if (!ir.enabled) return "Interreflection: off";
+    if (!ir.error.empty()) return "Interreflection failed: " + ir.error;
+    if (ir.busy) {
+        std::snprintf(text, sizeof text, "Interreflection: %s %.0f %%", ir.stage.c_str(), 100.0 * ir.progress);
+        return text;
+    }
+    if (!ir.present) return "Interreflection: none (no surface reflects onto another)";
+    std::snprintf(text, sizeof text, "Interreflection: %zu patches, %s (%.1f s)", ir.patches,
+                  ir.converged ? "converged" : "refining", ir.lastSeconds);
+    return text;
+}
+
+bool interreflectionControls(EditorState& state) {
+    InterreflectionUi& ir = state.interreflection;
+    bool changed = ImGui::Checkbox("Interreflected light", &ir.enabled);
+    recordRect(state, "render.indirect");
+    itemTooltip("Diffuse light the surfaces reflect onto each other, all bounces (radiosity over patches, each "
+                "luminaire through its own estimator; computed on the CPU in the background). Not modelled: "
+                "specular interreflection, transmission.");
+    ImGui::TextDisabled("%s", interreflectionLine(ir).c_str());
+    return changed;
+}
+
 bool samplingControls(EditorState& state) {
     bool changed = false;
     ImGui::TextDisabled("Sampling");
@@ -177,6 +203,8 @@ bool renderPanel(EditorState& state, const PanelRect& rect) {
     ImGui::Spacing();
     changed = samplingControls(state) || changed;
     ImGui::Spacing();
+    changed = interreflectionControls(state) || changed;
+    ImGui::Spacing();
     changed = cameraControls(state) || changed;
     ImGui::Spacing();
     changed = environmentControls(state) || changed;
@@ -237,6 +265,8 @@ void statsPanel(const EditorState& state, const Renderer& renderer, const Shader
         ImGui::EndTable();
     }
     ImGui::Text("GPU time of this accumulation: %.1f ms", state.passes.totalGpuMs());
+    // The CPU's share: the interreflection worker (nothing when off or when nothing changed).
+    ImGui::TextUnformatted(interreflectionLine(state.interreflection).c_str());
 
     std::vector<std::string> variants = shaders.compiledVariants();
     ImGui::Spacing();
