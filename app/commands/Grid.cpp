@@ -4,12 +4,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 
 #include "app/commands/Commands.h"
 #include "scene/CalculationGrid.h"
 #include "scene/SceneIo.h"
 #include "util/Error.h"
+#include "util/FileOutput.h"
 
 namespace candela {
 
@@ -69,12 +69,10 @@ void printGrid(const GridResult& r, const GridSummary& s) {
     std::printf("U0 (Emin/Eavg): %.4f\nEmin/Emax: %.4f\n", s.u0, s.minOverMax);
 }
 
-void writeCsv(const std::string& path, const GridResult& r) {
-    std::ofstream out(path);
-    if (!out) throw InputError(path + ": cannot write the CSV file");
+std::string gridCsv(const GridResult& r) {
     // The unit is in the column names: _lx, or _W_m2 for a radiometric scene.
     std::string unit = r.units.photometric ? "_lx" : "_W_m2";
-    out << "x,y,z,E" << unit << ",E_stderr" << unit << "\n";
+    std::string out = "x,y,z,E" + unit + ",E_stderr" + unit + "\n";
     char line[160];
     for (size_t j = 0; j < r.v.size(); ++j)
         for (size_t i = 0; i < r.u.size(); ++i) {
@@ -82,12 +80,16 @@ void writeCsv(const std::string& path, const GridResult& r) {
             size_t k = j * r.u.size() + i;
             std::snprintf(line, sizeof line, "%.9g,%.9g,%.9g,%.10g,%.4g\n", q.x, q.y, q.z, r.E[k],
                           r.stdError[k]);
-            out << line;
+            out += line;
         }
-    if (!out) throw InputError(path + ": write failed");
+    return out;
 }
 
 }  // namespace
+
+void writeGridCsv(const std::string& path, const GridResult& r) {
+    writeFileAtomically(path, gridCsv(r), "cannot write the CSV file");
+}
 
 CalcPlane parsePlane(const std::string& text) {
     CalcPlane plane;
@@ -145,12 +147,14 @@ int cmdGrid(const Args& args) {
         throw InputError("--spacing: expected a positive number of metres, got " +
                          std::to_string(spec.spacing));
     Scene scene = loadScene(scenePath);
+    ProtectedInputs inputs(scene.inputFiles());
+    checkNotAnInput(csvPath, "--csv");
     if (!haveExtent) defaultGridExtent(scene, spec);
     GridResult result = computeGrid(scene, spec);
     GridSummary summary = summariseGrid(result.E);
     printGrid(result, summary);
     if (!csvPath.empty()) {
-        writeCsv(csvPath, result);
+        writeGridCsv(csvPath, result);
         std::printf("wrote %s\n", csvPath.c_str());
     }
     return 0;
