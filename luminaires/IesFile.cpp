@@ -282,6 +282,7 @@ PhotometricData parseIes(const std::string& text, const std::string& path) {
         tiltText << tf.rdbuf();
         TokenStream tiltIn(tiltPath.string(), splitLines(tiltText.str()), 0);
         readTilt(tiltIn, d);
+        d.tiltPath = tiltPath.string();
     }
 
     // Lamp and photometry line, then the ballast line.

@@ -9,8 +9,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "scene/SceneIo.h"
 #include "util/Error.h"
+#include "util/FileOutput.h"
 #include "util/JsonRead.h"
 
 namespace candela {
@@ -211,6 +211,7 @@ std::shared_ptr<LightFieldData> LightFieldData::load(const fs::path& file) {
     for (size_t m = 0; m < names.size(); ++m) {
         std::string name = json::string(names[m], (where / "images")[m]);
         fs::path imgPath = fs::path(name).is_relative() ? dir / name : fs::path(name);
+        lf->imageFiles.push_back(imgPath);
         int w = 0, h = 0, channels = 0;
         std::vector<float> px;
         readImage(imgPath, file.string(), w, h, channels, px);
@@ -260,14 +261,20 @@ void LightFieldData::save(const fs::path& file) const {
     else
         throw InputError(file.string() + ": light-field files must be named NAME.lf.json");
     nlohmann::json names = nlohmann::json::array();
+    for (int j = 0; j < count.y; ++j)
+        for (int i = 0; i < count.x; ++i)
+            names.push_back(stem + "_" + std::to_string(i) + "_" + std::to_string(j) + ".exr");
+    // Every file is checked before the first is written, so a refusal leaves nothing behind;
+    // all are written to temporary files before any is renamed, so a failed write (a full
+    // disk) replaces none of them.
+    checkNotAnInput(file.string());
+    for (const auto& name : names) checkNotAnInput((dir / name.get<std::string>()).string());
+    AtomicFileSet files;
     int channels = rgb ? 3 : 1;
     for (int j = 0; j < count.y; ++j)
         for (int i = 0; i < count.x; ++i) {
             int m = j * count.x + i;
-            std::string name = stem + "_" + std::to_string(i) + "_" + std::to_string(j) + ".exr";
-            names.push_back(name);
-            fs::path target = dir / name;
-            fs::path temp = dir / (name + ".tmp.exr");
+            fs::path target = dir / names[size_t(m)].get<std::string>();
             std::vector<float> px(size_t(width) * size_t(height) * size_t(channels));
             const LightFieldImage& img = images[size_t(m)];
             for (size_t k = 0; k < img.luminance.size(); ++k) {
@@ -280,15 +287,8 @@ void LightFieldData::save(const fs::path& file) const {
                 px[3 * k + 1] = c.y;
                 px[3 * k + 2] = c.z;
             }
-            auto out = OIIO::ImageOutput::create(temp.string());
-            OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::FLOAT);
-            spec.attribute("compression", "zip");
-            if (!out || !out->open(temp.string(), spec) ||
-                !out->write_image(OIIO::TypeDesc::FLOAT, px.data()) || !out->close())
-                throw InputError(target.string() + ": cannot write image: " + OIIO::geterror());
-            std::error_code ec;
-            fs::rename(temp, target, ec);
-            if (ec) throw InputError(target.string() + ": cannot write image: " + ec.message());
+            files.add(target.string(), encodeImage(target.string(), width, height, channels, px.data(), "zip"),
+                      "cannot write the image");
         }
     nlohmann::json doc = {
         {"format", "candela-lightfield"}, {"version", 1}, {"model", modelName(model)}, {"delta", delta},
@@ -296,7 +296,8 @@ void LightFieldData::save(const fs::path& file) const {
                    {"origin", {origin.x, origin.y}}}},
         {"image", {{"min", {imageMin.x, imageMin.y}}, {"max", {imageMax.x, imageMax.y}}}},
         {"images", names}, {"unit", unit}};
-    writeFileAtomically(file.string(), doc.dump(2) + "\n");
+    files.add(file.string(), doc.dump(2) + "\n");
+    files.commit();
 }
 
 // ---------------------------------------------------------------------------------------------

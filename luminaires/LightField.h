@@ -69,6 +69,7 @@ public:
     std::string unit = "W/(m2 sr)";  ///< Or "cd/m2" (then irradiance is illuminance in lux).
     std::vector<LightFieldImage> images;  ///< count.x * count.y, index j * W + i.
     std::filesystem::path path;      ///< Where it was loaded from (empty when built in memory).
+    std::vector<std::filesystem::path> imageFiles;  ///< The image files load() read, in order.
 
     // --- Precomputed -----------------------------------------------------------------------
     std::vector<LightFieldTables> tables;  ///< One per image, after precompute().
@@ -78,7 +79,8 @@ public:
     /// sizes, NaN or negative pixels, zero spacing, ...) and precomputes. Throws InputError
     /// naming the file and the problem.
     static std::shared_ptr<LightFieldData> load(const std::filesystem::path& file);
-    /// Writes NAME.lf.json and one EXR per image beside it (NAME_i_j.exr), atomically per file.
+    /// Writes NAME.lf.json and one EXR per image beside it (NAME_i_j.exr): all to temporary files,
+    /// then renamed (util/FileOutput.h), so a failed write replaces none. Throws InputError.
     void save(const std::filesystem::path& file) const;
     /// Checks the fields of an in-memory model (as load() does); throws InputError with `what`.
     void validate(const std::string& what) const;
@@ -154,6 +156,8 @@ public:
     void writeJson(nlohmann::json& out) const override;
     std::vector<std::byte> gpuData() const override;
     std::string describe() const override;
+    /// The manifest (.lf.json) and its images.
+    std::vector<std::string> sourceFiles() const override;
     /// Per-cell maps (Sec. 6.2, luminaires/ShadowCells.h): items are the images.
     ShadowLights shadowLights(int count) const override;
 

@@ -231,6 +231,14 @@ std::string LightFieldLuminaire::describe() const {
     return buf;
 }
 
+std::vector<std::string> LightFieldLuminaire::sourceFiles() const {
+    std::vector<std::string> files;
+    if (!data || data->path.empty()) return files;  // built in memory
+    files.push_back(data->path.string());
+    for (const fs::path& image : data->imageFiles) files.push_back(image.string());
+    return files;
+}
+
 std::unique_ptr<Luminaire> LightFieldLuminaire::parse(const nlohmann::json& entry, const json::Where& where) {
     json::checkKeys(entry, {"type", "name", "position", "aim", "c0", "technique", "file"}, where);
     if (!entry.contains("file")) json::fail(where / "file", "the path of a .lf.json light-field file");

@@ -90,6 +90,9 @@ public:
     }
     /// One line for `candela info` and the editor.
     virtual std::string describe() const = 0;
+    /// The files its data was read from (a photometric file and its TILT file, a light field's
+    /// manifest and images), so commands never write onto them; empty for kinds made of numbers.
+    virtual std::vector<std::string> sourceFiles() const { return {}; }
     /// The shadow maps this luminaire's shading reads for about `count` maps (0: the kind's
     /// natural count); empty (no lights) for a kind that traces shadow rays instead.
     virtual ShadowLights shadowLights(int count) const {

@@ -317,6 +317,13 @@ std::string PhotometricLuminaire::describe() const {
     return out;
 }
 
+std::vector<std::string> PhotometricLuminaire::sourceFiles() const {
+    std::vector<std::string> files;
+    if (data && !data->path.empty()) files.push_back(data->path);
+    if (data && !data->tiltPath.empty()) files.push_back(data->tiltPath);
+    return files;
+}
+
 std::unique_ptr<Luminaire> PhotometricLuminaire::parse(const nlohmann::json& entry, const json::Where& where) {
     json::checkKeys(entry, {"type", "name", "position", "aim", "c0", "technique", "file", "scale",
                             "colour", "opening"}, where);

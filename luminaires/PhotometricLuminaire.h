@@ -40,6 +40,8 @@ public:
     void writeJson(nlohmann::json& out) const override;
     std::vector<std::byte> gpuData() const override;
     std::string describe() const override;
+    /// The photometric file and its TILT file, if any.
+    std::vector<std::string> sourceFiles() const override;
     glm::dvec3 displayRadiance() const override;
     /// Maps at the opening's centre and near its four corners (the polygon vertex closest to
     /// each corner of its bounding rectangle; the two ends of a segment; the centre alone for a

@@ -82,6 +82,7 @@ struct PhotometricData {
     /// empty for TILT=NONE.
     int tiltGeometry = 0;
     std::vector<double> tiltAngles, tiltFactors;
+    std::string tiltPath;  ///< The TILT=<file> file read (empty for NONE or INCLUDE).
 
     /// Luminous intensity in candela towards the unit local direction d (local frame above);
     /// bilinear in (vertical, horizontal) so it is never negative; 0 outside the table's range.

@@ -2,36 +2,31 @@
 
 #include <OpenImageIO/imageio.h>
 
-#include <filesystem>
-
 #include "util/Error.h"
+#include "util/FileOutput.h"
 
 namespace candela {
 
+namespace {
+
 template <class T>
-static void write(const std::string& path, int width, int height, const std::vector<T>& rgb,
-                  OIIO::TypeDesc type) {
-    auto out = OIIO::ImageOutput::create(path);
-    if (!out)
-        throw InputError(path + ": cannot write images of this type (use .png or .exr): " +
-                         OIIO::geterror());
-    OIIO::ImageSpec spec(width, height, 3, type);
-    // Write to a temporary name and rename, so a failure never leaves half an image.
-    std::string tmp = path + ".tmp" + std::filesystem::path(path).extension().string();
-    if (!out->open(tmp, spec) || !out->write_image(type, rgb.data()) || !out->close())
-        throw InputError(path + ": write failed: " + out->geterror());
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) throw InputError(path + ": write failed: " + ec.message());
+void checkSize(const std::string& path, int width, int height, const std::vector<T>& rgb) {
+    if (width <= 0 || height <= 0 || rgb.size() < size_t(width) * size_t(height) * 3)
+        throw InputError(path + ": " + std::to_string(rgb.size()) + " values for a " + std::to_string(width) +
+                           "x" + std::to_string(height) + " RGB image");
 }
+
+}  // namespace
 
 void writeImage8(const std::string& path, int width, int height,
                  const std::vector<unsigned char>& rgb) {
-    write(path, width, height, rgb, OIIO::TypeDesc::UINT8);
+    checkSize(path, width, height, rgb);
+    writeImageAtomically(path, width, height, 3, rgb.data());
 }
 
 void writeImageFloat(const std::string& path, int width, int height, const std::vector<float>& rgb) {
-    write(path, width, height, rgb, OIIO::TypeDesc::FLOAT);
+    checkSize(path, width, height, rgb);
+    writeImageAtomically(path, width, height, 3, rgb.data());
 }
 
 std::vector<float> readImageFloat(const std::string& path, int& width, int& height) {

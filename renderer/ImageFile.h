@@ -6,8 +6,9 @@
 
 namespace candela {
 
-/// Writes RGB rows top to bottom. The extension picks the format; throws InputError naming the
-/// file for an unsupported extension or a write failure.
+/// Writes RGB rows top to bottom through a temporary file and a rename (util/FileOutput.h). The
+/// extension picks the format; throws InputError naming the file for an unsupported extension, a
+/// write failure (the old file then stays as it was) or a protected input.
 void writeImage8(const std::string& path, int width, int height,
                  const std::vector<unsigned char>& rgb);
 void writeImageFloat(const std::string& path, int width, int height, const std::vector<float>& rgb);

@@ -460,10 +460,25 @@ void GltfImport::run(const glm::dmat4& transform) {
         if (!isChild[i]) visitNode(int(i), transform);
 }
 
+/// A URI's %XX escapes decoded (glTF file names with spaces are written %20).
+std::string percentDecoded(const std::string& uri) {
+    std::string out;
+    for (size_t i = 0; i < uri.size(); ++i) {
+        if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
+            std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
+            out += char(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
+            i += 2;
+        } else {
+            out += uri[i];
+        }
+    }
+    return out;
+}
+
 }  // namespace
 
-void loadGltf(const std::string& path, const glm::dmat4& transform, Scene& scene,
-              const json::Where& where) {
+std::vector<std::string> loadGltf(const std::string& path, const glm::dmat4& transform, Scene& scene,
+                                  const json::Where& where) {
     const std::string prefix = where.file.empty() ? path : where.str() + ": " + path;
     errno = 0;
     std::FILE* probe = std::fopen(path.c_str(), "rb");
@@ -509,6 +524,16 @@ void loadGltf(const std::string& path, const glm::dmat4& transform, Scene& scene
         scene.meshes.erase(scene.meshes.begin() + std::ptrdiff_t(meshCount), scene.meshes.end());
         throw;
     }
+    std::vector<std::string> files{path};
+    std::filesystem::path dir = std::filesystem::path(path).parent_path();
+    auto addUri = [&](const std::string& uri) {
+        if (uri.empty() || uri.rfind("data:", 0) == 0) return;  // a .glb chunk or embedded data
+        std::filesystem::path file(percentDecoded(uri));
+        files.push_back((file.is_absolute() ? file : dir / file).string());
+    };
+    for (const tinygltf::Buffer& buffer : model.buffers) addUri(buffer.uri);
+    for (const tinygltf::Image& image : model.images) addUri(image.uri);
+    return files;
 }
 
 }  // namespace candela

@@ -12,6 +12,7 @@
 
 #include <glm/glm.hpp>
 #include <string>
+#include <vector>
 
 #include "scene/Scene.h"
 #include "util/JsonRead.h"
@@ -20,8 +21,9 @@ namespace candela {
 
 /// Appends the meshes and materials of the glTF file at `path`, transformed by `transform`
 /// (glTF units are metres, Y-up, as in Candela), to `scene`. Each primitive becomes one Mesh with
-/// shape General. `where` names the scene-file entry in error messages.
-void loadGltf(const std::string& path, const glm::dmat4& transform, Scene& scene,
+/// shape General. `where` names the scene-file entry in error messages. Returns the files read:
+/// `path`, then the external buffers and images it names (data: URIs are not files).
+std::vector<std::string> loadGltf(const std::string& path, const glm::dmat4& transform, Scene& scene,
               const json::Where& where);
 
 }  // namespace candela

@@ -42,6 +42,23 @@ Scene Scene::clone() const {
     return copy;
 }
 
+std::vector<std::string> Scene::inputFiles() const {
+    std::vector<std::string> files;
+    if (!path.empty()) files.push_back(path);
+    for (const GeometryItem& item : geometry) files.insert(files.end(), item.files.begin(), item.files.end());
+    for (const auto& luminaire : luminaires) {
+        std::vector<std::string> own = luminaire->sourceFiles();
+        files.insert(files.end(), own.begin(), own.end());
+    }
+    if (environmentSequence) {
+        const std::vector<std::string>& frames = environmentSequence->files();
+        files.insert(files.end(), frames.begin(), frames.end());
+    } else if (environmentMap && environment.is_object() && environment.contains("file")) {
+        files.push_back(environmentMap->source());  // the resolved file (a sky has no file)
+    }
+    return files;
+}
+
 glm::vec3 Scene::boundsMin() const {
     bool any = false;
     glm::vec3 lo(0.f);

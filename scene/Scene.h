@@ -55,6 +55,9 @@ struct Mesh {
 struct GeometryItem {
     nlohmann::json source;          ///< The entry as read (paths as the user wrote them).
     std::vector<uint32_t> meshes;   ///< The meshes it produced, indices into Scene::meshes.
+    /// The files it was read from: a glTF file and the buffers and images it names (empty for
+    /// planes, discs and boxes).
+    std::vector<std::string> files;
 };
 
 struct Camera {
@@ -81,6 +84,10 @@ struct Scene {
     Scene& operator=(Scene&&) = default;
     /// Deep copy (luminaires are cloned); used by undo and by the editor's render snapshot.
     Scene clone() const;
+    /// Every file the scene was read from: the scene file, each geometry item's files, each
+    /// luminaire's sourceFiles() and the environment's map or sequence frames. Commands protect
+    /// them (util/FileOutput.h) so no output is written onto one.
+    std::vector<std::string> inputFiles() const;
 
     glm::vec3 boundsMin() const;
     glm::vec3 boundsMax() const;

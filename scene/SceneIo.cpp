@@ -1,9 +1,5 @@
 #include "scene/SceneIo.h"
 
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <array>
 #include <map>
@@ -20,6 +16,7 @@
 #include "luminaires/Registry.h"
 #include "scene/GltfLoader.h"
 #include "util/Error.h"
+#include "util/FileOutput.h"
 
 namespace candela {
 
@@ -300,7 +297,8 @@ void parseSphere(const nlohmann::json& item, const json::Where& where, size_t in
     scene.meshes.push_back(std::move(mesh));
 }
 
-void parseGltfItem(const nlohmann::json& item, const json::Where& where, Scene& scene) {
+/// Returns the files read (loadGltf).
+std::vector<std::string> parseGltfItem(const nlohmann::json& item, const json::Where& where, Scene& scene) {
     json::checkKeys(item, {"gltf", "transform"}, where);
     std::string file = json::string(item["gltf"], where / "gltf");
     fs::path resolved(file);
@@ -318,7 +316,7 @@ void parseGltfItem(const nlohmann::json& item, const json::Where& where, Scene& 
                     glm::rotate(glm::dmat4(1.0), glm::radians(angle), glm::dvec3(0, 1, 0)) *
                     glm::scale(glm::dmat4(1.0), glm::dvec3(scale));
     }
-    loadGltf(resolved.string(), transform, scene, where / "gltf");
+    return loadGltf(resolved.string(), transform, scene, where / "gltf");
 }
 
 /// Parses one "geometry" entry, appending its meshes and materials and its GeometryItem.
@@ -333,7 +331,7 @@ void parseGeometryItem(const nlohmann::json& item, const json::Where& where, siz
     geometry.source = item;
     size_t firstMesh = scene.meshes.size();
     if (item.contains("gltf"))
-        parseGltfItem(item, where, scene);
+        geometry.files = parseGltfItem(item, where, scene);
     else if (item.contains("plane"))
         parsePlane(item, where, index, scene);
     else if (item.contains("disc"))
@@ -421,53 +419,6 @@ void rebaseGltfPaths(nlohmann::json& doc, const std::string& fromPath, const std
 
 }  // namespace
 
-/// Writes `text` to `path` through a temporary file in the same folder and rename().
-void writeFileAtomically(const std::string& path, const std::string& text) {
-    fs::path target(path);
-    if (!target.has_filename()) throw InputError(path + ": cannot save scene (not a file name)");
-    fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
-    std::string tempLeaf = ".";
-    tempLeaf.append(target.filename().string()).append(".tmp-XXXXXX");
-    std::string pattern = (dir / tempLeaf).string();
-    std::vector<char> tempName(pattern.begin(), pattern.end());
-    tempName.push_back('\0');
-
-    int fd = mkstemp(tempName.data());
-    if (fd < 0) {
-        throw InputError(path + ": cannot save scene (cannot create a temporary file in " +
-                         dir.string() + ": " + std::strerror(errno) + ")");
-    }
-    auto fail = [&](const char* step) {
-        int err = errno;
-        if (fd >= 0) ::close(fd);
-        ::unlink(tempName.data());
-        throw InputError(path + ": cannot save scene (" + step + ": " + std::strerror(err) + ")");
-    };
-    // Keep the permissions of the file being replaced; new files get rw-r--r--.
-    struct stat existing;
-    mode_t mode = ::stat(path.c_str(), &existing) == 0 ? (existing.st_mode & 07777) : 0644;
-    if (::fchmod(fd, mode) != 0) fail("chmod");
-
-    size_t written = 0;
-    while (written < text.size()) {
-        ssize_t n = ::write(fd, text.data() + written, text.size() - written);
-        if (n < 0 && errno == EINTR) continue;
-        if (n <= 0) fail("write");
-        written += size_t(n);
-    }
-    if (::fsync(fd) != 0) fail("fsync");
-    int closed = ::close(fd);
-    fd = -1;
-    if (closed != 0) fail("close");
-    if (::rename(tempName.data(), path.c_str()) != 0) fail("rename");
-    // Make the rename itself durable; failing here cannot lose data, so it is best effort.
-    int dirFd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY);
-    if (dirFd >= 0) {
-        ::fsync(dirFd);
-        ::close(dirFd);
-    }
-}
-
 Scene loadScene(const std::string& path) {
     std::string ext = lowerExtension(path);
     if (ext != ".json") {
@@ -541,7 +492,7 @@ void saveScene(const Scene& scene, const std::string& path) {
         // E.g. a name that is not valid UTF-8: nothing has been written yet.
         throw InputError(path + ": cannot save scene (" + e.what() + ")");
     }
-    writeFileAtomically(path, text);
+    writeFileAtomically(path, text, "cannot save scene");
 }
 
 std::unique_ptr<Luminaire> parseLuminaire(const nlohmann::json& entry, const json::Where& where,

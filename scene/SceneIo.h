@@ -65,8 +65,4 @@ size_t addPlane(Scene& scene, const glm::dvec3& center, const glm::dvec3& normal
 size_t addBox(Scene& scene, const glm::dvec3& center, const glm::dvec3& size, double rotateYDeg,
               const Material& material);
 
-/// Writes `text` to `path` through a temporary file in the same folder, fsync and rename(), so
-/// a crash never leaves a half-written file. Throws InputError naming the file.
-void writeFileAtomically(const std::string& path, const std::string& text);
-
 }  // namespace candela

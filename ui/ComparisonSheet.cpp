@@ -12,6 +12,7 @@
 #include "renderer/ImageFile.h"
 #include "ui/Screenshot.h"
 #include "util/Error.h"
+#include "util/FileOutput.h"
 
 namespace candela::ui {
 
@@ -383,7 +384,7 @@ SheetFiles writeSheet(const fs::path& dir, const SheetImage& sheet, const nlohma
     for (const glm::ivec4& r : sheet.tileRects) rects.push_back({r.x, r.y, r.z, r.w});
     out["tile_rects"] = std::move(rects);
     // Invalid UTF-8 in caller-supplied strings is replaced rather than thrown on.
-    writeFileAtomic(files.json,
+    writeFileAtomically(files.json,
                     out.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
     return files;
 }

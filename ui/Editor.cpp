@@ -33,6 +33,7 @@
 #include "ui/Project.h"
 #include "ui/Screenshot.h"
 #include "ui/ViewportMath.h"
+#include "util/FileOutput.h"
 
 namespace {
 
@@ -676,7 +677,7 @@ void Editor::writeLayout() {
     // frames" after its input always sees them come.
     j["frame"] = mFrame;
     try {
-        writeFileAtomic(mOptions.layoutFile, j.dump(2) + "\n");
+        writeFileAtomically(mOptions.layoutFile.string(), j.dump(2) + "\n");
     } catch (const std::exception& e) {
         std::fprintf(stderr, "candela edit: layout file: %s\n", e.what());
     }

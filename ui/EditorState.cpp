@@ -12,6 +12,7 @@
 #include "scene/SceneIo.h"
 #include "ui/Project.h"
 #include "util/Error.h"
+#include "util/FileOutput.h"
 
 namespace candela::ui {
 
@@ -179,6 +180,14 @@ bool saveSceneFile(EditorState& state, const std::string& path) {
         return false;
     }
     try {
+        // Every file the scene reads but its own may not be replaced by it (Save As onto the
+        // luminaire's .ies, the environment map, a glTF buffer, ...).
+        std::vector<std::string> inputs = state.scene.inputFiles();
+        std::erase_if(inputs, [&](const std::string& file) {
+            return !state.scene.path.empty() && sameFile(file, state.scene.path);
+        });
+        ProtectedInputs protectedInputs(inputs);
+        checkNotAnInput(target, "Save As", "the scene");
         saveScene(state.scene, target);
         removeAutosave(state.scene.path);  // the untitled one too, when saving it as a file
         removeAutosave(target);

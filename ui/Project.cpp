@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "scene/SceneIo.h"
+#include "util/FileOutput.h"
 
 namespace candela::ui {
 

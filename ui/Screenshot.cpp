@@ -4,12 +4,12 @@
 #include <chrono>
 #include <cstdio>
 #include <ctime>
-#include <fstream>
 #include <system_error>
 
 #include "renderer/ImageFile.h"
 #include "scene/SceneIo.h"
 #include "util/Error.h"
+#include "util/FileOutput.h"
 
 namespace candela::ui {
 
@@ -37,24 +37,6 @@ double PassTotals::totalGpuMs() const {
     double sum = 0.0;
     for (const PassTiming& p : mTotals) sum += p.gpuMs;
     return sum;
-}
-
-void writeFileAtomic(const fs::path& path, const std::string& text) {
-    fs::path tmp = path;
-    tmp += ".tmp";
-    {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        if (!out) throw InputError(tmp.string() + ": cannot open for writing");
-        out << text;
-        out.flush();
-        if (!out) throw InputError(tmp.string() + ": write failed");
-    }
-    std::error_code ec;
-    fs::rename(tmp, path, ec);
-    if (ec) {
-        fs::remove(tmp, ec);
-        throw InputError(path.string() + ": cannot replace file (" + ec.message() + ")");
-    }
 }
 
 fs::path nextFreeStem(const fs::path& dir, const std::string& prefix) {
@@ -141,7 +123,7 @@ ScreenshotFiles writeScreenshot(const fs::path& dir, const Scene& scene, const R
         {"last_frame_passes", passesJson(passes.lastFrame())},
         {"total_gpu_ms", passes.totalGpuMs()},
     };
-    writeFileAtomic(files.json, sidecar.dump(2) + "\n");
+    writeFileAtomically(files.json, sidecar.dump(2) + "\n");
     return files;
 }
 

@@ -38,14 +38,11 @@ struct ScreenshotFiles {
     std::string json;  ///< Sidecar, written last (its presence means the other two are complete).
 };
 
-/// Writes the next free shot-NNN.{png,exr,json} in dir (created if needed). Throws InputError
-/// naming the file when a write fails.
+/// Writes the next free shot-NNN.{png,exr,json} in dir (created if needed), each through a
+/// temporary file and a rename (util/FileOutput.h). Throws InputError naming the file when a
+/// write fails.
 ScreenshotFiles writeScreenshot(const std::filesystem::path& dir, const Scene& scene,
                                 const Renderer& renderer, const PassTotals& passes);
-
-/// Writes text to path through a temporary file and a rename, so readers never see half a file.
-/// Throws InputError naming the file on failure.
-void writeFileAtomic(const std::filesystem::path& path, const std::string& text);
 
 /// First DIR/PREFIX-NNN (NNN = 000, 001, ...) for which none of PREFIX-NNN.{png,exr,json} exists.
 /// Throws InputError naming dir when all 100000 are taken.

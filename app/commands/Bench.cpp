@@ -10,7 +10,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 
 #include "app/commands/BenchUtil.h"
@@ -21,6 +20,7 @@
 #include "renderer/context/GlContext.h"
 #include "scene/SceneIo.h"
 #include "util/Error.h"
+#include "util/FileOutput.h"
 
 namespace candela {
 
@@ -39,7 +39,7 @@ struct Image {
 /// 1.5 R above a floor and 8 R from a wall, aimed down the room and slightly down, so the floor
 /// under and ahead of it is in its near field (receivers a few delta to a few R away, where the
 /// restricted boxes are much smaller than the images) and the wall shows the beam.
-Scene benchScene(const fs::path& lightField, const fs::path& outDir) {
+Scene benchScene(const fs::path& lightField, const fs::path& outDir, ProtectedInputs& inputs) {
     auto lf = LightFieldData::load(lightField);
     double R = std::max({std::abs(lf->imageMin.x), std::abs(lf->imageMin.y), lf->imageMax.x, lf->imageMax.y});
     auto num = [](double v) { return std::to_string(v); };
@@ -50,9 +50,11 @@ Scene benchScene(const fs::path& lightField, const fs::path& outDir) {
                        fs::absolute(lightField).generic_string() + R"(",
         "position": [0, )" + num(1.5 * R) + R"(, 0], "aim": [0, -0.25, -1], "c0": [1, 0, 0], "technique": "restricted-cdf"}],
       "camera": {"position": [)" + num(3 * R) + "," + num(4 * R) + "," + num(3 * R) + R"(], "target": [0, )" + num(0.5 * R) + "," + num(-4 * R) + R"(], "fov_deg": 65}})";
+    Scene scene = parseScene(nlohmann::json::parse(text), (fs::absolute(lightField).parent_path() / "bench.json").string());
+    inputs.add(scene.luminaires[0]->sourceFiles());
     // Kept beside the results, so `candela render` can reproduce any image.
-    std::ofstream(outDir / "bench_scene.json") << nlohmann::json::parse(text).dump(2) << "\n";
-    return parseScene(nlohmann::json::parse(text), (fs::absolute(lightField).parent_path() / "bench.json").string());
+    writeFileAtomically((outDir / "bench_scene.json").string(), nlohmann::json::parse(text).dump(2) + "\n");
+    return scene;
 }
 
 Image render(Renderer& renderer, const Scene& scene, RenderSettings settings, const std::string& technique,
@@ -101,7 +103,8 @@ int cmdBench(const Args& args) {
     fs::create_directories(outDir);
 
     auto loadStart = std::chrono::steady_clock::now();
-    Scene scene = benchScene(lfPath, outDir);
+    ProtectedInputs inputs;  // the light field and its images, once loaded
+    Scene scene = benchScene(lfPath, outDir, inputs);
     double loadMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - loadStart).count();
     const auto& lf = *static_cast<const LightFieldLuminaire&>(*scene.luminaires[0]).data;
     auto context = createOffscreenContext();
@@ -195,18 +198,18 @@ int cmdBench(const Args& args) {
                           r.rmse, r.deltaE, r.shadeMs);
             summary << line;
         }
-    std::ofstream(fs::path(outDir) / "summary.txt") << summary.str();
+    writeFileAtomically((fs::path(outDir) / "summary.txt").string(), summary.str());
     std::fputs(summary.str().c_str(), stdout);
 
     // Plots: error against GPU time, log-log.
     const std::string kTechniques = "restricted-cdf uniform-restricted precomputed-global granier2003";
-    std::ofstream gp(fs::path(outDir) / "plot.gp");
+    std::ostringstream gp;
     gp << "set terminal pngcairo size 900,420 noenhanced\nset datafile separator ','\nset logscale xy\n"
           "set grid\nset key bottom left\nset multiplot layout 1,2\n"
           "set xlabel 'GPU time of the shading pass (ms)'\nset ylabel 'rel. RMSE (luminance, ref. noise removed)'\n"
        << sweepPlot(kTechniques, 3, 4) << "set ylabel 'mean Delta E (CIE76, tone-mapped)'\n"
        << sweepPlot(kTechniques, 3, 5) << "unset multiplot\n";
-    gp.close();
+    writeFileAtomically((fs::path(outDir) / "plot.gp").string(), gp.str());
     runGnuplot(outDir, "error_vs_time.png");
     std::printf("wrote %s/bench.csv and images\n", outDir.c_str());
     return 0;

@@ -21,7 +21,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <sstream>
 
@@ -33,6 +32,7 @@
 #include "renderer/context/GlContext.h"
 #include "scene/SceneIo.h"
 #include "util/Error.h"
+#include "util/FileOutput.h"
 
 namespace candela {
 
@@ -128,6 +128,7 @@ int benchDrag(const Args& args) {
     }
     fs::create_directories(outDir);
     Scene scene = loadScene(scenePath);
+    ProtectedInputs inputs(scene.inputFiles());
     if (scene.luminaires.empty()) throw InputError(scenePath + ": bench --drag needs a scene with luminaires");
     auto context = createOffscreenContext();
     ShaderLibrary shaders;
@@ -230,13 +231,13 @@ int benchDrag(const Args& args) {
         }
     }
 
-    std::ofstream csv(fs::path(outDir) / "drag.csv");
+    std::ostringstream csv;
     csv << "luminaire,mode,frames,mean_ms,p95_ms,worst_ms,fps\n";
     for (const DragRow& r : drags)
         csv << '"' << r.luminaire << "\"," << r.mode << "," << r.frames << "," << r.meanMs << "," << r.p95Ms << ","
             << r.worstMs << "," << r.fps() << "\n";
-    csv.close();
-    std::ofstream(fs::path(outDir) / "release.csv") << releaseCsv.str();
+    writeFileAtomically((fs::path(outDir) / "drag.csv").string(), csv.str());
+    writeFileAtomically((fs::path(outDir) / "release.csv").string(), releaseCsv.str());
 
     std::ostringstream summary;
     char line[320];
@@ -267,10 +268,10 @@ int benchDrag(const Args& args) {
                       formatRatio(restart / release).c_str());
         summary << line;
     }
-    std::ofstream(fs::path(outDir) / "summary.txt") << summary.str();
+    writeFileAtomically((fs::path(outDir) / "summary.txt").string(), summary.str());
     std::fputs(summary.str().c_str(), stdout);
 
-    std::ofstream gp(fs::path(outDir) / "plot.gp");
+    std::ostringstream gp;
     gp << "set terminal pngcairo size 900,420 noenhanced\nset datafile separator ','\nset logscale y\nset grid\n"
            "set xlabel 'seconds after release (rendering only)'\nset ylabel 'mean Delta E against the reference'\n"
            "set key top right\nset arrow from graph 0, first 1 to graph 1, first 1 nohead dt 2\nplot ";
@@ -280,7 +281,7 @@ int benchDrag(const Args& args) {
                << scene.luminaires[i]->name << "' && strcol(2) eq '" << how << "' ? $3 : 1/0):5 with linespoints title '"
                << scene.luminaires[i]->name << " (" << how << ")'";
     gp << "\n";
-    gp.close();
+    writeFileAtomically((fs::path(outDir) / "plot.gp").string(), gp.str());
     runGnuplot(outDir, "plot.png");
     return 0;
 }

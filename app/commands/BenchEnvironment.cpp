@@ -13,7 +13,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 
 #include "app/commands/BenchUtil.h"
@@ -24,6 +23,7 @@
 #include "renderer/context/GlContext.h"
 #include "scene/SceneIo.h"
 #include "util/Error.h"
+#include "util/FileOutput.h"
 
 namespace candela {
 
@@ -50,7 +50,7 @@ Scene benchScene(const nlohmann::json& environment, const fs::path& outDir) {
       "camera": {"position": [3.2, 2.4, 4.2], "target": [0, 0.4, 0], "fov_deg": 50}})");
     doc["environment"] = environment;
     // Kept beside the results, so `candela render` can reproduce any image.
-    std::ofstream(outDir / "bench_scene.json") << doc.dump(2) << "\n";
+    writeFileAtomically((outDir / "bench_scene.json").string(), doc.dump(2) + "\n");
     return parseScene(doc, (outDir / "bench_scene.json").string());
 }
 
@@ -124,6 +124,8 @@ int benchEnvironment(const Args& args) {
                                                   {"sun_azimuth_deg", sky.sunAzimuthDeg},
                                                   {"resolution", sky.width}}}}
                         : nlohmann::json{{"file", fs::absolute(source).generic_string()}};
+    ProtectedInputs inputs;  // the map (MAP.hdr|MAP.exr): bench_scene.json and every image must miss it
+    if (source != "sky") inputs.add(source);
     Scene scene = benchScene(environment, out);
     auto context = createOffscreenContext();
     ShaderLibrary shaders;
@@ -228,7 +230,7 @@ int benchEnvironment(const Args& args) {
     // The sun moves every frame, so every frame gets a new map: Algorithm 1 runs each time.
     summary << "\n2. per frame with the sun moving (a new map every frame), medians of 8 frames\n";
     {
-        std::ofstream csv(out / "rebuild.csv");
+        std::ostringstream csv;  // rebuild.csv
         csv << "face_size,spp,cdf_ms,samples_ms,shade_ms,upload_and_sky_ms\n";
         for (int faceSize : {128, 256}) {
             for (int spp : {16, 64}) {
@@ -265,6 +267,7 @@ int benchEnvironment(const Args& args) {
                 std::fprintf(stderr, "bench: %s", line);
             }
         }
+        writeFileAtomically((out / "rebuild.csv").string(), csv.str());
     }
 
     // ---- 3. Temporal stability -------------------------------------------------------------
@@ -288,7 +291,7 @@ int benchEnvironment(const Args& args) {
                               {"balanced (fractional N_f, new seed per frame)", "balanced", true},
                               {"uniform-faces (same seed)", "uniform-faces", false},
                               {"havran2005 (filtered lights)", "havran2005", false}};
-        std::ofstream csv(out / "temporal.csv");
+        std::ostringstream csv;  // temporal.csv
         csv << "sun_step_deg,case,frame,flicker_step\n";
         RenderSettings s = settings;
         s.environmentFaceSize = 128;
@@ -338,12 +341,13 @@ int benchEnvironment(const Args& args) {
                 std::fprintf(stderr, "bench: step %.3f: %s", step, line);
             }
         }
+        writeFileAtomically((out / "temporal.csv").string(), csv.str());
     }
 
-    std::ofstream(out / "summary.txt") << summary.str();
+    writeFileAtomically((out / "summary.txt").string(), summary.str());
     std::fputs(summary.str().c_str(), stdout);
 
-    std::ofstream gp(out / "plot.gp");
+    std::ostringstream gp;
     gp << "set terminal pngcairo size 1350,420 noenhanced\nset datafile separator ','\nset logscale xy\n"
           "set grid\nset key bottom left\nset multiplot layout 1,3\n"
           "set xlabel 'samples per pixel'\nset ylabel 'rel. RMSE (luminance, ref. noise removed)'\n"
@@ -355,7 +359,7 @@ int benchEnvironment(const Args& args) {
           "plot for [t in 'balanced balanced-integer balanced-fresh-seed uniform-faces havran2005'] 'temporal.csv' "
           "using (strcol(2) eq t && $1 == 0.01 ? $3 : 1/0):4 with linespoints title t.' (0.01 deg/frame)'\n"
           "unset multiplot\n";
-    gp.close();
+    writeFileAtomically((out / "plot.gp").string(), gp.str());
     runGnuplot(outDir, "error_vs_time.png");
     std::printf("wrote %s/bench.csv, rebuild.csv, temporal.csv and images\n", outDir.c_str());
     return 0;

@@ -16,7 +16,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <numbers>
 #include <sstream>
@@ -28,6 +27,7 @@
 #include "renderer/Renderer.h"
 #include "renderer/context/GlContext.h"
 #include "util/Error.h"
+#include "util/FileOutput.h"
 
 namespace candela {
 
@@ -147,6 +147,7 @@ int benchProst(const Args& args) {
         throw InputError("usage: candela bench --prost FILE.ies|FILE.ldt|DIR... [--out DIR] [--size N] "
                          "[--reference-spp N]");
     std::sort(files.begin(), files.end());
+    ProtectedInputs inputs(files);  // no result file may replace a photometric file
     fs::create_directories(outDir);
 
     std::vector<std::string> techniques;
@@ -157,9 +158,9 @@ int benchProst(const Args& args) {
     ShaderLibrary shaders;
     Renderer renderer(shaders);
 
-    std::ofstream csv(fs::path(outDir) / "results.csv");
+    std::ostringstream csv;  // results.csv, written when complete
     csv << "file,technique,height_m,rotation_deg,nmse,ueb,leb,near_nmse,bumps,gpu_ms\n";
-    std::ofstream perHeight(fs::path(outDir) / "nmse_by_height.csv");
+    std::ostringstream perHeight;  // nmse_by_height.csv
     perHeight << "file,technique,height_m,nmse,near_nmse,bumps,gpu_ms\n";
     std::ostringstream summary;
     char line[512];
@@ -181,6 +182,7 @@ int benchProst(const Args& args) {
         auto light = std::make_unique<PhotometricLuminaire>();
         try {
             light->data = PhotometricLuminaire::load(file);
+            inputs.add(light->sourceFiles());  // its TILT file too
         } catch (const std::exception& e) {
             std::fprintf(stderr, "bench --prost: skipping %s\n", e.what());
             summary << "skipped: " << e.what() << "\n";
@@ -334,8 +336,8 @@ int benchProst(const Args& args) {
             std::fprintf(stderr, "bench --prost: %s height %.1f done\n", file.c_str(), height);
         }
     }
-    perHeight.close();
-    csv.close();
+    writeFileAtomically((fs::path(outDir) / "nmse_by_height.csv").string(), perHeight.str());
+    writeFileAtomically((fs::path(outDir) / "results.csv").string(), csv.str());
 
     summary << "\nover " << configurations << " (file, height) configurations: technique, geometric-mean NMSE, "
                "mean near-field NMSE, mean light bumps per image, mean GPU ms per image, times lowest NMSE\n";
@@ -350,11 +352,11 @@ int benchProst(const Args& args) {
     std::snprintf(line, sizeof line, "hybrid has an NMSE no larger than both scattered and mc-poisson-24 in %d of %d\n",
                   hybridBeatsBoth, configurations);
     summary << line;
-    std::ofstream(fs::path(outDir) / "summary.txt") << summary.str();
+    writeFileAtomically((fs::path(outDir) / "summary.txt").string(), summary.str());
     std::fputs(summary.str().c_str(), stdout);
 
     // NMSE against GPU time per (file, height, technique), and NMSE by height.
-    std::ofstream gp(fs::path(outDir) / "plot.gp");
+    std::ostringstream gp;
     std::string list;
     for (const std::string& t : techniques) list += (list.empty() ? "" : " ") + t;
     gp << "set terminal pngcairo size 1000,420 noenhanced\nset datafile separator ','\nset logscale y\nset format y '%g'\n"
@@ -365,7 +367,7 @@ int benchProst(const Args& args) {
           "unset logscale x\nset xlabel 'height of the light (m)'\nset xrange [0:5.6]\n"
           "plot for [t in '" << list << "'] 'nmse_by_height.csv' using (strcol(2) eq t ? $3 + 0.05 * (strstrt('"
        << list << "', t) % 7) : 1/0):4 with points pointsize 1 notitle\nunset multiplot\n";
-    gp.close();
+    writeFileAtomically((fs::path(outDir) / "plot.gp").string(), gp.str());
     runGnuplot(outDir, "nmse.png");
     std::printf("wrote %s/results.csv, nmse_by_height.csv, summary.txt and image sheets\n", outDir.c_str());
     return 0;

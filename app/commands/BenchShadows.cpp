@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 
 #include "app/commands/BenchUtil.h"
@@ -19,6 +18,7 @@
 #include "renderer/context/GlContext.h"
 #include "scene/SceneIo.h"
 #include "util/Error.h"
+#include "util/FileOutput.h"
 
 namespace candela {
 
@@ -85,6 +85,7 @@ int benchShadows(const Args& args) {
                               "[--maps 1,4,...,0] [--map-sizes 32,64,...] [--count-at R] [--size-at N]");
     }
     Scene scene = loadScene(scenePath);
+    ProtectedInputs inputs(scene.inputFiles());
     bool any = false;
     for (const auto& lum : scene.luminaires) any = any || lum->kind() == "lightfield";
     if (!any) throw InputError(scenePath + ": the shadow bench needs a light-field luminaire in the scene");
@@ -107,7 +108,7 @@ int benchShadows(const Args& args) {
     std::printf("ray-traced: shading %.0f ms; another seed: Delta E %.3f, rel. RMSE %.4f\n", ref.shadeMs,
                 noiseDeltaE, noiseRmse);
 
-    std::ofstream csv(out / "shadows.csv");
+    std::ostringstream csv;  // shadows.csv, rewritten whole after every row (a long sweep shows its progress)
     csv << "sweep,maps_requested,maps,resolution,shadow_ms,shade_ms,mean_delta_e,rel_rmse\n";
     char row[256];
     auto measure = [&](const char* sweep, int count, int size) {
@@ -118,7 +119,8 @@ int benchShadows(const Args& args) {
         double dE = meanDeltaE(shot.display, ref.display), rmse = relRmse(shot.linear, ref.linear);
         std::snprintf(row, sizeof row, "%s,%d,%d,%d,%.3f,%.1f,%.4f,%.5f\n", sweep, count, shot.maps, size,
                       shot.shadowMs, shot.shadeMs, dE, rmse);
-        csv << row << std::flush;
+        csv << row;
+        writeFileAtomically((out / "shadows.csv").string(), csv.str());
         std::printf("%-10s %4d maps of %4d^2: shadow pass %8.1f ms, shading %8.0f ms, Delta E %.3f, rel. RMSE %.4f\n",
                     sweep, shot.maps, size, shot.shadowMs, shot.shadeMs, dE, rmse);
         std::fflush(stdout);
@@ -134,9 +136,9 @@ int benchShadows(const Args& args) {
             << "\nreference: restricted-cdf-raytraced (a shadow ray per sample), shading " << ref.shadeMs
             << " ms\nsampling noise (the reference against seed " << seed + 1 << "): mean Delta E "
             << noiseDeltaE << ", rel. RMSE " << noiseRmse << "\n";
-    std::ofstream(out / "summary.txt") << summary.str();
-    std::ofstream(out / "plot.gp")
-        << "set terminal pngcairo size 1000,420 noenhanced\nset datafile separator ','\nset grid\n"
+    writeFileAtomically((out / "summary.txt").string(), summary.str());
+    std::ostringstream gp;
+    gp << "set terminal pngcairo size 1000,420 noenhanced\nset datafile separator ','\nset grid\n"
            "set multiplot layout 1,2\nset logscale x\nset ylabel 'mean Delta E against ray-traced'\n"
            "set xlabel 'shadow maps per luminaire ("
         << fixedSize << "^2 faces)'\nplot 'shadows.csv' using (strcol(1) eq 'count' ? $3 : 1/0):7 with linespoints "
@@ -145,6 +147,7 @@ int benchShadows(const Args& args) {
         << "plot 'shadows.csv' using (strcol(1) eq 'resolution' ? $4 : 1/0):7 with linespoints pointsize 1.5 "
         << "title 'shadow maps', " << noiseDeltaE << " title 'noise: ray-traced, another seed' dt 2\n"
         << "unset multiplot\n";
+    writeFileAtomically((out / "plot.gp").string(), gp.str());
     runGnuplot(outDir, "plot.png");
     std::printf("wrote %s/shadows.csv, summary.txt\n", outDir.c_str());
     return 0;

@@ -3,11 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <fstream>
+#include <filesystem>
 #include <sstream>
 
+#include "app/commands/Gnuplot.h"
 #include "util/Error.h"
+#include "util/FileOutput.h"
 
 namespace candela {
 
@@ -50,11 +51,12 @@ double atError(const std::vector<BenchRow>& rows, const std::string& technique, 
 }
 
 void writeBenchCsv(const std::string& path, const std::vector<BenchRow>& rows) {
-    std::ofstream csv(path);
+    std::ostringstream csv;
     csv << "technique,spp,gpu_ms,rel_rmse,mean_delta_e,rel_rmse_raw,repeats,rel_rmse_spread\n";
     for (const BenchRow& r : rows)
         csv << r.technique << "," << r.spp << "," << r.shadeMs << "," << r.rmse << "," << r.deltaE << ","
             << r.rawRmse << "," << r.repeats << "," << r.rmseSpread << "\n";
+    writeFileAtomically(path, csv.str());
 }
 
 BenchRow meanRow(const std::vector<BenchRow>& repeats) {
@@ -86,13 +88,19 @@ std::string sweepPlot(const std::string& techniques, int xColumn, int yColumn) {
 }
 
 bool runGnuplot(const std::string& dir, const std::string& output) {
-    std::string cmd = "cd '" + dir + "' && gnuplot plot.gp > '" + output + "' 2>/dev/null";
-    if (std::system("command -v gnuplot >/dev/null 2>&1") == 0 && std::system(cmd.c_str()) == 0) {
-        std::printf("wrote %s/%s\n", dir.c_str(), output.c_str());
-        return true;
+    std::string path = (std::filesystem::path(dir) / output).string();
+    if (!gnuplotAvailable()) {
+        std::printf("gnuplot not found: %s/plot.gp is there to plot the CSV\n", dir.c_str());
+        return false;
     }
-    std::printf("gnuplot not found: %s/plot.gp is there to plot the CSV\n", dir.c_str());
-    return false;
+    try {
+        writeFileAtomically(path, gnuplotOutput("load 'plot.gp'\n", dir, path), "cannot write the plot");
+    } catch (const RuntimeError& e) {
+        std::printf("%s (%s/plot.gp is there to plot the CSV)\n", e.what(), dir.c_str());
+        return false;
+    }
+    std::printf("wrote %s\n", path.c_str());
+    return true;
 }
 
 }  // namespace candela

@@ -39,12 +39,14 @@ BenchRow benchRow(std::string technique, int spp, double shadeMs, const std::vec
 /// Samples (time: GPU ms) a technique needs to reach `error`: log-log interpolation along its
 /// rows; NaN when its sweep never gets there.
 double atError(const std::vector<BenchRow>& rows, const std::string& technique, double error, bool time);
-/// bench.csv: technique,spp,gpu_ms,rel_rmse,mean_delta_e,rel_rmse_raw,repeats,rel_rmse_spread.
+/// bench.csv: technique,spp,gpu_ms,rel_rmse,mean_delta_e,rel_rmse_raw,repeats,rel_rmse_spread
+/// (written through a temporary file and a rename, as every bench output: util/FileOutput.h).
 void writeBenchCsv(const std::string& path, const std::vector<BenchRow>& rows);
 /// A gnuplot `plot for` line drawing bench.csv's column yColumn against xColumn, one line per
 /// technique of the space-separated list.
 std::string sweepPlot(const std::string& techniques, int xColumn, int yColumn);
-/// Runs gnuplot on DIR/plot.gp writing DIR/OUTPUT; false (and a note on stdout) without gnuplot.
+/// Runs gnuplot on DIR/plot.gp writing DIR/OUTPUT; false (and a note on stdout) without gnuplot
+/// or when gnuplot fails. A failure to write DIR/OUTPUT is an InputError.
 bool runGnuplot(const std::string& dir, const std::string& output);
 
 /// `candela bench --prost`: the photometric-light evaluation of Prost (2019), Sec. 6.2.

@@ -8,6 +8,7 @@
 namespace candela {
 
 struct CalcPlane;
+struct GridResult;
 
 using Args = std::vector<std::string>;
 
@@ -33,5 +34,8 @@ int parseInt(const std::string& flag, const std::string& text, int min, int max)
 /// "y=0.8" is a working plane facing up, "-y=2.4" a ceiling facing down. Throws InputError
 /// naming --plane.
 CalcPlane parsePlane(const std::string& text);
+/// `grid --csv`: x,y,z,E_lx,E_stderr_lx (_W_m2 for a radiometric scene) through a temporary file
+/// and a rename (util/FileOutput.h); throws InputError naming the file.
+void writeGridCsv(const std::string& path, const GridResult& result);
 
 }  // namespace candela

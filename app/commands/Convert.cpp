@@ -9,6 +9,7 @@
 #include "luminaires/ProceduralLuminaire.h"
 #include "luminaires/Tm25RayFile.h"
 #include "util/Error.h"
+#include "util/FileOutput.h"
 
 namespace candela {
 
@@ -173,6 +174,9 @@ void printProjection(const ProjectionReport& r, const LightFieldLayout& l, const
 }
 
 int convertRayFile(const ConvertOptions& o) {
+    // Checked before the rays are read; LightFieldData::save checks its images' names too.
+    ProtectedInputs inputs({o.input});
+    checkNotAnInput(o.out, "--out");
     auto t0 = Clock::now();
     Progress reading("reading rays");
     Tm25RayFile file = readTm25(

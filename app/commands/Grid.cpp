@@ -4,12 +4,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 
 #include "app/commands/Commands.h"
 #include "scene/CalculationGrid.h"
 #include "scene/SceneIo.h"
 #include "util/Error.h"
+#include "util/FileOutput.h"
 
 namespace candela {
 
@@ -82,33 +82,35 @@ void printGrid(const GridResult& r, const GridSummary& s) {
     part("total:", r.E);
 }
 
-void writeCsv(const std::string& path, const GridResult& r) {
-    std::ofstream out(path);
-    if (!out) throw InputError(path + ": cannot write the CSV file");
+std::string gridCsv(const GridResult& r) {
     // The unit is in the column names: _lx, or _W_m2 for a radiometric scene.
     std::string unit = r.units.photometric ? "_lx" : "_W_m2";
-    out << "x,y,z,E" << unit << ",E_stderr" << unit;
+    std::string out = "x,y,z,E" + unit + ",E_stderr" + unit;
     if (r.hasIndirect)
-        out << ",E_direct" << unit << ",E_direct_stderr" << unit << ",E_indirect" << unit << ",E_indirect_stderr" << unit;
-    out << "\n";
+        out += ",E_direct" + unit + ",E_direct_stderr" + unit + ",E_indirect" + unit + ",E_indirect_stderr" + unit;
+    out += "\n";
     char line[160];
     for (size_t j = 0; j < r.v.size(); ++j)
         for (size_t i = 0; i < r.u.size(); ++i) {
             glm::dvec3 q = r.spec.plane.point(r.u[i], r.v[j]);
             size_t k = j * r.u.size() + i;
             std::snprintf(line, sizeof line, "%.9g,%.9g,%.9g,%.10g,%.4g", q.x, q.y, q.z, r.E[k], r.stdError[k]);
-            out << line;
+            out += line;
             if (r.hasIndirect) {
                 std::snprintf(line, sizeof line, ",%.10g,%.4g,%.10g,%.4g", r.direct[k], r.directStdError[k],
                               r.indirect[k], r.indirectStdError[k]);
-                out << line;
+                out += line;
             }
-            out << "\n";
+            out += "\n";
         }
-    if (!out) throw InputError(path + ": write failed");
+    return out;
 }
 
 }  // namespace
+
+void writeGridCsv(const std::string& path, const GridResult& r) {
+    writeFileAtomically(path, gridCsv(r), "cannot write the CSV file");
+}
 
 CalcPlane parsePlane(const std::string& text) {
     CalcPlane plane;
@@ -171,12 +173,14 @@ int cmdGrid(const Args& args) {
         throw InputError("--spacing: expected a positive number of metres, got " +
                          std::to_string(spec.spacing));
     Scene scene = loadScene(scenePath);
+    ProtectedInputs inputs(scene.inputFiles());
+    checkNotAnInput(csvPath, "--csv");
     if (!haveExtent) defaultGridExtent(scene, spec);
     GridResult result = computeGrid(scene, spec, [](const std::string& s) { std::fprintf(stderr, "grid: %s\n", s.c_str()); });
     GridSummary summary = summariseGrid(result.E);
     printGrid(result, summary);
     if (!csvPath.empty()) {
-        writeCsv(csvPath, result);
+        writeGridCsv(csvPath, result);
         std::printf("wrote %s\n", csvPath.c_str());
     }
     return 0;

@@ -1,17 +1,16 @@
 // `candela polar`: the polar candela diagram of an IES or EULUMDAT file (C0-C180 and C90-C270,
 // gamma 0 at the bottom) as a PNG drawn by gnuplot, and its intensities as a table.
-#include <unistd.h>
-
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
+#include <sstream>
 
 #include "app/commands/Commands.h"
+#include "app/commands/Gnuplot.h"
 #include "luminaires/Photometry.h"
 #include "ui/PolarDiagram.h"
 #include "util/Error.h"
+#include "util/FileOutput.h"
 
 namespace candela {
 
@@ -19,10 +18,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// gnuplot data: one block per plane, theta (degrees, 0 at the bottom, + to the right) and cd.
-void writePlotData(const fs::path& path, const ui::PolarCurves& c) {
-    std::ofstream out(path);
-    if (!out) throw RuntimeError(path.string() + ": cannot write the plot data");
+/// gnuplot data block $polar: one block per plane, theta (degrees, 0 at the bottom, + to the
+/// right) and cd, the two separated by two blank lines (gnuplot's `index`).
+std::string plotData(const ui::PolarCurves& c) {
+    std::ostringstream out;
+    out << "$polar << EOD\n";
     auto block = [&](const std::vector<double>& left, const std::vector<double>& right) {
         for (size_t k = c.gamma.size(); k-- > 0;) out << -c.gamma[k] << " " << left[k] << "\n";
         for (size_t k = 0; k < c.gamma.size(); ++k) out << c.gamma[k] << " " << right[k] << "\n";
@@ -30,6 +30,8 @@ void writePlotData(const fs::path& path, const ui::PolarCurves& c) {
     };
     block(c.c180, c.c0);
     block(c.c270, c.c90);
+    out << "EOD\n";
+    return out.str();
 }
 
 /// gnuplot ttics list: theta every 30 degrees, each labelled with gamma = |theta|.
@@ -42,25 +44,22 @@ std::string ticsList() {
 }
 
 /// Single quotes are the only character gnuplot's single-quoted strings cannot hold.
-std::string quoted(const std::string& s) {
+std::string singleQuoted(const std::string& s) {
     std::string out = "'";
     for (char ch : s) out += ch == '\'' ? std::string("''") : std::string(1, ch);
     return out + "'";
 }
 
 void plotPng(const PhotometricData& data, const ui::PolarCurves& curves, const std::string& out) {
-    if (std::system("command -v gnuplot >/dev/null 2>&1") != 0)
-        throw RuntimeError("gnuplot not found (install gnuplot-nox: scripts/setup.sh)");
-    fs::path dir = fs::temp_directory_path() / ("candela-polar-" + std::to_string(::getpid()));
-    fs::create_directories(dir);
+    if (!gnuplotAvailable()) throw RuntimeError("gnuplot not found (install gnuplot-nox: scripts/setup.sh)");
     std::vector<double> rings = ui::polarRings(curves.peak);
-    writePlotData(dir / "polar.dat", curves);
     std::string title = (data.name.empty() ? fs::path(data.path).filename().string() : data.name) +
                         ": luminous intensity [cd]";
-    std::ofstream gp(dir / "polar.gp");
-    gp << "set terminal pngcairo size 720,720 noenhanced\n"
-       << "set output " << quoted(fs::absolute(out).string()) << "\n"
-       << "set title " << quoted(title)
+    // The image comes back on gnuplot's standard output, then is written like every output.
+    std::ostringstream gp;
+    gp << plotData(curves)
+       << "set terminal pngcairo size 720,720 noenhanced\n"
+       << "set title " << singleQuoted(title)
        << " . \"\\n\" . 'left half C180 / C270, right half C0 / C90, "
           "gamma from the aim'\n"
        << "set polar\nset angles degrees\n"
@@ -72,19 +71,10 @@ void plotPng(const PhotometricData& data, const ui::PolarCurves& curves, const s
        << "set ttics (" << ticsList() << ") font ',9'  # labelled in gamma on both halves\n"
        << "set grid polar 30 lt 1 lc rgb '#c8c8c8' lw 0.5\n"
        << "set key outside bottom center horizontal\n"
-       << "plot 'polar.dat' index 0 using 1:2 with lines lw 2.5 lc rgb '#e07b00' title 'C0-C180', "
-          "'' index 1 using 1:2 with lines lw 2.5 lc rgb '#2c7fd0' dt 2 title 'C90-C270'\n";
-    gp.close();
-    std::string cmd = "cd " + quoted(dir.string()) + " && gnuplot polar.gp 2>gnuplot.log";
-    int rc = std::system(cmd.c_str());
-    std::string log;
-    {
-        std::ifstream in(dir / "gnuplot.log");
-        std::getline(in, log, '\0');
-    }
-    fs::remove_all(dir);
-    if (rc != 0 || !fs::exists(out) || fs::file_size(out) == 0)
-        throw RuntimeError(out + ": gnuplot failed: " + log);
+       << "plot $polar index 0 using 1:2 with lines lw 2.5 lc rgb '#e07b00' title 'C0-C180', "
+          "$polar index 1 using 1:2 with lines lw 2.5 lc rgb '#2c7fd0' dt 2 title 'C90-C270'\n";
+    std::string png = gnuplotOutput(gp.str(), {}, out);
+    writeFileAtomically(out, png, "cannot write the plot");
 }
 
 }  // namespace
@@ -111,6 +101,8 @@ int cmdPolar(const Args& args) {
         throw InputError(out + ": unsupported output extension \"" +
                          fs::path(out).extension().string() + "\" (use .png)");
     PhotometricData data = loadPhotometry(path);
+    ProtectedInputs inputs({data.path, data.tiltPath});
+    checkNotAnInput(out, "--out");
 
     // Table at the file's own vertical angles (type C) or every `step` degrees.
     std::vector<double> gamma;

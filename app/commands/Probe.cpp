@@ -17,6 +17,7 @@
 #include "scene/SceneIo.h"
 #include "ui/ViewportMath.h"
 #include "util/Error.h"
+#include "util/FileOutput.h"
 
 namespace candela {
 
@@ -177,6 +178,9 @@ int cmdProbe(const Args& args) {
     Scene scene = loadScene(scenePath);
     std::vector<ProbePoint> points =
         pixel.empty() ? readPoints(pointsPath) : std::vector<ProbePoint>{pixelPoint(scene, pixel, width, height)};
+    ProtectedInputs inputs(scene.inputFiles());
+    inputs.add(pointsPath);
+    checkNotAnInput(chartPath, "--show-samples");
     // The environment's technique: --env-technique, else --technique when it names one of the
     // environment's, else the exact reference. --technique applies to the luminaires as before,
     // except that a name only the environment has leaves them on their own techniques.

@@ -3,7 +3,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 
 #include "app/commands/Commands.h"
 #include "renderer/Comparison.h"
@@ -15,6 +14,7 @@
 #include "scene/SceneIo.h"
 #include "ui/ComparisonExport.h"
 #include "util/Error.h"
+#include "util/FileOutput.h"
 
 namespace candela {
 
@@ -97,6 +97,7 @@ PaneSpec parsePane(const std::string& text, int spp) {
 int renderComparison(const std::string& scenePath, const RenderSettings& settings, const std::vector<PaneSpec>& panes,
                      int referenceSpp, const std::string& dir, bool errorMaps) {
     Scene scene = loadScene(scenePath);
+    ProtectedInputs inputs(scene.inputFiles());  // the sheet's files are new names, checked anyway
     auto context = createOffscreenContext();
     ShaderLibrary shaders;
     Comparison comparison(shaders);
@@ -213,6 +214,8 @@ int cmdRender(const Args& args) {
         throw InputError(out + ": unsupported output extension \"" + ext + "\" (use .png or .exr)");
 
     Scene scene = loadScene(scenePath);
+    ProtectedInputs inputs(scene.inputFiles());
+    checkNotAnInput(out, "--out");
     auto context = createOffscreenContext();
     ShaderLibrary shaders;
     Renderer renderer(shaders);
