@@ -78,7 +78,7 @@ void Renderer::setSettings(const RenderSettings& s) {
                    s.environmentTechnique != o.environmentTechnique ||
                    s.environmentFaceSize != o.environmentFaceSize || !(s.shadowMaps == o.shadowMaps);
     bool display = s.toneMap != o.toneMap || s.exposure != o.exposure ||
-                   s.fixedAverage != o.fixedAverage || s.legend != o.legend;
+                   s.fixedAverage != o.fixedAverage || s.legend != o.legend || s.parts != o.parts;
     mSettings = s;
     mSettings.samplesPerFrame = std::max(1, s.samplesPerFrame);
     if (restart) mPending |= kChangeSettings;
@@ -483,13 +483,15 @@ void Renderer::renderFrame() {
     }
     if (mNeedDisplay) {
         std::vector<ResolvePass::Term> terms;
-        for (int st : planSteps()) {
+        bool direct = mSettings.parts != LightParts::Interreflected;
+        for (int st : direct ? planSteps() : std::vector<int>{}) {
             // A step's first pass shows as it is shaded; later ones when complete.
             Accumulation& a = accumulationOf(st);
             terms.push_back(a.frames == 0 ? ResolvePass::Term{&a.working, 1.f}
                                           : ResolvePass::Term{&a.texture, 1.f / float(a.samples)});
         }
-        if (mIndirect->hasLight()) terms.push_back(ResolvePass::Term{&mIndirect->image(), 1.f});
+        if (mIndirect->hasLight() && mSettings.parts != LightParts::Direct)
+            terms.push_back(ResolvePass::Term{&mIndirect->image(), 1.f});
         glBindVertexArray(mEmptyVao.id());
         timed(mStats, "resolve",
               [&] { mResolve->execute(mShaders, terms, mGBuffer->texture(gpu::kGBufferEmission)); });

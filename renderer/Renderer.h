@@ -31,6 +31,10 @@ class IndirectPass;
 struct Bvh;
 struct RadiosityMesh;
 
+/// Which light the image shows: all of it, the direct light alone, or the interreflected light
+/// alone (what a designer's false colour compares).
+enum class LightParts { Total = 0, Direct = 1, Interreflected = 2 };
+
 /// FalseColour maps the values (lux in illuminance mode) through `RenderSettings::legend`.
 enum class ToneMapOperator { Exponential = 0, Reinhard = 1, FalseColour = 2 };
 
@@ -50,6 +54,7 @@ struct RenderSettings {
     /// the surface, W/m2 (lux for photometric luminaires); luminaires show no value.
     Quantity quantity = Quantity::Radiance;
     FalseColourLegend legend;       ///< Used by ToneMapOperator::FalseColour.
+    LightParts parts = LightParts::Total;  ///< Display only: changing it re-renders nothing.
     uint32_t seed = 0;              ///< Seeds the random numbers (independent renders differ).
     /// The environment's technique; empty: techniqueOverride if it names one, else "balanced".
     std::string environmentTechnique;

@@ -71,6 +71,9 @@ namespace {
 /// rays per point (over the hardware's threads), added to E with its standard error.
 void addIndirect(const Scene& scene, const GridSpec& spec, GridResult& r,
                  const std::function<void(const std::string&)>& status) {
+    if (scene.meshes.empty())
+        throw InputError((scene.path.empty() ? std::string("the scene") : scene.path) +
+                         ": geometry: no surfaces, so no light is interreflected (--indirect needs a room)");
     InterreflectionOptions o;
     o.mesh.targetPatches = spec.patches;
     o.technique = spec.technique;
@@ -79,6 +82,7 @@ void addIndirect(const Scene& scene, const GridSpec& spec, GridResult& r,
         if (status) status(s);
     };
     say("interreflection: " + std::to_string(ir.mesh().patches.size()) + " patches, form factors");
+    if (std::string warning = ir.orientationWarning(scene); !warning.empty()) say("warning: " + warning);
     Progress progress;
     if (!ir.compute(progress)) throw InputError("interreflection: cancelled");
     say("interreflection: solved in " + std::to_string(ir.lastIterations()) + " iterations; final gather at " +
@@ -93,7 +97,12 @@ void addIndirect(const Scene& scene, const GridSpec& spec, GridResult& r,
             EstimateOptions g;
             g.spp = std::max(1, spec.spp);
             g.seed = 7777ull * index + 13;
-            Estimate e = ir.gather(spec.plane.point(r.u[i], r.v[j]), spec.plane.normal(), g);
+            glm::dvec3 p = spec.plane.point(r.u[i], r.v[j]), n = spec.plane.normal();
+            Estimate e;
+            if (spec.indirectMethod == GridSpec::Indirect::Patches)
+                e.irradiance = ir.fromPatches(p, n);
+            else
+                e = ir.gather(p, n, g);
             r.indirect[index] = luminanceOf(e.irradiance);
             r.indirectStdError[index] = luminanceOf(e.stdError);
         }

@@ -44,6 +44,10 @@ struct GridSpec {
     /// `spp` rays per point); turns visibility on, since reflected light needs the geometry.
     bool indirect = false;
     int patches = 4000;  ///< About this many radiosity patches for the interreflection.
+    /// How each point gets its interreflected light: the final gather (a reference, `spp`
+    /// rays, with a standard error) or the patches' solution alone (deterministic, about ten
+    /// times faster: the editor's grid).
+    enum class Indirect { Gather, Patches } indirectMethod = Indirect::Gather;
 };
 
 /// Point coordinates along one axis: floor(len / spacing) points (at least 1) spacing apart,

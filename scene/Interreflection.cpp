@@ -213,6 +213,32 @@ glm::dvec3 Interreflection::directAt(const glm::dvec3& x, const glm::dvec3& n, c
     return sum;
 }
 
+std::string Interreflection::orientationWarning(const Scene& scene) const {
+    const int kRays = 1024;
+    for (const auto& l : scene.luminaires) {
+        glm::dvec3 x, y, z;
+        l->pose.frame(x, y, z);
+        int hits = 0, backs = 0;
+        for (int i = 0; i < kRays; ++i) {
+            double cz = 1.0 - (2.0 * i + 1.0) / kRays, r = std::sqrt(std::max(0.0, 1.0 - cz * cz));
+            double phi = i * 2.39996322972865332;  // a Fibonacci sphere
+            glm::dvec3 d(r * std::cos(phi), cz, r * std::sin(phi));
+            EmbreeVisibility::Hit hit;
+            if (!mVisibility->intersect(l->pose.position + 1e-3 * z, d, hit)) continue;
+            glm::dvec3 w;
+            uint32_t p = mMesh.patchAt(hit.mesh, hit.triangle, hit.u, hit.v, w);
+            if (p == UINT32_MAX) continue;
+            ++hits;
+            backs += glm::dot(mMesh.patches[p].normal, d) > 0.0;
+        }
+        if (hits > 0 && backs > hits / 4)
+            return "luminaire \"" + l->name + "\" lights the back of surfaces (" + std::to_string(100 * backs / hits) +
+                   " % of the surfaces around it), which reflect nothing: surfaces reflect on their normal's side "
+                   "(a room: a box with \"inside\": true, planes with normals into the room)";
+    }
+    return {};
+}
+
 glm::dvec3 Interreflection::fromPatches(const glm::dvec3& p, const glm::dvec3& normal) const {
     double len = glm::length(normal);
     if (!(len > 0.0)) return glm::dvec3(0.0);

@@ -84,6 +84,9 @@ public:
     int lastIterations() const { return mLastIterations; }
     /// False when no surface reflects (every albedo 0) or no patch sees another: E_ind is 0.
     bool hasInterreflection() const;
+    /// Empty, or a warning naming a luminaire most of whose light reaches surfaces from behind
+    /// (surfaces reflect on their normal's side only, so such a room reflects nothing back).
+    std::string orientationWarning(const Scene& scene) const;
 
     /// The final gather at p for the unit normal n with options.spp rays (seeded by
     /// options.seed; options.visibility is ignored: Embree is used). `directSpp` samples for

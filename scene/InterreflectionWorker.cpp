@@ -1,5 +1,6 @@
 #include "scene/InterreflectionWorker.h"
 
+#include <algorithm>
 #include <chrono>
 
 #include "scene/Scene.h"
@@ -8,6 +9,8 @@
 namespace candela {
 
 InterreflectionWorker::InterreflectionWorker(InterreflectionOptions options) : mOptions(std::move(options)) {
+    // One core stays with the render thread (and llvmpipe), so the editor keeps its frame rate.
+    if (mOptions.threads <= 0) mOptions.threads = std::max(1, workerThreads(0) - 1);
     mThread = std::thread([this] { run(); });
 }
 

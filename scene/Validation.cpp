@@ -298,6 +298,73 @@ ValidationResult obstruction() {
 
 }  // namespace
 
+ValidationResult validateClosedRoom(const Scene& scene, int patches) {
+    auto start = std::chrono::steady_clock::now();
+    const std::string file = scene.path.empty() ? "the scene" : scene.path;
+    if (scene.meshes.empty()) throw InputError(file + ": geometry: no surfaces (a closed room needs its walls)");
+    if (scene.luminaires.empty()) throw InputError(file + ": luminaires: none, so there is no light to balance");
+    if (scene.environmentMap)
+        throw InputError(file + ": environment: light from outside the room; a closed room has none (set it to null)");
+    // Closed: every ray from each luminaire meets a surface from the side that faces it.
+    EmbreeVisibility visibility(scene);
+    RadiosityMesh mesh = RadiosityMesh::build(scene, RadiositySettings{patches, 0.0});
+    const int kRays = 4096;
+    for (const auto& l : scene.luminaires) {
+        glm::dvec3 x, y, z;
+        l->pose.frame(x, y, z);
+        glm::dvec3 origin = l->pose.position + 1e-3 * z;  // just in front of the opening
+        int escaped = 0, backs = 0;
+        glm::dvec3 firstEscape(0.0), firstBack(0.0);
+        for (int i = 0; i < kRays; ++i) {
+            // A Fibonacci sphere: directions spread evenly over all of it.
+            double cz = 1.0 - (2.0 * i + 1.0) / kRays, r = std::sqrt(std::max(0.0, 1.0 - cz * cz));
+            double phi = i * 2.39996322972865332;
+            glm::dvec3 d(r * std::cos(phi), cz, r * std::sin(phi));
+            EmbreeVisibility::Hit hit;
+            if (!visibility.intersect(origin, d, hit)) {
+                if (escaped++ == 0) firstEscape = d;
+                continue;
+            }
+            glm::dvec3 w;
+            uint32_t p = mesh.patchAt(hit.mesh, hit.triangle, hit.u, hit.v, w);
+            if (p != UINT32_MAX && glm::dot(mesh.patches[p].normal, d) > 0.0 && backs++ == 0) firstBack = d;
+        }
+        char where[96];
+        if (escaped) {
+            std::snprintf(where, sizeof where, "(%.2f, %.2f, %.2f)", firstEscape.x, firstEscape.y, firstEscape.z);
+            throw InputError(file + ": geometry: not a closed room: " + std::to_string(escaped) + " of " +
+                             std::to_string(kRays) + " rays from luminaire \"" + l->name + "\" escape (the first toward " +
+                             where + ")");
+        }
+        if (backs) {
+            std::snprintf(where, sizeof where, "(%.2f, %.2f, %.2f)", firstBack.x, firstBack.y, firstBack.z);
+            throw InputError(file + ": geometry: " + std::to_string(backs) + " of " + std::to_string(kRays) +
+                             " rays from luminaire \"" + l->name + "\" reach the back of a surface (the first toward " + where +
+                             "): a room's surfaces must face into it (a box with \"inside\": true, planes' normals inwards)");
+        }
+    }
+    InterreflectionOptions o;
+    o.mesh.targetPatches = patches;
+    Interreflection ir(scene, o);
+    ir.compute();
+    double absorbed = 0.0, flux = 0.0;
+    for (size_t i = 0; i < ir.mesh().patches.size(); ++i) {
+        const RadiosityMesh::Patch& p = ir.mesh().patches[i];
+        absorbed += p.area * luminance((glm::dvec3(1.0) - p.albedo) * (ir.direct()[i] + ir.indirect()[i]));
+    }
+    for (const auto& l : scene.luminaires) flux += scene.unitScale(*l) * luminance(l->power());
+    ValidationResult r;
+    r.name = "closed-room";
+    r.unit = scene.units().photometric ? "lm" : "W";
+    r.description = file + ": light absorbed by every surface, sum A (1 - rho) E, = the luminaires' flux";
+    r.detail = std::to_string(ir.mesh().patches.size()) + " patches, " + std::to_string(ir.lastIterations()) +
+               " iterations; closed: every one of " + std::to_string(kRays) + " rays from each luminaire meets a surface "
+               "facing it";
+    r = finish(r, flux, absorbed, 0.01);
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return r;
+}
+
 double parallelRectangleFactor(double x0, double x1, double y0, double y1, double h) {
     // Howell C-11, element parallel to an a x b rectangle with a corner above it: with X = a/h,
     // Y = b/h, F = 1/(2 pi) [X/sqrt(1+X^2) atan(Y/sqrt(1+X^2)) + Y/sqrt(1+Y^2) atan(X/sqrt(1+Y^2))],

@@ -20,6 +20,8 @@
 
 namespace candela {
 
+struct Scene;
+
 struct ValidationResult {
     std::string name;         ///< Case id, e.g. "cube-point-rho0.5".
     std::string description;  ///< One line: what is compared.
@@ -37,6 +39,15 @@ struct ValidationResult {
 std::vector<std::string> validationCases();
 /// Runs one case; throws InputError for an unknown name (naming the known ones).
 ValidationResult runValidationCase(const std::string& name);
+
+/// The energy balance of a closed room the user built (`candela validate --closed SCENE`): all the
+/// light its luminaires emit lands on its surfaces and is absorbed there, so the light each
+/// surface absorbs, sum A (1 - rho) (E_direct + E_interreflected), adds up to the luminaires'
+/// flux, whatever the reflectances (the integrating cube's law for any closed room). Throws
+/// InputError naming the file when the scene has no surfaces, no luminaires, an environment
+/// (light from outside), or is not closed: rays from a luminaire escape, or reach the back of a
+/// surface (one that does not face into the room).
+ValidationResult validateClosedRoom(const Scene& scene, int patches = 2500);
 
 /// Howell's configuration factor from a planar element to a parallel rectangle [x0, x1] x
 /// [y0, y1] at height h (corner superposition of catalogue C-11; signed corners).

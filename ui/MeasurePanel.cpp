@@ -176,7 +176,10 @@ void computeNow(const EditorState& state, MeasureState& measure) {
     try {
         if (!measure.extentSet) defaultGridExtent(state.scene, measure.grid);
         measure.extentSet = true;
-        measure.result = computeGrid(state.scene, measure.grid);
+        GridSpec spec = measure.grid;
+        spec.indirectMethod = GridSpec::Indirect::Patches;  // interactive: the fast deterministic way
+        spec.patches = 2500;
+        measure.result = computeGrid(state.scene, spec);
         measure.summary = summariseGrid(measure.result->E);
         measure.error.clear();
     } catch (const std::exception& e) {
@@ -226,6 +229,11 @@ void gridControls(EditorState& state, MeasureState& measure) {
     itemTooltip("For stochastic techniques; exact ones ignore it");
     ImGui::Checkbox("Shadows", &g.visibility);
     itemTooltip("Shadow rays through the scene (occluders block light)");
+    ImGui::Checkbox("Interreflected light##grid", &g.indirect);
+    recordRect(state, "measure.indirect");
+    itemTooltip("Adds the light the surfaces reflect onto each other (radiosity over patches, then each point's "
+                "light from the patches; a few seconds). Turns shadows on. candela grid --indirect gives the "
+                "reference (a final gather with a standard error).");
     if (ImGui::Button("Compute grid", ImVec2(-1.f, 0.f))) computeNow(state, measure);
     if (!measure.error.empty()) errorText(measure.error);
     if (!measure.result) return;
@@ -247,6 +255,25 @@ void gridControls(EditorState& state, MeasureState& measure) {
         row("Emax", format.c_str(), s.eMax);
         row("U0 = Emin/Eavg", "%.3f", s.u0);
         row("Emin/Emax", "%.3f", s.minOverMax);
+        ImGui::EndTable();
+    }
+    if (r.hasIndirect && ImGui::BeginTable("parts", 3, ImGuiTableFlags_RowBg)) {
+        // Em and U0 of the direct, interreflected and total light, as design tools report them.
+        ImGui::TableSetupColumn("Light");
+        ImGui::TableSetupColumn((std::string("Em [") + r.units.irradiance() + "]").c_str());
+        ImGui::TableSetupColumn("U0");
+        ImGui::TableHeadersRow();
+        for (auto [name, values] : {std::pair<const char*, const std::vector<double>*>{"direct", &r.direct},
+                                    {"interreflected", &r.indirect}, {"total", &r.E}}) {
+            GridSummary p = summariseGrid(*values);
+            ImGui::TableNextRow();
+            ImGui::TableNextColumn();
+            ImGui::TextUnformatted(name);
+            ImGui::TableNextColumn();
+            ImGui::Text("%.4g", p.eAvg);
+            ImGui::TableNextColumn();
+            ImGui::Text("%.3f", p.u0);
+        }
         ImGui::EndTable();
     }
     if (r.units.converted) ImGui::TextDisabled("(%s)", r.units.note().c_str());
@@ -313,6 +340,18 @@ bool measurePanel(EditorState& state, const Renderer& renderer, const PanelRect&
     if (ImGui::Checkbox("False colour", &falseColour)) {
         setFalseColour(state, falseColour);
         changed = true;
+    }
+    if (state.interreflection.present) {
+        // The image may show each part alone (false colour of the interreflected light, say).
+        int parts = int(s.parts);
+        ImGui::TextUnformatted("Light:");
+        ImGui::SameLine();
+        changed = ImGui::RadioButton("total", &parts, 0) || changed;
+        ImGui::SameLine();
+        changed = ImGui::RadioButton("direct", &parts, 1) || changed;
+        ImGui::SameLine();
+        changed = ImGui::RadioButton("interreflected", &parts, 2) || changed;
+        s.parts = LightParts(parts);
     }
     if (falseColour) {
         if (measure.levelsText.empty() && !s.legend.levels.empty())

@@ -84,6 +84,7 @@ int cmdBench(const Args& args) {
     if (std::find(args.begin(), args.end(), "--prost") != args.end()) return benchProst(args);
     if (std::find(args.begin(), args.end(), "--environment") != args.end()) return benchEnvironment(args);
     if (std::find(args.begin(), args.end(), "--shadows") != args.end()) return benchShadows(args);
+    if (std::find(args.begin(), args.end(), "--indirect") != args.end()) return benchIndirect(args);
     if (std::find(args.begin(), args.end(), "--drag") != args.end()) return benchDrag(args);
     std::string lfPath, outDir = "bench-lightfield";
     std::vector<int> sppList = {4, 8, 16, 32, 64, 128, 256, 512};

@@ -58,5 +58,8 @@ int benchEnvironment(const Args& args);
 int benchDrag(const Args& args);
 /// `candela bench --shadows`: shadow maps against ray-traced visibility (app/commands/BenchShadows.cpp).
 int benchShadows(const Args& args);
+/// `candela bench --indirect`: interreflected light from scratch and after a move, against time
+/// (app/commands/BenchIndirect.cpp).
+int benchIndirect(const Args& args);
 
 }  // namespace candela

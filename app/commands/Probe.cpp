@@ -239,6 +239,8 @@ int cmdProbe(const Args& args) {
             io.environmentTechnique = envTechnique;
             interreflection = std::make_unique<Interreflection>(scene, io);
             std::fprintf(stderr, "probe: interreflection over %zu patches\n", interreflection->mesh().patches.size());
+            if (std::string w = interreflection->orientationWarning(scene); !w.empty())
+                std::fprintf(stderr, "probe: warning: %s\n", w.c_str());
             interreflection->compute();
         }
         std::unique_ptr<EnvironmentLighting> lighting;

@@ -162,6 +162,13 @@ int cmdRender(const Args& args) {
             if (v != "on" && v != "off") throw InputError("--indirect: expected on or off, got \"" + v + "\"");
             indirect = v == "on";
         } else if (a == "--patches") patches = parseInt(a, flagValue(args, i), 16, 50000);
+        else if (a == "--light") {
+            std::string v = flagValue(args, i);
+            if (v == "total") settings.parts = LightParts::Total;
+            else if (v == "direct") settings.parts = LightParts::Direct;
+            else if (v == "interreflected") settings.parts = LightParts::Interreflected;
+            else throw InputError("--light: expected total, direct or interreflected, got \"" + v + "\"");
+        }
         else if (a == "--exposure") settings.exposure = parseNumberList(a, flagValue(args, i)).at(0);
         else if (a == "--false-colour") falseColour = true;
         else if (a == "--log") settings.legend.logScale = true;
@@ -200,7 +207,8 @@ int cmdRender(const Args& args) {
     if (scenePath.empty() || out.empty())
         throw InputError("usage: candela render scene.json --out img.png|img.exr [--technique T] "
                          "[--env-technique T] [--env-face-size N] [--spp N] [--size WxH] [--shadow-maps N] "
-                         "[--shadow-map-size R] [--stats]\n"
+                         "[--shadow-map-size R] [--indirect on|off] [--patches N] [--light total|direct|interreflected] "
+                         "[--stats]\n"
                          "       candela render scene.json --sheet DIR --pane TECHNIQUES[:SPP] [--pane ...] "
                          "[--reference-spp N] [--error-maps]");
     if (falseColour) {
@@ -234,6 +242,7 @@ int cmdRender(const Args& args) {
         io.technique = settings.techniqueOverride.find(',') == std::string::npos ? settings.techniqueOverride : "";
         io.directSpp = InterreflectionWorker::kFineSpp;
         Interreflection ir(scene, io);
+        if (std::string w = ir.orientationWarning(scene); !w.empty()) std::fprintf(stderr, "render: warning: %s\n", w.c_str());
         if (ir.mesh().reflects() && ir.compute() && ir.hasInterreflection()) {
             std::vector<glm::vec3> v;
             for (const glm::dvec3& e : ir.indirectAtVertices()) v.push_back(glm::vec3(e));

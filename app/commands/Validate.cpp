@@ -2,8 +2,10 @@
 // measured, deviation, tolerance, result; exit code 1 when a case fails.
 #include <cmath>
 #include <cstdio>
+#include <memory>
 
 #include "app/commands/Commands.h"
+#include "scene/SceneIo.h"
 #include "scene/Validation.h"
 #include "util/Error.h"
 
@@ -11,23 +13,32 @@ namespace candela {
 
 int cmdValidate(const Args& args) {
     std::vector<std::string> names;
+    std::string closed;
     bool list = false;
     for (size_t i = 0; i < args.size(); ++i) {
         if (args[i] == "--case") names.push_back(flagValue(args, i));
+        else if (args[i] == "--closed") closed = flagValue(args, i);
         else if (args[i] == "--list") list = true;
-        else throw InputError("validate: unknown option " + args[i] + " (usage: candela validate [--case NAME]... [--list])");
+        else throw InputError("validate: unknown option " + args[i] +
+                              " (usage: candela validate [--case NAME]... [--list] | --closed SCENE.json)");
     }
     if (list) {
         for (const std::string& n : validationCases()) std::printf("%s\n", n.c_str());
         return 0;
     }
     if (names.empty()) names = validationCases();
-    std::printf("%-27s %12s %12s %10s %9s  %-6s %7s\n", "case", "expected", "measured", "deviation", "tolerance",
-                "result", "time");
     std::vector<ValidationResult> results;
     int failed = 0;
+    std::unique_ptr<Scene> room;
+    if (!closed.empty()) {
+        room = std::make_unique<Scene>(loadScene(closed));
+        names = {"closed-room"};
+    }
     for (const std::string& name : names) {
-        ValidationResult r = runValidationCase(name);
+        ValidationResult r = room ? validateClosedRoom(*room) : runValidationCase(name);
+        if (results.empty())
+            std::printf("%-27s %12s %12s %10s %9s  %-6s %7s\n", "case", "expected", "measured", "deviation", "tolerance",
+                        "result", "time");
         failed += !r.pass;
         std::printf("%-27s %9.5g %s %9.5g %s %+9.3f%% %8.2f%%  %-6s %6.1fs\n", r.name.c_str(), r.expected, r.unit.c_str(),
                     r.measured, r.unit.c_str(), 100.0 * r.deviation, 100.0 * r.tolerance, r.pass ? "pass" : "FAIL",
