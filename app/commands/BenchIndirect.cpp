@@ -218,7 +218,10 @@ int benchIndirect(const Args& args) {
         std::snprintf(text, sizeof text, t < 0 ? "not reached" : "%.2f s", t);
         return std::string(text);
     };
-    summary << "scene: " << scenePath << "; " << ir.mesh().patches.size() << " patches (about " << patches
+    std::string shown = scenePath;
+    if (shown.rfind(CANDELA_SOURCE_DIR "/", 0) == 0) shown = shown.substr(std::string(CANDELA_SOURCE_DIR "/").size());
+    summary << "machine: " << machineDescription() << "\n"
+            << "scene: " << shown << "; " << ir.mesh().patches.size() << " patches (about " << patches
             << " asked), " << scene.luminaires.size() << " luminaires, " << workerThreads(0) << " threads\n"
             << "work plane: " << points.size() << " points at " << height << " m, " << spacing
             << " m apart; interreflected illuminance from the patches (the editor's grid)\n"

@@ -1,3 +1,4 @@
+#include <fstream>
 #include "app/commands/BenchUtil.h"
 
 #include <algorithm>
@@ -11,6 +12,19 @@
 #include "util/FileOutput.h"
 
 namespace candela {
+
+std::string machineDescription() {
+    std::ifstream in("/proc/cpuinfo");
+    std::string line, model = "unknown CPU";
+    int cores = 0;
+    while (std::getline(in, line)) {
+        if (line.rfind("model name", 0) == 0 && line.find(':') != std::string::npos) {
+            model = line.substr(line.find(':') + 2);
+            ++cores;
+        }
+    }
+    return model + ", " + std::to_string(std::max(cores, 1)) + " cores";
+}
 
 std::vector<int> parseList(const std::string& text) {
     std::vector<int> out;

@@ -13,6 +13,8 @@ namespace candela {
 
 /// "4,8,16" as integers (each checked as a sample count); throws InputError.
 std::vector<int> parseList(const std::string& text);
+/// "Intel(R) Xeon(R) ... , 2 cores": the CPU the bench ran on (from /proc/cpuinfo), for its summary.
+std::string machineDescription();
 /// "2.3x", or "n/a" for a ratio that could not be measured (NaN or infinite).
 std::string formatRatio(double ratio);
 /// One image of a bench's sweep, compared with the reference.

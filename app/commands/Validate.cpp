@@ -41,7 +41,7 @@ int cmdValidate(const Args& args) {
                         "result", "time");
         failed += !r.pass;
         std::printf("%-27s %9.5g %s %9.5g %s %+9.3f%% %8.2f%%  %-6s %6.1fs\n", r.name.c_str(), r.expected, r.unit.c_str(),
-                    r.measured, r.unit.c_str(), 100.0 * r.deviation, 100.0 * r.tolerance, r.pass ? "pass" : "FAIL",
+                    r.measured, r.unit.c_str(), std::abs(r.deviation) < 5e-6 ? 0.0 : 100.0 * r.deviation, 100.0 * r.tolerance, r.pass ? "pass" : "FAIL",
                     r.seconds);
         std::fflush(stdout);
         results.push_back(r);
