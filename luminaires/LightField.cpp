@@ -432,8 +432,53 @@ double satAt(const LightFieldData& lf, const LightFieldTables& t, glm::dvec2 s) 
 
 }  // namespace
 
+namespace {
+
+/// Pixels [i0, i1) x [j0, j1) that a box on S covers (clamped to the image).
+struct PixelSpan {
+    int i0, i1, j0, j1;
+    int columns() const { return i1 - i0; }
+    int rows() const { return j1 - j0; }
+};
+PixelSpan spanOf(const LightFieldData& lf, glm::dvec2 a, glm::dvec2 b) {
+    glm::dvec2 px = lf.pixelSize();
+    PixelSpan s;
+    s.i0 = std::clamp(int(std::floor((a.x - lf.imageMin.x) / px.x)), 0, lf.width - 1);
+    s.i1 = std::clamp(int(std::ceil((b.x - lf.imageMin.x) / px.x)), s.i0 + 1, lf.width);
+    s.j0 = std::clamp(int(std::floor((a.y - lf.imageMin.y) / px.y)), 0, lf.height - 1);
+    s.j1 = std::clamp(int(std::ceil((b.y - lf.imageMin.y) / px.y)), s.j0 + 1, lf.height);
+    return s;
+}
+
+/// Boxes of at most this many pixels per side are integrated and sampled pixel by pixel: the
+/// summed-area table's differences of large partial sums lose a small box's energy to rounding
+/// (a receiver 1e-9 m beyond S has boxes 1e-8 of a pixel wide: the table gave 0).
+constexpr int kDirectPixels = 4;
+
+/// Overlap of [lo, hi] with pixel k of size `size` starting at `origin`.
+double overlap(double lo, double hi, double origin, double size, int k) {
+    return std::max(0.0, std::min(hi, origin + (k + 1) * size) - std::max(lo, origin + k * size));
+}
+
+}  // namespace
+
 double LightFieldData::boxIntegral(int m, glm::dvec2 a, glm::dvec2 b) const {
     if (!(b.x > a.x && b.y > a.y)) return 0.0;
+    a = glm::max(a, imageMin);
+    b = glm::min(b, imageMax);
+    if (!(b.x > a.x && b.y > a.y)) return 0.0;
+    PixelSpan span = spanOf(*this, a, b);
+    if (span.columns() <= kDirectPixels && span.rows() <= kDirectPixels) {
+        glm::dvec2 px = pixelSize();
+        double sum = 0.0;
+        for (int j = span.j0; j < span.j1; ++j) {
+            double h = overlap(a.y, b.y, imageMin.y, px.y, j);
+            for (int i = span.i0; i < span.i1; ++i)
+                sum += double(images[size_t(m)].luminance[size_t(j) * size_t(width) + size_t(i)]) * h *
+                       overlap(a.x, b.x, imageMin.x, px.x, i);
+        }
+        return sum;
+    }
     const LightFieldTables& t = tables[size_t(m)];
     double v = satAt(*this, t, b) - satAt(*this, t, {a.x, b.y}) - satAt(*this, t, {b.x, a.y}) + satAt(*this, t, a);
     // Below 1e-12 of the image's energy the difference is the table's rounding, not energy.
@@ -444,6 +489,36 @@ bool LightFieldData::sampleBox(int m, const glm::dvec2& a, const glm::dvec2& b, 
                                glm::dvec2& s) const {
     const LightFieldTables& t = tables[size_t(m)];
     glm::dvec2 px = pixelSize();
+    PixelSpan span = spanOf(*this, a, b);
+    if (span.columns() <= kDirectPixels && span.rows() <= kDirectPixels) {
+        // Small boxes pixel by pixel: a column by its energy, x uniform within it (the density is
+        // constant along a pixel row), then a row of that column by its energy, y uniform in it.
+        const std::vector<float>& image = images[size_t(m)].luminance;
+        auto energy = [&](int i, int j) {
+            return double(image[size_t(j) * size_t(width) + size_t(i)]) * overlap(a.x, b.x, imageMin.x, px.x, i) *
+                   overlap(a.y, b.y, imageMin.y, px.y, j);
+        };
+        double column[kDirectPixels] = {}, total = 0.0;
+        for (int i = span.i0; i < span.i1; ++i) {
+            for (int j = span.j0; j < span.j1; ++j) column[i - span.i0] += energy(i, j);
+            total += column[i - span.i0];
+        }
+        if (!(total > 0.0)) return false;
+        double target = std::clamp(xi.x, 0.0, 1.0) * total;
+        int i = span.i0;
+        for (; i + 1 < span.i1 && target > column[i - span.i0]; ++i) target -= column[i - span.i0];
+        if (!(column[i - span.i0] > 0.0)) return false;
+        double x0 = std::max(a.x, imageMin.x + i * px.x), x1 = std::min(b.x, imageMin.x + (i + 1) * px.x);
+        s.x = std::clamp(x0 + std::clamp(target / column[i - span.i0], 0.0, 1.0) * (x1 - x0), x0, x1);
+        double targetY = std::clamp(xi.y, 0.0, 1.0) * column[i - span.i0];
+        int j = span.j0;
+        for (; j + 1 < span.j1 && targetY > energy(i, j); ++j) targetY -= energy(i, j);
+        double e = energy(i, j);
+        if (!(e > 0.0)) return false;
+        double y0 = std::max(a.y, imageMin.y + j * px.y), y1 = std::min(b.y, imageMin.y + (j + 1) * px.y);
+        s.y = std::clamp(y0 + std::clamp(targetY / e, 0.0, 1.0) * (y1 - y0), y0, y1);
+        return true;
+    }
     // Knots of the restricted marginal G(x) = F(x, b.y) - F(x, a.y): the box's ends and the pixel
     // column edges between them (Eq. 8, cdf_m(s | p), built from the SAT rather than the global
     // marginal so that the density is exactly C_m / A_m, Eq. 10).
@@ -575,6 +650,83 @@ glm::dvec3 LightFieldData::power() const {
             }
     }
     return flux;
+}
+
+namespace {
+
+/// Antiderivative of the uniform quadratic B-spline (support [-1.5, 1.5]): 0 below, 1 above.
+double bsplineIntegral(double x) {
+    if (x <= -1.5) return 0.0;
+    if (x >= 1.5) return 1.0;
+    if (x < -0.5) return (x + 1.5) * (x + 1.5) * (x + 1.5) / 6.0;
+    if (x < 0.5) return 1.0 / 6.0 + 0.75 * (x + 0.5) - (x * x * x + 0.125) / 3.0;
+    return 1.0 - (1.5 - x) * (1.5 - x) * (1.5 - x) / 6.0;
+}
+
+}  // namespace
+
+const GranierTable& LightFieldData::granierTable() const {
+    std::call_once(mGranierOnce, [&] {
+        // W_m(c) = int C_m(s) Phi_m(s - c + node_m) ds, the exact far field of image m for the
+        // box centred on c, and U_m(c) = (1/9) int over the support centred on c of C_m, what
+        // Granier et al.'s spot light has there; both separable in x and y, so per image
+        // W = Ix C Iy^T with Ix[k][i] the integral of the B-spline over pixel column i for the
+        // k-th centre (its antiderivative, exact), and likewise the box for U.
+        GranierTable& g = mGranier;
+        g.size = kGranierTableSize;
+        glm::dvec2 margin = 1.5 * spacing;
+        g.min = imageMin - margin;
+        g.max = imageMax + margin;
+        glm::dvec2 px = pixelSize();
+        glm::dvec2 step = (g.max - g.min) / double(g.size - 1);
+        auto weights = [&](int axis, int pixels, bool box) {  // box: unused (B-spline weights)
+            std::vector<double> w(size_t(g.size) * size_t(pixels));
+            for (int k = 0; k < g.size; ++k) {
+                double c = g.min[axis] + k * step[axis], h = spacing[axis];
+                for (int i = 0; i < pixels; ++i) {
+                    double a = (imageMin[axis] + i * px[axis] - c) / h, b = (imageMin[axis] + (i + 1) * px[axis] - c) / h;
+                    double v = box ? std::max(0.0, std::min(b, 1.5) - std::max(a, -1.5)) / 3.0
+                                   : bsplineIntegral(b) - bsplineIntegral(a);
+                    w[size_t(k) * size_t(pixels) + size_t(i)] = v * h;
+                }
+            }
+            return w;
+        };
+        std::vector<double> bx = weights(0, width, false), by = weights(1, height, false);
+        g.weighted.assign(size_t(imageCount()) * size_t(g.size) * size_t(g.size), 0.f);
+        std::vector<double> rows(size_t(height) * size_t(g.size));
+        for (int m = 0; m < imageCount(); ++m) {
+            const std::vector<float>& c = images[size_t(m)].luminance;
+            // Rows first: R[j][k] = sum_i C[j][i] Ix[k][i]; then W[l][k] = sum_j R[j][k] Iy[l][j].
+            for (int j = 0; j < height; ++j)
+                for (int k = 0; k < g.size; ++k) {
+                    double sum = 0.0;
+                    const float* row = &c[size_t(j) * size_t(width)];
+                    const double* w = &bx[size_t(k) * size_t(width)];
+                    for (int i = 0; i < width; ++i) sum += double(row[i]) * w[i];
+                    rows[size_t(j) * size_t(g.size) + size_t(k)] = sum;
+                }
+            for (int l = 0; l < g.size; ++l)
+                for (int k = 0; k < g.size; ++k) {
+                    double w = 0.0;
+                    for (int j = 0; j < height; ++j)
+                        w += rows[size_t(j) * size_t(g.size) + size_t(k)] * by[size_t(l) * size_t(height) + size_t(j)];
+                    g.weighted[(size_t(m) * size_t(g.size) + size_t(l)) * size_t(g.size) + size_t(k)] = float(std::max(0.0, w));
+                }
+        }
+    });
+    return mGranier;
+}
+
+double GranierTable::at(int m, glm::dvec2 centre) const {
+    glm::dvec2 f = (centre - min) / (max - min) * double(size - 1);
+    if (!(f.x >= 0.0 && f.y >= 0.0 && f.x <= size - 1 && f.y <= size - 1)) return 0.0;
+    f = glm::min(f, glm::dvec2(size - 1) - 1e-9);
+    int i = int(f.x), j = int(f.y);
+    double fx = f.x - i, fy = f.y - j;
+    const float* r0 = &weighted[(size_t(m) * size_t(size) + size_t(j)) * size_t(size) + size_t(i)];
+    const float* r1 = r0 + size;
+    return (1 - fy) * ((1 - fx) * r0[0] + fx * r0[1]) + fy * ((1 - fx) * r1[0] + fx * r1[1]);
 }
 
 }  // namespace candela

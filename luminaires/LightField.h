@@ -53,6 +53,22 @@ struct LightFieldTables {
     glm::dvec2 median{0.0};        ///< s_m with cdf_m(s) = cdf_m(t|s) = 0.5 (Sec. 6.2), metres.
 };
 
+/// granier2003's far-field correction. Far away, Granier et al.'s spot light of image m gives
+/// U_m(c) = (1/9) int over the basis support of C_m (the support centred on c = node + shift, the
+/// shift set by the direction) where the light field gives W_m(c) = int C_m(s) Phi_m(s - c +
+/// node) ds, the image weighted by the B-spline. The table holds W_m on a grid of centres over S
+/// widened by the support; granier2003 scales each spot light by W_m(c) / U_m(c) (U_m from the
+/// summed-area table, exact), so that its far field is the light field's own to W's bilinear
+/// interpolation.
+struct GranierTable {
+    int size = 0;                   ///< Centres per axis.
+    glm::dvec2 min{0.0}, max{0.0};  ///< The grid's first and last centres on S, metres.
+    std::vector<float> weighted;    ///< W_m at [(m * size + j) * size + i], C's unit times m2.
+    /// W_m for a support centred on `centre` (bilinear; 0 off the grid).
+    double at(int m, glm::dvec2 centre) const;
+};
+constexpr int kGranierTableSize = 128;
+
 class LightFieldData {
 public:
     enum class Model { Canned, Goesele };
@@ -122,10 +138,13 @@ public:
     glm::dvec3 power() const;
     /// power(), computed once and kept (thread-safe).
     glm::dvec3 cachedPower() const;
+    /// granier2003's far-field correction (computed once, thread-safe; GranierTable).
+    const GranierTable& granierTable() const;
 
 private:
-    mutable std::once_flag mPowerOnce;
+    mutable std::once_flag mPowerOnce, mGranierOnce;
     mutable glm::dvec3 mPower{0.0};
+    mutable GranierTable mGranier;
 };
 
 /// A light-field luminaire placed in a scene: local +z is aim, +x is c0, position the local

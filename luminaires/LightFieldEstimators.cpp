@@ -34,9 +34,10 @@ bool setup(const Luminaire& l, const glm::dvec3& p, const glm::dvec3& n, Setup& 
     glm::dvec3 un = n / len;
     s.n = {glm::dot(un, s.x), glm::dot(un, s.y), glm::dot(un, s.z)};
     s.dz = s.q.z - s.lf->delta;
-    // Closer to S than ~1e-9 of the distance to U, the restricted boxes are below the rounding
-    // of the coordinates: treat p as on S (Eq. 9), which the irradiance tends to continuously.
-    if (s.dz >= 0.0 && s.dz < 1e-9 * s.q.z) s.dz = 0.0;
+    // Within ~1e-9 of the distance to U of S (either side: the world position of a receiver on S
+    // carries that much rounding), the restricted boxes are below the rounding of the
+    // coordinates: treat p as on S (Eq. 9), which the irradiance tends to continuously.
+    if (std::abs(s.dz) < 1e-9 * s.q.z) s.dz = 0.0;
     return s.dz >= 0.0 && std::isfinite(s.dz);
 }
 
@@ -339,8 +340,14 @@ Estimate lightFieldGranier2003(const Luminaire& l, const glm::dvec3& p, const gl
                                const EstimateOptions& o) {
     Setup s;
     Estimate e;
-    if (!setup(l, p, n, s) || s.dz == 0.0) return e;  // on S the spot lights are undefined
+    if (!setup(l, p, n, s)) return e;
+    // On S the footprints shrink to the receiver's pixel: the limit from beyond S.
+    if (s.dz == 0.0) {
+        s.dz = 1e-9 * s.q.z;
+        s.q.z += s.dz;
+    }
     const LightFieldData& lf = *s.lf;
+    const GranierTable& farField = lf.granierTable();
     double phiIntegral = lf.spacing.x * lf.spacing.y;  // A = int Phi_m du (Eq. 14)
     for (int m = 0; m < lf.imageCount(); ++m) {
         glm::dvec2 a, b;
@@ -365,7 +372,15 @@ Estimate lightFieldGranier2003(const Luminaire& l, const glm::dvec3& p, const gl
             glm::dvec3 onS = glm::dvec3(s.q.x, s.q.y, s.q.z) + (lf.delta - s.q.z) / (-s.q.z) * d;
             if (!o.visibility->visible(p, worldOf(s, glm::dvec2(onS.x, onS.y)))) continue;
         }
-        e.irradiance += phiIntegral * mean * model * lf.colour(m, centre) * (cosR * cosL / (dist * dist));
+        // The far-field correction (GranierTable): W_m / U_m for the support centred where this
+        // direction's box is far away, blended in with the footprint's area, (1 - delta /
+        // q.z)^2: nothing on S (Granier's own limit there), all of it far away.
+        glm::dvec2 farCentre = node + (glm::dvec2(s.q.x, s.q.y) - node) * (lf.delta / s.q.z);
+        glm::dvec2 half = 1.5 * lf.spacing;
+        double uniform = lf.boxIntegral(m, farCentre - half, farCentre + half) / 9.0;
+        double blend = (1.0 - lf.delta / s.q.z) * (1.0 - lf.delta / s.q.z);
+        double conserve = uniform > 0.0 ? (1.0 - blend) + blend * farField.at(m, farCentre) / uniform : 1.0;
+        e.irradiance += conserve * phiIntegral * mean * model * lf.colour(m, centre) * (cosR * cosL / (dist * dist));
     }
     return e;
 }

@@ -179,11 +179,21 @@ std::vector<std::byte> LightFieldLuminaire::gpuData() const {
     size_t colourOffset = lumOffset + images * pixels;        // uints
     size_t colourCount = lf.rgb ? images * pixels * 2 : 0;
     h.offsets = glm::ivec4(int(satOffset), int(lumOffset), int(colourOffset), lf.rgb ? 1 : 0);
-    std::vector<std::byte> out((colourOffset + colourCount) * 4);
+    // granier2003's far-field correction (LightFieldData::granierTable, made once per light field):
+    // the grid's first and last centres on S, then the ratios, as floats.
+    const GranierTable& granier = lf.granierTable();
+    size_t granierOffset = colourOffset + colourCount;  // floats
+    size_t granierCount = 4 + granier.weighted.size();
+    h.options.y = int(granierOffset);
+    h.options.z = granier.size;
+    std::vector<std::byte> out((granierOffset + granierCount) * 4);
     std::memcpy(out.data(), &h, sizeof(h));
     auto* sat = reinterpret_cast<double*>(out.data()) + satOffset;
     auto* lum = reinterpret_cast<float*>(out.data()) + lumOffset;
     auto* colour = reinterpret_cast<uint32_t*>(out.data()) + colourOffset;
+    auto* far = reinterpret_cast<float*>(out.data()) + granierOffset;
+    far[0] = float(granier.min.x), far[1] = float(granier.min.y), far[2] = float(granier.max.x), far[3] = float(granier.max.y);
+    std::memcpy(far + 4, granier.weighted.data(), granier.weighted.size() * sizeof(float));
     for (size_t m = 0; m < images; ++m) {
         std::memcpy(sat + m * satCount, lf.tables[m].sat.data(), satCount * sizeof(double));
         std::memcpy(lum + m * pixels, lf.images[m].luminance.data(), pixels * sizeof(float));

@@ -80,6 +80,22 @@ double lfBoxIntegral(int m, vec2 a, vec2 b) {
     return v > 1e-12 * lfSatEntry(m, lf.dims.z, lf.dims.w) ? v : 0.0;
 }
 
+/// granier2003's far-field table: W_m, image m weighted by its B-spline, for a support centred
+/// on `centre` (bilinear; LightFieldData::granierTable); -1 without a table.
+float lfGranierWeighted(int m, vec2 centre) {
+    int o = lf.options.y, n = lf.options.z;
+    if (n < 2) return -1.0;
+    vec2 lo = vec2(lfFloats[o], lfFloats[o + 1]), hi = vec2(lfFloats[o + 2], lfFloats[o + 3]);
+    vec2 f = (centre - lo) / (hi - lo) * float(n - 1);
+    if (!(f.x >= 0.0 && f.y >= 0.0 && f.x <= float(n - 1) && f.y <= float(n - 1))) return 0.0;
+    f = min(f, vec2(float(n - 1) - 1e-3));
+    ivec2 i = ivec2(f);
+    vec2 t = f - vec2(i);
+    int base = o + 4 + (m * n + i.y) * n + i.x;
+    float r0 = mix(lfFloats[base], lfFloats[base + 1], t.x), r1 = mix(lfFloats[base + n], lfFloats[base + n + 1], t.x);
+    return mix(r0, r1, t.y);
+}
+
 /// Restricted box of image m seen from local q (q.z > delta): Eq. (7) with the U-plane term,
 /// s = u + (q - u) delta / q.z, clipped to the image. False when empty.
 bool lfRestrictedBox(int m, vec3 q, out vec2 a, out vec2 b) {

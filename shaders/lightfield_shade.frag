@@ -127,7 +127,13 @@ vec3 shadeGranier(Surface s, vec3 q, vec3 nl) {
         vec2 centre = 0.5 * (a + b);
         float model = lfPsi(m, node, centre) / 0.5625;  // Phi_m at its node is 0.75^2
         vec3 wi = normalize(wl.x * lf.axisX.xyz + wl.y * lf.axisY.xyz + wl.z * lf.axisZ.xyz);
-        sum += phiIntegral * mean * model * cosR * cosL / (dist * dist) * lfColour(m, centre) * brdf(s, wi) *
+        // The far-field correction W_m / U_m, blended in with the footprint's area (the C++ twin,
+        // LightFieldEstimators.cpp, says why).
+        vec2 farCentre = node + (q.xy - node) * (lfDelta() / q.z), half_ = 1.5 * lf.geometry.yz;
+        float uniform_ = float(lfBoxIntegral(m, farCentre - half_, farCentre + half_)) / 9.0;
+        float weighted = lfGranierWeighted(m, farCentre), blend = scale * scale;
+        float conserve = uniform_ > 0.0 && weighted >= 0.0 ? (1.0 - blend) + blend * weighted / uniform_ : 1.0;
+        sum += conserve * phiIntegral * mean * model * cosR * cosL / (dist * dist) * lfColour(m, centre) * brdf(s, wi) *
                visibility(s, toWorld(vec3(node, 0.0))) * imageVisibility(s, m);
     }
     return sum;

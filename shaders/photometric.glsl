@@ -80,7 +80,10 @@ float phIntegrand(vec3 n, vec3 d) {
     return phIntensity(-d) * c / (ph.position.w * cosL);
 }
 
-/// Zero-area openings: a point (the point law) or a segment (16-point Gauss-Legendre).
+/// Zero-area openings: a point (the point law) or a segment: the point law averaged along it,
+/// integrated over the angle seen from the receiver (x = d tan(theta) from the foot of the
+/// perpendicular: smooth however close; PhotometricEstimators.cpp), 16-point Gauss-Legendre on
+/// each side of the foot.
 bool phDegenerate(vec3 p, vec3 n, out float e) {
     e = 0.0;
     int corners = ph.dims.z;
@@ -94,9 +97,22 @@ bool phDegenerate(vec3 p, vec3 n, out float e) {
     const float weight[8] = float[8](0.1894506105, 0.1826034150, 0.1691565194, 0.1495959888,
                                      0.1246289713, 0.0951585117, 0.0622535239, 0.0271524594);
     vec3 a = vec3(phCorner(0), 0.0), b = vec3(phCorner(1), 0.0);
-    for (int i = 0; i < 8; ++i) {
-        e += 0.5 * weight[i] * phPointIrradiance(p, n, mix(a, b, 0.5 - 0.5 * node[i]));
-        e += 0.5 * weight[i] * phPointIrradiance(p, n, mix(a, b, 0.5 + 0.5 * node[i]));
+    float len = length(b - a);
+    if (!(len > 0.0)) return true;
+    vec3 axis = (b - a) / len;
+    float foot = dot(p - a, axis);
+    float d = length(a + foot * axis - p);
+    if (!(d > 0.0)) return true;
+    float t0 = atan(-foot, d), t1 = atan(len - foot, d), split = clamp(0.0, t0, t1);
+    for (int half_ = 0; half_ < 2; ++half_) {
+        float lo = half_ == 0 ? t0 : split, hi = half_ == 0 ? split : t1;
+        if (!(hi > lo)) continue;
+        for (int i = 0; i < 16; ++i) {
+            float sgn = i < 8 ? -1.0 : 1.0;
+            float theta = 0.5 * (lo + hi) + 0.5 * sgn * node[i % 8] * (hi - lo), c = cos(theta);
+            vec3 q = a + (foot + d * tan(theta)) * axis;
+            e += 0.5 * weight[i % 8] * (hi - lo) * phPointIrradiance(p, n, q) * d / (c * c) / len;
+        }
     }
     return true;
 }
@@ -327,17 +343,30 @@ float phScattered(vec3 p, vec3 n, out int flips) {
     return qc > 0.0 ? projected * qf / qc : 0.0;
 }
 
+/// The opening's radiance along the unit direction d from the receiver, I / (A |cos theta_L|).
+float phRadiance(vec3 d) {
+    float cosL = abs(d.z);
+    if (!(cosL > 1e-7) || !(ph.position.w > 0.0)) return 0.0;
+    return phIntensity(-d) / (ph.position.w * cosL);
+}
+
+/// Corners and barycentre: their cosine-weighted mean of L times the closed-form projected solid
+/// angle (PhotometricEstimators.cpp, structuredValue).
 float phStructured(vec3 p, vec3 n) {
     PhPolygon visible = phClip(phOpening(p), n);
     if (visible.count < 3) return 0.0;
     vec3 centre = vec3(0.0);
-    float sum = 0.0;
+    float sumF = 0.0, sumC = 0.0;
     for (int i = 0; i < visible.count; ++i) {
         centre += visible.v[i];
-        sum += phIntegrand(n, normalize(visible.v[i]));
+        vec3 d = normalize(visible.v[i]);
+        sumF += phIntegrand(n, d);
+        sumC += max(0.0, dot(n, d));
     }
-    sum += phIntegrand(n, normalize(centre / float(visible.count)));
-    return phSolidAngle(visible) * sum / float(visible.count + 1);
+    vec3 dc = normalize(centre / float(visible.count));
+    sumF += phIntegrand(n, dc);
+    sumC += max(0.0, dot(n, dc));
+    return sumC > 0.0 ? phProjectedSolidAngle(visible, n) * sumF / sumC : 0.0;
 }
 
 float phMrp(vec3 p, vec3 n) {
@@ -354,7 +383,8 @@ float phMrp(vec3 p, vec3 n) {
     if (abs(half_.z) > 1e-7 && h / half_.z > 0.0) pm = phClosest(visible, (h / half_.z) * half_, tol, place, index);
     float lm = length(pm);
     if (!(lm > 0.0)) return 0.0;
-    return phSolidAngle(visible) * phIntegrand(n, pm / lm);
+    // The radiance there times the closed-form projected solid angle (PhotometricEstimators.cpp).
+    return phProjectedSolidAngle(visible, n) * phRadiance(pm / lm);
 }
 
 /// The hybrid's Monte Carlo weight (hybridWeight in C++): 0 within half an opening size, 1

@@ -70,6 +70,24 @@ void stochasticExtras(Surface s, vec3 p, vec3 n, int count, inout uint rng, out 
 #endif
 }
 
+#ifdef TECHNIQUE_REFERENCE
+/// One sample of the reference (PhotometricEstimators.cpp): the BRDF times f / (c_area pdf_area +
+/// c pdf_cosine) for the direction d toward opening point q at distance r, multiplied through by
+/// cos_L so that it stays finite in the opening's plane; 0 outside the opening or in shadow.
+vec3 phMisTerm(Surface s, vec3 n, vec3 q, vec3 d, float r, float rect, float c) {
+    if (!phInside(q.xy)) return vec3(0.0);
+    float cosP = dot(n, d), cosL = abs(d.z);
+    if (!(cosP > 0.0) || !(ph.position.w > 0.0)) return vec3(0.0);
+    float w = phIntensity(-d) * cosP / ph.position.w / ((1.0 - c) * r * r / rect + c * cosL * cosP / kPi);
+    if (!(w > 0.0) || isinf(w)) return vec3(0.0);
+    vec3 brdf = s.albedo / kPi;
+#ifdef GLOSSY
+    if ((s.flags & kMaterialGlossy) != 0) brdf += glossyBrdf(s, normalize(phFromLocal(d)));
+#endif
+    return brdf * w * visibleTo(s, q);
+}
+#endif
+
 void main() {
     Surface s;
     if (!loadSurface(s)) discard;
@@ -85,20 +103,33 @@ void main() {
     if (phDegenerate(p, n, degenerateE)) {
         result = s.albedo / kPi * degenerateE;
     } else {
+        // One of two strategies per sample, balance heuristic (PhotometricEstimators.cpp): a point
+        // uniform on the bounding rectangle, or with probability c (the form factor, clamped to
+        // [0.05, 0.5]) a direction cosine-distributed about the normal.
         vec2 lo, hi;
         phBounds(lo, hi);
-        float ratio = (hi.x - lo.x) * (hi.y - lo.y) / ph.position.w;  // S_rect / A
+        float rect = (hi.x - lo.x) * (hi.y - lo.y);
+        PhPolygon seen = phClip(phOpening(p), n);
+        float c = clamp(seen.count >= 3 ? phProjectedSolidAngle(seen, n) / kPi : 0.0, 0.05, 0.5);
+        float sgn = n.z >= 0.0 ? 1.0 : -1.0, fa = -1.0 / (sgn + n.z), fb = n.x * n.y * fa;
+        vec3 t = vec3(1.0 + sgn * n.x * n.x * fa, sgn * fb, -sgn * n.x), bt = vec3(fb, sgn + n.y * n.y * fa, -n.y);
         for (int k = 0; k < spp; ++k) {
-            vec2 q = lo + vec2(rand01(rng), rand01(rng)) * (hi - lo);
-            if (!phInside(q)) continue;
-            float e = ratio * phPointIrradiance(p, n, vec3(q, 0.0));
-            if (!(e > 0.0)) continue;
-            e *= visibleTo(s, vec3(q, 0.0));
-            vec3 f = s.albedo / kPi;
-#ifdef GLOSSY
-            if ((s.flags & kMaterialGlossy) != 0) f += glossyBrdf(s, normalize(phFromLocal(vec3(q, 0.0) - p)));
-#endif
-            result += f * e;
+            float pick = rand01(rng), u1 = rand01(rng), u2 = rand01(rng);
+            if (pick >= c) {
+                vec3 q = vec3(lo + vec2(u1, u2) * (hi - lo), 0.0);
+                vec3 v = q - p;
+                float r = length(v);
+                if (r > 0.0) result += phMisTerm(s, n, q, v / r, r, rect, c);
+            } else {
+                float rad = sqrt(u1), phi = 2.0 * kPi * u2;
+                vec3 d = rad * cos(phi) * t + rad * sin(phi) * bt + sqrt(max(0.0, 1.0 - u1)) * n;
+                if (abs(d.z) > 0.0) {
+                    float along = -p.z / d.z;
+                    vec3 hit = p + along * d;
+                    if (along > 0.0 && all(greaterThanEqual(hit.xy, lo)) && all(lessThanEqual(hit.xy, hi)))
+                        result += phMisTerm(s, n, vec3(hit.xy, 0.0), d, along, rect, c);
+                }
+            }
         }
         result /= float(spp);
     }

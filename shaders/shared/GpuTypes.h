@@ -105,7 +105,9 @@ struct LightFieldGpu {
     vec4 image;     // xy = image max on S (m), zw = pixel size (m)
     ivec4 dims;     // x, y = basis count W, H; z, w = image width, height (pixels)
     ivec4 offsets;  // x = SAT (doubles), y = luminance (floats), z = colour (uints), w = 1 if RGB
-    ivec4 options;  // x = K_max samples per image per frame (0: no cap), yzw unused
+    ivec4 options;  // x = K_max samples per image per frame (0: no cap), y = granier2003's far-field
+                    // table (floats: min.xy, max.xy of its centres on S, then size^2 ratios per
+                    // image), z = its size, w unused
 };
 
 /// A photometric area light (std430): this header, then in the same buffer as floats the
