@@ -1,9 +1,12 @@
 // candela: the interactive lighting editor and its headless tools.
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <exception>
 
 #include "app/commands/Commands.h"
+#include "luminaires/Photometry.h"
+#include "util/TextEncoding.h"
 
 namespace {
 
@@ -25,7 +28,11 @@ const char* kUsage =
     "                                    W/m2 for a radiometric scene; stderr names it)\n"
     "  info FILE                         describe a scene (.json), a glTF file, a light field\n"
     "                                    (.lf.json: basis, images, flux, precomputation time)\n"
-    "                                    or photometry (.ies/.ldt: flux from the table, lamps x LOR)\n"
+    "                                    or photometry (.ies/.ldt: flux from the table, lamps x LOR,\n"
+    "                                    warnings for what was assumed to read the file)\n"
+    "  --strict (info, render, probe, grid, polar): refuse photometry files that need a leniency\n"
+    "                                    (empty EULUMDAT fields, Latin-1 or UTF-16 text, mixed line\n"
+    "                                    endings, ...) instead of loading them with a warning\n"
     "  convert RAYS.TM25RAY --out NAME.lf.json [--grid WxH] [--res N] [--delta D]\n"
     "                                    [--axis z|main] [--coverage C] [--raw-flux]\n"
     "  convert --procedural bike-headlight|car-headlight --out NAME.lf.json [--rays N]\n"
@@ -59,6 +66,14 @@ int main(int argc, char** argv) {
     }
     std::string command = argv[1];
     candela::Args args(argv + 2, argv + argc);
+    // --strict: every photometry file these commands load is read strictly (Photometry.h).
+    for (const char* c : {"info", "render", "probe", "grid", "polar"}) {
+        if (command != c) continue;
+        auto strict = std::find(args.begin(), args.end(), "--strict");
+        if (strict == args.end()) break;
+        args.erase(strict);
+        candela::setDefaultPhotometryOptions({.strict = true});
+    }
     try {
         if (command == "render") return candela::cmdRender(args);
         if (command == "probe") return candela::cmdProbe(args);
@@ -72,7 +87,11 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "candela: unknown command \"%s\"\n%s", command.c_str(), kUsage);
         return 2;
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "candela %s: error: %s\n", command.c_str(), e.what());
+        // One line of valid UTF-8 whatever the message quotes (file names, fields in Latin-1).
+        std::string message = candela::toValidUtf8(e.what());
+        std::replace(message.begin(), message.end(), '\n', ' ');
+        std::replace(message.begin(), message.end(), '\r', ' ');
+        std::fprintf(stderr, "candela %s: error: %s\n", command.c_str(), message.c_str());
         return 1;
     }
 }

@@ -55,8 +55,8 @@ std::string upper(std::string s) {
 
 std::string showToken(const std::string& s) {
     std::string shown = s.size() > 40 ? s.substr(0, 40) + "..." : s;
-    for (char& c : shown)
-        if (!std::isprint(static_cast<unsigned char>(c))) c = '?';
+    for (char& c : shown)  // control characters as '?'; the text is UTF-8 (fail() repairs a cut sequence)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F) c = '?';
     return "'" + shown + "'";
 }
 
@@ -70,7 +70,10 @@ public:
         for (size_t l = firstLine; l < lines.size(); ++l) {
             std::string s = lines[l];
             size_t comment = s.find("//");
-            if (comment != std::string::npos) s.resize(comment);
+            if (comment != std::string::npos) {
+                s.resize(comment);
+                if (mCommentLine == 0) mCommentLine = int(l) + 1;
+            }
             std::replace(s.begin(), s.end(), ',', ' ');
             std::istringstream words(s);
             std::string w;
@@ -109,12 +112,19 @@ public:
     int lineOfPrevious(size_t back) const {
         return mPos >= back && back > 0 ? mTokens[mPos - back].line : line();
     }
+    /// Tokens not read yet.
+    size_t remaining() const { return mTokens.size() - mPos; }
+    /// The next token's text (call only when remaining() > 0).
+    const std::string& peek() const { return mTokens[mPos].text; }
+    /// First line holding a "//" comment, 0 when none does.
+    int commentLine() const { return mCommentLine; }
 
 private:
     std::string mPath;
     std::vector<Token> mTokens;
     size_t mPos = 0;
     int mLastLine = 1;
+    int mCommentLine = 0;
 };
 
 /// An integer count field in [lo, hi]; `line` for messages.
@@ -219,11 +229,10 @@ std::string formatFromHeader(const std::string& header) {
 
 }  // namespace
 
-PhotometricData parseIes(const std::string& text, const std::string& path) {
+PhotometricData parseIes(const std::string& text, const std::string& path, const PhotometryOptions& options) {
     PhotometricData d;
     d.path = path;
-    std::vector<std::string> lines = splitLines(text);
-    if (!lines.empty() && lines[0].rfind("\xEF\xBB\xBF", 0) == 0) lines[0].erase(0, 3);
+    std::vector<std::string> lines = photometry_detail::readLines(text, d, options);
 
     // Header line and keywords, up to the TILT line.
     size_t l = 0;
@@ -304,6 +313,12 @@ PhotometricData parseIes(const std::string& text, const std::string& path) {
     d.goniometer = type == 1 ? Goniometer::C : Goniometer::B;
     int units = countField(h[6], 1, 2, path, headerLine, "units type 1 (feet) or 2 (metres)");
     double toMetres = units == 1 ? kFootInMetres : 1.0;
+    const char* sizeNames[] = {"width", "length", "height"};
+    for (int k = 0; k < 3; ++k)
+        if (!(std::abs(h[7 + k]) * toMetres <= kMaxOpening))
+            fail(path, headerLine,
+                 std::string("a luminous opening ") + sizeNames[k] + " of at most " + formatNumber(kMaxOpening) + " m",
+                 formatNumber(h[7 + k]) + (units == 1 ? " ft" : " m"));
     d.opening = openingFrom(h[7] * toMetres, h[8] * toMetres, h[9] * toMetres);
 
     int ballastLine = in.line();
@@ -319,6 +334,9 @@ PhotometricData parseIes(const std::string& text, const std::string& path) {
     double scale = multiplier * b[0] * (is2019 ? 1.0 : b[1]);
     d.inputWatts = b[2];
     d.lampFlux = lumens > 0.0 ? double(lamps) * lumens : -1.0;
+    if (!(d.lampFlux <= kMaxLumens))
+        fail(path, headerLine, "a lamp flux (lamps x lumens per lamp) of at most " + formatNumber(kMaxLumens) + " lm",
+             std::isfinite(d.lampFlux) ? formatNumber(d.lampFlux) + " lm" : std::string("an overflow"));
 
     int vLine = in.line();
     d.vertical = in.numbers(size_t(nv), "vertical angles");
@@ -363,10 +381,17 @@ PhotometricData parseIes(const std::string& text, const std::string& path) {
                      ", vertical angle " + formatNumber(d.vertical[k % size_t(nv)]) + ")",
                  formatNumber(cd[k]));
         cd[k] *= scale * tiltScale;
-        if (!std::isfinite(cd[k]))
-            fail(path, in.lineOfPrevious(cd.size() - k), "candela values that stay finite after the multipliers",
-                 "an overflow");
+        photometry_detail::checkCandela(path, in.lineOfPrevious(cd.size() - k), cd[k],
+                                        "candela values (after the multipliers)");
     }
+    if (in.commentLine() > 0)
+        photometry_detail::allow(d, options, in.commentLine(), "a '//' comment in the numeric data (not in LM-63)",
+                                 "ignored to the end of each line");
+    if (size_t extra = in.remaining())
+        photometry_detail::allow(d, options, in.line(),
+                                 std::to_string(extra) + " value" + (extra == 1 ? "" : "s") +
+                                     " after the candela table (from " + showToken(in.peek()) + ")",
+                                 "ignored");
     photometry_detail::unfold(d, given, cd);
     return d;
 }

@@ -26,6 +26,13 @@
 //   count is used as its absolute value and the keyword "absolute photometry" is set. The
 //   intensities are still cd/klm of the given flux, so the conversion is the same.
 // - Opening height: the largest of the four luminous-area heights.
+// Leniencies (Photometry.h; each a warning, or an error with PhotometryOptions::strict): empty
+// lamp type, colour temperature, colour rendering index or wattage (0 W); empty DFF, conversion
+// factor (1) or tilt (0); empty direct ratios (recognised when the ten lines after the lamp sets
+// hold one number or nothing each); a repeated last C plane (C360 after C0, or the last angle
+// twice: Mc counts it, it is dropped, and for Isym 0 its intensities too); decimal commas; a
+// conversion factor of 0 (read as 1); LORL 0 (no declared luminaire flux); values after the
+// intensities (ignored).
 
 #include <algorithm>
 #include <cctype>
@@ -37,6 +44,7 @@
 
 namespace candela {
 
+using photometry_detail::allow;
 using photometry_detail::fail;
 using photometry_detail::formatNumber;
 using photometry_detail::kMaxCount;
@@ -53,8 +61,8 @@ std::string trim(const std::string& s) {
 
 std::string showToken(const std::string& s) {
     std::string shown = s.size() > 40 ? s.substr(0, 40) + "..." : s;
-    for (char& c : shown)
-        if (!std::isprint(static_cast<unsigned char>(c))) c = '?';
+    for (char& c : shown)  // control characters as '?'; the text is UTF-8 (fail() repairs a cut sequence)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F) c = '?';
     return "'" + shown + "'";
 }
 
@@ -67,10 +75,7 @@ bool parseLdtNumber(std::string s, double& v) {
 
 class LdtReader {
 public:
-    LdtReader(const std::string& text, std::string path) : mPath(std::move(path)) {
-        mLines = photometry_detail::splitLines(text);
-        if (!mLines.empty() && mLines[0].rfind("\xEF\xBB\xBF", 0) == 0) mLines[0].erase(0, 3);
-    }
+    LdtReader(std::vector<std::string> lines, std::string path) : mPath(std::move(path)), mLines(std::move(lines)) {}
 
     const std::string& path() const { return mPath; }
     int lineCount() const { return int(mLines.size()); }
@@ -83,14 +88,27 @@ public:
         return trim(mLines[size_t(n - 1)]);
     }
 
-    double number(int n, const std::string& what) const {
+    double number(int n, const std::string& what) {
         std::string s = text(n, what);
         double v;
-        if (!parseLdtNumber(s, v)) fail(mPath, n, what + " (a number)", s.empty() ? "an empty line" : showToken(s));
+        if (!parse(s, n, v)) fail(mPath, n, what + " (a number)", s.empty() ? "an empty line" : showToken(s));
         return v;
     }
 
-    int integer(int n, const std::string& what, int lo, int hi) const {
+    /// True when line `n` exists and is empty (white space only).
+    bool empty(int n) const { return n >= 1 && n <= int(mLines.size()) && trim(mLines[size_t(n - 1)]).empty(); }
+    /// True when line `n` exists and holds at most one word.
+    bool atMostOneWord(int n) const {
+        if (n < 1 || n > int(mLines.size())) return false;
+        std::string s = trim(mLines[size_t(n - 1)]);
+        return std::none_of(s.begin(), s.end(),
+                            [](char c) { return std::isspace(static_cast<unsigned char>(c)) || c == ';'; });
+    }
+
+    /// First line where a number had a decimal comma (0: none).
+    int decimalCommaLine() const { return mCommaLine; }
+
+    int integer(int n, const std::string& what, int lo, int hi) {
         double v = number(n, what);
         if (!(std::abs(v - std::round(v)) < 1e-6) || v < lo || v > hi)
             fail(mPath, n, what + " (an integer from " + std::to_string(lo) + " to " + std::to_string(hi) + ")",
@@ -120,7 +138,7 @@ public:
         for (size_t k = 0; k < take; ++k) {
             const auto& [s, line] = mTokens[mPos++];
             double v;
-            if (!parseLdtNumber(s, v))
+            if (!parse(s, line, v))
                 fail(mPath, line, "a finite number (" + what + ", value " + std::to_string(k + 1) + " of " +
                                       std::to_string(n) + ")",
                      showToken(s));
@@ -131,13 +149,25 @@ public:
                  "only " + std::to_string(take) + " before the data ended at line " + std::to_string(mLastLine));
         return out;
     }
+    /// Tokens not read yet.
+    size_t remaining() const { return mTokens.size() - mPos; }
+    /// The next token's text (call only when remaining() > 0).
+    const std::string& peek() const { return mTokens[mPos].first; }
 
 private:
+    /// parseLdtNumber, noting the first decimal comma.
+    bool parse(const std::string& s, int line, double& v) {
+        if (!parseLdtNumber(s, v)) return false;
+        if (mCommaLine == 0 && s.find(',') != std::string::npos) mCommaLine = line;
+        return true;
+    }
+
     std::string mPath;
     std::vector<std::string> mLines;
     std::vector<std::pair<std::string, int>> mTokens;
     size_t mPos = 0;
     int mLastLine = 1;
+    int mCommaLine = 0;
 };
 
 void checkAscending(const std::vector<double>& a, double lo, double hi, bool hiOpen, const std::string& path,
@@ -152,21 +182,47 @@ void checkAscending(const std::vector<double>& a, double lo, double hi, bool hiO
     }
 }
 
-}  // namespace
+/// One parse: the reader, the result, the options, and what the header fields say.
+struct LdtParse {
+    LdtReader in;
+    PhotometricData& d;
+    const PhotometryOptions& options;
+    int isym = 0, mc = 0, ng = 0, sets = 0;
+    double size[9] = {};  ///< Luminaire and luminous-area sizes, mm (fields 13-21).
+    double conversion = 1.0;
+    double totalFlux = 0.0;  ///< Sum of the lamp sets' flux, lm.
 
-PhotometricData parseEulumdat(const std::string& text, const std::string& path) {
-    LdtReader in(text, path);
-    PhotometricData d;
-    d.path = path;
-    d.format = "EULUMDAT";
-    auto keep = [&](const std::string& key, const std::string& value) { d.keywords.emplace_back(key, value); };
+    void keep(const std::string& key, const std::string& value) { d.keywords.emplace_back(key, value); }
 
+    /// A text field that a complete file fills; empty is allowed (a warning).
+    std::string optionalText(int n, const std::string& what) {
+        std::string s = in.text(n, what);
+        if (s.empty()) allow(d, options, n, "empty " + what, "left unknown");
+        return s;
+    }
+    /// A number field that some exporters leave empty: `fallback` with a warning saying `assumed`.
+    double optionalNumber(int n, const std::string& what, double fallback, const std::string& assumed) {
+        if (!in.empty(n)) return in.number(n, what);
+        allow(d, options, n, "empty " + what, assumed);
+        return fallback;
+    }
+
+    void header();
+    void lampSets();
+    void directRatios();
+    void intensities();
+    void opening();
+};
+
+/// Fields 1-25.
+void LdtParse::header() {
+    const std::string& path = d.path;
     keep("company", in.text(1, "company identification"));
     int ityp = in.integer(2, "type indicator Ityp", 0, 3);
-    int isym = in.integer(3, "symmetry indicator Isym", 0, 4);
-    int mc = in.integer(4, "number of C planes Mc", 1, kMaxCount);
+    isym = in.integer(3, "symmetry indicator Isym", 0, 4);
+    mc = in.integer(4, "number of C planes Mc", 1, kMaxCount);
     double dc = in.number(5, "distance between C planes Dc");
-    int ng = in.integer(6, "number of intensities per C plane Ng", 1, kMaxCount);
+    ng = in.integer(6, "number of intensities per C plane Ng", 1, kMaxCount);
     double dg = in.number(7, "distance between intensities Dg");
     keep("Ityp", std::to_string(ityp));
     keep("Isym", std::to_string(isym));
@@ -184,60 +240,123 @@ PhotometricData parseEulumdat(const std::string& text, const std::string& path) 
                            "luminous area length/diameter (mm)", "luminous area width (mm)",
                            "luminous area height C0 (mm)", "luminous area height C90 (mm)",
                            "luminous area height C180 (mm)", "luminous area height C270 (mm)"};
-    double size[9];
     for (int k = 0; k < 9; ++k) {
         size[k] = in.number(13 + k, sizes[k]);
         if (size[k] < 0.0) fail(path, 13 + k, std::string(sizes[k]) + " >= 0", formatNumber(size[k]));
+        if (k >= 3 && !(size[k] <= kMaxOpening * 1e3))
+            fail(path, 13 + k, std::string(sizes[k]) + " of at most " + formatNumber(kMaxOpening * 1e3) + " mm",
+                 formatNumber(size[k]));
         keep(sizes[k], formatNumber(size[k]));
     }
-    double dff = in.number(22, "downward flux fraction DFF (%)");
+    double dff = optionalNumber(22, "downward flux fraction DFF (%)", 0.0, "left unknown");
     double lorl = in.number(23, "light output ratio LORL (%)");
     if (lorl < 0.0) fail(path, 23, "a light output ratio LORL >= 0 %", formatNumber(lorl));
-    double conversion = in.number(24, "conversion factor for luminous intensities");
+    if (lorl == 0.0)
+        allow(d, options, 23, "light output ratio LORL 0 %",
+              "no declared luminaire flux (the intensities are still cd/klm of the lamp flux)");
+    conversion = optionalNumber(24, "conversion factor for luminous intensities", 1.0, "taken as 1");
     if (conversion < 0.0) fail(path, 24, "a conversion factor >= 0", formatNumber(conversion));
-    double tilt = in.number(25, "tilt of the luminaire during measurement (degrees)");
+    if (conversion == 0.0) {
+        allow(d, options, 24, "conversion factor 0", "taken as 1");
+        conversion = 1.0;
+    }
+    double tilt = optionalNumber(25, "tilt of the luminaire during measurement (degrees)", 0.0, "taken as 0");
     keep("DFF %", formatNumber(dff));
     keep("LORL %", formatNumber(lorl));
     keep("conversion factor", formatNumber(conversion));
     keep("tilt", formatNumber(tilt));
     d.lightOutputRatio = lorl / 100.0;
+}
 
-    int sets = in.integer(26, "number of lamp sets n", 1, kMaxCount);
-    double totalFlux = 0.0, watts = 0.0;
+/// Field 26 and the lamp sets 26a-26f.
+void LdtParse::lampSets() {
+    const std::string& path = d.path;
+    sets = in.integer(26, "number of lamp sets n", 1, kMaxCount);
+    double watts = 0.0;
     bool absolute = false;
     for (int s = 0; s < sets; ++s) {
         int base = 27 + 6 * s;
         std::string set = "lamp set " + std::to_string(s + 1);
         int lamps = in.integer(base, "number of lamps in " + set, -kMaxCount, kMaxCount);
         if (lamps < 0) absolute = true;
-        std::string type = in.text(base + 1, "lamp type of " + set);
+        std::string type = optionalText(base + 1, "lamp type of " + set);
         double flux = in.number(base + 2, "total luminous flux (lm) of " + set);
         if (flux < 0.0) fail(path, base + 2, "a total luminous flux >= 0 lm", formatNumber(flux));
-        std::string cct = in.text(base + 3, "colour temperature of " + set);
-        std::string cri = in.text(base + 4, "colour rendering index of " + set);
-        std::string w = in.text(base + 5, "wattage of " + set);
-        double wattage = 0.0;
-        if (!w.empty() && !parseLdtNumber(w, wattage)) fail(path, base + 5, "a wattage in W", showToken(w));
+        std::string cct = optionalText(base + 3, "colour temperature of " + set);
+        std::string cri = optionalText(base + 4, "colour rendering index of " + set);
+        double wattage = optionalNumber(base + 5, "wattage of " + set, 0.0, "taken as 0 W");
         totalFlux += flux;
         watts += wattage;
+        if (!(totalFlux <= kMaxLumens) || !std::isfinite(watts))
+            fail(path, base + 2, "lamp flux (at most " + formatNumber(kMaxLumens) + " lm in all) and wattage",
+                 "an overflow in their sums");
         keep(set, std::to_string(std::abs(lamps)) + " x " + type + ", " + formatNumber(flux) + " lm, " + cct +
                       ", CRI " + cri + ", " + formatNumber(wattage) + " W");
     }
     if (absolute) keep("absolute photometry", "negative number of lamps");
     if (!(totalFlux > 0.0)) fail(path, 27 + 2, "a positive total lamp flux (sum over the lamp sets)", formatNumber(totalFlux));
+    if (!(totalFlux * d.lightOutputRatio <= kMaxLumens))
+        fail(path, 23, "a declared luminaire flux (lamp flux x LORL) of at most " + formatNumber(kMaxLumens) + " lm",
+             formatNumber(totalFlux) + " lm x " + formatNumber(d.lightOutputRatio));
     d.lampFlux = totalFlux;
     d.inputWatts = watts;
+}
 
-    in.startTokens(27 + 6 * sets);
-    std::vector<double> ratios = in.numbers(10, "direct ratios");
-    std::string dr;
-    for (double r : ratios) {
-        if (!dr.empty()) dr += ' ';
-        dr += formatNumber(r);
+/// Field 27, the ten direct ratios; starts token reading after them. When the ten lines after
+/// the lamp sets hold at most one number each and some are empty, the empty ones are empty
+/// ratios; otherwise the ratios are the next ten numbers wherever they are.
+void LdtParse::directRatios() {
+    const int first = 27 + 6 * sets;
+    bool lineWise = true;
+    int empties = 0, firstEmpty = 0, lastEmpty = 0;
+    for (int n = first; n < first + 10 && lineWise; ++n) {
+        lineWise = in.atMostOneWord(n);
+        if (lineWise && in.empty(n)) {
+            ++empties;
+            if (firstEmpty == 0) firstEmpty = n;
+            lastEmpty = n;
+        }
     }
-    keep("direct ratios", dr);
+    std::string shown;
+    if (lineWise && empties > 0) {
+        for (int k = 0; k < 10; ++k) {
+            int n = first + k;
+            if (k > 0) shown += ' ';
+            shown += in.empty(n) ? std::string("?")
+                                 : formatNumber(in.number(n, "direct ratio " + std::to_string(k + 1)));
+        }
+        std::string lines = std::to_string(firstEmpty);
+        if (lastEmpty > firstEmpty) lines += '-' + std::to_string(lastEmpty);
+        allow(d, options, lines,
+              empties == 10 ? "the ten direct ratios are empty"
+                            : std::to_string(empties) + " of the ten direct ratios are empty",
+              "left unknown (Candela does not use them)");
+        in.startTokens(first + 10);
+    } else {
+        in.startTokens(first);
+        for (double r : in.numbers(10, "direct ratios")) {
+            if (!shown.empty()) shown += ' ';
+            shown += formatNumber(r);
+        }
+    }
+    keep("direct ratios", shown);
+}
+
+/// Fields 28-30: C angles, gamma angles and the intensities of the planes Isym stores.
+void LdtParse::intensities() {
+    const std::string& path = d.path;
     int cLine = in.tokenLine();
+    size_t cStart = in.position();
     std::vector<double> cAngles = in.numbers(size_t(mc), "C angles");
+    // A repeated last plane: C360 after C0 (the same plane), or the last angle twice.
+    bool repeatsC0 = mc >= 2 && std::abs(cAngles.back() - 360.0) < 1e-6 && std::abs(cAngles.front()) < 1e-6;
+    bool repeated = repeatsC0 || (mc >= 2 && cAngles.back() == cAngles[size_t(mc - 2)]);
+    int repeatLine = in.lineOfToken(cStart + size_t(mc) - 1);
+    double repeatedAngle = cAngles.back();
+    if (repeated) {
+        cAngles.pop_back();
+        --mc;
+    }
     checkAscending(cAngles, 0.0, 360.0, true, path, cLine, "C angles");
     int gLine = in.tokenLine();
     d.vertical = in.numbers(size_t(ng), "gamma angles");
@@ -271,22 +390,53 @@ PhotometricData parseEulumdat(const std::string& text, const std::string& path) 
              "C planes " + formatNumber(expectFirst) + ".." + formatNumber(expectLast) + " for Isym " + std::to_string(isym),
              formatNumber(given.front()) + ".." + formatNumber(given.back()));
 
+    // With Isym 0 the repeated plane's intensities follow the others when the file has them.
+    size_t values = planes * size_t(ng);
+    bool repeatedData = repeated && isym == 0 && in.remaining() >= values + size_t(ng);
     size_t start = in.position();
-    std::vector<double> cd = in.numbers(planes * size_t(ng), "intensities (cd/klm, " + std::to_string(planes) +
-                                                                 " C planes x " + std::to_string(ng) + " gamma angles)");
-    double scale = (conversion > 0.0 ? conversion : 1.0) * totalFlux / 1000.0;
+    std::vector<double> cd = in.numbers(values + (repeatedData ? size_t(ng) : 0),
+                                        "intensities (cd/klm, " + std::to_string(planes) + " C planes x " +
+                                            std::to_string(ng) + " gamma angles)");
+    double scale = conversion * totalFlux / 1000.0;
     for (size_t k = 0; k < cd.size(); ++k) {
+        int line = in.lineOfToken(start + k);
         if (cd[k] < 0.0)
-            fail(path, in.lineOfToken(start + k),
-                 "non-negative intensities (C" + formatNumber(given[k / size_t(ng)]) + ", gamma " +
-                     formatNumber(d.vertical[k % size_t(ng)]) + ")",
+            fail(path, line,
+                 "non-negative intensities (C" + formatNumber(k < values ? given[k / size_t(ng)] : repeatedAngle) +
+                     ", gamma " + formatNumber(d.vertical[k % size_t(ng)]) + ")",
                  formatNumber(cd[k]));
-        cd[k] *= scale;
-        if (!std::isfinite(cd[k])) fail(path, in.lineOfToken(start + k), "intensities that stay finite in candela", "an overflow");
+        photometry_detail::checkCandela(path, line, cd[k] * scale, "intensities (cd/klm x lamp flux)");
     }
+    if (repeated) {
+        std::string assumed = "dropped";
+        if (repeatedData) {
+            // Compare with the plane it repeats: C0 (the first) or the one before it (the last kept).
+            size_t same = repeatsC0 ? 0 : planes - 1;
+            double worst = 0.0;
+            for (size_t v = 0; v < size_t(ng); ++v)
+                worst = std::max(worst, std::abs(cd[values + v] - cd[same * size_t(ng) + v]));
+            if (worst > 0.0)
+                assumed += " (its intensities differ from C" + formatNumber(given[same]) + "'s by up to " +
+                           formatNumber(worst) + " cd/klm)";
+            cd.resize(values);
+        }
+        allow(d, options, repeatLine,
+              "C" + formatNumber(repeatedAngle) + " repeats the " +
+                  (repeatsC0 ? std::string("C0 plane") : "plane before it") + " (counted in Mc = " +
+                  std::to_string(mc + 1) + ")",
+              assumed);
+    }
+    for (double& c : cd) c *= scale;
+    if (size_t extra = in.remaining())
+        allow(d, options, in.tokenLine(),
+              std::to_string(extra) + " value" + (extra == 1 ? "" : "s") + " after the intensities (from " +
+                  showToken(in.peek()) + ")",
+              "ignored");
     d.goniometer = Goniometer::C;
     photometry_detail::unfold(d, given, cd);
+}
 
+void LdtParse::opening() {
     // Luminous area: length along C0-C180, width along C90-C270; width 0 means round.
     const double mm = 1e-3;
     double length = size[3] * mm, width = size[4] * mm;
@@ -303,6 +453,22 @@ PhotometricData parseEulumdat(const std::string& text, const std::string& path) 
         d.opening.length = length;
         d.opening.width = width;
     }
+}
+
+}  // namespace
+
+PhotometricData parseEulumdat(const std::string& text, const std::string& path, const PhotometryOptions& options) {
+    PhotometricData d;
+    d.path = path;
+    d.format = "EULUMDAT";
+    LdtParse p{LdtReader(photometry_detail::readLines(text, d, options), path), d, options};
+    p.header();
+    p.lampSets();
+    p.directRatios();
+    p.intensities();
+    p.opening();
+    if (int line = p.in.decimalCommaLine())
+        allow(d, options, line, "a decimal comma (not in EULUMDAT)", "read as a decimal point");
     return d;
 }
 

@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "util/Error.h"
+#include "util/TextEncoding.h"
 
 // Shared part of the far-field photometry: the luminous opening, bilinear evaluation of the
 // table, its exact flux, symmetry unfolding and the dispatch by extension. The parsers live in
@@ -115,7 +116,64 @@ std::vector<std::string> splitLines(const std::string& text) {
 }
 
 void fail(const std::string& path, int line, const std::string& expected, const std::string& found) {
-    throw InputError(path + ":" + std::to_string(line) + ": expected " + expected + ", found " + found);
+    throw InputError(toValidUtf8(path + ":" + std::to_string(line) + ": expected " + expected + ", found " + found));
+}
+
+void allow(PhotometricData& data, const PhotometryOptions& options, const std::string& lines,
+           const std::string& what, const std::string& assumed) {
+    std::string where = toValidUtf8(data.path + ":" + lines + ": ");
+    if (options.strict) throw InputError(where + toValidUtf8(what) + " (refused by --strict)");
+    data.warnings.push_back(where + toValidUtf8(what + "; " + assumed));
+}
+
+std::vector<std::string> readLines(const std::string& bytes, PhotometricData& data,
+                                   const PhotometryOptions& options) {
+    DecodedText text = decodeText(bytes, data.path);
+    if (text.encoding != DecodedText::Encoding::Utf8) {
+        bool utf16 = text.encoding != DecodedText::Encoding::Windows1252;
+        std::string what = std::string("text in ") + encodingName(text.encoding);
+        if (utf16) what += text.byteOrderMark ? " with a byte-order mark" : " without a byte-order mark";
+        else what += ", not UTF-8";
+        allow(data, options, text.firstLine, what, "transcoded to UTF-8");
+    }
+    // Line endings: the first kind seen, and the first line ending in another kind.
+    const char* names[] = {"LF", "CRLF", "CR"};
+    int first = -1, other = -1, line = 1, otherLine = 0;
+    const std::string& t = text.utf8;
+    for (size_t i = 0; i < t.size(); ++i) {
+        int kind = -1;
+        if (t[i] == '\n') kind = 0;
+        else if (t[i] == '\r') kind = i + 1 < t.size() && t[i + 1] == '\n' ? 1 : 2;
+        if (kind < 0) continue;
+        if (kind == 1) ++i;
+        if (first < 0) first = kind;
+        else if (kind != first && other < 0) other = kind, otherLine = line;
+        ++line;
+    }
+    if (other >= 0)
+        allow(data, options, otherLine,
+              std::string("mixed line endings (") + names[first] + " before this line, " + names[other] + " here)",
+              "each read as the end of a line");
+    std::vector<std::string> lines = splitLines(t);
+    auto blank = [](const std::string& s) {
+        return std::all_of(s.begin(), s.end(), [](char c) { return std::isspace(static_cast<unsigned char>(c)); });
+    };
+    size_t end = lines.size();
+    while (end > 0 && blank(lines[end - 1])) --end;
+    if (end > 0 && end < lines.size()) {  // an all-blank file is left to the parser's message
+        size_t n = lines.size() - end;
+        std::string where = std::to_string(end + 1);
+        if (n > 1) where += '-' + std::to_string(lines.size());
+        allow(data, options, where, std::to_string(n) + " trailing blank line" + (n == 1 ? "" : "s"), "ignored");
+        lines.resize(end);
+    }
+    return lines;
+}
+
+void checkCandela(const std::string& path, int line, double candela, const std::string& what) {
+    if (!(candela <= kMaxCandela))
+        fail(path, line, what + " of at most " + formatNumber(kMaxCandela) + " cd (no luminaire is that bright)",
+             std::isfinite(candela) ? formatNumber(candela) + " cd" : std::string("an overflow"));
 }
 
 bool parseNumber(const std::string& token, double& value) {
@@ -313,6 +371,10 @@ double PhotometricData::fluxFromTable() const {
     return flux;
 }
 
+double PhotometricData::declaredFlux() const {
+    return lampFlux > 0.0 && lightOutputRatio > 0.0 ? lampFlux * lightOutputRatio : 0.0;
+}
+
 double PhotometricData::maxIntensity() const {
     double m = 0.0;
     for (double c : candela) m = std::max(m, c);
@@ -322,21 +384,33 @@ double PhotometricData::maxIntensity() const {
 // ---------------------------------------------------------------------------------------------
 // Dispatch
 
-PhotometricData loadPhotometry(const std::string& path) {
+namespace {
+PhotometryOptions& defaults() {
+    static PhotometryOptions options;
+    return options;
+}
+}  // namespace
+
+const PhotometryOptions& defaultPhotometryOptions() { return defaults(); }
+void setDefaultPhotometryOptions(const PhotometryOptions& options) { defaults() = options; }
+
+PhotometricData loadPhotometry(const std::string& path, const PhotometryOptions& options) {
     std::string ext = lowerExtension(path);
+    std::string shown = toValidUtf8(path);
     if (ext != ".ies" && ext != ".ldt")
-        throw InputError(path + ": expected a photometry file ending in .ies or .ldt, found '" + ext + "'");
+        throw InputError(shown + ": expected a photometry file ending in .ies or .ldt, found '" +
+                         toValidUtf8(ext) + "'");
     std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path + ": cannot open photometry file");
+    if (!in) throw InputError(shown + ": cannot open photometry file");
     in.seekg(0, std::ios::end);
     std::streamoff size = in.tellg();
     if (size > kMaxFileBytes)
-        throw InputError(path + ": expected a photometry file of at most 64 MiB, found " +
+        throw InputError(shown + ": expected a photometry file of at most 64 MiB, found " +
                          std::to_string(size) + " bytes");
     in.seekg(0, std::ios::beg);
     std::stringstream text;
     text << in.rdbuf();
-    return ext == ".ies" ? parseIes(text.str(), path) : parseEulumdat(text.str(), path);
+    return ext == ".ies" ? parseIes(text.str(), path, options) : parseEulumdat(text.str(), path, options);
 }
 
 }  // namespace candela

@@ -13,6 +13,17 @@
 // scaling applied). TILT=INCLUDE (or a TILT file next to the .ies) is applied at the tilt of the
 // luminaire's standard orientation (angle 0 of the tilt table) and kept in `tilt` so a renderer
 // can apply the factor for another mounting. No GL here.
+//
+// Leniency: files that DIALux and Relux read load here too, and what was assumed to read them
+// is kept in PhotometricData::warnings, one line each ("PATH:LINE: what; what was assumed"):
+// UTF-16 and Windows-1252 (Latin-1) text (transcoded to UTF-8), mixed line endings, trailing
+// blank lines, values after the table (ignored); in IES files "//" comments; in EULUMDAT files
+// empty lamp-set fields (type, colour temperature, colour rendering, wattage), empty direct
+// ratios, a repeated last C plane (a C360 copy of C0, or the last angle twice), decimal commas,
+// a conversion factor of 0 (read as 1) and a light output ratio of 0 (the declared flux
+// unknown). With PhotometryOptions::strict each of them is an InputError instead, naming the
+// file, the line and the leniency. Defective values (non-numbers, inf, NaN, negative
+// intensities, intensities above kMaxCandela, openings above kMaxOpening) are always errors.
 
 #include <glm/glm.hpp>
 
@@ -54,6 +65,25 @@ struct LuminousOpening {
     double area() const;  ///< Area of polygon(), m2 (0 for a point).
 };
 
+/// How a photometry file is read.
+struct PhotometryOptions {
+    /// Refuse every leniency (an InputError "PATH:LINE: LENIENCY (refused by --strict)") instead
+    /// of loading the file with a warning.
+    bool strict = false;
+};
+
+/// Largest absolute intensity a file may give, cd. The brightest searchlights reach about 1e9 cd;
+/// this leaves six orders of magnitude and keeps squares of intensities (variances) within float
+/// range on the GPU (1e30 < 3.4e38), so a file holding 1e308 is refused rather than giving an
+/// infinite flux.
+constexpr double kMaxCandela = 1e15;
+/// Largest declared flux (lamp flux, or lamp flux x light output ratio), lm: what a table within
+/// kMaxCandela can hold, 4 pi x 1e15 lm, rounded up.
+constexpr double kMaxLumens = 1e16;
+/// Largest luminous opening (length, width, height), metres: no luminaire's opening is a
+/// kilometre across, and its area stays far from overflowing.
+constexpr double kMaxOpening = 1e3;
+
 struct PhotometricData {
     std::string path;    ///< File it came from (for messages).
     std::string format;  ///< "IES LM-63-1986", "IES LM-63-1991", "-1995", "-2002", "-2019", "EULUMDAT".
@@ -78,6 +108,10 @@ struct PhotometricData {
     double lightOutputRatio = 1.0;  ///< EULUMDAT LORL / 100; 1 when the file does not say.
     double inputWatts = 0.0;
 
+    /// What was assumed to read the file (see "Leniency" above), one line each, valid UTF-8:
+    /// "PATH:LINE: what; what was assumed". Empty for a file that follows its format.
+    std::vector<std::string> warnings;
+
     /// IES TILT table (lamp-to-luminaire geometry 1-3, angles in degrees, multiplying factors);
     /// empty for TILT=NONE.
     int tiltGeometry = 0;
@@ -93,21 +127,48 @@ struct PhotometricData {
     double fluxFromTable() const;
     /// The largest intensity in the table, cd.
     double maxIntensity() const;
+    /// The flux the file declares for the luminaire, lamp flux x light output ratio, lm; 0 when
+    /// it declares none (absolute photometry, or a light output ratio of 0).
+    double declaredFlux() const;
 };
 
+/// The options loadPhotometry() and the parsers use when given none: every luminaire a scene or
+/// the editor loads. The command line's --strict sets them once, before anything is loaded
+/// (PhotometricLuminaire::load caches files by path, not by options).
+const PhotometryOptions& defaultPhotometryOptions();
+void setDefaultPhotometryOptions(const PhotometryOptions& options);
+
 /// Reads an IES LM-63 (.ies) or EULUMDAT (.ldt) file, chosen by extension (case-insensitive).
-/// Throws std::runtime_error "PATH:LINE: what was expected, what was found" on any defect.
-PhotometricData loadPhotometry(const std::string& path);
-PhotometricData parseIes(const std::string& text, const std::string& pathForMessages);
-PhotometricData parseEulumdat(const std::string& text, const std::string& pathForMessages);
+/// Throws InputError "PATH:LINE: what was expected, what was found" on any defect (one line,
+/// valid UTF-8); `text` is the file's bytes in any encoding the leniency above allows.
+PhotometricData loadPhotometry(const std::string& path,
+                               const PhotometryOptions& options = defaultPhotometryOptions());
+PhotometricData parseIes(const std::string& text, const std::string& pathForMessages,
+                         const PhotometryOptions& options = defaultPhotometryOptions());
+PhotometricData parseEulumdat(const std::string& text, const std::string& pathForMessages,
+                              const PhotometryOptions& options = defaultPhotometryOptions());
 
 /// Helpers shared by the two parsers (Photometry.cpp); not part of the public interface.
 namespace photometry_detail {
 /// Largest angle or candela count a file may declare (guards allocations on corrupt files).
 constexpr int kMaxCount = 100000;
-/// Throws InputError "PATH:LINE: expected EXPECTED, found FOUND".
+/// Throws InputError "PATH:LINE: expected EXPECTED, found FOUND" (made valid UTF-8).
 [[noreturn]] void fail(const std::string& path, int line, const std::string& expected,
                        const std::string& found);
+/// A leniency at `lines` ("12" or "12-21"): appends "PATH:LINES: WHAT; ASSUMED" to
+/// data.warnings, or in strict mode throws InputError "PATH:LINES: WHAT (refused by --strict)".
+void allow(PhotometricData& data, const PhotometryOptions& options, const std::string& lines,
+           const std::string& what, const std::string& assumed);
+inline void allow(PhotometricData& data, const PhotometryOptions& options, int line,
+                  const std::string& what, const std::string& assumed) {
+    allow(data, options, std::to_string(line), what, assumed);
+}
+/// The file's bytes as lines of UTF-8 text: decodes them (util/TextEncoding.h) and allows (see
+/// allow()) a non-UTF-8 encoding, mixed line endings and trailing blank lines, which are dropped.
+std::vector<std::string> readLines(const std::string& bytes, PhotometricData& data,
+                                   const PhotometryOptions& options);
+/// Refuses (fail()) intensities above kMaxCandela; `line` is where the value is.
+void checkCandela(const std::string& path, int line, double candela, const std::string& what);
 /// Parses a whole token as a finite double (C locale, no trailing characters).
 bool parseNumber(const std::string& token, double& value);
 /// Splits text into lines on LF, CRLF or a lone CR (a final line without a newline included).

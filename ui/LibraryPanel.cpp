@@ -72,7 +72,8 @@ void makeThumbnail(LibraryUi& lib, const LibraryEntry& entry) {
                           light.data->count.y, light.data->cachedPower().y);
         } else {
             table = PhotometricLuminaire::load(entry.path);
-            std::snprintf(info, sizeof info, "%s, %.0f lm", table->format.c_str(), table->fluxFromTable());
+            std::snprintf(info, sizeof info, "%s, %.0f lm%s", table->format.c_str(), table->fluxFromTable(),
+                          table->warnings.empty() ? "" : ", with warnings (see the inspector)");
         }
         std::vector<unsigned char> rgb = footprintImage(*table, kThumbnailPixels);
         std::vector<unsigned char> rgba(size_t(kThumbnailPixels) * kThumbnailPixels * 4, 255);

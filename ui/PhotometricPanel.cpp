@@ -1,6 +1,6 @@
 // The photometric part of the inspector: what the file holds, the flux two ways (the table's
-// exact quadrature and lamp flux x light output ratio), the emitting opening, and the polar
-// candela diagram (ui/PolarDiagram.cpp).
+// exact quadrature and lamp flux x light output ratio), the emitting opening, what was assumed to
+// read the file (its warnings), and the polar candela diagram (ui/PolarDiagram.cpp).
 #include <imgui.h>
 
 #include <algorithm>
@@ -9,20 +9,39 @@
 #include "luminaires/PhotometricLuminaire.h"
 #include "ui/Panels.h"
 #include "ui/PolarDiagram.h"
+#include "util/TextEncoding.h"
 
 namespace candela::ui {
 
+namespace {
+
+/// What the parser assumed to read the file (Photometry.h, "Leniency"), one line each, folded
+/// under a highlighted line that counts them.
+void photometryWarnings(const PhotometricData& d) {
+    if (d.warnings.empty()) return;
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.75f, 0.3f, 1.0f));
+    bool open = ImGui::TreeNode("photometry-warnings", "%zu warning%s reading the file", d.warnings.size(),
+                                d.warnings.size() == 1 ? "" : "s");
+    ImGui::PopStyleColor();
+    if (!open) return;
+    for (const std::string& w : d.warnings) ImGui::TextWrapped("%s", w.c_str());
+    ImGui::TreePop();
+}
+
+}  // namespace
+
 void photometricDetails(const PhotometricLuminaire& light) {
     const PhotometricData& d = *light.data;
-    ImGui::TextWrapped("%s: %s, type %s", std::filesystem::path(light.file).filename().string().c_str(),
+    ImGui::TextWrapped("%s: %s, type %s", toValidUtf8(std::filesystem::path(light.file).filename().string()).c_str(),
                        d.format.c_str(), d.goniometer == Goniometer::B ? "B" : "C");
     if (!d.name.empty()) ImGui::TextWrapped("%s", d.name.c_str());
     double flux = light.scale * d.fluxFromTable();
     ImGui::TextWrapped("Flux: %.5g lm (exact quadrature of the table%s)", flux, light.scale != 1.0 ? ", scaled" : "");
-    if (d.lampFlux > 0.0)
+    if (double declared = d.declaredFlux(); declared > 0.0)
         ImGui::TextWrapped("Lamps %.5g lm x LOR %.3g = %.5g lm (table / declared %.3f)", d.lampFlux,
-                           d.lightOutputRatio, d.lampFlux * d.lightOutputRatio,
-                           d.fluxFromTable() / (d.lampFlux * d.lightOutputRatio));
+                           d.lightOutputRatio, declared, d.fluxFromTable() / declared);
+    else if (d.lampFlux > 0.0)
+        ImGui::TextWrapped("Lamps %.5g lm, LOR 0: no declared luminaire flux", d.lampFlux);
     else
         ImGui::TextDisabled("Absolute photometry (no lamp flux declared)");
     ImGui::TextWrapped("Peak %.5g cd; %zu x %zu angles", light.scale * d.maxIntensity(), d.vertical.size(),
@@ -34,6 +53,7 @@ void photometricDetails(const PhotometricLuminaire& light) {
         ImGui::TextWrapped("Opening: %.3g x %.3g m, %s of %.4g m2%s", d.opening.length, d.opening.width,
                            poly.size() == 2 ? "a segment" : "a polygon", light.area(),
                            light.openingOverride.x > 0.0 ? " (overridden in the scene)" : "");
+    photometryWarnings(d);
     float side = std::min(ImGui::GetContentRegionAvail().x, 260.f);
     drawPolarDiagram(d, side);
 }

@@ -1,5 +1,6 @@
 #include <cctype>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <filesystem>
@@ -11,6 +12,7 @@
 #include "scene/GltfLoader.h"
 #include "scene/SceneIo.h"
 #include "util/Error.h"
+#include "util/TextEncoding.h"
 
 namespace candela {
 
@@ -25,14 +27,15 @@ static const char* symmetryName(PhotometricSymmetry s) {
     return "?";
 }
 
-/// `candela info FILE.ies|FILE.ldt`: what the file holds and its flux two ways.
+/// `candela info FILE.ies|FILE.ldt`: what the file holds, its flux two ways and what was assumed
+/// to read it (one "warning:" line each; --strict refuses the file instead).
 static void printPhotometry(const std::string& path) {
     auto light = std::make_unique<PhotometricLuminaire>();
     light->file = path;
     light->data = PhotometricLuminaire::load(path);
     light->updateOpening();
     const PhotometricData& d = *light->data;
-    std::printf("photometry: %s\n", path.c_str());
+    std::printf("photometry: %s\n", toValidUtf8(path).c_str());
     std::printf("format: %s, type %s goniometry, symmetry: %s\n", d.format.c_str(),
                 d.goniometer == Goniometer::B ? "B" : "C", symmetryName(d.symmetry));
     if (!d.name.empty()) std::printf("luminaire: %s\n", d.name.c_str());
@@ -45,14 +48,17 @@ static void printPhotometry(const std::string& path) {
                 light->polygon().empty() ? " (a point source)" : "");
     double flux = d.fluxFromTable();
     std::printf("luminaire flux (exact quadrature of the table): %.6g lm\n", flux);
-    if (d.lampFlux > 0.0) {
-        double declared = d.lampFlux * d.lightOutputRatio;
+    double declared = d.declaredFlux();
+    if (declared > 0.0)
         std::printf("lamp flux %.6g lm x light output ratio %.4g = %.6g lm (table / declared %.4f)\n",
                     d.lampFlux, d.lightOutputRatio, declared, flux / declared);
-    } else {
+    else if (d.lampFlux > 0.0)
+        std::printf("lamp flux %.6g lm, light output ratio 0: no declared luminaire flux to compare\n", d.lampFlux);
+    else
         std::printf("absolute photometry: no lamp flux declared\n");
-    }
-    if (d.inputWatts > 0.0) std::printf("input power: %.4g W (%.1f lm/W)\n", d.inputWatts, flux / d.inputWatts);
+    if (d.inputWatts > 0.0 && std::isfinite(flux / d.inputWatts))
+        std::printf("input power: %.4g W (%.1f lm/W)\n", d.inputWatts, flux / d.inputWatts);
+    for (const std::string& w : d.warnings) std::printf("warning: %s\n", w.c_str());
 }
 
 /// `candela info NAME.lf.json`: the light field's model, basis, images, flux and table cost.
@@ -100,7 +106,8 @@ static void printMeshes(const Scene& scene) {
 }
 
 int cmdInfo(const Args& args) {
-    if (args.size() != 1) throw InputError("usage: candela info FILE (.json scene, .lf.json, .gltf, .glb, .ies, .ldt)");
+    if (args.size() != 1)
+        throw InputError("usage: candela info FILE (.json scene, .lf.json, .gltf, .glb, .ies, .ldt) [--strict]");
     const std::string& path = args[0];
     std::string ext = std::filesystem::path(path).extension().string();
     for (char& c : ext) c = char(std::tolower((unsigned char)c));
