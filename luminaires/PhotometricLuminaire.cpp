@@ -9,6 +9,7 @@
 #include <map>
 #include <mutex>
 
+#include "luminaires/IntensitySampler.h"
 #include "shaders/shared/GpuTypes.h"
 #include "util/Error.h"
 #include "util/JsonRead.h"
@@ -273,8 +274,13 @@ std::vector<std::byte> PhotometricLuminaire::gpuData() const {
     h.offsets = glm::ivec4(base, base + nv, base + nv + nh, base + nv + nh + nv * nh);
     const auto& p24 = poissonSet(24);
     const auto& p40 = poissonSet(40);
+    // The reference's intensity-proportional directions: the cells' CDF (IntensitySampler.h).
+    std::vector<double> cdf;
+    if (auto sampler = IntensitySampler::of(data); sampler && sampler->valid()) cdf = sampler->normalisedCdf();
     h.samples = glm::ivec4(h.offsets.w + 2 * corners, h.offsets.w + 2 * corners + 48, 0, 0);
-    std::vector<float> values(size_t(h.samples.y + 80), 0.f);
+    if (!cdf.empty()) h.samples.z = h.samples.y + 80;
+    std::vector<float> values(size_t(h.samples.y + 80) + cdf.size(), 0.f);
+    for (size_t i = 0; i < cdf.size(); ++i) values[size_t(h.samples.z) + i] = float(cdf[i]);
     for (int i = 0; i < nv; ++i) values[size_t(h.offsets.x + i)] = float(d.vertical[size_t(i)] * kPi / 180.0);
     for (int i = 0; i < nh; ++i) values[size_t(h.offsets.y + i)] = float(d.horizontal[size_t(i)] * kPi / 180.0);
     for (int i = 0; i < nv * nh; ++i) values[size_t(h.offsets.z + i)] = float(scale * d.candela[size_t(i)]);

@@ -59,10 +59,10 @@ static const TechniqueInfo kTechniques[] = {
     {"photometric", "point", "one photometric point light at the centre (DIALux-style preview)", false,
      &photometricPoint, "photometric_shade.frag", "TECHNIQUE_POINT", true},
     {"photometric", "hybrid",
-     "scattered within one opening size, 24 Poisson points beyond five, blended between (Prost Sec. 6.6)",
+     "scattered within half an opening size, 24 Poisson points from 1.5 on, blended between (Prost Sec. 6.6)",
      false, &photometricHybrid, "photometric_shade.frag", "TECHNIQUE_HYBRID", true},
     {"photometric", "reference",
-     "Monte Carlo, points uniform on the opening's bounding rectangle (Prost Eq. 6.3)", true,
+     "Monte Carlo: opening points (Prost Eq. 6.3), cosine and intensity-proportional directions, balance heuristic", true,
      &photometricReference, "photometric_shade.frag", "TECHNIQUE_REFERENCE"},
 };
 

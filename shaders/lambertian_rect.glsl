@@ -6,6 +6,15 @@
 vec3 lambertRectIrradiance(LambertianRectGpu L, vec3 p, vec3 n) {
     vec3 centre = L.corner.xyz + 0.5 * (L.edgeX.xyz + L.edgeY.xyz);
     if (!(dot(p - centre, L.normal.xyz) > 0.0)) return vec3(0.0);
+    vec3 toCentre = centre - p;
+    float r = length(toCentre);
+    if (max(L.edgeX.w, L.edgeY.w) < 0.01 * r) {
+        // A rectangle under a hundredth of its distance: L A cos cos / r^2, within ~(size / r)^2
+        // ~ 1e-4 of the truth, where the corners relative to p round to more than the rectangle
+        // in float (a 1e-6 m one 2 m away gave 3800x its light; the C++ twin, in double, is exact).
+        vec3 w = toCentre / r;
+        return L.radiance.rgb * (L.edgeX.w * L.edgeY.w * max(dot(n, w), 0.0) * max(-dot(L.normal.xyz, w), 0.0) / (r * r));
+    }
     vec3 quad[4] = vec3[4](L.corner.xyz - p, L.corner.xyz + L.edgeX.xyz - p,
                            L.corner.xyz + L.edgeX.xyz + L.edgeY.xyz - p, L.corner.xyz + L.edgeY.xyz - p);
     // Sutherland-Hodgman clip to dot(n, v) >= 0: at most 5 vertices.

@@ -107,16 +107,24 @@ vec3 shadeOnS(Surface s, vec3 q, vec3 nl, int K, vec2 shift, float offset) {
 }
 
 /// Granier et al. 2003 (seed 001, Eq. 14), as luminaires/LightFieldEstimators.cpp.
-vec3 shadeGranier(Surface s, vec3 q, vec3 nl) {
+/// On S (onS) the footprints shrink to the receiver's point, and each mean to the pixel there:
+/// the limit from beyond S, as the C++ twin.
+vec3 shadeGranier(Surface s, vec3 q, vec3 nl, bool onS) {
     vec3 sum = vec3(0.0);
     float phiIntegral = lf.geometry.y * lf.geometry.z;
+    if (onS) q.z = lfDelta();
     for (int m = 0; m < lfImageCount(); ++m) {
         vec2 a, b;
-        if (!lfRestrictedBox(m, q, a, b)) continue;
-        // Mean over the support's whole footprint on S (C_m is 0 where it leaves the image).
-        float scale = (q.z - lfDelta()) / q.z;
-        float footprint = 9.0 * lf.geometry.y * lf.geometry.z * scale * scale;
-        float mean = float(lfBoxIntegral(m, a, b)) / footprint;
+        float scale = (q.z - lfDelta()) / q.z, mean;
+        if (onS) {
+            a = b = q.xy;
+            mean = lfLum(m, q.xy);
+        } else {
+            if (!lfRestrictedBox(m, q, a, b)) continue;
+            // Mean over the support's whole footprint on S (C_m is 0 where it leaves the image).
+            float footprint = 9.0 * lf.geometry.y * lf.geometry.z * scale * scale;
+            mean = float(lfBoxIntegral(m, a, b)) / footprint;
+        }
         if (!(mean > 0.0)) continue;
         vec2 node = lfNode(m);
         vec3 d = vec3(node - q.xy, -q.z);
@@ -157,15 +165,18 @@ void main() {
     vec3 q = vec3(dot(d, lf.axisX.xyz), dot(d, lf.axisY.xyz), dot(d, lf.axisZ.xyz));
     vec3 nl = vec3(dot(s.n, lf.axisX.xyz), dot(s.n, lf.axisY.xyz), dot(s.n, lf.axisZ.xyz));
     float dz = q.z - lfDelta();
+    // Closer to S than float coordinates resolve the restricted boxes, on either side (a receiver
+    // on S has a rounded position): p on S (Eq. 9), the limit the irradiance tends to. The C++
+    // twin (LightFieldEstimators.cpp) does the same within its double rounding.
+    bool onS = abs(dz) < 1e-5 * max(q.z, 1e-3);
     vec3 result = vec3(0.0);
-    if (dz < 0.0) {
+    if (dz < 0.0 && !onS) {
         // Behind S or between U and S: no light.
 #ifdef TECHNIQUE_GRANIER
     } else if (true) {
-        result = shadeGranier(s, q, nl);  // 0 on S itself: its restricted boxes are empty
+        result = shadeGranier(s, q, nl, onS);
 #endif
-    } else if (dz < 1e-5 * max(q.z, 1e-3)) {
-        // Closer to S than float coordinates resolve the restricted boxes: p on S (Eq. 9).
+    } else if (onS) {
         result = shadeOnS(s, q, nl, K, shift, offset);
     } else {
         int M = lfImageCount();

@@ -29,10 +29,8 @@ bool phCell(int o, int n, float x, out int i, out float t) {
     return true;
 }
 
-/// Candela towards the unit local direction d, bilinear in (vertical, horizontal) angle like
-/// PhotometricData::intensity (scale is already in the table).
-float phIntensity(vec3 d) {
-    float vertical, horizontal;
+/// The table's (vertical, horizontal) angles of the unit local direction d.
+void phAngles(vec3 d, out float vertical, out float horizontal) {
     if (ph.dims.w == 1) {  // type B: polar axis +y
         vertical = asin(clamp(d.y, -1.0, 1.0));
         horizontal = atan(d.x, d.z);
@@ -41,6 +39,13 @@ float phIntensity(vec3 d) {
         horizontal = atan(d.y, d.x);
         if (horizontal < 0.0) horizontal += 2.0 * kPi;
     }
+}
+
+/// Candela towards the unit local direction d, bilinear in (vertical, horizontal) angle like
+/// PhotometricData::intensity (scale is already in the table).
+float phIntensity(vec3 d) {
+    float vertical, horizontal;
+    phAngles(d, vertical, horizontal);
     int nv = ph.dims.x, nh = ph.dims.y;
     int iv, ih;
     float tv, th;
@@ -54,6 +59,51 @@ float phIntensity(vec3 d) {
     float a = mix(phFloats[o + ih * nv + iv], phFloats[o + ih * nv + iv1], tv);
     float b = mix(phFloats[o + ih1 * nv + iv], phFloats[o + ih1 * nv + iv1], tv);
     return max(mix(a, b, th), 0.0);
+}
+
+/// The coordinate along which solid angle is uniform within a cell: -cos(gamma) (type C) or
+/// sin(V) (type B), rising with the vertical angle.
+float phAreaCoordinate(float vertical) { return ph.dims.w == 1 ? sin(vertical) : -cos(vertical); }
+
+/// Probability per steradian of phTableSample at the unit local direction d: the cell's share
+/// of the CDF over its solid angle (luminaires/IntensitySampler.cpp, from the same floats).
+float phTablePdf(vec3 d) {
+    if (ph.samples.z == 0) return 0.0;
+    float vertical, horizontal;
+    phAngles(d, vertical, horizontal);
+    int nv = ph.dims.x, nh = ph.dims.y, iv, ih;
+    float tv, th;
+    if (nv < 2 || nh < 2 || !phCell(ph.offsets.x, nv, vertical, iv, tv) || !phCell(ph.offsets.y, nh, horizontal, ih, th))
+        return 0.0;
+    iv = min(iv, nv - 2);
+    ih = min(ih, nh - 2);
+    int cell = ih * (nv - 1) + iv;
+    float share = phFloats[ph.samples.z + cell + 1] - phFloats[ph.samples.z + cell];
+    float omega = (phAreaCoordinate(phFloats[ph.offsets.x + iv + 1]) - phAreaCoordinate(phFloats[ph.offsets.x + iv])) *
+                  (phFloats[ph.offsets.y + ih + 1] - phFloats[ph.offsets.y + ih]);
+    return omega > 0.0 ? share / omega : 0.0;
+}
+
+/// A unit local direction drawn in proportion to the table's intensity (IntensitySampler):
+/// the cell by its CDF, then uniform in solid angle within it.
+vec3 phTableSample(float pick, vec2 u) {
+    int nv = ph.dims.x, nh = ph.dims.y, o = ph.samples.z;
+    int lo = 0, hi = (nv - 1) * (nh - 1) - 1;
+    while (lo < hi) {  // the first cell whose upper CDF exceeds pick
+        int mid = (lo + hi) / 2;
+        if (phFloats[o + mid + 1] > pick) hi = mid;
+        else lo = mid + 1;
+    }
+    int ih = lo / (nv - 1), iv = lo - ih * (nv - 1);
+    float a0 = phAreaCoordinate(phFloats[ph.offsets.x + iv]), a1 = phAreaCoordinate(phFloats[ph.offsets.x + iv + 1]);
+    float a = mix(a0, a1, u.x);
+    float az = mix(phFloats[ph.offsets.y + ih], phFloats[ph.offsets.y + ih + 1], u.y);
+    if (ph.dims.w == 1) {
+        float sinV = clamp(a, -1.0, 1.0), cosV = sqrt(max(0.0, 1.0 - sinV * sinV));
+        return vec3(cosV * sin(az), sinV, cosV * cos(az));
+    }
+    float cosG = clamp(-a, -1.0, 1.0), sinG = sqrt(max(0.0, 1.0 - cosG * cosG));
+    return vec3(sinG * cos(az), sinG * sin(az), cosG);
 }
 
 // --- Receiver setup -----------------------------------------------------------------------------
@@ -199,12 +249,14 @@ float phProjectedSolidAngle(PhPolygon q, vec3 m) {
     float sum = 0.0;
     for (int i = 0; i < q.count; ++i) {
         vec3 a = q.v[i], b = q.v[(i + 1) % q.count];
-        vec3 c = cross(a, b);
+        vec3 c = cross(a, b - a);  // = a x b, with the digits of a short edge (as the C++ twin)
         float lc = length(c);
         if (!(lc > 0.0)) continue;
         sum += atan(lc, dot(a, b)) * dot(m, c) / lc;
     }
-    return 0.5 * abs(sum);
+    // At most the whole hemisphere, pi: at contact (the opening filling the hemisphere) float
+    // rounding of the clipped polygon's angles otherwise gave up to 1 % more.
+    return min(0.5 * abs(sum), kPi);
 }
 
 const int PH_INSIDE = 0;

@@ -1,7 +1,8 @@
 // Shades the G-buffer with one photometric area light (Prost 2019). Variants, one per technique:
 //   TECHNIQUE_SCATTERED, TECHNIQUE_STRUCTURED, TECHNIQUE_MRP, TECHNIQUE_POISSON24,
 //   TECHNIQUE_POISSON40, TECHNIQUE_POINT, TECHNIQUE_HYBRID: deterministic, converged in one frame;
-//   TECHNIQUE_REFERENCE: Monte Carlo over the opening's bounding rectangle (Eq. 6.3), progressive.
+//   TECHNIQUE_REFERENCE: Monte Carlo, progressive: opening points (Eq. 6.3), cosine directions and
+//            directions in proportion to the table's intensity, balance heuristic.
 //   SHADOWS: the deterministic techniques are scaled by the irradiance-weighted visible fraction
 //            of a few random points on the opening per frame (refined progressively, consistent);
 //            the reference traces a shadow ray per sample.
@@ -71,14 +72,17 @@ void stochasticExtras(Surface s, vec3 p, vec3 n, int count, inout uint rng, out 
 }
 
 #ifdef TECHNIQUE_REFERENCE
-/// One sample of the reference (PhotometricEstimators.cpp): the BRDF times f / (c_area pdf_area +
-/// c pdf_cosine) for the direction d toward opening point q at distance r, multiplied through by
-/// cos_L so that it stays finite in the opening's plane; 0 outside the opening or in shadow.
-vec3 phMisTerm(Surface s, vec3 n, vec3 q, vec3 d, float r, float rect, float c) {
+/// One sample of the reference (PhotometricEstimators.cpp): the BRDF times f / (c.x pdf_area +
+/// c.y pdf_cosine + c.z pdf_table) for the direction d toward opening point q at distance r,
+/// multiplied through by cos_L so that it stays finite in the opening's plane; 0 outside the
+/// opening or in shadow.
+vec3 phMisTerm(Surface s, vec3 n, vec3 q, vec3 d, float r, float rect, vec3 c) {
     if (!phInside(q.xy)) return vec3(0.0);
     float cosP = dot(n, d), cosL = abs(d.z);
     if (!(cosP > 0.0) || !(ph.position.w > 0.0)) return vec3(0.0);
-    float w = phIntensity(-d) * cosP / ph.position.w / ((1.0 - c) * r * r / rect + c * cosL * cosP / kPi);
+    float pdfTable = c.z > 0.0 ? phTablePdf(-d) : 0.0;
+    float w = phIntensity(-d) * cosP / ph.position.w /
+              (c.x * r * r / rect + c.y * cosL * cosP / kPi + c.z * cosL * pdfTable);
     if (!(w > 0.0) || isinf(w)) return vec3(0.0);
     vec3 brdf = s.albedo / kPi;
 #ifdef GLOSSY
@@ -103,26 +107,36 @@ void main() {
     if (phDegenerate(p, n, degenerateE)) {
         result = s.albedo / kPi * degenerateE;
     } else {
-        // One of two strategies per sample, balance heuristic (PhotometricEstimators.cpp): a point
-        // uniform on the bounding rectangle, or with probability c (the form factor, clamped to
-        // [0.05, 0.5]) a direction cosine-distributed about the normal.
+        // One of three strategies per sample, balance heuristic (PhotometricEstimators.cpp): a
+        // point uniform on the bounding rectangle; a direction cosine-distributed about the normal
+        // (probability the form factor, clamped to [0.05, 0.5], of three quarters); a direction in
+        // proportion to the table's intensity (a quarter, where the table has any).
         vec2 lo, hi;
         phBounds(lo, hi);
         float rect = (hi.x - lo.x) * (hi.y - lo.y);
         PhPolygon seen = phClip(phOpening(p), n);
-        float c = clamp(seen.count >= 3 ? phProjectedSolidAngle(seen, n) / kPi : 0.0, 0.05, 0.5);
+        float cTable = ph.samples.z != 0 ? 0.25 : 0.0;
+        float cCosine = (1.0 - cTable) * clamp(seen.count >= 3 ? phProjectedSolidAngle(seen, n) / kPi : 0.0, 0.05, 0.5);
+        vec3 c = vec3(1.0 - cTable - cCosine, cCosine, cTable);
         float sgn = n.z >= 0.0 ? 1.0 : -1.0, fa = -1.0 / (sgn + n.z), fb = n.x * n.y * fa;
         vec3 t = vec3(1.0 + sgn * n.x * n.x * fa, sgn * fb, -sgn * n.x), bt = vec3(fb, sgn + n.y * n.y * fa, -n.y);
         for (int k = 0; k < spp; ++k) {
-            float pick = rand01(rng), u1 = rand01(rng), u2 = rand01(rng);
-            if (pick >= c) {
+            // Stratified over the pass's samples, as the C++ twin.
+            float pick = min((float(k) + rand01(rng)) / float(spp), 0.99999994), u1 = rand01(rng), u2 = rand01(rng);
+            if (pick < c.x) {
                 vec3 q = vec3(lo + vec2(u1, u2) * (hi - lo), 0.0);
                 vec3 v = q - p;
                 float r = length(v);
                 if (r > 0.0) result += phMisTerm(s, n, q, v / r, r, rect, c);
             } else {
-                float rad = sqrt(u1), phi = 2.0 * kPi * u2;
-                vec3 d = rad * cos(phi) * t + rad * sin(phi) * bt + sqrt(max(0.0, 1.0 - u1)) * n;
+                vec3 d;
+                if (pick < c.x + c.y) {
+                    float rad = sqrt(u1), phi = 2.0 * kPi * u2;
+                    d = rad * cos(phi) * t + rad * sin(phi) * bt + sqrt(max(0.0, 1.0 - u1)) * n;
+                } else {
+                    // The table's direction leaves the opening toward the receiver: look back.
+                    d = -phTableSample(min((pick - c.x - c.y) / c.z, 0.99999994), vec2(u1, u2));
+                }
                 if (abs(d.z) > 0.0) {
                     float along = -p.z / d.z;
                     vec3 hit = p + along * d;
@@ -135,7 +149,16 @@ void main() {
     }
 #else
     float E;
-    if (!phDegenerate(p, n, E)) {
+#if defined(TECHNIQUE_POINT)
+    // A point light at the centre, whatever the opening's shape (as its C++ twin).
+    E = phPointIrradiance(p, n, vec3(0.0));
+#else
+    if (ph.axisX.w < 0.01 * length(p)) {
+        // An opening under a hundredth of its distance: the point law, within (size / r)^2 ~ 1e-4
+        // of the truth, where the spherical polygons of 1e-4 rad and less cancel in float (a 1e-6
+        // m opening 2 m away gave 3800x its light; the C++ twins, in double, stay exact).
+        E = phPointIrradiance(p, n, vec3(0.0));
+    } else if (!phDegenerate(p, n, E)) {
 #if defined(TECHNIQUE_SCATTERED)
         int flips;
         E = phScattered(p, n, flips);
@@ -147,8 +170,6 @@ void main() {
         E = phPoisson(p, n, ph.samples.x, 24);
 #elif defined(TECHNIQUE_POISSON40)
         E = phPoisson(p, n, ph.samples.y, 40);
-#elif defined(TECHNIQUE_POINT)
-        E = phPointIrradiance(p, n, vec3(0.0));
 #elif defined(TECHNIQUE_HYBRID)
         int place, index;
         float distance = length(phClosest(phOpening(p), vec3(0.0), 0.0, place, index));
@@ -159,6 +180,7 @@ void main() {
         E = mix(nearE, farE, w);
 #endif
     }
+#endif
 #ifdef TECHNIQUE_POINT
     // The point technique is a point light: its shadows and highlights come from the centre.
     float visibleFraction = visibleTo(s, vec3(0.0));

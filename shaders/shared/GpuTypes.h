@@ -124,7 +124,9 @@ struct PhotometricGpu {
                     // 2: segment), w = 1 for type B goniometry
     ivec4 offsets;  // x = vertical angles, y = horizontal angles, z = candela, w = polygon
     ivec4 samples;  // x, y = offsets of the 24- and 40-point Poisson sets (x, y pairs in the
-                    // unit square), z = samples per frame of the reference, w unused
+                    // unit square), z = offset of the table's cell CDF for the reference's
+                    // intensity-proportional directions ((nv-1)(nh-1)+1 floats from 0 to 1;
+                    // 0: none, a table of zeros), w unused
 };
 
 /// Per-frame state of the environment passes (std140 UBO at kBindingEnvironment).

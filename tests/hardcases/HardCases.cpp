@@ -15,7 +15,6 @@ namespace candela::hard {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr double kH = 2.0;  ///< Every emitter's plane (photometric opening, rectangle, S) is y = 2, facing down.
 
 const char* const kClassNames[] = {"ordinary", "contact", "on-plane", "grazing", "behind", "far",  "tiny",
                                    "huge",     "segment", "point",    "spike",   "zero",   "single-value",
@@ -260,12 +259,11 @@ double lightFieldQuadrature(const glm::dvec3& p, const glm::dvec3& n, double val
     return gauss2(integrand, clip(kx), clip(kz));
 }
 
-/// The area form of a photometric opening [-a, a] x [-b, b] (y = kH) with a rotationally
-/// symmetric table `intensity(gamma)`: (1/A) int I(gamma) cos_p / r^2 dA, by Gauss-Legendre on a
-/// grid graded around the receiver's foot point.
+}  // namespace
+
 double areaForm(const glm::dvec3& p, const glm::dvec3& n, double a, double b,
-                const std::function<double(double)>& intensity, std::vector<double> extraX = {},
-                std::vector<double> extraZ = {}) {
+                const std::function<double(double)>& intensity, std::vector<double> extraX,
+                std::vector<double> extraZ) {
     auto f = [&](double x, double z) {
         glm::dvec3 v(x - p.x, kH - p.y, z - p.z);
         double r2 = glm::dot(v, v), r = std::sqrt(r2);
@@ -280,10 +278,15 @@ double areaForm(const glm::dvec3& p, const glm::dvec3& n, double a, double b,
     return gauss2(f, bx, bz) / (4.0 * a * b);
 }
 
+namespace {
+
 // --- The cases ------------------------------------------------------------------------------
 
 std::vector<Case> build() {
     std::vector<Case> out;
+    std::function<double(double)> table;  // the photometric cases' intensity, set per group
+    std::vector<glm::dvec3> opening;       // and their opening (for the upper bound)
+    double lMax = 0.0;                     // brightest radiance of the opening, cd/m2
     auto add = [&](std::string name, std::string kind, Class cls, std::shared_ptr<const Luminaire> light, glm::dvec3 p,
                    glm::dvec3 n, double expected, std::string how) {
         Case c;
@@ -297,13 +300,22 @@ std::vector<Case> build() {
         c.how = std::move(how);
         // Float keeps about 7 digits of the emitter's 2 m: 1e-6 m is its last.
         c.belowFloat = std::abs(kH - p.y) < 1e-5 && std::abs(kH - p.y) > 0.0;
+        if (c.kind == "photometric") {
+            c.intensity = table;
+            c.upperBound = opening.size() >= 3 ? kPi * lMax * polygonFormFactor(c.p, c.n, opening) : 0.0;
+        }
         out.push_back(std::move(c));
     };
     const glm::dvec3 up(0, 1, 0), down(0, -1, 0), side(1, 0, 0);
 
+    auto cosine = [](double gamma) { return gamma <= kPi / 2 ? 1000.0 * std::cos(gamma) : 0.0; };
+    auto isotropic = [](double) { return 1000.0; };
     // Photometric, the cosine table on a 0.6 x 0.3 m opening: a Lambertian emitter of L = I0 / A.
     {
         const double a = 0.3, b = 0.15, L = 1000.0 / (4 * a * b);
+        table = cosine;
+        opening = rectangle(a, b);
+        lMax = L;
         auto light = photometric(lambertTable(2 * a, 2 * b), 2 * a, 2 * b);
         auto form = [&](glm::dvec3 p, glm::dvec3 n) { return kPi * L * polygonFormFactor(p, n, rectangle(a, b)); };
         std::string lam = "pi L F (Lambert's polygon formula)";
@@ -333,6 +345,9 @@ std::vector<Case> build() {
     }
     // Tiny and huge openings.
     {
+        table = cosine;
+        opening = rectangle(0.5e-6, 0.5e-6);
+        lMax = 1000.0 / 1e-12;
         auto tiny = photometric(lambertTable(1e-6, 1e-6), 1e-6, 1e-6);
         glm::dvec3 p(0.3, 0.0, 0.2);
         glm::dvec3 v = glm::dvec3(0, kH, 0) - p;
@@ -347,6 +362,8 @@ std::vector<Case> build() {
             "the point law I cos / r^2");
         auto huge = photometric(lambertTable(100, 100), 100, 100);
         const double L = 1000.0 / 1e4;
+        opening = rectangle(50, 50);
+        lMax = L;
         add("photometric/huge-100m/contact-1e-9", "photometric", Class::Huge, huge, {0, kH - 1e-9, 0}, up,
             kPi * L * polygonFormFactor({0, kH - 1e-9, 0}, up, rectangle(50, 50)), "pi L F");
         add("photometric/huge-100m/at-1m", "photometric", Class::Huge, huge, {10, kH - 1.0, -5}, up,
@@ -354,6 +371,7 @@ std::vector<Case> build() {
     }
     // A segment (zero width) 0.6 m long, centred: the point law averaged along it, in closed form.
     {
+        opening.clear();
         auto lam = photometric(lambertTable(0.6, 0.0), 0.6, 0.0);
         auto iso = photometric(isotropicTable(0.6, 0.0), 0.6, 0.0);
         for (double d : {1e-9, 1e-3, 1.0}) {
@@ -361,9 +379,11 @@ std::vector<Case> build() {
             auto lamInt = [d](double x) { return 0.5 / d * (d * x / (x * x + d * d) + std::atan(x / d)); };
             auto isoInt = [d](double x) { return x / (d * std::sqrt(x * x + d * d)); };
             char name[64];
+            table = cosine;
             std::snprintf(name, sizeof name, "photometric/segment-cosine/below-%g", d);
             add(name, "photometric", Class::Segment, lam, {0, kH - d, 0}, up, 1000.0 / 0.6 * (lamInt(0.3) - lamInt(-0.3)),
                 "the line integral of I0 cos cos / r^2 (closed form)");
+            table = isotropic;
             std::snprintf(name, sizeof name, "photometric/segment-isotropic/below-%g", d);
             add(name, "photometric", Class::Segment, iso, {0, kH - d, 0}, up, 1000.0 / 0.6 * (isoInt(0.3) - isoInt(-0.3)),
                 "the line integral of I0 cos / r^2 (closed form)");
@@ -371,6 +391,7 @@ std::vector<Case> build() {
     }
     // A point: the isotropic table.
     {
+        table = isotropic;
         auto point = photometric(isotropicTable(0.0, 0.0), 0.0, 0.0);
         for (double d : {1e-9, 1e-3, 1.0}) {
             char name[64];
@@ -393,19 +414,31 @@ std::vector<Case> build() {
             if (deg < 0.5) return 1e9 + (100.0 - 1e9) * deg / 0.5;
             return 100.0;
         };
+        table = spike;
         auto point = photometric(iesText(g, c, 0, 0), 0, 0);
         add("photometric/spike-point/below-1m", "photometric", Class::Spike, point, {0, kH - 1.0, 0}, up, 1e9, "I / d^2");
         add("photometric/spike-point/off-axis", "photometric", Class::Spike, point, {0.5, kH - 1.0, 0}, up,
             100.0 * (1.0 / std::sqrt(1.25)) / 1.25, "I cos / r^2 (100 cd there)");
         auto wide = photometric(iesText(g, c, 0.6, 0.3), 0.6, 0.3);
+        opening = rectangle(0.3, 0.15);
+        lMax = 1e9 / 0.18;
         // The spike's cone meets the opening within 1 m tan(0.5 deg) = 8.7 mm of the foot point.
         double w = std::tan(0.5 * kPi / 180.0);
         add("photometric/spike-opening/below-1m", "photometric", Class::Spike, wide, {0.05, kH - 1.0, 0.02}, up,
             areaForm({0.05, kH - 1.0, 0.02}, up, 0.3, 0.15, spike, {0.05 - w, 0.05 + w}, {0.02 - w, 0.02 + w}),
             "the area form by the test's graded quadrature");
+        table = [](double) { return 0.0; };
+        lMax = 0.0;
         auto zeros = photometric(iesText({0, 90, 180}, {0, 0, 0}, 0.6, 0.3), 0.6, 0.3);
         add("photometric/zeros/below-1m", "photometric", Class::Zero, zeros, {0.1, 1.0, 0}, up, 0.0, "0");
         std::vector<double> g1 = {0, 20, 25, 30, 35, 40, 90}, c1 = {0, 0, 0, 500, 0, 0, 0};
+        opening.clear();
+        table = [](double gamma) {
+            double deg = gamma * 180.0 / kPi;
+            if (deg > 25.0 && deg < 30.0) return 500.0 * (deg - 25.0) / 5.0;
+            if (deg >= 30.0 && deg < 35.0) return 500.0 * (35.0 - deg) / 5.0;
+            return 0.0;
+        };
         auto ring = photometric(iesText(g1, c1, 0, 0), 0, 0);
         double gamma = 28.0 * kPi / 180.0, h = 1.0, x = h * std::tan(gamma), r = h / std::cos(gamma);
         add("photometric/single-value/at-28deg", "photometric", Class::SingleValue, ring, {x, kH - h, 0}, up,
@@ -477,6 +510,15 @@ std::vector<Case> build() {
 }  // namespace
 
 const char* className(Class c) { return kClassNames[int(c)]; }
+
+double pointLaw(const Case& c) {
+    glm::dvec3 v = glm::dvec3(0, kH, 0) - c.p;
+    double r = glm::length(v);
+    double cosP = glm::dot(c.n, v) / r;
+    if (!(cosP > 0.0) || !c.intensity) return 0.0;
+    double gamma = std::acos(std::clamp(v.y / r, -1.0, 1.0));  // from straight down, the aim
+    return c.intensity(gamma) * cosP / (r * r);
+}
 
 double polygonFormFactor(const glm::dvec3& p, const glm::dvec3& n, const std::vector<glm::dvec3>& corners) {
     std::vector<glm::dvec3> rel;

@@ -20,6 +20,10 @@
 
 namespace candela::hard {
 
+/// Every emitter's plane (photometric opening, rectangle, S) is y = kH, metres, facing down; the
+/// photometric openings and the rectangles are centred on (0, kH, 0).
+constexpr double kH = 2.0;
+
 /// What kind of trouble a case is (a technique's limits are stated per class).
 enum class Class {
     Ordinary,     ///< Nothing extreme: a reference point for every technique.
@@ -49,7 +53,24 @@ struct Case {
     std::string how;                           ///< How the expected value was found.
     /// The receiver is within float rounding of the emitter (the GPU sees it on the plane).
     bool belowFloat = false;
+    /// Photometric cases: the table's intensity (cd) at the angle gamma from the aim (every
+    /// table here is rotationally symmetric), for the point law at the opening's centre.
+    std::function<double(double gamma)> intensity;
+    /// Photometric cases: pi F L_max, what the opening would give at its brightest radiance
+    /// everywhere: no estimate may exceed it.
+    double upperBound = 0.0;
 };
+
+/// The point law at the photometric case's opening centre (2 m up, aiming down): what the
+/// `point` technique computes, I(gamma) cos / r^2.
+double pointLaw(const Case& c);
+
+/// The area form of a photometric opening [-a, a] x [-b, b] in the plane y = 2 (aiming down)
+/// with a rotationally symmetric table `intensity(gamma)`: (1/A) int I(gamma) cos_p / r^2 dA, by
+/// Gauss-Legendre on a grid graded around the receiver's foot point (and the extra breakpoints).
+double areaForm(const glm::dvec3& p, const glm::dvec3& n, double a, double b,
+                const std::function<double(double)>& intensity, std::vector<double> extraX = {},
+                std::vector<double> extraZ = {});
 
 /// Every case of the grid (built once; light fields are made in memory).
 const std::vector<Case>& cases();
