@@ -302,44 +302,4 @@ Estimate environmentBalancedMis(const EnvironmentLighting& lighting, const glm::
     return e;
 }
 
-// ---------------------------------------------------------------------------------------------
-// The table of environment techniques (the registry of luminaires/Registry.cpp is typed on
-// Luminaire; the environment is not one, so its techniques live here, each naming its variant
-// of shaders/environment_shade.frag).
-
-using Tables = EnvironmentTechniqueInfo::Tables;
-static const EnvironmentTechniqueInfo kEnvironmentTechniques[] = {
-    {"reference", "exact: every texel's radiance times its clipped-cosine integral", false,
-     &environmentReference, "", Tables::None},
-    {"balanced", "cube-map CDFs, samples per face balanced per normal (Lu et al. 2013, Eq. 3-5)",
-     true, &environmentBalanced, "TECHNIQUE_BALANCED", Tables::Cube},
-    {"uniform-faces", "cube-map CDFs, 1/6 of the samples per face (Lu et al. 2013, Fig. 2)", true,
-     &environmentUniformFaces, "TECHNIQUE_UNIFORM_FACES", Tables::Cube},
-    {"global-cdf", "one CDF over the lat-long map with the sin(theta) Jacobian", true,
-     &environmentGlobalCdf, "TECHNIQUE_GLOBAL_CDF", Tables::LatLong},
-    {"havran2005", "256 filtered directional lights from relaxed Halton points (Havran et al. 2005); a shadow map each",
-     false, &environmentHavran, "TECHNIQUE_HAVRAN", Tables::Lights, true},
-    {"havran2005-raytraced", "havran2005 with a shadow ray per light instead of its shadow map (exact visibility)",
-     false, &environmentHavran, "TECHNIQUE_HAVRAN", Tables::Lights},
-    {"balanced-mis", "balanced light samples and cosine samples, balance heuristic (Eq. 6)", true,
-     &environmentBalancedMis, "TECHNIQUE_BALANCED_MIS", Tables::Cube},
-    {"balanced-integer", "balanced with N_f rounded to whole samples (biased, pops; the baseline of "
-     "the temporal-stability bench)", true, &environmentBalancedInteger,
-     "TECHNIQUE_BALANCED INTEGER_FACE_COUNTS", Tables::Cube},
-};
-
-std::span<const EnvironmentTechniqueInfo> environmentTechniques() { return kEnvironmentTechniques; }
-
-const EnvironmentTechniqueInfo* findEnvironmentTechnique(std::string_view name) {
-    for (const auto& t : kEnvironmentTechniques)
-        if (t.name == name) return &t;
-    return nullptr;
-}
-
-std::string environmentTechniqueNames() {
-    std::string out;
-    for (const auto& t : kEnvironmentTechniques) out += (out.empty() ? "" : ", ") + std::string(t.name);
-    return out;
-}
-
 }  // namespace candela

@@ -32,7 +32,7 @@
 #include <vector>
 
 #include "luminaires/Environment.h"
-#include "luminaires/Registry.h"
+#include "luminaires/Estimate.h"
 
 namespace candela {
 
@@ -186,6 +186,7 @@ public:
     /// The face size that faceSize 0 picks.
     static int defaultFaceSize(const EnvironmentMap& map) { return std::max(8, map.width() / 2); }
     const EnvironmentMap& map() const { return *mMap; }
+    const std::shared_ptr<const EnvironmentMap>& sharedMap() const { return mMap; }
     const CubeMapDistribution& cube() const { return mCube; }
     const LatLongDistribution& global() const { return mGlobal; }
     const HavranLights& havran() const { return mHavran; }
@@ -209,22 +210,6 @@ using EnvironmentIrradianceFn = Estimate (*)(const EnvironmentLighting& lighting
                                              const glm::dvec3& p, const glm::dvec3& n,
                                              const EstimateOptions& options);
 
-struct EnvironmentTechniqueInfo {
-    std::string_view name;         ///< As in --technique / --env-technique.
-    std::string_view description;  ///< One line for help.
-    bool progressive;              ///< Stochastic.
-    EnvironmentIrradianceFn irradiance;
-    std::string_view define;       ///< Macros of shaders/environment_shade.frag (space-separated); empty: CPU only.
-    /// What the GPU builds for it when the map changes: the cube-map CDFs (and then a pool of
-    /// light samples every frame), the lat-long CDF (on the CPU), or the Havran lights (CPU).
-    enum class Tables { None, Cube, LatLong, Lights } tables = Tables::None;
-    /// Shadows from one directional shadow map per light (SHADOW_MAPS) instead of rays.
-    bool shadowMaps = false;
-};
-std::span<const EnvironmentTechniqueInfo> environmentTechniques();
-const EnvironmentTechniqueInfo* findEnvironmentTechnique(std::string_view name);
-std::string environmentTechniqueNames();
-
 /// Exact: sum over texels of L_texel times the integral of max(0, n . w) over the texel.
 Estimate environmentReference(const EnvironmentLighting& lighting, const glm::dvec3& p,
                               const glm::dvec3& n, const EstimateOptions& options);
@@ -237,6 +222,9 @@ Estimate environmentGlobalCdf(const EnvironmentLighting& lighting, const glm::dv
                               const glm::dvec3& n, const EstimateOptions& options);
 Estimate environmentHavran(const EnvironmentLighting& lighting, const glm::dvec3& p,
                            const glm::dvec3& n, const EstimateOptions& options);
+/// balanced with N_f rounded to whole samples (biased; the temporal-stability bench's baseline).
+Estimate environmentBalancedInteger(const EnvironmentLighting& lighting, const glm::dvec3& p,
+                                    const glm::dvec3& n, const EstimateOptions& options);
 /// Eq. (6): half the samples balanced light samples, half cosine samples, balance heuristic.
 Estimate environmentBalancedMis(const EnvironmentLighting& lighting, const glm::dvec3& p,
                                 const glm::dvec3& n, const EstimateOptions& options);

@@ -4,7 +4,8 @@
 // only into the half-space its aim (local +z) points to.
 
 #include "luminaires/Luminaire.h"
-#include "luminaires/Registry.h"
+#include "luminaires/Estimate.h"
+#include "util/JsonRead.h"
 
 namespace candela {
 

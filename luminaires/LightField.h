@@ -17,7 +17,8 @@
 #include <vector>
 
 #include "luminaires/Luminaire.h"
-#include "luminaires/Registry.h"
+#include "luminaires/Estimate.h"
+#include "util/JsonRead.h"
 
 namespace candela {
 

@@ -99,6 +99,9 @@ public:
         (void)count;
         return {};
     }
+    /// A source at infinity (the environment): light arrives from directions, not from points;
+    /// it has no outline, no pose and no finite flux.
+    virtual bool atInfinity() const { return false; }
 
     Pose pose;
     std::string name;

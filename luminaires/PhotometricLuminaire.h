@@ -14,7 +14,8 @@
 
 #include "luminaires/Luminaire.h"
 #include "luminaires/Photometry.h"
-#include "luminaires/Registry.h"
+#include "luminaires/Estimate.h"
+#include "util/JsonRead.h"
 
 namespace candela {
 

@@ -1,5 +1,6 @@
 #include "luminaires/Registry.h"
 
+#include "luminaires/EnvironmentLight.h"
 #include "luminaires/LambertianRect.h"
 #include "luminaires/LightField.h"
 #include "luminaires/PhotometricLuminaire.h"
@@ -15,59 +16,121 @@ static const LuminaireKindInfo kKinds[] = {
      &LightFieldLuminaire::parse, &LightFieldLuminaire::create, "restricted-cdf", "precomputed-global"},
     {"photometric", "far-field photometry (IES LM-63, EULUMDAT) on its luminous opening (Prost 2019)",
      &PhotometricLuminaire::parse, &PhotometricLuminaire::create, "hybrid", "scattered"},
+    // Not placed: a scene's "environment" field makes it (Scene::environmentLight).
+    {"environment", "environment map at infinity (lat-long image, sky, sequence; Lu et al. 2013)", nullptr,
+     nullptr, "balanced", "balanced"},
 };
+/// The kinds a scene places: all of kKinds but the last.
+constexpr size_t kPlacedKinds = std::size(kKinds) - 1;
+
+using Limits = StatedLimits;
 
 static const TechniqueInfo kTechniques[] = {
     {"lambertian-rect", "analytic",
-     "closed-form polygon irradiance (Baum et al. 1989); stochastic visibility ratio if occluded",
-     false, &lambertianRectAnalytic, "lambertian_rect_shade.frag", "TECHNIQUE_ANALYTIC"},
-    {"lambertian-rect", "reference",
-     "Monte Carlo, samples uniform in solid angle (Urena et al. 2013)", true,
-     &lambertianRectReference, "lambertian_rect_shade.frag", "TECHNIQUE_REFERENCE"},
+     "closed-form polygon irradiance (Baum et al. 1989); stochastic visibility ratio if occluded", false,
+     &lambertianRectAnalytic, "lambertian_rect_analytic.frag", false, {},
+     {Limits::Exact, 1e-6, -1, 0, true, "Lambert's formula: exact to double rounding"}},
+    {"lambertian-rect", "reference", "Monte Carlo, samples uniform in solid angle (Urena et al. 2013)", true,
+     &lambertianRectReference, "lambertian_rect_reference.frag", false, {},
+     {Limits::Unbiased, 2e-3, -1, 0, true, "unbiased; its standard error covers its error"}},
     // The light-field GPU techniques read per-cell shadow maps (Sec. 6.2) when an occluder may
     // block the luminaire; restricted-cdf-raytraced is the same sampler with a shadow ray per
     // sample (the exact visibility the maps approximate, Fig. 7). On the CPU both trace rays.
     {"lightfield", "restricted-cdf",
      "position-dependent restricted CDFs with balancing (Lu et al. 2015, Eq. 8, 12, 13); per-cell shadow maps",
-     true, &lightFieldRestrictedCdf, "lightfield_shade.frag", "TECHNIQUE_RESTRICTED", true},
+     true, &lightFieldRestrictedCdf, "lightfield_restricted_cdf.frag", true, {},
+     {Limits::Unbiased, 1e-3, -1, 0, true, "unbiased; its standard error covers its error"}},
     {"lightfield", "restricted-cdf-raytraced",
-     "restricted-cdf with a shadow ray per sample (exact visibility; BVH on the GPU, Embree on the CPU)",
-     true, &lightFieldRestrictedCdf, "lightfield_shade.frag", "TECHNIQUE_RESTRICTED"},
-    {"lightfield", "uniform-restricted", "uniform samples in the same restricted boxes (Fig. 12)",
-     true, &lightFieldUniformRestricted, "lightfield_shade.frag", "TECHNIQUE_UNIFORM", true},
-    {"lightfield", "precomputed-global",
-     "one global CDF over all images, the same for every receiver (Fig. 11)", true,
-     &lightFieldPrecomputedGlobal, "lightfield_shade.frag", "TECHNIQUE_GLOBAL", true},
+     "restricted-cdf with a shadow ray per sample (exact visibility; BVH on the GPU, Embree on the CPU)", true,
+     &lightFieldRestrictedCdf, "lightfield_restricted_cdf.frag", false, {},
+     {Limits::Unbiased, 1e-3, -1, 0, true, "unbiased; its standard error covers its error"}},
+    {"lightfield", "uniform-restricted", "uniform samples in the same restricted boxes (Fig. 12)", true,
+     &lightFieldUniformRestricted, "lightfield_uniform_restricted.frag", true, {},
+     {Limits::Unbiased, 1e-3, -1, 0, true, "unbiased; its standard error covers its error"}},
+    {"lightfield", "precomputed-global", "one global CDF over all images, the same for every receiver (Fig. 11)",
+     true, &lightFieldPrecomputedGlobal, "lightfield_precomputed_global.frag", true, {},
+     {Limits::Unbiased, 1e-3, -1, 0, true,
+      "unbiased; its standard error covers its error (near S it adds the distance to a restricted-cdf pilot)"}},
     {"lightfield", "granier2003",
      "one textured spot light per basis function (Granier et al. 2003, Eq. 14); approximate", false,
-     &lightFieldGranier2003, "lightfield_shade.frag", "TECHNIQUE_GRANIER", true},
-    // CPU only (probe, tests, benches): no GPU pass.
+     &lightFieldGranier2003, "lightfield_granier2003.frag", true, {},
+     // One bright pixel 1 cm away: 9 %; 1e5 m away it conserves the light field's far field.
+     {Limits::Approximate, 0.1, 1e-2, 0, true,
+      "an approximation within 10 % near the luminaire; within 1 % far away (its far field conserved)"}},
     {"lightfield", "reference",
      "Gauss-Legendre quadrature of the exact model over U, split at knots and pixel edges", false,
-     &lightFieldReference, "", ""},
+     &lightFieldReference, "", false, {}, {Limits::Exact, 2e-3, -1, 0, true, "quadrature over U: exact to 0.2 %"}},
     {"photometric", "scattered",
      "corners + closest point, spherical Delaunay cubature normalised by the form factor (Prost Eq. 5.6, 5.11)",
-     false, &photometricScattered, "photometric_shade.frag", "TECHNIQUE_SCATTERED", true},
-    {"photometric", "structured", "corners and barycentre as uniform solid-angle samples (Lagarde 2014)",
-     false, &photometricStructured, "photometric_shade.frag", "TECHNIQUE_STRUCTURED", true},
-    {"photometric", "mrp", "one sample at the most representative point (Drobot 2014)", false,
-     &photometricMrp, "photometric_shade.frag", "TECHNIQUE_MRP", true},
-    {"photometric", "mc-poisson-24", "a fixed set of 24 Poisson-disk points on the opening (MCI-24)",
-     false, &photometricPoisson24, "photometric_shade.frag", "TECHNIQUE_POISSON24", true},
-    {"photometric", "mc-poisson-40", "a fixed set of 40 Poisson-disk points on the opening (MCI-40)",
-     false, &photometricPoisson40, "photometric_shade.frag", "TECHNIQUE_POISSON40", true},
+     false, &photometricScattered, "photometric_scattered.frag", true, {},
+     {Limits::Exact, 1e-3, -1, 0, false, "exact for a Lambertian opening, a segment or a point"}},
+    {"photometric", "structured", "corners and barycentre as uniform solid-angle samples (Lagarde 2014)", false,
+     &photometricStructured, "photometric_structured.frag", true, {},
+     {Limits::Exact, 1e-3, -1, 0, false, "exact for a Lambertian opening, a segment or a point"}},
+    {"photometric", "mrp", "one sample at the most representative point (Drobot 2014)", false, &photometricMrp,
+     "photometric_mrp.frag", true, {},
+     {Limits::Exact, 1e-3, -1, 0, false, "exact for a Lambertian opening, a segment or a point"}},
+    {"photometric", "mc-poisson-24", "a fixed set of 24 Poisson-disk points on the opening (MCI-24)", false,
+     &photometricPoisson24, "photometric_poisson24.frag", true, {},
+     {Limits::Exact, 1e-2, -1, 5, false, "within 1 % from 5 opening diagonals on"}},
+    {"photometric", "mc-poisson-40", "a fixed set of 40 Poisson-disk points on the opening (MCI-40)", false,
+     &photometricPoisson40, "photometric_poisson40.frag", true, {},
+     {Limits::Exact, 1e-2, -1, 5, false, "within 1 % from 5 opening diagonals on"}},
+    // 1e-4: the test reads the cosine it tabulates at 1 degree steps (linear interpolation: at
+    // most (pi / 180)^2 / 8 = 4e-5 relative).
     {"photometric", "point", "one photometric point light at the centre (DIALux-style preview)", false,
-     &photometricPoint, "photometric_shade.frag", "TECHNIQUE_POINT", true},
+     &photometricPoint, "photometric_point.frag", true, {},
+     {Limits::PointLaw, 1e-4, -1, 0, true, "the point law at the opening's centre, at any distance"}},
     {"photometric", "hybrid",
      "scattered within half an opening size, 24 Poisson points from 1.5 on, blended between (Prost Sec. 6.6)",
-     false, &photometricHybrid, "photometric_shade.frag", "TECHNIQUE_HYBRID", true},
+     false, &photometricHybrid, "photometric_hybrid.frag", true, {},
+     {Limits::Exact, 3e-2, -1, 0, false, "within 3 % at every distance (scattered near, Poisson far)"}},
     {"photometric", "reference",
-     "Monte Carlo: opening points (Prost Eq. 6.3), cosine and intensity-proportional directions, balance heuristic", true,
-     &photometricReference, "photometric_shade.frag", "TECHNIQUE_REFERENCE"},
+     "Monte Carlo: opening points (Prost Eq. 6.3), cosine and intensity-proportional directions, balance heuristic",
+     true, &photometricReference, "photometric_reference.frag", false, {},
+     {Limits::Unbiased, 2e-3, -1, 0, true, "unbiased; its standard error covers its error (4 standard errors)"}},
+    // The environment. Its pass (renderer/passes/EnvironmentPass) builds the tables each names:
+    // the cube-map CDFs and a pool of light samples per pass, the lat-long CDF, or Havran's
+    // lights.
+    {"environment", "reference", "exact: every texel's radiance times its clipped-cosine integral", false,
+     &onEnvironmentLight<&environmentReference>, "", false, {},
+     {Limits::Exact, 1e-3, -1, 0, true, "exact: every texel's clipped-cosine integral"}},
+    {"environment", "balanced", "cube-map CDFs, samples per face balanced per normal (Lu et al. 2013, Eq. 3-5)",
+     true, &onEnvironmentLight<&environmentBalanced>, "environment_balanced.frag", false, "cube",
+     {Limits::Unbiased, 1e-3, -1, 0, true, "unbiased; its standard error covers its error"}},
+    {"environment", "uniform-faces", "cube-map CDFs, 1/6 of the samples per face (Lu et al. 2013, Fig. 2)", true,
+     &onEnvironmentLight<&environmentUniformFaces>, "environment_uniform_faces.frag", false, "cube",
+     {Limits::Unbiased, 1e-3, -1, 0, true, "unbiased; its standard error covers its error"}},
+    {"environment", "global-cdf", "one CDF over the lat-long map with the sin(theta) Jacobian", true,
+     &onEnvironmentLight<&environmentGlobalCdf>, "environment_global_cdf.frag", false, "latlong",
+     {Limits::Unbiased, 1e-3, -1, 0, true, "unbiased; its standard error covers its error"}},
+    {"environment", "havran2005",
+     "256 filtered directional lights from relaxed Halton points (Havran et al. 2005); a shadow map each", false,
+     &onEnvironmentLight<&environmentHavran>, "environment_havran2005.frag", true, "lights",
+     {Limits::Approximate, 3e-2, -1, 0, true, "256 directional lights: within 3 % of a smooth sky"}},
+    {"environment", "havran2005-raytraced",
+     "havran2005 with a shadow ray per light instead of its shadow map (exact visibility)", false,
+     &onEnvironmentLight<&environmentHavran>, "environment_havran2005.frag", false, "lights",
+     {Limits::Approximate, 3e-2, -1, 0, true, "256 directional lights: within 3 % of a smooth sky"}},
+    {"environment", "balanced-mis", "balanced light samples and cosine samples, balance heuristic (Eq. 6)", true,
+     &onEnvironmentLight<&environmentBalancedMis>, "environment_balanced_mis.frag", false, "cube",
+     {Limits::Unbiased, 1e-3, -1, 0, true, "unbiased; its standard error covers its error"}},
+    {"environment", "balanced-integer",
+     "balanced with N_f rounded to whole samples (biased, pops; the baseline of the temporal-stability bench)",
+     true, &onEnvironmentLight<&environmentBalancedInteger>, "environment_balanced_integer.frag", false, "cube",
+     {Limits::Approximate, 5e-2, -1, 0, true, "biased by rounding N_f: a baseline, not an estimator to trust"}},
 };
 
-std::span<const LuminaireKindInfo> luminaireKinds() { return kKinds; }
+std::span<const LuminaireKindInfo> luminaireKinds() { return std::span<const LuminaireKindInfo>(kKinds, kPlacedKinds); }
+std::span<const LuminaireKindInfo> sourceKinds() { return kKinds; }
 std::span<const TechniqueInfo> techniques() { return kTechniques; }
+
+std::vector<TechniqueInfo> techniquesOf(std::string_view kind) {
+    std::vector<TechniqueInfo> out;
+    for (const auto& t : kTechniques)
+        if (t.kind == kind) out.push_back(t);
+    return out;
+}
 
 const LuminaireKindInfo* findKind(std::string_view kind) {
     for (const auto& k : kKinds)

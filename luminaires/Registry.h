@@ -1,7 +1,8 @@
 #pragma once
-// The table of luminaire kinds and of the techniques that render them. Adding a technique means
-// writing its files (a CPU estimator for `candela probe` and tests, a GLSL variant for the
-// renderer) and adding one line to the table in Registry.cpp; nothing in the core changes.
+// The table of light-source kinds and of the techniques that render them. Adding a technique
+// means writing its files (a CPU estimator for `candela probe` and tests, its shader
+// shaders/KIND_TECHNIQUE.frag) and adding one line to the table in Registry.cpp, with what it
+// promises at the extremes; nothing in the core or the tests changes.
 
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
@@ -11,36 +12,40 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
+#include "luminaires/Estimate.h"
 #include "luminaires/Luminaire.h"
 #include "util/JsonRead.h"
 
 namespace candela {
 
-/// Answers whether the segment between two points is free of occluders.
-class Visibility {
-public:
-    virtual ~Visibility() = default;
-    virtual bool visible(const glm::dvec3& from, const glm::dvec3& to) const = 0;
-    /// Is the ray from `from` along the unit `dir` free of occluders out to infinity (a distant
-    /// light)? Implementations bias only its start.
-    virtual bool visibleToward(const glm::dvec3& from, const glm::dvec3& dir) const = 0;
-};
-
-struct EstimateOptions {
-    int spp = 4096;                          ///< Samples per point for stochastic techniques.
-    uint64_t seed = 1;                       ///< Fixed seed: results are reproducible.
-    const Visibility* visibility = nullptr;  ///< null: no shadowing.
-};
-
-struct Estimate {
-    glm::dvec3 irradiance{0.0};  ///< W/m2 per channel (lux for photometric data).
-    glm::dvec3 stdError{0.0};    ///< Standard error of the estimate; 0 for exact techniques.
-};
-
 /// CPU double-precision irradiance at p for the unit normal n.
 using IrradianceFn = Estimate (*)(const Luminaire& luminaire, const glm::dvec3& p,
                                   const glm::dvec3& n, const EstimateOptions& options);
+
+/// What a technique promises at the extremes: tests/hardcases holds every technique to it on the
+/// hard-case grid (on the GPU with float's own allowances), and the README's table states it.
+struct StatedLimits {
+    enum Accuracy {
+        Exact,        ///< Within `tolerance` of the truth.
+        Unbiased,     ///< Its standard error covers its error (4 of them), plus `tolerance`.
+        PointLaw,     ///< Exactly the point law at the opening's centre, within `tolerance`.
+        Approximate,  ///< Within `tolerance` near the source, `farTolerance` far from it.
+    };
+    Accuracy accuracy = Exact;
+    double tolerance = 1e-3;    ///< Relative.
+    double farTolerance = -1.0;  ///< Approximate: 1e5 m away; < 0: `tolerance`.
+    /// The promise holds from this distance on, in opening diagonals (photometric openings);
+    /// nearer the estimate is only finite and non-negative.
+    double fromOpeningSizes = 0.0;
+    /// False: a peak of the table narrower than its few sample directions is anywhere between 0
+    /// and what the opening gives at its brightest radiance everywhere (pi F L_max).
+    bool resolvesPeaks = true;
+    /// The README's wording; empty: no statement, and the suites hold the technique to the
+    /// strictest promise (exact if deterministic, unbiased if progressive).
+    std::string_view statement = {};
+};
 
 struct TechniqueInfo {
     std::string_view kind;         ///< Luminaire kind it renders.
@@ -48,11 +53,16 @@ struct TechniqueInfo {
     std::string_view description;  ///< One line for the editor and `candela info`.
     bool progressive;              ///< Stochastic: refines over frames. Else exact in one frame.
     IrradianceFn irradiance;       ///< CPU estimator (probe, tests, parity).
-    std::string_view shader;       ///< Fragment shader in shaders/ that shades with it.
-    std::string_view define;       ///< Variant #define selecting this technique in that shader.
+    /// Its fragment shader in shaders/ (kind_technique.frag: the technique's own function and its
+    /// kind's shared shading); empty: CPU only (probe, tests, benches).
+    std::string_view shader;
     /// Where an occluder can block the luminaire: true reads shadow maps (SHADOW_MAPS, rendered
     /// from Luminaire::shadowLights()), false traces a ray per sample through the BVH (SHADOWS).
     bool shadowMaps = false;
+    /// What its kind's GPU pass prepares for it besides the source's record (space-separated
+    /// names that pass knows; the environment's: "cube", "latlong", "lights"); empty: nothing.
+    std::string_view resources = {};
+    StatedLimits limits = {};
 };
 
 /// Builds a luminaire from its scene-file entry (kind-specific fields; pose is read by the caller).
@@ -64,16 +74,21 @@ using LuminaireFactory = std::unique_ptr<Luminaire> (*)();
 struct LuminaireKindInfo {
     std::string_view kind;
     std::string_view description;
-    LuminaireParser parse;
-    LuminaireFactory create;
+    LuminaireParser parse;    ///< null for a kind that is not placed (the environment)
+    LuminaireFactory create;  ///< null for a kind that is not placed
     std::string_view defaultTechnique;
     /// The editor's fallback while the user drags (renderer/LivePreview.h): cheap per sample and
     /// close at one sample per pixel.
     std::string_view previewTechnique;
 };
 
+/// The kinds of luminaires a scene places (its "luminaires" list; the editor's Add).
 std::span<const LuminaireKindInfo> luminaireKinds();
+/// Every kind of light source: the luminaire kinds, then the environment.
+std::span<const LuminaireKindInfo> sourceKinds();
 std::span<const TechniqueInfo> techniques();
+/// The techniques of one kind, in the table's order.
+std::vector<TechniqueInfo> techniquesOf(std::string_view kind);
 const LuminaireKindInfo* findKind(std::string_view kind);
 const TechniqueInfo* findTechnique(std::string_view kind, std::string_view name);
 /// Comma-separated technique names of a kind, for error messages and help.

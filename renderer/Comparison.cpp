@@ -45,8 +45,10 @@ std::string techniqueSummary(const FramePlan& plan) {
     auto add = [&](std::string_view name) {
         if (std::find(names.begin(), names.end(), name) == names.end()) names.emplace_back(name);
     };
-    for (const ShadeStep& step : plan.shading) add(step.technique->name);
-    if (plan.environmentTechnique) add(plan.environmentTechnique->name);
+    // The luminaires' techniques first, then a source at infinity's (the environment's).
+    for (bool atInfinity : {false, true})
+        for (const ShadeStep& step : plan.shading)
+            if (step.atInfinity == atInfinity) add(step.technique->name);
     std::string out;
     for (const std::string& n : names) out += (out.empty() ? "" : " + ") + n;
     return out.empty() ? "nothing to shade" : out;

@@ -1,8 +1,11 @@
 #pragma once
-// The progressive renderer: G-buffer, one shading pass per luminaire (its technique's shader
-// variant), accumulation in float buffers, resolve to linear HDR, tone mapping. Works in any
+// The progressive renderer: G-buffer, one shading step per light source (a luminaire or the
+// environment, each through its technique's shader variant and its kind's SourcePass),
+// accumulation in float buffers per source, resolve to linear HDR, tone mapping. Works in any
 // current GL 4.5 context. Nothing runs that the scene does not need, and a converged image with
-// no change costs no pass at all.
+// no change costs no pass at all. A frame runs its phases in order: apply what changed (plan,
+// G-buffer, restarted accumulations), interreflected light, one band of the pass under way,
+// resolve and tone mapping when the image changed, statistics.
 
 #include <cstddef>
 #include <memory>
@@ -12,10 +15,10 @@
 
 #include "renderer/FramePlan.h"
 #include "renderer/FrameStats.h"
+#include "renderer/RenderSettings.h"
 #include "renderer/ShaderLibrary.h"
 #include "renderer/gl/GlObjects.h"
 #include "renderer/passes/ShadowMapPass.h"
-#include "renderer/passes/TonemapPass.h"
 #include "scene/Scene.h"
 
 #include <map>
@@ -23,54 +26,12 @@
 namespace candela {
 
 class GBufferPass;
-class ShadePass;
 class ResolvePass;
 class TonemapPass;
-class EnvironmentPass;
 class IndirectPass;
+class SourcePass;
 struct Bvh;
 struct RadiosityMesh;
-
-/// Which light the image shows: all of it, the direct light alone, or the interreflected light
-/// alone (what a designer's false colour compares).
-enum class LightParts { Total = 0, Direct = 1, Interreflected = 2 };
-
-/// FalseColour maps the values (lux in illuminance mode) through `RenderSettings::legend`.
-enum class ToneMapOperator { Exponential = 0, Reinhard = 1, FalseColour = 2 };
-
-struct RenderSettings {
-    int width = 512;
-    int height = 512;
-    int samplesPerFrame = 4;        ///< Light samples per pixel per luminaire each frame.
-    int maxSamples = 0;             ///< Stop refining at this many samples per pixel; 0 = never.
-    /// Empty: each luminaire's own technique. Else names separated by commas; each luminaire
-    /// uses the first its kind has (see planFrame).
-    std::string techniqueOverride;
-    ToneMapOperator toneMap = ToneMapOperator::Exponential;
-    float exposure = 1.0f;          ///< k of the operators in shaders/tonemap.frag.
-    float fixedAverage = 0.0f;      ///< > 0: tone-map against this luminance, not the frame mean.
-    /// Radiance: what the camera sees. Illuminance: every surface but the luminaires is a white
-    /// Lambertian receiver of albedo pi (no glossy lobe), so each pixel holds the irradiance E on
-    /// the surface, W/m2 (lux for photometric luminaires); luminaires show no value.
-    Quantity quantity = Quantity::Radiance;
-    FalseColourLegend legend;       ///< Used by ToneMapOperator::FalseColour.
-    LightParts parts = LightParts::Total;  ///< Display only: changing it re-renders nothing.
-    uint32_t seed = 0;              ///< Seeds the random numbers (independent renders differ).
-    /// The environment's technique; empty: techniqueOverride if it names one, else "balanced".
-    std::string environmentTechnique;
-    int environmentFaceSize = 0;    ///< Cube faces of N^2 texels; 0: EnvironmentPass's default.
-    ShadowMapSettings shadowMaps;   ///< For techniques that read shadow maps.
-    /// > 0: renderFrame() shades only a band of rows that takes about this long (ms), so an
-    /// interactive caller gets control back in time whatever one pass over the image costs; the
-    /// image shown is updated when a pass is complete (band by band during the first pass).
-    /// 0: every call shades the whole image (headless rendering, benches, tests).
-    double bandBudgetMs = 0.0;
-    /// A luminaire behind the others (one that moved) takes up to this many passes' samples in
-    /// one pass: a pass has a fixed cost per pixel that more samples share (the light field's
-    /// restricted-cdf at 960x540 on llvmpipe: 2.5 s for 16 spp, 4.4 s for 48). 1: every pass
-    /// takes samplesPerFrame (the live preview, where a frame's time counts).
-    int catchUpPasses = 3;
-};
 
 /// What changed since the last frame (the editor sets these; all of them restart accumulation).
 enum ChangeFlags : unsigned {
@@ -81,6 +42,9 @@ enum ChangeFlags : unsigned {
     kChangeSettings = 8,
     kChangeEnvironment = 16,  ///< The environment map (a sequence's frame, a moved sun, a file).
     kChangeAll = 31,
+    /// Found by the renderer itself: a source appeared or left (a new environment map is a new
+    /// source): the new ones are uploaded and start their accumulation.
+    kChangeSources = 32,
 };
 
 class Renderer {
@@ -98,8 +62,8 @@ public:
     bool converged() const { return mStats.converged; }
     const FrameStats& stats() const { return mStats; }
     const FramePlan& plan() const { return mPlan; }
-    /// The environment's GPU state (tables, samples), for tests and the editor's sample view.
-    const EnvironmentPass& environment() const { return *mEnvironment; }
+    /// The GPU pass of a source of the current plan (its tables, for tests); null when none.
+    const SourcePass* sourcePass(const Luminaire* source) const;
 
     /// Tone-mapped sRGB image (RGBA8, row 0 at the bottom) for display.
     const gl::Texture2D& displayTexture() const;
@@ -130,12 +94,8 @@ public:
     int pickLuminaire(const Scene& scene, double x, double y) const;
 
 private:
-    void resize(int width, int height);
-    void rebuildPlan();
-    void uploadGeometry();
-    void uploadLuminaires();
-    /// One luminaire's (or the environment's) estimates, summed over its own passes: moving a
-    /// luminaire restarts its accumulation alone, and the others keep theirs.
+    /// One source's estimates, summed over its own passes: moving a luminaire restarts its
+    /// accumulation alone, and the others keep theirs.
     struct Accumulation {
         gl::Texture2D texture;         ///< Complete passes, summed.
         gl::Framebuffer fbo;
@@ -145,31 +105,47 @@ private:
         int samples = 0;               ///< Their samples per pixel (texture holds each pass's
                                        ///< estimate times its samples).
         bool catchingUp = false;       ///< Restarted alone: behind the others, larger passes.
-        std::vector<std::byte> key;    ///< What it was shaded for (GPU record, technique, variant).
+        std::vector<std::byte> key;    ///< What it was shaded for (record, technique, variant).
     };
-    /// The plan's steps: -1 for the environment (when it has one), then 0, 1, ... shading.
+
+    // The phases of a frame, in order.
+    /// The G-buffer, the plan, the sources' passes and the accumulations after a change.
+    void applyChanges();
+    /// Restarts each accumulation whose source changed (all of them when `everything`).
+    void restartAccumulations(bool everything);
+    /// Draws the interreflected light's image when its solution or the view changed.
+    void updateIndirect();
+    /// Shades the next band of the pass under way (choosing the pass at its start) and adds the
+    /// pass to the accumulations when it completes.
+    void shadeBand();
+    /// Sums the accumulations (and the interreflected light) and tone-maps the sum.
+    void resolve();
+    /// The statistics of the least refined progressive step.
+    void updateStatistics();
+
+    void resize(int width, int height);
+    /// Whether Scene::sources() differs from the sources of the plan.
+    bool sourcesChanged() const;
+    /// Records of the sources (all of them, or only those without one) and their passes.
+    void syncSources(bool allRecords);
+    /// The plan's steps are indices 0, 1, ... into mPlan.shading.
     std::vector<int> planSteps() const;
-    /// The luminaire a step shades (null for the environment, -1).
-    const Luminaire* luminaireOf(int step) const;
-    bool progressiveStep(int step) const;
-    /// The accumulation of a step of the plan (-1: the environment).
+    const Luminaire* sourceOf(int step) const { return mPlan.shading[size_t(step)].source; }
+    bool progressiveStep(int step) const { return mPlan.shading[size_t(step)].progressive; }
     Accumulation& accumulationOf(int step);
     /// Whether the step still refines: a progressive one below maxSamples, a deterministic one
     /// not shaded yet.
     bool refines(int step);
     /// The steps the next pass shades: those that still refine with the fewest samples, so a
-    /// luminaire that restarted catches up with the others first; sets mPassSpp.
+    /// source that restarted catches up with the others first; sets mPassSpp.
     std::vector<const Luminaire*> choosePass();
-    /// Step index of a pass entry (nullptr: the environment, -1); -2 when it left the plan.
-    int stepOf(const Luminaire* lum) const;
+    /// Step index of a source; -1 when it left the plan.
+    int stepOf(const Luminaire* source) const;
     void setFrameUniforms(int frame, int spp);
     /// Shades rows [row0, row0 + rows) of the image (top row 0) for the pass's steps (all steps
-    /// into mAccum in probe mode); the environment's per-frame tables and samples are drawn when
-    /// row0 is 0.
+    /// into mAccum in probe mode); each step's pass prepares what its technique reads when row0
+    /// is 0.
     void runShading(int spp, int row0, int rows);
-    void runEnvironment(int spp, bool newPass, int frame, const gl::Framebuffer& target);
-    /// Renders the shadow maps that are missing or stale (timed as "shadow:NAME").
-    void updateShadowMaps();
     /// mShadowGeometry for the current geometry.
     const ShadowGeometry& shadowGeometry();
 
@@ -186,10 +162,8 @@ private:
     bool mPointMode = false;  ///< The G-buffer holds probe points, not a camera view.
 
     std::unique_ptr<GBufferPass> mGBuffer;
-    std::unique_ptr<ShadePass> mShade;
     std::unique_ptr<ResolvePass> mResolve;
     std::unique_ptr<TonemapPass> mTonemap;
-    std::unique_ptr<EnvironmentPass> mEnvironment;
     std::unique_ptr<IndirectPass> mIndirect;
     std::shared_ptr<const RadiosityMesh> mIndirectMesh;  ///< Handed over, not uploaded yet...
     std::vector<glm::vec3> mIndirectIrradiance;          ///< ... while mIndirectUpload is set.
@@ -197,21 +171,21 @@ private:
     std::unique_ptr<Bvh> mBvh;
     gl::Buffer mFrameUniforms;
     gl::Buffer mBvhNodes, mBvhTris;
-    std::vector<gl::Buffer> mLuminaireBuffers;  ///< One record buffer per luminaire.
     ShadowGeometry mShadowGeometry;
     int mGeometryGeneration = 0;        ///< Counts geometry changes.
     int mShadowGeometryGeneration = -1; ///< The generation mShadowGeometry holds.
-    /// Each luminaire's maps, by luminaire (entries of luminaires that left are dropped).
-    std::map<const Luminaire*, std::unique_ptr<ShadowMaps>> mShadowMaps;
-    DirectionalShadowMaps mEnvironmentShadows;  ///< The Havran lights' maps.
     gl::Texture2D mAccum;        ///< Probe mode: every step's estimates.
     gl::Framebuffer mAccumFbo;
-    /// Each luminaire's accumulation (deterministic steps hold their one pass: shaded once, not
-    /// again on every pass), and the environment's.
+    /// Per source of the plan: its GPU pass, its record as uploaded, its accumulation
+    /// (deterministic steps hold their one pass: shaded once, not again on every pass).
+    struct KindPass {
+        std::string kind;  ///< Its source's kind (kept: a source that left may be gone).
+        std::unique_ptr<SourcePass> pass;
+    };
+    std::map<const Luminaire*, KindPass> mSourcePasses;
+    std::map<const Luminaire*, std::vector<std::byte>> mRecords;
     std::map<const Luminaire*, Accumulation> mAccumulations;
-    Accumulation mEnvironmentAccumulation;
-    std::vector<std::vector<std::byte>> mRecords;  ///< Each luminaire's GPU record, as uploaded.
-    std::vector<const Luminaire*> mPass;  ///< Steps of the pass under way (nullptr: environment).
+    std::vector<const Luminaire*> mPass;  ///< Steps of the pass under way.
     int mPassSpp = 1;                     ///< Samples per pixel of that pass.
     gl::VertexArray mEmptyVao;
 };

@@ -20,7 +20,7 @@ struct ProgramKey {
     std::vector<std::string> defines;  ///< "NAME" or "NAME VALUE".
 
     bool operator<(const ProgramKey& o) const;
-    std::string label() const;  ///< "lambertian_rect_shade.frag[TECHNIQUE_ANALYTIC,SHADOWS]"
+    std::string label() const;  ///< "lambertian_rect_analytic.frag[SHADOWS]"
 };
 
 class ShaderLibrary {

@@ -156,19 +156,19 @@ GridResult computeGrid(const Scene& scene, const GridSpec& spec,
     if (nu * nv > kMaxGridPoints)
         throw InputError("--spacing: " + std::to_string(spec.spacing) + " m gives over 1e6 points");
     // The environment's technique, as `candela probe` chooses it.
-    const EnvironmentTechniqueInfo* envChosen = nullptr;
+    const TechniqueInfo* envChosen = nullptr;
     if (scene.environmentMap) {
         std::string name = spec.environmentTechnique;
-        if (name.empty()) name = findEnvironmentTechnique(spec.technique) ? spec.technique : "reference";
-        envChosen = findEnvironmentTechnique(name);
+        if (name.empty()) name = findTechnique("environment", spec.technique) ? spec.technique : "reference";
+        envChosen = findTechnique("environment", name);
         if (!envChosen)
             throw InputError("--env-technique: \"" + name + "\" is not an environment technique (available: " +
-                             environmentTechniqueNames() + ")");
+                             techniqueNames("environment") + ")");
     }
     std::vector<const TechniqueInfo*> chosen;
     for (const auto& l : scene.luminaires) {
         std::string name = spec.technique.empty() ? l->technique : spec.technique;
-        if (!spec.technique.empty() && !findTechnique(l->kind(), name) && findEnvironmentTechnique(name))
+        if (!spec.technique.empty() && !findTechnique(l->kind(), name) && findTechnique("environment", name))
             name = l->technique;  // a name only the environment has leaves luminaires on their own
         const TechniqueInfo* t = findTechnique(l->kind(), name);
         if (!t || !t->irradiance)
@@ -191,8 +191,7 @@ GridResult computeGrid(const Scene& scene, const GridSpec& spec,
     r.units = scene.units();
     std::vector<double> scales;  // 683 lm/W for a radiometric luminaire in a mixed scene
     for (const auto& l : scene.luminaires) scales.push_back(scene.unitScale(*l));
-    std::unique_ptr<EnvironmentLighting> lighting;
-    if (envChosen) lighting = std::make_unique<EnvironmentLighting>(scene.environmentMap);
+    const Luminaire* environment = envChosen ? scene.environmentLight() : nullptr;
     double envScale = scene.environmentUnitScale();
     r.u = gridCoordinates(spec.lo.x, spec.hi.x, spec.spacing);
     r.v = gridCoordinates(spec.lo.y, spec.hi.y, spec.spacing);
@@ -202,10 +201,10 @@ GridResult computeGrid(const Scene& scene, const GridSpec& spec,
             glm::dvec3 p = spec.plane.point(r.u[i], r.v[j]);
             glm::dvec3 e(0.0), var(0.0);
             size_t index = j * r.u.size() + i;
-            if (lighting) {
+            if (environment) {
                 EstimateOptions o = options;
                 o.seed = 1000003ull * index + 999983ull;
-                Estimate est = envChosen->irradiance(*lighting, p, n, o);
+                Estimate est = envChosen->irradiance(*environment, p, n, o);
                 e += envScale * est.irradiance;
                 var += envScale * envScale * est.stdError * est.stdError;
             }

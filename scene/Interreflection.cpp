@@ -16,16 +16,15 @@ constexpr double kPi = 3.14159265358979323846;
 
 struct Interreflection::Source {
     std::vector<std::byte> key;                         ///< What its direct light depends on.
-    std::shared_ptr<const Luminaire> luminaire;         ///< Its own copy; null: the environment
+    std::shared_ptr<const Luminaire> luminaire;         ///< Its own copy (a luminaire or the environment).
+    const Luminaire* origin = nullptr;                  ///< The scene's, while sync() runs.
     IrradianceFn irradiance = nullptr;
-    const EnvironmentTechniqueInfo* environment = nullptr;
-    std::shared_ptr<const EnvironmentLighting> lighting;
     double scale = 1.0;                                 ///< The scene's unit conversion.
     int spp = 0;                                        ///< Samples of `direct`.
     std::vector<glm::dvec3> direct;                     ///< Per patch.
 
     Estimate estimate(const glm::dvec3& p, const glm::dvec3& n, const EstimateOptions& o) const {
-        Estimate e = luminaire ? irradiance(*luminaire, p, n, o) : environment->irradiance(*lighting, p, n, o);
+        Estimate e = irradiance(*luminaire, p, n, o);
         e.irradiance *= scale;
         e.stdError *= scale;
         return e;
@@ -112,6 +111,7 @@ bool Interreflection::sync(const Scene& scene, int spp, const Progress& progress
             throw InputError("--technique: \"" + name + "\" is not a technique of " + std::string(l->kind()) +
                              " with a CPU estimator (available: " + techniqueNames(l->kind()) + ")");
         Source s;
+        s.origin = l.get();
         s.irradiance = t->irradiance;
         s.scale = scene.unitScale(*l);
         nlohmann::json fields;
@@ -126,10 +126,12 @@ bool Interreflection::sync(const Scene& scene, int spp, const Progress& progress
     if (scene.environmentMap) {
         std::string name = mOptions.environmentTechnique.empty() ? "balanced-mis" : mOptions.environmentTechnique;
         Source s;
-        s.environment = findEnvironmentTechnique(name);
-        if (!s.environment)
+        const TechniqueInfo* t = findTechnique("environment", name);
+        if (!t)
             throw InputError("--env-technique: \"" + name + "\" is not an environment technique (available: " +
-                             environmentTechniqueNames() + ")");
+                             techniqueNames("environment") + ")");
+        s.origin = scene.environmentLight();
+        s.irradiance = t->irradiance;
         s.scale = scene.environmentUnitScale();
         append(s.key, "environment:" + name + ":" + scene.environment.dump());
         const EnvironmentMap* map = scene.environmentMap.get();
@@ -146,12 +148,10 @@ bool Interreflection::sync(const Scene& scene, int spp, const Progress& progress
                 s.luminaire = mSources[i].luminaire;
                 s.direct = std::move(mSources[i].direct);
                 s.spp = mSources[i].spp;
-                s.lighting = mSources[i].lighting;
                 break;
             }
         if (s.spp > 0) continue;
-        if (!s.environment) s.luminaire = scene.luminaires[size_t(&s - fresh.data())]->clone();
-        if (s.environment && !s.lighting) s.lighting = std::make_shared<EnvironmentLighting>(scene.environmentMap);
+        s.luminaire = s.origin->clone();  // the environment's clone shares its CPU tables
         if (!computeDirect(s, spp, s.direct, progress)) {
             // Cancelled: keep the old sources (their light is still in the solution).
             for (size_t i = 0; i < mSources.size(); ++i)

@@ -27,8 +27,6 @@ namespace candela {
 
 struct Scene;
 class EmbreeVisibility;
-class EnvironmentLighting;
-struct EnvironmentTechniqueInfo;
 
 struct InterreflectionOptions {
     RadiositySettings mesh;

@@ -190,4 +190,17 @@ bool environmentNeedsShadows(const Scene& scene, const glm::mat4& viewProj) {
     return false;
 }
 
+std::vector<bool> sourcesNeedingShadows(const Scene& scene, const glm::mat4& viewProj) {
+    std::vector<bool> placed = luminairesNeedingShadows(scene, viewProj), out;
+    for (const Luminaire* source : scene.sources()) {
+        if (source->atInfinity()) {
+            out.push_back(environmentNeedsShadows(scene, viewProj));
+            continue;
+        }
+        for (size_t i = 0; i < scene.luminaires.size(); ++i)
+            if (scene.luminaires[i].get() == source) out.push_back(placed[i]);
+    }
+    return out;
+}
+
 }  // namespace candela

@@ -39,4 +39,8 @@ std::vector<bool> luminairesNeedingShadows(const Scene& scene, const glm::mat4& 
 /// A single ground plane or a single convex box needs no shadow rays.
 bool environmentNeedsShadows(const Scene& scene, const glm::mat4& viewProj);
 
+/// One flag per source of Scene::sources(), in its order: the rule of luminairesNeedingShadows
+/// for a placed luminaire, that of environmentNeedsShadows for a source at infinity.
+std::vector<bool> sourcesNeedingShadows(const Scene& scene, const glm::mat4& viewProj);
+
 }  // namespace candela

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "luminaires/Environment.h"
+#include "luminaires/EnvironmentLight.h"
 
 namespace candela {
 
@@ -38,6 +39,7 @@ Scene Scene::clone() const {
     copy.environment = environment;
     copy.environmentMap = environmentMap;  // immutable, shared
     copy.environmentSequence = environmentSequence;
+    copy.mEnvironmentLight = mEnvironmentLight;  // immutable, shared: the same source
     copy.camera = camera;
     return copy;
 }
@@ -95,6 +97,21 @@ double Scene::unitScale(const Luminaire& luminaire) const {
 
 double Scene::environmentUnitScale() const {
     return environment.is_null() ? 1.0 : units().scale(environmentQuantities(environment));
+}
+
+const Luminaire* Scene::environmentLight() const {
+    if (!environmentMap) return nullptr;
+    auto* light = static_cast<const EnvironmentLight*>(mEnvironmentLight.get());
+    if (!light || light->sharedMap() != environmentMap || light->quantities() != environmentQuantities(environment))
+        mEnvironmentLight = std::make_shared<EnvironmentLight>(environmentMap, environmentQuantities(environment));
+    return mEnvironmentLight.get();
+}
+
+std::vector<const Luminaire*> Scene::sources() const {
+    std::vector<const Luminaire*> out;
+    if (const Luminaire* environment = environmentLight()) out.push_back(environment);
+    for (const auto& l : luminaires) out.push_back(l.get());
+    return out;
 }
 
 bool Scene::hasGlossy() const {

@@ -100,6 +100,17 @@ struct Scene {
     /// a radiometric source in a mixed scene, else 1.
     double unitScale(const Luminaire& luminaire) const;
     double environmentUnitScale() const;
+
+    /// The environment as a light source (luminaires/EnvironmentLight.h), made from
+    /// environmentMap and kept while the map stays the same (a new map is a new source); null
+    /// without one. Not thread-safe: each thread renders its own copy of a scene.
+    const Luminaire* environmentLight() const;
+    /// Every light source the renderer and the estimators iterate over: the environment (when
+    /// there is one), then the luminaires.
+    std::vector<const Luminaire*> sources() const;
+
+private:
+    mutable std::shared_ptr<const Luminaire> mEnvironmentLight;  ///< Made for the map it holds.
 };
 
 }  // namespace candela

@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "luminaires/EnvironmentLight.h"
+#include "luminaires/Registry.h"
 #include "util/Error.h"
 
 namespace candela {
@@ -17,6 +19,22 @@ class GlContext;
 }
 
 namespace candela::test {
+
+/// The names of a kind's techniques with a GPU pass that state they are unbiased (the samplers a
+/// statistical test holds against a reference), in the registry's order.
+inline std::vector<std::string> unbiasedGpuTechniques(std::string_view kind) {
+    std::vector<std::string> out;
+    for (const TechniqueInfo& t : techniquesOf(kind))
+        if (t.progressive && !t.shader.empty() && t.limits.accuracy == StatedLimits::Unbiased) out.emplace_back(t.name);
+    return out;
+}
+
+/// The environment as a source over tables a test built (its face size, its Havran lights), for
+/// the registry's estimators; it refers to `lighting`, which must outlive it.
+inline EnvironmentLight lightOf(const EnvironmentLighting& lighting) {
+    return EnvironmentLight(std::shared_ptr<const EnvironmentLighting>(std::shared_ptr<void>(), &lighting),
+                            Quantities::Radiometric);
+}
 
 /// Upper tail of the chi-square distribution with k degrees of freedom: P(X >= x).
 double chiSquareSurvival(double x, double k);

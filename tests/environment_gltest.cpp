@@ -153,15 +153,15 @@ TEST(EnvironmentGl, ShadingPassMatchesTheReference) {
         EnvironmentLighting lighting(map, EnvironmentPass::defaultFaceSize(*map), 256);
         EstimateOptions o;
         o.spp = spp;
-        for (const char* technique : {"balanced", "uniform-faces", "balanced-mis", "global-cdf"}) {
+        for (const std::string& technique : test::unbiasedGpuTechniques("environment")) {
             std::vector<glm::dvec3> gpu = gpuProbe(map, technique, test::cubeNormals26(), spp);
-            const EnvironmentTechniqueInfo* t = findEnvironmentTechnique(technique);
+            const TechniqueInfo* t = findTechnique("environment", technique);
             for (size_t i = 0; i < gpu.size(); ++i) {
                 glm::dvec3 nrm = test::cubeNormals26()[i];
                 double ref = lum(environmentReference(lighting, {}, nrm, o).irradiance);
                 // The CPU twin's standard error at the same spp measures this estimator's noise:
                 // within 1 % (the figure) plus 4 of those standard errors.
-                double se = lum(t->irradiance(lighting, {}, nrm, o).stdError);
+                double se = lum(t->irradiance(test::lightOf(lighting), {}, nrm, o).stdError);
                 EXPECT_NEAR(lum(gpu[i]), ref, 0.01 * ref + 4.0 * se)
                     << file << " " << technique << " n " << nrm.x << "," << nrm.y << "," << nrm.z;
             }
@@ -182,13 +182,13 @@ TEST(EnvironmentGl, ConstantMapGivesPiL) {
     EnvironmentLighting lighting(map, EnvironmentPass::defaultFaceSize(*map), 16);
     EstimateOptions o;
     o.spp = spp;
-    for (const char* technique : {"balanced", "uniform-faces", "balanced-mis", "global-cdf"}) {
+    for (const std::string& technique : test::unbiasedGpuTechniques("environment")) {
         std::vector<glm::dvec3> e = gpuProbe(map, technique, test::cubeNormals26(), spp);
-        const EnvironmentTechniqueInfo* t = findEnvironmentTechnique(technique);
+        const TechniqueInfo* t = findTechnique("environment", technique);
         for (size_t i = 0; i < e.size(); ++i) {
             // No sampler here has the cosine in its pdf, so none is exact on a constant map:
             // 1e-3 plus 4 standard errors of the CPU twin at the same spp.
-            double se = t->irradiance(lighting, {}, test::cubeNormals26()[i], o).stdError.x;
+            double se = t->irradiance(test::lightOf(lighting), {}, test::cubeNormals26()[i], o).stdError.x;
             EXPECT_NEAR(e[i].x, kPi * L, 1e-3 * kPi * L + 4.0 * se) << technique << " " << i;
         }
     }
@@ -199,7 +199,9 @@ TEST(EnvironmentGl, BlackMapsAndHugeSunsStayFinite) {
     std::vector<glm::vec3> rgb(64 * 32, glm::vec3(0.01f));
     rgb[10 * 64 + 20] = glm::vec3(1e6f);  // a one-texel sun 1e8 times the rest
     auto sun = std::make_shared<EnvironmentMap>(64, 32, rgb, 1.0, 0.0, "sun");
-    for (const char* technique : {"balanced", "uniform-faces", "balanced-mis", "global-cdf", "havran2005"}) {
+    for (const TechniqueInfo& info : techniquesOf("environment")) {  // every technique with a GPU pass
+        if (info.shader.empty()) continue;
+        const std::string technique(info.name);
         for (const glm::dvec3& v : gpuProbe(black, technique, test::cubeNormals26(), 64)) {
             EXPECT_EQ(v, glm::dvec3(0.0)) << technique;  // exactly 0, no NaN
         }
@@ -249,7 +251,7 @@ TEST(EnvironmentGl, TablesAreBuiltOnlyWhenTheMapChanges) {
     EXPECT_TRUE(has(first, "env:samples"));
     EXPECT_TRUE(has(first, "shade:environment:balanced"));
     // A single ground plane cannot shadow itself: no shadow variant.
-    EXPECT_FALSE(has(renderer.plan().environment->program.defines, "SHADOWS"));
+    EXPECT_FALSE(has(renderer.plan().stepOfKind("environment")->program.defines, "SHADOWS"));
     renderer.renderFrame();
     std::vector<std::string> second = passNames(renderer.stats());
     EXPECT_FALSE(has(second, "env:cdf"));  // same map: the tables are kept
@@ -288,7 +290,7 @@ TEST(EnvironmentGl, ARoofShadowsTheGround) {
         renderer.update(scene, kChangeAll);
         do renderer.renderFrame();
         while (!renderer.converged());
-        ASSERT_TRUE(has(renderer.plan().environment->program.defines, "SHADOWS"));
+        ASSERT_TRUE(has(renderer.plan().stepOfKind("environment")->program.defines, "SHADOWS"));
         std::vector<float> e = renderer.readLinear();
         double centre = e[(16 * 33 + 16) * 3 + 1];
         // The pixel covers about 6 cm of ground along x (grazing view) where F changes by under
@@ -353,20 +355,20 @@ TEST(EnvironmentGl, PlanRunsOnlyWhatTheSceneNeeds) {
     Scene plain = groundScene(false), boxed = groundScene(true);
     glm::mat4 vp = cameraViewProj(boxed.camera, 4.0 / 3.0);
     FramePlan p = planFrame(boxed, vp);
-    ASSERT_TRUE(p.environment);
-    EXPECT_TRUE(has(p.environment->program.defines, "SHADOWS"));  // the box shadows the ground
+    ASSERT_TRUE(p.stepOfKind("environment"));
+    EXPECT_TRUE(has(p.stepOfKind("environment")->program.defines, "SHADOWS"));  // the box shadows the ground
     EXPECT_TRUE(p.needsBvh);
     EXPECT_FALSE(planFrame(plain, vp).needsBvh);
     Scene none = groundScene(false);
     none.environmentMap.reset();
     FramePlan q = planFrame(none, vp);
-    EXPECT_FALSE(q.environment);
+    EXPECT_FALSE(q.stepOfKind("environment"));
     EXPECT_FALSE(has(q.passNames(), "env:cdf"));
     // The exact reference is CPU-only: rendering with it is refused with a clear message.
-    EXPECT_THROW(planFrame(plain, vp, {}, Quantity::Radiance, "reference"), InputError);
-    EXPECT_THROW(planFrame(plain, vp, {}, Quantity::Radiance, "no-such"), InputError);
+    EXPECT_THROW(planFrame(plain, vp, "environment=reference", Quantity::Radiance), InputError);
+    EXPECT_THROW(planFrame(plain, vp, "environment=no-such", Quantity::Radiance), InputError);
     // global-cdf and havran2005 build their tables on the CPU: no cube passes.
-    EXPECT_FALSE(has(planFrame(plain, vp, {}, Quantity::Radiance, "global-cdf").passNames(), "env:cdf"));
+    EXPECT_FALSE(has(planFrame(plain, vp, "environment=global-cdf", Quantity::Radiance).passNames(), "env:cdf"));
 }
 
 }  // namespace

@@ -175,9 +175,9 @@ TEST(Environment, ConstantMapGivesPiL) {
     for (const glm::dvec3& n : test::cubeNormals26()) {
         // The reference is exact up to the 8-point Gauss-Legendre rule on the horizon band.
         EXPECT_NEAR(lum(environmentReference(lighting, {}, n, o).irradiance), kPi * L, 1e-3 * kPi * L);
-        for (const auto& t : environmentTechniques()) {
-            if (t.name == "reference" || t.irradiance == &environmentHavran) continue;  // both havran2005s
-            Estimate e = t.irradiance(lighting, {}, n, o);
+        for (const auto& t : techniquesOf("environment")) {
+            if (t.name == "reference" || t.irradiance == &onEnvironmentLight<&environmentHavran>) continue;  // both havran2005s
+            Estimate e = t.irradiance(test::lightOf(lighting), {}, n, o);
             double se = lum(e.stdError);
             // 2^18 samples: the standard error must be below 3e-3 pi L (global-cdf's is
             // sqrt(16/6 - 1) / sqrt(spp) = 2.5e-3 pi L for a constant map, the face-balanced
@@ -449,8 +449,8 @@ TEST(Environment, ARoofShadowsTheSky) {
     double F = test::rectangleFormFactor(-0.3, 0.7, -0.4, 0.2, 1.0);
     double expected = kPi * (1.0 - F);
     ASSERT_GT(F, 0.1);  // the test means something: the roof blocks a tenth of the sky or more
-    for (const char* name : {"balanced", "uniform-faces", "balanced-mis", "global-cdf"}) {
-        Estimate e = findEnvironmentTechnique(name)->irradiance(lighting, {}, glm::dvec3(0, 1, 0), o);
+    for (const std::string& name : test::unbiasedGpuTechniques("environment")) {
+        Estimate e = findTechnique("environment", name)->irradiance(test::lightOf(lighting), {}, glm::dvec3(0, 1, 0), o);
         // 4 standard errors at 2^16 spp, plus 1e-3 for the float vertices of the box.
         EXPECT_NEAR(lum(e.irradiance), expected, 4.0 * lum(e.stdError) + 1e-3 * expected) << name;
     }
@@ -543,9 +543,9 @@ TEST(Environment, BlackFaceAndBlackMap) {
     }
     auto black = makeMap(w, h, [](int, int) { return glm::vec3(0.f); });
     EnvironmentLighting dark(black, 16, 16);
-    for (const auto& t : environmentTechniques())
+    for (const auto& t : techniquesOf("environment"))
         for (const glm::dvec3& n : test::cubeNormals26()) {
-            Estimate e = t.irradiance(dark, {}, n, o);
+            Estimate e = t.irradiance(test::lightOf(dark), {}, n, o);
             EXPECT_EQ(e.irradiance, glm::dvec3(0.0)) << t.name;  // exactly 0, not NaN
             EXPECT_EQ(e.stdError, glm::dvec3(0.0)) << t.name;
         }

@@ -37,7 +37,9 @@ TEST(FramePlan, FloorAndLightOnlyRunsNoShadowsAndConvergesAtOnce) {
     EXPECT_EQ(plan.passNames(), (std::vector<std::string>{"gbuffer", "shade:Panel:analytic",
                                                           "resolve", "tonemap"}));
     ASSERT_EQ(plan.shading.size(), 1u);
-    EXPECT_EQ(plan.shading[0].program.defines, std::vector<std::string>{"TECHNIQUE_ANALYTIC"});
+    // The analytic technique's own shader, and no variant (no SHADOWS, no GLOSSY).
+    EXPECT_EQ(plan.shading[0].program.fragment, "lambertian_rect_analytic.frag");
+    EXPECT_EQ(plan.shading[0].program.defines, std::vector<std::string>{});
     EXPECT_FALSE(plan.needsBvh);
     EXPECT_FALSE(plan.progressive());
 }
@@ -93,14 +95,14 @@ TEST(FramePlan, OverrideListGivesEachKindTheFirstItHas) {
     EXPECT_EQ(own.shading[0].name, "shade:Panel:analytic");
     EXPECT_EQ(own.shading[1].name, "shade:Pendant:point");
     EXPECT_EQ(overrideFor("point,reference", "lambertian-rect"), "reference");
-    EXPECT_EQ(overrideFor("point,havran2005", ""), "havran2005");
+    EXPECT_EQ(overrideFor("point,havran2005", "environment"), "havran2005");
     EXPECT_EQ(overrideFor("point", "lightfield"), "");
     // Scoped items: both kinds have "reference", only the photometric one is asked to use it.
     FramePlan scoped = planFrame(scene, view(scene), "photometric=reference,lambertian-rect=analytic");
     EXPECT_EQ(scoped.shading[0].name, "shade:Panel:analytic");
     EXPECT_EQ(scoped.shading[1].name, "shade:Pendant:reference");
     EXPECT_EQ(overrideFor("photometric=reference", "lambertian-rect"), "");
-    EXPECT_EQ(overrideFor("lightfield=reference,environment=balanced-mis", ""), "balanced-mis");
+    EXPECT_EQ(overrideFor("lightfield=reference,environment=balanced-mis", "environment"), "balanced-mis");
 }
 
 TEST(FramePlan, TechniqueListsAreChecked) {

@@ -146,7 +146,10 @@ TEST(LightFieldGl, ShadingPassMatchesTheCpuReference) {
     settings.width = 16;
     settings.height = 16;
     renderer.setSettings(settings);
-    for (const char* technique : {"restricted-cdf", "uniform-restricted", "precomputed-global"}) {
+    // Every sampler of the kind (progressive, with a GPU pass).
+    for (const TechniqueInfo& info : techniquesOf("lightfield")) {
+        if (!info.progressive || info.shader.empty()) continue;
+        const std::string technique(info.name);
         RenderSettings s = settings;
         s.techniqueOverride = technique;
         renderer.setSettings(s);

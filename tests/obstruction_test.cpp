@@ -122,7 +122,8 @@ const double kLit[] = {0.9, 1.2, 1.6};
 
 TEST_F(Obstruction, EveryTechniqueOfEveryKindShadowsTheTableClosedForm) {
     int checked = 0;
-    for (const char* kind : {"lambertian-rect", "photometric", "lightfield"}) {
+    for (const LuminaireKindInfo& info : luminaireKinds()) {
+        const std::string kind(info.kind);
         Scene s = scene(kind);
         ASSERT_EQ(s.luminaires.size(), 1u);
         const Luminaire& light = *s.luminaires[0];
@@ -217,7 +218,7 @@ TEST_F(Obstruction, EveryEnvironmentTechniqueShadowsTheTableClosedForm) {
     EnvironmentLighting lighting(s.environmentMap);
     EmbreeVisibility visibility(s);
     int checked = 0;
-    for (const EnvironmentTechniqueInfo& t : environmentTechniques()) {
+    for (const TechniqueInfo& t : techniquesOf("environment")) {
         SCOPED_TRACE(std::string(t.name));
         ++checked;
         for (double x : {0.0, 0.3, 0.5, 1.0, 2.5}) {
@@ -226,7 +227,7 @@ TEST_F(Obstruction, EveryEnvironmentTechniqueShadowsTheTableClosedForm) {
             EstimateOptions o;
             o.spp = 8192;
             o.visibility = &visibility;
-            Estimate e = t.irradiance(lighting, {x, 0.0, 0.0}, {0.0, 1.0, 0.0}, o);
+            Estimate e = t.irradiance(test::lightOf(lighting), {x, 0.0, 0.0}, {0.0, 1.0, 0.0}, o);
             // Stochastic techniques: four standard errors. The exact reference: 0.5 %, the error
             // of its visibility at 6 x 6 rays per texel along the table's outline. havran2005's
             // 256 lights (one direction each) see the table's solid angle in steps of one

@@ -80,7 +80,7 @@ TEST(Renderer, OccludedSceneTracesShadowsProgressively) {
     EXPECT_TRUE(renderer.converged());  // maxSamples = 8 at 4 per frame
     auto variants = shaders.compiledVariants();
     EXPECT_TRUE(std::find(variants.begin(), variants.end(),
-                          "lambertian_rect_shade.frag[TECHNIQUE_ANALYTIC,SHADOWS]") != variants.end());
+                          "lambertian_rect_analytic.frag[SHADOWS]") != variants.end());
 }
 
 TEST(Renderer, BandedRefinementGivesTheSameImageAndShowsOnlyWholePasses) {

@@ -285,8 +285,8 @@ std::vector<float> skyIlluminance(Renderer& renderer, const Scene& scene, const 
 TEST_F(ShadowMapsGl, HavranLightsGetOneDirectionalMapEach) {
     Scene scene = skyScene(true);
     std::vector<float> maps = skyIlluminance(renderer, scene, "havran2005");
-    ASSERT_TRUE(renderer.plan().environment);
-    EXPECT_TRUE(has(renderer.plan().environment->program.defines, "SHADOW_MAPS"));
+    ASSERT_TRUE(renderer.plan().stepOfKind("environment"));
+    EXPECT_TRUE(has(renderer.plan().stepOfKind("environment")->program.defines, "SHADOW_MAPS"));
     EXPECT_FALSE(renderer.plan().needsBvh);
     EXPECT_TRUE(has(renderer.plan().passNames(), "shadow:environment"));
     // The same map again: a new view renders no map.
@@ -297,9 +297,9 @@ TEST_F(ShadowMapsGl, HavranLightsGetOneDirectionalMapEach) {
     scene.camera.position.x -= 0.3;
 
     std::vector<float> rays = skyIlluminance(renderer, scene, "havran2005-raytraced");
-    EXPECT_TRUE(has(renderer.plan().environment->program.defines, "SHADOWS"));
+    EXPECT_TRUE(has(renderer.plan().stepOfKind("environment")->program.defines, "SHADOWS"));
     std::vector<float> open = skyIlluminance(renderer, skyScene(false), "havran2005");
-    EXPECT_FALSE(has(renderer.plan().environment->program.defines, "SHADOW_MAPS"));
+    EXPECT_FALSE(has(renderer.plan().stepOfKind("environment")->program.defines, "SHADOW_MAPS"));
     // The same 256 lights in all three images, so rays / open and maps / open are each
     // pixel's irradiance-weighted visible fraction of them.
     int lit = 0, acne = 0, shaded = 0;

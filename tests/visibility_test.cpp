@@ -210,7 +210,8 @@ TEST(LightFieldVisibility, ABoxedLuminaireLightsNothingAndUToSIsInsideTheLuminai
         << "}";
     std::ofstream(dir / "points.csv") << "x,y,z,nx,ny,nz\n0,0.5,0,0,1,0\n0.5,0.2,0.3,0,1,0\n0.02,0.6,0,0,1,0\n";
     std::string points = (dir / "points.csv").string();
-    for (const char* t : {"reference", "restricted-cdf", "uniform-restricted", "precomputed-global", "granier2003"}) {
+    for (const TechniqueInfo& info : techniquesOf("lightfield")) {
+        const std::string t(info.name);
         std::vector<double> e = probeColumn({(dir / "boxed.json").string(), "--points", points, "--technique", t,
                                              "--spp", "4096", "--visibility"});
         ASSERT_EQ(e.size(), 3u) << t;

@@ -58,8 +58,8 @@ std::string withChoice(const std::string& list, const std::vector<std::string>& 
 std::vector<std::string> gpuTechniques(const std::string& kind) {
     std::vector<std::string> out;
     if (kind == "environment") {
-        for (const EnvironmentTechniqueInfo& t : environmentTechniques())
-            if (!t.define.empty()) out.emplace_back(t.name);
+        for (const TechniqueInfo& t : techniquesOf("environment"))
+            if (!t.shader.empty()) out.emplace_back(t.name);
         return out;
     }
     for (const TechniqueInfo& t : techniques())

@@ -567,9 +567,10 @@ static nlohmann::json environmentUiJson(const EditorState& state) {
 /// preview scene has the edited scene's luminaires in the same order.
 static nlohmann::json planTechniques(const Scene& scene, const Renderer& renderer) {
     nlohmann::json out = nlohmann::json::object();
+    size_t k = 0;  // the steps of luminaires follow the scene's luminaires
     for (const ShadeStep& step : renderer.plan().shading)
-        if (step.luminaire >= 0 && step.luminaire < int(scene.luminaires.size()))
-            out[scene.luminaires[size_t(step.luminaire)]->name] = std::string(step.technique->name);
+        if (!step.atInfinity && k < scene.luminaires.size())
+            out[scene.luminaires[k++]->name] = std::string(step.technique->name);
     return out;
 }
 

@@ -238,8 +238,8 @@ bool environmentControls(EditorState& state) {
     RenderSettings& s = state.settings;
     std::string current = s.environmentTechnique.empty() ? "balanced" : s.environmentTechnique;
     if (ImGui::BeginCombo("Technique##env", current.c_str())) {
-        for (const EnvironmentTechniqueInfo& t : environmentTechniques()) {
-            if (t.define.empty()) continue;  // the exact reference is CPU-only
+        for (const TechniqueInfo& t : techniquesOf("environment")) {
+            if (t.shader.empty()) continue;  // the exact reference is CPU-only
             if (ImGui::Selectable(std::string(t.name).c_str(), t.name == current)) {
                 s.environmentTechnique = std::string(t.name);
                 changed = true;

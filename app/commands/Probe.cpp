@@ -184,20 +184,20 @@ int cmdProbe(const Args& args) {
     // The environment's technique: --env-technique, else --technique when it names one of the
     // environment's, else the exact reference. --technique applies to the luminaires as before,
     // except that a name only the environment has leaves them on their own techniques.
-    const EnvironmentTechniqueInfo* envChosen = nullptr;
+    const TechniqueInfo* envChosen = nullptr;
     if (!envTechnique.empty()) {
-        envChosen = findEnvironmentTechnique(envTechnique);
+        envChosen = findTechnique("environment", envTechnique);
         if (!envChosen)
             throw InputError("--env-technique: \"" + envTechnique + "\" is not an environment "
-                             "technique (available: " + environmentTechniqueNames() + ")");
+                             "technique (available: " + techniqueNames("environment") + ")");
     } else {
-        envChosen = findEnvironmentTechnique(technique.empty() ? "reference" : technique);
-        if (!envChosen) envChosen = findEnvironmentTechnique("reference");
+        envChosen = findTechnique("environment", technique.empty() ? "reference" : technique);
+        if (!envChosen) envChosen = findTechnique("environment", "reference");
     }
     if (device == "gpu" && scene.environmentMap && envTechnique.empty() &&
-        envChosen->define.empty())
-        envChosen = findEnvironmentTechnique("balanced");  // the GPU has no exact reference
-    if (device == "gpu" && scene.environmentMap && envChosen->define.empty())
+        envChosen->shader.empty())
+        envChosen = findTechnique("environment", "balanced");  // the GPU has no exact reference
+    if (device == "gpu" && scene.environmentMap && envChosen->shader.empty())
         throw InputError("--env-technique: \"" + std::string(envChosen->name) +
                          "\" runs on the CPU only; use the CPU probe (the default) or another "
                          "technique");
@@ -206,7 +206,7 @@ int cmdProbe(const Args& args) {
     for (const auto& l : scene.luminaires) {
         std::string name = technique.empty() ? l->technique : technique;
         if (!technique.empty() && !findTechnique(l->kind(), technique) &&
-            findEnvironmentTechnique(technique))
+            findTechnique("environment", technique))
             name = l->technique;
         const TechniqueInfo* t = findTechnique(l->kind(), name);
         if (!t)
@@ -243,14 +243,12 @@ int cmdProbe(const Args& args) {
                 std::fprintf(stderr, "probe: warning: %s\n", w.c_str());
             interreflection->compute();
         }
-        std::unique_ptr<EnvironmentLighting> lighting;
-        if (scene.environmentMap)
-            lighting = std::make_unique<EnvironmentLighting>(scene.environmentMap);
+        const Luminaire* environment = scene.environmentLight();
         for (size_t i = 0; i < points.size(); ++i) {
-            if (lighting) {
+            if (environment) {
                 EstimateOptions o = options;
                 o.seed = options.seed * 1000003ull + i * 7919ull + 999983ull;
-                Estimate e = envChosen->irradiance(*lighting, points[i].p, points[i].n, o);
+                Estimate e = envChosen->irradiance(*environment, points[i].p, points[i].n, o);
                 double k = scene.environmentUnitScale();
                 E[i] += k * e.irradiance;
                 var[i] += k * k * e.stdError * e.stdError;

@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include <sstream>
+
+#include "luminaires/EnvironmentLight.h"
+#include "renderer/PassTimer.h"
 #include "renderer/passes/GBufferPass.h"
 #include "renderer/passes/ShadePass.h"
 
@@ -152,6 +156,61 @@ void EnvironmentPass::shade(ShaderLibrary& shaders, const ShadeStep& step, const
     bindAll();
     glUseProgram(shaders.program(step.program));
     ShadePass::drawAdditive(gbuffer, target, width, height, step.unitScale);
+}
+
+namespace {
+
+bool reads(const TechniqueInfo& technique, std::string_view resource) {
+    std::istringstream names{std::string(technique.resources)};
+    for (std::string name; names >> name;)
+        if (name == resource) return true;
+    return false;
+}
+
+}  // namespace
+
+std::vector<std::string> EnvironmentPass::prepassNames(const TechniqueInfo& technique) {
+    if (reads(technique, "cube")) return {"env:cdf", "env:samples"};
+    return {};
+}
+
+void EnvironmentPass::setSource(const Luminaire& source, const std::vector<std::byte>&) {
+    mSourceMap = static_cast<const EnvironmentLight&>(source).sharedMap();
+}
+
+void EnvironmentPass::prepare(const ShadeStep& step, SourceContext& context, int frame, int spp) {
+    setMap(mSourceMap, context.settings.environmentFaceSize);
+    const TechniqueInfo& t = *step.technique;
+    if (reads(t, "cube")) {
+        if (!tablesBuilt()) timed(context.stats, "env:cdf", [&] { buildTables(context.shaders); });
+        // Enough samples per face that a pixel whose faces balance to one face still draws
+        // distinct ones; a fresh pool every pass (every band of a pass shares it).
+        int pool = std::max(256, spp);
+        uint32_t seed = uint32_t(context.settings.seed) * 2654435761u ^ uint32_t(frame) * 40503u ^ 0x5bd1e995u;
+        timed(context.stats, "env:samples", [&] { drawSamples(context.shaders, seed, pool); });
+    }
+    if (reads(t, "latlong")) prepareGlobalCdf();
+    if (reads(t, "lights")) {
+        prepareHavran();
+        if (step.shadowMaps) {
+            std::vector<glm::dvec3> directions = havranDirections();
+            if (mShadows.stale(directions, context.settings.shadowMaps, context.geometryGeneration)) {
+                const ShadowGeometry& geometry = context.geometry();
+                timed(context.stats, shadowPassName(step), [&] {
+                    mShadows.render(context.shaders, geometry, directions, context.settings.shadowMaps,
+                                    context.geometryGeneration);
+                });
+            }
+        }
+    }
+}
+
+void EnvironmentPass::shade(const ShadeStep& step, SourceContext& context, const gl::Framebuffer& target) {
+    if (step.shadowMaps) mShadows.bind();
+    // The map shows behind the scene in an image of radiance (not in probes or illuminance).
+    bool background = !context.pointMode && context.settings.quantity == Quantity::Radiance;
+    shade(context.shaders, step, context.gbuffer, target, context.gbuffer.width(), context.gbuffer.height(),
+          background);
 }
 
 std::vector<glm::vec2> EnvironmentPass::readCube() const {

@@ -1,8 +1,11 @@
 #pragma once
-// The environment map on the GPU (Lu et al. 2013, Algorithm 1): uploads the lat-long map, builds
-// the cube-face luminance, weights and CDFs in compute shaders whenever the map changes, draws
-// each frame's pools of light samples per face, and shades the G-buffer with the chosen
-// technique (shaders/environment_shade.frag). The CPU twin is luminaires/EnvironmentSampling.
+// The environment's pass (renderer/passes/SourcePass.h) on the GPU (Lu et al. 2013, Algorithm
+// 1): uploads the lat-long map, builds the cube-face luminance, weights and CDFs in compute
+// shaders whenever the map changes, draws each pass's pools of light samples per face, builds the
+// lat-long CDF or Havran's lights and their shadow maps for the techniques that read them, and
+// shades the G-buffer with the technique (shaders/environment_TECHNIQUE.frag). The CPU twin
+// is luminaires/EnvironmentSampling. One pass outlives the maps it is given (a sequence's frames,
+// a moving sun), so Havran's temporal filter sees them all.
 
 #include <glm/glm.hpp>
 
@@ -13,15 +16,27 @@
 #include "renderer/FramePlan.h"
 #include "renderer/ShaderLibrary.h"
 #include "renderer/gl/GlObjects.h"
+#include "renderer/passes/ShadowMapPass.h"
+#include "renderer/passes/SourcePass.h"
 #include "shaders/shared/GpuTypes.h"
 
 namespace candela {
 
 class GBufferPass;
 
-class EnvironmentPass {
+class EnvironmentPass final : public SourcePass {
 public:
     EnvironmentPass();  ///< Needs a current GL context.
+
+    /// The source's map (an EnvironmentLight); the tables follow at the next prepare().
+    void setSource(const Luminaire& source, const std::vector<std::byte>& record) override;
+    /// The technique's resources: "cube" builds the cube-map tables when the map changed
+    /// ("env:cdf") and draws this pass's pools of samples ("env:samples"); "latlong" the CPU's
+    /// global CDF; "lights" Havran's lights and, with shadow maps, one map per light.
+    void prepare(const ShadeStep& step, SourceContext& context, int frame, int spp) override;
+    void shade(const ShadeStep& step, SourceContext& context, const gl::Framebuffer& target) override;
+    /// The timed prepasses prepare() runs for a technique (FramePlan::passNames).
+    static std::vector<std::string> prepassNames(const TechniqueInfo& technique);
 
     /// Face size used for a map when none is asked for: the CPU default (texels no larger than
     /// the lat-long map's at the equator) capped at 256, the paper's size.
@@ -68,6 +83,8 @@ private:
     std::weak_ptr<const EnvironmentMap> mExtraFor;  ///< Map whose global CDF or lights mExtra holds.
     std::unique_ptr<HavranLights> mHavran;
     std::weak_ptr<const EnvironmentMap> mHavranFor;  ///< Newest map the filter has seen.
+    std::shared_ptr<const EnvironmentMap> mSourceMap;  ///< The source's, made current in prepare().
+    DirectionalShadowMaps mShadows;                    ///< One map per Havran light.
 };
 
 }  // namespace candela

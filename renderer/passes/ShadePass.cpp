@@ -5,17 +5,6 @@
 
 namespace candela {
 
-void ShadePass::execute(ShaderLibrary& shaders, const ShadeStep& step, const gl::Buffer& luminaire,
-                        const GBufferPass& gbuffer, const gl::Framebuffer& target, int width,
-                        int height) {
-    GLuint program = shaders.program(step.program);
-    glUseProgram(program);
-    // Each luminaire has its own record buffer; the shader reads element 0.
-    glProgramUniform1i(program, 0, 0);
-    luminaire.bindBase(GL_SHADER_STORAGE_BUFFER, gpu::kBindingLuminaire);
-    drawAdditive(gbuffer, target, width, height, step.unitScale);
-}
-
 void ShadePass::drawAdditive(const GBufferPass& gbuffer, const gl::Framebuffer& target, int width,
                              int height, float scale) {
     for (int i = 0; i < 4; ++i) glBindTextureUnit(GLuint(i), gbuffer.texture(i).id());

@@ -1,7 +1,6 @@
 #pragma once
-// Shades the G-buffer with one luminaire through its technique's shader variant and adds the
-// frame's estimate into the accumulation buffer. Generic over kinds and techniques: the
-// technique table (luminaires/Registry.cpp) names the shader and the variant define.
+// The draw every shading pass ends with (renderer/passes/SourcePass.h): the G-buffer bound, one
+// full-screen triangle of the current program added into the target.
 
 #include "renderer/FramePlan.h"
 #include "renderer/ShaderLibrary.h"
@@ -18,8 +17,6 @@ public:
     /// step's unit conversion, ShadeStep::unitScale).
     static void drawAdditive(const GBufferPass& gbuffer, const gl::Framebuffer& target, int width,
                              int height, float scale = 1.f);
-    void execute(ShaderLibrary& shaders, const ShadeStep& step, const gl::Buffer& luminaire,
-                 const GBufferPass& gbuffer, const gl::Framebuffer& target, int width, int height);
 };
 
 }  // namespace candela

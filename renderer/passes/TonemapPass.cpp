@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "renderer/Renderer.h"
+#include "renderer/RenderSettings.h"
 
 namespace candela {
 

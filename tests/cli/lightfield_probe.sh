@@ -31,7 +31,7 @@ trap 'rm -rf "$out"' EXIT
 stats=$("$binary" render "$data/scene.json" --out "$out/lf.exr" --size 64x48 --spp 16 --stats 2>&1)
 passes=$(sed -n '/^pass,/,/^variants/p' <<<"$stats" | grep -v '^pass,\|^variants' | cut -d, -f1 | tr '\n' ' ')
 check "pass list [$passes]" '[ "$passes" = "gbuffer shade:Tiny:restricted-cdf resolve tonemap " ]'
-check "variants: $(grep variants <<<"$stats")" 'grep -q "lightfield_shade.frag\[TECHNIQUE_RESTRICTED\] " <<<"$stats" && ! grep -q "SHADOWS\|GLOSSY" <<<"$stats"'
+check "variants: $(grep variants <<<"$stats")" 'grep -q "lightfield_restricted_cdf.frag " <<<"$stats" && ! grep -q "SHADOWS\|GLOSSY" <<<"$stats"'
 check "EXR written" '[ -s "$out/lf.exr" ]'
 err=$("$binary" render "$data/scene.json" --out "$out/ref.png" --technique reference 2>&1 >/dev/null); rc=$?
 check "reference is CPU only (rc $rc): $err" '[ $rc -eq 1 ] && grep -q "CPU only" <<<"$err" && [ ! -e "$out/ref.png" ]'

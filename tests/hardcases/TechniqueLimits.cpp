@@ -38,56 +38,25 @@ bool common(const TechniqueInfo& t, const Case& c, Promise& out) {
     return false;
 }
 
-Promise photometric(const TechniqueInfo& t, const Case& c) {
-    const std::string name(t.name);
-    const double sizes = openingSizesAway(c);
-    // The unresolved peak: few-direction techniques read the table at up to 40 directions, so a
-    // peak narrower than their spacing is over- or under-weighted; they stay between 0 and what
-    // the opening would give at its brightest radiance everywhere.
-    if (c.cls == Class::Spike && name != "reference" && name != "point" && c.upperBound > 0.0)
+/// The promise a technique states in its registry line (TechniqueInfo::limits), on this case.
+Promise stated(const TechniqueInfo& t, const Case& c) {
+    const StatedLimits& l = t.limits;
+    const std::string why(l.statement);
+    if (l.statement.empty())  // no statement: the strictest
+        return t.progressive ? unbiased(2e-3, "(no stated limit: held to unbiased)")
+                             : exact(1e-3, "(no stated limit: held to exact)");
+    if (l.accuracy == StatedLimits::PointLaw) return {Promise::PointLaw, l.tolerance, 0, 0, 0, why};
+    // A peak narrower than the technique's few sample directions: within [0, pi F L_max].
+    if (!l.resolvesPeaks && c.cls == Class::Spike && c.upperBound > 0.0)
         return bounded(0.0, c.upperBound, "a peak narrower than the sample directions: within [0, pi F L_max]");
-    if (name == "point") // 1e-4: the technique reads the IES table, the test the cosine it tabulates at 1 degree
-        // steps (linear interpolation: at most (pi / 180)^2 / 8 = 4e-5 relative).
-        return {Promise::PointLaw, 1e-4, 0, 0, 0, "the point law at the opening's centre, at any distance"};
-    if (name == "reference")
-        return unbiased(2e-3, "unbiased; its standard error covers its error (4 standard errors)");
-    if (name == "scattered" || name == "structured" || name == "mrp")
-        // Exact for a Lambertian opening (the cases' cosine table), segments and points: the
-        // closed-form projected solid angle times a radiance that is constant there. 1e-3: the
-        // test's own quadrature and Lambert's formula agree to 1e-5; structured's barycentre
-        // radiance reads the table's linear interpolation of the cosine (1e-4).
-        return exact(1e-3, "exact for a Lambertian opening, a segment or a point");
-    if (name == "mc-poisson-24" || name == "mc-poisson-40") {
-        if (sizes >= 5.0) return exact(1e-2, "within 1 % from 5 opening diagonals on");
-        return {Promise::Finite, 0, 0, 0, 0, "nearer than 5 opening diagonals: any factor off (use hybrid or reference)"};
+    if (l.fromOpeningSizes > 0.0 && openingSizesAway(c) < l.fromOpeningSizes)
+        return {Promise::Finite, 0, 0, 0, 0, "nearer than its stated distance: any factor off (" + why + ")"};
+    switch (l.accuracy) {
+        case StatedLimits::Unbiased: return unbiased(l.tolerance, why);
+        case StatedLimits::Approximate:
+            return exact(c.cls == Class::Far && l.farTolerance >= 0.0 ? l.farTolerance : l.tolerance, why);
+        default: return exact(l.tolerance, why);
     }
-    if (name == "hybrid") return exact(3e-2, "within 3 % at every distance (scattered near, Poisson far)");
-    return t.progressive ? unbiased(2e-3, "(no stated limit: held to unbiased)")
-                         : exact(1e-3, "(no stated limit: held to exact)");
-}
-
-Promise lambertianRect(const TechniqueInfo& t, const Case& c) {
-    (void)c;
-    const std::string name(t.name);
-    if (name == "analytic") return exact(1e-6, "Lambert's formula: exact to double rounding");
-    return t.progressive ? unbiased(2e-3, "unbiased; its standard error covers its error")
-                         : exact(1e-6, "(no stated limit: held to exact)");
-}
-
-Promise lightField(const TechniqueInfo& t, const Case& c) {
-    const std::string name(t.name);
-    // The reference is Gauss-Legendre over U per B-spline cell, the test's quadrature another
-    // breakdown of the same integral: 2e-3 covers the difference of the two at 8 points.
-    if (name == "reference") return exact(2e-3, "quadrature over U: exact to 0.2 %");
-    if (name == "granier2003") {
-        // The B-spline-weighted radiance read at one node per image: within 10 % near the
-        // luminaire (one bright pixel 1 cm away: 9 %), 1 % from 20 luminaire sizes on where it
-        // conserves the far field.
-        if (c.cls == Class::Far) return exact(1e-2, "its far field conserved: within 1 %");
-        return exact(0.1, "an approximation within 10 % near the luminaire");
-    }
-    return t.progressive ? unbiased(1e-3, "unbiased; its standard error covers its error")
-                         : exact(2e-3, "(no stated limit: held to exact)");
 }
 
 }  // namespace
@@ -101,11 +70,7 @@ double openingSizesAway(const Case& c) {
 Promise promise(const TechniqueInfo& t, const Case& c) {
     Promise p;
     if (common(t, c, p)) return p;
-    if (c.kind == "photometric") return photometric(t, c);
-    if (c.kind == "lambertian-rect") return lambertianRect(t, c);
-    if (c.kind == "lightfield") return lightField(t, c);
-    return t.progressive ? unbiased(2e-3, "(no stated limit: held to unbiased)")
-                         : exact(1e-3, "(no stated limit: held to exact)");
+    return stated(t, c);
 }
 
 Promise gpuPromise(const TechniqueInfo& t, const Case& c) {

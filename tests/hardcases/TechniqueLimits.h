@@ -1,9 +1,9 @@
 #pragma once
-// What each technique promises on each hard case (issue 18, part 1): the statements of the
-// README's "Stated limits" table, in a form the suites hold the techniques to. A technique the
-// table does not name is held to the strictest promise its kind allows (exact if deterministic,
-// unbiased with an honest standard error if progressive), so one added later is covered, and
-// fails, until its limits are stated here and in the README.
+// What each technique promises on each hard case (issue 18, part 1): the limits its registry line
+// states (TechniqueInfo::limits, the README's "Hard cases" table), applied to a case, in a form
+// the suites hold the techniques to. A technique without a statement is held to the strictest
+// promise (exact if deterministic, unbiased with an honest standard error if progressive), so
+// one added later is covered without editing the suites, and fails until it states its limits.
 
 #include <string>
 

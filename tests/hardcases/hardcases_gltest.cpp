@@ -36,7 +36,7 @@ TEST(HardCasesGl, EveryTechniqueHoldsItsStatedLimitOnTheGpu) {
             normals.push_back(glm::vec3(c->n));
         }
         for (const TechniqueInfo& t : techniques()) {
-            if (t.kind != light->kind() || t.define.empty() || !t.irradiance) continue;
+            if (t.kind != light->kind() || t.shader.empty() || !t.irradiance) continue;
             RenderSettings s;
             s.width = s.height = 16;
             s.techniqueOverride = std::string(t.name);

@@ -1,0 +1,33 @@
+#pragma once
+// What a CPU estimator takes and returns (luminaires/Registry.h: TechniqueInfo::irradiance): the
+// options of an estimate, its result with its standard error, and the visibility it may query.
+// Beside the luminaire interface so that a kind's header needs no more than this.
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+
+namespace candela {
+
+/// Answers whether the segment between two points is free of occluders.
+class Visibility {
+public:
+    virtual ~Visibility() = default;
+    virtual bool visible(const glm::dvec3& from, const glm::dvec3& to) const = 0;
+    /// Is the ray from `from` along the unit `dir` free of occluders out to infinity (a distant
+    /// light)? Implementations bias only its start.
+    virtual bool visibleToward(const glm::dvec3& from, const glm::dvec3& dir) const = 0;
+};
+
+struct EstimateOptions {
+    int spp = 4096;                          ///< Samples per point for stochastic techniques.
+    uint64_t seed = 1;                       ///< Fixed seed: results are reproducible.
+    const Visibility* visibility = nullptr;  ///< null: no shadowing.
+};
+
+struct Estimate {
+    glm::dvec3 irradiance{0.0};  ///< W/m2 per channel (lux for photometric data).
+    glm::dvec3 stdError{0.0};    ///< Standard error of the estimate; 0 for exact techniques.
+};
+
+}  // namespace candela

@@ -1,0 +1,26 @@
+#pragma once
+// A placed luminaire's GPU pass: its record (Luminaire::gpuData) in a buffer of its own, its
+// shadow maps when its technique reads them (rendered from Luminaire::shadowLights when stale),
+// and the shading of its technique's variant (luminaires/Registry.cpp names the shader).
+
+#include <memory>
+#include <vector>
+
+#include "renderer/passes/ShadowMapPass.h"
+#include "renderer/passes/SourcePass.h"
+
+namespace candela {
+
+class LuminairePass final : public SourcePass {
+public:
+    void setSource(const Luminaire& source, const std::vector<std::byte>& record) override;
+    void prepare(const ShadeStep& step, SourceContext& context, int frame, int spp) override;
+    void shade(const ShadeStep& step, SourceContext& context, const gl::Framebuffer& target) override;
+
+private:
+    std::vector<std::byte> mRecord;  ///< As uploaded.
+    gl::Buffer mBuffer;
+    std::unique_ptr<ShadowMaps> mShadowMaps;
+};
+
+}  // namespace candela

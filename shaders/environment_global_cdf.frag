@@ -1,0 +1,47 @@
+// environment `global-cdf`: one CDF over the lat-long map (built on the CPU when the map changes,
+// as static-map renderers do), per-pixel samples.
+#include "environment_shading.glsl"
+
+// [0 .. H]: CDF over rows; then per row y, [H + 1 + y (W + 1) ..]: CDF over columns.
+layout(std430, binding = 13) readonly buffer EnvExtra { float envGlobal[]; };
+
+vec3 shadeTechnique(Surface s, int ns, inout uint rng) {
+    vec3 result = vec3(0.0);
+    int W = env.dims.x, H = env.dims.y;
+    for (int k = 0; k < ns; ++k) {
+        float u1 = rand01(rng), u2 = rand01(rng);
+        int lo = 0, hi = H;
+        while (hi - lo > 1) {
+            int mid = (lo + hi) >> 1;
+            if (envGlobal[mid] <= u1) lo = mid; else hi = mid;
+        }
+        int y = lo;
+        float py = envGlobal[y + 1] - envGlobal[y];
+        if (!(py > 0.0)) continue;
+        float fy = clamp((u1 - envGlobal[y]) / py, 0.0, 1.0);
+        int base = H + 1 + y * (W + 1);
+        lo = 0;
+        hi = W;
+        while (hi - lo > 1) {
+            int mid = (lo + hi) >> 1;
+            if (envGlobal[base + mid] <= u2) lo = mid; else hi = mid;
+        }
+        int x = lo;
+        float px_ = envGlobal[base + x + 1] - envGlobal[base + x];
+        if (!(px_ > 0.0)) continue;
+        float fx = clamp((u2 - envGlobal[base + x]) / px_, 0.0, 1.0);
+        // Uniform in solid angle inside the texel: phi linear, cos(theta) linear.
+        float c0 = cos(kPi * float(y) / float(H)), c1 = cos(kPi * float(y + 1) / float(H));
+        float cosT = clamp(c0 - fy * (c0 - c1), -1.0, 1.0);
+        float sinT = sqrt(max(0.0, 1.0 - cosT * cosT));
+        float phi = 2.0 * kPi * (float(x) + fx) / float(W) + env.params.x;
+        vec3 w = vec3(sinT * cos(phi), cosT, sinT * sin(phi));
+        float t0 = kPi * float(y) / float(H), t1 = kPi * float(y + 1) / float(H);
+        float omega = 2.0 * kPi / float(W) * 2.0 * sin(0.5 * (t0 + t1)) * sin(0.5 * (t1 - t0));
+        result += integrand(s, w, texelFetch(uEnvMap, ivec2(x, y), 0).rgb) * omega / (py * px_);
+    }
+    result /= float(ns);
+    return result;
+}
+
+#include "environment_main.glsl"
