@@ -11,7 +11,8 @@
 #   SECONDS_PER_TARGET: default $FUZZ_SECONDS or 60; 0 only builds and replays.
 #   TARGET: ies ldt tm25 lightfield scene gltf image (default: all).
 # Environment: FUZZ_RUNS (stop a target after this many executions as well), FUZZ_SUMMARY (a file
-# to append the table to).
+# to append the table to), FUZZ_NO_BUILD=1 (skip the build and the replay: for several runs side by
+# side on a build made before).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source fuzz/targets.sh
@@ -24,17 +25,19 @@ build=build-fuzz
 # (ten times faster than a disk-backed /tmp).
 if [ -z "${TMPDIR:-}" ] && [ -d /dev/shm ] && [ -w /dev/shm ]; then export TMPDIR=/dev/shm; fi
 
-command -v clang++ >/dev/null || { echo "fuzz: clang++ is missing (scripts/setup.sh installs it)"; exit 1; }
-CC=clang CXX=clang++ cmake -S . -B "$build" -DCANDELA_FUZZ=ON -DCMAKE_BUILD_TYPE=Release >/dev/null
-echo "fuzz: building the targets in $build (log $build/build.log)"
-cmake --build "$build" -j"$(nproc)" >"$build/build.log" 2>&1 || { tail -40 "$build/build.log"; exit 1; }
-echo "fuzz: replaying the regression inputs and seeds"
-ctest --test-dir "$build" --output-on-failure -j"$(nproc)"
+if [ -z "${FUZZ_NO_BUILD:-}" ]; then
+  command -v clang++ >/dev/null || { echo "fuzz: clang++ is missing (scripts/setup.sh installs it)"; exit 1; }
+  CC=clang CXX=clang++ cmake -S . -B "$build" -DCANDELA_FUZZ=ON -DCMAKE_BUILD_TYPE=Release >/dev/null
+  echo "fuzz: building the targets in $build (log $build/build.log)"
+  cmake --build "$build" -j"$(nproc)" >"$build/build.log" 2>&1 || { tail -40 "$build/build.log"; exit 1; }
+  echo "fuzz: replaying the regression inputs and seeds"
+  ctest --test-dir "$build" --output-on-failure -j"$(nproc)"
+fi
 [ "$seconds" -gt 0 ] || exit 0
 
 summary=$(mktemp)
 trap 'rm -f "$summary"' EXIT
-printf "%-11s %12s %9s %8s %8s\n" target executions exec/s corpus crashes >"$summary"
+printf "%-11s %12s %9s %8s %8s %8s\n" target executions exec/s seconds corpus crashes >"$summary"
 failed=0
 for t in "${targets[@]}"; do
   corpus="$build/corpus/$t" seeds="$build/seeds/$t" crashes="$build/crashes/$t"
@@ -47,13 +50,14 @@ for t in "${targets[@]}"; do
   [ -n "${FUZZ_RUNS:-}" ] && args+=(-runs="$FUZZ_RUNS")
   log="$build/fuzz-$t.log"
   echo "fuzz: $t for ${seconds} s (log $log)"
-  rc=0
+  rc=0 start=$(date +%s)
   "$build/fuzz/fuzz_$t" "${args[@]}" "$corpus" "$seeds" >"$log" 2>&1 || rc=$?
+  took=$(($(date +%s) - start))
   runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
   speed=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log" | tail -1)
   size=$(find "$corpus" -type f | wc -l)
   found=$(find "$crashes" -type f | wc -l)
-  printf "%-11s %12s %9s %8s %8s\n" "$t" "${runs:-?}" "${speed:-?}" "$size" "$found" >>"$summary"
+  printf "%-11s %12s %9s %8s %8s %8s\n" "$t" "${runs:-?}" "${speed:-?}" "$took" "$size" "$found" >>"$summary"
   if [ $rc -ne 0 ] || [ "$found" -gt 0 ]; then
     failed=1
     echo "fuzz: $t FAILED (exit $rc); the report:"
