@@ -1,6 +1,5 @@
 #include "luminaires/Environment.h"
 
-#include <OpenImageIO/imageio.h>
 #include <glob.h>
 
 #include <algorithm>
@@ -9,6 +8,7 @@
 #include <filesystem>
 
 #include "util/Error.h"
+#include "util/ImageRead.h"
 
 namespace candela {
 
@@ -81,23 +81,22 @@ std::shared_ptr<EnvironmentMap> EnvironmentMap::load(const std::string& path, do
     std::error_code ec;
     if (!fs::exists(path, ec))
         throw InputError(path + ": cannot open environment map (No such file or directory)");
-    auto in = OIIO::ImageInput::open(path);
-    if (!in) throw InputError(path + ": cannot read environment map: " + OIIO::geterror());
-    const OIIO::ImageSpec& spec = in->spec();
-    int w = spec.width, h = spec.height, channels = spec.nchannels;
+    ImageFileReader in(path, path, kMaxSide);  // util/ImageRead.h: the .hdr or .exr reader only
+    int w = in.width(), h = in.height(), channels = in.channels();
     if (w <= 0 || h <= 0 || channels <= 0)
         throw InputError(path + ": empty image (" + std::to_string(w) + "x" + std::to_string(h) +
                          ")");
-    if (w != 2 * h)
+    if (int64_t(w) != 2 * int64_t(h))  // 64-bit: a file may claim any int size
         throw InputError(path + ": " + std::to_string(w) + "x" + std::to_string(h) +
                          " is not a lat-long map (expected width = 2 x height" +
-                         (h == 6 * w ? "; this looks like a cube map, which is not read yet)" : ")"));
+                         (int64_t(h) == 6 * int64_t(w) ? "; this looks like a cube map, which is not read yet)" : ")"));
     if (w > kMaxSide)
         throw InputError(path + ": image size " + std::to_string(w) + "x" + std::to_string(h) +
                          " too large (at most " + std::to_string(kMaxSide) + " per side)");
-    std::vector<float> pixels(size_t(w) * size_t(h) * size_t(channels));
-    if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data()))
-        throw InputError(path + ": cannot read pixels: " + in->geterror());
+    // RGB (or luminance): the channels after the third are never read, so a file declaring
+    // thousands of them costs nothing (all of them were allocated before).
+    channels = std::min(channels, 3);
+    std::unique_ptr<float[]> pixels = in.readPixels(channels);
     std::vector<glm::vec3> rgb(size_t(w) * size_t(h));
     for (size_t i = 0; i < rgb.size(); ++i) {
         const float* p = &pixels[i * size_t(channels)];

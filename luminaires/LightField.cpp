@@ -1,7 +1,5 @@
 #include "luminaires/LightField.h"
 
-#include <OpenImageIO/imageio.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -11,6 +9,7 @@
 
 #include "util/Error.h"
 #include "util/FileOutput.h"
+#include "util/ImageRead.h"
 #include "util/JsonRead.h"
 
 namespace candela {
@@ -86,21 +85,18 @@ int findPiece(int n, double target, const Fn& value) {
 
 void readImage(const fs::path& file, const std::string& where, int& w, int& h, int& channels,
                std::vector<float>& pixels) {
-    auto in = OIIO::ImageInput::open(file.string());
-    if (!in) throw InputError(where + ": cannot read image " + file.string() + ": " + OIIO::geterror());
-    const OIIO::ImageSpec& spec = in->spec();
-    w = spec.width;
-    h = spec.height;
-    channels = spec.nchannels;
+    ImageFileReader in(file.string(), where + ": " + file.string(), kMaxImageSide);  // util/ImageRead.h
+    w = in.width();
+    h = in.height();
+    channels = in.channels();
     if (w <= 0 || h <= 0 || w > kMaxImageSide || h > kMaxImageSide)
         throw InputError(where + ": " + file.string() + ": image size " + std::to_string(w) + "x" +
                          std::to_string(h) + " out of range (1.." + std::to_string(kMaxImageSide) + ")");
     if (channels != 1 && channels != 3 && channels != 4)
         throw InputError(where + ": " + file.string() + ": " + std::to_string(channels) +
                          " channels; expected 1 (luminance), 3 (RGB) or 4 (RGBA)");
-    pixels.assign(size_t(w) * size_t(h) * size_t(channels), 0.f);
-    if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data()))
-        throw InputError(where + ": " + file.string() + ": cannot read pixels: " + in->geterror());
+    std::unique_ptr<float[]> decoded = in.readPixels(channels);
+    pixels.assign(decoded.get(), decoded.get() + size_t(w) * size_t(h) * size_t(channels));
 }
 
 std::string modelName(LightFieldData::Model m) {

@@ -434,6 +434,10 @@ Scene loadScene(const std::string& path) {
         lineAndColumn(text, e.byte, line, column);
         throw InputError(path + ":" + std::to_string(line) + ":" + std::to_string(column) +
                          ": invalid JSON (" + parseErrorReason(e.what()) + ")");
+    } catch (const nlohmann::json::exception& e) {
+        // A number beyond double's range ("1e400") is an out_of_range error, not a parse_error,
+        // and has no position (fuzzing found it escaping as a non-InputError).
+        throw InputError(path + ": invalid JSON (" + parseErrorReason(e.what()) + ")");
     }
     return parseScene(doc, path);
 }

@@ -7,6 +7,7 @@ packages=(
   libosmesa6-dev libgl-dev libgtest-dev libbenchmark-dev nlohmann-json3-dev libembree-dev
   xvfb xdotool imagemagick x11-utils mesa-utils clang-format gnuplot-nox
   fonts-dejavu-core openimageio-tools
+  clang libclang-rt-14-dev  # libFuzzer and the sanitizers of scripts/fuzz.sh
 )
 missing=()
 for p in "${packages[@]}"; do

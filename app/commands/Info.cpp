@@ -132,6 +132,10 @@ int cmdInfo(const Args& args) {
             std::printf("  \"%s\": %s\n    at (%.3f, %.3f, %.3f) m, technique %s (%s)\n",
                         l->name.c_str(), l->describe().c_str(), p.x, p.y, p.z,
                         l->technique.c_str(), t ? std::string(t->description).c_str() : "?");
+            auto* photometric = dynamic_cast<const PhotometricLuminaire*>(l.get());
+            if (photometric && photometric->data && !photometric->data->warnings.empty())
+                std::printf("    %zu warning(s) reading %s (candela info lists them)\n",
+                            photometric->data->warnings.size(), toValidUtf8(photometric->file).c_str());
         }
         std::printf("environment: %s\n", scene.environment.is_null() ? "none" : scene.environment.dump().c_str());
         UnitSystem units = scene.units();

@@ -68,6 +68,8 @@ cat >"$out/scene.json" <<'JSON'
   "camera": {"position": [0, 1.5, 6], "target": [0, 0, 0], "fov_deg": 45} }
 JSON
 printf 'x,y,z,nx,ny,nz\n0,0,0,0,1,0\n' >"$out/points.csv"
+info=$("$binary" info "$out/scene.json" 2>&1)
+check "info on the scene counts the luminaire's warnings: $info" 'grep -qF "3 warning(s) reading lamp.ldt" <<<"$info"'
 probe=$("$binary" probe "$out/scene.json" --points "$out/points.csv" 2>/dev/null); rc=$?
 check "probe loads the lenient luminaire (exit $rc): $probe" '[ $rc -eq 0 ] && [ $(lines "$probe") -eq 2 ]'
 expect "lamp.ldt:30: empty colour temperature of lamp set 1 (refused by --strict)" \

@@ -1,0 +1,167 @@
+#pragma once
+// The fuzz targets' bodies, one function per input format, so that the libFuzzer targets
+// (fuzz_NAME.cpp) and the regression test of the normal build (tests/fuzz_regressions_test.cpp)
+// run the same checks. Each takes any bytes; it returns normally when the parser loaded them or
+// threw InputError, and aborts (a crash for libFuzzer, a failed test) when a check fails.
+
+#include <algorithm>
+#include <cstring>
+
+#include "fuzz/FuzzSupport.h"
+#include "fuzz/PhotometryChecks.h"
+#include "luminaires/Environment.h"
+#include "luminaires/LightField.h"
+#include "luminaires/Tm25RayFile.h"
+#include "scene/GltfLoader.h"
+#include "scene/SceneIo.h"
+#include "util/Error.h"
+
+namespace candela::fuzz {
+
+/// The IES LM-63 parser (luminaires/IesFile.cpp), lenient and strict.
+inline void ies(const uint8_t* data, size_t size) {
+    checkPhotometry(data, size, false);
+}
+
+/// The EULUMDAT parser (luminaires/LdtFile.cpp), lenient and strict.
+inline void ldt(const uint8_t* data, size_t size) {
+    checkPhotometry(data, size, true);
+}
+
+/// The IES TM-25 ray file reader (luminaires/Tm25RayFile.cpp). It reads files, so
+/// each input is written to a scratch file first.
+inline void tm25(const uint8_t* data, size_t size) {
+    const std::string path = writeScratch("fuzz.tm25ray", data, size);
+    try {
+        Tm25RayFile f = readTm25(path);
+        const Tm25Header& h = f.header;
+        if (f.rays.size() != h.rayCount) violated("ray count differs from the header's");
+        for (const Tm25Ray& r : f.rays) {
+            checkFinite(std::vector<double>{r.position.x, r.position.y, r.position.z}, "ray position");
+            if (!(std::abs(glm::length(r.direction) - 1.0) < 1e-9)) violated("ray direction not unit");
+        }
+        for (const std::string& s : h.description)
+            if (!isValidUtf8(s)) violated("description is not valid UTF-8");
+        for (const std::string& s : h.additionalLabels)
+            if (!isValidUtf8(s)) violated("additional label is not valid UTF-8");
+        if (!isValidUtf8(h.additionalText)) violated("additional text is not valid UTF-8");
+    } catch (const InputError& e) {
+        checkMessage(e.what(), path);
+    }
+}
+
+/// The light-field manifest (NAME.lf.json, luminaires/LightField.cpp). The input
+/// is the manifest; the scratch folder holds the nine images of tests/data/lightfield/tiny.lf.json,
+/// so manifests that name them load through OpenImageIO and the precomputation.
+inline void lightfield(const uint8_t* data, size_t size) {
+    static const bool ready = [] {
+        std::vector<std::string> images;
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+                images.push_back("tests/data/lightfield/tiny_" + std::to_string(i) + "_" + std::to_string(j) + ".exr");
+        copyIntoScratch(images);
+        return true;
+    }();
+    (void)ready;
+    const std::string path = writeScratch("fuzz.lf.json", data, size);
+    try {
+        std::shared_ptr<LightFieldData> lf = LightFieldData::load(path);
+        glm::dvec3 p = lf->power();
+        checkFinite(std::vector<double>{p.x, p.y, p.z}, "light-field power", 0.0);
+    } catch (const InputError&) {
+    }
+}
+
+/// Scene files (scene/SceneIo.cpp) with everything they load: luminaires of each
+/// kind through the registry, glTF geometry, environment maps. The scratch folder holds small
+/// files a scene may name: lambert.ies, example.ldt, tiny.lf.json and its images, triangle.gltf
+/// and tri.bin, constant_2.exr.
+inline void scene(const uint8_t* data, size_t size) {
+    static const bool ready = [] {
+        std::vector<std::string> files = {"tests/data/photometric/lambert.ies", "tests/data/lightfield/tiny.lf.json",
+                                          "tests/data/gltf/tri.bin",
+                                          "tests/data/environment/constant_2.exr",
+                                          "tests/data/photometry/ldt/lidrs/example.ldt"};
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+                files.push_back("tests/data/lightfield/tiny_" + std::to_string(i) + "_" + std::to_string(j) + ".exr");
+        copyIntoScratch(files);
+        // triangle.gltf without its point primitive, whose warning would flood the log.
+        std::ifstream in(fs::path(CANDELA_SOURCE_DIR) / "tests/data/gltf/triangle.gltf");
+        nlohmann::json gltf = nlohmann::json::parse(in);
+        gltf["meshes"][0]["primitives"].erase(1);
+        std::ofstream(scratchDir() / "triangle.gltf") << gltf.dump();
+        return true;
+    }();
+    (void)ready;
+    const std::string path = writeScratch("fuzz.json", data, size);
+    try {
+        Scene scene = loadScene(path);
+        for (const Mesh& m : scene.meshes) {
+            for (const glm::vec3& v : m.positions)
+                checkFinite(std::vector<double>{v.x, v.y, v.z}, "mesh position");
+            for (uint32_t i : m.indices)
+                if (i >= m.positions.size()) violated("mesh index out of range");
+        }
+        for (const auto& l : scene.luminaires) {
+            glm::dvec3 p = l->power();
+            checkFinite(std::vector<double>{p.x, p.y, p.z}, "luminaire power", 0.0);
+            (void)l->describe();
+        }
+    } catch (const InputError&) {
+    }
+}
+
+/// glTF import (scene/GltfLoader.cpp over tinygltf). Inputs starting with the
+/// binary magic "glTF" are read as .glb, others as .gltf; the scratch folder holds tri.bin, the
+/// buffer the test files name.
+inline void gltf(const uint8_t* data, size_t size) {
+    static const bool ready = [] {
+        copyIntoScratch({"tests/data/gltf/tri.bin"});
+        return true;
+    }();
+    (void)ready;
+    bool binary = size >= 4 && std::memcmp(data, "glTF", 4) == 0;
+    const std::string path = writeScratch(binary ? "fuzz.glb" : "fuzz.gltf", data, size);
+    try {
+        Scene scene;
+        loadGltf(path, glm::dmat4(1.0), scene, json::Where{path, ""});
+        for (const Mesh& m : scene.meshes) {
+            for (const glm::vec3& v : m.positions)
+                checkFinite(std::vector<double>{v.x, v.y, v.z}, "mesh position");
+            for (const glm::vec3& n : m.normals) checkFinite(std::vector<double>{n.x, n.y, n.z}, "mesh normal");
+            for (uint32_t i : m.indices)
+                if (i >= m.positions.size()) violated("mesh index out of range");
+            if (m.material >= scene.materials.size()) violated("material index out of range");
+        }
+    } catch (const InputError&) {
+    }
+}
+
+/// Environment-map loading (luminaires/Environment.cpp over OpenImageIO), the
+/// image path a scene file or a dropped file reaches. Inputs starting with "#?" (Radiance) are
+/// written as .hdr, others as .exr.
+inline void image(const uint8_t* data, size_t size) {
+    bool radiance = size >= 2 && std::memcmp(data, "#?", 2) == 0;
+    const std::string path = writeScratch(radiance ? "fuzz.hdr" : "fuzz.exr", data, size);
+    try {
+        std::shared_ptr<EnvironmentMap> map = EnvironmentMap::load(path);
+        if (map->width() != 2 * map->height()) violated("not a lat-long map");
+        for (int y = 0; y < map->height(); y += std::max(1, map->height() / 8))
+            for (int x = 0; x < map->width(); x += std::max(1, map->width() / 8)) {
+                glm::dvec3 t = map->texel(x, y);
+                checkFinite(std::vector<double>{t.x, t.y, t.z}, "texel", 0.0);
+            }
+    } catch (const InputError&) {
+    }
+}
+
+/// Every target by name.
+struct Target {
+    const char* name;
+    void (*run)(const uint8_t* data, size_t size);
+};
+inline constexpr Target kTargets[] = {{"ies", ies},   {"ldt", ldt},     {"tm25", tm25},  {"lightfield", lightfield},
+                                      {"scene", scene}, {"gltf", gltf}, {"image", image}};
+
+}  // namespace candela::fuzz

@@ -1,0 +1,44 @@
+#pragma once
+// Reading image files that users give (environment maps, light-field images) through
+// OpenImageIO, safely for any bytes:
+//  - only the reader that the file's extension names is used: OpenImageIO would otherwise try
+//    every format it knows (DICOM, FITS, ...) on a file that is not what its extension says;
+//  - an OpenEXR header attribute may not declare more bytes than the file holds, nor its data
+//    window more pixels than the caller accepts (OpenEXR 3.1 allocates what they declare before
+//    reading them);
+//  - the pixel buffer is not cleared before decoding, so its pages are touched only as rows
+//    decode: a short file whose header claims a huge image fails after its first rows instead
+//    of first clearing gigabytes. Fuzzing found the first two and made the third plain (a
+//    thousand times slower than the other targets).
+
+#include <memory>
+#include <string>
+
+namespace candela {
+
+class ImageFileReader {
+  public:
+    /// Opens `path`; throws InputError "CONTEXT: cannot read image: REASON", or "CONTEXT: image
+    /// size WxH out of range (1..MAX_SIDE per side)" for an empty image or one wider or higher
+    /// than `maxSide` pixels (checked in an OpenEXR header before OpenEXR reads it).
+    ImageFileReader(const std::string& path, const std::string& context, int maxSide);
+    ~ImageFileReader();
+    ImageFileReader(const ImageFileReader&) = delete;
+    ImageFileReader& operator=(const ImageFileReader&) = delete;
+
+    int width() const { return mWidth; }
+    int height() const { return mHeight; }
+    int channels() const { return mChannels; }
+
+    /// All pixels as float, the first `channels` (at most channels()) per pixel, rows top to
+    /// bottom. Throws InputError "CONTEXT: cannot read pixels: REASON".
+    std::unique_ptr<float[]> readPixels(int channels);
+
+  private:
+    struct Input;
+    std::unique_ptr<Input> mInput;
+    std::string mContext;
+    int mWidth = 0, mHeight = 0, mChannels = 0;
+};
+
+}  // namespace candela
