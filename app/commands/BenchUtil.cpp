@@ -50,6 +50,16 @@ BenchRow benchRow(std::string technique, int spp, double shadeMs, const std::vec
             meanDeltaE(display, refDisplay), raw};
 }
 
+BenchRow rowAt(const std::vector<BenchRow>& rows, const std::string& technique, int spp) {
+    for (const BenchRow& r : rows)
+        if (r.technique == technique && r.spp == spp) return r;
+    BenchRow none;
+    none.technique = technique;
+    none.spp = spp;
+    none.shadeMs = none.rmse = none.deltaE = none.rawRmse = std::nan("");
+    return none;
+}
+
 double atError(const std::vector<BenchRow>& rows, const std::string& technique, double error, bool time) {
     std::vector<const BenchRow*> c;
     for (const BenchRow& r : rows)
