@@ -228,13 +228,11 @@ void compareView(EditorState& state, const Comparison& c, ImVec2 origin, ImVec2 
     if (ui.showError) errorLegend(draw, ImVec2(corner.x, corner.y - 20.f), ui.errorScale);
 }
 
-bool comparePanel(EditorState& state, const Comparison* c, const PanelRect& rect) {
-    CompareUi& ui = state.compare;
+namespace {
+
+/// The reference's sample budget, the error maps' range and the wipe's panes.
+bool referenceControls(CompareUi& ui, const Comparison* c) {
     bool changed = false;
-    placeNextWindow(rect);
-    ImGui::Begin("Compare", nullptr, kPanelFlags);
-    recordPanelRect(state, "compare");
-    ImGui::PushItemWidth(-ImGui::GetFontSize() * 8.f);
     if (ImGui::InputInt("Reference spp", &ui.referenceSamples, 64, 512)) {
         ui.referenceSamples = std::clamp(ui.referenceSamples, 16, 1 << 16);
         changed = true;
@@ -255,63 +253,82 @@ bool comparePanel(EditorState& state, const Comparison* c, const PanelRect& rect
         changed = ImGui::Combo("Left of the wipe", &ui.wipePanes[0], letters, 4) || changed;
         changed = ImGui::Combo("Right of the wipe", &ui.wipePanes[1], letters, 4) || changed;
     }
+    return changed;
+}
 
-    std::vector<std::string> kinds = sceneKinds(state.scene);
-    int shown = ui.layout == CompareLayout::Wipe ? 4 : ui.paneCount();
-    for (int p = 0; p < shown; ++p) {
-        PaneSpec& spec = ui.panes[size_t(p)];
-        ImGui::PushID(p);
-        ImGui::Separator();
-        ImGui::Text("Pane %s", kLetters[p]);
-        for (const std::string& kind : kinds) {
-            std::string chosen = chosenFor(spec.technique, kind);
-            std::string id = "compare.pane" + std::to_string(p) + "." + kind;
-            if (ImGui::BeginCombo(kind.c_str(), chosen.empty() ? "(its own)" : chosen.c_str())) {
-                if (ImGui::Selectable("(its own)", chosen.empty())) {
-                    spec.technique = withChoice(spec.technique, kinds, kind, "");
+/// Pane p's technique per kind of the scene ("(its own)": the luminaire's) and its budget.
+bool paneControls(EditorState& state, PaneSpec& spec, int p, const std::vector<std::string>& kinds) {
+    bool changed = false;
+    ImGui::PushID(p);
+    ImGui::Separator();
+    ImGui::Text("Pane %s", kLetters[p]);
+    for (const std::string& kind : kinds) {
+        std::string chosen = chosenFor(spec.technique, kind);
+        std::string id = "compare.pane" + std::to_string(p) + "." + kind;
+        if (ImGui::BeginCombo(kind.c_str(), chosen.empty() ? "(its own)" : chosen.c_str())) {
+            if (ImGui::Selectable("(its own)", chosen.empty())) {
+                spec.technique = withChoice(spec.technique, kinds, kind, "");
+                changed = true;
+            }
+            for (const std::string& t : gpuTechniques(kind)) {
+                if (ImGui::Selectable(t.c_str(), t == chosen)) {
+                    spec.technique = withChoice(spec.technique, kinds, kind, t);
                     changed = true;
                 }
-                for (const std::string& t : gpuTechniques(kind)) {
-                    if (ImGui::Selectable(t.c_str(), t == chosen)) {
-                        spec.technique = withChoice(spec.technique, kinds, kind, t);
-                        changed = true;
-                    }
-                    recordRect(state, id + "." + t);
-                }
-                ImGui::EndCombo();
+                recordRect(state, id + "." + t);
             }
-            recordRect(state, id);
+            ImGui::EndCombo();
         }
-        if (ImGui::InputInt("Sample budget", &spec.samples, 16, 256)) {
-            spec.samples = std::clamp(spec.samples, 1, 1 << 16);
-            changed = true;
-        }
-        itemTooltip("Samples per pixel this pane refines to (exact techniques finish in one pass)");
-        ImGui::PopID();
+        recordRect(state, id);
     }
+    if (ImGui::InputInt("Sample budget", &spec.samples, 16, 256)) {
+        spec.samples = std::clamp(spec.samples, 1, 1 << 16);
+        changed = true;
+    }
+    itemTooltip("Samples per pixel this pane refines to (exact techniques finish in one pass)");
+    ImGui::PopID();
+    return changed;
+}
+
+/// Each pane's GPU time and errors against the reference.
+void resultsTable(const CompareUi& ui, const Comparison& c) {
+    if (!ImGui::BeginTable("results", 4, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) return;
+    ImGui::TableSetupColumn("Pane");
+    ImGui::TableSetupColumn("GPU");
+    ImGui::TableSetupColumn("\xce\x94" "E");
+    ImGui::TableSetupColumn("RMSE");
+    ImGui::TableHeadersRow();
+    for (size_t i = 0; i < c.paneCount(); ++i) {
+        const PaneResult& r = c.result(i);
+        ImGui::TableNextRow();
+        ImGui::TableNextColumn();
+        ImGui::Text("%s %s", paneName(ui, i).c_str(), r.done ? "" : "...");
+        itemTooltip(techniqueSummary(c.paneRenderer(i).plan()));
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(formatMs(r.gpuMs, 0).c_str());
+        ImGui::TableNextColumn();
+        if (r.measured) ImGui::Text("%.2f", r.latest.deltaE);
+        ImGui::TableNextColumn();
+        if (r.measured) ImGui::Text("%.2f %%", 100.0 * r.latest.relRmse);
+    }
+    ImGui::EndTable();
+}
+
+}  // namespace
+
+bool comparePanel(EditorState& state, const Comparison* c, const PanelRect& rect) {
+    CompareUi& ui = state.compare;
+    placeNextWindow(rect);
+    ImGui::Begin("Compare", nullptr, kPanelFlags);
+    recordPanelRect(state, "compare");
+    ImGui::PushItemWidth(-ImGui::GetFontSize() * 8.f);
+    bool changed = referenceControls(ui, c);
+    std::vector<std::string> kinds = sceneKinds(state.scene);
+    int shown = ui.layout == CompareLayout::Wipe ? 4 : ui.paneCount();
+    for (int p = 0; p < shown; ++p) changed = paneControls(state, ui.panes[size_t(p)], p, kinds) || changed;
     if (c) {
         ImGui::Separator();
-        if (ImGui::BeginTable("results", 4, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) {
-            ImGui::TableSetupColumn("Pane");
-            ImGui::TableSetupColumn("GPU");
-            ImGui::TableSetupColumn("\xce\x94" "E");
-            ImGui::TableSetupColumn("RMSE");
-            ImGui::TableHeadersRow();
-            for (size_t i = 0; i < c->paneCount(); ++i) {
-                const PaneResult& r = c->result(i);
-                ImGui::TableNextRow();
-                ImGui::TableNextColumn();
-                ImGui::Text("%s %s", paneName(ui, i).c_str(), r.done ? "" : "...");
-                itemTooltip(techniqueSummary(c->paneRenderer(i).plan()));
-                ImGui::TableNextColumn();
-                ImGui::TextUnformatted(formatMs(r.gpuMs, 0).c_str());
-                ImGui::TableNextColumn();
-                if (r.measured) ImGui::Text("%.2f", r.latest.deltaE);
-                ImGui::TableNextColumn();
-                if (r.measured) ImGui::Text("%.2f %%", 100.0 * r.latest.relRmse);
-            }
-            ImGui::EndTable();
-        }
+        resultsTable(ui, *c);
     }
     if (ImGui::Button("Export sheet")) ui.sheetRequested = true;
     recordRect(state, "compare.export");
