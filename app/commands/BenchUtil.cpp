@@ -1,10 +1,10 @@
-#include <fstream>
 #include "app/commands/BenchUtil.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 
 #include "app/commands/Gnuplot.h"
