@@ -2,12 +2,11 @@
 // its sample budget, and a sweep against a reference, whose rows must be the same for the same
 // seeds (what makes two bench runs comparable) and whose files are where the benches say.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
 #include <string>
-
-#include <unistd.h>
 
 #include "app/commands/BenchHarness.h"
 #include "scene/SceneIo.h"
@@ -41,7 +40,8 @@ TEST(BenchHarness, AShotRendersItsBudgetInFramesOfAtMostTheCap) {
     Scene scene = panelScene();
     ShaderLibrary shaders;
     Renderer renderer(shaders);
-    RenderSettings s = withBudget(withTechnique(small(), TechniqueSlot::Luminaires, "reference"), 12, 5, 4);
+    RenderSettings s =
+        withBudget(withTechnique(small(), TechniqueSlot::Luminaires, "reference"), 12, 5, 4);
     EXPECT_EQ(s.techniqueOverride, "reference");
     EXPECT_EQ(s.samplesPerFrame, 4);
     EXPECT_EQ(s.maxSamples, 12);
@@ -55,7 +55,8 @@ TEST(BenchHarness, AShotRendersItsBudgetInFramesOfAtMostTheCap) {
     EXPECT_TRUE(shaded);
     Shot unread = renderShot(renderer, scene, s, false);
     EXPECT_TRUE(unread.linear.empty());
-    EXPECT_EQ(withTechnique(s, TechniqueSlot::Environment, "balanced").environmentTechnique, "balanced");
+    EXPECT_EQ(withTechnique(s, TechniqueSlot::Environment, "balanced").environmentTechnique,
+              "balanced");
 }
 
 TEST(BenchHarness, ASweepGivesTheSameRowsForTheSameSeedsAndWritesItsImages) {
@@ -77,7 +78,8 @@ TEST(BenchHarness, ASweepGivesTheSameRowsForTheSameSeedsAndWritesItsImages) {
         RenderSettings settings = small();
         Reference ref = renderReference(renderer, scene, settings, sweep, dir);
         EXPECT_GT(ref.noise, 0.0);
-        EXPECT_GT(settings.fixedAverage, 0.f);  // every image tone-mapped against the reference's mean
+        EXPECT_GT(settings.fixedAverage,
+                  0.f);  // every image tone-mapped against the reference's mean
         runs.push_back(runSweep(renderer, scene, settings, sweep, ref, dir));
     }
     ASSERT_EQ(runs[0].size(), 3u);
@@ -91,7 +93,8 @@ TEST(BenchHarness, ASweepGivesTheSameRowsForTheSameSeedsAndWritesItsImages) {
         EXPECT_EQ(runs[0][i].deltaE, runs[1][i].deltaE) << i;
         EXPECT_EQ(runs[0][i].rawRmse, runs[1][i].rawRmse) << i;
     }
-    for (const char* file : {"reference.png", "reference.exr", "reference_2.png", "reference_16.png", "analytic.png"})
+    for (const char* file :
+         {"reference.png", "reference.exr", "reference_2.png", "reference_16.png", "analytic.png"})
         EXPECT_TRUE(fs::is_regular_file(dir / file)) << file;
     fs::remove_all(dir);
 }

@@ -13,7 +13,9 @@
 namespace candela {
 namespace {
 
-std::string unknown(const std::string& a) { return "unknown " + a; }
+std::string unknown(const std::string& a) {
+    return "unknown " + a;
+}
 
 TEST(BenchFlags, SetsEachFlagsTargetInOrder) {
     std::string out = "default", scene = "default.json";
@@ -28,8 +30,8 @@ TEST(BenchFlags, SetsEachFlagsTargetInOrder) {
         .counts("--spp", spp)
         .size("--size", width, height)
         .positional([&](const std::string& a) { files.push_back(a); })
-        .parse({"--drag", "room.json", "--fast", "a.ies", "--out", "dir", "--frames", "8", "--spp", "2,32", "--size",
-                "48x32", "b.ldt"},
+        .parse({"--drag", "room.json", "--fast", "a.ies", "--out", "dir", "--frames", "8", "--spp",
+                "2,32", "--size", "48x32", "b.ldt"},
                unknown);
     EXPECT_EQ(scene, "room.json");
     EXPECT_EQ(out, "dir");
@@ -42,7 +44,10 @@ TEST(BenchFlags, SetsEachFlagsTargetInOrder) {
 
 TEST(BenchFlags, AnOptionalValueIsNeverAFlag) {
     std::string scene = "default.json", out;
-    BenchFlags().optional("--shadows", scene).text("--out", out).parse({"--shadows", "--out", "x"}, unknown);
+    BenchFlags()
+        .optional("--shadows", scene)
+        .text("--out", out)
+        .parse({"--shadows", "--out", "x"}, unknown);
     EXPECT_EQ(scene, "default.json");
     EXPECT_EQ(out, "x");
     BenchFlags().optional("--shadows", scene).parse({"--shadows"}, unknown);
@@ -58,9 +63,16 @@ TEST(BenchFlags, ErrorsNameTheArgument) {
     EXPECT_EQ(test::inputError([&] { flags.parse({"x.ies"}, unknown); }), "unknown x.ies");
     std::vector<std::string> files;
     auto withFiles = BenchFlags().positional([&](const std::string& a) { files.push_back(a); });
-    EXPECT_EQ(test::inputError([&] { withFiles.parse({"--size", "4"}, unknown); }), "unknown --size");
-    EXPECT_EQ(test::inputError([&] { flags.parse({"--out"}, unknown); }), "--out: expected a value after it");
-    EXPECT_NE(test::inputError([&] { flags.parse({"--frames", "2"}, unknown); }).find("--frames"), std::string::npos);
+    EXPECT_EQ(test::inputError([&] {
+                  withFiles.parse({"--size", "4"}, unknown);
+              }),
+              "unknown --size");
+    EXPECT_EQ(test::inputError([&] { flags.parse({"--out"}, unknown); }),
+              "--out: expected a value after it");
+    EXPECT_NE(test::inputError([&] {
+                  flags.parse({"--frames", "2"}, unknown);
+              }).find("--frames"),
+              std::string::npos);
 }
 
 TEST(BenchFiles, CsvRowsPrintAsAnOstreamDoes) {

@@ -257,7 +257,8 @@ bool referenceControls(CompareUi& ui, const Comparison* c) {
 }
 
 /// Pane p's technique per kind of the scene ("(its own)": the luminaire's) and its budget.
-bool paneControls(EditorState& state, PaneSpec& spec, int p, const std::vector<std::string>& kinds) {
+bool paneControls(EditorState& state, PaneSpec& spec, int p,
+                  const std::vector<std::string>& kinds) {
     bool changed = false;
     ImGui::PushID(p);
     ImGui::Separator();
@@ -292,10 +293,13 @@ bool paneControls(EditorState& state, PaneSpec& spec, int p, const std::vector<s
 
 /// Each pane's GPU time and errors against the reference.
 void resultsTable(const CompareUi& ui, const Comparison& c) {
-    if (!ImGui::BeginTable("results", 4, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) return;
+    if (!ImGui::BeginTable("results", 4, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV))
+        return;
     ImGui::TableSetupColumn("Pane");
     ImGui::TableSetupColumn("GPU");
-    ImGui::TableSetupColumn("\xce\x94" "E");
+    ImGui::TableSetupColumn(
+        "\xce\x94"
+        "E");
     ImGui::TableSetupColumn("RMSE");
     ImGui::TableHeadersRow();
     for (size_t i = 0; i < c.paneCount(); ++i) {
@@ -325,7 +329,8 @@ bool comparePanel(EditorState& state, const Comparison* c, const PanelRect& rect
     bool changed = referenceControls(ui, c);
     std::vector<std::string> kinds = sceneKinds(state.scene);
     int shown = ui.layout == CompareLayout::Wipe ? 4 : ui.paneCount();
-    for (int p = 0; p < shown; ++p) changed = paneControls(state, ui.panes[size_t(p)], p, kinds) || changed;
+    for (int p = 0; p < shown; ++p)
+        changed = paneControls(state, ui.panes[size_t(p)], p, kinds) || changed;
     if (c) {
         ImGui::Separator();
         resultsTable(ui, *c);

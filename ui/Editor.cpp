@@ -180,10 +180,11 @@ Editor::FrameMode Editor::frameMode() {
 
 void Editor::waitForEvents(const FrameMode& mode) {
     const EditorState& state = *mState;
-    bool settled = (mode.comparing ? mComparison && mComparison->done() : shownRenderer().converged()) ||
-                   mRenderFailed || mode.typing;
-    bool idle = settled && mIdleFrames >= kBusyFramesAfterInput && state.pendingChanges == kChangeNone &&
-                !state.screenshotRequested;
+    bool settled =
+        (mode.comparing ? mComparison && mComparison->done() : shownRenderer().converged()) ||
+        mRenderFailed || mode.typing;
+    bool idle = settled && mIdleFrames >= kBusyFramesAfterInput &&
+                state.pendingChanges == kChangeNone && !state.screenshotRequested;
     if (idle)
         glfwWaitEventsTimeout(kIdleWaitS);
     else
@@ -192,8 +193,12 @@ void Editor::waitForEvents(const FrameMode& mode) {
 
 void Editor::autosaveIfDue() {
     EditorState& state = *mState;
-    if (!state.dirty || state.edits == mAutosavedEdits || now0() - mLastAutosave < mOptions.autosaveSeconds) return;
-    if (writeAutosave(state)) std::fprintf(stderr, "candela edit: autosaved to %s\n", autosavePath(state.scene.path).c_str());
+    if (!state.dirty || state.edits == mAutosavedEdits ||
+        now0() - mLastAutosave < mOptions.autosaveSeconds)
+        return;
+    if (writeAutosave(state))
+        std::fprintf(stderr, "candela edit: autosaved to %s\n",
+                     autosavePath(state.scene.path).c_str());
     mAutosavedEdits = state.edits;
     mLastAutosave = now0();
 }
@@ -629,7 +634,8 @@ static nlohmann::json passTimes(const FrameStats& stats) {
 
 /// Each luminaire's scene-file entry (type, name, position, aim, c0, technique, kind fields such
 /// as file), plus where its position is on screen (window pixels; null when behind the camera).
-static nlohmann::json luminairesJson(const Scene& scene, const Renderer& shown, const glm::vec4& viewport) {
+static nlohmann::json luminairesJson(const Scene& scene, const Renderer& shown,
+                                     const glm::vec4& viewport) {
     const RenderSettings& settings = shown.settings();
     glm::mat4 viewProj = shown.viewProj();
     const glm::vec4& v = viewport;
@@ -677,15 +683,17 @@ void Editor::writeLayout() {
         {"viewport", {v.x, v.y, v.z, v.w}},
         {"render_size", {settings.width, settings.height}},
         {"screenshot_button", vec2Json(layout.screenshotButton.x, layout.screenshotButton.y)},
-        {"gizmo", layout.gizmo ? nlohmann::json{{"aim", vec2Json(layout.aimKnob.x, layout.aimKnob.y)},
-                                                {"spin", vec2Json(layout.spinKnob.x, layout.spinKnob.y)}}
-                               : nlohmann::json(nullptr)},
+        {"gizmo", layout.gizmo
+                      ? nlohmann::json{{"aim", vec2Json(layout.aimKnob.x, layout.aimKnob.y)},
+                                       {"spin", vec2Json(layout.spinKnob.x, layout.spinKnob.y)}}
+                      : nlohmann::json(nullptr)},
         {"luminaires", luminairesJson(state.scene, shown, v)},
         {"selected", selected >= 0 && selected < int(state.scene.luminaires.size())
                          ? nlohmann::json(state.scene.luminaires[size_t(selected)]->name)
                          : nlohmann::json(nullptr)},
         {"dragging", state.drag.mode == DragMode::Luminaire},
-        {"drag_mode", std::array<const char*, 6>{"none", "orbit", "pan", "luminaire", "aim", "spin"}[size_t(state.drag.mode)]},
+        {"drag_mode", std::array<const char*, 6>{"none", "orbit", "pan", "luminaire", "aim",
+                                                 "spin"}[size_t(state.drag.mode)]},
         {"mouse", io.MousePos.x > -FLT_MAX / 2 ? vec2Json(io.MousePos.x, io.MousePos.y)
                                                : nlohmann::json(nullptr)},
         {"samples_per_pixel", stats.samplesPerPixel},
@@ -693,9 +701,10 @@ void Editor::writeLayout() {
         {"screenshots", state.screenshotsTaken},
         {"window_images", state.windowShotsTaken},
         {"mouse_down", io.MouseDown[ImGuiMouseButton_Left]},  // as this frame's widgets saw it
-        {"typing", io.WantTextInput},                        // a text field has the keyboard
+        {"typing", io.WantTextInput},                         // a text field has the keyboard
         {"dirty", state.dirty},
-        {"undo", state.history.undo.empty() ? nlohmann::json(nullptr) : nlohmann::json(state.history.undo.back().label)},
+        {"undo", state.history.undo.empty() ? nlohmann::json(nullptr)
+                                            : nlohmann::json(state.history.undo.back().label)},
         {"undo_steps", state.history.undo.size()},
         {"redo_steps", state.history.redo.size()},
         {"status", state.status},
@@ -703,8 +712,10 @@ void Editor::writeLayout() {
         {"widgets", std::move(widgetJson)},
         {"environment", state.scene.environment},
         {"environment_ui", environmentUiJson(state)},
-        {"preview", {{"active", state.preview.active}, {"size", {state.preview.width, state.preview.height}},
-                     {"frame_ms", std::round(state.preview.frameMs * 10.0) / 10.0}}},
+        {"preview",
+         {{"active", state.preview.active},
+          {"size", {state.preview.width, state.preview.height}},
+          {"frame_ms", std::round(state.preview.frameMs * 10.0) / 10.0}}},
         {"interreflection", interreflectionJson(state.interreflection)},
         {"techniques", planTechniques(state.scene, shown)},
         {"compare", compareState(state, mComparison.get())},

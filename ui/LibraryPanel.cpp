@@ -99,7 +99,8 @@ bool libraryRow(EditorState& state, const LibraryEntry& entry, bool& madeOne) {
     ImGui::PushID(entry.path.c_str());
     auto found = lib.thumbnails.find(entry.path);
     float rowTop = ImGui::GetCursorPosY();
-    if (found == lib.thumbnails.end() && !madeOne && ImGui::IsRectVisible(ImVec2(1.f, float(kThumbnailPixels)))) {
+    if (found == lib.thumbnails.end() && !madeOne &&
+        ImGui::IsRectVisible(ImVec2(1.f, float(kThumbnailPixels)))) {
         makeThumbnail(lib, entry);
         madeOne = true;
         found = lib.thumbnails.find(entry.path);
@@ -108,7 +109,8 @@ bool libraryRow(EditorState& state, const LibraryEntry& entry, bool& madeOne) {
         auto* texture = static_cast<gl::Texture2D*>(found->second.texture.get());
         ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(texture->id())),
                      ImVec2(float(kThumbnailPixels), float(kThumbnailPixels)));
-        itemTooltip("Illuminance on a floor 1 m below it, aimed down, over 5 x 5 m (log scale, 3 decades)");
+        itemTooltip(
+            "Illuminance on a floor 1 m below it, aimed down, over 5 x 5 m (log scale, 3 decades)");
     } else {
         ImGui::Dummy(ImVec2(float(kThumbnailPixels), float(kThumbnailPixels)));
     }
@@ -134,7 +136,8 @@ bool libraryRow(EditorState& state, const LibraryEntry& entry, bool& madeOne) {
     itemTooltip(entry.path);
     ImGui::SameLine();
     ImGui::BeginDisabled(selected < 0);
-    if (ImGui::SmallButton("Swap")) changed = swapLuminaireFile(state, selected, entry.path) || changed;
+    if (ImGui::SmallButton("Swap"))
+        changed = swapLuminaireFile(state, selected, entry.path) || changed;
     recordRect(state, "library.swap:" + entry.label);
     ImGui::EndDisabled();
     itemTooltip("Replace the selected luminaire's file with this one, keeping its pose and name");
@@ -190,7 +193,8 @@ bool libraryPanel(EditorState& state, const PanelRect& rect) {
     recordPanelRect(state, "library");
     bool changed = false;
     bool madeOne = false;  // at most one new thumbnail per frame
-    for (const LibraryEntry& entry : lib.entries) changed = libraryRow(state, entry, madeOne) || changed;
+    for (const LibraryEntry& entry : lib.entries)
+        changed = libraryRow(state, entry, madeOne) || changed;
     ImGui::Separator();
     libraryFolders(state);
     ImGui::End();

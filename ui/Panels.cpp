@@ -278,7 +278,8 @@ static bool addLuminaireControls(EditorState& state) {
     }
     ImGui::SameLine();
     bool added = false;
-    if (ImGui::Button("Add", ImVec2(-1.f, 0.f))) added = addLuminaire(state, kinds[size_t(state.addKind)]) >= 0;
+    if (ImGui::Button("Add", ImVec2(-1.f, 0.f)))
+        added = addLuminaire(state, kinds[size_t(state.addKind)]) >= 0;
     recordRect(state, "outline.add");
     itemTooltip(
         "Adds a luminaire of this kind 0.5 m below the top of the scene, aimed "

@@ -161,8 +161,9 @@ void livePreviewControls(EditorState& state) {
         itemTooltip("Preview pixels per render pixel, per axis");
     }
     if (live.width > 0)
-        ImGui::TextDisabled("Last preview: %d x %d, %.0f ms per frame (%.1f fps)", live.width, live.height,
-                            live.frameMs, live.frameMs > 0.0 ? 1000.0 / live.frameMs : 0.0);
+        ImGui::TextDisabled("Last preview: %d x %d, %.0f ms per frame (%.1f fps)", live.width,
+                            live.height, live.frameMs,
+                            live.frameMs > 0.0 ? 1000.0 / live.frameMs : 0.0);
 }
 
 bool samplingControls(EditorState& state) {

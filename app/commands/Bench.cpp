@@ -43,8 +43,9 @@ LightFieldOptions parseOptions(const Args& args) {
         .size("--size", o.width, o.height)
         .parse(args, [](const std::string& a) { return "bench: unknown option " + a; });
     if (o.lightField.empty())
-        throw InputError("usage: candela bench --lightfield FILE.lf.json [--out DIR] [--spp 4,8,...] "
-                         "[--reference-spp N] [--size WxH]");
+        throw InputError(
+            "usage: candela bench --lightfield FILE.lf.json [--out DIR] [--spp 4,8,...] "
+            "[--reference-spp N] [--size WxH]");
     return o;
 }
 
@@ -87,24 +88,30 @@ Scene benchScene(const fs::path& lightField, const fs::path& outDir, ProtectedIn
 
 /// The paper's comparison (Fig. 11 and 12): at each count, the baselines' error against the
 /// restricted CDFs', and what they need in samples and time to match it.
-void addRatios(BenchSummary& summary, const std::vector<BenchRow>& rows, const std::vector<int>& sppList) {
+void addRatios(BenchSummary& summary, const std::vector<BenchRow>& rows,
+               const std::vector<int>& sppList) {
     for (int spp : sppList) {
         BenchRow restricted = rowAt(rows, "restricted-cdf", spp);
         double rc = restricted.rmse, tRc = restricted.shadeMs;
-        double ur = rowAt(rows, "uniform-restricted", spp).rmse, gl = rowAt(rows, "precomputed-global", spp).rmse;
+        double ur = rowAt(rows, "uniform-restricted", spp).rmse,
+               gl = rowAt(rows, "precomputed-global", spp).rmse;
         double need = atError(rows, "uniform-restricted", rc, false);
         double tGl = atError(rows, "precomputed-global", rc, true);
         double tUr = atError(rows, "uniform-restricted", rc, true);
-        summary.add("%5d spp: error uniform/restricted %.2fx, global/restricted %.2fx; for restricted's "
-                    "error uniform needs %s spp (%s) and %s the time, global %s the time\n",
-                    spp, ur / rc, gl / rc,
-                    std::isnan(need) ? "more than the sweep's" : std::to_string(int(need)).c_str(),
-                    formatRatio(need / spp).c_str(), formatRatio(tUr / tRc).c_str(), formatRatio(tGl / tRc).c_str());
+        summary.add(
+            "%5d spp: error uniform/restricted %.2fx, global/restricted %.2fx; for restricted's "
+            "error uniform needs %s spp (%s) and %s the time, global %s the time\n",
+            spp, ur / rc, gl / rc,
+            std::isnan(need) ? "more than the sweep's" : std::to_string(int(need)).c_str(),
+            formatRatio(need / spp).c_str(), formatRatio(tUr / tRc).c_str(),
+            formatRatio(tGl / tRc).c_str());
     }
     for (const BenchRow& r : rows)
         if (r.technique == "granier2003")
-            summary.add("granier2003 (deterministic, approximate): rel. RMSE %.4f, Delta E %.3f in %.1f ms\n", r.rmse,
-                        r.deltaE, r.shadeMs);
+            summary.add(
+                "granier2003 (deterministic, approximate): rel. RMSE %.4f, Delta E %.3f in %.1f "
+                "ms\n",
+                r.rmse, r.deltaE, r.shadeMs);
 }
 
 /// Error against GPU time, log-log: relative RMSE and Delta E side by side.
@@ -114,9 +121,10 @@ void plotErrorAgainstTime(const fs::path& out, const Sweep& sweep) {
         for (const std::string& t : *names) list += (list.empty() ? "" : " ") + t;
     writePlot(out, 900, 420,
               "set logscale xy\nset grid\nset key bottom left\nset multiplot layout 1,2\n"
-              "set xlabel 'GPU time of the shading pass (ms)'\nset ylabel 'rel. RMSE (luminance, ref. noise removed)'\n" +
-                  sweepPlot(list, 3, 4) + "set ylabel 'mean Delta E (CIE76, tone-mapped)'\n" + sweepPlot(list, 3, 5) +
-                  "unset multiplot\n",
+              "set xlabel 'GPU time of the shading pass (ms)'\nset ylabel 'rel. RMSE (luminance, "
+              "ref. noise removed)'\n" +
+                  sweepPlot(list, 3, 4) + "set ylabel 'mean Delta E (CIE76, tone-mapped)'\n" +
+                  sweepPlot(list, 3, 5) + "unset multiplot\n",
               "error_vs_time.png");
 }
 
@@ -141,11 +149,14 @@ int benchLightField(const Args& args) {
 
     BenchSummary summary;
     summary.add("light field: %s (%dx%d images of %dx%d), precomputation %.1f ms, load %.0f ms\n",
-                o.lightField.c_str(), lf.count.x, lf.count.y, lf.width, lf.height, lf.precomputeMs, loadMs);
-    summary.add("reference: %s, %d spp, %dx%d, own noise (rel. RMSE) %.5f, removed from every error below in "
-                "quadrature\ncontext: %s\n",
-                sweep.reference.c_str(), o.referenceSpp, o.width, o.height, ref.noise,
-                gpu.context->description().c_str());
+                o.lightField.c_str(), lf.count.x, lf.count.y, lf.width, lf.height, lf.precomputeMs,
+                loadMs);
+    summary.add(
+        "reference: %s, %d spp, %dx%d, own noise (rel. RMSE) %.5f, removed from every error below "
+        "in "
+        "quadrature\ncontext: %s\n",
+        sweep.reference.c_str(), o.referenceSpp, o.width, o.height, ref.noise,
+        gpu.context->description().c_str());
     addRatios(summary, rows, o.spp);
     summary.write(out);
     plotErrorAgainstTime(out, sweep);
@@ -153,7 +164,9 @@ int benchLightField(const Args& args) {
     return 0;
 }
 
-bool hasFlag(const Args& args, const char* flag) { return std::find(args.begin(), args.end(), flag) != args.end(); }
+bool hasFlag(const Args& args, const char* flag) {
+    return std::find(args.begin(), args.end(), flag) != args.end();
+}
 
 }  // namespace
 

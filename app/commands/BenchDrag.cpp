@@ -101,7 +101,6 @@ DragRow drag(Renderer& renderer, Scene& scene, Scene& shown, size_t index, const
     return row;
 }
 
-
 struct DragOptions {
     std::string scenePath = std::string(CANDELA_SOURCE_DIR) + "/resources/scenes/editor-room.json";
     std::string out = "bench-drag";
@@ -122,13 +121,17 @@ DragOptions parseOptions(const Args& args) {
         .integer("--frames", o.frames, 4, 100000)
         .integer("--reference-spp", o.referenceSpp, 16, 1 << 20)
         .value("--preview-scale",
-               [&o](const std::string& v) { o.policy.scale = float(parseNumberList("--preview-scale", v).at(0)); })
+               [&o](const std::string& v) {
+                   o.policy.scale = float(parseNumberList("--preview-scale", v).at(0));
+               })
         .text("--preview-techniques", o.policy.techniques)
         .integer("--preview-spp", o.policy.samplesPerFrame, 1, 1024)
         .integer("--samples-per-frame", o.samplesPerFrame, 1, 1024)
-        .value("--timeout", [&o](const std::string& v) { o.timeout = parseInt("--timeout", v, 1, 100000); })
+        .value("--timeout",
+               [&o](const std::string& v) { o.timeout = parseInt("--timeout", v, 1, 100000); })
         .parse(args, [](const std::string& a) { return "bench: unknown option " + a; });
-    if (!(o.policy.scale > 0.f && o.policy.scale <= 1.f)) throw InputError("bench: --preview-scale must be in (0, 1]");
+    if (!(o.policy.scale > 0.f && o.policy.scale <= 1.f))
+        throw InputError("bench: --preview-scale must be in (0, 1]");
     return o;
 }
 
@@ -139,9 +142,10 @@ struct DragReference {
     std::vector<unsigned char> display;
 };
 
-DragReference renderReference(Renderer& renderer, const Scene& scene, RenderSettings& full, int referenceSpp,
-                              const fs::path& out) {
-    std::fprintf(stderr, "bench: reference, %d spp at %dx%d\n", referenceSpp, full.width, full.height);
+DragReference renderReference(Renderer& renderer, const Scene& scene, RenderSettings& full,
+                              int referenceSpp, const fs::path& out) {
+    std::fprintf(stderr, "bench: reference, %d spp at %dx%d\n", referenceSpp, full.width,
+                 full.height);
     RenderSettings settings = withBudget(full, referenceSpp, 977, 16);
     DragReference ref;
     ref.linear = renderShot(renderer, scene, settings).linear;
@@ -157,9 +161,9 @@ DragReference renderReference(Renderer& renderer, const Scene& scene, RenderSett
 struct DragRun {
     const DragOptions& options;
     Scene& scene;
-    Scene& shown;               ///< The preview scene, kept in step with `scene`.
-    Renderer& renderer;         ///< The preview's.
-    Renderer& fullRenderer;     ///< The editor's full renderer, apart from the preview's.
+    Scene& shown;            ///< The preview scene, kept in step with `scene`.
+    Renderer& renderer;      ///< The preview's.
+    Renderer& fullRenderer;  ///< The editor's full renderer, apart from the preview's.
     RenderSettings full, preview;
     DragReference reference;
     std::vector<DragRow> drags{};  ///< Preview and full settings, per luminaire.
@@ -167,7 +171,7 @@ struct DragRun {
     std::vector<double> releaseTimes{};  ///< Seconds to Delta E < 1 (NaN: never), per luminaire.
     std::vector<double> restartTimes{};  ///< The same when everything restarts.
     std::vector<double> finalDeltaE{};   ///< Delta E when the moved luminaire's refinement stopped.
-    bool first = true;                 ///< fullRenderer has not seen the scene yet.
+    bool first = true;                   ///< fullRenderer has not seen the scene yet.
 };
 
 /// Luminaire `index` dragged with the preview's settings and with the full ones.
@@ -176,10 +180,13 @@ void measureDrags(DragRun& run, size_t index) {
     run.renderer.setSettings(run.preview);
     run.renderer.update(run.shown, kChangeAll);
     run.renderer.renderFrame();
-    run.drags.push_back(drag(run.renderer, run.scene, run.shown, index, run.preview, run.options.frames, "preview"));
-    run.drags.push_back(drag(run.renderer, run.scene, run.scene, index, run.full, std::max(4, run.options.frames / 6), "full"));
+    run.drags.push_back(drag(run.renderer, run.scene, run.shown, index, run.preview,
+                             run.options.frames, "preview"));
+    run.drags.push_back(drag(run.renderer, run.scene, run.scene, index, run.full,
+                             std::max(4, run.options.frames / 6), "full"));
     for (const DragRow* r : {&run.drags[run.drags.size() - 2], &run.drags.back()})
-        std::fprintf(stderr, "bench: drag %-16s %-8s %5.1f fps (mean %.1f ms, 95th percentile %.1f ms)\n",
+        std::fprintf(stderr,
+                     "bench: drag %-16s %-8s %5.1f fps (mean %.1f ms, 95th percentile %.1f ms)\n",
                      r->luminaire.c_str(), r->mode.c_str(), r->fps(), r->meanMs, r->p95Ms);
     for (const auto& [pass, ms] : run.drags[run.drags.size() - 2].passMs)
         std::fprintf(stderr, "bench:   preview pass %-40s %7.2f ms\n", pass.c_str(), ms);
@@ -204,7 +211,8 @@ double measureRelease(DragRun& run, size_t index, bool everything, ReleasePoint&
     while (!run.fullRenderer.converged());
     moved.pose.position = home;
     drag(run.renderer, run.scene, run.shown, index, run.preview, 4, "preview");
-    run.fullRenderer.update(run.scene, everything ? kChangeAll & ~kChangeGeometry : kChangeLuminaires);
+    run.fullRenderer.update(run.scene,
+                            everything ? kChangeAll & ~kChangeGeometry : kChangeLuminaires);
     double rendering = 0.0, reached = std::nan("");
     while (rendering < run.options.timeout) {
         auto start = Clock::now();
@@ -219,35 +227,43 @@ double measureRelease(DragRun& run, size_t index, bool everything, ReleasePoint&
         if (std::isnan(reached) && p.deltaE < kTargetDeltaE) reached = p.seconds;
         if (!std::isnan(reached) || run.fullRenderer.converged()) break;
     }
-    std::fprintf(stderr, "bench: release %-16s (%s refines) Delta E < %.0f after %s (Delta E %.2f)\n",
-                 moved.name.c_str(), how, kTargetDeltaE,
-                 std::isnan(reached) ? "never" : (std::to_string(reached) + " s").c_str(), last.deltaE);
+    std::fprintf(
+        stderr, "bench: release %-16s (%s refines) Delta E < %.0f after %s (Delta E %.2f)\n",
+        moved.name.c_str(), how, kTargetDeltaE,
+        std::isnan(reached) ? "never" : (std::to_string(reached) + " s").c_str(), last.deltaE);
     return reached;
 }
 
 void addSummary(BenchSummary& summary, const DragRun& run, const std::string& context) {
     const DragOptions& o = run.options;
     const RenderSettings& p = run.preview;
-    summary.add("scene: %s at %dx%d\ncontext: %s\n", o.scenePath.c_str(), o.width, o.height, context.c_str());
-    summary.add("preview while dragging: %dx%d, %d spp per frame, techniques %s, %d shadow map(s) of %d^2\n"
-                "full: %dx%d, %d spp per frame up to %d, each luminaire's own technique\n"
-                "reference: own techniques at %d spp, another seed\n",
-                p.width, p.height, p.samplesPerFrame, p.techniqueOverride.c_str(), p.shadowMaps.count,
-                p.shadowMaps.resolution, o.width, o.height, run.full.samplesPerFrame, run.full.maxSamples,
-                o.referenceSpp);
+    summary.add("scene: %s at %dx%d\ncontext: %s\n", o.scenePath.c_str(), o.width, o.height,
+                context.c_str());
+    summary.add(
+        "preview while dragging: %dx%d, %d spp per frame, techniques %s, %d shadow map(s) of %d^2\n"
+        "full: %dx%d, %d spp per frame up to %d, each luminaire's own technique\n"
+        "reference: own techniques at %d spp, another seed\n",
+        p.width, p.height, p.samplesPerFrame, p.techniqueOverride.c_str(), p.shadowMaps.count,
+        p.shadowMaps.resolution, o.width, o.height, run.full.samplesPerFrame, run.full.maxSamples,
+        o.referenceSpp);
     auto secondsText = [](double t) {
-        return std::isnan(t) ? std::string("never (timeout or converged first)") : std::to_string(t).substr(0, 5) + " s";
+        return std::isnan(t) ? std::string("never (timeout or converged first)")
+                             : std::to_string(t).substr(0, 5) + " s";
     };
     for (size_t i = 0; i + 1 < run.drags.size(); i += 2) {
         const DragRow& pr = run.drags[i];
         const DragRow& f = run.drags[i + 1];
         double release = run.releaseTimes[i / 2], restart = run.restartTimes[i / 2];
-        summary.add("%-16s dragging %5.1f fps (95th percentile frame %.1f ms; full settings %.1f fps, %s slower); "
-                    "after release Delta E < 1 in %s refining it alone (Delta E at the end %.2f), %s refining "
-                    "everything (%s longer)\n",
-                    pr.luminaire.c_str(), pr.fps(), pr.p95Ms, f.fps(), formatRatio(f.meanMs / pr.meanMs).c_str(),
-                    secondsText(release).c_str(), run.finalDeltaE[i / 2], secondsText(restart).c_str(),
-                    formatRatio(restart / release).c_str());
+        summary.add(
+            "%-16s dragging %5.1f fps (95th percentile frame %.1f ms; full settings %.1f fps, %s "
+            "slower); "
+            "after release Delta E < 1 in %s refining it alone (Delta E at the end %.2f), %s "
+            "refining "
+            "everything (%s longer)\n",
+            pr.luminaire.c_str(), pr.fps(), pr.p95Ms, f.fps(),
+            formatRatio(f.meanMs / pr.meanMs).c_str(), secondsText(release).c_str(),
+            run.finalDeltaE[i / 2], secondsText(restart).c_str(),
+            formatRatio(restart / release).c_str());
     }
 }
 
@@ -260,16 +276,18 @@ void writeDragCsv(const fs::path& path, const std::vector<DragRow>& drags) {
 
 /// Delta E after release against rendering time, a line per luminaire and way of refining.
 void plotRelease(const fs::path& out, const Scene& scene) {
-    std::string body = "set logscale y\nset grid\n"
-                       "set xlabel 'seconds after release (rendering only)'\n"
-                       "set ylabel 'mean Delta E against the reference'\n"
-                       "set key top right\nset arrow from graph 0, first 1 to graph 1, first 1 nohead dt 2\nplot ";
+    std::string body =
+        "set logscale y\nset grid\n"
+        "set xlabel 'seconds after release (rendering only)'\n"
+        "set ylabel 'mean Delta E against the reference'\n"
+        "set key top right\nset arrow from graph 0, first 1 to graph 1, first 1 nohead dt 2\nplot ";
     for (size_t i = 0; i < scene.luminaires.size(); ++i)
         for (const std::string how : {"moved only", "everything"}) {
             const std::string& name = scene.luminaires[i]->name;
-            body += (i || how == "everything" ? ", " : "") + std::string("'release.csv' using (strcol(1) eq '") +
-                    name + "' && strcol(2) eq '" + how + "' ? $3 : 1/0):5 with linespoints title '" + name + " (" +
-                    how + ")'";
+            body += (i || how == "everything" ? ", " : "") +
+                    std::string("'release.csv' using (strcol(1) eq '") + name +
+                    "' && strcol(2) eq '" + how + "' ? $3 : 1/0):5 with linespoints title '" +
+                    name + " (" + how + ")'";
         }
     writePlot(out, 900, 420, body + "\n", "plot.png");
 }
@@ -281,7 +299,8 @@ int benchDrag(const Args& args) {
     fs::path out = benchFolder(o.out);
     Scene scene = loadScene(o.scenePath);
     ProtectedInputs inputs(scene.inputFiles());
-    if (scene.luminaires.empty()) throw InputError(o.scenePath + ": bench --drag needs a scene with luminaires");
+    if (scene.luminaires.empty())
+        throw InputError(o.scenePath + ": bench --drag needs a scene with luminaires");
     BenchGpu gpu;
     // The editor's settings (ui/Editor.cpp): 16 samples per pass up to 256.
     RenderSettings full;
@@ -297,7 +316,8 @@ int benchDrag(const Args& args) {
 
     Scene shownWhileDragging = previewScene(scene);
     Renderer fullRenderer(gpu.shaders);
-    DragRun run{o, scene, shownWhileDragging, gpu.renderer, fullRenderer, full, preview, std::move(reference)};
+    DragRun run{o,    scene,   shownWhileDragging,  gpu.renderer, fullRenderer,
+                full, preview, std::move(reference)};
     for (size_t i = 0; i < scene.luminaires.size(); ++i) {
         measureDrags(run, i);
         ReleasePoint last;

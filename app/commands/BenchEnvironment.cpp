@@ -49,8 +49,9 @@ EnvironmentOptions parseOptions(const Args& args) {
         .integer("--repeats", o.repeats, 1, 64)
         .parse(args, [](const std::string& a) { return "bench: unknown option " + a; });
     if (o.source.empty())
-        throw InputError("usage: candela bench --environment sky|MAP.hdr|MAP.exr [--out DIR] [--spp 4,8,...] "
-                         "[--reference-spp N] [--size WxH] [--frames N] [--repeats K]");
+        throw InputError(
+            "usage: candela bench --environment sky|MAP.hdr|MAP.exr [--out DIR] [--spp 4,8,...] "
+            "[--reference-spp N] [--size WxH] [--frames N] [--repeats K]");
     return o;
 }
 
@@ -79,11 +80,12 @@ Scene benchScene(const std::string& source, const SkyParams& sky, const fs::path
         {"box": {"center": [0.9, 0.4, 0.6], "size": [0.8, 0.8, 0.8], "rotate_y_deg": -15},
          "albedo": [0.1, 0.2, 0.4], "specular": [0.5, 0.5, 0.5], "roughness": 0.3}],
       "camera": {"position": [3.2, 2.4, 4.2], "target": [0, 0.4, 0], "fov_deg": 50}})");
-    doc["environment"] =
-        source == "sky" ? nlohmann::json{{"sky", {{"sun_elevation_deg", sky.sunElevationDeg},
-                                                  {"sun_azimuth_deg", sky.sunAzimuthDeg},
-                                                  {"resolution", sky.width}}}}
-                        : nlohmann::json{{"file", fs::absolute(source).generic_string()}};
+    doc["environment"] = source == "sky"
+                             ? nlohmann::json{{"sky",
+                                               {{"sun_elevation_deg", sky.sunElevationDeg},
+                                                {"sun_azimuth_deg", sky.sunAzimuthDeg},
+                                                {"resolution", sky.width}}}}
+                             : nlohmann::json{{"file", fs::absolute(source).generic_string()}};
     // Kept beside the results, so `candela render` can reproduce any image.
     writeFileAtomically((outDir / "bench_scene.json").string(), doc.dump(2) + "\n");
     return parseScene(doc, (outDir / "bench_scene.json").string());
@@ -111,28 +113,31 @@ Sweep environmentSweep(const EnvironmentOptions& o) {
     return sweep;
 }
 
-void addErrorSummary(BenchSummary& summary, const std::vector<BenchRow>& rows, const EnvironmentOptions& o,
-                     double refNoise) {
-    summary.add("\n1. error against samples (reference: balanced-mis, %d spp, own noise %.5f removed in "
-                "quadrature; each error the root mean square over %d images of independent seeds)\n",
-                o.referenceSpp, refNoise, o.repeats);
+void addErrorSummary(BenchSummary& summary, const std::vector<BenchRow>& rows,
+                     const EnvironmentOptions& o, double refNoise) {
+    summary.add(
+        "\n1. error against samples (reference: balanced-mis, %d spp, own noise %.5f removed in "
+        "quadrature; each error the root mean square over %d images of independent seeds)\n",
+        o.referenceSpp, refNoise, o.repeats);
     for (int spp : o.spp) {
         BenchRow balanced = rowAt(rows, "balanced", spp);
         double eb = balanced.rmse, em = rowAt(rows, "balanced-mis", spp).rmse;
         double needU = atError(rows, "uniform-faces", eb, false);
         double needUm = atError(rows, "uniform-faces", em, false);
         double timeU = atError(rows, "uniform-faces", eb, true);
-        summary.add("%5d spp: rel. RMSE balanced %.4f, uniform-faces %.4f, balanced-mis %.4f, global-cdf "
-                    "%.4f; uniform-faces needs %s the samples of balanced (%s of balanced-mis) and %s its "
-                    "time\n",
-                    spp, eb, rowAt(rows, "uniform-faces", spp).rmse, em, rowAt(rows, "global-cdf", spp).rmse,
-                    formatRatio(needU / spp).c_str(), formatRatio(needUm / spp).c_str(),
-                    formatRatio(timeU / balanced.shadeMs).c_str());
+        summary.add(
+            "%5d spp: rel. RMSE balanced %.4f, uniform-faces %.4f, balanced-mis %.4f, global-cdf "
+            "%.4f; uniform-faces needs %s the samples of balanced (%s of balanced-mis) and %s its "
+            "time\n",
+            spp, eb, rowAt(rows, "uniform-faces", spp).rmse, em,
+            rowAt(rows, "global-cdf", spp).rmse, formatRatio(needU / spp).c_str(),
+            formatRatio(needUm / spp).c_str(), formatRatio(timeU / balanced.shadeMs).c_str());
     }
     for (const BenchRow& r : rows)
         if (r.technique == "havran2005")
-            summary.add("havran2005 (256 lights, deterministic): rel. RMSE %.4f, Delta E %.3f in %.2f ms\n", r.rmse,
-                        r.deltaE, r.shadeMs);
+            summary.add(
+                "havran2005 (256 lights, deterministic): rel. RMSE %.4f, Delta E %.3f in %.2f ms\n",
+                r.rmse, r.deltaE, r.shadeMs);
 }
 
 double median(std::vector<double> v) {
@@ -143,8 +148,8 @@ double median(std::vector<double> v) {
 
 /// Part 2 at one face size and sample count: 8 frames (after one that compiles and warms up),
 /// each with the sun 0.5 degrees further, so Algorithm 1 runs every frame. Rows go to `csv`.
-void rebuildFrames(Renderer& renderer, Scene& scene, RenderSettings s, const SkyParams& sky, int faceSize, int spp,
-                   CsvFile& csv, BenchSummary& summary) {
+void rebuildFrames(Renderer& renderer, Scene& scene, RenderSettings s, const SkyParams& sky,
+                   int faceSize, int spp, CsvFile& csv, BenchSummary& summary) {
     s.environmentFaceSize = faceSize;
     s.environmentTechnique = "balanced";
     s.samplesPerFrame = spp;
@@ -156,7 +161,9 @@ void rebuildFrames(Renderer& renderer, Scene& scene, RenderSettings s, const Sky
         scene.environmentMap = skyAt(sky, sky.sunAzimuthDeg + 0.5 * (frame + 2));  // rebuilt
         renderer.update(scene, kChangeEnvironment);
         renderer.renderFrame();
-        double wall = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        double wall =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                .count();
         const std::vector<PassTiming>& passes = renderer.stats().passes;
         double c = gpuMs(passes, "env:cdf"), smp = gpuMs(passes, "env:samples");
         double sh = gpuMs(passes, "shade:environment");
@@ -164,22 +171,25 @@ void rebuildFrames(Renderer& renderer, Scene& scene, RenderSettings s, const Sky
         cdf.push_back(c), samples.push_back(smp), shade.push_back(sh), cpu.push_back(wall);
         csv.row(faceSize, spp, c, smp, sh, wall);
     }
-    std::string line = formatText("  %3d^2 faces, %2d spp/frame: tables %.2f ms + sample pools %.2f ms against "
-                                  "shading %.2f ms (tables %.0f %% of shading); whole frame incl. sky on the CPU "
-                                  "and upload %.0f ms wall\n",
-                                  faceSize, spp, median(cdf), median(samples), median(shade),
-                                  100.0 * median(cdf) / median(shade), median(cpu));
+    std::string line = formatText(
+        "  %3d^2 faces, %2d spp/frame: tables %.2f ms + sample pools %.2f ms against "
+        "shading %.2f ms (tables %.0f %% of shading); whole frame incl. sky on the CPU "
+        "and upload %.0f ms wall\n",
+        faceSize, spp, median(cdf), median(samples), median(shade),
+        100.0 * median(cdf) / median(shade), median(cpu));
     summary.addText(line);
     std::fprintf(stderr, "bench: %s", line.c_str());
 }
 
 /// Part 2: the sun moves every frame, so every frame gets a new map.
-void measureRebuild(Renderer& renderer, Scene& scene, const RenderSettings& settings, const SkyParams& sky,
-                    BenchSummary& summary, const fs::path& out) {
-    summary.addText("\n2. per frame with the sun moving (a new map every frame), medians of 8 frames\n");
+void measureRebuild(Renderer& renderer, Scene& scene, const RenderSettings& settings,
+                    const SkyParams& sky, BenchSummary& summary, const fs::path& out) {
+    summary.addText(
+        "\n2. per frame with the sun moving (a new map every frame), medians of 8 frames\n");
     CsvFile csv("face_size,spp,cdf_ms,samples_ms,shade_ms,upload_and_sky_ms");
     for (int faceSize : {128, 256})
-        for (int spp : {16, 64}) rebuildFrames(renderer, scene, settings, sky, faceSize, spp, csv, summary);
+        for (int spp : {16, 64})
+            rebuildFrames(renderer, scene, settings, sky, faceSize, spp, csv, summary);
     csv.write(out / "rebuild.csv");
 }
 
@@ -206,9 +216,11 @@ struct Temporal {
 };
 
 /// Luminance of the image with the sun `offsetDeg` further, `spp` samples of `technique`.
-std::vector<double> temporalFrame(Temporal& t, double offsetDeg, const char* technique, int spp, uint32_t seed) {
+std::vector<double> temporalFrame(Temporal& t, double offsetDeg, const char* technique, int spp,
+                                  uint32_t seed) {
     t.scene.environmentMap = skyAt(t.sky, t.sky.sunAzimuthDeg + offsetDeg);
-    RenderSettings s = withBudget(withTechnique(t.settings, TechniqueSlot::Environment, technique), spp, seed, 64);
+    RenderSettings s =
+        withBudget(withTechnique(t.settings, TechniqueSlot::Environment, technique), spp, seed, 64);
     return luminances(renderShot(t.renderer, t.scene, s).linear);
 }
 
@@ -216,18 +228,23 @@ std::vector<double> temporalFrame(Temporal& t, double offsetDeg, const char* tec
 /// both), their relative RMS difference divided by the number of steps.
 void addConvergedChange(Temporal& t, double step, BenchSummary& summary) {
     int frames = t.options.temporalFrames;
-    std::vector<double> first = temporalFrame(t, 0.0, "balanced-mis", t.options.referenceSpp / 4, 77);
-    std::vector<double> last = temporalFrame(t, step * (frames - 1), "balanced-mis", t.options.referenceSpp / 4, 77);
+    std::vector<double> first =
+        temporalFrame(t, 0.0, "balanced-mis", t.options.referenceSpp / 4, 77);
+    std::vector<double> last =
+        temporalFrame(t, step * (frames - 1), "balanced-mis", t.options.referenceSpp / 4, 77);
     double num = 0, den = 0;
     for (size_t i = 0; i < first.size(); ++i)
         num += (last[i] - first[i]) * (last[i] - first[i]), den += first[i] * first[i];
-    summary.add("  sun step %.3f deg/frame; change of converged images per step %.5f (an upper bound: their own "
-                "decorrelation included)\n",
-                step, std::sqrt(num / den) / (frames - 1));
+    summary.add(
+        "  sun step %.3f deg/frame; change of converged images per step %.5f (an upper bound: "
+        "their own "
+        "decorrelation included)\n",
+        step, std::sqrt(num / den) / (frames - 1));
 }
 
 /// The flicker of one case at one sun step: a row per frame pair in `csv`, a summary line.
-void measureFlicker(Temporal& t, double step, const TemporalCase& c, CsvFile& csv, BenchSummary& summary) {
+void measureFlicker(Temporal& t, double step, const TemporalCase& c, CsvFile& csv,
+                    BenchSummary& summary) {
     std::vector<double> prev, deltas;
     double sumD2 = 0, sumI2 = 0, sumI = 0;
     for (int frame = 0; frame < t.options.temporalFrames; ++frame) {
@@ -241,15 +258,17 @@ void measureFlicker(Temporal& t, double step, const TemporalCase& c, CsvFile& cs
                 deltas.push_back(std::abs(d));
             }
             sumD2 += d2, sumI2 += i2;
-            csv.row(step, std::string(c.technique) + (c.freshSeed ? "-fresh-seed" : ""), frame, std::sqrt(d2 / i2));
+            csv.row(step, std::string(c.technique) + (c.freshSeed ? "-fresh-seed" : ""), frame,
+                    std::sqrt(d2 / i2));
         }
         prev = std::move(y);
     }
     double meanI = sumI / double(deltas.size());
     size_t k = size_t(0.999 * double(deltas.size()));
     std::nth_element(deltas.begin(), deltas.begin() + long(k), deltas.end());
-    std::string line = formatText("    %-48s flicker %.5f, 99.9th percentile step %.4f of the mean\n", c.name,
-                                  std::sqrt(sumD2 / sumI2), deltas[k] / meanI);
+    std::string line =
+        formatText("    %-48s flicker %.5f, 99.9th percentile step %.4f of the mean\n", c.name,
+                   std::sqrt(sumD2 / sumI2), deltas[k] / meanI);
     summary.addText(line);
     std::fprintf(stderr, "bench: step %.3f: %s", step, line.c_str());
 }
@@ -260,15 +279,18 @@ void measureFlicker(Temporal& t, double step, const TemporalCase& c, CsvFile& cs
 /// sum_t,p I_t(p)^2) over luminance, and its tail, the 99.9th percentile of
 /// |I_t+1(p) - I_t(p)| / mean_p I over all pixel steps.
 void measureTemporal(Temporal& t, BenchSummary& summary, const fs::path& out) {
-    summary.add("\n3. temporal stability: the sun moving a fixed step per frame, %d frames of %d spp, 128^2 faces\n",
-                t.options.temporalFrames, t.options.temporalSpp);
+    summary.add(
+        "\n3. temporal stability: the sun moving a fixed step per frame, %d frames of %d spp, "
+        "128^2 faces\n",
+        t.options.temporalFrames, t.options.temporalSpp);
     // The fractional and integer sample counts, a fixed against a fresh seed, uniform faces and
     // Havran's filtered lights: the comparisons part 3 is about.
-    const TemporalCase cases[] = {{"balanced (fractional N_f, same seed)", "balanced", false},
-                                  {"balanced-integer (N_f rounded, same seed)", "balanced-integer", false},
-                                  {"balanced (fractional N_f, new seed per frame)", "balanced", true},
-                                  {"uniform-faces (same seed)", "uniform-faces", false},
-                                  {"havran2005 (filtered lights)", "havran2005", false}};
+    const TemporalCase cases[] = {
+        {"balanced (fractional N_f, same seed)", "balanced", false},
+        {"balanced-integer (N_f rounded, same seed)", "balanced-integer", false},
+        {"balanced (fractional N_f, new seed per frame)", "balanced", true},
+        {"uniform-faces (same seed)", "uniform-faces", false},
+        {"havran2005 (filtered lights)", "havran2005", false}};
     CsvFile csv("sun_step_deg,case,frame,flicker_step");
     for (double step : {0.001, 0.01, 0.05}) {
         addConvergedChange(t, step, summary);
@@ -278,18 +300,21 @@ void measureTemporal(Temporal& t, BenchSummary& summary, const fs::path& out) {
 }
 
 void plotResults(const fs::path& out) {
-    writePlot(out, 1350, 420,
-              "set logscale xy\nset grid\nset key bottom left\nset multiplot layout 1,3\n"
-              "set xlabel 'samples per pixel'\nset ylabel 'rel. RMSE (luminance, ref. noise removed)'\n" +
-                  sweepPlot("balanced uniform-faces balanced-mis global-cdf", 2, 4) +
-                  "set xlabel 'GPU time of the shading pass (ms)'\n" +
-                  sweepPlot("balanced uniform-faces balanced-mis global-cdf havran2005", 3, 4) +
-                  "unset logscale\nset logscale y\nset xlabel 'frame (sun +0.01 deg each)'\n"
-                  "set ylabel 'frame-to-frame change (rel. RMS)'\nset key top right\n"
-                  "plot for [t in 'balanced balanced-integer balanced-fresh-seed uniform-faces havran2005'] "
-                  "'temporal.csv' using (strcol(2) eq t && $1 == 0.01 ? $3 : 1/0):4 with linespoints title t.' "
-                  "(0.01 deg/frame)'\nunset multiplot\n",
-              "error_vs_time.png");
+    writePlot(
+        out, 1350, 420,
+        "set logscale xy\nset grid\nset key bottom left\nset multiplot layout 1,3\n"
+        "set xlabel 'samples per pixel'\nset ylabel 'rel. RMSE (luminance, ref. noise removed)'\n" +
+            sweepPlot("balanced uniform-faces balanced-mis global-cdf", 2, 4) +
+            "set xlabel 'GPU time of the shading pass (ms)'\n" +
+            sweepPlot("balanced uniform-faces balanced-mis global-cdf havran2005", 3, 4) +
+            "unset logscale\nset logscale y\nset xlabel 'frame (sun +0.01 deg each)'\n"
+            "set ylabel 'frame-to-frame change (rel. RMS)'\nset key top right\n"
+            "plot for [t in 'balanced balanced-integer balanced-fresh-seed uniform-faces "
+            "havran2005'] "
+            "'temporal.csv' using (strcol(2) eq t && $1 == 0.01 ? $3 : 1/0):4 with linespoints "
+            "title t.' "
+            "(0.01 deg/frame)'\nunset multiplot\n",
+        "error_vs_time.png");
 }
 
 }  // namespace
@@ -298,7 +323,8 @@ int benchEnvironment(const Args& args) {
     EnvironmentOptions o = parseOptions(args);
     fs::path out = benchFolder(o.out);
     SkyParams sky = benchSky();
-    ProtectedInputs inputs;  // the map (MAP.hdr|MAP.exr): bench_scene.json and every image must miss it
+    ProtectedInputs
+        inputs;  // the map (MAP.hdr|MAP.exr): bench_scene.json and every image must miss it
     if (o.source != "sky") inputs.add(o.source);
     Scene scene = benchScene(o.source, sky, out);
     BenchGpu gpu;
@@ -307,8 +333,9 @@ int benchEnvironment(const Args& args) {
     settings.height = o.height;
     BenchSummary summary;
     summary.add("environment: %s (%dx%d lat-long), scene %s, %dx%d pixels\ncontext: %s\n",
-                o.source == "sky" ? "procedural sky, sun 35 deg up" : o.source.c_str(), scene.environmentMap->width(),
-                scene.environmentMap->height(), (out / "bench_scene.json").c_str(), o.width, o.height,
+                o.source == "sky" ? "procedural sky, sun 35 deg up" : o.source.c_str(),
+                scene.environmentMap->width(), scene.environmentMap->height(),
+                (out / "bench_scene.json").c_str(), o.width, o.height,
                 gpu.context->description().c_str());
 
     Sweep sweep = environmentSweep(o);

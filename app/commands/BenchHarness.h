@@ -142,12 +142,14 @@ struct Shot {
 
 /// Where a technique's name goes in RenderSettings: the luminaires' override or the environment's.
 enum class TechniqueSlot { Luminaires, Environment };
-RenderSettings withTechnique(RenderSettings settings, TechniqueSlot slot, const std::string& technique);
+RenderSettings withTechnique(RenderSettings settings, TechniqueSlot slot,
+                             const std::string& technique);
 /// `settings` with a budget of `spp` samples per pixel, at most `maxPerFrame` a frame, and `seed`.
 RenderSettings withBudget(RenderSettings settings, int spp, uint32_t seed, int maxPerFrame);
 /// Renders `scene` from scratch (kChangeAll) with `settings` until converged; reads the image
 /// back when `read`.
-Shot renderShot(Renderer& renderer, const Scene& scene, const RenderSettings& settings, bool read = true);
+Shot renderShot(Renderer& renderer, const Scene& scene, const RenderSettings& settings,
+                bool read = true);
 
 // ---- Sweeps against a reference ----------------------------------------------------------------
 
@@ -174,12 +176,13 @@ struct Reference {
 /// Renders the reference as two halves of independent seeds, whose difference measures its own
 /// noise (the floor under which no error can be resolved); sets settings.fixedAverage to its
 /// mean luminance, so every image is tone-mapped alike; writes DIR/reference.png and .exr.
-Reference renderReference(Renderer& renderer, const Scene& scene, RenderSettings& settings, const Sweep& sweep,
-                          const std::filesystem::path& dir);
+Reference renderReference(Renderer& renderer, const Scene& scene, RenderSettings& settings,
+                          const Sweep& sweep, const std::filesystem::path& dir);
 /// Compiles every technique, then renders the sweep (seeds 7, 8, ... in order): a row per
 /// (technique, spp) and per deterministic technique, and images at the first, 64 and last
 /// sample counts (DIR/TECHNIQUE_SPP.png) and of each deterministic one (DIR/TECHNIQUE.png).
-std::vector<BenchRow> runSweep(Renderer& renderer, const Scene& scene, const RenderSettings& settings,
-                               const Sweep& sweep, const Reference& reference, const std::filesystem::path& dir);
+std::vector<BenchRow> runSweep(Renderer& renderer, const Scene& scene,
+                               const RenderSettings& settings, const Sweep& sweep,
+                               const Reference& reference, const std::filesystem::path& dir);
 
 }  // namespace candela

@@ -71,7 +71,6 @@ struct Step {
     std::vector<double> values;    ///< Work plane, lx.
 };
 
-
 struct IndirectOptions {
     std::string scenePath = std::string(CANDELA_SOURCE_DIR) + "/resources/scenes/office.json";
     std::string out = "bench-indirect";
@@ -90,7 +89,8 @@ IndirectOptions parseOptions(const Args& args) {
         .text("--move", o.moved)
         .parse(args, [](const std::string& a) {
             return "bench --indirect: unknown option " + a +
-                   " (usage: candela bench --indirect [SCENE.json] [--out DIR] [--patches N] [--move NAME])";
+                   " (usage: candela bench --indirect [SCENE.json] [--out DIR] [--patches N] "
+                   "[--move NAME])";
         });
     return o;
 }
@@ -155,8 +155,9 @@ struct Accuracy {
     double gatherWorst = 0.0, gatherMean = 0.0, patchMean = 0.0, gatherSigma = 0.0;  ///< lx
 };
 
-Accuracy measureAccuracy(const Scene& scene, const InterreflectionOptions& options, const Interreflection& ir,
-                         const std::vector<glm::dvec3>& points, const std::vector<double>& converged) {
+Accuracy measureAccuracy(const Scene& scene, const InterreflectionOptions& options,
+                         const Interreflection& ir, const std::vector<glm::dvec3>& points,
+                         const std::vector<double>& converged) {
     Accuracy a;
     InterreflectionOptions finer = options;
     finer.mesh.targetPatches = options.mesh.targetPatches * 4;
@@ -185,7 +186,8 @@ Accuracy measureAccuracy(const Scene& scene, const InterreflectionOptions& optio
 
 /// How the cost grows with the patches (form factors ~ N^2) and the luminaires (direct light ~
 /// luminaires x N): scaling.csv.
-void measureScaling(const Scene& scene, const InterreflectionOptions& options, const fs::path& out) {
+void measureScaling(const Scene& scene, const InterreflectionOptions& options,
+                    const fs::path& out) {
     const int fine = InterreflectionWorker::kFineSpp, patches = options.mesh.targetPatches;
     CsvFile scaling("what,patches,luminaires,form_factor_s,direct_s,solve_iterations");
     std::printf("scaling:\n");
@@ -199,7 +201,8 @@ void measureScaling(const Scene& scene, const InterreflectionOptions& options, c
         auto s1 = Clock::now();
         x.sync(scene, fine);
         double direct = since(s1);
-        scaling.row("patches", x.mesh().patches.size(), scene.luminaires.size(), ff, direct, x.lastIterations());
+        scaling.row("patches", x.mesh().patches.size(), scene.luminaires.size(), ff, direct,
+                    x.lastIterations());
         std::printf("  %6zu patches, %zu luminaires: form factors %.2f s, direct light + solve %.2f s\n",
                     x.mesh().patches.size(), scene.luminaires.size(), ff, direct);
     }
@@ -211,7 +214,8 @@ void measureScaling(const Scene& scene, const InterreflectionOptions& options, c
         auto s1 = Clock::now();
         x.sync(some, fine);
         double direct = since(s1);
-        scaling.row("luminaires", x.mesh().patches.size(), some.luminaires.size(), "", direct, x.lastIterations());
+        scaling.row("luminaires", x.mesh().patches.size(), some.luminaires.size(), "", direct,
+                    x.lastIterations());
         std::printf("  %6zu patches, %zu luminaires: direct light + solve %.2f s\n", x.mesh().patches.size(),
                     some.luminaires.size(), direct);
     }
@@ -227,8 +231,8 @@ std::pair<double, double> writeSteps(const Timeline& t, const fs::path& path) {
         const Step& s = t.steps[k];
         const std::vector<double>& c = t.convergedFor(k);
         double worst = worstDeviation(s.values, c), em = mean(s.values) / mean(c) - 1.0;
-        csv.line(formatText("%s,%s,%.3f,%.5g,%.5f,%.5f", s.phase.c_str(), s.step.c_str(), s.seconds, mean(s.values),
-                            worst, em));
+        csv.line(formatText("%s,%s,%.3f,%.5g,%.5f,%.5f", s.phase.c_str(), s.step.c_str(), s.seconds,
+                            mean(s.values), worst, em));
         double& first = k < t.coldSteps ? coldTime : moveTime;
         if (first < 0.0 && worst <= 0.01) first = s.seconds;
     }
@@ -244,48 +248,60 @@ struct IndirectReport {
     std::pair<double, double> within1Percent;  ///< From scratch and after the move, s (-1: never).
 };
 
-void addSummary(BenchSummary& summary, const IndirectReport& r, const Timeline& t, const Accuracy& a) {
-    auto time = [](double s) { return s < 0 ? std::string("not reached") : formatText("%.2f s", s); };
+void addSummary(BenchSummary& summary, const IndirectReport& r, const Timeline& t,
+                const Accuracy& a) {
+    auto time = [](double s) {
+        return s < 0 ? std::string("not reached") : formatText("%.2f s", s);
+    };
     const IndirectOptions& o = r.options;
     std::string shown = o.scenePath;
     if (shown.rfind(CANDELA_SOURCE_DIR "/", 0) == 0) shown = shown.substr(std::string(CANDELA_SOURCE_DIR "/").size());
     std::ostringstream text;
-    text << "scene: " << shown << "; " << r.patches << " patches (about " << o.patches << " asked), "
-         << r.scene.luminaires.size() << " luminaires, " << workerThreads(0) << " threads\n"
+    text << "scene: " << shown << "; " << r.patches << " patches (about " << o.patches
+         << " asked), " << r.scene.luminaires.size() << " luminaires, " << workerThreads(0)
+         << " threads\n"
          << "work plane: " << r.points << " points at " << o.height << " m, " << o.spacing
          << " m apart; interreflected illuminance from the patches (the editor's grid)\n"
-         << "converged value: the same patches with every source's direct light at " << kConvergedSpp
-         << " spp: Em " << mean(t.coldConverged) << " lx (after the move " << mean(t.moveConverged) << " lx)\n"
+         << "converged value: the same patches with every source's direct light at "
+         << kConvergedSpp << " spp: Em " << mean(t.coldConverged) << " lx (after the move "
+         << mean(t.moveConverged) << " lx)\n"
          << "form factors: " << t.transferSeconds << " s\n"
          << "from scratch to every point within 1 % of the converged value (relative to Em): "
          << time(r.within1Percent.first) << " (target 10 s)\n"
-         << "after moving \"" << o.moved << "\" 1 m, within 1 % again: " << time(r.within1Percent.second)
-         << " (target 3 s)\n";
+         << "after moving \"" << o.moved
+         << "\" 1 m, within 1 % again: " << time(r.within1Percent.second) << " (target 3 s)\n";
     summary.addText(text.str());
     for (size_t k = 0; k < t.steps.size(); ++k) {
         const Step& s = t.steps[k];
         const std::vector<double>& c = t.convergedFor(k);
-        summary.add("  %-5s %-22s %6.2f s: Em %.4g lx, worst point %.2f %%, Em %+.2f %%\n", s.phase.c_str(),
-                    s.step.c_str(), s.seconds, mean(s.values), 100.0 * worstDeviation(s.values, c),
-                    100.0 * (mean(s.values) / mean(c) - 1.0));
+        summary.add("  %-5s %-22s %6.2f s: Em %.4g lx, worst point %.2f %%, Em %+.2f %%\n",
+                    s.phase.c_str(), s.step.c_str(), s.seconds, mean(s.values),
+                    100.0 * worstDeviation(s.values, c), 100.0 * (mean(s.values) / mean(c) - 1.0));
     }
-    summary.add("discretisation: %zu patches give Em %.4g lx, %zu patches %.4g lx (%+.2f %%; worst point %.2f %% of "
-                "Em; %.1f s)\n",
-                r.patches, mean(t.moveConverged), a.finePatches, mean(a.fineValues),
-                100.0 * (mean(t.moveConverged) / mean(a.fineValues) - 1.0),
-                100.0 * worstDeviation(t.moveConverged, a.fineValues), a.fineSeconds);
-    summary.add("final gather (grid --indirect's reference) at %d points: mean %.4g lx against the patches' %.4g lx "
-                "(%+.2f %%), largest difference %.3g lx, its standard error up to %.2g lx\n",
-                a.gathered, a.gatherMean, a.patchMean, 100.0 * (a.patchMean / a.gatherMean - 1.0), a.gatherWorst,
-                a.gatherSigma);
+    summary.add(
+        "discretisation: %zu patches give Em %.4g lx, %zu patches %.4g lx (%+.2f %%; worst point "
+        "%.2f %% of "
+        "Em; %.1f s)\n",
+        r.patches, mean(t.moveConverged), a.finePatches, mean(a.fineValues),
+        100.0 * (mean(t.moveConverged) / mean(a.fineValues) - 1.0),
+        100.0 * worstDeviation(t.moveConverged, a.fineValues), a.fineSeconds);
+    summary.add(
+        "final gather (grid --indirect's reference) at %d points: mean %.4g lx against the "
+        "patches' %.4g lx "
+        "(%+.2f %%), largest difference %.3g lx, its standard error up to %.2g lx\n",
+        a.gathered, a.gatherMean, a.patchMean, 100.0 * (a.patchMean / a.gatherMean - 1.0),
+        a.gatherWorst, a.gatherSigma);
 }
 
 void plotSteps(const fs::path& out) {
     writePlot(out, 800, 420,
               "set grid\nset logscale y\n"
-              "set xlabel 'wall time since the change, s'\nset ylabel 'worst work-plane point, fraction of Em'\n"
-              "set key top right\nplot 'bench.csv' using (strcol(1) eq 'cold' ? $3 : 1/0):5 with linespoints "
-              "pointsize 1.5 title 'from scratch', 'bench.csv' using (strcol(1) eq 'move' ? $3 : 1/0):5 with "
+              "set xlabel 'wall time since the change, s'\nset ylabel 'worst work-plane point, "
+              "fraction of Em'\n"
+              "set key top right\nplot 'bench.csv' using (strcol(1) eq 'cold' ? $3 : 1/0):5 with "
+              "linespoints "
+              "pointsize 1.5 title 'from scratch', 'bench.csv' using (strcol(1) eq 'move' ? $3 : "
+              "1/0):5 with "
               "linespoints pointsize 1.5 title 'after a move', 0.01 title '1 %' dt 2\n",
               "plot.png");
 }
@@ -310,18 +326,21 @@ int benchIndirect(const Args& args) {
                               [&](const auto& l) { return l->name == o.moved; });
     if (moved == scene.luminaires.end())
         throw InputError(o.scenePath + ": no luminaire named \"" + o.moved + "\" (--move)");
-    if (scene.meshes.empty()) throw InputError(o.scenePath + ": geometry: no surfaces to interreflect light");
+    if (scene.meshes.empty())
+        throw InputError(o.scenePath + ": geometry: no surfaces to interreflect light");
 
     std::vector<glm::dvec3> points = workPlanePoints(scene, o.spacing, o.height);
     InterreflectionOptions options;
     options.mesh.targetPatches = o.patches;
-    std::printf("bench --indirect: %s, %zu work-plane points at %.2f m, %d threads\n", o.scenePath.c_str(),
-                points.size(), o.height, workerThreads(0));
+    std::printf("bench --indirect: %s, %zu work-plane points at %.2f m, %d threads\n",
+                o.scenePath.c_str(), points.size(), o.height, workerThreads(0));
     Timeline timeline = runWorkerSteps(scene, options, **moved, points);
-    Accuracy accuracy = measureAccuracy(scene, options, *timeline.ir, points, timeline.moveConverged);
+    Accuracy accuracy =
+        measureAccuracy(scene, options, *timeline.ir, points, timeline.moveConverged);
     measureScaling(scene, options, out);
 
-    IndirectReport report{o, scene, timeline.ir->mesh().patches.size(), points.size(), writeSteps(timeline, out / "bench.csv")};
+    IndirectReport report{o, scene, timeline.ir->mesh().patches.size(), points.size(),
+                          writeSteps(timeline, out / "bench.csv")};
     BenchSummary summary;
     addSummary(summary, report, timeline, accuracy);
     summary.write(out);

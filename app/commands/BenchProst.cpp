@@ -122,7 +122,6 @@ double diffuseness(const PhotometricData& d) {
     return i0 > 0.0 ? d.fluxFromTable() / (std::numbers::pi * i0) : INFINITY;
 }
 
-
 struct ProstOptions {
     std::vector<std::string> files;
     std::string out = "bench-prost";
@@ -138,8 +137,10 @@ void addFiles(const std::string& argument, std::vector<std::string>& files) {
     }
     for (const auto& e : fs::recursive_directory_iterator(argument)) {
         std::string ext = e.path().extension().string();
-        std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-        if (e.is_regular_file() && (ext == ".ies" || ext == ".ldt")) files.push_back(e.path().string());
+        std::transform(ext.begin(), ext.end(), ext.begin(),
+                       [](unsigned char c) { return char(std::tolower(c)); });
+        if (e.is_regular_file() && (ext == ".ies" || ext == ".ldt"))
+            files.push_back(e.path().string());
     }
 }
 
@@ -189,18 +190,23 @@ struct ProstRun {
 
 /// One file at one height: its receivers, sheets and the images of every rotation.
 struct HeightRun {
-    HeightRun(const std::string& file_, const Scene& scene_, PhotometricLuminaire& light_, double height_, int size,
-              size_t techniques)
-        : file(file_), scene(scene_), light(light_), height(height_), images(size, int(techniques) + 1, kRotations),
+    HeightRun(const std::string& file_, const Scene& scene_, PhotometricLuminaire& light_,
+              double height_, int size, size_t techniques)
+        : file(file_),
+          scene(scene_),
+          light(light_),
+          height(height_),
+          images(size, int(techniques) + 1, kRotations),
           errors(size, int(techniques), kRotations) {}
     const std::string& file;
-    const Scene& scene;        ///< Holds `light` alone.
+    const Scene& scene;  ///< Holds `light` alone.
     PhotometricLuminaire& light;
     double height;  ///< Of the opening's lowest edge when it stands vertical, m.
     std::vector<glm::vec3> points, normals;
     Sheet images, errors;
-    std::map<std::string, std::vector<double>> allA;  ///< Each technique's images, concatenated over rotations.
-    std::vector<double> allR;                         ///< The reference's.
+    std::map<std::string, std::vector<double>>
+        allA;                  ///< Each technique's images, concatenated over rotations.
+    std::vector<double> allR;  ///< The reference's.
     std::vector<char> allNear;
     std::map<std::string, Metrics> sums;
 };
@@ -221,7 +227,8 @@ void putGrey(Sheet& sheet, int col, int row, const std::vector<double>& values, 
     for (int y = 0; y < sheet.cell; ++y)
         for (int x = 0; x < sheet.cell; ++x) {
             double v = values[size_t(y * sheet.cell + x)];
-            unsigned char grey = (unsigned char)std::lround(255.0 * std::pow(toneMap(v, a), 1.0 / 2.2));
+            unsigned char grey =
+                (unsigned char)std::lround(255.0 * std::pow(toneMap(v, a), 1.0 / 2.2));
             unsigned char* px = sheet.at(col, row, x, y);
             px[0] = px[1] = px[2] = grey;
         }
@@ -261,7 +268,8 @@ RotationRef referenceAt(ProstRun& run, HeightRun& h, int rot) {
     ref.settings.seed = uint32_t(1 + rot);
     run.renderer.setSettings(ref.settings);
     int size = run.options.size;
-    std::vector<glm::vec3> img = run.renderer.probe(h.scene, h.points, h.normals, run.options.referenceSpp, size);
+    std::vector<glm::vec3> img =
+        run.renderer.probe(h.scene, h.points, h.normals, run.options.referenceSpp, size);
     size_t n = img.size();
     ref.r.resize(n);
     double mean = 0.0;
@@ -269,7 +277,8 @@ RotationRef referenceAt(ProstRun& run, HeightRun& h, int rot) {
     mean /= double(n);
     ref.a = mean > 0.0 ? 1.0 / mean : 1.0;
     ref.nearMask.resize(n);
-    for (size_t k = 0; k < n; ++k) ref.nearMask[k] = glm::length(glm::dvec3(h.points[k]) - lum.pose.position) < 1.5;
+    for (size_t k = 0; k < n; ++k)
+        ref.nearMask[k] = glm::length(glm::dvec3(h.points[k]) - lum.pose.position) < 1.5;
     putGrey(h.images, 0, rot, ref.r, ref.a);
     ref.smoothMaxima = localMaxima(smoothed(ref.r, size), ref.nearMask, size);
     h.allR.insert(h.allR.end(), ref.r.begin(), ref.r.end());
@@ -304,9 +313,10 @@ void measureTechnique(ProstRun& run, HeightRun& h, const RotationRef& ref, size_
     putGrey(h.images, int(t) + 1, ref.index, A, ref.a);
     for (int y = 0; y < size; ++y)
         for (int x = 0; x < size; ++x)
-            errorColour(diff[size_t(y * size + x)], m.ueb, m.leb, h.errors.at(int(t), ref.index, x, y));
-    run.results.row(h.file, name, h.height, ref.angle * 180.0 / std::numbers::pi, m.nmse, m.ueb, m.leb, m.nearNmse,
-                    m.bumpiness, m.gpuMs);
+            errorColour(diff[size_t(y * size + x)], m.ueb, m.leb,
+                        h.errors.at(int(t), ref.index, x, y));
+    run.results.row(h.file, name, h.height, ref.angle * 180.0 / std::numbers::pi, m.nmse, m.ueb,
+                    m.leb, m.nearNmse, m.bumpiness, m.gpuMs);
     std::vector<double>& all = h.allA[name];
     all.insert(all.end(), A.begin(), A.end());
     Metrics& sum = h.sums[name];
@@ -331,9 +341,10 @@ void placeReceivers(HeightRun& h, int size) {
 /// entries) in nmse_by_height.csv, the totals and the summary.
 void summarizeHeight(ProstRun& run, HeightRun& h, const std::string& stem) {
     std::string base = stem + "_h" + std::to_string(int(std::lround(h.height * 10)));
-    for (const auto& [sheet, suffix] : {std::pair{&h.images, "_images.png"}, std::pair{&h.errors, "_errors.png"}})
-        writeImage8((run.out / (base + suffix)).string(), sheet->cell * sheet->cols, sheet->cell * sheet->rows,
-                    sheet->rgb);
+    for (const auto& [sheet, suffix] :
+         {std::pair{&h.images, "_images.png"}, std::pair{&h.errors, "_errors.png"}})
+        writeImage8((run.out / (base + suffix)).string(), sheet->cell * sheet->cols,
+                    sheet->cell * sheet->rows, sheet->rgb);
     ++run.configurations;
     std::string best;
     double bestNmse = INFINITY, hybrid = 0, scattered = 0, poisson = 0;
@@ -383,8 +394,8 @@ void benchFile(ProstRun& run, const std::string& file, ProtectedInputs& inputs) 
     std::string stem = fs::path(file).stem().string();
     for (char& c : stem)
         if (!std::isalnum((unsigned char)c) && c != '-' && c != '_') c = '_';
-    run.summary.add("\n%s: flux %.5g lm, diffuseness (flux / pi I(0)) %.3g\n", file.c_str(), lum.data->fluxFromTable(),
-                    diffuseness(*lum.data));
+    run.summary.add("\n%s: flux %.5g lm, diffuseness (flux / pi I(0)) %.3g\n", file.c_str(),
+                    lum.data->fluxFromTable(), diffuseness(*lum.data));
     for (double height : kHeights) {
         HeightRun h(file, scene, lum, height, run.options.size, run.techniques.size());
         placeReceivers(h, run.options.size);
@@ -397,17 +408,21 @@ void benchFile(ProstRun& run, const std::string& file, ProtectedInputs& inputs) 
 }
 
 void addTotals(ProstRun& run) {
-    run.summary.add("\nover %d (file, height) configurations: technique, geometric-mean NMSE, mean near-field NMSE, "
-                    "mean light bumps per image, mean GPU ms per image, times lowest NMSE\n",
-                    run.configurations);
+    run.summary.add(
+        "\nover %d (file, height) configurations: technique, geometric-mean NMSE, mean near-field "
+        "NMSE, "
+        "mean light bumps per image, mean GPU ms per image, times lowest NMSE\n",
+        run.configurations);
     for (const std::string& t : run.techniques) {
         const Totals& tt = run.totals[t];
         if (tt.count == 0) continue;
-        run.summary.add("  %-14s %10.4g %10.4g %10.4g %9.2f %4d\n", t.c_str(), std::exp(tt.logNmse / tt.count),
-                        tt.nearNmse / tt.count, tt.bump / tt.count, tt.ms / tt.count, tt.lowestFast);
+        run.summary.add("  %-14s %10.4g %10.4g %10.4g %9.2f %4d\n", t.c_str(),
+                        std::exp(tt.logNmse / tt.count), tt.nearNmse / tt.count, tt.bump / tt.count,
+                        tt.ms / tt.count, tt.lowestFast);
     }
-    run.summary.add("hybrid has an NMSE no larger than both scattered and mc-poisson-24 in %d of %d\n",
-                    run.hybridBeatsBoth, run.configurations);
+    run.summary.add(
+        "hybrid has an NMSE no larger than both scattered and mc-poisson-24 in %d of %d\n",
+        run.hybridBeatsBoth, run.configurations);
 }
 
 /// NMSE against GPU time per (file, height, technique), and NMSE by height.
@@ -415,12 +430,17 @@ void plotNmse(const fs::path& out, const std::vector<std::string>& techniques) {
     std::string list;
     for (const std::string& t : techniques) list += (list.empty() ? "" : " ") + t;
     writePlot(out, 1000, 420,
-              "set logscale y\nset format y '%g'\nset grid\nset key outside right\nset multiplot layout 1,2\n"
-              "set logscale x\nset xlabel 'GPU time of the shading pass per image (ms)'\nset ylabel 'NMSE (Eq. 6.7)'\n"
-              "plot for [t in '" + list + "'] 'nmse_by_height.csv' using (strcol(2) eq t ? $7 : 1/0):4 "
-              "with points pointsize 1 title t\n"
-              "unset logscale x\nset xlabel 'height of the light (m)'\nset xrange [0:5.6]\n"
-              "plot for [t in '" + list + "'] 'nmse_by_height.csv' using (strcol(2) eq t ? $3 + 0.05 * (strstrt('" +
+              "set logscale y\nset format y '%g'\nset grid\nset key outside right\nset multiplot "
+              "layout 1,2\n"
+              "set logscale x\nset xlabel 'GPU time of the shading pass per image (ms)'\nset "
+              "ylabel 'NMSE (Eq. 6.7)'\n"
+              "plot for [t in '" +
+                  list +
+                  "'] 'nmse_by_height.csv' using (strcol(2) eq t ? $7 : 1/0):4 "
+                  "with points pointsize 1 title t\n"
+                  "unset logscale x\nset xlabel 'height of the light (m)'\nset xrange [0:5.6]\n"
+                  "plot for [t in '" +
+                  list + "'] 'nmse_by_height.csv' using (strcol(2) eq t ? $3 + 0.05 * (strstrt('" +
                   list + "', t) % 7) : 1/0):4 with points pointsize 1 notitle\nunset multiplot\n",
               "nmse.png");
 }
@@ -433,15 +453,17 @@ int benchProst(const Args& args) {
     fs::path out = benchFolder(o.out);
     BenchGpu gpu;
     ProstRun run{o, evaluatedTechniques(), gpu.renderer, out};
-    run.summary.add("bench --prost: %zu files, %dx%d receivers per image, reference %d spp, context %s\n",
-                    o.files.size(), o.size, o.size, o.referenceSpp, gpu.context->description().c_str());
+    run.summary.add(
+        "bench --prost: %zu files, %dx%d receivers per image, reference %d spp, context %s\n",
+        o.files.size(), o.size, o.size, o.referenceSpp, gpu.context->description().c_str());
     for (const std::string& file : o.files) benchFile(run, file, inputs);
     run.perHeight.write(out / "nmse_by_height.csv");
     run.results.write(out / "results.csv");
     addTotals(run);
     run.summary.write(out);
     plotNmse(out, run.techniques);
-    std::printf("wrote %s/results.csv, nmse_by_height.csv, summary.txt and image sheets\n", o.out.c_str());
+    std::printf("wrote %s/results.csv, nmse_by_height.csv, summary.txt and image sheets\n",
+                o.out.c_str());
     return 0;
 }
 

@@ -27,10 +27,13 @@ namespace fs = std::filesystem;
 namespace {
 
 struct ShadowOptions {
-    std::string scenePath = std::string(CANDELA_SOURCE_DIR) + "/resources/scenes/headlight-room.json";
+    std::string scenePath =
+        std::string(CANDELA_SOURCE_DIR) + "/resources/scenes/headlight-room.json";
     std::string out = "bench-shadows";
-    std::vector<int> counts = {1, 4, 9, 16, 25, 49, 0};  ///< Maps per luminaire swept (0: one per cell).
-    std::vector<int> sizes = {32, 64, 128, 192, 256, 512};  ///< Cube-face resolutions swept, texels.
+    std::vector<int> counts = {1,  4,  9, 16,
+                               25, 49, 0};  ///< Maps per luminaire swept (0: one per cell).
+    std::vector<int> sizes = {32,  64,  128,
+                              192, 256, 512};  ///< Cube-face resolutions swept, texels.
     int spp = 256;
     int width = 480, height = 270;  ///< Image size, pixels.
     int fixedCount = 49;            ///< Maps while the resolution is swept.
@@ -68,9 +71,10 @@ constexpr const char* kMapped = "restricted-cdf";
 constexpr const char* kRayTraced = "restricted-cdf-raytraced";
 
 /// One image, timed, with the maps per luminaire actually rendered (the first light field's).
-Shot shoot(Renderer& renderer, const Scene& scene, const RenderSettings& settings, const std::string& technique,
-           int spp, uint32_t seed, int& maps) {
-    RenderSettings s = withBudget(withTechnique(settings, TechniqueSlot::Luminaires, technique), spp, seed, 16);
+Shot shoot(Renderer& renderer, const Scene& scene, const RenderSettings& settings,
+           const std::string& technique, int spp, uint32_t seed, int& maps) {
+    RenderSettings s =
+        withBudget(withTechnique(settings, TechniqueSlot::Luminaires, technique), spp, seed, 16);
     Shot shot = renderShot(renderer, scene, s);
     for (const auto& lum : scene.luminaires)
         if (lum->kind() == "lightfield") {
@@ -101,24 +105,35 @@ void measure(ShadowSweep& sweep, const char* name, int count, int size) {
     double dE = meanDeltaE(shot.display, sweep.reference.display);
     double rmse = relRmse(shot.linear, sweep.reference.linear);
     double shadowMs = shot.gpuMs("shadow:"), shadeMs = shot.gpuMs("shade:");
-    sweep.csv.line(formatText("%s,%d,%d,%d,%.3f,%.1f,%.4f,%.5f", name, count, maps, size, shadowMs, shadeMs, dE, rmse));
+    sweep.csv.line(formatText("%s,%d,%d,%d,%.3f,%.1f,%.4f,%.5f", name, count, maps, size, shadowMs,
+                              shadeMs, dE, rmse));
     sweep.csv.write(sweep.out / "shadows.csv");
-    std::printf("%-10s %4d maps of %4d^2: shadow pass %8.1f ms, shading %8.0f ms, Delta E %.3f, rel. RMSE %.4f\n",
-                name, maps, size, shadowMs, shadeMs, dE, rmse);
+    std::printf(
+        "%-10s %4d maps of %4d^2: shadow pass %8.1f ms, shading %8.0f ms, Delta E %.3f, rel. RMSE "
+        "%.4f\n",
+        name, maps, size, shadowMs, shadeMs, dE, rmse);
     std::fflush(stdout);
-    writeImage8((sweep.out / formatText("maps-%d-%d.png", maps, size)).string(), s.width, s.height, shot.display);
+    writeImage8((sweep.out / formatText("maps-%d-%d.png", maps, size)).string(), s.width, s.height,
+                shot.display);
 }
 
 void plotSweeps(const fs::path& out, const ShadowOptions& o, double noiseDeltaE) {
-    std::string noise = formatText("%g title 'noise: ray-traced, another seed' dt 2\n", noiseDeltaE);
+    std::string noise =
+        formatText("%g title 'noise: ray-traced, another seed' dt 2\n", noiseDeltaE);
     writePlot(out, 1000, 420,
-              "set grid\nset multiplot layout 1,2\nset logscale x\nset ylabel 'mean Delta E against ray-traced'\n" +
+              "set grid\nset multiplot layout 1,2\nset logscale x\nset ylabel 'mean Delta E "
+              "against ray-traced'\n" +
                   formatText("set xlabel 'shadow maps per luminaire (%d^2 faces)'\n", o.fixedSize) +
-                  "plot 'shadows.csv' using (strcol(1) eq 'count' ? $3 : 1/0):7 with linespoints pointsize 1.5 "
-                  "title 'shadow maps', " + noise +
-                  formatText("set xlabel 'cube-face resolution (%d maps)'\nset logscale x 2\n", o.fixedCount) +
-                  "plot 'shadows.csv' using (strcol(1) eq 'resolution' ? $4 : 1/0):7 with linespoints pointsize 1.5 "
-                  "title 'shadow maps', " + noise + "unset multiplot\n",
+                  "plot 'shadows.csv' using (strcol(1) eq 'count' ? $3 : 1/0):7 with linespoints "
+                  "pointsize 1.5 "
+                  "title 'shadow maps', " +
+                  noise +
+                  formatText("set xlabel 'cube-face resolution (%d maps)'\nset logscale x 2\n",
+                             o.fixedCount) +
+                  "plot 'shadows.csv' using (strcol(1) eq 'resolution' ? $4 : 1/0):7 with "
+                  "linespoints pointsize 1.5 "
+                  "title 'shadow maps', " +
+                  noise + "unset multiplot\n",
               "plot.png");
 }
 
@@ -130,7 +145,9 @@ int benchShadows(const Args& args) {
     ProtectedInputs inputs(scene.inputFiles());
     bool any = false;
     for (const auto& lum : scene.luminaires) any = any || lum->kind() == "lightfield";
-    if (!any) throw InputError(o.scenePath + ": the shadow bench needs a light-field luminaire in the scene");
+    if (!any)
+        throw InputError(o.scenePath +
+                         ": the shadow bench needs a light-field luminaire in the scene");
     fs::path out = benchFolder(o.out);
     BenchGpu gpu;
     RenderSettings settings;
@@ -142,10 +159,11 @@ int benchShadows(const Args& args) {
     Shot ref = shoot(gpu.renderer, scene, settings, kRayTraced, o.spp, kSeed, maps);
     writeImage8((out / "raytraced.png").string(), o.width, o.height, ref.display);
     Shot other = shoot(gpu.renderer, scene, settings, kRayTraced, o.spp, kSeed + 1, maps);
-    double noiseDeltaE = meanDeltaE(other.display, ref.display), noiseRmse = relRmse(other.linear, ref.linear);
+    double noiseDeltaE = meanDeltaE(other.display, ref.display),
+           noiseRmse = relRmse(other.linear, ref.linear);
     double refShadeMs = ref.gpuMs("shade:");
-    std::printf("ray-traced: shading %.0f ms; another seed: Delta E %.3f, rel. RMSE %.4f\n", refShadeMs, noiseDeltaE,
-                noiseRmse);
+    std::printf("ray-traced: shading %.0f ms; another seed: Delta E %.3f, rel. RMSE %.4f\n",
+                refShadeMs, noiseDeltaE, noiseRmse);
 
     ShadowSweep sweep{gpu.renderer, scene, settings, o, ref, out};
     for (int c : o.counts) measure(sweep, "count", c, o.fixedSize);
@@ -153,11 +171,11 @@ int benchShadows(const Args& args) {
 
     BenchSummary summary;
     std::ostringstream text;
-    text << "scene: " << o.scenePath << ", " << o.width << "x" << o.height << ", " << o.spp << " spp, seed " << kSeed
-         << " for every image\ncontext: " << gpu.context->description()
-         << "\nreference: restricted-cdf-raytraced (a shadow ray per sample), shading " << refShadeMs
-         << " ms\nsampling noise (the reference against seed " << kSeed + 1 << "): mean Delta E " << noiseDeltaE
-         << ", rel. RMSE " << noiseRmse << "\n";
+    text << "scene: " << o.scenePath << ", " << o.width << "x" << o.height << ", " << o.spp
+         << " spp, seed " << kSeed << " for every image\ncontext: " << gpu.context->description()
+         << "\nreference: restricted-cdf-raytraced (a shadow ray per sample), shading "
+         << refShadeMs << " ms\nsampling noise (the reference against seed " << kSeed + 1
+         << "): mean Delta E " << noiseDeltaE << ", rel. RMSE " << noiseRmse << "\n";
     summary.addText(text.str());
     summary.write(out, false);
     plotSweeps(out, o, noiseDeltaE);

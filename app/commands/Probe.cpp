@@ -140,24 +140,37 @@ ProbeOptions parseProbeOptions(const Args& args) {
     o.estimate.spp = 4096;
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
-        if (a == "--points") o.pointsPath = flagValue(args, i);
-        else if (a == "--technique") o.technique = flagValue(args, i);
-        else if (a == "--env-technique") o.envTechnique = flagValue(args, i);
-        else if (a == "--spp") o.estimate.spp = parseInt(a, flagValue(args, i), 1, 1 << 26);
-        else if (a == "--seed") o.estimate.seed = uint64_t(parseInt(a, flagValue(args, i), 0, 1 << 30));
+        if (a == "--points")
+            o.pointsPath = flagValue(args, i);
+        else if (a == "--technique")
+            o.technique = flagValue(args, i);
+        else if (a == "--env-technique")
+            o.envTechnique = flagValue(args, i);
+        else if (a == "--spp")
+            o.estimate.spp = parseInt(a, flagValue(args, i), 1, 1 << 26);
+        else if (a == "--seed")
+            o.estimate.seed = uint64_t(parseInt(a, flagValue(args, i), 0, 1 << 30));
         else if (a == "--visibility") {
             o.withVisibility = true;
-            if (i + 1 < args.size() && (args[i + 1] == "embree" || args[i + 1] == "bvh")) o.visibilityBackend = args[++i];
-        }
-        else if (a == "--indirect") o.indirect = true;
-        else if (a == "--patches") o.patches = parseInt(a, flagValue(args, i), 16, 50000);
-        else if (a == "--show-samples") o.chartPath = flagValue(args, i);
-        else if (a == "--pixel") o.pixel = flagValue(args, i);
-        else if (a == "--size") parseSize(flagValue(args, i), o.width, o.height);
-        else if (a == "--chart-spp") o.chartSpp = parseInt(a, flagValue(args, i), 1, 4096);
-        else if (a == "--device") o.device = flagValue(args, i);
+            if (i + 1 < args.size() && (args[i + 1] == "embree" || args[i + 1] == "bvh"))
+                o.visibilityBackend = args[++i];
+        } else if (a == "--indirect")
+            o.indirect = true;
+        else if (a == "--patches")
+            o.patches = parseInt(a, flagValue(args, i), 16, 50000);
+        else if (a == "--show-samples")
+            o.chartPath = flagValue(args, i);
+        else if (a == "--pixel")
+            o.pixel = flagValue(args, i);
+        else if (a == "--size")
+            parseSize(flagValue(args, i), o.width, o.height);
+        else if (a == "--chart-spp")
+            o.chartSpp = parseInt(a, flagValue(args, i), 1, 4096);
+        else if (a == "--device")
+            o.device = flagValue(args, i);
         else if (!a.empty() && a[0] == '-') throw InputError("probe: unknown option " + a);
-        else if (o.scenePath.empty()) o.scenePath = a;
+        else if (o.scenePath.empty())
+            o.scenePath = a;
         else throw InputError("probe: unexpected argument " + a);
     }
     return o;
@@ -186,18 +199,22 @@ void checkProbeOptions(ProbeOptions& o) {
 
 /// The environment's technique: --env-technique, else --technique when it names one of the
 /// environment's, else the exact reference (on the GPU, which has no exact reference, balanced).
-const EnvironmentTechniqueInfo* chooseEnvironmentTechnique(const ProbeOptions& o, const Scene& scene) {
+const EnvironmentTechniqueInfo* chooseEnvironmentTechnique(const ProbeOptions& o,
+                                                           const Scene& scene) {
     const EnvironmentTechniqueInfo* chosen = nullptr;
     if (!o.envTechnique.empty()) {
         chosen = findEnvironmentTechnique(o.envTechnique);
         if (!chosen)
-            throw InputError("--env-technique: \"" + o.envTechnique + "\" is not an environment "
-                             "technique (available: " + environmentTechniqueNames() + ")");
+            throw InputError("--env-technique: \"" + o.envTechnique +
+                             "\" is not an environment "
+                             "technique (available: " +
+                             environmentTechniqueNames() + ")");
     } else {
         chosen = findEnvironmentTechnique(o.technique.empty() ? "reference" : o.technique);
         if (!chosen) chosen = findEnvironmentTechnique("reference");
     }
-    if (o.device == "gpu" && scene.environmentMap && o.envTechnique.empty() && chosen->define.empty())
+    if (o.device == "gpu" && scene.environmentMap && o.envTechnique.empty() &&
+        chosen->define.empty())
         chosen = findEnvironmentTechnique("balanced");  // the GPU has no exact reference
     if (o.device == "gpu" && scene.environmentMap && chosen->define.empty())
         throw InputError("--env-technique: \"" + std::string(chosen->name) +
@@ -209,16 +226,19 @@ const EnvironmentTechniqueInfo* chooseEnvironmentTechnique(const ProbeOptions& o
 /// Each luminaire's technique, resolved up front so a bad name fails before any work.
 /// --technique applies to the luminaires, except that a name only the environment has leaves
 /// them on their own techniques.
-std::vector<const TechniqueInfo*> chooseTechniques(const Scene& scene, const std::string& technique) {
+std::vector<const TechniqueInfo*> chooseTechniques(const Scene& scene,
+                                                   const std::string& technique) {
     std::vector<const TechniqueInfo*> chosen;
     for (const auto& l : scene.luminaires) {
         std::string name = technique.empty() ? l->technique : technique;
-        if (!technique.empty() && !findTechnique(l->kind(), technique) && findEnvironmentTechnique(technique))
+        if (!technique.empty() && !findTechnique(l->kind(), technique) &&
+            findEnvironmentTechnique(technique))
             name = l->technique;
         const TechniqueInfo* t = findTechnique(l->kind(), name);
         if (!t)
-            throw InputError("--technique: \"" + name + "\" is not a technique of " + std::string(l->kind()) +
-                             " (available: " + techniqueNames(l->kind()) + ")");
+            throw InputError("--technique: \"" + name + "\" is not a technique of " +
+                             std::string(l->kind()) + " (available: " + techniqueNames(l->kind()) +
+                             ")");
         chosen.push_back(t);
     }
     return chosen;
@@ -259,18 +279,21 @@ CpuProbeSetup setUpCpuProbe(const Scene& scene, const ProbeOptions& o) {
         io.technique = o.technique;
         io.environmentTechnique = o.envTechnique;
         setup.interreflection = std::make_unique<Interreflection>(scene, io);
-        std::fprintf(stderr, "probe: interreflection over %zu patches\n", setup.interreflection->mesh().patches.size());
+        std::fprintf(stderr, "probe: interreflection over %zu patches\n",
+                     setup.interreflection->mesh().patches.size());
         if (std::string w = setup.interreflection->orientationWarning(scene); !w.empty())
             std::fprintf(stderr, "probe: warning: %s\n", w.c_str());
         setup.interreflection->compute();
     }
-    if (scene.environmentMap) setup.lighting = std::make_unique<EnvironmentLighting>(scene.environmentMap);
+    if (scene.environmentMap)
+        setup.lighting = std::make_unique<EnvironmentLighting>(scene.environmentMap);
     return setup;
 }
 
 /// Every technique's double-precision C++ estimator at every point.
 ProbeSums probeCpu(const Scene& scene, const std::vector<ProbePoint>& points, const ProbeOptions& o,
-                   const EnvironmentTechniqueInfo& env, const std::vector<const TechniqueInfo*>& chosen) {
+                   const EnvironmentTechniqueInfo& env,
+                   const std::vector<const TechniqueInfo*>& chosen) {
     CpuProbeSetup setup = setUpCpuProbe(scene, o);
     EstimateOptions options = o.estimate;
     options.visibility = setup.visibility.get();
@@ -289,7 +312,8 @@ ProbeSums probeCpu(const Scene& scene, const std::vector<ProbePoint>& points, co
         }
         for (size_t k = 0; k < scene.luminaires.size(); ++k) {
             each.seed = pointSeed + k;
-            sums.add(i, chosen[k]->irradiance(*scene.luminaires[k], p, n, each), scene.unitScale(*scene.luminaires[k]));
+            sums.add(i, chosen[k]->irradiance(*scene.luminaires[k], p, n, each),
+                     scene.unitScale(*scene.luminaires[k]));
         }
     }
     return sums;
@@ -317,7 +341,8 @@ ProbeSums probeGpu(const Scene& scene, const std::vector<ProbePoint>& points, co
 }
 
 /// The CSV on stdout (a stable contract); its unit on stderr (and in the README).
-void printProbeCsv(const Scene& scene, const std::vector<ProbePoint>& points, const ProbeSums& sums, bool indirect) {
+void printProbeCsv(const Scene& scene, const std::vector<ProbePoint>& points, const ProbeSums& sums,
+                   bool indirect) {
     UnitSystem units = scene.units();
     std::fprintf(stderr, "probe: E, E_r, E_g, E_b and E_stderr in %s%s\n", units.irradianceLabel().c_str(),
                  indirect ? ", direct plus interreflected light" : "");
@@ -326,8 +351,8 @@ void printProbeCsv(const Scene& scene, const std::vector<ProbePoint>& points, co
         const ProbePoint& q = points[i];
         const glm::dvec3& E = sums.E[i];
         glm::dvec3 se = glm::sqrt(sums.var[i]);
-        std::printf("%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.10g,%.10g,%.10g,%.10g,%.4g\n", q.p.x, q.p.y, q.p.z, q.n.x, q.n.y,
-                    q.n.z, lum(E), E.x, E.y, E.z, lum(se));
+        std::printf("%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.10g,%.10g,%.10g,%.10g,%.4g\n", q.p.x, q.p.y,
+                    q.p.z, q.n.x, q.n.y, q.n.z, lum(E), E.x, E.y, E.z, lum(se));
     }
 }
 
@@ -337,16 +362,20 @@ int cmdProbe(const Args& args) {
     ProbeOptions o = parseProbeOptions(args);
     checkProbeOptions(o);
     Scene scene = loadScene(o.scenePath);
-    std::vector<ProbePoint> points = o.pixel.empty() ? readPoints(o.pointsPath)
-                                                     : std::vector<ProbePoint>{pixelPoint(scene, o.pixel, o.width, o.height)};
+    std::vector<ProbePoint> points =
+        o.pixel.empty() ? readPoints(o.pointsPath)
+                        : std::vector<ProbePoint>{pixelPoint(scene, o.pixel, o.width, o.height)};
     ProtectedInputs inputs(scene.inputFiles());
     inputs.add(o.pointsPath);
     checkNotAnInput(o.chartPath, "--show-samples");
     const EnvironmentTechniqueInfo* env = chooseEnvironmentTechnique(o, scene);
     std::vector<const TechniqueInfo*> chosen = chooseTechniques(scene, o.technique);
-    ProbeSums sums = o.device == "cpu" ? probeCpu(scene, points, o, *env, chosen) : probeGpu(scene, points, o, *env);
-    if (!o.chartPath.empty() && points.empty()) throw InputError("--show-samples: " + o.pointsPath + " has no points");
-    if (!o.chartPath.empty()) writeSampleChart(scene, points.front().n, env->name, o.chartSpp, o.chartPath);
+    ProbeSums sums = o.device == "cpu" ? probeCpu(scene, points, o, *env, chosen)
+                                       : probeGpu(scene, points, o, *env);
+    if (!o.chartPath.empty() && points.empty())
+        throw InputError("--show-samples: " + o.pointsPath + " has no points");
+    if (!o.chartPath.empty())
+        writeSampleChart(scene, points.front().n, env->name, o.chartSpp, o.chartPath);
     printProbeCsv(scene, points, sums, o.indirect);
     return 0;
 }

@@ -147,19 +147,28 @@ bool parseChoice(const Args& args, size_t& i, RenderOptions& o) {
     RenderSettings& settings = o.settings;
     if (a == "--indirect") {
         std::string v = flagValue(args, i);
-        if (v != "on" && v != "off") throw InputError("--indirect: expected on or off, got \"" + v + "\"");
+        if (v != "on" && v != "off")
+            throw InputError("--indirect: expected on or off, got \"" + v + "\"");
         o.indirect = v == "on";
     } else if (a == "--light") {
         std::string v = flagValue(args, i);
-        if (v == "total") settings.parts = LightParts::Total;
-        else if (v == "direct") settings.parts = LightParts::Direct;
-        else if (v == "interreflected") settings.parts = LightParts::Interreflected;
-        else throw InputError("--light: expected total, direct or interreflected, got \"" + v + "\"");
+        if (v == "total")
+            settings.parts = LightParts::Total;
+        else if (v == "direct")
+            settings.parts = LightParts::Direct;
+        else if (v == "interreflected")
+            settings.parts = LightParts::Interreflected;
+        else
+            throw InputError("--light: expected total, direct or interreflected, got \"" + v +
+                             "\"");
     } else if (a == "--tonemap") {
         std::string op = flagValue(args, i);
-        if (op == "exponential") settings.toneMap = ToneMapOperator::Exponential;
-        else if (op == "reinhard") settings.toneMap = ToneMapOperator::Reinhard;
-        else throw InputError("--tonemap: expected exponential or reinhard, got \"" + op + "\"");
+        if (op == "exponential")
+            settings.toneMap = ToneMapOperator::Exponential;
+        else if (op == "reinhard")
+            settings.toneMap = ToneMapOperator::Reinhard;
+        else
+            throw InputError("--tonemap: expected exponential or reinhard, got \"" + op + "\"");
     } else {
         return false;
     }
@@ -170,8 +179,10 @@ bool parseChoice(const Args& args, size_t& i, RenderOptions& o) {
 bool parseFalseColour(const Args& args, size_t& i, RenderOptions& o) {
     const std::string& a = args[i];
     FalseColourLegend& legend = o.settings.legend;
-    if (a == "--false-colour") o.falseColour = true;
-    else if (a == "--log") legend.logScale = true;
+    if (a == "--false-colour")
+        o.falseColour = true;
+    else if (a == "--log")
+        legend.logScale = true;
     else if (a == "--legend") {
         std::vector<float> range = parseNumberList(a, flagValue(args, i));
         if (range.size() != 2 || !(range[1] > range[0]))
@@ -181,8 +192,10 @@ bool parseFalseColour(const Args& args, size_t& i, RenderOptions& o) {
         o.haveLegend = true;
     } else if (a == "--isolux") {
         std::string levels = flagValue(args, i);
-        if (levels == "none") legend.contours = false;
-        else legend.levels = parseNumberList(a, levels);
+        if (levels == "none")
+            legend.contours = false;
+        else
+            legend.levels = parseNumberList(a, levels);
     } else {
         return false;
     }
@@ -195,25 +208,35 @@ RenderOptions parseRenderOptions(const Args& args) {
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
         if (parseChoice(args, i, o) || parseFalseColour(args, i, o)) continue;
-        if (a == "--out") o.out = flagValue(args, i);
-        else if (a == "--pane") o.paneTexts.push_back(flagValue(args, i));
-        else if (a == "--sheet") o.sheetDir = flagValue(args, i);
-        else if (a == "--reference-spp") o.referenceSpp = parseInt(a, flagValue(args, i), 1, 1 << 20);
-        else if (a == "--error-maps") o.errorMaps = true;
+        if (a == "--out")
+            o.out = flagValue(args, i);
+        else if (a == "--pane")
+            o.paneTexts.push_back(flagValue(args, i));
+        else if (a == "--sheet")
+            o.sheetDir = flagValue(args, i);
+        else if (a == "--reference-spp")
+            o.referenceSpp = parseInt(a, flagValue(args, i), 1, 1 << 20);
+        else if (a == "--error-maps")
+            o.errorMaps = true;
         else if (a == "--technique") settings.techniqueOverride = flagValue(args, i);
         else if (a == "--env-technique") settings.environmentTechnique = flagValue(args, i);
         else if (a == "--env-face-size")
             settings.environmentFaceSize = parseInt(a, flagValue(args, i), 4, 2048);
-        else if (a == "--spp") o.spp = parseInt(a, flagValue(args, i), 1, 1 << 24);
+        else if (a == "--spp")
+            o.spp = parseInt(a, flagValue(args, i), 1, 1 << 24);
         else if (a == "--size") parseSize(flagValue(args, i), settings.width, settings.height);
         else if (a == "--shadow-maps") settings.shadowMaps.count = parseInt(a, flagValue(args, i), 0, 4096);
         else if (a == "--shadow-map-size")
             settings.shadowMaps.resolution = parseInt(a, flagValue(args, i), 8, 4096);
-        else if (a == "--stats") o.printStats = true;
-        else if (a == "--patches") o.patches = parseInt(a, flagValue(args, i), 16, 50000);
+        else if (a == "--stats")
+            o.printStats = true;
+        else if (a == "--patches")
+            o.patches = parseInt(a, flagValue(args, i), 16, 50000);
         else if (a == "--exposure") settings.exposure = parseNumberList(a, flagValue(args, i)).at(0);
-        else if (!a.empty() && a[0] == '-') throw InputError("render: unknown option " + a);
-        else if (o.scenePath.empty()) o.scenePath = a;
+        else if (!a.empty() && a[0] == '-')
+            throw InputError("render: unknown option " + a);
+        else if (o.scenePath.empty())
+            o.scenePath = a;
         else throw InputError("render: unexpected argument " + a);
     }
     return o;
@@ -222,13 +245,16 @@ RenderOptions parseRenderOptions(const Args& args) {
 /// The comparison sheet: panes, a reference, errors (the editor's Export sheet).
 int renderSheet(RenderOptions& o) {
     if (o.scenePath.empty() || o.sheetDir.empty() || o.paneTexts.empty() || o.paneTexts.size() > 4)
-        throw InputError("usage: candela render scene.json --sheet DIR --pane TECHNIQUES[:SPP] (1 to 4 times) "
-                         "[--reference-spp N] [--spp N] [--size WxH] [--error-maps]");
-    if (!o.out.empty()) throw InputError("--out: a comparison writes its sheet into --sheet DIR instead");
+        throw InputError(
+            "usage: candela render scene.json --sheet DIR --pane TECHNIQUES[:SPP] (1 to 4 times) "
+            "[--reference-spp N] [--spp N] [--size WxH] [--error-maps]");
+    if (!o.out.empty())
+        throw InputError("--out: a comparison writes its sheet into --sheet DIR instead");
     std::vector<PaneSpec> panes;
     for (const std::string& p : o.paneTexts) panes.push_back(parsePane(p, o.spp));
     o.settings.samplesPerFrame = 16;
-    return renderComparison(o.scenePath, o.settings, panes, o.referenceSpp, o.sheetDir, o.errorMaps);
+    return renderComparison(o.scenePath, o.settings, panes, o.referenceSpp, o.sheetDir,
+                            o.errorMaps);
 }
 
 /// Checks an image render's options; returns the output's extension.
@@ -249,7 +275,8 @@ std::string checkImageOptions(RenderOptions& o) {
     }
     std::string ext = std::filesystem::path(o.out).extension().string();
     if (ext != ".png" && ext != ".exr")
-        throw InputError(o.out + ": unsupported output extension \"" + ext + "\" (use .png or .exr)");
+        throw InputError(o.out + ": unsupported output extension \"" + ext +
+                         "\" (use .png or .exr)");
     return ext;
 }
 
@@ -257,7 +284,8 @@ using Clock = std::chrono::steady_clock;
 
 /// Interreflected light, computed first on the CPU: only where some surface reflects onto
 /// another (README, "Interreflected light"). Returns the line that says what it did.
-std::string addInterreflection(Renderer& renderer, const Scene& scene, const RenderOptions& o, Clock::time_point start) {
+std::string addInterreflection(Renderer& renderer, const Scene& scene, const RenderOptions& o,
+                               Clock::time_point start) {
     if (!o.indirect) return "interreflection: off (--indirect off)";
     InterreflectionOptions io;
     io.mesh.targetPatches = o.patches;
@@ -265,15 +293,17 @@ std::string addInterreflection(Renderer& renderer, const Scene& scene, const Ren
     io.technique = technique.find(',') == std::string::npos ? technique : "";
     io.directSpp = InterreflectionWorker::kFineSpp;
     Interreflection ir(scene, io);
-    if (std::string w = ir.orientationWarning(scene); !w.empty()) std::fprintf(stderr, "render: warning: %s\n", w.c_str());
+    if (std::string w = ir.orientationWarning(scene); !w.empty())
+        std::fprintf(stderr, "render: warning: %s\n", w.c_str());
     std::string line = "interreflection: none (no surface reflects onto another)";
     if (ir.mesh().reflects() && ir.compute() && ir.hasInterreflection()) {
         std::vector<glm::vec3> v;
         for (const glm::dvec3& e : ir.indirectAtVertices()) v.push_back(glm::vec3(e));
         renderer.setIndirect(std::make_shared<RadiosityMesh>(ir.mesh()), std::move(v));
         char text[160];
-        std::snprintf(text, sizeof text, "interreflection: %zu patches, %d iterations, %.2f s", ir.mesh().patches.size(),
-                      ir.lastIterations(), std::chrono::duration<double>(Clock::now() - start).count());
+        std::snprintf(text, sizeof text, "interreflection: %zu patches, %d iterations, %.2f s",
+                      ir.mesh().patches.size(), ir.lastIterations(),
+                      std::chrono::duration<double>(Clock::now() - start).count());
         line = text;
     }
     std::fprintf(stderr, "render: %s\n", line.c_str());
@@ -310,17 +340,19 @@ void reportFalseColour(Renderer& renderer, const Scene& scene, RenderOptions& o)
     }
     FalseColourLegend legend = sanitizedLegend(settings.legend);
     const char* unit = scene.units().irradiance();
-    std::printf("false colour: %g .. %g %s (%s)", legend.min, legend.max, unit, legend.logScale ? "log" : "linear");
+    std::printf("false colour: %g .. %g %s (%s)", legend.min, legend.max, unit,
+                legend.logScale ? "log" : "linear");
     std::vector<float> levels = contourLevels(legend);
-    for (size_t k = 0; k < levels.size(); ++k) std::printf("%s%g", k ? ", " : ", isolux at ", levels[k]);
+    for (size_t k = 0; k < levels.size(); ++k)
+        std::printf("%s%g", k ? ", " : ", isolux at ", levels[k]);
     std::printf("%s%s", levels.empty() ? ", no isolux lines" : " ", levels.empty() ? "" : unit);
     if (scene.units().converted) std::printf(" (%s)", scene.units().note().c_str());
     std::printf("\n");
 }
 
 /// --stats: the context, the interreflection, each pass's total GPU time and the variants.
-void printStats(const GlContext& context, const ShaderLibrary& shaders, const std::string& indirectLine,
-                const std::vector<PassTiming>& totals) {
+void printStats(const GlContext& context, const ShaderLibrary& shaders,
+                const std::string& indirectLine, const std::vector<PassTiming>& totals) {
     std::printf("context: %s\n", context.description().c_str());
     std::printf("%s\n", indirectLine.c_str());
     std::printf("pass,gpu_ms_total\n");
@@ -331,13 +363,15 @@ void printStats(const GlContext& context, const ShaderLibrary& shaders, const st
 }
 
 /// Writes the PNG (tone-mapped) or EXR (linear, in the unit it prints).
-void writeRender(const Renderer& renderer, const Scene& scene, const RenderOptions& o, const std::string& ext,
-                 int frames, double seconds) {
+void writeRender(const Renderer& renderer, const Scene& scene, const RenderOptions& o,
+                 const std::string& ext, int frames, double seconds) {
     const RenderSettings& settings = o.settings;
-    if (ext == ".png") writeImage8(o.out, settings.width, settings.height, renderer.readDisplay());
-    else writeImageFloat(o.out, settings.width, settings.height, renderer.readLinear());
-    std::printf("wrote %s (%dx%d, %d frames, %.3f s)\n", o.out.c_str(), settings.width, settings.height, frames,
-                seconds);
+    if (ext == ".png")
+        writeImage8(o.out, settings.width, settings.height, renderer.readDisplay());
+    else
+        writeImageFloat(o.out, settings.width, settings.height, renderer.readLinear());
+    std::printf("wrote %s (%dx%d, %d frames, %.3f s)\n", o.out.c_str(), settings.width,
+                settings.height, frames, seconds);
     if (ext != ".png") {
         UnitSystem units = scene.units();
         bool illuminance = settings.quantity == Quantity::Illuminance;
