@@ -349,34 +349,11 @@ bool comparePanel(EditorState& state, const Comparison* c, const PanelRect& rect
     return changed;
 }
 
-void accuracyWindow(EditorState& state, const Comparison* c, const PanelRect& viewport) {
-    CompareUi& ui = state.compare;
-    if (!ui.plotOpen) return;
-    ImGui::SetNextWindowPos(ImVec2(viewport.x + 12.f, viewport.y + viewport.h - 372.f), ImGuiCond_Appearing);
-    ImGui::SetNextWindowSize(ImVec2(std::min(560.f, viewport.w - 24.f), 360.f), ImGuiCond_Appearing);
-    if (!ImGui::Begin("Accuracy vs time", &ui.plotOpen, ImGuiWindowFlags_NoSavedSettings)) {
-        ImGui::End();
-        return;
-    }
-    recordPanelRect(state, "plot");
-    std::vector<ErrorSeries> series;
-    if (c)
-        for (size_t i = 0; i < c->paneCount(); ++i)
-            series.push_back({paneName(ui, i) + " " + techniqueSummary(c->paneRenderer(i).plan()), c->result(i).series, false});
-    series.insert(series.end(), ui.benchSeries.begin(), ui.benchSeries.end());
-    ErrorMetric metric = ui.plotDeltaE ? ErrorMetric::DeltaE : ErrorMetric::RelRmse;
-    int m = ui.plotDeltaE ? 1 : 0;
-    ImGui::RadioButton("rel. RMSE", &m, 0);
-    ImGui::SameLine();
-    ImGui::RadioButton("mean \xce\x94" "E", &m, 1);
-    ui.plotDeltaE = m == 1;
-    ImGui::SameLine(0.f, 20.f);
-    ImGui::SetNextItemWidth(150.f);
-    ImGui::SliderFloat("Budget", &ui.budgetMs, 1.f, 100000.f, "%.0f ms", ImGuiSliderFlags_Logarithmic);
-    recordRect(state, "plot.budget");
-    itemTooltip("GPU time you can spend on the image: the plot names the technique with the lowest error there");
-    // The winner on this view, and separately among the bench curves (measured on their own
-    // scenes, they rank techniques but are not errors of this image).
+namespace {
+
+/// The winner on this view, and separately among the bench curves (measured on their own
+/// scenes, they rank techniques but are not errors of this image), at the plot's budget.
+void announceWinners(CompareUi& ui, const std::vector<ErrorSeries>& series, ErrorMetric metric) {
     size_t viewCount = series.size() - ui.benchSeries.size();
     std::vector<ErrorSeries> view(series.begin(), series.begin() + std::ptrdiff_t(viewCount));
     auto announce = [&](const std::vector<ErrorSeries>& among, const char* where, std::string& winner) {
@@ -391,9 +368,11 @@ void accuracyWindow(EditorState& state, const Comparison* c, const PanelRect& vi
     };
     announce(view, "on this view", ui.winner);
     if (!ui.benchSeries.empty()) announce(ui.benchSeries, "in the bench CSVs", ui.benchWinner);
-    float csvHeight = ImGui::GetFrameHeightWithSpacing() + 4.f;
-    accuracyPlot("##accuracy", series, metric, ui.budgetMs, ImVec2(-1.f, ImGui::GetContentRegionAvail().y - csvHeight));
-    recordRect(state, "plot.area");
+}
+
+/// A bench CSV's path and Add CSV (its curves join the plot, dashed), and Clear.
+void benchCsvControls(EditorState& state) {
+    CompareUi& ui = state.compare;
     ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x - 130.f);
     bool enter = ImGui::InputTextWithHint("##csv", "bench.csv of `candela bench`", &ui.benchPath,
                                           ImGuiInputTextFlags_EnterReturnsTrue);
@@ -413,6 +392,51 @@ void accuracyWindow(EditorState& state, const Comparison* c, const PanelRect& vi
     recordRect(state, "plot.add_csv");
     ImGui::SameLine();
     if (ImGui::Button("Clear")) ui.benchSeries.clear();
+}
+
+}  // namespace
+
+void accuracyWindow(EditorState& state, const Comparison* c, const PanelRect& viewport) {
+    CompareUi& ui = state.compare;
+    if (!ui.plotOpen) return;
+    ImGui::SetNextWindowPos(ImVec2(viewport.x + 12.f, viewport.y + viewport.h - 372.f),
+                            ImGuiCond_Appearing);
+    ImGui::SetNextWindowSize(ImVec2(std::min(560.f, viewport.w - 24.f), 360.f),
+                             ImGuiCond_Appearing);
+    if (!ImGui::Begin("Accuracy vs time", &ui.plotOpen, ImGuiWindowFlags_NoSavedSettings)) {
+        ImGui::End();
+        return;
+    }
+    recordPanelRect(state, "plot");
+    std::vector<ErrorSeries> series;
+    if (c)
+        for (size_t i = 0; i < c->paneCount(); ++i)
+            series.push_back({paneName(ui, i) + " " + techniqueSummary(c->paneRenderer(i).plan()),
+                              c->result(i).series, false});
+    series.insert(series.end(), ui.benchSeries.begin(), ui.benchSeries.end());
+    ErrorMetric metric = ui.plotDeltaE ? ErrorMetric::DeltaE : ErrorMetric::RelRmse;
+    int m = ui.plotDeltaE ? 1 : 0;
+    ImGui::RadioButton("rel. RMSE", &m, 0);
+    ImGui::SameLine();
+    ImGui::RadioButton(
+        "mean \xce\x94"
+        "E",
+        &m, 1);
+    ui.plotDeltaE = m == 1;
+    ImGui::SameLine(0.f, 20.f);
+    ImGui::SetNextItemWidth(150.f);
+    ImGui::SliderFloat("Budget", &ui.budgetMs, 1.f, 100000.f, "%.0f ms",
+                       ImGuiSliderFlags_Logarithmic);
+    recordRect(state, "plot.budget");
+    itemTooltip(
+        "GPU time you can spend on the image: the plot names the technique with the lowest error "
+        "there");
+    announceWinners(ui, series, metric);
+    float csvHeight = ImGui::GetFrameHeightWithSpacing() + 4.f;
+    accuracyPlot("##accuracy", series, metric, ui.budgetMs,
+                 ImVec2(-1.f, ImGui::GetContentRegionAvail().y - csvHeight));
+    recordRect(state, "plot.area");
+    benchCsvControls(state);
     ImGui::End();
 }
 
