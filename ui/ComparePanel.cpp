@@ -228,13 +228,11 @@ void compareView(EditorState& state, const Comparison& c, ImVec2 origin, ImVec2 
     if (ui.showError) errorLegend(draw, ImVec2(corner.x, corner.y - 20.f), ui.errorScale);
 }
 
-bool comparePanel(EditorState& state, const Comparison* c, const PanelRect& rect) {
-    CompareUi& ui = state.compare;
+namespace {
+
+/// The reference's sample budget, the error maps' range and the wipe's panes.
+bool referenceControls(CompareUi& ui, const Comparison* c) {
     bool changed = false;
-    placeNextWindow(rect);
-    ImGui::Begin("Compare", nullptr, kPanelFlags);
-    recordPanelRect(state, "compare");
-    ImGui::PushItemWidth(-ImGui::GetFontSize() * 8.f);
     if (ImGui::InputInt("Reference spp", &ui.referenceSamples, 64, 512)) {
         ui.referenceSamples = std::clamp(ui.referenceSamples, 16, 1 << 16);
         changed = true;
@@ -255,63 +253,87 @@ bool comparePanel(EditorState& state, const Comparison* c, const PanelRect& rect
         changed = ImGui::Combo("Left of the wipe", &ui.wipePanes[0], letters, 4) || changed;
         changed = ImGui::Combo("Right of the wipe", &ui.wipePanes[1], letters, 4) || changed;
     }
+    return changed;
+}
 
-    std::vector<std::string> kinds = sceneKinds(state.scene);
-    int shown = ui.layout == CompareLayout::Wipe ? 4 : ui.paneCount();
-    for (int p = 0; p < shown; ++p) {
-        PaneSpec& spec = ui.panes[size_t(p)];
-        ImGui::PushID(p);
-        ImGui::Separator();
-        ImGui::Text("Pane %s", kLetters[p]);
-        for (const std::string& kind : kinds) {
-            std::string chosen = chosenFor(spec.technique, kind);
-            std::string id = "compare.pane" + std::to_string(p) + "." + kind;
-            if (ImGui::BeginCombo(kind.c_str(), chosen.empty() ? "(its own)" : chosen.c_str())) {
-                if (ImGui::Selectable("(its own)", chosen.empty())) {
-                    spec.technique = withChoice(spec.technique, kinds, kind, "");
+/// Pane p's technique per kind of the scene ("(its own)": the luminaire's) and its budget.
+bool paneControls(EditorState& state, PaneSpec& spec, int p,
+                  const std::vector<std::string>& kinds) {
+    bool changed = false;
+    ImGui::PushID(p);
+    ImGui::Separator();
+    ImGui::Text("Pane %s", kLetters[p]);
+    for (const std::string& kind : kinds) {
+        std::string chosen = chosenFor(spec.technique, kind);
+        std::string id = "compare.pane" + std::to_string(p) + "." + kind;
+        if (ImGui::BeginCombo(kind.c_str(), chosen.empty() ? "(its own)" : chosen.c_str())) {
+            if (ImGui::Selectable("(its own)", chosen.empty())) {
+                spec.technique = withChoice(spec.technique, kinds, kind, "");
+                changed = true;
+            }
+            for (const std::string& t : gpuTechniques(kind)) {
+                if (ImGui::Selectable(t.c_str(), t == chosen)) {
+                    spec.technique = withChoice(spec.technique, kinds, kind, t);
                     changed = true;
                 }
-                for (const std::string& t : gpuTechniques(kind)) {
-                    if (ImGui::Selectable(t.c_str(), t == chosen)) {
-                        spec.technique = withChoice(spec.technique, kinds, kind, t);
-                        changed = true;
-                    }
-                    recordRect(state, id + "." + t);
-                }
-                ImGui::EndCombo();
+                recordRect(state, id + "." + t);
             }
-            recordRect(state, id);
+            ImGui::EndCombo();
         }
-        if (ImGui::InputInt("Sample budget", &spec.samples, 16, 256)) {
-            spec.samples = std::clamp(spec.samples, 1, 1 << 16);
-            changed = true;
-        }
-        itemTooltip("Samples per pixel this pane refines to (exact techniques finish in one pass)");
-        ImGui::PopID();
+        recordRect(state, id);
     }
+    if (ImGui::InputInt("Sample budget", &spec.samples, 16, 256)) {
+        spec.samples = std::clamp(spec.samples, 1, 1 << 16);
+        changed = true;
+    }
+    itemTooltip("Samples per pixel this pane refines to (exact techniques finish in one pass)");
+    ImGui::PopID();
+    return changed;
+}
+
+/// Each pane's GPU time and errors against the reference.
+void resultsTable(const CompareUi& ui, const Comparison& c) {
+    if (!ImGui::BeginTable("results", 4, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV))
+        return;
+    ImGui::TableSetupColumn("Pane");
+    ImGui::TableSetupColumn("GPU");
+    ImGui::TableSetupColumn(
+        "\xce\x94"
+        "E");
+    ImGui::TableSetupColumn("RMSE");
+    ImGui::TableHeadersRow();
+    for (size_t i = 0; i < c.paneCount(); ++i) {
+        const PaneResult& r = c.result(i);
+        ImGui::TableNextRow();
+        ImGui::TableNextColumn();
+        ImGui::Text("%s %s", paneName(ui, i).c_str(), r.done ? "" : "...");
+        itemTooltip(techniqueSummary(c.paneRenderer(i).plan()));
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(formatMs(r.gpuMs, 0).c_str());
+        ImGui::TableNextColumn();
+        if (r.measured) ImGui::Text("%.2f", r.latest.deltaE);
+        ImGui::TableNextColumn();
+        if (r.measured) ImGui::Text("%.2f %%", 100.0 * r.latest.relRmse);
+    }
+    ImGui::EndTable();
+}
+
+}  // namespace
+
+bool comparePanel(EditorState& state, const Comparison* c, const PanelRect& rect) {
+    CompareUi& ui = state.compare;
+    placeNextWindow(rect);
+    ImGui::Begin("Compare", nullptr, kPanelFlags);
+    recordPanelRect(state, "compare");
+    ImGui::PushItemWidth(-ImGui::GetFontSize() * 8.f);
+    bool changed = referenceControls(ui, c);
+    std::vector<std::string> kinds = sceneKinds(state.scene);
+    int shown = ui.layout == CompareLayout::Wipe ? 4 : ui.paneCount();
+    for (int p = 0; p < shown; ++p)
+        changed = paneControls(state, ui.panes[size_t(p)], p, kinds) || changed;
     if (c) {
         ImGui::Separator();
-        if (ImGui::BeginTable("results", 4, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) {
-            ImGui::TableSetupColumn("Pane");
-            ImGui::TableSetupColumn("GPU");
-            ImGui::TableSetupColumn("\xce\x94" "E");
-            ImGui::TableSetupColumn("RMSE");
-            ImGui::TableHeadersRow();
-            for (size_t i = 0; i < c->paneCount(); ++i) {
-                const PaneResult& r = c->result(i);
-                ImGui::TableNextRow();
-                ImGui::TableNextColumn();
-                ImGui::Text("%s %s", paneName(ui, i).c_str(), r.done ? "" : "...");
-                itemTooltip(techniqueSummary(c->paneRenderer(i).plan()));
-                ImGui::TableNextColumn();
-                ImGui::TextUnformatted(formatMs(r.gpuMs, 0).c_str());
-                ImGui::TableNextColumn();
-                if (r.measured) ImGui::Text("%.2f", r.latest.deltaE);
-                ImGui::TableNextColumn();
-                if (r.measured) ImGui::Text("%.2f %%", 100.0 * r.latest.relRmse);
-            }
-            ImGui::EndTable();
-        }
+        resultsTable(ui, *c);
     }
     if (ImGui::Button("Export sheet")) ui.sheetRequested = true;
     recordRect(state, "compare.export");
@@ -327,34 +349,11 @@ bool comparePanel(EditorState& state, const Comparison* c, const PanelRect& rect
     return changed;
 }
 
-void accuracyWindow(EditorState& state, const Comparison* c, const PanelRect& viewport) {
-    CompareUi& ui = state.compare;
-    if (!ui.plotOpen) return;
-    ImGui::SetNextWindowPos(ImVec2(viewport.x + 12.f, viewport.y + viewport.h - 372.f), ImGuiCond_Appearing);
-    ImGui::SetNextWindowSize(ImVec2(std::min(560.f, viewport.w - 24.f), 360.f), ImGuiCond_Appearing);
-    if (!ImGui::Begin("Accuracy vs time", &ui.plotOpen, ImGuiWindowFlags_NoSavedSettings)) {
-        ImGui::End();
-        return;
-    }
-    recordPanelRect(state, "plot");
-    std::vector<ErrorSeries> series;
-    if (c)
-        for (size_t i = 0; i < c->paneCount(); ++i)
-            series.push_back({paneName(ui, i) + " " + techniqueSummary(c->paneRenderer(i).plan()), c->result(i).series, false});
-    series.insert(series.end(), ui.benchSeries.begin(), ui.benchSeries.end());
-    ErrorMetric metric = ui.plotDeltaE ? ErrorMetric::DeltaE : ErrorMetric::RelRmse;
-    int m = ui.plotDeltaE ? 1 : 0;
-    ImGui::RadioButton("rel. RMSE", &m, 0);
-    ImGui::SameLine();
-    ImGui::RadioButton("mean \xce\x94" "E", &m, 1);
-    ui.plotDeltaE = m == 1;
-    ImGui::SameLine(0.f, 20.f);
-    ImGui::SetNextItemWidth(150.f);
-    ImGui::SliderFloat("Budget", &ui.budgetMs, 1.f, 100000.f, "%.0f ms", ImGuiSliderFlags_Logarithmic);
-    recordRect(state, "plot.budget");
-    itemTooltip("GPU time you can spend on the image: the plot names the technique with the lowest error there");
-    // The winner on this view, and separately among the bench curves (measured on their own
-    // scenes, they rank techniques but are not errors of this image).
+namespace {
+
+/// The winner on this view, and separately among the bench curves (measured on their own
+/// scenes, they rank techniques but are not errors of this image), at the plot's budget.
+void announceWinners(CompareUi& ui, const std::vector<ErrorSeries>& series, ErrorMetric metric) {
     size_t viewCount = series.size() - ui.benchSeries.size();
     std::vector<ErrorSeries> view(series.begin(), series.begin() + std::ptrdiff_t(viewCount));
     auto announce = [&](const std::vector<ErrorSeries>& among, const char* where, std::string& winner) {
@@ -369,9 +368,11 @@ void accuracyWindow(EditorState& state, const Comparison* c, const PanelRect& vi
     };
     announce(view, "on this view", ui.winner);
     if (!ui.benchSeries.empty()) announce(ui.benchSeries, "in the bench CSVs", ui.benchWinner);
-    float csvHeight = ImGui::GetFrameHeightWithSpacing() + 4.f;
-    accuracyPlot("##accuracy", series, metric, ui.budgetMs, ImVec2(-1.f, ImGui::GetContentRegionAvail().y - csvHeight));
-    recordRect(state, "plot.area");
+}
+
+/// A bench CSV's path and Add CSV (its curves join the plot, dashed), and Clear.
+void benchCsvControls(EditorState& state) {
+    CompareUi& ui = state.compare;
     ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x - 130.f);
     bool enter = ImGui::InputTextWithHint("##csv", "bench.csv of `candela bench`", &ui.benchPath,
                                           ImGuiInputTextFlags_EnterReturnsTrue);
@@ -391,6 +392,51 @@ void accuracyWindow(EditorState& state, const Comparison* c, const PanelRect& vi
     recordRect(state, "plot.add_csv");
     ImGui::SameLine();
     if (ImGui::Button("Clear")) ui.benchSeries.clear();
+}
+
+}  // namespace
+
+void accuracyWindow(EditorState& state, const Comparison* c, const PanelRect& viewport) {
+    CompareUi& ui = state.compare;
+    if (!ui.plotOpen) return;
+    ImGui::SetNextWindowPos(ImVec2(viewport.x + 12.f, viewport.y + viewport.h - 372.f),
+                            ImGuiCond_Appearing);
+    ImGui::SetNextWindowSize(ImVec2(std::min(560.f, viewport.w - 24.f), 360.f),
+                             ImGuiCond_Appearing);
+    if (!ImGui::Begin("Accuracy vs time", &ui.plotOpen, ImGuiWindowFlags_NoSavedSettings)) {
+        ImGui::End();
+        return;
+    }
+    recordPanelRect(state, "plot");
+    std::vector<ErrorSeries> series;
+    if (c)
+        for (size_t i = 0; i < c->paneCount(); ++i)
+            series.push_back({paneName(ui, i) + " " + techniqueSummary(c->paneRenderer(i).plan()),
+                              c->result(i).series, false});
+    series.insert(series.end(), ui.benchSeries.begin(), ui.benchSeries.end());
+    ErrorMetric metric = ui.plotDeltaE ? ErrorMetric::DeltaE : ErrorMetric::RelRmse;
+    int m = ui.plotDeltaE ? 1 : 0;
+    ImGui::RadioButton("rel. RMSE", &m, 0);
+    ImGui::SameLine();
+    ImGui::RadioButton(
+        "mean \xce\x94"
+        "E",
+        &m, 1);
+    ui.plotDeltaE = m == 1;
+    ImGui::SameLine(0.f, 20.f);
+    ImGui::SetNextItemWidth(150.f);
+    ImGui::SliderFloat("Budget", &ui.budgetMs, 1.f, 100000.f, "%.0f ms",
+                       ImGuiSliderFlags_Logarithmic);
+    recordRect(state, "plot.budget");
+    itemTooltip(
+        "GPU time you can spend on the image: the plot names the technique with the lowest error "
+        "there");
+    announceWinners(ui, series, metric);
+    float csvHeight = ImGui::GetFrameHeightWithSpacing() + 4.f;
+    accuracyPlot("##accuracy", series, metric, ui.budgetMs,
+                 ImVec2(-1.f, ImGui::GetContentRegionAvail().y - csvHeight));
+    recordRect(state, "plot.area");
+    benchCsvControls(state);
     ImGui::End();
 }
 

@@ -161,55 +161,69 @@ int Editor::run() {
     return 0;
 }
 
-void Editor::frame() {
-    EditorState& state = *mState;
+Editor::FrameMode Editor::frameMode() {
+    const EditorState& state = *mState;
+    FrameMode mode;
     // While a text field has the keyboard, refinement pauses: Dear ImGui 1.86 sees a key only if
     // it is still down at the next frame, and a slow GPU's frames would lose keystrokes.
-    bool typing = ImGui::GetIO().WantTextInput;
+    mode.typing = ImGui::GetIO().WantTextInput;
     // While the camera is dragged over split panes, the viewport shows the live preview of the
     // single view (the panes would restart every frame and show nothing); letting go splits it
     // again and the panes refine the new view.
     bool split = state.compare.layout != CompareLayout::Single;
-    bool navigating = split && mComparison && state.preview.enabled &&
+    mode.navigating = split && mComparison && state.preview.enabled &&
                       (state.drag.mode == DragMode::Orbit || state.drag.mode == DragMode::Pan);
-    mPreviewingSplit = navigating;
-    bool comparing = split && !navigating;
-    bool settled = (comparing ? mComparison && mComparison->done() : shownRenderer().converged()) || mRenderFailed || typing;
+    mPreviewingSplit = mode.navigating;
+    mode.comparing = split && !mode.navigating;
+    return mode;
+}
+
+void Editor::waitForEvents(const FrameMode& mode) {
+    const EditorState& state = *mState;
+    bool settled =
+        (mode.comparing ? mComparison && mComparison->done() : shownRenderer().converged()) ||
+        mRenderFailed || mode.typing;
     bool idle = settled && mIdleFrames >= kBusyFramesAfterInput &&
                 state.pendingChanges == kChangeNone && !state.screenshotRequested;
     if (idle)
         glfwWaitEventsTimeout(kIdleWaitS);
     else
         glfwPollEvents();
+}
 
-    if (state.dirty && state.edits != mAutosavedEdits && now0() - mLastAutosave >= mOptions.autosaveSeconds) {
-        if (writeAutosave(state)) std::fprintf(stderr, "candela edit: autosaved to %s\n", autosavePath(state.scene.path).c_str());
-        mAutosavedEdits = state.edits;
-        mLastAutosave = now0();
-    }
+void Editor::autosaveIfDue() {
+    EditorState& state = *mState;
+    if (!state.dirty || state.edits == mAutosavedEdits ||
+        now0() - mLastAutosave < mOptions.autosaveSeconds)
+        return;
+    if (writeAutosave(state))
+        std::fprintf(stderr, "candela edit: autosaved to %s\n",
+                     autosavePath(state.scene.path).c_str());
+    mAutosavedEdits = state.edits;
+    mLastAutosave = now0();
+}
 
-    // Files dropped onto the window: luminaires, an environment map, geometry (dropFile).
-    for (const std::string& path : gDropped) dropFile(state, path);
-    gDropped.clear();
-
+void Editor::reloadShadersIfDue() {
+    EditorState& state = *mState;
     double now = glfwGetTime();
-    if (now - mLastReloadCheck >= kReloadIntervalS) {
-        mLastReloadCheck = now;
-        bool reloaded = mShaders->reloadChanged();
-        if (reloaded) state.pendingChanges |= kChangeSettings;
-        const std::string& log = mShaders->errorLog();
-        if (log != mLastShaderLog && !log.empty())
-            setStatus(state,
-                      "Shader compile failed (log under Frame statistics); keeping the "
-                      "last good program",
-                      true);
-        else if (reloaded)
-            setStatus(state, "Shaders reloaded");
-        mLastShaderLog = log;
-    }
+    if (now - mLastReloadCheck < kReloadIntervalS) return;
+    mLastReloadCheck = now;
+    bool reloaded = mShaders->reloadChanged();
+    if (reloaded) state.pendingChanges |= kChangeSettings;
+    const std::string& log = mShaders->errorLog();
+    if (log != mLastShaderLog && !log.empty())
+        setStatus(state,
+                  "Shader compile failed (log under Frame statistics); keeping the "
+                  "last good program",
+                  true);
+    else if (reloaded)
+        setStatus(state, "Shaders reloaded");
+    mLastShaderLog = log;
+}
 
-    updateInterreflection();
-    if (comparing) {
+void Editor::routeChanges(const FrameMode& mode) {
+    EditorState& state = *mState;
+    if (mode.comparing) {
         state.pendingChanges |= mComparisonOwed;  // what changed while navigating
         mComparisonOwed = kChangeNone;
         if (state.preview.active) {
@@ -219,22 +233,26 @@ void Editor::frame() {
             mFullOwed = kChangeNone;
         }
         prepareComparison();
-    } else {
-        if (navigating) {
-            // The single view catches up on what changed while it waited, and the panes are
-            // owed what changes now.
-            state.pendingChanges |= mComparisonChanges;
-            mComparisonChanges = kChangeNone;
-            mComparisonOwed |= state.pendingChanges;
-        }
-        prepareRender();
+        return;
     }
+    if (mode.navigating) {
+        // The single view catches up on what changed while it waited, and the panes are owed
+        // what changes now.
+        state.pendingChanges |= mComparisonChanges;
+        mComparisonChanges = kChangeNone;
+        mComparisonOwed |= state.pendingChanges;
+    }
+    prepareRender();
+}
+
+void Editor::refineImage(const FrameMode& mode) {
+    EditorState& state = *mState;
     glDisable(GL_SCISSOR_TEST);
     try {
         // Frame 0 only lays out the UI, which sets the render size from the viewport panel.
-        if (mFrame > 0 && !typing && comparing) {
+        if (mFrame > 0 && !mode.typing && mode.comparing) {
             mComparison->step(kBandBudgetMs);
-        } else if (mFrame > 0 && !typing) {
+        } else if (mFrame > 0 && !mode.typing) {
             shownRenderer().renderFrame();
             state.passes.add(shownRenderer().stats());
         }
@@ -247,10 +265,10 @@ void Editor::frame() {
         }
         mRenderFailed = true;
     }
-    // Requested last frame; taken now that the image shows the scene as it is.
-    if (state.screenshotRequested) takeScreenshot();
-    if (state.compare.sheetRequested) exportSheet();
+}
 
+void Editor::drawUi() {
+    EditorState& state = *mState;
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     mKeyLatch->apply(mContext->window());
@@ -275,7 +293,24 @@ void Editor::frame() {
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
     if (state.windowShotRequested) takeWindowShot(fbWidth, fbHeight);
     glfwSwapBuffers(mContext->window());
+}
 
+void Editor::frame() {
+    EditorState& state = *mState;
+    FrameMode mode = frameMode();
+    waitForEvents(mode);
+    autosaveIfDue();
+    // Files dropped onto the window: luminaires, an environment map, geometry (dropFile).
+    for (const std::string& path : gDropped) dropFile(state, path);
+    gDropped.clear();
+    reloadShadersIfDue();
+    updateInterreflection();
+    routeChanges(mode);
+    refineImage(mode);
+    // Requested last frame; taken now that the image shows the scene as it is.
+    if (state.screenshotRequested) takeScreenshot();
+    if (state.compare.sheetRequested) exportSheet();
+    drawUi();
     if (state.quitRequested) glfwSetWindowShouldClose(mContext->window(), GLFW_TRUE);
     mIdleFrames = hadInput() ? 0 : mIdleFrames + 1;
     updateTitle();
@@ -598,6 +633,34 @@ static nlohmann::json passTimes(const FrameStats& stats) {
     return out;
 }
 
+/// Each luminaire's scene-file entry (type, name, position, aim, c0, technique, kind fields such
+/// as file), plus where its position is on screen (window pixels; null when behind the camera).
+static nlohmann::json luminairesJson(const Scene& scene, const Renderer& shown,
+                                     const glm::vec4& viewport) {
+    const RenderSettings& settings = shown.settings();
+    glm::mat4 viewProj = shown.viewProj();
+    const glm::vec4& v = viewport;
+    nlohmann::json lums = nlohmann::json::array();
+    for (const auto& lum : scene.luminaires) {
+        nlohmann::json entry = luminaireToJson(*lum);
+        auto px = projectToPixels(viewProj, lum->pose.position, settings.width, settings.height);
+        if (px)
+            entry["screen"] = vec2Json(v.x + float(px->x) * v.z / float(settings.width),
+                                       v.y + float(px->y) * v.w / float(settings.height));
+        else
+            entry["screen"] = nullptr;
+        lums.push_back(std::move(entry));
+    }
+    return lums;
+}
+
+/// The interreflection worker's state as the panels see it.
+static nlohmann::json interreflectionJson(const InterreflectionUi& ir) {
+    return {{"enabled", ir.enabled},     {"busy", ir.busy},       {"present", ir.present},
+            {"converged", ir.converged}, {"version", ir.version}, {"updates", ir.updates},
+            {"patches", ir.patches},     {"stage", ir.stage}};
+}
+
 void Editor::writeLayout() {
     // The panels record named widgets' rectangles every frame; taken here so they never pile up.
     std::vector<std::pair<std::string, glm::vec4>> widgets;
@@ -609,23 +672,7 @@ void Editor::writeLayout() {
     glfwGetWindowSize(mContext->window(), &width, &height);
     const Renderer& shown = shownRenderer();
     const RenderSettings& settings = shown.settings();
-    glm::mat4 viewProj = shown.viewProj();
     const glm::vec4& v = layout.viewport;
-
-    nlohmann::json lums = nlohmann::json::array();
-    for (const auto& lum : state.scene.luminaires) {
-        // Its scene-file entry (type, name, position, aim, c0, technique, kind fields such as
-        // file), plus where its position is on screen.
-        nlohmann::json entry = luminaireToJson(*lum);
-        glm::dvec3 p = lum->pose.position;
-        auto px = projectToPixels(viewProj, p, settings.width, settings.height);
-        if (px)
-            entry["screen"] = vec2Json(v.x + float(px->x) * v.z / float(settings.width),
-                                       v.y + float(px->y) * v.w / float(settings.height));
-        else
-            entry["screen"] = nullptr;
-        lums.push_back(std::move(entry));
-    }
     const ImGuiIO& io = ImGui::GetIO();
     const FrameStats& stats = shown.stats();
     int selected = state.selectedLuminaire;
@@ -637,15 +684,17 @@ void Editor::writeLayout() {
         {"viewport", {v.x, v.y, v.z, v.w}},
         {"render_size", {settings.width, settings.height}},
         {"screenshot_button", vec2Json(layout.screenshotButton.x, layout.screenshotButton.y)},
-        {"gizmo", layout.gizmo ? nlohmann::json{{"aim", vec2Json(layout.aimKnob.x, layout.aimKnob.y)},
-                                                {"spin", vec2Json(layout.spinKnob.x, layout.spinKnob.y)}}
-                               : nlohmann::json(nullptr)},
-        {"luminaires", std::move(lums)},
+        {"gizmo", layout.gizmo
+                      ? nlohmann::json{{"aim", vec2Json(layout.aimKnob.x, layout.aimKnob.y)},
+                                       {"spin", vec2Json(layout.spinKnob.x, layout.spinKnob.y)}}
+                      : nlohmann::json(nullptr)},
+        {"luminaires", luminairesJson(state.scene, shown, v)},
         {"selected", selected >= 0 && selected < int(state.scene.luminaires.size())
                          ? nlohmann::json(state.scene.luminaires[size_t(selected)]->name)
                          : nlohmann::json(nullptr)},
         {"dragging", state.drag.mode == DragMode::Luminaire},
-        {"drag_mode", std::array<const char*, 6>{"none", "orbit", "pan", "luminaire", "aim", "spin"}[size_t(state.drag.mode)]},
+        {"drag_mode", std::array<const char*, 6>{"none", "orbit", "pan", "luminaire", "aim",
+                                                 "spin"}[size_t(state.drag.mode)]},
         {"mouse", io.MousePos.x > -FLT_MAX / 2 ? vec2Json(io.MousePos.x, io.MousePos.y)
                                                : nlohmann::json(nullptr)},
         {"samples_per_pixel", stats.samplesPerPixel},
@@ -653,9 +702,10 @@ void Editor::writeLayout() {
         {"screenshots", state.screenshotsTaken},
         {"window_images", state.windowShotsTaken},
         {"mouse_down", io.MouseDown[ImGuiMouseButton_Left]},  // as this frame's widgets saw it
-        {"typing", io.WantTextInput},                        // a text field has the keyboard
+        {"typing", io.WantTextInput},                         // a text field has the keyboard
         {"dirty", state.dirty},
-        {"undo", state.history.undo.empty() ? nlohmann::json(nullptr) : nlohmann::json(state.history.undo.back().label)},
+        {"undo", state.history.undo.empty() ? nlohmann::json(nullptr)
+                                            : nlohmann::json(state.history.undo.back().label)},
         {"undo_steps", state.history.undo.size()},
         {"redo_steps", state.history.redo.size()},
         {"status", state.status},
@@ -663,13 +713,11 @@ void Editor::writeLayout() {
         {"widgets", std::move(widgetJson)},
         {"environment", state.scene.environment},
         {"environment_ui", environmentUiJson(state)},
-        {"preview", {{"active", state.preview.active}, {"size", {state.preview.width, state.preview.height}},
-                     {"frame_ms", std::round(state.preview.frameMs * 10.0) / 10.0}}},
-        {"interreflection", {{"enabled", state.interreflection.enabled}, {"busy", state.interreflection.busy},
-                             {"present", state.interreflection.present},
-                             {"converged", state.interreflection.converged},
-                             {"version", state.interreflection.version}, {"updates", state.interreflection.updates},
-                             {"patches", state.interreflection.patches}, {"stage", state.interreflection.stage}}},
+        {"preview",
+         {{"active", state.preview.active},
+          {"size", {state.preview.width, state.preview.height}},
+          {"frame_ms", std::round(state.preview.frameMs * 10.0) / 10.0}}},
+        {"interreflection", interreflectionJson(state.interreflection)},
         {"techniques", planTechniques(state.scene, shown)},
         {"compare", compareState(state, mComparison.get())},
         {"passes", passTimes(stats)},

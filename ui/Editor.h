@@ -47,7 +47,26 @@ class Editor {
     int run();
 
   private:
+    /// What this frame does with the viewport.
+    struct FrameMode {
+        bool typing = false;      ///< A text field has the keyboard: refinement pauses.
+        bool navigating = false;  ///< The camera moves over split panes: the preview shows.
+        bool comparing = false;   ///< The split panes refine.
+    };
     void frame();
+    FrameMode frameMode();
+    /// Sleeps (up to kIdleWaitS) while nothing refines and no input comes, else polls.
+    void waitForEvents(const FrameMode& mode);
+    /// Writes the autosave when there are unsaved edits and its interval has passed.
+    void autosaveIfDue();
+    /// Reloads changed shader files (every kReloadIntervalS) and says so in the status bar.
+    void reloadShadersIfDue();
+    /// Hands this frame's scene changes to the comparison or to the single view (preview or full).
+    void routeChanges(const FrameMode& mode);
+    /// One refinement step of what the viewport shows; a failure is shown, not thrown.
+    void refineImage(const FrameMode& mode);
+    /// Builds the panels and draws them over the window, then swaps.
+    void drawUi();
     /// Hands the renderer the scene and settings of this frame: the preview scene and settings
     /// while a drag is under way (renderer/LivePreview.h), else the edited scene.
     void prepareRender();

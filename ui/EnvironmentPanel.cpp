@@ -209,25 +209,47 @@ void sampleChartControls(EditorState& state) {
     ImGui::TextUnformatted(ui.chartCounts.c_str());
 }
 
+/// No environment yet: "Add a sky" at the time of day of the section. True when it added one.
+bool addSkyControls(EditorState& state) {
+    ImGui::TextDisabled("No environment.");
+    if (ImGui::Button("Add a sky")) {
+        SunPosition sun = sunPosition(state.environment.latitudeDeg, state.environment.dayOfYear,
+                                      state.environment.solarHours);
+        setEnvironment(state, "Add sky",
+                       {{"sky",
+                         {{"sun_elevation_deg", std::max(0.0, sun.elevationDeg)},
+                          {"sun_azimuth_deg", sun.azimuthDeg}}}});
+        return true;
+    }
+    itemTooltip(
+        "A clear sky with a sun (Preetham / Perez luminance, cd/m2) at the time of day below");
+    return false;
+}
+
+/// The environment's intensity (dimensionless) and rotation (degrees about +Y), as one edit.
+bool intensityAndRotation(EditorState& state) {
+    nlohmann::json env = state.scene.environment;
+    double intensity = env.value("intensity", 1.0);
+    bool edited = false;
+    if (ImGui::DragScalar("Intensity", ImGuiDataType_Double, &intensity, 0.01f, nullptr, nullptr,
+                          "%.3g")) {
+        env["intensity"] = std::max(0.0, intensity);
+        edited = true;
+    }
+    itemTooltip("Multiplies every texel (dimensionless)");
+    edited |= jsonSlider("Rotation [deg]", env, "rotation_deg", 0.0, -180.0, 180.0,
+                         "Turns the map about +Y (added to phi)");
+    if (edited) setEnvironment(state, "Environment", env);
+    return edited;
+}
+
 }  // namespace
 
 bool environmentControls(EditorState& state) {
     state.environment.chartOpen = false;
     if (!ImGui::CollapsingHeader("Environment", ImGuiTreeNodeFlags_DefaultOpen)) return false;
     Scene& scene = state.scene;
-    if (!scene.environmentMap) {
-        ImGui::TextDisabled("No environment.");
-        if (ImGui::Button("Add a sky")) {
-            SunPosition sun = sunPosition(state.environment.latitudeDeg, state.environment.dayOfYear,
-                                          state.environment.solarHours);
-            setEnvironment(state, "Add sky",
-                           {{"sky", {{"sun_elevation_deg", std::max(0.0, sun.elevationDeg)},
-                                     {"sun_azimuth_deg", sun.azimuthDeg}}}});
-            return true;
-        }
-        itemTooltip("A clear sky with a sun (Preetham / Perez luminance, cd/m2) at the time of day below");
-        return false;
-    }
+    if (!scene.environmentMap) return addSkyControls(state);
     bool changed = false;
     const EnvironmentMap& map = *scene.environmentMap;
     const char* kind = scene.environment.contains("sky") ? "Sky" : scene.environment.contains("sequence") ? "Sequence" : "File";
@@ -249,19 +271,7 @@ bool environmentControls(EditorState& state) {
         ImGui::EndCombo();
     }
 
-    nlohmann::json env = scene.environment;
-    double intensity = env.value("intensity", 1.0);
-    bool edited = false;
-    if (ImGui::DragScalar("Intensity", ImGuiDataType_Double, &intensity, 0.01f, nullptr, nullptr, "%.3g")) {
-        env["intensity"] = std::max(0.0, intensity);
-        edited = true;
-    }
-    itemTooltip("Multiplies every texel (dimensionless)");
-    edited |= jsonSlider("Rotation [deg]", env, "rotation_deg", 0.0, -180.0, 180.0, "Turns the map about +Y (added to phi)");
-    if (edited) {
-        setEnvironment(state, "Environment", env);
-        changed = true;
-    }
+    changed = intensityAndRotation(state) || changed;
 
     if (scene.environment.contains("sky")) changed = skyControls(state) || changed;
     else if (scene.environmentSequence) changed = sequenceControls(state) || changed;

@@ -187,29 +187,10 @@ bool poseFields(EditorState& state, int index) {
     return changed;
 }
 
-bool luminaireInspector(EditorState& state, int index) {
+/// The luminaire's kind fields (and a rectangle's Emits switch), edited as its scene-file entry
+/// and parsed again; an invalid value stays in the inspector's error and changes nothing.
+bool kindFields(EditorState& state, int index) {
     bool changed = false;
-    const Luminaire& lum = *state.scene.luminaires[size_t(index)];
-    ImGui::Text("Kind: %s", std::string(lum.kind()).c_str());
-    ImGui::PushTextWrapPos(0.f);
-    ImGui::TextDisabled("%s", lum.describe().c_str());
-    ImGui::PopTextWrapPos();
-
-    std::string name = lum.name;
-    if (ImGui::InputText("Name", &name)) {
-        if (name.empty()) {
-            state.inspectorError = "Name: must not be empty";
-        } else {
-            applyEdit(state, "Rename " + lum.name, kChangeLuminaires,
-                      [&](Scene& s) { s.luminaires[size_t(index)]->name = name; });
-            changed = true;
-        }
-    }
-    changed = techniqueCombo(state, index) || changed;
-    ImGui::Separator();
-    changed = poseFields(state, index) || changed;
-    ImGui::Separator();
-
     try {
         nlohmann::json entry = luminaireToJson(*state.scene.luminaires[size_t(index)]);
         bool edited = false;
@@ -239,8 +220,12 @@ bool luminaireInspector(EditorState& state, int index) {
     } catch (const std::exception& e) {
         state.inspectorError = e.what();  // Shown in red; the luminaire keeps its valid values.
     }
+    return changed;
+}
 
-    const Luminaire& shown = *state.scene.luminaires[size_t(index)];
+/// Kind-specific details: a light field's images, a photometric file's polar diagram, else the
+/// luminaire's power or flux.
+void kindDetails(const Luminaire& shown) {
     if (const auto* lf = dynamic_cast<const LightFieldLuminaire*>(&shown)) {
         static int shownImage = 0;  // UI state only: which image the panel shows
         lightFieldDetails(*lf, shownImage);
@@ -252,6 +237,34 @@ bool luminaireInspector(EditorState& state, int index) {
         ImGui::Text("%s [%s]: %.4g  %.4g  %.4g", luminous ? "Flux" : "Power", fluxUnit(shown.quantities()), power.x,
                     power.y, power.z);
     }
+}
+
+bool luminaireInspector(EditorState& state, int index) {
+    bool changed = false;
+    const Luminaire& lum = *state.scene.luminaires[size_t(index)];
+    ImGui::Text("Kind: %s", std::string(lum.kind()).c_str());
+    ImGui::PushTextWrapPos(0.f);
+    ImGui::TextDisabled("%s", lum.describe().c_str());
+    ImGui::PopTextWrapPos();
+
+    std::string name = lum.name;
+    if (ImGui::InputText("Name", &name)) {
+        if (name.empty()) {
+            state.inspectorError = "Name: must not be empty";
+        } else {
+            applyEdit(state, "Rename " + lum.name, kChangeLuminaires,
+                      [&](Scene& s) { s.luminaires[size_t(index)]->name = name; });
+            changed = true;
+        }
+    }
+    changed = techniqueCombo(state, index) || changed;
+    ImGui::Separator();
+    changed = poseFields(state, index) || changed;
+    ImGui::Separator();
+
+    changed = kindFields(state, index) || changed;
+
+    kindDetails(*state.scene.luminaires[size_t(index)]);
     if (!state.inspectorError.empty()) errorText(state.inspectorError);
 
     ImGui::Spacing();

@@ -90,68 +90,66 @@ void makeThumbnail(LibraryUi& lib, const LibraryEntry& entry) {
     }
 }
 
-}  // namespace
-
-bool libraryPanel(EditorState& state, const PanelRect& rect) {
+/// One file of the library: its thumbnail (made here when none is yet and `madeOne` is false:
+/// at most one a frame), its label and what was read, Add and Swap. True when the scene changed.
+bool libraryRow(EditorState& state, const LibraryEntry& entry, bool& madeOne) {
     LibraryUi& lib = state.library;
-    if (!lib.scanned) {
-        lib.folders = readStateList(kLibraryFile, "folders");
-        scan(lib);
-    }
-    placeNextWindow(rect);
-    ImGui::Begin("Library", nullptr, kPanelFlags);
-    recordPanelRect(state, "library");
     bool changed = false;
-    bool madeOne = false;  // at most one new thumbnail per frame
     int selected = state.selectedLuminaire;
-    for (const LibraryEntry& entry : lib.entries) {
-        ImGui::PushID(entry.path.c_str());
-        auto found = lib.thumbnails.find(entry.path);
-        float rowTop = ImGui::GetCursorPosY();
-        if (found == lib.thumbnails.end() && !madeOne && ImGui::IsRectVisible(ImVec2(1.f, float(kThumbnailPixels)))) {
-            makeThumbnail(lib, entry);
-            madeOne = true;
-            found = lib.thumbnails.find(entry.path);
-        }
-        if (found != lib.thumbnails.end() && found->second.texture) {
-            auto* texture = static_cast<gl::Texture2D*>(found->second.texture.get());
-            ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(texture->id())),
-                         ImVec2(float(kThumbnailPixels), float(kThumbnailPixels)));
-            itemTooltip("Illuminance on a floor 1 m below it, aimed down, over 5 x 5 m (log scale, 3 decades)");
-        } else {
-            ImGui::Dummy(ImVec2(float(kThumbnailPixels), float(kThumbnailPixels)));
-        }
-        ImGui::SameLine();
-        ImGui::BeginGroup();
-        ImGui::TextUnformatted(entry.label.c_str());
-        if (found != lib.thumbnails.end()) {
-            if (found->second.failed)
-                ImGui::TextColored(errorColour(), "cannot read: %s", found->second.info.c_str());
-            else
-                ImGui::TextDisabled("%s", found->second.info.c_str());
-        }
-        if (ImGui::SmallButton("Add")) {
-            int index = addLuminaireFromFile(state, entry.path);
-            if (index >= 0) {
-                state.placement.armed = true;
-                setStatus(state, "Added " + state.scene.luminaires[size_t(index)]->name +
-                                     ": click a surface to place it (Escape keeps it where it is)");
-            }
-            changed = true;
-        }
-        recordRect(state, "library.add:" + entry.label);
-        itemTooltip(entry.path);
-        ImGui::SameLine();
-        ImGui::BeginDisabled(selected < 0);
-        if (ImGui::SmallButton("Swap")) changed = swapLuminaireFile(state, selected, entry.path) || changed;
-        recordRect(state, "library.swap:" + entry.label);
-        ImGui::EndDisabled();
-        itemTooltip("Replace the selected luminaire's file with this one, keeping its pose and name");
-        ImGui::EndGroup();
-        ImGui::SetCursorPosY(std::max(ImGui::GetCursorPosY(), rowTop + float(kThumbnailPixels) + 4.f));
-        ImGui::PopID();
+    ImGui::PushID(entry.path.c_str());
+    auto found = lib.thumbnails.find(entry.path);
+    float rowTop = ImGui::GetCursorPosY();
+    if (found == lib.thumbnails.end() && !madeOne &&
+        ImGui::IsRectVisible(ImVec2(1.f, float(kThumbnailPixels)))) {
+        makeThumbnail(lib, entry);
+        madeOne = true;
+        found = lib.thumbnails.find(entry.path);
     }
-    ImGui::Separator();
+    if (found != lib.thumbnails.end() && found->second.texture) {
+        auto* texture = static_cast<gl::Texture2D*>(found->second.texture.get());
+        ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(texture->id())),
+                     ImVec2(float(kThumbnailPixels), float(kThumbnailPixels)));
+        itemTooltip(
+            "Illuminance on a floor 1 m below it, aimed down, over 5 x 5 m (log scale, 3 decades)");
+    } else {
+        ImGui::Dummy(ImVec2(float(kThumbnailPixels), float(kThumbnailPixels)));
+    }
+    ImGui::SameLine();
+    ImGui::BeginGroup();
+    ImGui::TextUnformatted(entry.label.c_str());
+    if (found != lib.thumbnails.end()) {
+        if (found->second.failed)
+            ImGui::TextColored(errorColour(), "cannot read: %s", found->second.info.c_str());
+        else
+            ImGui::TextDisabled("%s", found->second.info.c_str());
+    }
+    if (ImGui::SmallButton("Add")) {
+        int index = addLuminaireFromFile(state, entry.path);
+        if (index >= 0) {
+            state.placement.armed = true;
+            setStatus(state, "Added " + state.scene.luminaires[size_t(index)]->name +
+                                 ": click a surface to place it (Escape keeps it where it is)");
+        }
+        changed = true;
+    }
+    recordRect(state, "library.add:" + entry.label);
+    itemTooltip(entry.path);
+    ImGui::SameLine();
+    ImGui::BeginDisabled(selected < 0);
+    if (ImGui::SmallButton("Swap"))
+        changed = swapLuminaireFile(state, selected, entry.path) || changed;
+    recordRect(state, "library.swap:" + entry.label);
+    ImGui::EndDisabled();
+    itemTooltip("Replace the selected luminaire's file with this one, keeping its pose and name");
+    ImGui::EndGroup();
+    ImGui::SetCursorPosY(std::max(ImGui::GetCursorPosY(), rowTop + float(kThumbnailPixels) + 4.f));
+    ImGui::PopID();
+    return changed;
+}
+
+/// The folders added to the library: a field and Add folder, and each with Remove.
+void libraryFolders(EditorState& state) {
+    LibraryUi& lib = state.library;
     ImGui::SetNextItemWidth(-70.f);
     ImGui::InputTextWithHint("##folder", "folder with .ies / .ldt / .lf.json", &lib.folderText);
     ImGui::SameLine();
@@ -180,6 +178,25 @@ bool libraryPanel(EditorState& state, const PanelRect& rect) {
         }
         ImGui::PopID();
     }
+}
+
+}  // namespace
+
+bool libraryPanel(EditorState& state, const PanelRect& rect) {
+    LibraryUi& lib = state.library;
+    if (!lib.scanned) {
+        lib.folders = readStateList(kLibraryFile, "folders");
+        scan(lib);
+    }
+    placeNextWindow(rect);
+    ImGui::Begin("Library", nullptr, kPanelFlags);
+    recordPanelRect(state, "library");
+    bool changed = false;
+    bool madeOne = false;  // at most one new thumbnail per frame
+    for (const LibraryEntry& entry : lib.entries)
+        changed = libraryRow(state, entry, madeOne) || changed;
+    ImGui::Separator();
+    libraryFolders(state);
     ImGui::End();
     return changed;
 }

@@ -187,7 +187,8 @@ void computeNow(const EditorState& state, MeasureState& measure) {
     }
 }
 
-void gridControls(EditorState& state, MeasureState& measure) {
+/// The grid's plane, extent, spacing, samples and what it includes.
+void gridSpecControls(EditorState& state, MeasureState& measure) {
     GridSpec& g = measure.grid;
     const char* axes[] = {"x (wall)", "y (horizontal)", "z (wall)"};
     int axis = g.plane.axis;
@@ -234,11 +235,11 @@ void gridControls(EditorState& state, MeasureState& measure) {
     itemTooltip("Adds the light the surfaces reflect onto each other (radiosity over patches, then each point's "
                 "light from the patches; a few seconds). Turns shadows on. candela grid --indirect gives the "
                 "reference (a final gather with a standard error).");
-    if (ImGui::Button("Compute grid", ImVec2(-1.f, 0.f))) computeNow(state, measure);
-    if (!measure.error.empty()) errorText(measure.error);
-    if (!measure.result) return;
-    const GridSummary& s = measure.summary;
-    const GridResult& r = *measure.result;
+}
+
+/// Emin, Eavg, Emax and the uniformities of the computed grid; with interreflected light, Em
+/// and U0 of the direct, interreflected and total light, as design tools report them.
+void gridResultTables(const GridResult& r, const GridSummary& s) {
     ImGui::Text("%zu points (%zu x %zu), %c = %.3g m", s.count, r.u.size(), r.v.size(),
                 "xyz"[r.spec.plane.axis], r.spec.plane.offset);
     if (ImGui::BeginTable("summary", 2, ImGuiTableFlags_RowBg)) {
@@ -258,7 +259,6 @@ void gridControls(EditorState& state, MeasureState& measure) {
         ImGui::EndTable();
     }
     if (r.hasIndirect && ImGui::BeginTable("parts", 3, ImGuiTableFlags_RowBg)) {
-        // Em and U0 of the direct, interreflected and total light, as design tools report them.
         ImGui::TableSetupColumn("Light");
         ImGui::TableSetupColumn((std::string("Em [") + r.units.irradiance() + "]").c_str());
         ImGui::TableSetupColumn("U0");
@@ -277,6 +277,14 @@ void gridControls(EditorState& state, MeasureState& measure) {
         ImGui::EndTable();
     }
     if (r.units.converted) ImGui::TextDisabled("(%s)", r.units.note().c_str());
+}
+
+void gridControls(EditorState& state, MeasureState& measure) {
+    gridSpecControls(state, measure);
+    if (ImGui::Button("Compute grid", ImVec2(-1.f, 0.f))) computeNow(state, measure);
+    if (!measure.error.empty()) errorText(measure.error);
+    if (!measure.result) return;
+    gridResultTables(*measure.result, measure.summary);
     ImGui::Checkbox("Values in the viewport", &measure.showValues);
 }
 

@@ -230,93 +230,115 @@ static void placementControls(EditorState& state, bool noSelection) {
     itemTooltip("Copies the selected luminaire into a grid (a row with one count 1), as one undo step");
 }
 
+/// The scene's luminaires, each selectable (Ctrl+click adds to the selection). True on a click.
+static bool luminaireList(EditorState& state) {
+    bool changed = false;
+    const Scene& scene = state.scene;
+    for (size_t i = 0; i < scene.luminaires.size(); ++i) {
+        const Luminaire& lum = *scene.luminaires[i];
+        ImGui::PushID(int(i));
+        std::vector<int> group = selectedLuminaires(state);
+        bool selected = std::find(group.begin(), group.end(), int(i)) != group.end();
+        std::string label = lum.name + "  [" + lum.technique + "]";
+        bool clicked = ImGui::Selectable(label.c_str(), selected);
+        recordRect(state, "outline.luminaire:" + lum.name);
+        if (clicked && ImGui::GetIO().KeyCtrl) {
+            toggleSelected(state, int(i));  // Ctrl+click: add to or remove from the selection
+            changed = true;
+        } else if (clicked) {
+            state.selectedLuminaire = int(i);
+            state.alsoSelected.clear();
+            state.selectedGeometry = -1;
+            state.inspectorError.clear();
+            changed = true;
+        }
+        itemTooltip(std::string(lum.kind()) + ": " + lum.describe());
+        ImGui::PopID();
+    }
+    return changed;
+}
+
+/// The kind to add and Add. True when a luminaire was added.
+static bool addLuminaireControls(EditorState& state) {
+    auto kinds = luminaireKinds();
+    if (kinds.empty()) return false;
+    state.addKind = std::clamp(state.addKind, 0, int(kinds.size()) - 1);
+    ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x - 60.f);
+    std::string current(kinds[size_t(state.addKind)].kind);
+    if (ImGui::BeginCombo("##addkind", current.c_str())) {
+        for (size_t k = 0; k < kinds.size(); ++k) {
+            std::string name(kinds[k].kind);
+            if (ImGui::Selectable(name.c_str(), int(k) == state.addKind)) state.addKind = int(k);
+            recordRect(state, "outline.add_kind:" + name);
+            itemTooltip(std::string(kinds[k].description));
+        }
+        ImGui::EndCombo();
+    } else {
+        recordRect(state, "outline.add_kind");  // the closed combo
+    }
+    ImGui::SameLine();
+    bool added = false;
+    if (ImGui::Button("Add", ImVec2(-1.f, 0.f)))
+        added = addLuminaire(state, kinds[size_t(state.addKind)]) >= 0;
+    recordRect(state, "outline.add");
+    itemTooltip(
+        "Adds a luminaire of this kind 0.5 m below the top of the scene, aimed "
+        "down");
+    return added;
+}
+
+/// The Luminaires section: the list, Add, Duplicate, Delete and the placement rows.
+static bool luminairesSection(EditorState& state) {
+    bool changed = luminaireList(state);
+    changed = addLuminaireControls(state) || changed;
+    bool none = state.selectedLuminaire < 0;
+    ImGui::BeginDisabled(none);
+    if (ImGui::Button("Duplicate")) {
+        duplicateLuminaire(state, state.selectedLuminaire);
+        changed = true;
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Delete")) {
+        deleteSelected(state);
+        changed = true;
+    }
+    ImGui::EndDisabled();
+    placementControls(state, none);
+    return changed;
+}
+
+/// The Geometry section: each item, selectable.
+static bool geometryList(EditorState& state) {
+    bool changed = false;
+    const Scene& scene = state.scene;
+    for (size_t i = 0; i < scene.geometry.size(); ++i) {
+        ImGui::PushID(int(i));
+        bool selected = state.selectedGeometry == int(i);
+        if (ImGui::Selectable(geometryLabel(scene.geometry[i], i).c_str(), selected)) {
+            state.selectedGeometry = int(i);
+            state.selectedLuminaire = -1;
+            state.inspectorError.clear();
+            changed = true;
+        }
+        ImGui::PopID();
+    }
+    return changed;
+}
+
 bool outlinePanel(EditorState& state, const PanelRect& rect) {
     bool changed = false;
     placeNextWindow(rect);
     ImGui::Begin("Scene", nullptr, kPanelFlags);
     recordPanelRect(state, "scene");
-    Scene& scene = state.scene;
-
+    const Scene& scene = state.scene;
     std::string luminairesHeader =
         "Luminaires (" + std::to_string(scene.luminaires.size()) + ")###luminaires";
-    if (ImGui::CollapsingHeader(luminairesHeader.c_str(), ImGuiTreeNodeFlags_DefaultOpen)) {
-        for (size_t i = 0; i < scene.luminaires.size(); ++i) {
-            const Luminaire& lum = *scene.luminaires[i];
-            ImGui::PushID(int(i));
-            std::vector<int> group = selectedLuminaires(state);
-            bool selected = std::find(group.begin(), group.end(), int(i)) != group.end();
-            std::string label = lum.name + "  [" + lum.technique + "]";
-            bool clicked = ImGui::Selectable(label.c_str(), selected);
-            recordRect(state, "outline.luminaire:" + lum.name);
-            if (clicked && ImGui::GetIO().KeyCtrl) {
-                toggleSelected(state, int(i));  // Ctrl+click: add to or remove from the selection
-                changed = true;
-            } else if (clicked) {
-                state.selectedLuminaire = int(i);
-                state.alsoSelected.clear();
-                state.selectedGeometry = -1;
-                state.inspectorError.clear();
-                changed = true;
-            }
-            itemTooltip(std::string(lum.kind()) + ": " + lum.describe());
-            ImGui::PopID();
-        }
-        auto kinds = luminaireKinds();
-        if (!kinds.empty()) {
-            state.addKind = std::clamp(state.addKind, 0, int(kinds.size()) - 1);
-            ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x - 60.f);
-            std::string current(kinds[size_t(state.addKind)].kind);
-            if (ImGui::BeginCombo("##addkind", current.c_str())) {
-                for (size_t k = 0; k < kinds.size(); ++k) {
-                    std::string name(kinds[k].kind);
-                    if (ImGui::Selectable(name.c_str(), int(k) == state.addKind))
-                        state.addKind = int(k);
-                    recordRect(state, "outline.add_kind:" + name);
-                    itemTooltip(std::string(kinds[k].description));
-                }
-                ImGui::EndCombo();
-            } else {
-                recordRect(state, "outline.add_kind");  // the closed combo
-            }
-            ImGui::SameLine();
-            if (ImGui::Button("Add", ImVec2(-1.f, 0.f))) {
-                changed = addLuminaire(state, kinds[size_t(state.addKind)]) >= 0 || changed;
-            }
-            recordRect(state, "outline.add");
-            itemTooltip(
-                "Adds a luminaire of this kind 0.5 m below the top of the scene, aimed "
-                "down");
-        }
-        bool none = state.selectedLuminaire < 0;
-        ImGui::BeginDisabled(none);
-        if (ImGui::Button("Duplicate")) {
-            duplicateLuminaire(state, state.selectedLuminaire);
-            changed = true;
-        }
-        ImGui::SameLine();
-        if (ImGui::Button("Delete")) {
-            deleteSelected(state);
-            changed = true;
-        }
-        ImGui::EndDisabled();
-        placementControls(state, none);
-    }
-
+    if (ImGui::CollapsingHeader(luminairesHeader.c_str(), ImGuiTreeNodeFlags_DefaultOpen))
+        changed = luminairesSection(state) || changed;
     std::string geometryHeader =
         "Geometry (" + std::to_string(scene.geometry.size()) + ")###geometry";
-    if (ImGui::CollapsingHeader(geometryHeader.c_str(), ImGuiTreeNodeFlags_DefaultOpen)) {
-        for (size_t i = 0; i < scene.geometry.size(); ++i) {
-            ImGui::PushID(int(i));
-            bool selected = state.selectedGeometry == int(i);
-            if (ImGui::Selectable(geometryLabel(scene.geometry[i], i).c_str(), selected)) {
-                state.selectedGeometry = int(i);
-                state.selectedLuminaire = -1;
-                state.inspectorError.clear();
-                changed = true;
-            }
-            ImGui::PopID();
-        }
-    }
+    if (ImGui::CollapsingHeader(geometryHeader.c_str(), ImGuiTreeNodeFlags_DefaultOpen))
+        changed = geometryList(state) || changed;
     ImGui::End();
     return changed;
 }

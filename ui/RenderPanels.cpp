@@ -64,9 +64,9 @@ bool interreflectionControls(EditorState& state) {
     return changed;
 }
 
-bool samplingControls(EditorState& state) {
+/// Samples per frame, the sample budget and the render resolution.
+bool sampleBudgetControls(EditorState& state) {
     bool changed = false;
-    ImGui::TextDisabled("Sampling");
     RenderSettings& s = state.settings;
     changed = ImGui::SliderInt("Samples / frame", &s.samplesPerFrame, 1, 64) || changed;
     itemTooltip("Light samples per pixel per luminaire in each progressive frame");
@@ -88,8 +88,12 @@ bool samplingControls(EditorState& state) {
         changed = true;
     }
     itemTooltip("Render pixels per viewport pixel (lower is faster on a slow GPU)");
+    return changed;
+}
 
-    // Technique override: every luminaire whose kind has the named technique uses it.
+/// Technique override: every luminaire whose kind has the named technique uses it.
+bool techniqueOverrideControl(RenderSettings& s) {
+    bool changed = false;
     std::set<std::string> names;
     for (const TechniqueInfo& t : techniques()) names.insert(std::string(t.name));
     const char* preview =
@@ -107,10 +111,13 @@ bool samplingControls(EditorState& state) {
         ImGui::EndCombo();
     }
     itemTooltip("Renders every luminaire whose kind has this technique with it");
+    return changed;
+}
 
-    // Shadow maps (renderer/passes/ShadowMapPass.h): what the light-field, photometric and
-    // Havran techniques read when an occluder can block them.
-    ShadowMapSettings& maps = s.shadowMaps;
+/// Shadow maps (renderer/passes/ShadowMapPass.h): what the light-field, photometric and
+/// Havran techniques read when an occluder can block them.
+bool shadowMapControls(ShadowMapSettings& maps) {
+    bool changed = false;
     if (ImGui::InputInt("Shadow maps", &maps.count, 1, 16)) {
         maps.count = std::clamp(maps.count, 0, 4096);
         changed = true;
@@ -130,9 +137,12 @@ bool samplingControls(EditorState& state) {
     }
     itemTooltip("Texels per cube-map face of each shadow map; the edges of shadows move by about "
                 "a texel (the bias), so finer faces are closer to the ray-traced truth");
+    return changed;
+}
 
-    // The fallback while dragging (renderer/LivePreview.h); settings of the editor only: they
-    // change nothing of the image once the drag ends.
+/// The fallback while dragging (renderer/LivePreview.h); settings of the editor only: they
+/// change nothing of the image once the drag ends.
+void livePreviewControls(EditorState& state) {
     LivePreviewUi& live = state.preview;
     ImGui::Checkbox("Live preview while dragging", &live.enabled);
     recordRect(state, "render.preview");
@@ -140,20 +150,28 @@ bool samplingControls(EditorState& state) {
         "While a luminaire or the camera is dragged: light fields as their far field, Prost's "
         "scattered sampling for photometric lights, one small shadow map each, one sample per "
         "pixel at a reduced resolution. Letting go refines the chosen techniques again.");
-    if (live.enabled) {
-        ImGui::Checkbox("Hold the frame rate", &live.adaptive);
-        itemTooltip("Lower the preview's resolution until a frame takes the target time");
-        ImGui::SameLine();
-        ImGui::SetNextItemWidth(90.f);
-        ImGui::SliderFloat("##target", &live.targetMs, 20.f, 200.f, "%.0f ms");
-        if (!live.adaptive) {
-            ImGui::SliderFloat("Preview scale", &live.policy.scale, 0.1f, 1.f, "%.2f");
-            itemTooltip("Preview pixels per render pixel, per axis");
-        }
-        if (live.width > 0)
-            ImGui::TextDisabled("Last preview: %d x %d, %.0f ms per frame (%.1f fps)", live.width, live.height,
-                                live.frameMs, live.frameMs > 0.0 ? 1000.0 / live.frameMs : 0.0);
+    if (!live.enabled) return;
+    ImGui::Checkbox("Hold the frame rate", &live.adaptive);
+    itemTooltip("Lower the preview's resolution until a frame takes the target time");
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(90.f);
+    ImGui::SliderFloat("##target", &live.targetMs, 20.f, 200.f, "%.0f ms");
+    if (!live.adaptive) {
+        ImGui::SliderFloat("Preview scale", &live.policy.scale, 0.1f, 1.f, "%.2f");
+        itemTooltip("Preview pixels per render pixel, per axis");
     }
+    if (live.width > 0)
+        ImGui::TextDisabled("Last preview: %d x %d, %.0f ms per frame (%.1f fps)", live.width,
+                            live.height, live.frameMs,
+                            live.frameMs > 0.0 ? 1000.0 / live.frameMs : 0.0);
+}
+
+bool samplingControls(EditorState& state) {
+    ImGui::TextDisabled("Sampling");
+    bool changed = sampleBudgetControls(state);
+    changed = techniqueOverrideControl(state.settings) || changed;
+    changed = shadowMapControls(state.settings.shadowMaps) || changed;
+    livePreviewControls(state);
     return changed;
 }
 

@@ -323,17 +323,17 @@ void drawPickedPixel(const EditorState& state, const ImageMapping& map) {
     }
 }
 
-/// Mouse input over the image. cameraOnly (comparison panes): a left press orbits, nothing is
-/// picked or placed.
-bool handleInput(EditorState& state, const Renderer& renderer, const ImageMapping& map, const Gizmo& g,
-                 bool hovered, bool cameraOnly = false) {
+/// A press over the image starts what it means: an orbit (cameraOnly), a chart pixel pick, a
+/// placement, a left drag (luminaire, gizmo or orbit), or a pan (right or middle button).
+bool beginGesture(EditorState& state, const Renderer& renderer, const ImageMapping& map,
+                  const Gizmo& g, bool hovered, bool cameraOnly) {
     const ImGuiIO& io = ImGui::GetIO();
     bool changed = false;
     if (cameraOnly && hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
         state.drag = {};
         if (!state.compare.wipeDragging) state.drag.mode = DragMode::Orbit;
-    } else if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && state.environment.pickingPixel &&
-        state.environment.chartOpen) {
+    } else if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left) &&
+               state.environment.pickingPixel && state.environment.chartOpen) {
         pickChartPixel(state, renderer, map, io.MouseClickedPos[ImGuiMouseButton_Left]);
     } else if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && state.placement.armed) {
         placeAtPixel(state, renderer, map, io.MouseClickedPos[ImGuiMouseButton_Left]);
@@ -346,7 +346,13 @@ bool handleInput(EditorState& state, const Renderer& renderer, const ImageMappin
         state.drag = {};
         state.drag.mode = DragMode::Pan;
     }
+    return changed;
+}
 
+/// The drag under way follows the mouse, or ends when its button is up.
+bool continueDrag(EditorState& state, const Renderer& renderer, const ImageMapping& map) {
+    const ImGuiIO& io = ImGui::GetIO();
+    bool changed = false;
     ImVec2 delta = io.MouseDelta;
     bool moved = delta.x != 0.f || delta.y != 0.f;
     switch (state.drag.mode) {
@@ -354,16 +360,16 @@ bool handleInput(EditorState& state, const Renderer& renderer, const ImageMappin
             if (!ImGui::IsMouseDown(ImGuiMouseButton_Left))
                 state.drag = {};
             else
-                changed = continueLuminaireDrag(state, renderer, map, io.MousePos) || changed;
+                changed = continueLuminaireDrag(state, renderer, map, io.MousePos);
             break;
         case DragMode::Aim:
         case DragMode::Spin:
             if (!ImGui::IsMouseDown(ImGuiMouseButton_Left))
                 state.drag = {};
             else if (moved)
-                changed = (state.drag.mode == DragMode::Aim ? continueAimDrag(state, renderer, map, io.MousePos)
-                                                            : continueSpinDrag(state, renderer, map, io.MousePos)) ||
-                          changed;
+                changed = state.drag.mode == DragMode::Aim
+                              ? continueAimDrag(state, renderer, map, io.MousePos)
+                              : continueSpinDrag(state, renderer, map, io.MousePos);
             break;
         case DragMode::Orbit:
             if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
@@ -388,12 +394,14 @@ bool handleInput(EditorState& state, const Renderer& renderer, const ImageMappin
         case DragMode::None:
             break;
     }
+    return changed;
+}
 
-    if (hovered && io.MouseWheel != 0.f) {
-        applyEdit(state, "Zoom camera", kChangeCamera,
-                  [&](Scene& s) { zoomCamera(s.camera, io.MouseWheel); });
-        changed = true;
-    }
+/// The cursor over the image: a resize arrow on the wipe, a hand where a click picks, places or
+/// grabs something.
+void setCursor(const EditorState& state, const Renderer& renderer, const ImageMapping& map,
+               const Gizmo& g, bool hovered, bool cameraOnly) {
+    const ImGuiIO& io = ImGui::GetIO();
     if (cameraOnly) {
         if (hovered && state.compare.wipeDragging) ImGui::SetMouseCursor(ImGuiMouseCursor_ResizeEW);
     } else if (hovered && ((state.environment.pickingPixel && state.environment.chartOpen) || state.placement.armed)) {
@@ -403,6 +411,21 @@ bool handleInput(EditorState& state, const Renderer& renderer, const ImageMappin
         if (grabbed(g, io.MousePos) != DragMode::None || renderer.pickLuminaire(state.scene, px.x, px.y) >= 0)
             ImGui::SetMouseCursor(ImGuiMouseCursor_Hand);
     }
+}
+
+/// Mouse input over the image. cameraOnly (comparison panes): a left press orbits, nothing is
+/// picked or placed.
+bool handleInput(EditorState& state, const Renderer& renderer, const ImageMapping& map,
+                 const Gizmo& g, bool hovered, bool cameraOnly = false) {
+    const ImGuiIO& io = ImGui::GetIO();
+    bool changed = beginGesture(state, renderer, map, g, hovered, cameraOnly);
+    changed = continueDrag(state, renderer, map) || changed;
+    if (hovered && io.MouseWheel != 0.f) {
+        applyEdit(state, "Zoom camera", kChangeCamera,
+                  [&](Scene& s) { zoomCamera(s.camera, io.MouseWheel); });
+        changed = true;
+    }
+    setCursor(state, renderer, map, g, hovered, cameraOnly);
     return changed;
 }
 

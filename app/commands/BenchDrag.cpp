@@ -22,14 +22,13 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
-#include <sstream>
 
+#include "app/commands/BenchHarness.h"
 #include "app/commands/BenchUtil.h"
 #include "app/commands/Commands.h"
 #include "renderer/ImageFile.h"
 #include "renderer/LivePreview.h"
 #include "renderer/Renderer.h"
-#include "renderer/context/GlContext.h"
 #include "scene/SceneIo.h"
 #include "util/Error.h"
 #include "util/FileOutput.h"
@@ -102,187 +101,236 @@ DragRow drag(Renderer& renderer, Scene& scene, Scene& shown, size_t index, const
     return row;
 }
 
+struct DragOptions {
+    std::string scenePath = std::string(CANDELA_SOURCE_DIR) + "/resources/scenes/editor-room.json";
+    std::string out = "bench-drag";
+    int width = 960, height = 540;  ///< Full image size, pixels.
+    int frames = 60;                ///< Frames of each drag.
+    int referenceSpp = 1024;
+    double timeout = 60.0;  ///< Longest refinement after a release, seconds of rendering.
+    PreviewPolicy policy;
+    int samplesPerFrame = 16;  // as the editor (ui/Editor.cpp)
+};
+
+DragOptions parseOptions(const Args& args) {
+    DragOptions o;
+    BenchFlags()
+        .optional("--drag", o.scenePath)
+        .text("--out", o.out)
+        .size("--size", o.width, o.height)
+        .integer("--frames", o.frames, 4, 100000)
+        .integer("--reference-spp", o.referenceSpp, 16, 1 << 20)
+        .value("--preview-scale",
+               [&o](const std::string& v) {
+                   o.policy.scale = float(parseNumberList("--preview-scale", v).at(0));
+               })
+        .text("--preview-techniques", o.policy.techniques)
+        .integer("--preview-spp", o.policy.samplesPerFrame, 1, 1024)
+        .integer("--samples-per-frame", o.samplesPerFrame, 1, 1024)
+        .value("--timeout",
+               [&o](const std::string& v) { o.timeout = parseInt("--timeout", v, 1, 100000); })
+        .parse(args, [](const std::string& a) { return "bench: unknown option " + a; });
+    if (!(o.policy.scale > 0.f && o.policy.scale <= 1.f))
+        throw InputError("bench: --preview-scale must be in (0, 1]");
+    return o;
+}
+
+/// The reference every image is compared with: the scene's own techniques, converged, with
+/// another seed; tone-mapped against its own mean luminance, which `full` takes too.
+struct DragReference {
+    std::vector<float> linear;
+    std::vector<unsigned char> display;
+};
+
+DragReference renderReference(Renderer& renderer, const Scene& scene, RenderSettings& full,
+                              int referenceSpp, const fs::path& out) {
+    std::fprintf(stderr, "bench: reference, %d spp at %dx%d\n", referenceSpp, full.width,
+                 full.height);
+    RenderSettings settings = withBudget(full, referenceSpp, 977, 16);
+    DragReference ref;
+    ref.linear = renderShot(renderer, scene, settings).linear;
+    full.fixedAverage = settings.fixedAverage = float(meanLuminance(ref.linear));
+    renderer.setSettings(settings);
+    renderer.renderFrame();  // converged: tone-maps again with the fixed average
+    ref.display = renderer.readDisplay();
+    writeImage8((out / "reference.png").string(), full.width, full.height, ref.display);
+    return ref;
+}
+
+/// What the luminaires' drags and releases share.
+struct DragRun {
+    const DragOptions& options;
+    Scene& scene;
+    Scene& shown;            ///< The preview scene, kept in step with `scene`.
+    Renderer& renderer;      ///< The preview's.
+    Renderer& fullRenderer;  ///< The editor's full renderer, apart from the preview's.
+    RenderSettings full, preview;
+    DragReference reference;
+    std::vector<DragRow> drags{};  ///< Preview and full settings, per luminaire.
+    CsvFile release{"luminaire,refines,seconds,spp,mean_delta_e,rel_rmse"};
+    std::vector<double> releaseTimes{};  ///< Seconds to Delta E < 1 (NaN: never), per luminaire.
+    std::vector<double> restartTimes{};  ///< The same when everything restarts.
+    std::vector<double> finalDeltaE{};   ///< Delta E when the moved luminaire's refinement stopped.
+    bool first = true;                   ///< fullRenderer has not seen the scene yet.
+};
+
+/// Luminaire `index` dragged with the preview's settings and with the full ones.
+void measureDrags(DragRun& run, size_t index) {
+    // Compile every variant before timing anything.
+    run.renderer.setSettings(run.preview);
+    run.renderer.update(run.shown, kChangeAll);
+    run.renderer.renderFrame();
+    run.drags.push_back(drag(run.renderer, run.scene, run.shown, index, run.preview,
+                             run.options.frames, "preview"));
+    run.drags.push_back(drag(run.renderer, run.scene, run.scene, index, run.full,
+                             std::max(4, run.options.frames / 6), "full"));
+    for (const DragRow* r : {&run.drags[run.drags.size() - 2], &run.drags.back()})
+        std::fprintf(stderr,
+                     "bench: drag %-16s %-8s %5.1f fps (mean %.1f ms, 95th percentile %.1f ms)\n",
+                     r->luminaire.c_str(), r->mode.c_str(), r->fps(), r->meanMs, r->p95Ms);
+    for (const auto& [pass, ms] : run.drags[run.drags.size() - 2].passMs)
+        std::fprintf(stderr, "bench:   preview pass %-40s %7.2f ms\n", pass.c_str(), ms);
+}
+
+/// Release, as in the editor: the full renderer (its own, apart from the preview's) shows the
+/// luminaire where it was grabbed, a quarter round its circle, refined to the editor's 256 spp
+/// (untimed: the user was looking at it); the preview renders the drag; the luminaire is let go
+/// at its place. Then the full renderer refines only the moved luminaire, every other one keeping
+/// its accumulation, or (`everything`) everything from scratch (what the editor did before
+/// per-luminaire accumulation), pass by pass until Delta E < 1, convergence or the timeout.
+/// Returns the seconds of rendering to Delta E < 1 (NaN: never); `last` is the last pass.
+double measureRelease(DragRun& run, size_t index, bool everything, ReleasePoint& last) {
+    Luminaire& moved = *run.scene.luminaires[index];
+    const char* how = everything ? "everything" : "moved only";
+    glm::dvec3 home = moved.pose.position;
+    moved.pose.position = home + kDragRadius * glm::dvec3(1.0, 0.0, 1.0);
+    run.fullRenderer.setSettings(run.full);
+    run.fullRenderer.update(run.scene, run.first ? kChangeAll : kChangeLuminaires);
+    run.first = false;
+    do run.fullRenderer.renderFrame();
+    while (!run.fullRenderer.converged());
+    moved.pose.position = home;
+    drag(run.renderer, run.scene, run.shown, index, run.preview, 4, "preview");
+    run.fullRenderer.update(run.scene,
+                            everything ? kChangeAll & ~kChangeGeometry : kChangeLuminaires);
+    double rendering = 0.0, reached = std::nan("");
+    while (rendering < run.options.timeout) {
+        auto start = Clock::now();
+        run.fullRenderer.renderFrame();
+        glFinish();
+        rendering += seconds(start, Clock::now());
+        ReleasePoint p{rendering, run.fullRenderer.stats().samplesPerPixel,
+                       meanDeltaE(run.fullRenderer.readDisplay(), run.reference.display),
+                       relRmse(run.fullRenderer.readLinear(), run.reference.linear)};
+        run.release.row('"' + moved.name + '"', how, p.seconds, p.spp, p.deltaE, p.rmse);
+        last = p;
+        if (std::isnan(reached) && p.deltaE < kTargetDeltaE) reached = p.seconds;
+        if (!std::isnan(reached) || run.fullRenderer.converged()) break;
+    }
+    std::fprintf(
+        stderr, "bench: release %-16s (%s refines) Delta E < %.0f after %s (Delta E %.2f)\n",
+        moved.name.c_str(), how, kTargetDeltaE,
+        std::isnan(reached) ? "never" : (std::to_string(reached) + " s").c_str(), last.deltaE);
+    return reached;
+}
+
+void addSummary(BenchSummary& summary, const DragRun& run, const std::string& context) {
+    const DragOptions& o = run.options;
+    const RenderSettings& p = run.preview;
+    summary.add("scene: %s at %dx%d\ncontext: %s\n", o.scenePath.c_str(), o.width, o.height,
+                context.c_str());
+    summary.add(
+        "preview while dragging: %dx%d, %d spp per frame, techniques %s, %d shadow map(s) of %d^2\n"
+        "full: %dx%d, %d spp per frame up to %d, each luminaire's own technique\n"
+        "reference: own techniques at %d spp, another seed\n",
+        p.width, p.height, p.samplesPerFrame, p.techniqueOverride.c_str(), p.shadowMaps.count,
+        p.shadowMaps.resolution, o.width, o.height, run.full.samplesPerFrame, run.full.maxSamples,
+        o.referenceSpp);
+    auto secondsText = [](double t) {
+        return std::isnan(t) ? std::string("never (timeout or converged first)")
+                             : std::to_string(t).substr(0, 5) + " s";
+    };
+    for (size_t i = 0; i + 1 < run.drags.size(); i += 2) {
+        const DragRow& pr = run.drags[i];
+        const DragRow& f = run.drags[i + 1];
+        double release = run.releaseTimes[i / 2], restart = run.restartTimes[i / 2];
+        summary.add(
+            "%-16s dragging %5.1f fps (95th percentile frame %.1f ms; full settings %.1f fps, %s "
+            "slower); "
+            "after release Delta E < 1 in %s refining it alone (Delta E at the end %.2f), %s "
+            "refining "
+            "everything (%s longer)\n",
+            pr.luminaire.c_str(), pr.fps(), pr.p95Ms, f.fps(),
+            formatRatio(f.meanMs / pr.meanMs).c_str(), secondsText(release).c_str(),
+            run.finalDeltaE[i / 2], secondsText(restart).c_str(),
+            formatRatio(restart / release).c_str());
+    }
+}
+
+void writeDragCsv(const fs::path& path, const std::vector<DragRow>& drags) {
+    CsvFile csv("luminaire,mode,frames,mean_ms,p95_ms,worst_ms,fps");
+    for (const DragRow& r : drags)
+        csv.row('"' + r.luminaire + '"', r.mode, r.frames, r.meanMs, r.p95Ms, r.worstMs, r.fps());
+    csv.write(path);
+}
+
+/// Delta E after release against rendering time, a line per luminaire and way of refining.
+void plotRelease(const fs::path& out, const Scene& scene) {
+    std::string body =
+        "set logscale y\nset grid\n"
+        "set xlabel 'seconds after release (rendering only)'\n"
+        "set ylabel 'mean Delta E against the reference'\n"
+        "set key top right\nset arrow from graph 0, first 1 to graph 1, first 1 nohead dt 2\nplot ";
+    for (size_t i = 0; i < scene.luminaires.size(); ++i)
+        for (const std::string how : {"moved only", "everything"}) {
+            const std::string& name = scene.luminaires[i]->name;
+            body += (i || how == "everything" ? ", " : "") +
+                    std::string("'release.csv' using (strcol(1) eq '") + name +
+                    "' && strcol(2) eq '" + how + "' ? $3 : 1/0):5 with linespoints title '" +
+                    name + " (" + how + ")'";
+        }
+    writePlot(out, 900, 420, body + "\n", "plot.png");
+}
+
 }  // namespace
 
 int benchDrag(const Args& args) {
-    std::string scenePath = std::string(CANDELA_SOURCE_DIR) + "/resources/scenes/editor-room.json";
-    std::string outDir = "bench-drag";
-    int width = 960, height = 540, frames = 60, refSpp = 1024;
-    double timeout = 60.0;
-    PreviewPolicy policy;
-    int samplesPerFrame = 16;  // as the editor (ui/Editor.cpp)
-    for (size_t i = 0; i < args.size(); ++i) {
-        const std::string& a = args[i];
-        if (a == "--drag") {
-            if (i + 1 < args.size() && args[i + 1].rfind("--", 0) != 0) scenePath = args[++i];
-        } else if (a == "--out") outDir = flagValue(args, i);
-        else if (a == "--size") parseSize(flagValue(args, i), width, height);
-        else if (a == "--frames") frames = parseInt(a, flagValue(args, i), 4, 100000);
-        else if (a == "--reference-spp") refSpp = parseInt(a, flagValue(args, i), 16, 1 << 20);
-        else if (a == "--preview-scale") policy.scale = float(parseNumberList(a, flagValue(args, i)).at(0));
-        else if (a == "--preview-techniques") policy.techniques = flagValue(args, i);
-        else if (a == "--preview-spp") policy.samplesPerFrame = parseInt(a, flagValue(args, i), 1, 1024);
-        else if (a == "--samples-per-frame") samplesPerFrame = parseInt(a, flagValue(args, i), 1, 1024);
-        else if (a == "--timeout") timeout = parseInt(a, flagValue(args, i), 1, 100000);
-        else throw InputError("bench: unknown option " + a);
-    }
-    fs::create_directories(outDir);
-    Scene scene = loadScene(scenePath);
+    DragOptions o = parseOptions(args);
+    fs::path out = benchFolder(o.out);
+    Scene scene = loadScene(o.scenePath);
     ProtectedInputs inputs(scene.inputFiles());
-    if (scene.luminaires.empty()) throw InputError(scenePath + ": bench --drag needs a scene with luminaires");
-    auto context = createOffscreenContext();
-    ShaderLibrary shaders;
-    Renderer renderer(shaders);
-
+    if (scene.luminaires.empty())
+        throw InputError(o.scenePath + ": bench --drag needs a scene with luminaires");
+    BenchGpu gpu;
     // The editor's settings (ui/Editor.cpp): 16 samples per pass up to 256.
     RenderSettings full;
-    full.width = width;
-    full.height = height;
-    full.samplesPerFrame = samplesPerFrame;
+    full.width = o.width;
+    full.height = o.height;
+    full.samplesPerFrame = o.samplesPerFrame;
     full.maxSamples = 256;
-
-    // The reference: the scene's own techniques, converged, with another seed.
-    std::fprintf(stderr, "bench: reference, %d spp at %dx%d\n", refSpp, width, height);
-    RenderSettings refSettings = full;
-    refSettings.samplesPerFrame = 16;
-    refSettings.maxSamples = refSpp;
-    refSettings.seed = 977;
-    renderer.setSettings(refSettings);
-    renderer.update(scene, kChangeAll);
-    do renderer.renderFrame();
-    while (!renderer.converged());
-    std::vector<float> refLinear = renderer.readLinear();
-    double avg = meanLuminance(refLinear);
-    full.fixedAverage = refSettings.fixedAverage = float(avg);
-    renderer.setSettings(refSettings);
-    renderer.renderFrame();  // converged: tone-maps again with the fixed average
-    std::vector<unsigned char> refDisplay = renderer.readDisplay();
-    writeImage8((fs::path(outDir) / "reference.png").string(), width, height, refDisplay);
-
-    if (!(policy.scale > 0.f && policy.scale <= 1.f)) throw InputError("bench: --preview-scale must be in (0, 1]");
-    RenderSettings preview = previewSettings(full, policy);
+    DragReference reference = renderReference(gpu.renderer, scene, full, o.referenceSpp, out);
+    RenderSettings preview = previewSettings(full, o.policy);
     std::fprintf(stderr, "bench: preview %dx%d, %d spp per frame, techniques %s, %d shadow map(s) of %d^2\n",
                  preview.width, preview.height, preview.samplesPerFrame, preview.techniqueOverride.c_str(),
                  preview.shadowMaps.count, preview.shadowMaps.resolution);
 
     Scene shownWhileDragging = previewScene(scene);
-    std::vector<DragRow> drags;
-    std::ostringstream releaseCsv;
-    releaseCsv << "luminaire,refines,seconds,spp,mean_delta_e,rel_rmse\n";
-    std::vector<std::pair<std::string, double>> releaseTimes;  // seconds to Delta E < 1 (NaN: never)
-    std::vector<std::pair<std::string, double>> restartTimes;  // the same when everything restarts
-    Renderer fullRenderer(shaders);  // the editor's full renderer, apart from the preview's
-    bool first = true;
-    std::vector<std::pair<std::string, double>> finalDeltaE;
+    Renderer fullRenderer(gpu.shaders);
+    DragRun run{o,    scene,   shownWhileDragging,  gpu.renderer, fullRenderer,
+                full, preview, std::move(reference)};
     for (size_t i = 0; i < scene.luminaires.size(); ++i) {
-        const std::string name = scene.luminaires[i]->name;
-        // Compile every variant before timing anything.
-        renderer.setSettings(preview);
-        renderer.update(shownWhileDragging, kChangeAll);
-        renderer.renderFrame();
-        drags.push_back(drag(renderer, scene, shownWhileDragging, i, preview, frames, "preview"));
-        drags.push_back(drag(renderer, scene, scene, i, full, std::max(4, frames / 6), "full"));
-        for (const DragRow* r : {&drags[drags.size() - 2], &drags.back()})
-            std::fprintf(stderr, "bench: drag %-16s %-8s %5.1f fps (mean %.1f ms, 95th percentile %.1f ms)\n",
-                         name.c_str(), r->mode.c_str(), r->fps(), r->meanMs, r->p95Ms);
-        for (const auto& [pass, ms] : drags[drags.size() - 2].passMs)
-            std::fprintf(stderr, "bench:   preview pass %-40s %7.2f ms\n", pass.c_str(), ms);
-
-        // Release, as in the editor: the full renderer (its own, apart from the preview's) shows
-        // the luminaire where it was grabbed, a quarter round its circle, refined to the
-        // editor's 256 spp (untimed: the user was looking at it); the preview renders the drag;
-        // the luminaire is let go at its place. Then the full renderer refines (a) only the
-        // moved luminaire, every other one keeping its accumulation, and (b) for comparison,
-        // everything from scratch (what the editor did before per-luminaire accumulation).
-        Luminaire& moved = *scene.luminaires[i];
-        glm::dvec3 home = moved.pose.position;
-        for (const char* how : {"moved only", "everything"}) {
-            bool everything = std::string(how) == "everything";
-            moved.pose.position = home + kDragRadius * glm::dvec3(1.0, 0.0, 1.0);
-            fullRenderer.setSettings(full);
-            fullRenderer.update(scene, first ? kChangeAll : kChangeLuminaires);
-            first = false;
-            do fullRenderer.renderFrame();
-            while (!fullRenderer.converged());
-            moved.pose.position = home;
-            drag(renderer, scene, shownWhileDragging, i, preview, 4, "preview");
-            fullRenderer.update(scene, everything ? kChangeAll & ~kChangeGeometry : kChangeLuminaires);
-            double rendering = 0.0, reached = std::nan("");
-            ReleasePoint last;
-            while (rendering < timeout) {
-                auto start = Clock::now();
-                fullRenderer.renderFrame();
-                glFinish();
-                rendering += seconds(start, Clock::now());
-                ReleasePoint p{rendering, fullRenderer.stats().samplesPerPixel,
-                               meanDeltaE(fullRenderer.readDisplay(), refDisplay),
-                               relRmse(fullRenderer.readLinear(), refLinear)};
-                releaseCsv << '"' << name << "\"," << how << "," << p.seconds << "," << p.spp << "," << p.deltaE << ","
-                           << p.rmse << "\n";
-                last = p;
-                if (std::isnan(reached) && p.deltaE < kTargetDeltaE) reached = p.seconds;
-                if (!std::isnan(reached) || fullRenderer.converged()) break;
-            }
-            (everything ? restartTimes : releaseTimes).emplace_back(name, reached);
-            if (!everything) finalDeltaE.emplace_back(name, last.deltaE);
-            std::fprintf(stderr, "bench: release %-16s (%s refines) Delta E < %.0f after %s (Delta E %.2f)\n", name.c_str(),
-                         how, kTargetDeltaE, std::isnan(reached) ? "never" : (std::to_string(reached) + " s").c_str(),
-                         last.deltaE);
-        }
+        measureDrags(run, i);
+        ReleasePoint last;
+        run.releaseTimes.push_back(measureRelease(run, i, false, last));
+        run.finalDeltaE.push_back(last.deltaE);
+        run.restartTimes.push_back(measureRelease(run, i, true, last));
     }
-
-    std::ostringstream csv;
-    csv << "luminaire,mode,frames,mean_ms,p95_ms,worst_ms,fps\n";
-    for (const DragRow& r : drags)
-        csv << '"' << r.luminaire << "\"," << r.mode << "," << r.frames << "," << r.meanMs << "," << r.p95Ms << ","
-            << r.worstMs << "," << r.fps() << "\n";
-    writeFileAtomically((fs::path(outDir) / "drag.csv").string(), csv.str());
-    writeFileAtomically((fs::path(outDir) / "release.csv").string(), releaseCsv.str());
-
-    std::ostringstream summary;
-    char line[320];
-    std::snprintf(line, sizeof line, "scene: %s at %dx%d\ncontext: %s\n", scenePath.c_str(), width, height,
-                  context->description().c_str());
-    summary << line;
-    std::snprintf(line, sizeof line,
-                  "preview while dragging: %dx%d, %d spp per frame, techniques %s, %d shadow map(s) of %d^2\n"
-                  "full: %dx%d, %d spp per frame up to %d, each luminaire's own technique\n"
-                  "reference: own techniques at %d spp, another seed\n",
-                  preview.width, preview.height, preview.samplesPerFrame, preview.techniqueOverride.c_str(),
-                  preview.shadowMaps.count, preview.shadowMaps.resolution, width, height, full.samplesPerFrame,
-                  full.maxSamples, refSpp);
-    summary << line;
-    for (size_t i = 0; i + 1 < drags.size(); i += 2) {
-        const DragRow& p = drags[i];
-        const DragRow& f = drags[i + 1];
-        double release = releaseTimes[i / 2].second, restart = restartTimes[i / 2].second;
-        auto secondsText = [](double t) {
-            return std::isnan(t) ? std::string("never (timeout or converged first)") : std::to_string(t).substr(0, 5) + " s";
-        };
-        std::snprintf(line, sizeof line,
-                      "%-16s dragging %5.1f fps (95th percentile frame %.1f ms; full settings %.1f fps, %s slower); "
-                      "after release Delta E < 1 in %s refining it alone (Delta E at the end %.2f), %s refining "
-                      "everything (%s longer)\n",
-                      p.luminaire.c_str(), p.fps(), p.p95Ms, f.fps(), formatRatio(f.meanMs / p.meanMs).c_str(),
-                      secondsText(release).c_str(), finalDeltaE[i / 2].second, secondsText(restart).c_str(),
-                      formatRatio(restart / release).c_str());
-        summary << line;
-    }
-    writeFileAtomically((fs::path(outDir) / "summary.txt").string(), summary.str());
-    std::fputs(summary.str().c_str(), stdout);
-
-    std::ostringstream gp;
-    gp << "set terminal pngcairo size 900,420 noenhanced\nset datafile separator ','\nset logscale y\nset grid\n"
-           "set xlabel 'seconds after release (rendering only)'\nset ylabel 'mean Delta E against the reference'\n"
-           "set key top right\nset arrow from graph 0, first 1 to graph 1, first 1 nohead dt 2\nplot ";
-    for (size_t i = 0; i < scene.luminaires.size(); ++i)
-        for (const char* how : {"moved only", "everything"})
-            gp << (i || std::string(how) == "everything" ? ", " : "") << "'release.csv' using (strcol(1) eq '"
-               << scene.luminaires[i]->name << "' && strcol(2) eq '" << how << "' ? $3 : 1/0):5 with linespoints title '"
-               << scene.luminaires[i]->name << " (" << how << ")'";
-    gp << "\n";
-    writeFileAtomically((fs::path(outDir) / "plot.gp").string(), gp.str());
-    runGnuplot(outDir, "plot.png");
+    writeDragCsv(out / "drag.csv", run.drags);
+    run.release.write(out / "release.csv");
+    BenchSummary summary;
+    addSummary(summary, run, gpu.context->description());
+    summary.write(out);
+    plotRelease(out, scene);
     return 0;
 }
 

@@ -20,12 +20,12 @@
 #include <numbers>
 #include <sstream>
 
+#include "app/commands/BenchHarness.h"
 #include "app/commands/BenchUtil.h"
 #include "luminaires/PhotometricLuminaire.h"
 #include "luminaires/Registry.h"
 #include "renderer/ImageFile.h"
 #include "renderer/Renderer.h"
-#include "renderer/context/GlContext.h"
 #include "util/Error.h"
 #include "util/FileOutput.h"
 
@@ -122,254 +122,348 @@ double diffuseness(const PhotometricData& d) {
     return i0 > 0.0 ? d.fluxFromTable() / (std::numbers::pi * i0) : INFINITY;
 }
 
+struct ProstOptions {
+    std::vector<std::string> files;
+    std::string out = "bench-prost";
+    int size = 128;  ///< Receivers along each side of the ground region.
+    int referenceSpp = 2048;
+};
+
+/// FILE.ies|FILE.ldt|DIR...: a folder stands for every .ies and .ldt file under it.
+void addFiles(const std::string& argument, std::vector<std::string>& files) {
+    if (!fs::is_directory(argument)) {
+        files.push_back(argument);
+        return;
+    }
+    for (const auto& e : fs::recursive_directory_iterator(argument)) {
+        std::string ext = e.path().extension().string();
+        std::transform(ext.begin(), ext.end(), ext.begin(),
+                       [](unsigned char c) { return char(std::tolower(c)); });
+        if (e.is_regular_file() && (ext == ".ies" || ext == ".ldt"))
+            files.push_back(e.path().string());
+    }
+}
+
+ProstOptions parseOptions(const Args& args) {
+    ProstOptions o;
+    BenchFlags()
+        .alone("--prost")
+        .text("--out", o.out)
+        .integer("--size", o.size, 8, 2048)
+        .integer("--reference-spp", o.referenceSpp, 16, 1 << 22)
+        .positional([&o](const std::string& a) { addFiles(a, o.files); })
+        .parse(args, [](const std::string& a) { return "bench --prost: unknown option " + a; });
+    if (o.files.empty())
+        throw InputError("usage: candela bench --prost FILE.ies|FILE.ldt|DIR... [--out DIR] [--size N] "
+                         "[--reference-spp N]");
+    std::sort(o.files.begin(), o.files.end());
+    return o;
+}
+
+/// The techniques Prost evaluates: the photometric ones that are exact in one frame (a fixed set
+/// of samples or a closed form), in registry order, against the Monte Carlo reference.
+std::vector<std::string> evaluatedTechniques() {
+    std::vector<std::string> names;
+    for (const TechniqueInfo& t : techniques())
+        if (t.kind == "photometric" && !t.progressive) names.emplace_back(t.name);
+    return names;
+}
+
+/// Per technique: sums over every (file, height) for the means in the summary.
+struct Totals {
+    double logNmse = 0.0, nearNmse = 0.0, bump = 0.0, ms = 0.0;
+    int count = 0, lowestFast = 0;
+};
+
+/// What the whole run shares.
+struct ProstRun {
+    const ProstOptions& options;
+    std::vector<std::string> techniques;
+    Renderer& renderer;
+    fs::path out;
+    CsvFile results{"file,technique,height_m,rotation_deg,nmse,ueb,leb,near_nmse,bumps,gpu_ms"};
+    CsvFile perHeight{"file,technique,height_m,nmse,near_nmse,bumps,gpu_ms"};
+    BenchSummary summary{};
+    std::map<std::string, Totals> totals{};
+    int configurations = 0, hybridBeatsBoth = 0;
+};
+
+/// One file at one height: its receivers, sheets and the images of every rotation.
+struct HeightRun {
+    HeightRun(const std::string& file_, const Scene& scene_, PhotometricLuminaire& light_,
+              double height_, int size, size_t techniques)
+        : file(file_),
+          scene(scene_),
+          light(light_),
+          height(height_),
+          images(size, int(techniques) + 1, kRotations),
+          errors(size, int(techniques), kRotations) {}
+    const std::string& file;
+    const Scene& scene;  ///< Holds `light` alone.
+    PhotometricLuminaire& light;
+    double height;  ///< Of the opening's lowest edge when it stands vertical, m.
+    std::vector<glm::vec3> points, normals;
+    Sheet images, errors;
+    std::map<std::string, std::vector<double>>
+        allA;                  ///< Each technique's images, concatenated over rotations.
+    std::vector<double> allR;  ///< The reference's.
+    std::vector<char> allNear;
+    std::map<std::string, Metrics> sums;
+};
+
+/// The reference of one rotation and what each technique is measured with.
+struct RotationRef {
+    int index = 0;
+    double angle = 0.0;       ///< Of the opening's normal to the ground's normal, radians.
+    RenderSettings settings;  ///< Its seed.
+    std::vector<double> r;    ///< Reference illuminance per receiver.
+    double a = 1.0;           ///< Tone-mapping scale, the same for every technique.
+    std::vector<char> nearMask;
+    int smoothMaxima = 0;  ///< Local maxima of the smoothed reference near the light.
+};
+
+/// Writes an N x N image of values, tone-mapped with scale a, into a sheet's cell.
+void putGrey(Sheet& sheet, int col, int row, const std::vector<double>& values, double a) {
+    for (int y = 0; y < sheet.cell; ++y)
+        for (int x = 0; x < sheet.cell; ++x) {
+            double v = values[size_t(y * sheet.cell + x)];
+            unsigned char grey =
+                (unsigned char)std::lround(255.0 * std::pow(toneMap(v, a), 1.0 / 2.2));
+            unsigned char* px = sheet.at(col, row, x, y);
+            px[0] = px[1] = px[2] = grey;
+        }
+}
+
+/// The reference, 5 x 5 box (edges: what is inside).
+std::vector<double> smoothed(const std::vector<double>& r, int size) {
+    std::vector<double> smooth(r.size(), 0.0);
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            double sum = 0.0;
+            int count = 0;
+            for (int dy = -2; dy <= 2; ++dy)
+                for (int dx = -2; dx <= 2; ++dx) {
+                    int xx = x + dx, yy = y + dy;
+                    if (xx < 0 || yy < 0 || xx >= size || yy >= size) continue;
+                    sum += r[size_t(yy * size + xx)];
+                    ++count;
+                }
+            smooth[size_t(y * size + x)] = sum / count;
+        }
+    return smooth;
+}
+
+/// Turns the light to rotation `rot` and renders the reference there.
+RotationRef referenceAt(ProstRun& run, HeightRun& h, int rot) {
+    RotationRef ref;
+    ref.index = rot;
+    ref.angle = std::numbers::pi * (0.5 + 0.125 * rot);
+    // The height is that of the opening's lowest edge when it stands vertical (Prost: height 0.1
+    // leaves 0.246 at 3 pi / 4 and 0.6 at pi), so its centre is 0.5 higher.
+    PhotometricLuminaire& lum = h.light;
+    lum.pose.position = {0.0, h.height + 0.5, 0.0};
+    lum.pose.aim = {std::sin(ref.angle), std::cos(ref.angle), 0.0};
+    lum.pose.c0 = {0.0, 0.0, 1.0};
+    ref.settings.techniqueOverride = "reference";
+    ref.settings.seed = uint32_t(1 + rot);
+    run.renderer.setSettings(ref.settings);
+    int size = run.options.size;
+    std::vector<glm::vec3> img =
+        run.renderer.probe(h.scene, h.points, h.normals, run.options.referenceSpp, size);
+    size_t n = img.size();
+    ref.r.resize(n);
+    double mean = 0.0;
+    for (size_t k = 0; k < n; ++k) mean += (ref.r[k] = img[k].y);
+    mean /= double(n);
+    ref.a = mean > 0.0 ? 1.0 / mean : 1.0;
+    ref.nearMask.resize(n);
+    for (size_t k = 0; k < n; ++k)
+        ref.nearMask[k] = glm::length(glm::dvec3(h.points[k]) - lum.pose.position) < 1.5;
+    putGrey(h.images, 0, rot, ref.r, ref.a);
+    ref.smoothMaxima = localMaxima(smoothed(ref.r, size), ref.nearMask, size);
+    h.allR.insert(h.allR.end(), ref.r.begin(), ref.r.end());
+    h.allNear.insert(h.allNear.end(), ref.nearMask.begin(), ref.nearMask.end());
+    return ref;
+}
+
+/// One technique at one rotation: its metrics, a results.csv row, its cells in the sheets.
+void measureTechnique(ProstRun& run, HeightRun& h, const RotationRef& ref, size_t t) {
+    const std::string& name = run.techniques[t];
+    RenderSettings settings = ref.settings;
+    settings.techniqueOverride = name;
+    run.renderer.setSettings(settings);
+    int size = run.options.size;
+    run.renderer.probe(h.scene, h.points, h.normals, 1, size);  // compile and warm up
+    std::vector<glm::vec3> img = run.renderer.probe(h.scene, h.points, h.normals, 1, size);
+    Metrics m;
+    for (const auto& p : run.renderer.stats().passes) m.gpuMs += p.gpuMs;
+    size_t n = img.size();
+    std::vector<double> A(n), diff(n);
+    for (size_t k = 0; k < n; ++k) A[k] = img[k].y;
+    m.nmse = nmse(ref.r, A);
+    m.nearNmse = nmse(ref.r, A, &ref.nearMask);
+    for (size_t k = 0; k < n; ++k) {
+        diff[k] = toneMap(A[k], ref.a) - toneMap(ref.r[k], ref.a);
+        m.ueb = std::max(m.ueb, diff[k]);
+        m.leb = std::min(m.leb, diff[k]);
+    }
+    // Light bumps: local maxima near the light that the reference (smoothed by a 5 x 5 box,
+    // which removes its own noise) does not have.
+    m.bumpiness = std::max(0, localMaxima(A, ref.nearMask, size) - ref.smoothMaxima);
+    putGrey(h.images, int(t) + 1, ref.index, A, ref.a);
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x)
+            errorColour(diff[size_t(y * size + x)], m.ueb, m.leb,
+                        h.errors.at(int(t), ref.index, x, y));
+    run.results.row(h.file, name, h.height, ref.angle * 180.0 / std::numbers::pi, m.nmse, m.ueb,
+                    m.leb, m.nearNmse, m.bumpiness, m.gpuMs);
+    std::vector<double>& all = h.allA[name];
+    all.insert(all.end(), A.begin(), A.end());
+    Metrics& sum = h.sums[name];
+    sum.gpuMs += m.gpuMs / kRotations;
+    sum.bumpiness += m.bumpiness / kRotations;
+}
+
+/// The ground region imaged at the run's height, an orthographic grid of receivers facing up.
+void placeReceivers(HeightRun& h, int size) {
+    Region reg = regionFor(h.height);
+    size_t n = size_t(size) * size_t(size);
+    h.points.resize(n);
+    h.normals.assign(n, glm::vec3(0, 1, 0));
+    for (int j = 0; j < size; ++j)
+        for (int i = 0; i < size; ++i)
+            h.points[size_t(j) * size_t(size) + size_t(i)] =
+                glm::vec3(float(reg.x0 + (i + 0.5) / size * (reg.x1 - reg.x0)), 0.f,
+                          float(reg.z0 + (j + 0.5) / size * (reg.z1 - reg.z0)));
+}
+
+/// The height's sheets, and its NMSE over all its rotations (the thesis' Fig. 6.7-6.10
+/// entries) in nmse_by_height.csv, the totals and the summary.
+void summarizeHeight(ProstRun& run, HeightRun& h, const std::string& stem) {
+    std::string base = stem + "_h" + std::to_string(int(std::lround(h.height * 10)));
+    for (const auto& [sheet, suffix] :
+         {std::pair{&h.images, "_images.png"}, std::pair{&h.errors, "_errors.png"}})
+        writeImage8((run.out / (base + suffix)).string(), sheet->cell * sheet->cols,
+                    sheet->cell * sheet->rows, sheet->rgb);
+    ++run.configurations;
+    std::string best;
+    double bestNmse = INFINITY, hybrid = 0, scattered = 0, poisson = 0;
+    run.summary.add("  height %.1f m:", h.height);
+    for (const std::string& t : run.techniques) {
+        Metrics& s = h.sums[t];
+        s.nmse = nmse(h.allR, h.allA[t]);
+        s.nearNmse = nmse(h.allR, h.allA[t], &h.allNear);
+        run.perHeight.row(h.file, t, h.height, s.nmse, s.nearNmse, s.bumpiness, s.gpuMs);
+        Totals& tt = run.totals[t];
+        tt.logNmse += std::log(std::max(s.nmse, 1e-12));
+        tt.nearNmse += s.nearNmse;
+        tt.bump += s.bumpiness;
+        tt.ms += s.gpuMs;
+        ++tt.count;
+        // Prost's comparison (Sec. 6.6): the lowest error among the fixed techniques, and the
+        // hybrid against the two it blends.
+        if (t != "hybrid" && s.nmse < bestNmse) bestNmse = s.nmse, best = t;
+        if (t == "hybrid") hybrid = s.nmse;
+        if (t == "scattered") scattered = s.nmse;
+        if (t == "mc-poisson-24") poisson = s.nmse;
+        run.summary.add(" %s %.3g", t.c_str(), s.nmse);
+    }
+    ++run.totals[best].lowestFast;
+    if (hybrid <= scattered && hybrid <= poisson) ++run.hybridBeatsBoth;
+    run.summary.addText("  (lowest: " + best + ")\n");
+    std::fprintf(stderr, "bench --prost: %s height %.1f done\n", h.file.c_str(), h.height);
+}
+
+/// Every height and rotation of one file; a file that does not load is skipped and named.
+void benchFile(ProstRun& run, const std::string& file, ProtectedInputs& inputs) {
+    auto light = std::make_unique<PhotometricLuminaire>();
+    try {
+        light->data = PhotometricLuminaire::load(file);
+        inputs.add(light->sourceFiles());  // its TILT file too
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "bench --prost: skipping %s\n", e.what());
+        run.summary.addText(std::string("skipped: ") + e.what() + "\n");
+        return;
+    }
+    light->file = file;
+    light->openingOverride = {1.0, 1.0};  // the normalised light-emitting object
+    light->updateOpening();
+    Scene scene;
+    scene.luminaires.push_back(std::move(light));
+    auto& lum = static_cast<PhotometricLuminaire&>(*scene.luminaires[0]);
+    std::string stem = fs::path(file).stem().string();
+    for (char& c : stem)
+        if (!std::isalnum((unsigned char)c) && c != '-' && c != '_') c = '_';
+    run.summary.add("\n%s: flux %.5g lm, diffuseness (flux / pi I(0)) %.3g\n", file.c_str(),
+                    lum.data->fluxFromTable(), diffuseness(*lum.data));
+    for (double height : kHeights) {
+        HeightRun h(file, scene, lum, height, run.options.size, run.techniques.size());
+        placeReceivers(h, run.options.size);
+        for (int rot = 0; rot < kRotations; ++rot) {
+            RotationRef ref = referenceAt(run, h, rot);
+            for (size_t t = 0; t < run.techniques.size(); ++t) measureTechnique(run, h, ref, t);
+        }
+        summarizeHeight(run, h, stem);
+    }
+}
+
+void addTotals(ProstRun& run) {
+    run.summary.add(
+        "\nover %d (file, height) configurations: technique, geometric-mean NMSE, mean near-field "
+        "NMSE, "
+        "mean light bumps per image, mean GPU ms per image, times lowest NMSE\n",
+        run.configurations);
+    for (const std::string& t : run.techniques) {
+        const Totals& tt = run.totals[t];
+        if (tt.count == 0) continue;
+        run.summary.add("  %-14s %10.4g %10.4g %10.4g %9.2f %4d\n", t.c_str(),
+                        std::exp(tt.logNmse / tt.count), tt.nearNmse / tt.count, tt.bump / tt.count,
+                        tt.ms / tt.count, tt.lowestFast);
+    }
+    run.summary.add(
+        "hybrid has an NMSE no larger than both scattered and mc-poisson-24 in %d of %d\n",
+        run.hybridBeatsBoth, run.configurations);
+}
+
+/// NMSE against GPU time per (file, height, technique), and NMSE by height.
+void plotNmse(const fs::path& out, const std::vector<std::string>& techniques) {
+    std::string list;
+    for (const std::string& t : techniques) list += (list.empty() ? "" : " ") + t;
+    writePlot(out, 1000, 420,
+              "set logscale y\nset format y '%g'\nset grid\nset key outside right\nset multiplot "
+              "layout 1,2\n"
+              "set logscale x\nset xlabel 'GPU time of the shading pass per image (ms)'\nset "
+              "ylabel 'NMSE (Eq. 6.7)'\n"
+              "plot for [t in '" +
+                  list +
+                  "'] 'nmse_by_height.csv' using (strcol(2) eq t ? $7 : 1/0):4 "
+                  "with points pointsize 1 title t\n"
+                  "unset logscale x\nset xlabel 'height of the light (m)'\nset xrange [0:5.6]\n"
+                  "plot for [t in '" +
+                  list + "'] 'nmse_by_height.csv' using (strcol(2) eq t ? $3 + 0.05 * (strstrt('" +
+                  list + "', t) % 7) : 1/0):4 with points pointsize 1 notitle\nunset multiplot\n",
+              "nmse.png");
+}
+
 }  // namespace
 
 int benchProst(const Args& args) {
-    std::vector<std::string> files;
-    std::string outDir = "bench-prost";
-    int size = 128, refSpp = 2048;
-    for (size_t i = 0; i < args.size(); ++i) {
-        const std::string& a = args[i];
-        if (a == "--prost") continue;
-        if (a == "--out") outDir = flagValue(args, i);
-        else if (a == "--size") size = parseInt(a, flagValue(args, i), 8, 2048);
-        else if (a == "--reference-spp") refSpp = parseInt(a, flagValue(args, i), 16, 1 << 22);
-        else if (a.rfind("--", 0) == 0) throw InputError("bench --prost: unknown option " + a);
-        else if (fs::is_directory(a)) {
-            for (const auto& e : fs::recursive_directory_iterator(a)) {
-                std::string ext = e.path().extension().string();
-                std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-                if (e.is_regular_file() && (ext == ".ies" || ext == ".ldt")) files.push_back(e.path().string());
-            }
-        } else files.push_back(a);
-    }
-    if (files.empty())
-        throw InputError("usage: candela bench --prost FILE.ies|FILE.ldt|DIR... [--out DIR] [--size N] "
-                         "[--reference-spp N]");
-    std::sort(files.begin(), files.end());
-    ProtectedInputs inputs(files);  // no result file may replace a photometric file
-    fs::create_directories(outDir);
-
-    std::vector<std::string> techniques;
-    for (const auto& t : candela::techniques())
-        if (t.kind == "photometric" && t.name != "reference") techniques.emplace_back(t.name);
-
-    auto context = createOffscreenContext();
-    ShaderLibrary shaders;
-    Renderer renderer(shaders);
-
-    std::ostringstream csv;  // results.csv, written when complete
-    csv << "file,technique,height_m,rotation_deg,nmse,ueb,leb,near_nmse,bumps,gpu_ms\n";
-    std::ostringstream perHeight;  // nmse_by_height.csv
-    perHeight << "file,technique,height_m,nmse,near_nmse,bumps,gpu_ms\n";
-    std::ostringstream summary;
-    char line[512];
-    std::snprintf(line, sizeof line,
-                  "bench --prost: %zu files, %dx%d receivers per image, reference %d spp, context %s\n",
-                  files.size(), size, size, refSpp, context->description().c_str());
-    summary << line;
-
-    // Per technique: sums over every (file, height) for the means in the summary.
-    struct Totals {
-        double logNmse = 0.0, nearNmse = 0.0, bump = 0.0, ms = 0.0;
-        int count = 0, lowestFast = 0;
-    };
-    std::map<std::string, Totals> totals;
-    int configurations = 0, hybridBeatsBoth = 0;
-
-    const size_t N = size_t(size) * size_t(size);
-    for (const std::string& file : files) {
-        auto light = std::make_unique<PhotometricLuminaire>();
-        try {
-            light->data = PhotometricLuminaire::load(file);
-            inputs.add(light->sourceFiles());  // its TILT file too
-        } catch (const std::exception& e) {
-            std::fprintf(stderr, "bench --prost: skipping %s\n", e.what());
-            summary << "skipped: " << e.what() << "\n";
-            continue;
-        }
-        light->file = file;
-        light->openingOverride = {1.0, 1.0};  // the normalised light-emitting object
-        light->updateOpening();
-        Scene scene;
-        scene.luminaires.push_back(std::move(light));
-        auto& lum = static_cast<PhotometricLuminaire&>(*scene.luminaires[0]);
-        std::string stem = fs::path(file).stem().string();
-        for (char& c : stem)
-            if (!std::isalnum((unsigned char)c) && c != '-' && c != '_') c = '_';
-        std::snprintf(line, sizeof line, "\n%s: flux %.5g lm, diffuseness (flux / pi I(0)) %.3g\n", file.c_str(),
-                      lum.data->fluxFromTable(), diffuseness(*lum.data));
-        summary << line;
-
-        for (double height : kHeights) {
-            Region reg = regionFor(height);
-            std::vector<glm::vec3> points(N), normals(N, glm::vec3(0, 1, 0));
-            for (int j = 0; j < size; ++j)
-                for (int i = 0; i < size; ++i)
-                    points[size_t(j) * size_t(size) + size_t(i)] =
-                        glm::vec3(float(reg.x0 + (i + 0.5) / size * (reg.x1 - reg.x0)), 0.f,
-                                  float(reg.z0 + (j + 0.5) / size * (reg.z1 - reg.z0)));
-            Sheet images(size, int(techniques.size()) + 1, kRotations);
-            Sheet errors(size, int(techniques.size()), kRotations);
-            std::map<std::string, std::vector<double>> allA;  // concatenated over rotations
-            std::vector<double> allR;
-            std::vector<char> allNear;
-            std::map<std::string, Metrics> sums;
-            for (int rot = 0; rot < kRotations; ++rot) {
-                double angle = std::numbers::pi * (0.5 + 0.125 * rot);
-                // The height is that of the opening's lowest edge when it stands vertical (Prost:
-                // height 0.1 leaves 0.246 at 3 pi / 4 and 0.6 at pi), so its centre is 0.5 higher.
-                lum.pose.position = {0.0, height + 0.5, 0.0};
-                lum.pose.aim = {std::sin(angle), std::cos(angle), 0.0};
-                lum.pose.c0 = {0.0, 0.0, 1.0};
-                RenderSettings settings;
-                settings.techniqueOverride = "reference";
-                settings.seed = uint32_t(1 + rot);
-                renderer.setSettings(settings);
-                std::vector<glm::vec3> ref = renderer.probe(scene, points, normals, refSpp, size);
-                std::vector<double> r(N);
-                double mean = 0.0;
-                for (size_t k = 0; k < N; ++k) mean += (r[k] = ref[k].y);
-                mean /= double(N);
-                double a = mean > 0.0 ? 1.0 / mean : 1.0;  // one tone-mapping scale for every technique
-                std::vector<char> nearMask(N);
-                for (size_t k = 0; k < N; ++k) {
-                    glm::dvec3 d = glm::dvec3(points[k]) - lum.pose.position;
-                    nearMask[k] = glm::length(d) < 1.5;
-                }
-                for (int y = 0; y < size; ++y)
-                    for (int x = 0; x < size; ++x) {
-                        unsigned char v = (unsigned char)std::lround(255.0 * std::pow(toneMap(r[size_t(y * size + x)], a), 1.0 / 2.2));
-                        unsigned char* px = images.at(0, rot, x, y);
-                        px[0] = px[1] = px[2] = v;
-                    }
-                std::vector<double> smooth(N, 0.0);  // the reference, 5 x 5 box (edges: what is inside)
-                for (int y = 0; y < size; ++y)
-                    for (int x = 0; x < size; ++x) {
-                        double sum = 0.0;
-                        int count = 0;
-                        for (int dy = -2; dy <= 2; ++dy)
-                            for (int dx = -2; dx <= 2; ++dx) {
-                                int xx = x + dx, yy = y + dy;
-                                if (xx < 0 || yy < 0 || xx >= size || yy >= size) continue;
-                                sum += r[size_t(yy * size + xx)];
-                                ++count;
-                            }
-                        smooth[size_t(y * size + x)] = sum / count;
-                    }
-                int smoothMaxima = localMaxima(smooth, nearMask, size);
-                allR.insert(allR.end(), r.begin(), r.end());
-                allNear.insert(allNear.end(), nearMask.begin(), nearMask.end());
-                for (size_t t = 0; t < techniques.size(); ++t) {
-                    settings.techniqueOverride = techniques[t];
-                    renderer.setSettings(settings);
-                    renderer.probe(scene, points, normals, 1, size);  // compile and warm up
-                    std::vector<glm::vec3> img = renderer.probe(scene, points, normals, 1, size);
-                    Metrics m;
-                    for (const auto& p : renderer.stats().passes) m.gpuMs += p.gpuMs;
-                    std::vector<double> A(N);
-                    for (size_t k = 0; k < N; ++k) A[k] = img[k].y;
-                    m.nmse = nmse(r, A);
-                    m.nearNmse = nmse(r, A, &nearMask);
-                    std::vector<double> diff(N);
-                    m.ueb = 0.0;
-                    m.leb = 0.0;
-                    for (size_t k = 0; k < N; ++k) {
-                        diff[k] = toneMap(A[k], a) - toneMap(r[k], a);
-                        m.ueb = std::max(m.ueb, diff[k]);
-                        m.leb = std::min(m.leb, diff[k]);
-                    }
-                    // Light bumps: local maxima near the light that the reference (smoothed by
-                    // a 5 x 5 box, which removes its own noise) does not have.
-                    m.bumpiness = std::max(0, localMaxima(A, nearMask, size) - smoothMaxima);
-                    for (int y = 0; y < size; ++y)
-                        for (int x = 0; x < size; ++x) {
-                            size_t k = size_t(y * size + x);
-                            unsigned char v = (unsigned char)std::lround(255.0 * std::pow(toneMap(A[k], a), 1.0 / 2.2));
-                            unsigned char* px = images.at(int(t) + 1, rot, x, y);
-                            px[0] = px[1] = px[2] = v;
-                            errorColour(diff[k], m.ueb, m.leb, errors.at(int(t), rot, x, y));
-                        }
-                    csv << file << "," << techniques[t] << "," << height << "," << angle * 180.0 / std::numbers::pi << ","
-                        << m.nmse << "," << m.ueb << "," << m.leb << "," << m.nearNmse << "," << m.bumpiness << ","
-                        << m.gpuMs << "\n";
-                    auto& acc = allA[techniques[t]];
-                    acc.insert(acc.end(), A.begin(), A.end());
-                    Metrics& s = sums[techniques[t]];
-                    s.gpuMs += m.gpuMs / kRotations;
-                    s.bumpiness += m.bumpiness / kRotations;
-                }
-            }
-            std::string base = stem + "_h" + std::to_string(int(std::lround(height * 10)));
-            writeImage8((fs::path(outDir) / (base + "_images.png")).string(), images.cell * images.cols,
-                        images.cell * images.rows, images.rgb);
-            writeImage8((fs::path(outDir) / (base + "_errors.png")).string(), errors.cell * errors.cols,
-                        errors.cell * errors.rows, errors.rgb);
-            // The height's NMSE over all its rotations (the thesis' Fig. 6.7-6.10 entries).
-            ++configurations;
-            std::string best;
-            double bestNmse = INFINITY, hybrid = 0, scattered = 0, poisson = 0;
-            std::snprintf(line, sizeof line, "  height %.1f m:", height);
-            summary << line;
-            for (const std::string& t : techniques) {
-                Metrics& s = sums[t];
-                s.nmse = nmse(allR, allA[t]);
-                s.nearNmse = nmse(allR, allA[t], &allNear);
-                perHeight << file << "," << t << "," << height << "," << s.nmse << "," << s.nearNmse << ","
-                          << s.bumpiness << "," << s.gpuMs << "\n";
-                Totals& tt = totals[t];
-                tt.logNmse += std::log(std::max(s.nmse, 1e-12));
-                tt.nearNmse += s.nearNmse;
-                tt.bump += s.bumpiness;
-                tt.ms += s.gpuMs;
-                ++tt.count;
-                if (t != "hybrid" && s.nmse < bestNmse) bestNmse = s.nmse, best = t;
-                if (t == "hybrid") hybrid = s.nmse;
-                if (t == "scattered") scattered = s.nmse;
-                if (t == "mc-poisson-24") poisson = s.nmse;
-                std::snprintf(line, sizeof line, " %s %.3g", t.c_str(), s.nmse);
-                summary << line;
-            }
-            ++totals[best].lowestFast;
-            if (hybrid <= scattered && hybrid <= poisson) ++hybridBeatsBoth;
-            summary << "  (lowest: " << best << ")\n";
-            std::fprintf(stderr, "bench --prost: %s height %.1f done\n", file.c_str(), height);
-        }
-    }
-    writeFileAtomically((fs::path(outDir) / "nmse_by_height.csv").string(), perHeight.str());
-    writeFileAtomically((fs::path(outDir) / "results.csv").string(), csv.str());
-
-    summary << "\nover " << configurations << " (file, height) configurations: technique, geometric-mean NMSE, "
-               "mean near-field NMSE, mean light bumps per image, mean GPU ms per image, times lowest NMSE\n";
-    for (const std::string& t : techniques) {
-        const Totals& tt = totals[t];
-        if (tt.count == 0) continue;
-        std::snprintf(line, sizeof line, "  %-14s %10.4g %10.4g %10.4g %9.2f %4d\n", t.c_str(),
-                      std::exp(tt.logNmse / tt.count), tt.nearNmse / tt.count, tt.bump / tt.count, tt.ms / tt.count,
-                      tt.lowestFast);
-        summary << line;
-    }
-    std::snprintf(line, sizeof line, "hybrid has an NMSE no larger than both scattered and mc-poisson-24 in %d of %d\n",
-                  hybridBeatsBoth, configurations);
-    summary << line;
-    writeFileAtomically((fs::path(outDir) / "summary.txt").string(), summary.str());
-    std::fputs(summary.str().c_str(), stdout);
-
-    // NMSE against GPU time per (file, height, technique), and NMSE by height.
-    std::ostringstream gp;
-    std::string list;
-    for (const std::string& t : techniques) list += (list.empty() ? "" : " ") + t;
-    gp << "set terminal pngcairo size 1000,420 noenhanced\nset datafile separator ','\nset logscale y\nset format y '%g'\n"
-          "set grid\nset key outside right\nset multiplot layout 1,2\n"
-          "set logscale x\nset xlabel 'GPU time of the shading pass per image (ms)'\nset ylabel 'NMSE (Eq. 6.7)'\n"
-          "plot for [t in '" << list << "'] 'nmse_by_height.csv' using (strcol(2) eq t ? $7 : 1/0):4 "
-          "with points pointsize 1 title t\n"
-          "unset logscale x\nset xlabel 'height of the light (m)'\nset xrange [0:5.6]\n"
-          "plot for [t in '" << list << "'] 'nmse_by_height.csv' using (strcol(2) eq t ? $3 + 0.05 * (strstrt('"
-       << list << "', t) % 7) : 1/0):4 with points pointsize 1 notitle\nunset multiplot\n";
-    writeFileAtomically((fs::path(outDir) / "plot.gp").string(), gp.str());
-    runGnuplot(outDir, "nmse.png");
-    std::printf("wrote %s/results.csv, nmse_by_height.csv, summary.txt and image sheets\n", outDir.c_str());
+    ProstOptions o = parseOptions(args);
+    ProtectedInputs inputs(o.files);  // no result file may replace a photometric file
+    fs::path out = benchFolder(o.out);
+    BenchGpu gpu;
+    ProstRun run{o, evaluatedTechniques(), gpu.renderer, out};
+    run.summary.add(
+        "bench --prost: %zu files, %dx%d receivers per image, reference %d spp, context %s\n",
+        o.files.size(), o.size, o.size, o.referenceSpp, gpu.context->description().c_str());
+    for (const std::string& file : o.files) benchFile(run, file, inputs);
+    run.perHeight.write(out / "nmse_by_height.csv");
+    run.results.write(out / "results.csv");
+    addTotals(run);
+    run.summary.write(out);
+    plotNmse(out, run.techniques);
+    std::printf("wrote %s/results.csv, nmse_by_height.csv, summary.txt and image sheets\n",
+                o.out.c_str());
     return 0;
 }
 

@@ -11,11 +11,11 @@
 #include <filesystem>
 #include <sstream>
 
+#include "app/commands/BenchHarness.h"
 #include "app/commands/BenchUtil.h"
 #include "app/commands/Commands.h"
 #include "renderer/ImageFile.h"
 #include "renderer/Renderer.h"
-#include "renderer/context/GlContext.h"
 #include "scene/SceneIo.h"
 #include "util/Error.h"
 #include "util/FileOutput.h"
@@ -26,130 +26,160 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct ShadowShot {
-    std::vector<float> linear;
-    std::vector<unsigned char> display;
-    double shadowMs = 0.0;  ///< GPU time of the shadow-map passes
-    double shadeMs = 0.0;   ///< GPU time of the shading passes
-    int maps = 0;           ///< Maps per luminaire actually rendered (the first luminaire's)
+struct ShadowOptions {
+    std::string scenePath =
+        std::string(CANDELA_SOURCE_DIR) + "/resources/scenes/headlight-room.json";
+    std::string out = "bench-shadows";
+    std::vector<int> counts = {1,  4,  9, 16,
+                               25, 49, 0};  ///< Maps per luminaire swept (0: one per cell).
+    std::vector<int> sizes = {32,  64,  128,
+                              192, 256, 512};  ///< Cube-face resolutions swept, texels.
+    int spp = 256;
+    int width = 480, height = 270;  ///< Image size, pixels.
+    int fixedCount = 49;            ///< Maps while the resolution is swept.
+    int fixedSize = 192;            ///< Resolution while the count is swept, texels.
 };
 
-ShadowShot shoot(Renderer& renderer, const Scene& scene, RenderSettings settings, const std::string& technique,
-                 int spp, uint32_t seed) {
-    settings.techniqueOverride = technique;
-    settings.samplesPerFrame = std::min(spp, 16);
-    settings.maxSamples = spp;
-    settings.seed = seed;
-    renderer.setSettings(settings);
-    renderer.update(scene, kChangeAll);
-    ShadowShot shot;
-    do {
-        renderer.renderFrame();
-        for (const auto& p : renderer.stats().passes) {
-            if (p.name.rfind("shadow:", 0) == 0) shot.shadowMs += p.gpuMs;
-            else if (p.name.rfind("shade:", 0) == 0) shot.shadeMs += p.gpuMs;
-        }
-    } while (!renderer.converged());
-    shot.linear = renderer.readLinear();
-    shot.display = renderer.readDisplay();
+ShadowOptions parseOptions(const Args& args) {
+    ShadowOptions o;
+    BenchFlags()
+        .optional("--shadows", o.scenePath)
+        .text("--out", o.out)
+        .integer("--spp", o.spp, 1, 1 << 20)
+        .size("--size", o.width, o.height)
+        .value("--maps",
+               [&o](const std::string& v) {
+                   o.counts.clear();
+                   for (int c : parseNumberList("--maps", v)) o.counts.push_back(c);
+               })
+        .counts("--map-sizes", o.sizes)
+        .integer("--count-at", o.fixedSize, 8, 4096)
+        .integer("--size-at", o.fixedCount, 0, 4096)
+        .parse(args, [](const std::string&) {
+            return "usage: candela bench --shadows [SCENE.json] [--out DIR] [--spp N] [--size WxH] "
+                   "[--maps 1,4,...,0] [--map-sizes 32,64,...] [--count-at R] [--size-at N]";
+        });
+    return o;
+}
+
+/// Every image: restricted-cdf (or its ray-traced twin) with the same seed, so all of them draw
+/// the same light samples and differ only in visibility. The two names are the comparison this
+/// bench makes (Lu et al. 2015, Sec. 6.2: the per-cell maps against exact visibility), not a
+/// list taken from the registry.
+constexpr uint32_t kSeed = 7;
+constexpr const char* kMapped = "restricted-cdf";
+constexpr const char* kRayTraced = "restricted-cdf-raytraced";
+
+/// One image, timed, with the maps per luminaire actually rendered (the first light field's).
+Shot shoot(Renderer& renderer, const Scene& scene, const RenderSettings& settings,
+           const std::string& technique, int spp, uint32_t seed, int& maps) {
+    RenderSettings s =
+        withBudget(withTechnique(settings, TechniqueSlot::Luminaires, technique), spp, seed, 16);
+    Shot shot = renderShot(renderer, scene, s);
     for (const auto& lum : scene.luminaires)
         if (lum->kind() == "lightfield") {
-            shot.maps = int(lum->shadowLights(settings.shadowMaps.count).lights.size());
+            maps = int(lum->shadowLights(settings.shadowMaps.count).lights.size());
             break;
         }
     return shot;
 }
 
+/// shadows.csv, rewritten whole after every row (a long sweep shows its progress), and the images.
+struct ShadowSweep {
+    Renderer& renderer;
+    const Scene& scene;
+    const RenderSettings& settings;
+    const ShadowOptions& options;
+    const Shot& reference;
+    fs::path out;
+    CsvFile csv{"sweep,maps_requested,maps,resolution,shadow_ms,shade_ms,mean_delta_e,rel_rmse"};
+};
+
+/// One image with `count` maps of `size`^2 texels per luminaire against the ray-traced one.
+void measure(ShadowSweep& sweep, const char* name, int count, int size) {
+    RenderSettings s = sweep.settings;
+    s.shadowMaps.count = count;
+    s.shadowMaps.resolution = size;
+    int maps = 0;
+    Shot shot = shoot(sweep.renderer, sweep.scene, s, kMapped, sweep.options.spp, kSeed, maps);
+    double dE = meanDeltaE(shot.display, sweep.reference.display);
+    double rmse = relRmse(shot.linear, sweep.reference.linear);
+    double shadowMs = shot.gpuMs("shadow:"), shadeMs = shot.gpuMs("shade:");
+    sweep.csv.line(formatText("%s,%d,%d,%d,%.3f,%.1f,%.4f,%.5f", name, count, maps, size, shadowMs,
+                              shadeMs, dE, rmse));
+    sweep.csv.write(sweep.out / "shadows.csv");
+    std::printf(
+        "%-10s %4d maps of %4d^2: shadow pass %8.1f ms, shading %8.0f ms, Delta E %.3f, rel. RMSE "
+        "%.4f\n",
+        name, maps, size, shadowMs, shadeMs, dE, rmse);
+    std::fflush(stdout);
+    writeImage8((sweep.out / formatText("maps-%d-%d.png", maps, size)).string(), s.width, s.height,
+                shot.display);
+}
+
+void plotSweeps(const fs::path& out, const ShadowOptions& o, double noiseDeltaE) {
+    std::string noise =
+        formatText("%g title 'noise: ray-traced, another seed' dt 2\n", noiseDeltaE);
+    writePlot(out, 1000, 420,
+              "set grid\nset multiplot layout 1,2\nset logscale x\nset ylabel 'mean Delta E "
+              "against ray-traced'\n" +
+                  formatText("set xlabel 'shadow maps per luminaire (%d^2 faces)'\n", o.fixedSize) +
+                  "plot 'shadows.csv' using (strcol(1) eq 'count' ? $3 : 1/0):7 with linespoints "
+                  "pointsize 1.5 "
+                  "title 'shadow maps', " +
+                  noise +
+                  formatText("set xlabel 'cube-face resolution (%d maps)'\nset logscale x 2\n",
+                             o.fixedCount) +
+                  "plot 'shadows.csv' using (strcol(1) eq 'resolution' ? $4 : 1/0):7 with "
+                  "linespoints pointsize 1.5 "
+                  "title 'shadow maps', " +
+                  noise + "unset multiplot\n",
+              "plot.png");
+}
+
 }  // namespace
 
 int benchShadows(const Args& args) {
-    std::string scenePath = std::string(CANDELA_SOURCE_DIR) + "/resources/scenes/headlight-room.json";
-    std::string outDir = "bench-shadows";
-    std::vector<int> counts = {1, 4, 9, 16, 25, 49, 0};
-    std::vector<int> sizes = {32, 64, 128, 192, 256, 512};
-    int spp = 256, width = 480, height = 270, fixedCount = 49, fixedSize = 192;
-    for (size_t i = 0; i < args.size(); ++i) {
-        const std::string& a = args[i];
-        if (a == "--shadows") {
-            if (i + 1 < args.size() && args[i + 1].rfind("--", 0) != 0) scenePath = args[++i];
-        } else if (a == "--out") outDir = flagValue(args, i);
-        else if (a == "--spp") spp = parseInt(a, flagValue(args, i), 1, 1 << 20);
-        else if (a == "--size") parseSize(flagValue(args, i), width, height);
-        else if (a == "--maps") {
-            counts.clear();
-            for (int c : parseNumberList(a, flagValue(args, i))) counts.push_back(c);
-        } else if (a == "--map-sizes") sizes = parseList(flagValue(args, i));
-        else if (a == "--count-at") fixedSize = parseInt(a, flagValue(args, i), 8, 4096);
-        else if (a == "--size-at") fixedCount = parseInt(a, flagValue(args, i), 0, 4096);
-        else throw InputError("usage: candela bench --shadows [SCENE.json] [--out DIR] [--spp N] [--size WxH] "
-                              "[--maps 1,4,...,0] [--map-sizes 32,64,...] [--count-at R] [--size-at N]");
-    }
-    Scene scene = loadScene(scenePath);
+    ShadowOptions o = parseOptions(args);
+    Scene scene = loadScene(o.scenePath);
     ProtectedInputs inputs(scene.inputFiles());
     bool any = false;
     for (const auto& lum : scene.luminaires) any = any || lum->kind() == "lightfield";
-    if (!any) throw InputError(scenePath + ": the shadow bench needs a light-field luminaire in the scene");
-    fs::create_directories(outDir);
-    const fs::path out(outDir);
-    auto context = createOffscreenContext();
-    ShaderLibrary shaders;
-    Renderer renderer(shaders);
+    if (!any)
+        throw InputError(o.scenePath +
+                         ": the shadow bench needs a light-field luminaire in the scene");
+    fs::path out = benchFolder(o.out);
+    BenchGpu gpu;
     RenderSettings settings;
-    settings.width = width;
-    settings.height = height;
-    const uint32_t seed = 7;
+    settings.width = o.width;
+    settings.height = o.height;
 
-    std::printf("shadow bench: %s, %dx%d, %d spp\n", scenePath.c_str(), width, height, spp);
-    ShadowShot ref = shoot(renderer, scene, settings, "restricted-cdf-raytraced", spp, seed);
-    writeImage8((out / "raytraced.png").string(), width, height, ref.display);
-    ShadowShot other = shoot(renderer, scene, settings, "restricted-cdf-raytraced", spp, seed + 1);
-    double noiseDeltaE = meanDeltaE(other.display, ref.display);
-    double noiseRmse = relRmse(other.linear, ref.linear);
-    std::printf("ray-traced: shading %.0f ms; another seed: Delta E %.3f, rel. RMSE %.4f\n", ref.shadeMs,
-                noiseDeltaE, noiseRmse);
+    std::printf("shadow bench: %s, %dx%d, %d spp\n", o.scenePath.c_str(), o.width, o.height, o.spp);
+    int maps = 0;
+    Shot ref = shoot(gpu.renderer, scene, settings, kRayTraced, o.spp, kSeed, maps);
+    writeImage8((out / "raytraced.png").string(), o.width, o.height, ref.display);
+    Shot other = shoot(gpu.renderer, scene, settings, kRayTraced, o.spp, kSeed + 1, maps);
+    double noiseDeltaE = meanDeltaE(other.display, ref.display),
+           noiseRmse = relRmse(other.linear, ref.linear);
+    double refShadeMs = ref.gpuMs("shade:");
+    std::printf("ray-traced: shading %.0f ms; another seed: Delta E %.3f, rel. RMSE %.4f\n",
+                refShadeMs, noiseDeltaE, noiseRmse);
 
-    std::ostringstream csv;  // shadows.csv, rewritten whole after every row (a long sweep shows its progress)
-    csv << "sweep,maps_requested,maps,resolution,shadow_ms,shade_ms,mean_delta_e,rel_rmse\n";
-    char row[256];
-    auto measure = [&](const char* sweep, int count, int size) {
-        RenderSettings s = settings;
-        s.shadowMaps.count = count;
-        s.shadowMaps.resolution = size;
-        ShadowShot shot = shoot(renderer, scene, s, "restricted-cdf", spp, seed);
-        double dE = meanDeltaE(shot.display, ref.display), rmse = relRmse(shot.linear, ref.linear);
-        std::snprintf(row, sizeof row, "%s,%d,%d,%d,%.3f,%.1f,%.4f,%.5f\n", sweep, count, shot.maps, size,
-                      shot.shadowMs, shot.shadeMs, dE, rmse);
-        csv << row;
-        writeFileAtomically((out / "shadows.csv").string(), csv.str());
-        std::printf("%-10s %4d maps of %4d^2: shadow pass %8.1f ms, shading %8.0f ms, Delta E %.3f, rel. RMSE %.4f\n",
-                    sweep, shot.maps, size, shot.shadowMs, shot.shadeMs, dE, rmse);
-        std::fflush(stdout);
-        std::snprintf(row, sizeof row, "maps-%d-%d.png", shot.maps, size);
-        writeImage8((out / row).string(), width, height, shot.display);
-    };
-    for (int c : counts) measure("count", c, fixedSize);
-    for (int r : sizes) measure("resolution", fixedCount, r);
+    ShadowSweep sweep{gpu.renderer, scene, settings, o, ref, out};
+    for (int c : o.counts) measure(sweep, "count", c, o.fixedSize);
+    for (int r : o.sizes) measure(sweep, "resolution", o.fixedCount, r);
 
-    std::ostringstream summary;
-    summary << "scene: " << scenePath << ", " << width << "x" << height << ", " << spp
-            << " spp, seed " << seed << " for every image\ncontext: " << context->description()
-            << "\nreference: restricted-cdf-raytraced (a shadow ray per sample), shading " << ref.shadeMs
-            << " ms\nsampling noise (the reference against seed " << seed + 1 << "): mean Delta E "
-            << noiseDeltaE << ", rel. RMSE " << noiseRmse << "\n";
-    writeFileAtomically((out / "summary.txt").string(), summary.str());
-    std::ostringstream gp;
-    gp << "set terminal pngcairo size 1000,420 noenhanced\nset datafile separator ','\nset grid\n"
-           "set multiplot layout 1,2\nset logscale x\nset ylabel 'mean Delta E against ray-traced'\n"
-           "set xlabel 'shadow maps per luminaire ("
-        << fixedSize << "^2 faces)'\nplot 'shadows.csv' using (strcol(1) eq 'count' ? $3 : 1/0):7 with linespoints "
-        << "pointsize 1.5 title 'shadow maps', " << noiseDeltaE << " title 'noise: ray-traced, another seed' dt 2\n"
-        << "set xlabel 'cube-face resolution (" << fixedCount << " maps)'\nset logscale x 2\n"
-        << "plot 'shadows.csv' using (strcol(1) eq 'resolution' ? $4 : 1/0):7 with linespoints pointsize 1.5 "
-        << "title 'shadow maps', " << noiseDeltaE << " title 'noise: ray-traced, another seed' dt 2\n"
-        << "unset multiplot\n";
-    writeFileAtomically((out / "plot.gp").string(), gp.str());
-    runGnuplot(outDir, "plot.png");
-    std::printf("wrote %s/shadows.csv, summary.txt\n", outDir.c_str());
+    BenchSummary summary;
+    std::ostringstream text;
+    text << "scene: " << o.scenePath << ", " << o.width << "x" << o.height << ", " << o.spp
+         << " spp, seed " << kSeed << " for every image\ncontext: " << gpu.context->description()
+         << "\nreference: restricted-cdf-raytraced (a shadow ray per sample), shading "
+         << refShadeMs << " ms\nsampling noise (the reference against seed " << kSeed + 1
+         << "): mean Delta E " << noiseDeltaE << ", rel. RMSE " << noiseRmse << "\n";
+    summary.addText(text.str());
+    summary.write(out, false);
+    plotSweeps(out, o, noiseDeltaE);
+    std::printf("wrote %s/shadows.csv, summary.txt\n", o.out.c_str());
     return 0;
 }
 

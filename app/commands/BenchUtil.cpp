@@ -1,10 +1,10 @@
-#include <fstream>
 #include "app/commands/BenchUtil.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 
 #include "app/commands/Gnuplot.h"
@@ -48,6 +48,16 @@ BenchRow benchRow(std::string technique, int spp, double shadeMs, const std::vec
     double raw = relRmse(linear, refLinear);
     return {std::move(technique), spp, shadeMs, std::sqrt(std::max(0.0, raw * raw - refNoise * refNoise)),
             meanDeltaE(display, refDisplay), raw};
+}
+
+BenchRow rowAt(const std::vector<BenchRow>& rows, const std::string& technique, int spp) {
+    for (const BenchRow& r : rows)
+        if (r.technique == technique && r.spp == spp) return r;
+    BenchRow none;
+    none.technique = technique;
+    none.spp = spp;
+    none.shadeMs = none.rmse = none.deltaE = none.rawRmse = std::nan("");
+    return none;
 }
 
 double atError(const std::vector<BenchRow>& rows, const std::string& technique, double error, bool time) {

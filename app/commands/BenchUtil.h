@@ -38,6 +38,8 @@ BenchRow meanRow(const std::vector<BenchRow>& repeats);
 BenchRow benchRow(std::string technique, int spp, double shadeMs, const std::vector<float>& linear,
                   const std::vector<unsigned char>& display, const std::vector<float>& refLinear,
                   const std::vector<unsigned char>& refDisplay, double refNoise);
+/// The row of `technique` at `spp`; one with NaN error and time when the sweep has none.
+BenchRow rowAt(const std::vector<BenchRow>& rows, const std::string& technique, int spp);
 /// Samples (time: GPU ms) a technique needs to reach `error`: log-log interpolation along its
 /// rows; NaN when its sweep never gets there.
 double atError(const std::vector<BenchRow>& rows, const std::string& technique, double error, bool time);

@@ -124,84 +124,110 @@ ProbePoint pixelPoint(const Scene& scene, const std::string& text, int width, in
     return {hit->point, hit->normal};
 }
 
-}  // namespace
-
-int cmdProbe(const Args& args) {
+/// What `candela probe` was asked for.
+struct ProbeOptions {
     std::string scenePath, pointsPath, technique, envTechnique, device = "cpu";
-    EstimateOptions options;
-    options.spp = 4096;
+    EstimateOptions estimate;
     bool withVisibility = false, indirect = false;
-    int patches = 4000;
+    int patches = 4000;  ///< Asked of the interreflection's mesher.
     std::string visibilityBackend = "embree";
     std::string chartPath, pixel;
     int chartSpp = 64, width = 960, height = 540;
+};
+
+ProbeOptions parseProbeOptions(const Args& args) {
+    ProbeOptions o;
+    o.estimate.spp = 4096;
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
-        if (a == "--points") pointsPath = flagValue(args, i);
-        else if (a == "--technique") technique = flagValue(args, i);
-        else if (a == "--env-technique") envTechnique = flagValue(args, i);
-        else if (a == "--spp") options.spp = parseInt(a, flagValue(args, i), 1, 1 << 26);
-        else if (a == "--seed") options.seed = uint64_t(parseInt(a, flagValue(args, i), 0, 1 << 30));
+        if (a == "--points")
+            o.pointsPath = flagValue(args, i);
+        else if (a == "--technique")
+            o.technique = flagValue(args, i);
+        else if (a == "--env-technique")
+            o.envTechnique = flagValue(args, i);
+        else if (a == "--spp")
+            o.estimate.spp = parseInt(a, flagValue(args, i), 1, 1 << 26);
+        else if (a == "--seed")
+            o.estimate.seed = uint64_t(parseInt(a, flagValue(args, i), 0, 1 << 30));
         else if (a == "--visibility") {
-            withVisibility = true;
-            if (i + 1 < args.size() && (args[i + 1] == "embree" || args[i + 1] == "bvh")) visibilityBackend = args[++i];
-        }
-        else if (a == "--indirect") indirect = true;
-        else if (a == "--patches") patches = parseInt(a, flagValue(args, i), 16, 50000);
-        else if (a == "--show-samples") chartPath = flagValue(args, i);
-        else if (a == "--pixel") pixel = flagValue(args, i);
-        else if (a == "--size") parseSize(flagValue(args, i), width, height);
-        else if (a == "--chart-spp") chartSpp = parseInt(a, flagValue(args, i), 1, 4096);
-        else if (a == "--device") device = flagValue(args, i);
+            o.withVisibility = true;
+            if (i + 1 < args.size() && (args[i + 1] == "embree" || args[i + 1] == "bvh"))
+                o.visibilityBackend = args[++i];
+        } else if (a == "--indirect")
+            o.indirect = true;
+        else if (a == "--patches")
+            o.patches = parseInt(a, flagValue(args, i), 16, 50000);
+        else if (a == "--show-samples")
+            o.chartPath = flagValue(args, i);
+        else if (a == "--pixel")
+            o.pixel = flagValue(args, i);
+        else if (a == "--size")
+            parseSize(flagValue(args, i), o.width, o.height);
+        else if (a == "--chart-spp")
+            o.chartSpp = parseInt(a, flagValue(args, i), 1, 4096);
+        else if (a == "--device")
+            o.device = flagValue(args, i);
         else if (!a.empty() && a[0] == '-') throw InputError("probe: unknown option " + a);
-        else if (scenePath.empty()) scenePath = a;
+        else if (o.scenePath.empty())
+            o.scenePath = a;
         else throw InputError("probe: unexpected argument " + a);
     }
-    if (scenePath.empty() || pointsPath.empty() == pixel.empty())
+    return o;
+}
+
+/// Refuses what cannot go together; --indirect brings --visibility (reflected light needs the
+/// geometry, so it brings shadows for the direct light too).
+void checkProbeOptions(ProbeOptions& o) {
+    if (o.scenePath.empty() || o.pointsPath.empty() == o.pixel.empty())
         throw InputError("usage: candela probe scene.json --points pts.csv|--pixel X,Y [--size WxH] [--technique T] "
                          "[--spp N] [--visibility [embree|bvh]] [--indirect [--patches N]] [--device cpu|gpu] [--seed S] "
                          "[--env-technique T] "
                          "[--show-samples chart.png [--chart-spp N]]");
-    if (device != "cpu" && device != "gpu")
-        throw InputError("--device: expected cpu or gpu, got \"" + device + "\"");
-    if (device == "gpu" && indirect)
+    if (o.device != "cpu" && o.device != "gpu")
+        throw InputError("--device: expected cpu or gpu, got \"" + o.device + "\"");
+    if (o.device == "gpu" && o.indirect)
         throw InputError("--device gpu: --indirect is computed on the CPU only (the default device)");
-    // Interreflected light needs the geometry, so it brings shadows for the direct light too.
-    if (indirect && !withVisibility) {
-        withVisibility = true;
-        visibilityBackend = "embree";
+    if (o.indirect && !o.withVisibility) {
+        o.withVisibility = true;
+        o.visibilityBackend = "embree";
     }
-    if (device == "gpu" && withVisibility)
+    if (o.device == "gpu" && o.withVisibility)
         throw InputError("--device gpu: --visibility is not available on the GPU probe yet; "
                          "use the CPU probe (the default)");
+}
 
-    Scene scene = loadScene(scenePath);
-    std::vector<ProbePoint> points =
-        pixel.empty() ? readPoints(pointsPath) : std::vector<ProbePoint>{pixelPoint(scene, pixel, width, height)};
-    ProtectedInputs inputs(scene.inputFiles());
-    inputs.add(pointsPath);
-    checkNotAnInput(chartPath, "--show-samples");
-    // The environment's technique: --env-technique, else --technique when it names one of the
-    // environment's, else the exact reference. --technique applies to the luminaires as before,
-    // except that a name only the environment has leaves them on their own techniques.
-    const TechniqueInfo* envChosen = nullptr;
-    if (!envTechnique.empty()) {
-        envChosen = findTechnique("environment", envTechnique);
-        if (!envChosen)
-            throw InputError("--env-technique: \"" + envTechnique + "\" is not an environment "
-                             "technique (available: " + techniqueNames("environment") + ")");
+/// The environment's technique: --env-technique, else --technique when it names one of the
+/// environment's, else the exact reference (on the GPU, which has no exact reference, balanced).
+const TechniqueInfo* chooseEnvironmentTechnique(const ProbeOptions& o,
+                                                           const Scene& scene) {
+    const TechniqueInfo* chosen = nullptr;
+    if (!o.envTechnique.empty()) {
+        chosen = findTechnique("environment", o.envTechnique);
+        if (!chosen)
+            throw InputError("--env-technique: \"" + o.envTechnique +
+                             "\" is not an environment "
+                             "technique (available: " +
+                             techniqueNames("environment") + ")");
     } else {
-        envChosen = findTechnique("environment", technique.empty() ? "reference" : technique);
-        if (!envChosen) envChosen = findTechnique("environment", "reference");
+        chosen = findTechnique("environment", o.technique.empty() ? "reference" : o.technique);
+        if (!chosen) chosen = findTechnique("environment", "reference");
     }
-    if (device == "gpu" && scene.environmentMap && envTechnique.empty() &&
-        envChosen->shader.empty())
-        envChosen = findTechnique("environment", "balanced");  // the GPU has no exact reference
-    if (device == "gpu" && scene.environmentMap && envChosen->shader.empty())
-        throw InputError("--env-technique: \"" + std::string(envChosen->name) +
+    if (o.device == "gpu" && scene.environmentMap && o.envTechnique.empty() &&
+        chosen->shader.empty())
+        chosen = findTechnique("environment", "balanced");  // the GPU has no exact reference
+    if (o.device == "gpu" && scene.environmentMap && chosen->shader.empty())
+        throw InputError("--env-technique: \"" + std::string(chosen->name) +
                          "\" runs on the CPU only; use the CPU probe (the default) or another "
                          "technique");
-    // Resolve each luminaire's technique up front, so a bad name fails before any work.
+    return chosen;
+}
+
+/// Each luminaire's technique, resolved up front so a bad name fails before any work.
+/// --technique applies to the luminaires, except that a name only the environment has leaves
+/// them on their own techniques.
+std::vector<const TechniqueInfo*> chooseTechniques(const Scene& scene,
+                                                   const std::string& technique) {
     std::vector<const TechniqueInfo*> chosen;
     for (const auto& l : scene.luminaires) {
         std::string name = technique.empty() ? l->technique : technique;
@@ -215,91 +241,139 @@ int cmdProbe(const Args& args) {
                              ")");
         chosen.push_back(t);
     }
+    return chosen;
+}
 
-    std::vector<glm::dvec3> E(points.size(), glm::dvec3(0.0)), var(points.size(), glm::dvec3(0.0));
-    if (device == "cpu") {
-        // --visibility: shadow rays through Embree (the ray-traced reference); --visibility bvh:
-        // through Candela's own BVH, the one the GPU traverses.
-        std::unique_ptr<Bvh> bvh;
-        std::unique_ptr<Visibility> vis;
-        if (withVisibility && visibilityBackend == "bvh") {
-            bvh = std::make_unique<Bvh>(Bvh::build(scene));
-            vis = std::make_unique<BvhVisibility>(*bvh);
-        } else if (withVisibility) {
-            vis = std::make_unique<EmbreeVisibility>(scene);
-        }
-        options.visibility = vis.get();
-        // --indirect: the radiosity solution, then a final gather of --spp rays per point whose
-        // standard error joins the direct light's (scene/Interreflection.h).
-        std::unique_ptr<Interreflection> interreflection;
-        if (indirect) {
-            InterreflectionOptions io;
-            io.mesh.targetPatches = patches;
-            io.technique = technique;
-            io.environmentTechnique = envTechnique;
-            interreflection = std::make_unique<Interreflection>(scene, io);
-            std::fprintf(stderr, "probe: interreflection over %zu patches\n", interreflection->mesh().patches.size());
-            if (std::string w = interreflection->orientationWarning(scene); !w.empty())
-                std::fprintf(stderr, "probe: warning: %s\n", w.c_str());
-            interreflection->compute();
-        }
-        const Luminaire* environment = scene.environmentLight();
-        for (size_t i = 0; i < points.size(); ++i) {
-            if (environment) {
-                EstimateOptions o = options;
-                o.seed = options.seed * 1000003ull + i * 7919ull + 999983ull;
-                Estimate e = envChosen->irradiance(*environment, points[i].p, points[i].n, o);
-                double k = scene.environmentUnitScale();
-                E[i] += k * e.irradiance;
-                var[i] += k * k * e.stdError * e.stdError;
-            }
-            if (interreflection) {
-                EstimateOptions o = options;
-                o.seed = options.seed * 1000003ull + i * 7919ull + 424242ull;
-                Estimate e = interreflection->gather(points[i].p, points[i].n, o);
-                E[i] += e.irradiance;
-                var[i] += e.stdError * e.stdError;
-            }
-            for (size_t k = 0; k < scene.luminaires.size(); ++k) {
-                EstimateOptions o = options;
-                o.seed = options.seed * 1000003ull + i * 7919ull + k;
-                Estimate e = chosen[k]->irradiance(*scene.luminaires[k], points[i].p, points[i].n, o);
-                double scale = scene.unitScale(*scene.luminaires[k]);
-                E[i] += scale * e.irradiance;
-                var[i] += scale * scale * e.stdError * e.stdError;
-            }
-        }
-    } else {
-        auto context = createOffscreenContext();
-        ShaderLibrary shaders;
-        Renderer renderer(shaders);
-        RenderSettings s;
-        s.techniqueOverride = technique;
-        s.environmentTechnique = std::string(envChosen->name);
-        renderer.setSettings(s);
-        std::vector<glm::vec3> p, n;
-        for (const auto& q : points) {
-            p.push_back(glm::vec3(q.p));
-            n.push_back(glm::vec3(q.n));
-        }
-        std::vector<glm::vec3> r = renderer.probe(scene, p, n, options.spp);
-        for (size_t i = 0; i < points.size(); ++i) E[i] = glm::dvec3(r[i]);
+/// Irradiance and its variance per point, luminance-weighted later.
+struct ProbeSums {
+    std::vector<glm::dvec3> E, var;
+    explicit ProbeSums(size_t n) : E(n, glm::dvec3(0.0)), var(n, glm::dvec3(0.0)) {}
+    void add(size_t i, const Estimate& e, double scale) {
+        E[i] += scale * e.irradiance;
+        var[i] += scale * scale * e.stdError * e.stdError;
     }
+};
 
-    if (!chartPath.empty() && points.empty()) throw InputError("--show-samples: " + pointsPath + " has no points");
-    if (!chartPath.empty()) writeSampleChart(scene, points.front().n, envChosen->name, chartSpp, chartPath);
+/// What the CPU probe needs besides the estimators: the shadow rays' scene and the radiosity.
+struct CpuProbeSetup {
+    std::unique_ptr<Bvh> bvh;
+    std::unique_ptr<Visibility> visibility;
+    std::unique_ptr<Interreflection> interreflection;
+};
 
-    // The columns are a stable contract; their unit goes to stderr (and the README).
+/// --visibility: shadow rays through Embree (the ray-traced reference); --visibility bvh:
+/// through Candela's own BVH, the one the GPU traverses. --indirect: the radiosity solution,
+/// whose final gather's standard error joins the direct light's (scene/Interreflection.h).
+CpuProbeSetup setUpCpuProbe(const Scene& scene, const ProbeOptions& o) {
+    CpuProbeSetup setup;
+    if (o.withVisibility && o.visibilityBackend == "bvh") {
+        setup.bvh = std::make_unique<Bvh>(Bvh::build(scene));
+        setup.visibility = std::make_unique<BvhVisibility>(*setup.bvh);
+    } else if (o.withVisibility) {
+        setup.visibility = std::make_unique<EmbreeVisibility>(scene);
+    }
+    if (o.indirect) {
+        InterreflectionOptions io;
+        io.mesh.targetPatches = o.patches;
+        io.technique = o.technique;
+        io.environmentTechnique = o.envTechnique;
+        setup.interreflection = std::make_unique<Interreflection>(scene, io);
+        std::fprintf(stderr, "probe: interreflection over %zu patches\n",
+                     setup.interreflection->mesh().patches.size());
+        if (std::string w = setup.interreflection->orientationWarning(scene); !w.empty())
+            std::fprintf(stderr, "probe: warning: %s\n", w.c_str());
+        setup.interreflection->compute();
+    }
+    return setup;
+}
+
+/// Every technique's double-precision C++ estimator at every point.
+ProbeSums probeCpu(const Scene& scene, const std::vector<ProbePoint>& points, const ProbeOptions& o,
+                   const TechniqueInfo& env,
+                   const std::vector<const TechniqueInfo*>& chosen) {
+    CpuProbeSetup setup = setUpCpuProbe(scene, o);
+    EstimateOptions options = o.estimate;
+    options.visibility = setup.visibility.get();
+    ProbeSums sums(points.size());
+    for (size_t i = 0; i < points.size(); ++i) {
+        const glm::dvec3 &p = points[i].p, &n = points[i].n;
+        uint64_t pointSeed = options.seed * 1000003ull + i * 7919ull;
+        EstimateOptions each = options;
+        if (const Luminaire* environment = scene.environmentLight()) {
+            each.seed = pointSeed + 999983ull;
+            sums.add(i, env.irradiance(*environment, p, n, each), scene.environmentUnitScale());
+        }
+        if (setup.interreflection) {
+            each.seed = pointSeed + 424242ull;
+            sums.add(i, setup.interreflection->gather(p, n, each), 1.0);
+        }
+        for (size_t k = 0; k < scene.luminaires.size(); ++k) {
+            each.seed = pointSeed + k;
+            sums.add(i, chosen[k]->irradiance(*scene.luminaires[k], p, n, each),
+                     scene.unitScale(*scene.luminaires[k]));
+        }
+    }
+    return sums;
+}
+
+/// The production shading pass on a G-buffer made of the points.
+ProbeSums probeGpu(const Scene& scene, const std::vector<ProbePoint>& points, const ProbeOptions& o,
+                   const TechniqueInfo& env) {
+    auto context = createOffscreenContext();
+    ShaderLibrary shaders;
+    Renderer renderer(shaders);
+    RenderSettings s;
+    s.techniqueOverride = o.technique;
+    s.environmentTechnique = std::string(env.name);
+    renderer.setSettings(s);
+    std::vector<glm::vec3> p, n;
+    for (const auto& q : points) {
+        p.push_back(glm::vec3(q.p));
+        n.push_back(glm::vec3(q.n));
+    }
+    std::vector<glm::vec3> r = renderer.probe(scene, p, n, o.estimate.spp);
+    ProbeSums sums(points.size());
+    for (size_t i = 0; i < points.size(); ++i) sums.E[i] = glm::dvec3(r[i]);
+    return sums;
+}
+
+/// The CSV on stdout (a stable contract); its unit on stderr (and in the README).
+void printProbeCsv(const Scene& scene, const std::vector<ProbePoint>& points, const ProbeSums& sums,
+                   bool indirect) {
     UnitSystem units = scene.units();
     std::fprintf(stderr, "probe: E, E_r, E_g, E_b and E_stderr in %s%s\n", units.irradianceLabel().c_str(),
                  indirect ? ", direct plus interreflected light" : "");
     std::printf("x,y,z,nx,ny,nz,E,E_r,E_g,E_b,E_stderr\n");
     for (size_t i = 0; i < points.size(); ++i) {
         const ProbePoint& q = points[i];
-        glm::dvec3 se = glm::sqrt(var[i]);
+        const glm::dvec3& E = sums.E[i];
+        glm::dvec3 se = glm::sqrt(sums.var[i]);
         std::printf("%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.10g,%.10g,%.10g,%.10g,%.4g\n", q.p.x, q.p.y,
-                    q.p.z, q.n.x, q.n.y, q.n.z, lum(E[i]), E[i].x, E[i].y, E[i].z, lum(se));
+                    q.p.z, q.n.x, q.n.y, q.n.z, lum(E), E.x, E.y, E.z, lum(se));
     }
+}
+
+}  // namespace
+
+int cmdProbe(const Args& args) {
+    ProbeOptions o = parseProbeOptions(args);
+    checkProbeOptions(o);
+    Scene scene = loadScene(o.scenePath);
+    std::vector<ProbePoint> points =
+        o.pixel.empty() ? readPoints(o.pointsPath)
+                        : std::vector<ProbePoint>{pixelPoint(scene, o.pixel, o.width, o.height)};
+    ProtectedInputs inputs(scene.inputFiles());
+    inputs.add(o.pointsPath);
+    checkNotAnInput(o.chartPath, "--show-samples");
+    const TechniqueInfo* env = chooseEnvironmentTechnique(o, scene);
+    std::vector<const TechniqueInfo*> chosen = chooseTechniques(scene, o.technique);
+    ProbeSums sums = o.device == "cpu" ? probeCpu(scene, points, o, *env, chosen)
+                                       : probeGpu(scene, points, o, *env);
+    if (!o.chartPath.empty() && points.empty())
+        throw InputError("--show-samples: " + o.pointsPath + " has no points");
+    if (!o.chartPath.empty())
+        writeSampleChart(scene, points.front().n, env->name, o.chartSpp, o.chartPath);
+    printProbeCsv(scene, points, sums, o.indirect);
     return 0;
 }
 

@@ -131,134 +131,189 @@ int renderComparison(const std::string& scenePath, const RenderSettings& setting
     return 0;
 }
 
-}  // namespace
-
-int cmdRender(const Args& args) {
-    std::string scenePath, out, statsPath, sheetDir;
+/// What `candela render` was asked for.
+struct RenderOptions {
+    std::string scenePath, out, sheetDir;
     RenderSettings settings;
     int spp = 64, referenceSpp = 512;
     std::vector<std::string> paneTexts;
     bool printStats = false, falseColour = false, haveLegend = false, errorMaps = false, indirect = true;
-    int patches = 4000;
+    int patches = 4000;  ///< Asked of the interreflection's mesher.
+};
+
+/// The flags that take a word: --indirect, --light, --tonemap. False when `a` is none of them.
+bool parseChoice(const Args& args, size_t& i, RenderOptions& o) {
+    const std::string& a = args[i];
+    RenderSettings& settings = o.settings;
+    if (a == "--indirect") {
+        std::string v = flagValue(args, i);
+        if (v != "on" && v != "off")
+            throw InputError("--indirect: expected on or off, got \"" + v + "\"");
+        o.indirect = v == "on";
+    } else if (a == "--light") {
+        std::string v = flagValue(args, i);
+        if (v == "total")
+            settings.parts = LightParts::Total;
+        else if (v == "direct")
+            settings.parts = LightParts::Direct;
+        else if (v == "interreflected")
+            settings.parts = LightParts::Interreflected;
+        else
+            throw InputError("--light: expected total, direct or interreflected, got \"" + v +
+                             "\"");
+    } else if (a == "--tonemap") {
+        std::string op = flagValue(args, i);
+        if (op == "exponential")
+            settings.toneMap = ToneMapOperator::Exponential;
+        else if (op == "reinhard")
+            settings.toneMap = ToneMapOperator::Reinhard;
+        else
+            throw InputError("--tonemap: expected exponential or reinhard, got \"" + op + "\"");
+    } else {
+        return false;
+    }
+    return true;
+}
+
+/// The false-colour flags: --false-colour, --log, --legend, --isolux. False when `a` is none.
+bool parseFalseColour(const Args& args, size_t& i, RenderOptions& o) {
+    const std::string& a = args[i];
+    FalseColourLegend& legend = o.settings.legend;
+    if (a == "--false-colour")
+        o.falseColour = true;
+    else if (a == "--log")
+        legend.logScale = true;
+    else if (a == "--legend") {
+        std::vector<float> range = parseNumberList(a, flagValue(args, i));
+        if (range.size() != 2 || !(range[1] > range[0]))
+            throw InputError("--legend: expected MIN,MAX in lux with MAX > MIN");
+        legend.min = range[0];
+        legend.max = range[1];
+        o.haveLegend = true;
+    } else if (a == "--isolux") {
+        std::string levels = flagValue(args, i);
+        if (levels == "none")
+            legend.contours = false;
+        else
+            legend.levels = parseNumberList(a, levels);
+    } else {
+        return false;
+    }
+    return true;
+}
+
+RenderOptions parseRenderOptions(const Args& args) {
+    RenderOptions o;
+    RenderSettings& settings = o.settings;
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
-        if (a == "--out") out = flagValue(args, i);
-        else if (a == "--pane") paneTexts.push_back(flagValue(args, i));
-        else if (a == "--sheet") sheetDir = flagValue(args, i);
-        else if (a == "--reference-spp") referenceSpp = parseInt(a, flagValue(args, i), 1, 1 << 20);
-        else if (a == "--error-maps") errorMaps = true;
+        if (parseChoice(args, i, o) || parseFalseColour(args, i, o)) continue;
+        if (a == "--out")
+            o.out = flagValue(args, i);
+        else if (a == "--pane")
+            o.paneTexts.push_back(flagValue(args, i));
+        else if (a == "--sheet")
+            o.sheetDir = flagValue(args, i);
+        else if (a == "--reference-spp")
+            o.referenceSpp = parseInt(a, flagValue(args, i), 1, 1 << 20);
+        else if (a == "--error-maps")
+            o.errorMaps = true;
         else if (a == "--technique") settings.techniqueOverride = flagValue(args, i);
         else if (a == "--env-technique") settings.environmentTechnique = flagValue(args, i);
         else if (a == "--env-face-size")
             settings.environmentFaceSize = parseInt(a, flagValue(args, i), 4, 2048);
-        else if (a == "--spp") spp = parseInt(a, flagValue(args, i), 1, 1 << 24);
+        else if (a == "--spp")
+            o.spp = parseInt(a, flagValue(args, i), 1, 1 << 24);
         else if (a == "--size") parseSize(flagValue(args, i), settings.width, settings.height);
         else if (a == "--shadow-maps") settings.shadowMaps.count = parseInt(a, flagValue(args, i), 0, 4096);
         else if (a == "--shadow-map-size")
             settings.shadowMaps.resolution = parseInt(a, flagValue(args, i), 8, 4096);
-        else if (a == "--stats") printStats = true;
-        else if (a == "--indirect") {
-            std::string v = flagValue(args, i);
-            if (v != "on" && v != "off") throw InputError("--indirect: expected on or off, got \"" + v + "\"");
-            indirect = v == "on";
-        } else if (a == "--patches") patches = parseInt(a, flagValue(args, i), 16, 50000);
-        else if (a == "--light") {
-            std::string v = flagValue(args, i);
-            if (v == "total") settings.parts = LightParts::Total;
-            else if (v == "direct") settings.parts = LightParts::Direct;
-            else if (v == "interreflected") settings.parts = LightParts::Interreflected;
-            else throw InputError("--light: expected total, direct or interreflected, got \"" + v + "\"");
-        }
+        else if (a == "--stats")
+            o.printStats = true;
+        else if (a == "--patches")
+            o.patches = parseInt(a, flagValue(args, i), 16, 50000);
         else if (a == "--exposure") settings.exposure = parseNumberList(a, flagValue(args, i)).at(0);
-        else if (a == "--false-colour") falseColour = true;
-        else if (a == "--log") settings.legend.logScale = true;
-        else if (a == "--legend") {
-            std::vector<float> range = parseNumberList(a, flagValue(args, i));
-            if (range.size() != 2 || !(range[1] > range[0]))
-                throw InputError("--legend: expected MIN,MAX in lux with MAX > MIN");
-            settings.legend.min = range[0];
-            settings.legend.max = range[1];
-            haveLegend = true;
-        } else if (a == "--isolux") {
-            std::string levels = flagValue(args, i);
-            if (levels == "none") settings.legend.contours = false;
-            else settings.legend.levels = parseNumberList(a, levels);
-        }
-        else if (a == "--tonemap") {
-            std::string op = flagValue(args, i);
-            if (op == "exponential") settings.toneMap = ToneMapOperator::Exponential;
-            else if (op == "reinhard") settings.toneMap = ToneMapOperator::Reinhard;
-            else throw InputError("--tonemap: expected exponential or reinhard, got \"" + op + "\"");
-        } else if (!a.empty() && a[0] == '-') throw InputError("render: unknown option " + a);
-        else if (scenePath.empty()) scenePath = a;
+        else if (!a.empty() && a[0] == '-')
+            throw InputError("render: unknown option " + a);
+        else if (o.scenePath.empty())
+            o.scenePath = a;
         else throw InputError("render: unexpected argument " + a);
     }
-    if (!paneTexts.empty() || !sheetDir.empty()) {
-        // The comparison sheet: panes, a reference, errors (the editor's Export sheet).
-        if (scenePath.empty() || sheetDir.empty() || paneTexts.empty() || paneTexts.size() > 4)
-            throw InputError("usage: candela render scene.json --sheet DIR --pane TECHNIQUES[:SPP] (1 to 4 times) "
-                             "[--reference-spp N] [--spp N] [--size WxH] [--error-maps]");
-        if (!out.empty()) throw InputError("--out: a comparison writes its sheet into --sheet DIR instead");
-        std::vector<PaneSpec> panes;
-        for (const std::string& p : paneTexts) panes.push_back(parsePane(p, spp));
-        settings.samplesPerFrame = 16;
-        return renderComparison(scenePath, settings, panes, referenceSpp, sheetDir, errorMaps);
-    }
-    if (scenePath.empty() || out.empty())
+    return o;
+}
+
+/// The comparison sheet: panes, a reference, errors (the editor's Export sheet).
+int renderSheet(RenderOptions& o) {
+    if (o.scenePath.empty() || o.sheetDir.empty() || o.paneTexts.empty() || o.paneTexts.size() > 4)
+        throw InputError(
+            "usage: candela render scene.json --sheet DIR --pane TECHNIQUES[:SPP] (1 to 4 times) "
+            "[--reference-spp N] [--spp N] [--size WxH] [--error-maps]");
+    if (!o.out.empty())
+        throw InputError("--out: a comparison writes its sheet into --sheet DIR instead");
+    std::vector<PaneSpec> panes;
+    for (const std::string& p : o.paneTexts) panes.push_back(parsePane(p, o.spp));
+    o.settings.samplesPerFrame = 16;
+    return renderComparison(o.scenePath, o.settings, panes, o.referenceSpp, o.sheetDir,
+                            o.errorMaps);
+}
+
+/// Checks an image render's options; returns the output's extension.
+std::string checkImageOptions(RenderOptions& o) {
+    if (o.scenePath.empty() || o.out.empty())
         throw InputError("usage: candela render scene.json --out img.png|img.exr [--technique T] "
                          "[--env-technique T] [--env-face-size N] [--spp N] [--size WxH] [--shadow-maps N] "
                          "[--shadow-map-size R] [--indirect on|off] [--patches N] [--light total|direct|interreflected] "
                          "[--stats]\n"
                          "       candela render scene.json --sheet DIR --pane TECHNIQUES[:SPP] [--pane ...] "
                          "[--reference-spp N] [--error-maps]");
-    if (falseColour) {
+    RenderSettings& settings = o.settings;
+    if (o.falseColour) {
         settings.quantity = Quantity::Illuminance;
         settings.toneMap = ToneMapOperator::FalseColour;
-        if (settings.legend.logScale && haveLegend && !(settings.legend.min > 0.f))
+        if (settings.legend.logScale && o.haveLegend && !(settings.legend.min > 0.f))
             throw InputError("--legend: a log scale (--log) needs MIN > 0 lux");
     }
-    std::string ext = std::filesystem::path(out).extension().string();
+    std::string ext = std::filesystem::path(o.out).extension().string();
     if (ext != ".png" && ext != ".exr")
-        throw InputError(out + ": unsupported output extension \"" + ext + "\" (use .png or .exr)");
+        throw InputError(o.out + ": unsupported output extension \"" + ext +
+                         "\" (use .png or .exr)");
+    return ext;
+}
 
-    Scene scene = loadScene(scenePath);
-    ProtectedInputs inputs(scene.inputFiles());
-    checkNotAnInput(out, "--out");
-    auto context = createOffscreenContext();
-    ShaderLibrary shaders;
-    Renderer renderer(shaders);
-    settings.samplesPerFrame = std::min(spp, 16);
-    settings.maxSamples = spp;
-    renderer.setSettings(settings);
-    renderer.update(scene, kChangeAll);
+using Clock = std::chrono::steady_clock;
 
-    auto start = std::chrono::steady_clock::now();
-    // Interreflected light (on unless --indirect off), computed first on the CPU: only where
-    // some surface reflects onto another (README, "Interreflected light").
-    std::string indirectLine = "interreflection: off (--indirect off)";
-    if (indirect) {
-        InterreflectionOptions io;
-        io.mesh.targetPatches = patches;
-        io.technique = settings.techniqueOverride.find(',') == std::string::npos ? settings.techniqueOverride : "";
-        io.directSpp = InterreflectionWorker::kFineSpp;
-        Interreflection ir(scene, io);
-        if (std::string w = ir.orientationWarning(scene); !w.empty()) std::fprintf(stderr, "render: warning: %s\n", w.c_str());
-        if (ir.mesh().reflects() && ir.compute() && ir.hasInterreflection()) {
-            std::vector<glm::vec3> v;
-            for (const glm::dvec3& e : ir.indirectAtVertices()) v.push_back(glm::vec3(e));
-            renderer.setIndirect(std::make_shared<RadiosityMesh>(ir.mesh()), std::move(v));
-            char text[160];
-            std::snprintf(text, sizeof text, "interreflection: %zu patches, %d iterations, %.2f s", ir.mesh().patches.size(),
-                          ir.lastIterations(),
-                          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-            indirectLine = text;
-        } else {
-            indirectLine = "interreflection: none (no surface reflects onto another)";
-        }
-        std::fprintf(stderr, "render: %s\n", indirectLine.c_str());
+/// Interreflected light, computed first on the CPU: only where some surface reflects onto
+/// another (README, "Interreflected light"). Returns the line that says what it did.
+std::string addInterreflection(Renderer& renderer, const Scene& scene, const RenderOptions& o,
+                               Clock::time_point start) {
+    if (!o.indirect) return "interreflection: off (--indirect off)";
+    InterreflectionOptions io;
+    io.mesh.targetPatches = o.patches;
+    const std::string& technique = o.settings.techniqueOverride;
+    io.technique = technique.find(',') == std::string::npos ? technique : "";
+    io.directSpp = InterreflectionWorker::kFineSpp;
+    Interreflection ir(scene, io);
+    if (std::string w = ir.orientationWarning(scene); !w.empty())
+        std::fprintf(stderr, "render: warning: %s\n", w.c_str());
+    std::string line = "interreflection: none (no surface reflects onto another)";
+    if (ir.mesh().reflects() && ir.compute() && ir.hasInterreflection()) {
+        std::vector<glm::vec3> v;
+        for (const glm::dvec3& e : ir.indirectAtVertices()) v.push_back(glm::vec3(e));
+        renderer.setIndirect(std::make_shared<RadiosityMesh>(ir.mesh()), std::move(v));
+        char text[160];
+        std::snprintf(text, sizeof text, "interreflection: %zu patches, %d iterations, %.2f s",
+                      ir.mesh().patches.size(), ir.lastIterations(),
+                      std::chrono::duration<double>(Clock::now() - start).count());
+        line = text;
     }
+    std::fprintf(stderr, "render: %s\n", line.c_str());
+    return line;
+}
+
+/// Renders until converged, showing progress; each pass's GPU time summed over the frames.
+std::vector<PassTiming> refine(Renderer& renderer, int spp, int& frames) {
     std::vector<PassTiming> totals;
-    int frames = 0;
+    frames = 0;
     do {
         renderer.renderFrame();
         ++frames;
@@ -272,30 +327,50 @@ int cmdRender(const Args& args) {
             std::fprintf(stderr, "\rrender: %d / %d samples per pixel", renderer.stats().samplesPerPixel, spp);
     } while (!renderer.converged());
     if (renderer.plan().progressive()) std::fprintf(stderr, "\n");
-    if (falseColour) {
-        if (!haveLegend) {
-            fitLegend(settings.legend, peakLuminance(renderer.readLinear()));
-            renderer.setSettings(settings);
-            renderer.renderFrame();  // converged: tone mapping only, with the new legend
-        }
-        FalseColourLegend legend = sanitizedLegend(settings.legend);
-        const char* unit = scene.units().irradiance();
-        std::printf("false colour: %g .. %g %s (%s)", legend.min, legend.max, unit,
-                    legend.logScale ? "log" : "linear");
-        std::vector<float> levels = contourLevels(legend);
-        for (size_t k = 0; k < levels.size(); ++k)
-            std::printf("%s%g", k ? ", " : ", isolux at ", levels[k]);
-        std::printf("%s%s", levels.empty() ? ", no isolux lines" : " ", levels.empty() ? "" : unit);
-        if (scene.units().converted) std::printf(" (%s)", scene.units().note().c_str());
-        std::printf("\n");
-    }
-    double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return totals;
+}
 
+/// --false-colour: fits the legend to the image unless --legend gave it, and prints it.
+void reportFalseColour(Renderer& renderer, const Scene& scene, RenderOptions& o) {
+    RenderSettings& settings = o.settings;
+    if (!o.haveLegend) {
+        fitLegend(settings.legend, peakLuminance(renderer.readLinear()));
+        renderer.setSettings(settings);
+        renderer.renderFrame();  // converged: tone mapping only, with the new legend
+    }
+    FalseColourLegend legend = sanitizedLegend(settings.legend);
+    const char* unit = scene.units().irradiance();
+    std::printf("false colour: %g .. %g %s (%s)", legend.min, legend.max, unit,
+                legend.logScale ? "log" : "linear");
+    std::vector<float> levels = contourLevels(legend);
+    for (size_t k = 0; k < levels.size(); ++k)
+        std::printf("%s%g", k ? ", " : ", isolux at ", levels[k]);
+    std::printf("%s%s", levels.empty() ? ", no isolux lines" : " ", levels.empty() ? "" : unit);
+    if (scene.units().converted) std::printf(" (%s)", scene.units().note().c_str());
+    std::printf("\n");
+}
+
+/// --stats: the context, the interreflection, each pass's total GPU time and the variants.
+void printStats(const GlContext& context, const ShaderLibrary& shaders,
+                const std::string& indirectLine, const std::vector<PassTiming>& totals) {
+    std::printf("context: %s\n", context.description().c_str());
+    std::printf("%s\n", indirectLine.c_str());
+    std::printf("pass,gpu_ms_total\n");
+    for (const auto& p : totals) std::printf("%s,%.3f\n", p.name.c_str(), p.gpuMs);
+    std::printf("variants:");
+    for (const auto& v : shaders.compiledVariants()) std::printf(" %s", v.c_str());
+    std::printf("\n");
+}
+
+/// Writes the PNG (tone-mapped) or EXR (linear, in the unit it prints).
+void writeRender(const Renderer& renderer, const Scene& scene, const RenderOptions& o,
+                 const std::string& ext, int frames, double seconds) {
+    const RenderSettings& settings = o.settings;
     if (ext == ".png")
-        writeImage8(out, settings.width, settings.height, renderer.readDisplay());
+        writeImage8(o.out, settings.width, settings.height, renderer.readDisplay());
     else
-        writeImageFloat(out, settings.width, settings.height, renderer.readLinear());
-    std::printf("wrote %s (%dx%d, %d frames, %.3f s)\n", out.c_str(), settings.width,
+        writeImageFloat(o.out, settings.width, settings.height, renderer.readLinear());
+    std::printf("wrote %s (%dx%d, %d frames, %.3f s)\n", o.out.c_str(), settings.width,
                 settings.height, frames, seconds);
     if (ext != ".png") {
         UnitSystem units = scene.units();
@@ -303,15 +378,33 @@ int cmdRender(const Args& args) {
         std::printf("linear values in %s%s%s\n", illuminance ? units.irradiance() : units.radiance(),
                     units.converted ? ", " : "", units.note().c_str());
     }
-    if (printStats) {
-        std::printf("context: %s\n", context->description().c_str());
-        std::printf("%s\n", indirectLine.c_str());
-        std::printf("pass,gpu_ms_total\n");
-        for (const auto& p : totals) std::printf("%s,%.3f\n", p.name.c_str(), p.gpuMs);
-        std::printf("variants:");
-        for (const auto& v : shaders.compiledVariants()) std::printf(" %s", v.c_str());
-        std::printf("\n");
-    }
+}
+
+}  // namespace
+
+int cmdRender(const Args& args) {
+    RenderOptions o = parseRenderOptions(args);
+    if (!o.paneTexts.empty() || !o.sheetDir.empty()) return renderSheet(o);
+    std::string ext = checkImageOptions(o);
+    Scene scene = loadScene(o.scenePath);
+    ProtectedInputs inputs(scene.inputFiles());
+    checkNotAnInput(o.out, "--out");
+    auto context = createOffscreenContext();
+    ShaderLibrary shaders;
+    Renderer renderer(shaders);
+    o.settings.samplesPerFrame = std::min(o.spp, 16);
+    o.settings.maxSamples = o.spp;
+    renderer.setSettings(o.settings);
+    renderer.update(scene, kChangeAll);
+
+    auto start = Clock::now();
+    std::string indirectLine = addInterreflection(renderer, scene, o, start);
+    int frames = 0;
+    std::vector<PassTiming> totals = refine(renderer, o.spp, frames);
+    if (o.falseColour) reportFalseColour(renderer, scene, o);
+    double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    writeRender(renderer, scene, o, ext, frames, seconds);
+    if (o.printStats) printStats(*context, shaders, indirectLine, totals);
     return 0;
 }
 

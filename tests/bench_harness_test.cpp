@@ -1,0 +1,124 @@
+// The benches' shared harness (app/commands/BenchHarness.h) without a GL context: the flags,
+// the CSV and summary text, and the row arithmetic every sweep relies on.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "app/commands/BenchHarness.h"
+#include "app/commands/BenchUtil.h"
+#include "tests/TestUtil.h"
+
+namespace candela {
+namespace {
+
+std::string unknown(const std::string& a) {
+    return "unknown " + a;
+}
+
+TEST(BenchFlags, SetsEachFlagsTargetInOrder) {
+    std::string out = "default", scene = "default.json";
+    int frames = 60, width = 0, height = 0;
+    std::vector<int> spp = {4};
+    std::vector<std::string> files;
+    BenchFlags()
+        .optional("--drag", scene)
+        .alone("--fast")
+        .text("--out", out)
+        .integer("--frames", frames, 4, 100)
+        .counts("--spp", spp)
+        .size("--size", width, height)
+        .positional([&](const std::string& a) { files.push_back(a); })
+        .parse({"--drag", "room.json", "--fast", "a.ies", "--out", "dir", "--frames", "8", "--spp",
+                "2,32", "--size", "48x32", "b.ldt"},
+               unknown);
+    EXPECT_EQ(scene, "room.json");
+    EXPECT_EQ(out, "dir");
+    EXPECT_EQ(frames, 8);
+    EXPECT_EQ(spp, (std::vector<int>{2, 32}));
+    EXPECT_EQ(width, 48);
+    EXPECT_EQ(height, 32);
+    EXPECT_EQ(files, (std::vector<std::string>{"a.ies", "b.ldt"}));
+}
+
+TEST(BenchFlags, AnOptionalValueIsNeverAFlag) {
+    std::string scene = "default.json", out;
+    BenchFlags()
+        .optional("--shadows", scene)
+        .text("--out", out)
+        .parse({"--shadows", "--out", "x"}, unknown);
+    EXPECT_EQ(scene, "default.json");
+    EXPECT_EQ(out, "x");
+    BenchFlags().optional("--shadows", scene).parse({"--shadows"}, unknown);
+    EXPECT_EQ(scene, "default.json");
+}
+
+TEST(BenchFlags, ErrorsNameTheArgument) {
+    std::string out;
+    int n = 0;
+    auto flags = BenchFlags().text("--out", out).integer("--frames", n, 4, 100);
+    EXPECT_EQ(test::inputError([&] { flags.parse({"--outt", "x"}, unknown); }), "unknown --outt");
+    // Without a positional handler a word is unknown too; with one, a "--" word still is.
+    EXPECT_EQ(test::inputError([&] { flags.parse({"x.ies"}, unknown); }), "unknown x.ies");
+    std::vector<std::string> files;
+    auto withFiles = BenchFlags().positional([&](const std::string& a) { files.push_back(a); });
+    EXPECT_EQ(test::inputError([&] {
+                  withFiles.parse({"--size", "4"}, unknown);
+              }),
+              "unknown --size");
+    EXPECT_EQ(test::inputError([&] { flags.parse({"--out"}, unknown); }),
+              "--out: expected a value after it");
+    EXPECT_NE(test::inputError([&] {
+                  flags.parse({"--frames", "2"}, unknown);
+              }).find("--frames"),
+              std::string::npos);
+}
+
+TEST(BenchFiles, CsvRowsPrintAsAnOstreamDoes) {
+    CsvFile csv("name,count,value");
+    csv.row("\"A, B\"", 3, 0.125);
+    csv.row(std::string("c"), size_t(7), 1.0 / 3.0);
+    csv.line("d,1,2");
+    EXPECT_EQ(csv.text(), "name,count,value\n\"A, B\",3,0.125\nc,7,0.333333\nd,1,2\n");
+}
+
+TEST(BenchFiles, FormatTextHasNoLengthLimit) {
+    std::string long1000(1000, 'x');
+    EXPECT_EQ(formatText("%s|%d|%.2f", long1000.c_str(), 42, 0.5), long1000 + "|42|0.50");
+}
+
+TEST(BenchFiles, TheSummaryOpensWithTheMachine) {
+    BenchSummary summary;
+    summary.add("spp %d\n", 16);
+    summary.addText("end\n");
+    std::string text = summary.text();
+    EXPECT_EQ(text.rfind("machine: ", 0), 0u);
+    EXPECT_NE(text.find(machineDescription() + "\nspp 16\nend\n"), std::string::npos);
+}
+
+TEST(BenchRows, OneRepeatsMeanIsTheRowItself) {
+    // A sweep of one image per point goes through meanRow too: its figures must stay the image's
+    // own to the last bit (sqrt(x * x) == x in IEEE double for finite, non-tiny x).
+    for (double rmse : {0.0, 1e-7, 0.0972531, 0.977696, 2.91558, 1234.5}) {
+        BenchRow one{"t", 8, 12.5, rmse, 1.5 * rmse + 0.25, rmse * 1.01};
+        BenchRow mean = meanRow({one});
+        EXPECT_EQ(mean.rmse, one.rmse);
+        EXPECT_EQ(mean.rawRmse, one.rawRmse);
+        EXPECT_EQ(mean.deltaE, one.deltaE);
+        EXPECT_EQ(mean.shadeMs, one.shadeMs);
+        EXPECT_EQ(mean.repeats, 1);
+        EXPECT_EQ(mean.rmseSpread, 0.0);
+    }
+}
+
+TEST(BenchRows, RowAtFindsATechniquesCountOrSaysNaN) {
+    std::vector<BenchRow> rows = {{"a", 4, 1.0, 0.5}, {"a", 8, 2.0, 0.25}, {"b", 4, 3.0, 0.75}};
+    EXPECT_EQ(rowAt(rows, "a", 8).rmse, 0.25);
+    EXPECT_EQ(rowAt(rows, "b", 4).shadeMs, 3.0);
+    EXPECT_TRUE(std::isnan(rowAt(rows, "b", 8).rmse));
+    EXPECT_TRUE(std::isnan(rowAt(rows, "c", 4).shadeMs));
+}
+
+}  // namespace
+}  // namespace candela
