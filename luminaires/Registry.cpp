@@ -4,6 +4,7 @@
 #include "luminaires/LambertianRect.h"
 #include "luminaires/LightField.h"
 #include "luminaires/PhotometricLuminaire.h"
+#include "luminaires/PhotometricUniformArea.h"
 
 namespace candela {
 
@@ -89,6 +90,11 @@ static const TechniqueInfo kTechniques[] = {
      "Monte Carlo: opening points (Prost Eq. 6.3), cosine and intensity-proportional directions, balance heuristic",
      true, &photometricReference, "photometric_reference.frag", false, {},
      {Limits::Unbiased, 2e-3, -1, 0, true, "unbiased; its standard error covers its error (4 standard errors)"}},
+    {"photometric", "uniform-area", "Monte Carlo: points uniform on the opening only (Prost Eq. 6.3 on its own)", true,
+     &photometricUniformArea, "photometric_uniform_area.frag", false, {},
+     {Limits::Unbiased, 2e-3, -1, 1, false,
+      "unbiased, error bar covers, from 1 opening diagonal on; nearer, its points almost never land at the "
+      "receiver's foot, where the light comes from, and a peak narrower than the angle its points span is missed"}},
     // The environment. Its pass (renderer/passes/EnvironmentPass) builds the tables each names:
     // the cube-map CDFs and a pool of light samples per pass, the lat-long CDF, or Havran's
     // lights.
