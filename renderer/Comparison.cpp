@@ -56,6 +56,7 @@ std::string techniqueSummary(const FramePlan& plan) {
 
 Comparison::Comparison(ShaderLibrary& shaders) : mShaders(shaders) {
     mReference.renderer = std::make_unique<Renderer>(shaders);
+    mReference.renderer->setExactTimes(true);  // accuracy versus time: each frame's own times
 }
 
 Comparison::~Comparison() = default;
@@ -105,6 +106,7 @@ void Comparison::configure(const std::vector<PaneSpec>& panes, const RenderSetti
     while (mPanes.size() < count) {
         Pane pane;
         pane.renderer = std::make_unique<Renderer>(mShaders);
+        pane.renderer->setExactTimes(true);
         if (mScene) pane.renderer->update(*mScene, kChangeAll);
         mPanes.push_back(std::move(pane));
     }

@@ -6,8 +6,10 @@ namespace candela {
 
 struct PassTiming {
     std::string name;
-    /// GPU time from a GL_TIME_ELAPSED query, milliseconds; on a software rasterizer (llvmpipe)
-    /// the wall time between glFinish calls around the pass (see Renderer.cpp, timed()).
+    /// Milliseconds. On a GPU, from a pooled GL_TIME_ELAPSED query read back without waiting:
+    /// the last result for a pass of this name (a frame or more old; 0 before the first). On a
+    /// software rasterizer (llvmpipe), this pass's wall time between glFinish calls around it
+    /// (renderer/PassTimer.h).
     double gpuMs = 0.0;
 };
 

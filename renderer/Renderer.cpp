@@ -229,7 +229,7 @@ void Renderer::runShading(int spp, int row0, int rows) {
         for (const Luminaire* source : mPass)
             if (int st = stepOf(source); st >= 0) steps.push_back(st);
     }
-    SourceContext context{mShaders, mStats, *mGBuffer, mSettings, [this]() -> const ShadowGeometry& { return shadowGeometry(); },
+    SourceContext context{mShaders, mStats, mTimer, *mGBuffer, mSettings, [this]() -> const ShadowGeometry& { return shadowGeometry(); },
                           mGeometryGeneration, mPointMode};
     for (int st : steps) {
         const ShadeStep& step = mPlan.shading[size_t(st)];
@@ -251,7 +251,7 @@ void Renderer::runShading(int spp, int row0, int rows) {
             glEnable(GL_SCISSOR_TEST);
             glScissor(0, height - row0 - rows, mGBuffer->width(), rows);
         }
-        timed(mStats, step.name, [&] { pass.shade(step, context, target); });
+        mTimer.timed(mStats, step.name, [&] { pass.shade(step, context, target); });
     }
     glDisable(GL_SCISSOR_TEST);
 }
@@ -289,7 +289,7 @@ void Renderer::applyChanges() {
     mFrameUniforms.bindBase(GL_UNIFORM_BUFFER, gpu::kBindingFrame);
     // Luminaires only mark their own pixels in the G-buffer (GBufferPass), so drawing it again
     // for a moved luminaire leaves what the others shade as it was.
-    timed(mStats, "gbuffer", [&] { mGBuffer->execute(mShaders, mSettings.quantity); });
+    mTimer.timed(mStats, "gbuffer", [&] { mGBuffer->execute(mShaders, mSettings.quantity); });
     restartAccumulations(everything);
     mStats.converged = false;
     mNeedDisplay = true;
@@ -338,7 +338,7 @@ void Renderer::updateIndirect() {
     if (mIndirectDirty && mIndirect->hasLight() && !mPointMode) {
         mFrameUniforms.bindBase(GL_UNIFORM_BUFFER, gpu::kBindingFrame);
         setFrameUniforms(0, 1);
-        timed(mStats, "indirect", [&] { mIndirect->execute(mShaders, *mGBuffer); });
+        mTimer.timed(mStats, "indirect", [&] { mIndirect->execute(mShaders, *mGBuffer); });
         mNeedDisplay = true;
     }
     mIndirectDirty = false;
@@ -400,8 +400,8 @@ void Renderer::resolve() {
     if (mIndirect->hasLight() && mSettings.parts != LightParts::Direct)
         terms.push_back(ResolvePass::Term{&mIndirect->image(), 1.f});
     glBindVertexArray(mEmptyVao.id());
-    timed(mStats, "resolve", [&] { mResolve->execute(mShaders, terms, mGBuffer->texture(gpu::kGBufferEmission)); });
-    timed(mStats, "tonemap", [&] {
+    mTimer.timed(mStats, "resolve", [&] { mResolve->execute(mShaders, terms, mGBuffer->texture(gpu::kGBufferEmission)); });
+    mTimer.timed(mStats, "tonemap", [&] {
         mTonemap->execute(mShaders, mResolve->linear(), mResolve->luminance(), mGBuffer->texture(gpu::kGBufferPosition),
                           mGBuffer->texture(gpu::kGBufferEmission), mSettings);
     });
@@ -426,6 +426,7 @@ void Renderer::updateStatistics() {
 
 void Renderer::renderFrame() {
     mStats.passes.clear();
+    mTimer.collect();
     if (!mScene) return;
     if (!mPointMode && sourcesChanged()) mPending |= kChangeSources;
     if (mPending || mPointMode) applyChanges();

@@ -15,6 +15,7 @@
 
 #include "renderer/FramePlan.h"
 #include "renderer/FrameStats.h"
+#include "renderer/PassTimer.h"
 #include "renderer/RenderSettings.h"
 #include "renderer/ShaderLibrary.h"
 #include "renderer/gl/GlObjects.h"
@@ -61,6 +62,10 @@ public:
     void renderFrame();
     bool converged() const { return mStats.converged; }
     const FrameStats& stats() const { return mStats; }
+    /// Exact times: each frame's passes carry their own GPU times (a stall per pass on a GPU);
+    /// else, on a GPU, the pooled queries' times of an earlier frame (renderer/PassTimer.h).
+    /// Benches and the comparison ask for exact times; llvmpipe always measures wall time.
+    void setExactTimes(bool exact) { mTimer.setMode(PassTimer::defaultMode(exact)); }
     const FramePlan& plan() const { return mPlan; }
     /// The GPU pass of a source of the current plan (its tables, for tests); null when none.
     const SourcePass* sourcePass(const Luminaire* source) const;
@@ -154,6 +159,7 @@ private:
     RenderSettings mSettings;
     FramePlan mPlan;
     FrameStats mStats;
+    PassTimer mTimer{PassTimer::defaultMode(false)};  ///< Times every pass (renderer/PassTimer.h).
     unsigned mPending = kChangeAll;
     int mFrames = 0;             ///< Passes of a probe (probe mode only).
     int mBandRow = 0;            ///< Next row of the pass under way (banded refinement).

@@ -316,6 +316,7 @@ int benchDrag(const Args& args) {
 
     Scene shownWhileDragging = previewScene(scene);
     Renderer fullRenderer(gpu.shaders);
+    fullRenderer.setExactTimes(true);
     DragRun run{o,    scene,   shownWhileDragging,  gpu.renderer, fullRenderer,
                 full, preview, std::move(reference)};
     for (size_t i = 0; i < scene.luminaires.size(); ++i) {

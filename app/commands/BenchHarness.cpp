@@ -141,7 +141,9 @@ void writePlot(const fs::path& dir, int width, int height, const std::string& bo
 
 // ---- Rendering ---------------------------------------------------------------------------------
 
-BenchGpu::BenchGpu() : context(createOffscreenContext()), shaders(), renderer(shaders) {}
+BenchGpu::BenchGpu() : context(createOffscreenContext()), shaders(), renderer(shaders) {
+    renderer.setExactTimes(true);  // a bench's figures are each frame's own GPU times
+}
 
 double gpuMs(const std::vector<PassTiming>& passes, std::string_view prefix) {
     double ms = 0.0;

@@ -392,6 +392,7 @@ int cmdRender(const Args& args) {
     auto context = createOffscreenContext();
     ShaderLibrary shaders;
     Renderer renderer(shaders);
+    renderer.setExactTimes(true);  // --passes-csv and the sidecar report each pass's own time
     o.settings.samplesPerFrame = std::min(o.spp, 16);
     o.settings.maxSamples = o.spp;
     renderer.setSettings(o.settings);

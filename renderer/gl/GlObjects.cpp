@@ -101,6 +101,12 @@ TimerQuery::TimerQuery() {
     }));
 }
 
+bool TimerQuery::available() const {
+    GLuint ready = GL_FALSE;
+    glGetQueryObjectuiv(mHandle.id(), GL_QUERY_RESULT_AVAILABLE, &ready);
+    return ready == GL_TRUE;
+}
+
 double TimerQuery::milliseconds() const {
     GLuint64 ns = 0;
     glGetQueryObjectui64v(mHandle.id(), GL_QUERY_RESULT, &ns);

@@ -134,6 +134,8 @@ public:
     TimerQuery();
     void begin() { glBeginQuery(GL_TIME_ELAPSED, mHandle.id()); }
     void end() { glEndQuery(GL_TIME_ELAPSED); }
+    /// Whether the result is there (never waits).
+    bool available() const;
     /// Elapsed GPU time in milliseconds (waits for the result).
     double milliseconds() const;
 

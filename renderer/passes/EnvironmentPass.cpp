@@ -182,12 +182,12 @@ void EnvironmentPass::prepare(const ShadeStep& step, SourceContext& context, int
     setMap(mSourceMap, context.settings.environmentFaceSize);
     const TechniqueInfo& t = *step.technique;
     if (reads(t, "cube")) {
-        if (!tablesBuilt()) timed(context.stats, "env:cdf", [&] { buildTables(context.shaders); });
+        if (!tablesBuilt()) context.timer.timed(context.stats, "env:cdf", [&] { buildTables(context.shaders); });
         // Enough samples per face that a pixel whose faces balance to one face still draws
         // distinct ones; a fresh pool every pass (every band of a pass shares it).
         int pool = std::max(256, spp);
         uint32_t seed = uint32_t(context.settings.seed) * 2654435761u ^ uint32_t(frame) * 40503u ^ 0x5bd1e995u;
-        timed(context.stats, "env:samples", [&] { drawSamples(context.shaders, seed, pool); });
+        context.timer.timed(context.stats, "env:samples", [&] { drawSamples(context.shaders, seed, pool); });
     }
     if (reads(t, "latlong")) prepareGlobalCdf();
     if (reads(t, "lights")) {
@@ -196,7 +196,7 @@ void EnvironmentPass::prepare(const ShadeStep& step, SourceContext& context, int
             std::vector<glm::dvec3> directions = havranDirections();
             if (mShadows.stale(directions, context.settings.shadowMaps, context.geometryGeneration)) {
                 const ShadowGeometry& geometry = context.geometry();
-                timed(context.stats, shadowPassName(step), [&] {
+                context.timer.timed(context.stats, shadowPassName(step), [&] {
                     mShadows.render(context.shaders, geometry, directions, context.settings.shadowMaps,
                                     context.geometryGeneration);
                 });

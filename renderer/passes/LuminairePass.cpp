@@ -21,7 +21,7 @@ void LuminairePass::prepare(const ShadeStep& step, SourceContext& context, int, 
     ShadowLights lights = step.source->shadowLights(context.settings.shadowMaps.count);
     if (!mShadowMaps->stale(lights, context.settings.shadowMaps, context.geometryGeneration)) return;
     const ShadowGeometry& geometry = context.geometry();
-    timed(context.stats, shadowPassName(step), [&] {
+    context.timer.timed(context.stats, shadowPassName(step), [&] {
         mShadowMaps->render(context.shaders, geometry, lights, context.settings.shadowMaps, context.geometryGeneration);
     });
 }

@@ -14,6 +14,7 @@
 
 #include "renderer/FramePlan.h"
 #include "renderer/FrameStats.h"
+#include "renderer/PassTimer.h"
 #include "renderer/RenderSettings.h"
 #include "renderer/ShaderLibrary.h"
 #include "renderer/gl/GlObjects.h"
@@ -26,7 +27,8 @@ class ShadowGeometry;
 /// What a source's pass may use while the renderer prepares and shades one of its steps.
 struct SourceContext {
     ShaderLibrary& shaders;
-    FrameStats& stats;  ///< Prepasses record themselves here (renderer/PassTimer.h).
+    FrameStats& stats;  ///< Prepasses record themselves here, timed by `timer`.
+    PassTimer& timer;
     const GBufferPass& gbuffer;
     const RenderSettings& settings;
     /// The scene's triangles for shadow maps, made on first use; and their generation.
