@@ -83,6 +83,8 @@ Editor::Editor(const EditorOptions& options) : mOptions(options) {
     mShaders = std::make_unique<ShaderLibrary>();
     mRenderer = std::make_unique<Renderer>(*mShaders);
     mState = std::make_unique<EditorState>();
+    mImages = std::make_unique<ImageTextures>();
+    mState->images = mImages.get();
     mState->screenshotDir = options.screenshotDir;
     // Many samples per pass: a pass pays a fixed cost per pixel (the light field's box
     // integrals) that more samples share, and banding keeps the editor responsive anyway.
@@ -144,6 +146,7 @@ Editor::~Editor() {
     mInterreflection.reset();  // stops its thread
     // GL objects go before the context that owns them.
     mComparison.reset();
+    mImages.reset();
     mPreviewRenderer.reset();
     mRenderer.reset();
     mShaders.reset();

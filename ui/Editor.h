@@ -15,6 +15,7 @@ class WindowContext;
 class ShaderLibrary;
 class Renderer;
 class Comparison;
+class ImageTextures;
 class InterreflectionWorker;
 
 namespace ui {
@@ -97,6 +98,7 @@ class Editor {
     std::unique_ptr<Renderer> mPreviewRenderer;  ///< Renders the live preview (renderer/LivePreview.h).
     unsigned mFullOwed = 0;  ///< Changes made during a drag, owed to mRenderer (ChangeFlags).
     std::unique_ptr<Comparison> mComparison;  ///< The panes, while the viewport is split.
+    std::unique_ptr<ImageTextures> mImages;   ///< The panels' pictures (EditorState::images).
     /// Interreflected light, computed on its own thread (scene/InterreflectionWorker.h).
     std::unique_ptr<InterreflectionWorker> mInterreflection;
     uint64_t mIndirectVersion = 0;  ///< The solution the renderers were handed (0: none yet).

@@ -16,6 +16,7 @@
 
 #include "luminaires/Registry.h"
 #include "renderer/Comparison.h"
+#include "renderer/ImageTextures.h"
 #include "renderer/LivePreview.h"
 #include "renderer/Renderer.h"
 #include "scene/Bvh.h"
@@ -92,8 +93,7 @@ struct EnvironmentUi {
     bool pixelPicked = false;
     glm::dvec2 pickedPixel{0.0};  ///< Render pixels (x right, y down), at the click.
     glm::dvec3 pickedPoint{0.0};  ///< World position seen there, metres.
-    std::shared_ptr<void> chartTexture;  ///< A gl::Texture2D, made by the panel
-    std::string chartKey;                ///< What the texture shows (map, normal, spp)
+    std::string chartKey;                ///< What the chart image shows (map, normal, spp)
     std::string chartCounts;             ///< Selected / effective per face, as text
 };
 
@@ -174,7 +174,7 @@ struct LibraryUi {
     bool scanned = false;
     std::string folderText;            ///< The "Add folder" field.
     struct Thumbnail {
-        std::shared_ptr<void> texture;  ///< A gl::Texture2D, made by the panel.
+        bool hasImage = false;          ///< Uploaded to EditorState::images (key: "library:PATH").
         std::string info;               ///< Flux and size, or why it failed.
         bool failed = false;
     };
@@ -234,6 +234,9 @@ struct EditorState {
     int selectedGeometry = -1;   ///< Index into scene.geometry, or -1.
 
     RenderSettings settings;  ///< What the renderer uses; the editor applies it every frame.
+    /// The panels' pictures (library thumbnails, the sample chart) as GL textures: owned by the
+    /// Editor, so the panels hold no GL object (null without a GL context).
+    ImageTextures* images = nullptr;
     /// Render pixels per viewport pixel (1 = full resolution; less is faster on slow GPUs).
     float renderScale = 1.f;
     unsigned pendingChanges = kChangeAll;  ///< Scene changes not yet passed to the renderer.

@@ -11,8 +11,6 @@
 
 #include "luminaires/Environment.h"
 #include "luminaires/EnvironmentSampling.h"
-#include "renderer/gl/GlFunctions.h"
-#include "renderer/gl/GlObjects.h"
 #include "renderer/passes/EnvironmentPass.h"
 #include "ui/ImGuiUtil.h"
 #include "ui/Panels.h"
@@ -21,6 +19,8 @@
 namespace candela::ui {
 
 namespace {
+
+constexpr const char* kChartImage = "environment:sample-chart";  ///< Its key in EditorState::images.
 
 std::string baseDir(const Scene& scene) {
     return scene.path.empty() ? std::string(".") : std::filesystem::path(scene.path).parent_path().string();
@@ -177,17 +177,13 @@ void sampleChartControls(EditorState& state) {
     char key[160];
     std::snprintf(key, sizeof key, "%p %.4f %.4f %d %d", static_cast<const void*>(state.scene.environmentMap.get()),
                   ui.normalElevationDeg, ui.normalAzimuthDeg, ui.chartSpp, int(balanced));
-    if (ui.chartKey != key || !ui.chartTexture) {
+    if (!state.images) return;
+    if (ui.chartKey != key || !state.images->find(kChartImage).id) {
         const EnvironmentMap& map = *state.scene.environmentMap;
         CubeMapDistribution cube(map, EnvironmentPass::defaultFaceSize(map));  // as the renderer's
         glm::dvec3 n = ui.chartNormal();
         SampleChart chart = sampleChart(map, cube, n, ui.chartSpp, balanced, 1, 64);
-        std::vector<unsigned char> rgba(size_t(chart.width) * size_t(chart.height) * 4, 255);
-        for (size_t i = 0; i < size_t(chart.width) * size_t(chart.height); ++i)
-            for (int k = 0; k < 3; ++k) rgba[4 * i + size_t(k)] = chart.rgb[3 * i + size_t(k)];
-        auto texture = std::make_shared<gl::Texture2D>(chart.width, chart.height, GL_RGBA8);
-        glTextureSubImage2D(texture->id(), 0, 0, 0, chart.width, chart.height, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
-        ui.chartTexture = texture;
+        state.images->upload(kChartImage, chart.width, chart.height, chart.rgb);
         ui.chartKey = key;
         int drawn = 0, effective = 0;
         for (int f = 0; f < 6; ++f) drawn += chart.drawn[size_t(f)], effective += chart.effective[size_t(f)];
@@ -199,10 +195,10 @@ void sampleChartControls(EditorState& state) {
                       drawn ? 100.0 * effective / drawn : 0.0, m[0], m[1], m[2], m[3], m[4], m[5]);
         ui.chartCounts = text;
     }
-    auto* texture = static_cast<gl::Texture2D*>(ui.chartTexture.get());
+    ImageTextures::Shown chartImage = state.images->find(kChartImage);
     float w = ImGui::GetContentRegionAvail().x;
-    ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(texture->id())),
-                 ImVec2(w, w * float(texture->height()) / float(texture->width())));
+    ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(chartImage.id)),
+                 ImVec2(w, w * float(chartImage.height) / float(chartImage.width)));
     itemTooltip("Unfolded cube seen from inside (+Y on top, -X -Z +X +Z across, -Y below). Green: samples "
                 "the normal selects that face it (effective); red: selected behind it (wasted); white "
                 "cross: the normal. Faces dimmed further get no samples.");

@@ -13,8 +13,6 @@
 #include "luminaires/FarField.h"
 #include "luminaires/LightField.h"
 #include "luminaires/PhotometricLuminaire.h"
-#include "renderer/gl/GlFunctions.h"
-#include "renderer/gl/GlObjects.h"
 #include "scene/SceneIo.h"
 #include "ui/ImGuiUtil.h"
 #include "ui/Panels.h"
@@ -58,8 +56,11 @@ void scan(LibraryUi& lib) {
     lib.scanned = true;
 }
 
-/// The thumbnail and one line of facts of a file (its flux), made once.
-void makeThumbnail(LibraryUi& lib, const LibraryEntry& entry) {
+/// The key of a file's thumbnail in EditorState::images.
+std::string thumbnailImage(const LibraryEntry& entry) { return "library:" + entry.path; }
+
+/// The thumbnail (uploaded to `images`) and one line of facts of a file (its flux), made once.
+void makeThumbnail(LibraryUi& lib, ImageTextures& images, const LibraryEntry& entry) {
     LibraryUi::Thumbnail& t = lib.thumbnails[entry.path];
     try {
         std::shared_ptr<const PhotometricData> table;
@@ -76,13 +77,8 @@ void makeThumbnail(LibraryUi& lib, const LibraryEntry& entry) {
                           table->warnings.empty() ? "" : ", with warnings (see the inspector)");
         }
         std::vector<unsigned char> rgb = footprintImage(*table, kThumbnailPixels);
-        std::vector<unsigned char> rgba(size_t(kThumbnailPixels) * kThumbnailPixels * 4, 255);
-        for (size_t i = 0; i < size_t(kThumbnailPixels) * kThumbnailPixels; ++i)
-            for (int c = 0; c < 3; ++c) rgba[4 * i + size_t(c)] = rgb[3 * i + size_t(c)];
-        auto texture = std::make_shared<gl::Texture2D>(kThumbnailPixels, kThumbnailPixels, GL_RGBA8);
-        glTextureSubImage2D(texture->id(), 0, 0, 0, kThumbnailPixels, kThumbnailPixels, GL_RGBA, GL_UNSIGNED_BYTE,
-                            rgba.data());
-        t.texture = texture;
+        images.upload(thumbnailImage(entry), kThumbnailPixels, kThumbnailPixels, rgb);
+        t.hasImage = true;
         t.info = info;
     } catch (const std::exception& e) {
         t.failed = true;
@@ -99,15 +95,17 @@ bool libraryRow(EditorState& state, const LibraryEntry& entry, bool& madeOne) {
     ImGui::PushID(entry.path.c_str());
     auto found = lib.thumbnails.find(entry.path);
     float rowTop = ImGui::GetCursorPosY();
-    if (found == lib.thumbnails.end() && !madeOne &&
+    if (found == lib.thumbnails.end() && !madeOne && state.images &&
         ImGui::IsRectVisible(ImVec2(1.f, float(kThumbnailPixels)))) {
-        makeThumbnail(lib, entry);
+        makeThumbnail(lib, *state.images, entry);
         madeOne = true;
         found = lib.thumbnails.find(entry.path);
     }
-    if (found != lib.thumbnails.end() && found->second.texture) {
-        auto* texture = static_cast<gl::Texture2D*>(found->second.texture.get());
-        ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(texture->id())),
+    ImageTextures::Shown thumbnail =
+        found != lib.thumbnails.end() && found->second.hasImage && state.images
+            ? state.images->find(thumbnailImage(entry)) : ImageTextures::Shown{};
+    if (thumbnail.id) {
+        ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(thumbnail.id)),
                      ImVec2(float(kThumbnailPixels), float(kThumbnailPixels)));
         itemTooltip(
             "Illuminance on a floor 1 m below it, aimed down, over 5 x 5 m (log scale, 3 decades)");
