@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <gtest/gtest.h>
+
 #include "renderer/ShaderLibrary.h"
 #include "renderer/context/GlContext.h"
 #include "renderer/gl/GlObjects.h"
@@ -67,7 +69,20 @@ ChiSquareResult chiSquare(const std::vector<double>& observed, const std::vector
     return r;
 }
 
+namespace {
+
+/// Every GL context a test makes reports to this (KHR_debug, synchronous): a GL error fails the
+/// test that caused it, whatever the build type.
+void failOnGlError(bool error, const char* message) {
+    if (error) ADD_FAILURE() << "GL error: " << message;
+}
+
+const bool kGlErrorsFail = (setGlDebugHandler(&failOnGlError), true);
+
+}  // namespace
+
 GlContext& glContext() {
+    (void)kGlErrorsFail;
     static std::unique_ptr<GlContext> context = createOffscreenContext();
     context->makeCurrent();
     return *context;

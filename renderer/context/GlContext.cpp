@@ -16,25 +16,33 @@
 
 namespace candela {
 
+static GlDebugHandler gDebugHandler = nullptr;
+
+void setGlDebugHandler(GlDebugHandler handler) { gDebugHandler = handler; }
+
 static void APIENTRY debugCallback(GLenum, GLenum type, GLuint, GLenum severity, GLsizei,
                                    const GLchar* message, const void*) {
     if (severity == GL_DEBUG_SEVERITY_NOTIFICATION) return;
-    std::fprintf(stderr, "GL %s: %s\n", type == GL_DEBUG_TYPE_ERROR ? "error" : "debug", message);
+    bool error = type == GL_DEBUG_TYPE_ERROR;
+    if (gDebugHandler)
+        gDebugHandler(error, message);
+    else
+        std::fprintf(stderr, "GL %s: %s\n", error ? "error" : "debug", message);
 }
 
-/// Loads the GL functions and, in debug builds, installs the KHR_debug callback.
+/// Loads the GL functions and installs the KHR_debug callback: in debug builds, and wherever a
+/// handler is set (setGlDebugHandler).
 static void finishSetup(gl::ProcAddressFn getProc, const char* what) {
     int missing = gl::loadFunctions(getProc);
     if (!glGetString || !glCreateBuffers)
         throw RuntimeError(std::string(what) + ": GL 4.5 entry points missing (" +
                            std::to_string(missing) + " unresolved)");
-#ifndef NDEBUG
+#ifdef NDEBUG
+    if (!gDebugHandler) return;
+#endif
     glEnable(GL_DEBUG_OUTPUT);
     glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
     glDebugMessageCallback(debugCallback, nullptr);
-#else
-    (void)debugCallback;
-#endif
 }
 
 std::string GlContext::description() const {

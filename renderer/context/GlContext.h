@@ -17,6 +17,13 @@ public:
     std::string description() const;
 };
 
+/// KHR_debug: where GL's messages go. Without a handler, debug builds print errors and warnings
+/// to stderr and release builds install no callback. With one, every context made after it
+/// reports every message to it, synchronously (inside the GL call that caused it), in any build:
+/// the GL tests set one that fails the running test on a GL error.
+using GlDebugHandler = void (*)(bool error, const char* message);
+void setGlDebugHandler(GlDebugHandler handler);
+
 /// Offscreen context for tests, headless renders and benchmarks. Today OSMesa (llvmpipe); an
 /// EGL-surfaceless implementation can replace it behind this function (Mesa 25.1 drops OSMesa).
 std::unique_ptr<GlContext> createOffscreenContext();
