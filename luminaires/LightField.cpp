@@ -587,6 +587,13 @@ glm::dvec3 LightFieldData::power() const {
         double dist = glm::length(nearest - o);
         if (depth < 8 && std::max(size.x, size.y) > 0.5 * (dist + delta)) {
             glm::dvec2 mid = 0.5 * (lo + hi);
+            // A cell more than twice as long as wide halves its long side only: quartering it
+            // would double the cells near the peak at every level (found by fuzzing: a basis
+            // spacing of 5.02 x 0.02 m took minutes). Square cells, as every real file's, quarter.
+            if (size.x > 2.0 * size.y)
+                return self(self, lo, {mid.x, hi.y}, o, depth + 1) + self(self, {mid.x, lo.y}, hi, o, depth + 1);
+            if (size.y > 2.0 * size.x)
+                return self(self, lo, {hi.x, mid.y}, o, depth + 1) + self(self, {lo.x, mid.y}, hi, o, depth + 1);
             return self(self, lo, mid, o, depth + 1) + self(self, {mid.x, lo.y}, {hi.x, mid.y}, o, depth + 1) +
                    self(self, {lo.x, mid.y}, {mid.x, hi.y}, o, depth + 1) + self(self, mid, hi, o, depth + 1);
         }
