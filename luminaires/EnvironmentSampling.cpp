@@ -4,14 +4,16 @@
 #include <cmath>
 
 #include "luminaires/Random.h"
+#include "shaders/shared/Constants.h"
+#include "shaders/shared/CubeFaces.h"
 #include "shaders/shared/GpuTypes.h"
-
 
 namespace candela {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using gpu::kPi;
+
 /// Floor of a cube texel's luminance as a fraction of its face's mean (see CubeMapDistribution),
 /// and the share of the largest luminance a cube texel touches in its sampling weight: with it,
 /// L(w) / (mu_f pdf_L(w|f)) is bounded (L <= max <= weight / (kMaxShare Omega)), so a sun thinner
@@ -19,11 +21,14 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kFaceFloor = gpu::kEnvFaceFloor;
 constexpr double kMaxShare = gpu::kEnvMaxShare;
 
-const CubeFaceFrame kFaces[6] = {
-    {{1, 0, 0}, {0, 0, 1}, {0, -1, 0}},  {{-1, 0, 0}, {0, 0, -1}, {0, -1, 0}},
-    {{0, 1, 0}, {1, 0, 0}, {0, 0, -1}},  {{0, -1, 0}, {1, 0, 0}, {0, 0, 1}},
-    {{0, 0, 1}, {-1, 0, 0}, {0, -1, 0}}, {{0, 0, -1}, {1, 0, 0}, {0, -1, 0}},
-};
+/// Face f's frame from the table shared with GLSL (its components are exact in float).
+constexpr CubeFaceFrame sharedFrame(int f) {
+    return {glm::dvec3(gpu::kCubeFaceCentre[f]), glm::dvec3(gpu::kCubeFaceRight[f]),
+            glm::dvec3(gpu::kCubeFaceDown[f])};
+}
+
+constexpr CubeFaceFrame kFaces[6] = {sharedFrame(0), sharedFrame(1), sharedFrame(2),
+                                     sharedFrame(3), sharedFrame(4), sharedFrame(5)};
 
 double clamp01(double u) { return u > 0.0 ? (u < 1.0 ? u : std::nextafter(1.0, 0.0)) : 0.0; }
 
