@@ -42,7 +42,7 @@ glm::dvec3 faceDirection(int face, double a, double b) {
 
 /// Largest luminance of the lat-long texels that texel (c, r) of face f (of n^2) may touch.
 double touchedMaximum(const EnvironmentMap& map, int f, int c, int r, int n) {
-    const int w = map.width(), h = map.height(), kEdge = 16;
+    const int w = map.width(), h = map.height(), kEdge = gpu::kEnvTouchedSteps;
     double a0 = -1.0 + 2.0 * c / n, a1 = -1.0 + 2.0 * (c + 1) / n;
     double b0 = -1.0 + 2.0 * r / n, b1 = -1.0 + 2.0 * (r + 1) / n;
     double uc = map.uvOf(faceDirection(f, 0.5 * (a0 + a1), 0.5 * (b0 + b1))).x;
