@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "shaders/shared/Constants.h"
 #include "util/Error.h"
 #include "util/ImageRead.h"
 
@@ -16,7 +17,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using gpu::kPi;
 /// Largest accepted image side, texels (a 16k lat-long map is 2 GB of float RGB already).
 constexpr int kMaxSide = 16384;
 /// Largest accepted intensity: keeps radiance x solid angle sums far from overflow.

@@ -4,12 +4,13 @@
 
 #include "luminaires/EnvironmentSampling.h"
 #include "luminaires/Random.h"
+#include "shaders/shared/Constants.h"
 
 namespace candela {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using gpu::kPi;
 
 bool unitNormal(const glm::dvec3& n, glm::dvec3& out) {
     double len = glm::length(n);

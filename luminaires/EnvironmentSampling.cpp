@@ -4,14 +4,16 @@
 #include <cmath>
 
 #include "luminaires/Random.h"
+#include "shaders/shared/Constants.h"
+#include "shaders/shared/CubeFaces.h"
 #include "shaders/shared/GpuTypes.h"
-
 
 namespace candela {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using gpu::kPi;
+
 /// Floor of a cube texel's luminance as a fraction of its face's mean (see CubeMapDistribution),
 /// and the share of the largest luminance a cube texel touches in its sampling weight: with it,
 /// L(w) / (mu_f pdf_L(w|f)) is bounded (L <= max <= weight / (kMaxShare Omega)), so a sun thinner
@@ -19,11 +21,14 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kFaceFloor = gpu::kEnvFaceFloor;
 constexpr double kMaxShare = gpu::kEnvMaxShare;
 
-const CubeFaceFrame kFaces[6] = {
-    {{1, 0, 0}, {0, 0, 1}, {0, -1, 0}},  {{-1, 0, 0}, {0, 0, -1}, {0, -1, 0}},
-    {{0, 1, 0}, {1, 0, 0}, {0, 0, -1}},  {{0, -1, 0}, {1, 0, 0}, {0, 0, 1}},
-    {{0, 0, 1}, {-1, 0, 0}, {0, -1, 0}}, {{0, 0, -1}, {1, 0, 0}, {0, -1, 0}},
-};
+/// Face f's frame from the table shared with GLSL (its components are exact in float).
+constexpr CubeFaceFrame sharedFrame(int f) {
+    return {glm::dvec3(gpu::kCubeFaceCentre[f]), glm::dvec3(gpu::kCubeFaceRight[f]),
+            glm::dvec3(gpu::kCubeFaceDown[f])};
+}
+
+constexpr CubeFaceFrame kFaces[6] = {sharedFrame(0), sharedFrame(1), sharedFrame(2),
+                                     sharedFrame(3), sharedFrame(4), sharedFrame(5)};
 
 double clamp01(double u) { return u > 0.0 ? (u < 1.0 ? u : std::nextafter(1.0, 0.0)) : 0.0; }
 
@@ -37,7 +42,7 @@ glm::dvec3 faceDirection(int face, double a, double b) {
 
 /// Largest luminance of the lat-long texels that texel (c, r) of face f (of n^2) may touch.
 double touchedMaximum(const EnvironmentMap& map, int f, int c, int r, int n) {
-    const int w = map.width(), h = map.height(), kEdge = 16;
+    const int w = map.width(), h = map.height(), kEdge = gpu::kEnvTouchedSteps;
     double a0 = -1.0 + 2.0 * c / n, a1 = -1.0 + 2.0 * (c + 1) / n;
     double b0 = -1.0 + 2.0 * r / n, b1 = -1.0 + 2.0 * (r + 1) / n;
     double uc = map.uvOf(faceDirection(f, 0.5 * (a0 + a1), 0.5 * (b0 + b1))).x;

@@ -7,15 +7,8 @@
 // Cube faces follow the OpenEXR envmap=cube layout (ImfEnvmap.h): faces +X, -X, +Y, -Y, +Z, -Z,
 // stacked top to bottom in one N x 6N image. Texel (col, row) of face f (row 0 at the top of
 // the face) has face coordinates a = 2 (col + 0.5) / N - 1, b = 2 (row + 0.5) / N - 1 and looks
-// along centre_f + a right_f + b down_f, the OpenEXR orientation (seen from inside the cube):
-//
-//   face  centre      right (+col)   down (+row)
-//   +X    (+1, 0, 0)  (0, 0, +1)     (0, -1, 0)
-//   -X    (-1, 0, 0)  (0, 0, -1)     (0, -1, 0)
-//   +Y    (0, +1, 0)  (+1, 0, 0)     (0, 0, -1)
-//   -Y    (0, -1, 0)  (+1, 0, 0)     (0, 0, +1)
-//   +Z    (0, 0, +1)  (-1, 0, 0)     (0, -1, 0)
-//   -Z    (0, 0, -1)  (+1, 0, 0)     (0, -1, 0)
+// along centre_f + a right_f + b down_f, the OpenEXR orientation (seen from inside the cube); the
+// frames are the table in shaders/shared/CubeFaces.h, which the GLSL side uses too.
 //
 // (OpenEXR's own resampler puts the outermost texel centres on the cube's edges; here texel
 // edges are on the cube's edges, the GPU cube-map convention, so every direction has one texel.)
@@ -39,7 +32,7 @@ namespace candela {
 struct CubeFaceFrame {
     glm::dvec3 centre, right, down;
 };
-/// The frame of face f in 0..5 (table above).
+/// The frame of face f in 0..5 (shaders/shared/CubeFaces.h).
 const CubeFaceFrame& cubeFaceFrame(int face);
 /// Face of a direction (largest |component|, ties in the order x, y, z) and its face
 /// coordinates (a, b) in [-1, 1]^2; -1 for a zero or non-finite direction.

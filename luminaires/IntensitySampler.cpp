@@ -5,12 +5,14 @@
 #include <map>
 #include <mutex>
 
+#include "shaders/shared/Constants.h"
+
 namespace candela {
 
 namespace {
 
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
-constexpr double kTwoPi = 2.0 * 3.14159265358979323846;
+constexpr double kDeg = gpu::kPi / 180.0;
+constexpr double kTwoPi = 2.0 * gpu::kPi;
 
 /// The coordinate along which solid angle is uniform: cos(gamma) for type C (falling with the
 /// angle), sin(V) for type B (rising).

@@ -8,13 +8,14 @@
 
 #include "luminaires/Random.h"
 #include "luminaires/SphericalPolygon.h"
+#include "shaders/shared/Constants.h"
 #include "shaders/shared/GpuTypes.h"
 
 namespace candela {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using gpu::kPi;
 /// Largest distance from the receiver to the centre that is evaluated, metres; beyond it the
 /// rectangle subtends nothing representable and every estimator returns 0.
 constexpr double kMaxDistance = 1e100;

@@ -22,11 +22,14 @@
 #include "luminaires/PhotometricLuminaire.h"
 #include "luminaires/Random.h"
 #include "luminaires/SphericalPolygon.h"
+#include "shaders/shared/Constants.h"
+#include "shaders/shared/Photometric.h"
 
 namespace candela {
 
 namespace {
 
+using gpu::kPi;
 using spherical::Polygon;
 
 struct Setup {
@@ -110,12 +113,8 @@ bool degenerate(const Setup& s, double& e) {
         e = s.visible(glm::dvec3(0.0)) ? pointIrradiance(s, glm::dvec3(0.0)) : 0.0;
         return true;
     }
-    static const double node[8] = {0.0950125098376374, 0.2816035507792589, 0.4580167776572274,
-                                   0.6178762444026438, 0.7554044083550030, 0.8656312023878318,
-                                   0.9445750230732326, 0.9894009349916499};
-    static const double weight[8] = {0.1894506104550685, 0.1826034150449236, 0.1691565193950025,
-                                     0.1495959888165767, 0.1246289712555339, 0.0951585116824928,
-                                     0.0622535239386479, 0.0271524594117541};
+    const auto& node = gpu::kGaussLegendre16Node;  // the positive half of the rule
+    const auto& weight = gpu::kGaussLegendre16Weight;
     glm::dvec3 a(poly[0], 0.0), b(poly[1], 0.0);
     double length = glm::length(b - a);
     e = 0.0;
@@ -348,7 +347,7 @@ double hybridValue(const Setup& s) {
     // 24-point Poisson set from 1.5 opening sizes on, a smooth blend between (Prost Sec. 6.6;
     // the distances are where `candela bench --prost` shows the bumps fade).
     double distance = glm::length(spherical::closestPoint(openingFromReceiver(s), 0.0).point);
-    double w = hybridWeight(distance, s.light->size());
+    double w = gpu::hybridWeight(distance, s.light->size());
     double near = w < 1.0 ? scatteredValue(s) : 0.0;
     double far = w > 0.0 ? areaFormFixed(s, poissonSet(24)) : 0.0;
     return (1.0 - w) * near + w * far;
@@ -382,12 +381,6 @@ const std::vector<glm::dvec2>& poissonSet(int n) {
     return sets.emplace(n, std::move(points)).first->second;
 }
 
-double hybridWeight(double distance, double size) {
-    if (!(size > 0.0)) return 1.0;
-    double t = std::clamp(distance / size - 0.5, 0.0, 1.0);
-    return t * t * (3.0 - 2.0 * t);
-}
-
 Estimate photometricPoint(const Luminaire& l, const glm::dvec3& p, const glm::dvec3& n,
                           const EstimateOptions& o) {
     // A point light: its shadow is the centre's.
@@ -416,7 +409,7 @@ Estimate photometricReference(const Luminaire& l, const glm::dvec3& p, const glm
     if (options.spp <= 0 || !(s.light->area() > 0.0)) return withColour(s, 0.0);
     glm::dvec2 lo, hi;
     bounds(*s.light, lo, hi);
-    const double rect = (hi.x - lo.x) * (hi.y - lo.y), kPi = 3.14159265358979323846;
+    const double rect = (hi.x - lo.x) * (hi.y - lo.y);
     Polygon visible = spherical::clip(openingFromReceiver(s), s.n);
     std::shared_ptr<const IntensitySampler> table = IntensitySampler::of(s.light->data);
     const double cTable = table && table->valid() ? 0.25 : 0.0;

@@ -10,6 +10,7 @@
 #include <mutex>
 
 #include "luminaires/IntensitySampler.h"
+#include "shaders/shared/Constants.h"
 #include "shaders/shared/GpuTypes.h"
 #include "util/Error.h"
 #include "util/JsonRead.h"
@@ -20,7 +21,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using gpu::kPi;
 
 /// Openings smaller than this (m2, relative to the squared extent) are a segment or a point.
 constexpr double kDegenerateArea = 1e-9;

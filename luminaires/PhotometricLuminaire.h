@@ -95,9 +95,4 @@ Estimate photometricHybrid(const Luminaire&, const glm::dvec3& p, const glm::dve
 /// throwing with a fixed seed and the largest minimum distance that admits them.
 const std::vector<glm::dvec2>& poissonSet(int n);
 
-/// Hybrid blend weight of the Monte Carlo part: 0 within half an opening size of the opening, 1
-/// beyond one and a half, smooth in between (where the 24-point set's light bumps fade in
-/// `candela bench --prost`; Prost Sec. 6.6 suggests the blend, not the distances).
-double hybridWeight(double distance, double size);
-
 }  // namespace candela

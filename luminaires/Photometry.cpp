@@ -8,9 +8,9 @@
 #include <cstdlib>
 #include <fstream>
 #include <functional>
-#include <numbers>
 #include <sstream>
 
+#include "shaders/shared/Constants.h"
 #include "util/Error.h"
 #include "util/TextEncoding.h"
 
@@ -22,7 +22,7 @@ namespace candela {
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using gpu::kPi;
 constexpr double kDegToRad = kPi / 180.0;
 /// Two angles closer than this (degrees) are the same angle when unfolding symmetries.
 constexpr double kAngleEps = 1e-9;

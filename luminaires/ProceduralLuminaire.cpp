@@ -7,13 +7,14 @@
 #include <thread>
 
 #include "luminaires/Random.h"
+#include "shaders/shared/Constants.h"
 #include "util/Error.h"
 
 namespace candela {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using gpu::kPi;
 constexpr double kMm = 1e-3;              // metres per millimetre
 constexpr uint64_t kChunkRays = 1 << 16;  // emitted rays per deterministic chunk
 constexpr int kMaxBounces = 4;            // reflector hits before a ray counts as trapped

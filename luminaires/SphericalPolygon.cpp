@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "shaders/shared/Constants.h"
+
 namespace candela::spherical {
 
 Polygon clip(const Polygon& in, const glm::dvec3& normal) {
@@ -52,7 +54,7 @@ double projectedSolidAngle(const Polygon& p, const glm::dvec3& m) {
         sum += std::atan2(lc, glm::dot(a, b)) * glm::dot(m, c) / lc;
     }
     // At most the whole hemisphere, pi (rounding at contact must not give more).
-    double result = std::min(0.5 * std::abs(sum), 3.14159265358979323846);
+    double result = std::min(0.5 * std::abs(sum), gpu::kPi);
     return std::isfinite(result) ? result : 0.0;
 }
 

@@ -9,10 +9,12 @@
 
 #include <array>
 
+#include "shaders/shared/Photometric.h"
+
 namespace candela::spherical {
 
-/// Enough for a 16-gon cut by one plane, plus rounding slack.
-constexpr int kMaxPolygon = 20;
+/// Most vertices of a polygon (shared with GLSL): a 16-gon cut by one plane, plus rounding slack.
+using gpu::kMaxPolygon;
 
 struct Polygon {
     std::array<glm::dvec3, kMaxPolygon> v{};

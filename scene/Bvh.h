@@ -6,9 +6,9 @@
 // Layout (gpu::BvhNode, shaders/shared/GpuTypes.h): node 0 is the root. An inner node stores
 // intBitsToFloat(left child index) in lo.w and intBitsToFloat(0) in hi.w; its right child is
 // left + 1. A leaf stores its first triangle in lo.w and its triangle count (1 to 4) in hi.w,
-// both as int bits. Trees are at most kMaxDepth levels deep, so a traversal stack of 32 entries
-// never overflows. An empty scene gets one degenerate (never hit) triangle in a root leaf, so
-// both buffers are non-empty and the root is always valid.
+// both as int bits. Trees are at most kMaxDepth levels deep, so a traversal stack of
+// kMaxDepth + 1 entries never overflows. An empty scene gets one degenerate (never hit) triangle
+// in a root leaf, so both buffers are non-empty and the root is always valid.
 //
 // Shadow-ray bias: occluded(from, to) tests the open segment shrunk by
 // eps = 1e-4 m * max(1, |to - from|) at both ends, so the surfaces the segment starts and ends
@@ -41,8 +41,8 @@ struct Bvh {
     std::vector<gpu::BvhTriangle> triangles;  ///< World space (metres), in leaf order.
 
     static constexpr int kMaxLeafTriangles = 4;
-    /// Most inner levels on any root-to-leaf path; the GLSL traversal stack holds 32 entries.
-    static constexpr int kMaxDepth = 31;
+    /// Most inner levels on any root-to-leaf path (shared with the GLSL traversal's stack).
+    static constexpr int kMaxDepth = gpu::kBvhMaxDepth;
 
     /// Binned SAH build over all triangles of all meshes (falls back to median splits where
     /// needed to respect kMaxDepth).

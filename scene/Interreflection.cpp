@@ -6,12 +6,13 @@
 #include "luminaires/Random.h"
 #include "scene/EmbreeVisibility.h"
 #include "scene/Scene.h"
+#include "shaders/shared/Constants.h"
 #include "util/Error.h"
 
 namespace candela {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
+using gpu::kPi;
 }  // namespace
 
 struct Interreflection::Source {

@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 
+#include "shaders/shared/Constants.h"
+
 namespace candela {
 
 namespace {
@@ -70,7 +72,7 @@ Emitter describe(const Luminaire& luminaire) {
     }
     // Probe backward directions (behind the aim plane, up to 85 degrees from -aim) at the
     // outline's centroid; any emission there disables the emitting-side test.
-    const double kPi = 3.14159265358979323846;
+    using gpu::kPi;
     for (double theta : {0.0, 30.0, 60.0, 85.0}) {
         for (int k = 0; k < 8; ++k) {
             double phi = 2.0 * kPi * k / 8.0, t = theta * kPi / 180.0;

@@ -7,12 +7,13 @@
 
 #include "scene/EmbreeVisibility.h"
 #include "scene/Scene.h"
+#include "shaders/shared/Constants.h"
 
 namespace candela {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using gpu::kPi;
 
 /// Largest number of divisions of one triangle edge (a 1 km plane at 1 cm patches stops here).
 constexpr uint32_t kMaxSubdivisions = 256;

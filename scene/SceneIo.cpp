@@ -15,6 +15,7 @@
 #include "luminaires/Environment.h"
 #include "luminaires/Registry.h"
 #include "scene/GltfLoader.h"
+#include "shaders/shared/Constants.h"
 #include "util/Error.h"
 #include "util/FileOutput.h"
 
@@ -193,7 +194,7 @@ void parseDisc(const nlohmann::json& item, const json::Where& where, size_t inde
     mesh.positions.push_back(glm::vec3(center));
     mesh.normals.push_back(glm::vec3(n));
     for (int k = 0; k < segments; ++k) {
-        double a = 2.0 * 3.14159265358979323846 * double(k) / double(segments);
+        double a = 2.0 * gpu::kPi * double(k) / double(segments);
         mesh.positions.push_back(glm::vec3(center + radius * (std::cos(a) * u + std::sin(a) * v)));
         mesh.normals.push_back(glm::vec3(n));
     }

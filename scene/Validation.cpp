@@ -14,13 +14,14 @@
 #include "scene/EmbreeVisibility.h"
 #include "scene/Interreflection.h"
 #include "scene/SceneIo.h"
+#include "shaders/shared/Constants.h"
 #include "util/Error.h"
 
 namespace candela {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using gpu::kPi;
 
 std::string resource(const std::string& relative) { return std::string(CANDELA_SOURCE_DIR) + "/resources/" + relative; }
 

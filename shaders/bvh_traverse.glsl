@@ -5,8 +5,9 @@
 layout(std430, binding = kBindingBvhNodes) readonly buffer BvhNodes { BvhNode bvhNodes[]; };
 layout(std430, binding = kBindingBvhTris) readonly buffer BvhTris { BvhTriangle bvhTris[]; };
 
-/// Entries of the traversal stack; trees from Bvh::build() are at most 31 inner levels deep.
-const int kBvhStackSize = 32;
+/// Entries of the traversal stack; trees from Bvh::build() are at most kBvhMaxDepth inner levels
+/// deep.
+const int kBvhStackSize = kBvhMaxDepth + 1;
 /// Relative widening of a box's exit distance so rounding never culls a box the ray touches.
 /// Larger than the C++ side's 1 + 2 * gamma(3) (pbrt-v4) because GLSL division is only accurate
 /// to 2.5 ULP; it only makes the traversal visit a few more boxes.

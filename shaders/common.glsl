@@ -1,7 +1,6 @@
 // Shared by every pass: the per-frame uniform block, constants and random numbers.
 #include "shared/GpuTypes.h"
-
-const float kPi = 3.14159265358979;
+#include "shared/Constants.h"
 
 layout(std140, binding = 0) uniform FrameBlock { FrameUniforms frame; };
 

@@ -3,6 +3,7 @@
 // Mirrors luminaires/EnvironmentSampling.cpp (the CPU reference): same face layout (OpenEXR
 // envmap=cube), same texel weights, same piecewise-constant CDFs, so pdfs agree.
 #include "common.glsl"
+#include "shared/CubeFaces.h"
 
 layout(std140, binding = 4) uniform EnvironmentBlock { EnvironmentGpu env; };
 layout(binding = 5) uniform sampler2D uEnvMap;  // kUnitEnvironmentMap: RGB32F, row 0 = v = 0
@@ -14,16 +15,9 @@ layout(std430, binding = 10) buffer EnvColCdf { double envColCdf[]; };     // [f
 layout(std430, binding = 11) buffer EnvFaces { EnvironmentFaceGpu envFaces[6]; };
 layout(std430, binding = 12) buffer EnvSamples { EnvironmentSampleGpu envSamples[]; };
 
-// Face frames (centre, right = +col, down = +row), the table in EnvironmentSampling.h.
-const vec3 kFaceCentre[6] = vec3[6](vec3(1, 0, 0), vec3(-1, 0, 0), vec3(0, 1, 0),
-                                    vec3(0, -1, 0), vec3(0, 0, 1), vec3(0, 0, -1));
-const vec3 kFaceRight[6] = vec3[6](vec3(0, 0, 1), vec3(0, 0, -1), vec3(1, 0, 0),
-                                   vec3(1, 0, 0), vec3(-1, 0, 0), vec3(1, 0, 0));
-const vec3 kFaceDown[6] = vec3[6](vec3(0, -1, 0), vec3(0, -1, 0), vec3(0, 0, -1),
-                                  vec3(0, 0, 1), vec3(0, -1, 0), vec3(0, -1, 0));
-
+// Face frames (centre, right = +col, down = +row): shared/CubeFaces.h.
 vec3 envFaceDirection(int f, float a, float b) {
-    return normalize(kFaceCentre[f] + a * kFaceRight[f] + b * kFaceDown[f]);
+    return normalize(kCubeFaceCentre[f] + a * kCubeFaceRight[f] + b * kCubeFaceDown[f]);
 }
 
 /// Face of a direction (largest |component|, ties in the order x, y, z) and its face
@@ -45,7 +39,7 @@ int envFaceOf(vec3 w, out vec2 ab) {
     ab = vec2(0.0);
     if (!(major > 0.0)) return -1;
     vec3 d = w / major;
-    ab = clamp(vec2(dot(d, kFaceRight[f]), dot(d, kFaceDown[f])), -1.0, 1.0);
+    ab = clamp(vec2(dot(d, kCubeFaceRight[f]), dot(d, kCubeFaceDown[f])), -1.0, 1.0);
     return f;
 }
 

@@ -27,7 +27,7 @@ float latLongLuminance(int x, int y) { return luminance(texelFetch(uEnvMap, ivec
 /// points per edge, all columns across a pole or a box wider than a quarter turn
 /// (touchedMaximum in EnvironmentSampling.cpp).
 float touchedMaximum(int f, int c, int r, int n) {
-    const int kEdge = 16;
+    const int kEdge = kEnvTouchedSteps;
     int w = env.dims.x, h = env.dims.y;
     float a0 = -1.0 + 2.0 * float(c) / float(n), a1 = -1.0 + 2.0 * float(c + 1) / float(n);
     float b0 = -1.0 + 2.0 * float(r) / float(n), b1 = -1.0 + 2.0 * float(r + 1) / float(n);

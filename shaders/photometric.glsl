@@ -2,11 +2,10 @@
 // and luminaires/SphericalPolygon.cpp, in float. Needs shared/GpuTypes.h (PhotometricGpu) and
 // kPi from common.glsl. Everything works in the luminaire's local frame (opening in z = 0, aim
 // +z) with vectors relative to the receiver, as on the CPU.
+#include "shared/Photometric.h"
 
 layout(std430, binding = 1) readonly buffer PhotometricHeader { PhotometricGpu ph; };
 layout(std430, binding = 1) readonly buffer PhotometricFloats { float phFloats[]; };
-
-const int PH_MAX = 20;  // spherical::kMaxPolygon
 
 // --- The intensity table ------------------------------------------------------------------------
 
@@ -142,10 +141,6 @@ bool phDegenerate(vec3 p, vec3 n, out float e) {
         e = phPointIrradiance(p, n, vec3(0.0));
         return true;
     }
-    const float node[8] = float[8](0.0950125098, 0.2816035508, 0.4580167777, 0.6178762444,
-                                   0.7554044084, 0.8656312024, 0.9445750231, 0.9894009350);
-    const float weight[8] = float[8](0.1894506105, 0.1826034150, 0.1691565194, 0.1495959888,
-                                     0.1246289713, 0.0951585117, 0.0622535239, 0.0271524594);
     vec3 a = vec3(phCorner(0), 0.0), b = vec3(phCorner(1), 0.0);
     float len = length(b - a);
     if (!(len > 0.0)) return true;
@@ -159,9 +154,10 @@ bool phDegenerate(vec3 p, vec3 n, out float e) {
         if (!(hi > lo)) continue;
         for (int i = 0; i < 16; ++i) {
             float sgn = i < 8 ? -1.0 : 1.0;
-            float theta = 0.5 * (lo + hi) + 0.5 * sgn * node[i % 8] * (hi - lo), c = cos(theta);
+            float x = sgn * kGaussLegendre16Node[i % 8], w = kGaussLegendre16Weight[i % 8];
+            float theta = 0.5 * (lo + hi) + 0.5 * x * (hi - lo), c = cos(theta);
             vec3 q = a + (foot + d * tan(theta)) * axis;
-            e += 0.5 * weight[i % 8] * (hi - lo) * phPointIrradiance(p, n, q) * d / (c * c) / len;
+            e += 0.5 * w * (hi - lo) * phPointIrradiance(p, n, q) * d / (c * c) / len;
         }
     }
     return true;
@@ -204,13 +200,13 @@ float phPoisson(vec3 p, vec3 n, int o, int count) {
 // --- Spherical polygons (luminaires/SphericalPolygon.cpp) ----------------------------------------
 
 struct PhPolygon {
-    vec3 v[PH_MAX];
+    vec3 v[kMaxPolygon];
     int count;
 };
 
 PhPolygon phOpening(vec3 p) {
     PhPolygon q;
-    q.count = min(ph.dims.z, PH_MAX);
+    q.count = min(ph.dims.z, kMaxPolygon);
     for (int i = 0; i < q.count; ++i) q.v[i] = vec3(phCorner(i), 0.0) - p;
     return q;
 }
@@ -221,8 +217,8 @@ PhPolygon phClip(PhPolygon a, vec3 normal) {
     for (int i = 0; i < a.count; ++i) {
         vec3 u = a.v[i], w = a.v[(i + 1) % a.count];
         float du = dot(normal, u), dw = dot(normal, w);
-        if (du >= 0.0 && out_.count < PH_MAX) out_.v[out_.count++] = u;
-        if ((du >= 0.0) != (dw >= 0.0) && out_.count < PH_MAX) out_.v[out_.count++] = u + (w - u) * (du / (du - dw));
+        if (du >= 0.0 && out_.count < kMaxPolygon) out_.v[out_.count++] = u;
+        if ((du >= 0.0) != (dw >= 0.0) && out_.count < kMaxPolygon) out_.v[out_.count++] = u + (w - u) * (du / (du - dw));
     }
     if (out_.count < 3) out_.count = 0;
     return out_;
@@ -337,7 +333,7 @@ float phScattered(vec3 p, vec3 n, out int flips) {
     int place, index;
     vec3 cp = phClosest(q, vec3(0.0), 1e-6 * ph.axisX.w, place, index);
 
-    const int V = PH_MAX + 1;
+    const int V = kMaxPolygon + 1;
     vec3 dirs[V];
     float f[V], c[V];
     int k = q.count;
@@ -349,7 +345,7 @@ float phScattered(vec3 p, vec3 n, out int flips) {
         c[i] = max(dot(n, dirs[i]), 0.0);
     }
     // Initial triangulation (Fig. 5.8).
-    ivec3 tri[2 * PH_MAX];
+    ivec3 tri[2 * kMaxPolygon];
     int count = 0;
     if (place == PH_CORNER) {
         for (int j = 1; j + 1 < k; ++j)
@@ -360,7 +356,7 @@ float phScattered(vec3 p, vec3 n, out int flips) {
     }
     // Lawson's flips (Alg. 5.1), bounded like the CPU version.
     bool changed = true;
-    while (changed && flips < 4 * PH_MAX) {
+    while (changed && flips < 4 * kMaxPolygon) {
         changed = false;
         for (int i = 0; i < count && !changed; ++i) {
             for (int e = 0; e < 3 && !changed; ++e) {
@@ -437,13 +433,4 @@ float phMrp(vec3 p, vec3 n) {
     if (!(lm > 0.0)) return 0.0;
     // The radiance there times the closed-form projected solid angle (PhotometricEstimators.cpp).
     return phProjectedSolidAngle(visible, n) * phRadiance(pm / lm);
-}
-
-/// The hybrid's Monte Carlo weight (hybridWeight in C++): 0 within half an opening size, 1
-/// beyond one and a half, smoothstep between.
-float phHybridWeight(float distance) {
-    float size = ph.axisX.w;
-    if (!(size > 0.0)) return 1.0;
-    float t = clamp(distance / size - 0.5, 0.0, 1.0);
-    return t * t * (3.0 - 2.0 * t);
 }

@@ -18,9 +18,8 @@ layout(location = 2) uniform float uFixedAverage;  // > 0: use instead of the fr
 layout(location = 3) uniform float uLegendMin;     // value at the bottom of the scale (lux)
 layout(location = 4) uniform float uLegendMax;     // value at the top of the scale (lux)
 layout(location = 5) uniform int uLogScale;        // 1: log scale (then uLegendMin > 0)
-layout(location = 6) uniform int uLevelCount;      // contour levels used, <= kMaxLevels
-const int kMaxLevels = 16;
-layout(location = 7) uniform float uLevels[kMaxLevels];  // contour levels (lux), ascending
+layout(location = 6) uniform int uLevelCount;      // contour levels used, <= kMaxContourLevels
+layout(location = 7) uniform float uLevels[kMaxContourLevels];  // contour levels (lux), ascending
 
 layout(location = 0) out vec4 outColor;
 
@@ -50,7 +49,7 @@ float contourCoverage(float v, ivec2 px) {
     float g = max(length(vec2(gx, gy)), 1e-12);
     float coverage = 0.0;
     float prev = -1e30;
-    for (int k = 0; k < min(uLevelCount, kMaxLevels); ++k) {
+    for (int k = 0; k < min(uLevelCount, kMaxContourLevels); ++k) {
         float level = legendPosition(uLevels[k], uLegendMin, uLegendMax, uLogScale);
         float next = k + 1 < uLevelCount ? legendPosition(uLevels[k + 1], uLegendMin, uLegendMax, uLogScale) : 1e30;
         float spacing = min(level - prev, next - level);

@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <numbers>
 
 #include "luminaires/Photometry.h"
+#include "shaders/shared/Constants.h"
 
 namespace candela::ui {
 
@@ -19,13 +19,13 @@ constexpr ImU32 kGridColour = IM_COL32(255, 255, 255, 50);
 constexpr ImU32 kLabelColour = IM_COL32(220, 220, 220, 200);
 
 double intensityAt(const PhotometricData& data, double cDeg, double gammaDeg) {
-    double c = cDeg * std::numbers::pi / 180.0, g = gammaDeg * std::numbers::pi / 180.0;
+    double c = cDeg * gpu::kPi / 180.0, g = gammaDeg * gpu::kPi / 180.0;
     return data.intensity({std::cos(c) * std::sin(g), std::sin(c) * std::sin(g), std::cos(g)});
 }
 
 /// Screen point of intensity `cd` at angle gamma on the right (side = 1) or left (-1) half.
 ImVec2 polarPoint(ImVec2 centre, float pixelsPerCd, double cd, double gammaDeg, float side) {
-    double g = gammaDeg * std::numbers::pi / 180.0;
+    double g = gammaDeg * gpu::kPi / 180.0;
     float r = float(cd) * pixelsPerCd;
     return ImVec2(centre.x + side * r * float(std::sin(g)), centre.y + r * float(std::cos(g)));
 }

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <cstdio>
 
+#include "shaders/shared/Constants.h"
 #include "ui/ImGuiUtil.h"
 #include "ui/Panels.h"
 #include "ui/ViewportMath.h"
@@ -61,7 +62,7 @@ Gizmo gizmo(const EditorState& state, const Renderer& renderer, const ImageMappi
         !toWindow(pose.position + kSpinRingM * x, g.spinKnob))
         return g;
     for (int i = 0; i <= 48; ++i) {
-        double a = 2.0 * 3.14159265358979 * i / 48;
+        double a = 2.0 * gpu::kPi * i / 48;
         ImVec2 p;
         if (!toWindow(pose.position + kSpinRingM * (std::cos(a) * x + std::sin(a) * y), p)) return g;
         g.ring.push_back(p);

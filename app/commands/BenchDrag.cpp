@@ -30,6 +30,7 @@
 #include "renderer/LivePreview.h"
 #include "renderer/Renderer.h"
 #include "scene/SceneIo.h"
+#include "shaders/shared/Constants.h"
 #include "util/Error.h"
 #include "util/FileOutput.h"
 
@@ -76,7 +77,7 @@ DragRow drag(Renderer& renderer, Scene& scene, Scene& shown, size_t index, const
     std::vector<double> ms;
     std::map<std::string, double> passMs;
     for (int f = 1; f <= frames; ++f) {
-        double a = 2.0 * 3.14159265358979 * f / frames;
+        double a = 2.0 * gpu::kPi * f / frames;
         lum.pose.position = home + kDragRadius * glm::dvec3(std::sin(a), 0.0, 1.0 - std::cos(a));
         auto start = Clock::now();
         if (&shown != &scene) syncPreviewScene(shown, scene);

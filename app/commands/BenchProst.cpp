@@ -17,7 +17,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
-#include <numbers>
 #include <sstream>
 
 #include "app/commands/BenchHarness.h"
@@ -26,6 +25,7 @@
 #include "luminaires/Registry.h"
 #include "renderer/ImageFile.h"
 #include "renderer/Renderer.h"
+#include "shaders/shared/Constants.h"
 #include "util/Error.h"
 #include "util/FileOutput.h"
 
@@ -119,7 +119,7 @@ struct Sheet {
 /// wide or side-emitting ones. A rough "how diffuse" figure for the summary.
 double diffuseness(const PhotometricData& d) {
     double i0 = d.intensity({0.0, 0.0, 1.0});
-    return i0 > 0.0 ? d.fluxFromTable() / (std::numbers::pi * i0) : INFINITY;
+    return i0 > 0.0 ? d.fluxFromTable() / (gpu::kPi * i0) : INFINITY;
 }
 
 struct ProstOptions {
@@ -257,7 +257,7 @@ std::vector<double> smoothed(const std::vector<double>& r, int size) {
 RotationRef referenceAt(ProstRun& run, HeightRun& h, int rot) {
     RotationRef ref;
     ref.index = rot;
-    ref.angle = std::numbers::pi * (0.5 + 0.125 * rot);
+    ref.angle = gpu::kPi * (0.5 + 0.125 * rot);
     // The height is that of the opening's lowest edge when it stands vertical (Prost: height 0.1
     // leaves 0.246 at 3 pi / 4 and 0.6 at pi), so its centre is 0.5 higher.
     PhotometricLuminaire& lum = h.light;
@@ -315,8 +315,8 @@ void measureTechnique(ProstRun& run, HeightRun& h, const RotationRef& ref, size_
         for (int x = 0; x < size; ++x)
             errorColour(diff[size_t(y * size + x)], m.ueb, m.leb,
                         h.errors.at(int(t), ref.index, x, y));
-    run.results.row(h.file, name, h.height, ref.angle * 180.0 / std::numbers::pi, m.nmse, m.ueb,
-                    m.leb, m.nearNmse, m.bumpiness, m.gpuMs);
+    run.results.row(h.file, name, h.height, ref.angle * 180.0 / gpu::kPi, m.nmse, m.ueb, m.leb,
+                    m.nearNmse, m.bumpiness, m.gpuMs);
     std::vector<double>& all = h.allA[name];
     all.insert(all.end(), A.begin(), A.end());
     Metrics& sum = h.sums[name];

@@ -9,6 +9,7 @@
 #include "renderer/PassTimer.h"
 #include "renderer/passes/GBufferPass.h"
 #include "renderer/passes/ShadePass.h"
+#include "shaders/shared/Constants.h"
 
 namespace candela {
 
@@ -58,7 +59,7 @@ bool EnvironmentPass::setMap(std::shared_ptr<const EnvironmentMap> map, int face
     mUniforms.dims = glm::ivec4(mMap->width(), mMap->height(), mN, mPool);
     mUniforms.params = glm::vec4(float(mMap->rotation()), 0.f, 0.f, 0.f);
     // k x k subsamples, k >= 2 W / (pi N), as the CPU twin.
-    mUniforms.frame.y = std::clamp(int(std::ceil(2.0 * mMap->width() / (3.14159265358979 * n))), 1, 8);
+    mUniforms.frame.y = std::clamp(int(std::ceil(2.0 * mMap->width() / (gpu::kPi * n))), 1, 8);
     return true;
 }
 

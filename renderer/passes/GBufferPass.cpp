@@ -3,8 +3,8 @@
 #include <algorithm>
 
 #include <cstddef>
-#include <numbers>
 
+#include "shaders/shared/Constants.h"
 #include "shaders/shared/GpuTypes.h"
 
 namespace candela {
@@ -120,7 +120,7 @@ void GBufferPass::uploadPoints(const std::vector<glm::vec3>& points,
     for (size_t i = 0; i < points.size(); ++i) {
         pos[i] = glm::vec4(points[i], 1.f);
         nrm[i] = glm::vec4(glm::normalize(normals[i]), 1.f);
-        alb[i] = glm::vec4(glm::vec3(std::numbers::pi_v<float>), 0.f);
+        alb[i] = glm::vec4(glm::vec3(float(gpu::kPi)), 0.f);
     }
     const std::vector<glm::vec4>* data[] = {&pos, &nrm, &alb, &zero, &zero};
     for (int i = 0; i < gpu::kGBufferCount; ++i)

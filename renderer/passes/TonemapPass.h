@@ -6,6 +6,7 @@
 
 #include "renderer/ShaderLibrary.h"
 #include "renderer/gl/GlObjects.h"
+#include "shaders/shared/FalseColour.h"
 
 namespace candela {
 
@@ -22,8 +23,8 @@ struct FalseColourLegend {
     bool operator==(const FalseColourLegend&) const = default;
 };
 
-/// Most contour levels the shader takes (shaders/tonemap.frag kMaxLevels).
-constexpr int kMaxContourLevels = 16;
+/// Most contour levels the shader takes (shared with shaders/tonemap.frag).
+using gpu::kMaxContourLevels;
 
 /// Round tick values of the legend, within [min, max] both included when they are round: steps
 /// of 1, 2 or 5 times a power of ten (about `target` of them) for a linear scale; for a log scale

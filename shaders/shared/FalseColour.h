@@ -33,6 +33,10 @@ using std::min;
 /// Number of colour stops of the scale, spread evenly over t in [0, 1].
 CANDELA_CONST int kFalseColourStops = 9;
 
+/// Most isolux contour levels the picture takes (renderer/passes/TonemapPass.h contourLevels,
+/// the uniform array of shaders/tonemap.frag).
+CANDELA_CONST int kMaxContourLevels = 16;
+
 /// Stop i (0 .. kFalseColourStops - 1) of the scale, sRGB-encoded.
 CANDELA_FN vec3 falseColourStop(int i) {
     if (i <= 0) return vec3(0.08f, 0.04f, 0.28f);  // L* 7.5, dark indigo

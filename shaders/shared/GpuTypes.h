@@ -70,6 +70,9 @@ CANDELA_CONST int kUnitEnvironmentMap = 5;
 /// of the largest luminance a texel touches, and the floor as a fraction of the face's mean.
 CANDELA_CONST float kEnvMaxShare = 0.1;
 CANDELA_CONST float kEnvFaceFloor = 1e-3;
+/// Steps along each edge of a cube texel at which the largest luminance it may touch is sought
+/// in the lat-long map (touchedMaximum: steps + 1 points per edge).
+CANDELA_CONST int kEnvTouchedSteps = 16;
 
 /// Per-frame constants (std140 UBO).
 struct FrameUniforms {
@@ -150,6 +153,10 @@ struct EnvironmentSampleGpu {
     vec4 direction; // xyz unit direction; w = pdf_L(w | f), 1/sr (0: no sample)
     vec4 radiance;  // rgb radiance of the map along it; w unused
 };
+
+/// Most inner levels on any root-to-leaf path of the BVH (Bvh::kMaxDepth): the GLSL traversal
+/// stack holds one more entry.
+CANDELA_CONST int kBvhMaxDepth = 31;
 
 /// BVH node (std430): bounds with the child or triangle range packed in w as int bits.
 struct BvhNode {

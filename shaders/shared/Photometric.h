@@ -1,0 +1,41 @@
+// What the photometric techniques share between C++ (luminaires/SphericalPolygon.*,
+// luminaires/PhotometricEstimators.cpp) and GLSL (shaders/photometric*.glsl), valid as both. A
+// `real` is double in C++ and float in GLSL.
+#ifdef __cplusplus
+#pragma once
+#include <glm/glm.hpp>
+namespace candela::gpu {
+using real = double;
+using glm::clamp;
+#define CANDELA_FN inline
+#ifndef CANDELA_CONST
+#define CANDELA_CONST static constexpr
+#endif
+#else
+#define real float
+#define CANDELA_FN
+#ifndef CANDELA_CONST
+#define CANDELA_CONST const
+#endif
+#endif
+
+/// Most vertices of the opening's polygon seen from a receiver (spherical::Polygon, the GLSL
+/// PhPolygon): enough for a 16-gon cut by one plane, plus rounding slack.
+CANDELA_CONST int kMaxPolygon = 20;
+
+/// The hybrid technique's Monte Carlo weight at `distance` (m) from an opening whose largest
+/// extent is `size` (m): 0 within half an opening size, 1 beyond one and a half, smoothstep in
+/// between (where the 24-point set's light bumps fade in `candela bench --prost`; Prost Sec. 6.6
+/// suggests the blend, not the distances). 1 for an opening of no size.
+CANDELA_FN real hybridWeight(real distance, real size) {
+    if (!(size > 0.0)) return 1.0;
+    real t = clamp(distance / size - 0.5, 0.0, 1.0);
+    return t * t * (3.0 - 2.0 * t);
+}
+
+#ifdef __cplusplus
+}  // namespace candela::gpu
+#else
+#undef real
+#endif
+#undef CANDELA_FN
