@@ -215,8 +215,10 @@ SunPosition sunPosition(double latitudeDeg, int dayOfYear, double solarHours) {
     return out;
 }
 
-std::shared_ptr<EnvironmentMap> makeSkyMap(const SkyParams& sky, double intensity,
-                                           double rotationDeg) {
+namespace {
+
+/// Throws InputError for sky parameters outside the model's range or the map's limits.
+void checkSkyParams(const SkyParams& sky) {
     if (!(sky.sunElevationDeg >= 0.0 && sky.sunElevationDeg <= 90.0))
         throw InputError("sky: sun_elevation_deg must be in [0, 90] (the model has no night)");
     if (!(sky.turbidity >= 1.7 && sky.turbidity <= 10.0))
@@ -227,13 +229,17 @@ std::shared_ptr<EnvironmentMap> makeSkyMap(const SkyParams& sky, double intensit
         throw InputError("sky: ground albedo must be in [0, 1]");
     if (sky.width < 8 || sky.width > kMaxSide || sky.width % 2 != 0)
         throw InputError("sky: resolution must be an even width in [8, 16384] texels");
-    const int w = sky.width, h = sky.width / 2;
-    const double t = sky.turbidity;
-    const double thetaS = kPi / 2.0 - sky.sunElevationDeg * kPi / 180.0;
-    const double phiS = sky.sunAzimuthDeg * kPi / 180.0;
-    const glm::dvec3 sun(std::sin(thetaS) * std::cos(phiS), std::cos(thetaS),
-                         std::sin(thetaS) * std::sin(phiS));
+}
 
+/// Solid angle (sr) of one texel in row y of an unrotated w x h map.
+double texelSolidAngle(int y, int w, int h) {
+    double t0 = kPi * y / h, t1 = kPi * (y + 1) / h;
+    return 2.0 * kPi / w * 2.0 * std::sin(0.5 * (t0 + t1)) * std::sin(0.5 * (t1 - t0));
+}
+
+/// Radiance of Preetham et al.'s (1999) clear sky for turbidity t and the sun at `sun` (zenith
+/// angle thetaS), in the upper half of an unrotated w x h map; the lower half is left 0.
+std::vector<glm::dvec3> preethamSky(double t, double thetaS, const glm::dvec3& sun, int w, int h) {
     // Preetham et al. (1999), Appendix A.2: Perez coefficients for Y, x and y, linear in T.
     const double cY[5] = {0.1787 * t - 1.4630, -0.3554 * t + 0.4275, -0.0227 * t + 5.3251,
                           0.1206 * t - 2.5771, -0.0670 * t + 0.3703};
@@ -269,11 +275,12 @@ std::shared_ptr<EnvironmentMap> makeSkyMap(const SkyParams& sky, double intensit
             acc[size_t(y) * size_t(w) + size_t(x)] = xyYToRgb(cxv, cyv, std::max(lum, 0.0));
         }
     }
-    // Rows and their solid angles of an unrotated w x h map.
-    auto rowOmega = [&](int y) {
-        double t0 = kPi * y / h, t1 = kPi * (y + 1) / h;
-        return 2.0 * kPi / w * 2.0 * std::sin(0.5 * (t0 + t1)) * std::sin(0.5 * (t1 - t0));
-    };
+    return acc;
+}
+
+/// Adds the sun disc (turbidity t, zenith angle thetaS) to the unrotated w x h map `acc`.
+void addSunDisc(std::vector<glm::dvec3>& acc, int w, int h, const glm::dvec3& sun, double thetaS,
+                double t) {
     // The sun disc: 32 x 64 points equally spaced in solid angle (rings of equal area), each
     // carrying 1/2048 of E_dn; a point adds its share / texel solid angle to its texel.
     double eSun = sunNormalIlluminance(kPi / 2.0 - thetaS, t);
@@ -293,17 +300,38 @@ std::shared_ptr<EnvironmentMap> makeSkyMap(const SkyParams& sky, double intensit
             double theta = std::acos(std::clamp(d.y, -1.0, 1.0));
             double u = wrap01(std::atan2(d.z, d.x) / (2.0 * kPi));
             int x = std::clamp(int(u * w), 0, w - 1), y = std::clamp(int(theta / kPi * h), 0, h - 1);
-            acc[size_t(y) * size_t(w) + size_t(x)] += glm::dvec3(share / rowOmega(y));
+            acc[size_t(y) * size_t(w) + size_t(x)] += glm::dvec3(share / texelSolidAngle(y, w, h));
         }
     }
-    // The ground: a Lambertian plane lit by the sky and the sun above it.
+}
+
+/// Radiance of the ground: a Lambertian plane of this albedo lit by the sky and the sun above
+/// it (the upper half of `acc`).
+glm::dvec3 groundRadiance(const std::vector<glm::dvec3>& acc, int w, int h, double albedo) {
     glm::dvec3 eHorizontal(0.0);
     for (int y = 0; y < h / 2; ++y) {
         double cosTheta = std::cos(kPi * (y + 0.5) / h);
         for (int x = 0; x < w; ++x)
-            eHorizontal += acc[size_t(y) * size_t(w) + size_t(x)] * cosTheta * rowOmega(y);
+            eHorizontal +=
+                acc[size_t(y) * size_t(w) + size_t(x)] * cosTheta * texelSolidAngle(y, w, h);
     }
-    glm::dvec3 ground = sky.groundAlbedo * eHorizontal / kPi;
+    return albedo * eHorizontal / kPi;
+}
+
+}  // namespace
+
+std::shared_ptr<EnvironmentMap> makeSkyMap(const SkyParams& sky, double intensity,
+                                           double rotationDeg) {
+    checkSkyParams(sky);
+    const int w = sky.width, h = sky.width / 2;
+    const double t = sky.turbidity;
+    const double thetaS = kPi / 2.0 - sky.sunElevationDeg * kPi / 180.0;
+    const double phiS = sky.sunAzimuthDeg * kPi / 180.0;
+    const glm::dvec3 sun(std::sin(thetaS) * std::cos(phiS), std::cos(thetaS),
+                         std::sin(thetaS) * std::sin(phiS));
+    std::vector<glm::dvec3> acc = preethamSky(t, thetaS, sun, w, h);
+    addSunDisc(acc, w, h, sun, thetaS, t);
+    glm::dvec3 ground = groundRadiance(acc, w, h, sky.groundAlbedo);
     std::vector<glm::vec3> rgb(acc.size());
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {

@@ -227,14 +227,9 @@ std::string formatFromHeader(const std::string& header) {
     return "IES LM-63-1995";  // an IESNA header with an unknown year: read as the 1995 layout
 }
 
-}  // namespace
-
-PhotometricData parseIes(const std::string& text, const std::string& path, const PhotometryOptions& options) {
-    PhotometricData d;
-    d.path = path;
-    std::vector<std::string> lines = photometry_detail::readLines(text, d, options);
-
-    // Header line and keywords, up to the TILT line.
+/// Header line and keywords, up to the TILT line; returns the TILT line's index.
+size_t readHeaderAndKeywords(const std::vector<std::string>& lines, PhotometricData& d,
+                             const std::string& path) {
     size_t l = 0;
     std::string first = lines.empty() ? "" : upper(trim(lines[0]));
     if (first.rfind("IESNA", 0) == 0 || first.rfind("IES:", 0) == 0) {
@@ -272,10 +267,13 @@ PhotometricData parseIes(const std::string& text, const std::string& path, const
             d.name = value;
             break;
         }
+    return tiltLine;
+}
 
-    std::string tiltLineText = trim(lines[tiltLine]);
+/// The TILT= line's tilt data: none, INCLUDE (read from `in`) or a TILT file next to `path`.
+void readTiltSection(const std::string& tiltLineText, size_t tiltLine, TokenStream& in,
+                     PhotometricData& d, const std::string& path) {
     std::string tilt = trim(tiltLineText.substr(tiltLineText.find('=') + 1));
-    TokenStream in(path, lines, tiltLine + 1);
     if (upper(tilt) == "INCLUDE") {
         readTilt(in, d);
     } else if (upper(tilt) != "NONE") {
@@ -293,19 +291,34 @@ PhotometricData parseIes(const std::string& text, const std::string& path, const
         readTilt(tiltIn, d);
         d.tiltPath = tiltPath.string();
     }
+}
 
-    // Lamp and photometry line, then the ballast line.
+/// The lamp line's values that later sections need.
+struct LampLine {
+    int line = 0;  ///< Where it starts, for messages.
+    int lamps = 0;
+    double lumens = 0.0;  ///< Per lamp, lm; -1: absolute photometry.
+    double multiplier = 1.0;
+    int nv = 0, nh = 0;  ///< Vertical and horizontal angle counts.
+};
+
+/// The lamp and photometry line: counts, photometric type, units and the luminous opening.
+LampLine readLampLine(TokenStream& in, PhotometricData& d, const std::string& path) {
+    LampLine lamp;
     int headerLine = in.line();
+    lamp.line = headerLine;
     std::vector<double> h = in.numbers(10, "values on the lamp line (number of lamps, lumens per lamp, "
                                            "candela multiplier, vertical and horizontal angle counts, "
                                            "photometric type, units type, width, length, height)");
-    int lamps = countField(h[0], 1, kMaxCount, path, headerLine, "number of lamps");
+    lamp.lamps = countField(h[0], 1, kMaxCount, path, headerLine, "number of lamps");
     double lumens = h[1], multiplier = h[2];
     if (!(lumens > 0.0) && lumens != -1.0)
         fail(path, headerLine, "lumens per lamp > 0, or -1 for absolute photometry", formatNumber(lumens));
     if (!(multiplier > 0.0)) fail(path, headerLine, "a positive candela multiplier", formatNumber(multiplier));
-    int nv = countField(h[3], 1, kMaxCount, path, headerLine, "number of vertical angles");
-    int nh = countField(h[4], 1, kMaxCount, path, headerLine, "number of horizontal angles");
+    lamp.lumens = lumens;
+    lamp.multiplier = multiplier;
+    lamp.nv = countField(h[3], 1, kMaxCount, path, headerLine, "number of vertical angles");
+    lamp.nh = countField(h[4], 1, kMaxCount, path, headerLine, "number of horizontal angles");
     int type = countField(h[5], 1, 3, path, headerLine, "photometric type 1 (C), 2 (B) or 3 (A)");
     if (type == 3)
         fail(path, headerLine, "photometric type 1 (C) or 2 (B)",
@@ -320,7 +333,13 @@ PhotometricData parseIes(const std::string& text, const std::string& path, const
                  std::string("a luminous opening ") + sizeNames[k] + " of at most " + formatNumber(kMaxOpening) + " m",
                  formatNumber(h[7 + k]) + (units == 1 ? " ft" : " m"));
     d.opening = openingFrom(h[7] * toMetres, h[8] * toMetres, h[9] * toMetres);
+    return lamp;
+}
 
+/// The ballast line, and the lamp flux; returns the factor the candela values are scaled by.
+double readBallastLine(TokenStream& in, PhotometricData& d, const std::string& path,
+                       const LampLine& lamp) {
+    int headerLine = lamp.line;
     int ballastLine = in.line();
     std::vector<double> b = in.numbers(3, "values on the ballast line (ballast factor, ballast-lamp "
                                           "photometric factor or file generation type, input watts)");
@@ -331,18 +350,26 @@ PhotometricData parseIes(const std::string& text, const std::string& path, const
     if (is2019) d.keywords.emplace_back("FILEGENTYPE", formatNumber(b[1]));
     else if (!(b[1] > 0.0))
         fail(path, ballastLine, "a positive ballast-lamp photometric factor", formatNumber(b[1]));
-    double scale = multiplier * b[0] * (is2019 ? 1.0 : b[1]);
+    double scale = lamp.multiplier * b[0] * (is2019 ? 1.0 : b[1]);
     d.inputWatts = b[2];
-    d.lampFlux = lumens > 0.0 ? double(lamps) * lumens : -1.0;
+    d.lampFlux = lamp.lumens > 0.0 ? double(lamp.lamps) * lamp.lumens : -1.0;
     if (!(d.lampFlux <= kMaxLumens))
         fail(path, headerLine, "a lamp flux (lamps x lumens per lamp) of at most " + formatNumber(kMaxLumens) + " lm",
              std::isfinite(d.lampFlux) ? formatNumber(d.lampFlux) + " lm" : std::string("an overflow"));
+    return scale;
+}
 
+/// The vertical angles, in the goniometer type's range.
+void readVerticalAngles(TokenStream& in, PhotometricData& d, const std::string& path, int nv) {
     int vLine = in.line();
     d.vertical = in.numbers(size_t(nv), "vertical angles");
     if (d.goniometer == Goniometer::C) checkAscending(d.vertical, 0.0, 180.0, path, vLine, "vertical angles");
     else checkAscending(d.vertical, -90.0, 90.0, path, vLine, "vertical angles");
+}
 
+/// The horizontal angles as given, and the symmetry their range implies.
+std::vector<double> readHorizontalAngles(TokenStream& in, PhotometricData& d,
+                                         const std::string& path, int nh) {
     int hLine = in.line();
     std::vector<double> given = in.numbers(size_t(nh), "horizontal angles");
     using Sym = PhotometricSymmetry;
@@ -369,21 +396,35 @@ PhotometricData parseIes(const std::string& text, const std::string& path, const
             fail(path, hLine, "type B horizontal angles starting at 0 (symmetric) or below 0",
                  formatNumber(f) + ".." + formatNumber(given.back()));
     }
+    return given;
+}
 
-    std::vector<double> cd = in.numbers(size_t(nv) * size_t(nh), "candela values (" + std::to_string(nh) +
-                                                                     " horizontal x " + std::to_string(nv) +
-                                                                     " vertical angles)");
+/// The candela values, one horizontal angle after another, scaled by the multipliers and the
+/// tilt factor at 0.
+std::vector<double> readCandelaTable(TokenStream& in, const PhotometricData& d,
+                                     const std::string& path, const std::vector<double>& given,
+                                     double scale) {
+    size_t nv = d.vertical.size(), nh = given.size();
+    std::vector<double> cd = in.numbers(nv * nh, "candela values (" + std::to_string(nh) +
+                                                     " horizontal x " + std::to_string(nv) +
+                                                     " vertical angles)");
     double tiltScale = tiltFactorAtZero(d);
     for (size_t k = 0; k < cd.size(); ++k) {
         if (cd[k] < 0.0)
             fail(path, in.lineOfPrevious(cd.size() - k),
-                 "non-negative candela values (horizontal angle " + formatNumber(given[k / size_t(nv)]) +
-                     ", vertical angle " + formatNumber(d.vertical[k % size_t(nv)]) + ")",
+                 "non-negative candela values (horizontal angle " + formatNumber(given[k / nv]) +
+                     ", vertical angle " + formatNumber(d.vertical[k % nv]) + ")",
                  formatNumber(cd[k]));
         cd[k] *= scale * tiltScale;
         photometry_detail::checkCandela(path, in.lineOfPrevious(cd.size() - k), cd[k],
                                         "candela values (after the multipliers)");
     }
+    return cd;
+}
+
+/// Warnings (or, strict, errors) for "//" comments and values after the candela table.
+void allowCommentsAndTrailingValues(const TokenStream& in, PhotometricData& d,
+                                    const PhotometryOptions& options) {
     if (in.commentLine() > 0)
         photometry_detail::allow(d, options, in.commentLine(), "a '//' comment in the numeric data (not in LM-63)",
                                  "ignored to the end of each line");
@@ -392,6 +433,23 @@ PhotometricData parseIes(const std::string& text, const std::string& path, const
                                  std::to_string(extra) + " value" + (extra == 1 ? "" : "s") +
                                      " after the candela table (from " + showToken(in.peek()) + ")",
                                  "ignored");
+}
+
+}  // namespace
+
+PhotometricData parseIes(const std::string& text, const std::string& path, const PhotometryOptions& options) {
+    PhotometricData d;
+    d.path = path;
+    std::vector<std::string> lines = photometry_detail::readLines(text, d, options);
+    size_t tiltLine = readHeaderAndKeywords(lines, d, path);
+    TokenStream in(path, lines, tiltLine + 1);
+    readTiltSection(trim(lines[tiltLine]), tiltLine, in, d, path);
+    LampLine lamp = readLampLine(in, d, path);
+    double scale = readBallastLine(in, d, path, lamp);
+    readVerticalAngles(in, d, path, lamp.nv);
+    std::vector<double> given = readHorizontalAngles(in, d, path, lamp.nh);
+    std::vector<double> cd = readCandelaTable(in, d, path, given, scale);
+    allowCommentsAndTrailingValues(in, d, options);
     photometry_detail::unfold(d, given, cd);
     return d;
 }

@@ -210,6 +210,19 @@ struct LdtParse {
     void header();
     void lampSets();
     void directRatios();
+    /// The last C plane when it repeats one (counted in Mc, its data dropped).
+    struct RepeatedPlane {
+        bool present = false;
+        bool ofC0 = false;  ///< C360 after C0; else the last angle twice.
+        int line = 0;       ///< Where its angle is.
+        double angle = 0.0;
+    };
+    std::vector<double> cPlaneAngles(RepeatedPlane& repeat);
+    std::vector<double> storedPlanes(const std::vector<double>& cAngles, int cLine);
+    std::vector<double> intensityValues(const std::vector<double>& given,
+                                        const RepeatedPlane& repeat, bool repeatedData);
+    void dropRepeatedPlane(std::vector<double>& cd, const std::vector<double>& given,
+                           const RepeatedPlane& repeat, bool repeatedData);
     void intensities();
     void opening();
 };
@@ -342,9 +355,9 @@ void LdtParse::directRatios() {
     keep("direct ratios", shown);
 }
 
-/// Fields 28-30: C angles, gamma angles and the intensities of the planes Isym stores.
-void LdtParse::intensities() {
-    const std::string& path = d.path;
+/// Field 28, the C angles; a repeated last plane (C360 after C0, or the last angle twice) is
+/// dropped from them and from Mc, and described in `repeat`.
+std::vector<double> LdtParse::cPlaneAngles(RepeatedPlane& repeat) {
     int cLine = in.tokenLine();
     size_t cStart = in.position();
     std::vector<double> cAngles = in.numbers(size_t(mc), "C angles");
@@ -357,12 +370,14 @@ void LdtParse::intensities() {
         cAngles.pop_back();
         --mc;
     }
-    checkAscending(cAngles, 0.0, 360.0, true, path, cLine, "C angles");
-    int gLine = in.tokenLine();
-    d.vertical = in.numbers(size_t(ng), "gamma angles");
-    checkAscending(d.vertical, 0.0, 180.0, false, path, gLine, "gamma angles");
+    checkAscending(cAngles, 0.0, 360.0, true, d.path, cLine, "C angles");
+    repeat = {repeated, repeatsC0, repeatLine, repeatedAngle};
+    return cAngles;
+}
 
-    // The planes stored for each symmetry.
+/// The C planes Isym stores, checked against the C angles read from line `cLine`.
+std::vector<double> LdtParse::storedPlanes(const std::vector<double>& cAngles, int cLine) {
+    const std::string& path = d.path;
     using Sym = PhotometricSymmetry;
     const Sym symmetries[] = {Sym::None, Sym::Axial, Sym::PlaneC0C180, Sym::PlaneC90C270, Sym::Quadrant};
     d.symmetry = symmetries[isym];
@@ -389,10 +404,16 @@ void LdtParse::intensities() {
         fail(path, cLine,
              "C planes " + formatNumber(expectFirst) + ".." + formatNumber(expectLast) + " for Isym " + std::to_string(isym),
              formatNumber(given.front()) + ".." + formatNumber(given.back()));
+    return given;
+}
 
-    // With Isym 0 the repeated plane's intensities follow the others when the file has them.
+/// Field 30, the intensities (cd/klm, unscaled) of the planes `given`, followed by the repeated
+/// plane's when `repeatedData`; each checked once scaled by the lamp flux.
+std::vector<double> LdtParse::intensityValues(const std::vector<double>& given,
+                                              const RepeatedPlane& repeat, bool repeatedData) {
+    const std::string& path = d.path;
+    size_t planes = given.size();
     size_t values = planes * size_t(ng);
-    bool repeatedData = repeated && isym == 0 && in.remaining() >= values + size_t(ng);
     size_t start = in.position();
     std::vector<double> cd = in.numbers(values + (repeatedData ? size_t(ng) : 0),
                                         "intensities (cd/klm, " + std::to_string(planes) + " C planes x " +
@@ -402,30 +423,57 @@ void LdtParse::intensities() {
         int line = in.lineOfToken(start + k);
         if (cd[k] < 0.0)
             fail(path, line,
-                 "non-negative intensities (C" + formatNumber(k < values ? given[k / size_t(ng)] : repeatedAngle) +
-                     ", gamma " + formatNumber(d.vertical[k % size_t(ng)]) + ")",
+                 "non-negative intensities (C" +
+                     formatNumber(k < values ? given[k / size_t(ng)] : repeat.angle) + ", gamma " +
+                     formatNumber(d.vertical[k % size_t(ng)]) + ")",
                  formatNumber(cd[k]));
         photometry_detail::checkCandela(path, line, cd[k] * scale, "intensities (cd/klm x lamp flux)");
     }
-    if (repeated) {
-        std::string assumed = "dropped";
-        if (repeatedData) {
-            // Compare with the plane it repeats: C0 (the first) or the one before it (the last kept).
-            size_t same = repeatsC0 ? 0 : planes - 1;
-            double worst = 0.0;
-            for (size_t v = 0; v < size_t(ng); ++v)
-                worst = std::max(worst, std::abs(cd[values + v] - cd[same * size_t(ng) + v]));
-            if (worst > 0.0)
-                assumed += " (its intensities differ from C" + formatNumber(given[same]) + "'s by up to " +
-                           formatNumber(worst) + " cd/klm)";
-            cd.resize(values);
-        }
-        allow(d, options, repeatLine,
-              "C" + formatNumber(repeatedAngle) + " repeats the " +
-                  (repeatsC0 ? std::string("C0 plane") : "plane before it") + " (counted in Mc = " +
-                  std::to_string(mc + 1) + ")",
-              assumed);
+    return cd;
+}
+
+/// Drops the repeated plane's intensities (read when `repeatedData`) with a warning saying how
+/// far they differ from the plane they repeat.
+void LdtParse::dropRepeatedPlane(std::vector<double>& cd, const std::vector<double>& given,
+                                 const RepeatedPlane& repeat, bool repeatedData) {
+    size_t planes = given.size();
+    size_t values = planes * size_t(ng);
+    std::string assumed = "dropped";
+    if (repeatedData) {
+        // Compare with the plane it repeats: C0 (the first) or the one before it (the last kept).
+        size_t same = repeat.ofC0 ? 0 : planes - 1;
+        double worst = 0.0;
+        for (size_t v = 0; v < size_t(ng); ++v)
+            worst = std::max(worst, std::abs(cd[values + v] - cd[same * size_t(ng) + v]));
+        if (worst > 0.0)
+            assumed += " (its intensities differ from C" + formatNumber(given[same]) + "'s by up to " +
+                       formatNumber(worst) + " cd/klm)";
+        cd.resize(values);
     }
+    allow(d, options, repeat.line,
+          std::string("C") + formatNumber(repeat.angle) + " repeats the " +
+              (repeat.ofC0 ? std::string("C0 plane") : "plane before it") + " (counted in Mc = " +
+              std::to_string(mc + 1) + ")",
+          assumed);
+}
+
+/// Fields 28-30: C angles, gamma angles and the intensities of the planes Isym stores.
+void LdtParse::intensities() {
+    const std::string& path = d.path;
+    int cLine = in.tokenLine();
+    RepeatedPlane repeat;
+    std::vector<double> cAngles = cPlaneAngles(repeat);
+    int gLine = in.tokenLine();
+    d.vertical = in.numbers(size_t(ng), "gamma angles");
+    checkAscending(d.vertical, 0.0, 180.0, false, path, gLine, "gamma angles");
+    std::vector<double> given = storedPlanes(cAngles, cLine);
+
+    // With Isym 0 the repeated plane's intensities follow the others when the file has them.
+    size_t values = given.size() * size_t(ng);
+    bool repeatedData = repeat.present && isym == 0 && in.remaining() >= values + size_t(ng);
+    std::vector<double> cd = intensityValues(given, repeat, repeatedData);
+    if (repeat.present) dropRepeatedPlane(cd, given, repeat, repeatedData);
+    double scale = conversion * totalFlux / 1000.0;
     for (double& c : cd) c *= scale;
     if (size_t extra = in.remaining())
         allow(d, options, in.tokenLine(),

@@ -111,6 +111,21 @@ class GltfImport {
                                       const std::string& what) const;
     glm::dmat4 localTransform(const tinygltf::Node& node, int index) const;
     void visitNode(int index, const glm::dmat4& parent);
+    /// Transforms p to world space; fails when the result is not finite.
+    glm::vec3 worldPoint(const glm::dmat4& toWorld, const glm::vec3& p,
+                         const std::string& what) const;
+    /// The primitive's triangle list: its indices, or 0..vertexCount-1 when it has none.
+    std::vector<uint32_t> primitiveIndices(const tinygltf::Primitive& primitive, size_t vertexCount,
+                                           const std::string& what) const;
+    /// The file's vertices and normals in world space; zero normals take a face's.
+    void addSmoothVertices(Mesh& mesh, const std::vector<glm::vec3>& positions,
+                           const std::vector<glm::vec3>& normals,
+                           const std::vector<uint32_t>& indices, const glm::dmat4& toWorld,
+                           bool mirrored, const std::string& what) const;
+    /// Three vertices of its own per triangle, with the face normal (flat shading).
+    void addFlatTriangles(Mesh& mesh, const std::vector<glm::vec3>& positions,
+                          const std::vector<uint32_t>& indices, const glm::dmat4& toWorld,
+                          bool mirrored, const std::string& what) const;
     void addPrimitive(const tinygltf::Primitive& primitive, const std::string& name,
                       const glm::dmat4& toWorld);
     uint32_t material(int index);
@@ -270,6 +285,79 @@ void GltfImport::visitNode(int index, const glm::dmat4& parent) {
     for (int child : node.children) visitNode(child, toWorld);
 }
 
+/// Unit normal of the triangle (a, b, c) by its winding; +y for a degenerate one.
+glm::vec3 faceNormal(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
+    glm::dvec3 n = glm::cross(glm::dvec3(b) - glm::dvec3(a), glm::dvec3(c) - glm::dvec3(a));
+    double length = glm::length(n);
+    return length > 0.0 ? glm::vec3(n / length) : glm::vec3(0.f, 1.f, 0.f);
+}
+
+glm::vec3 GltfImport::worldPoint(const glm::dmat4& toWorld, const glm::vec3& p,
+                                 const std::string& what) const {
+    glm::dvec3 w = glm::dvec3(toWorld * glm::dvec4(glm::dvec3(p), 1.0));
+    if (!finite(w)) fail(what + ": transformed position is not finite");
+    return glm::vec3(w);
+}
+
+std::vector<uint32_t> GltfImport::primitiveIndices(const tinygltf::Primitive& primitive,
+                                                   size_t vertexCount,
+                                                   const std::string& what) const {
+    std::vector<uint32_t> indices;
+    if (primitive.indices >= 0) {
+        indices = readIndices(primitive.indices, vertexCount, what + " indices");
+        if (indices.size() % 3 != 0)
+            fail(what + ": index count " + std::to_string(indices.size()) +
+                 " is not a multiple of 3");
+    } else {
+        if (vertexCount % 3 != 0)
+            fail(what + ": vertex count " + std::to_string(vertexCount) +
+                 " is not a multiple of 3");
+        for (uint32_t i = 0; i < vertexCount; ++i) indices.push_back(i);
+    }
+    return indices;
+}
+
+void GltfImport::addSmoothVertices(Mesh& mesh, const std::vector<glm::vec3>& positions,
+                                   const std::vector<glm::vec3>& normals,
+                                   const std::vector<uint32_t>& indices, const glm::dmat4& toWorld,
+                                   bool mirrored, const std::string& what) const {
+    glm::dmat3 normalMatrix = glm::transpose(glm::inverse(glm::dmat3(toWorld)));
+    for (size_t i = 0; i < positions.size(); ++i) {
+        mesh.positions.push_back(worldPoint(toWorld, positions[i], what));
+        glm::dvec3 n = normalMatrix * glm::dvec3(normals[i]);
+        double length = glm::length(n);
+        mesh.normals.push_back(length > 1e-12 && std::isfinite(length) ? glm::vec3(n / length)
+                                                                       : glm::vec3(0.f));
+    }
+    mesh.indices = indices;
+    // Zero-length normals in the file get the normal of a face that uses the vertex.
+    for (size_t t = 0; t + 2 < indices.size(); t += 3) {
+        const uint32_t* tri = &indices[t];
+        for (int k = 0; k < 3; ++k) {
+            if (mesh.normals[tri[k]] != glm::vec3(0.f)) continue;
+            glm::vec3 face =
+                faceNormal(mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]]);
+            mesh.normals[tri[k]] = mirrored ? -face : face;
+        }
+    }
+}
+
+void GltfImport::addFlatTriangles(Mesh& mesh, const std::vector<glm::vec3>& positions,
+                                  const std::vector<uint32_t>& indices, const glm::dmat4& toWorld,
+                                  bool mirrored, const std::string& what) const {
+    for (size_t t = 0; t + 2 < indices.size(); t += 3) {
+        glm::vec3 a = worldPoint(toWorld, positions[indices[t]], what);
+        glm::vec3 b = worldPoint(toWorld, positions[indices[t + 1]], what);
+        glm::vec3 c = worldPoint(toWorld, positions[indices[t + 2]], what);
+        glm::vec3 n = mirrored ? -faceNormal(a, b, c) : faceNormal(a, b, c);
+        for (const glm::vec3& p : {a, b, c}) {
+            mesh.indices.push_back(uint32_t(mesh.positions.size()));
+            mesh.positions.push_back(p);
+            mesh.normals.push_back(n);
+        }
+    }
+}
+
 void GltfImport::addPrimitive(const tinygltf::Primitive& primitive, const std::string& name,
                               const glm::dmat4& toWorld) {
     const std::string what = "mesh \"" + name + "\"";
@@ -281,75 +369,24 @@ void GltfImport::addPrimitive(const tinygltf::Primitive& primitive, const std::s
     auto position = primitive.attributes.find("POSITION");
     if (position == primitive.attributes.end()) fail(what + ": primitive has no POSITION");
     std::vector<glm::vec3> positions = readFloat3(position->second, what + " POSITION");
-
-    std::vector<uint32_t> indices;
-    if (primitive.indices >= 0) {
-        indices = readIndices(primitive.indices, positions.size(), what + " indices");
-        if (indices.size() % 3 != 0)
-            fail(what + ": index count " + std::to_string(indices.size()) +
-                 " is not a multiple of 3");
-    } else {
-        if (positions.size() % 3 != 0)
-            fail(what + ": vertex count " + std::to_string(positions.size()) +
-                 " is not a multiple of 3");
-        for (uint32_t i = 0; i < positions.size(); ++i) indices.push_back(i);
-    }
+    std::vector<uint32_t> indices = primitiveIndices(primitive, positions.size(), what);
 
     Mesh mesh;
     mesh.name = name;
     mesh.shape = MeshShape::General;
     mesh.material = material(primitive.material);
     glm::dmat3 linear(toWorld);
-    glm::dmat3 normalMatrix = glm::transpose(glm::inverse(linear));
     bool mirrored = glm::determinant(linear) < 0.0;  // Keeps triangles counter-clockwise.
-    auto toWorldPoint = [&](const glm::vec3& p) {
-        glm::dvec3 w = glm::dvec3(toWorld * glm::dvec4(glm::dvec3(p), 1.0));
-        if (!finite(w)) fail(what + ": transformed position is not finite");
-        return glm::vec3(w);
-    };
-    auto faceNormal = [](const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
-        glm::dvec3 n = glm::cross(glm::dvec3(b) - glm::dvec3(a), glm::dvec3(c) - glm::dvec3(a));
-        double length = glm::length(n);
-        return length > 0.0 ? glm::vec3(n / length) : glm::vec3(0.f, 1.f, 0.f);
-    };
-
     auto normal = primitive.attributes.find("NORMAL");
     if (normal != primitive.attributes.end()) {
         std::vector<glm::vec3> normals = readFloat3(normal->second, what + " NORMAL");
         if (normals.size() != positions.size())
             fail(what + ": NORMAL count " + std::to_string(normals.size()) +
                  " differs from POSITION count " + std::to_string(positions.size()));
-        for (size_t i = 0; i < positions.size(); ++i) {
-            mesh.positions.push_back(toWorldPoint(positions[i]));
-            glm::dvec3 n = normalMatrix * glm::dvec3(normals[i]);
-            double length = glm::length(n);
-            mesh.normals.push_back(length > 1e-12 && std::isfinite(length) ? glm::vec3(n / length)
-                                                                           : glm::vec3(0.f));
-        }
-        mesh.indices = indices;
-        // Zero-length normals in the file get the normal of a face that uses the vertex.
-        for (size_t t = 0; t + 2 < indices.size(); t += 3) {
-            const uint32_t* tri = &indices[t];
-            for (int k = 0; k < 3; ++k) {
-                if (mesh.normals[tri[k]] != glm::vec3(0.f)) continue;
-                glm::vec3 face = faceNormal(mesh.positions[tri[0]], mesh.positions[tri[1]],
-                                            mesh.positions[tri[2]]);
-                mesh.normals[tri[k]] = mirrored ? -face : face;
-            }
-        }
+        addSmoothVertices(mesh, positions, normals, indices, toWorld, mirrored, what);
     } else {
         // No normals: flat shading, three vertices of its own per triangle.
-        for (size_t t = 0; t + 2 < indices.size(); t += 3) {
-            glm::vec3 a = toWorldPoint(positions[indices[t]]);
-            glm::vec3 b = toWorldPoint(positions[indices[t + 1]]);
-            glm::vec3 c = toWorldPoint(positions[indices[t + 2]]);
-            glm::vec3 n = mirrored ? -faceNormal(a, b, c) : faceNormal(a, b, c);
-            for (const glm::vec3& p : {a, b, c}) {
-                mesh.indices.push_back(uint32_t(mesh.positions.size()));
-                mesh.positions.push_back(p);
-                mesh.normals.push_back(n);
-            }
-        }
+        addFlatTriangles(mesh, positions, indices, toWorld, mirrored, what);
     }
     if (mirrored)
         for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3)

@@ -81,110 +81,126 @@ int workerThreads(int requested) {
     return std::max(1, int(std::thread::hardware_concurrency()));
 }
 
-RadiosityMesh RadiosityMesh::build(const Scene& scene, const RadiositySettings& settings) {
-    RadiosityMesh out;
+namespace {
+
+/// Total area of the scene's triangles, m2.
+double sceneArea(const Scene& scene) {
     double total = 0.0;
     for (const Mesh& m : scene.meshes)
         for (size_t t = 0; t + 2 < m.indices.size(); t += 3) {
             glm::dvec3 a(m.positions[m.indices[t]]), b(m.positions[m.indices[t + 1]]), c(m.positions[m.indices[t + 2]]);
             total += 0.5 * glm::length(glm::cross(b - a, c - a));
         }
-    // A quad of edge h splits into two patches of h^2 / 2.
-    out.patchSize = settings.patchSize > 0.0 ? settings.patchSize
-                                             : std::sqrt(2.0 * total / double(std::max(1, settings.targetPatches)));
-    double h = std::max(out.patchSize, 1e-9), patchArea = 0.5 * h * h;
-    // Vertices are welded within a mesh and a flat surface: the key is the position rounded to a
-    // millionth of the patch size; vertices with one key but normals apart stay separate.
-    double quantum = 1e-6 * h;
-    std::map<std::tuple<int64_t, int64_t, int64_t, uint32_t>, std::vector<uint32_t>> weld;
-    std::vector<glm::dvec3> vertexNormal;
-    auto vertexOf = [&](const glm::dvec3& p, const glm::dvec3& normal, uint32_t mesh) {
-        auto key = std::make_tuple(std::llround(p.x / quantum), std::llround(p.y / quantum), std::llround(p.z / quantum), mesh);
-        std::vector<uint32_t>& same = weld[key];
+    return total;
+}
+
+/// Welds patch vertices within a mesh and a flat surface: the key is the position rounded to a
+/// millionth of the patch size; vertices with one key but normals apart stay separate.
+class VertexWelder {
+public:
+    VertexWelder(std::vector<glm::dvec3>& vertices, double h)
+        : mVertices(vertices), mQuantum(1e-6 * h) {}
+
+    /// The index of the vertex at p on a surface of this normal in mesh `mesh`, added if new.
+    uint32_t vertexOf(const glm::dvec3& p, const glm::dvec3& normal, uint32_t mesh) {
+        auto key = std::make_tuple(std::llround(p.x / mQuantum), std::llround(p.y / mQuantum),
+                                   std::llround(p.z / mQuantum), mesh);
+        std::vector<uint32_t>& same = mWeld[key];
         for (uint32_t v : same)
-            if (glm::dot(vertexNormal[v], normal) > 0.999) return v;
-        uint32_t v = uint32_t(out.vertices.size());
-        out.vertices.push_back(p);
-        vertexNormal.push_back(normal);
+            if (glm::dot(mVertexNormal[v], normal) > 0.999) return v;
+        uint32_t v = uint32_t(mVertices.size());
+        mVertices.push_back(p);
+        mVertexNormal.push_back(normal);
         same.push_back(v);
         return v;
-    };
-
-    out.splits.resize(scene.meshes.size());
-    for (size_t mi = 0; mi < scene.meshes.size(); ++mi) {
-        const Mesh& m = scene.meshes[mi];
-        glm::dvec3 albedo = m.material < scene.materials.size() ? glm::dvec3(scene.materials[m.material].albedo)
-                                                                : glm::dvec3(0.0);
-        albedo = glm::clamp(albedo, 0.0, 1.0);
-        for (size_t t = 0; t + 2 < m.indices.size(); t += 3) {
-            uint32_t ia = m.indices[t], ib = m.indices[t + 1], ic = m.indices[t + 2];
-            glm::dvec3 a(m.positions[ia]), b(m.positions[ib]), c(m.positions[ic]);
-            glm::dvec3 g = glm::cross(b - a, c - a);
-            double twiceArea = glm::length(g);
-            Split split;
-            split.firstPatch = uint32_t(out.patches.size());
-            if (!(twiceArea > 1e-18) || !std::isfinite(twiceArea)) {
-                split.subdivisions = 0;  // degenerate: no patch
-                out.splits[mi].push_back(split);
-                continue;
-            }
-            glm::dvec3 normal = g / twiceArea;
-            // The reflecting side: the vertex normals' side where the mesh has them, else the
-            // winding's (counter-clockwise seen from outside).
-            bool flip = false;
-            if (ia < m.normals.size() && ib < m.normals.size() && ic < m.normals.size()) {
-                glm::dvec3 nv = glm::dvec3(m.normals[ia]) + glm::dvec3(m.normals[ib]) + glm::dvec3(m.normals[ic]);
-                flip = glm::dot(nv, normal) < 0.0;
-            }
-            if (flip) normal = -normal;
-            // n^2 patches of about the patch area (half a square's triangle of edge h gets n = s / h),
-            // and no patch edge over 1.5 h (slivers, such as a disc's fan, get split lengthwise).
-            double longest = std::max({glm::length(b - a), glm::length(c - b), glm::length(a - c)});
-            double divisions = std::max(std::sqrt(0.5 * twiceArea / patchArea), longest / (1.5 * h));
-            uint32_t n = uint32_t(std::clamp(std::ceil(divisions - 1e-9), 1.0, double(kMaxSubdivisions)));
-            split.subdivisions = n;
-            out.splits[mi].push_back(split);
-            // Grid points a + i/n (b - a) + j/n (c - a), i + j <= n.
-            std::vector<uint32_t> grid(size_t(n + 1) * size_t(n + 2) / 2);
-            auto gridIndex = [n](uint32_t i, uint32_t j) { return size_t(j) * (2 * n + 3 - j) / 2 + i; };
-            for (uint32_t j = 0; j <= n; ++j)
-                for (uint32_t i = 0; i + j <= n; ++i) {
-                    glm::dvec3 p = a + (double(i) / n) * (b - a) + (double(j) / n) * (c - a);
-                    grid[gridIndex(i, j)] = vertexOf(p, normal, uint32_t(mi));
-                }
-            double area = 0.5 * twiceArea / double(n * n);
-            auto add = [&](uint32_t v0, uint32_t v1, uint32_t v2) {
-                Patch p;
-                p.vertex = flip ? std::array<uint32_t, 3>{v0, v2, v1} : std::array<uint32_t, 3>{v0, v1, v2};
-                p.centroid = (out.vertices[v0] + out.vertices[v1] + out.vertices[v2]) / 3.0;
-                p.normal = normal;
-                p.area = area;
-                p.albedo = albedo;
-                out.patches.push_back(p);
-            };
-            for (uint32_t j = 0; j < n; ++j)
-                for (uint32_t i = 0; i + j < n; ++i) {
-                    add(grid[gridIndex(i, j)], grid[gridIndex(i + 1, j)], grid[gridIndex(i, j + 1)]);
-                    if (i + j < n - 1)
-                        add(grid[gridIndex(i + 1, j)], grid[gridIndex(i + 1, j + 1)], grid[gridIndex(i, j + 1)]);
-                }
-        }
     }
-    // A convex room: no vertex behind any patch (within rounding of the coordinates).
+
+private:
+    std::vector<glm::dvec3>& mVertices;
+    double mQuantum;
+    std::map<std::tuple<int64_t, int64_t, int64_t, uint32_t>, std::vector<uint32_t>> mWeld;
+    std::vector<glm::dvec3> mVertexNormal;
+};
+
+/// Splits triangle t of mesh mi into patches of about `patchArea` (edge h), appending them and
+/// the triangle's Split to `out`.
+void addTrianglePatches(RadiosityMesh& out, VertexWelder& welder, const Mesh& m, size_t mi,
+                        size_t t, const glm::dvec3& albedo, double h, double patchArea) {
+    using Split = RadiosityMesh::Split;
+    using Patch = RadiosityMesh::Patch;
+    uint32_t ia = m.indices[t], ib = m.indices[t + 1], ic = m.indices[t + 2];
+    glm::dvec3 a(m.positions[ia]), b(m.positions[ib]), c(m.positions[ic]);
+    glm::dvec3 g = glm::cross(b - a, c - a);
+    double twiceArea = glm::length(g);
+    Split split;
+    split.firstPatch = uint32_t(out.patches.size());
+    if (!(twiceArea > 1e-18) || !std::isfinite(twiceArea)) {
+        split.subdivisions = 0;  // degenerate: no patch
+        out.splits[mi].push_back(split);
+        return;
+    }
+    glm::dvec3 normal = g / twiceArea;
+    // The reflecting side: the vertex normals' side where the mesh has them, else the
+    // winding's (counter-clockwise seen from outside).
+    bool flip = false;
+    if (ia < m.normals.size() && ib < m.normals.size() && ic < m.normals.size()) {
+        glm::dvec3 nv = glm::dvec3(m.normals[ia]) + glm::dvec3(m.normals[ib]) + glm::dvec3(m.normals[ic]);
+        flip = glm::dot(nv, normal) < 0.0;
+    }
+    if (flip) normal = -normal;
+    // n^2 patches of about the patch area (half a square's triangle of edge h gets n = s / h),
+    // and no patch edge over 1.5 h (slivers, such as a disc's fan, get split lengthwise).
+    double longest = std::max({glm::length(b - a), glm::length(c - b), glm::length(a - c)});
+    double divisions = std::max(std::sqrt(0.5 * twiceArea / patchArea), longest / (1.5 * h));
+    uint32_t n = uint32_t(std::clamp(std::ceil(divisions - 1e-9), 1.0, double(kMaxSubdivisions)));
+    split.subdivisions = n;
+    out.splits[mi].push_back(split);
+    // Grid points a + i/n (b - a) + j/n (c - a), i + j <= n.
+    std::vector<uint32_t> grid(size_t(n + 1) * size_t(n + 2) / 2);
+    auto gridIndex = [n](uint32_t i, uint32_t j) { return size_t(j) * (2 * n + 3 - j) / 2 + i; };
+    for (uint32_t j = 0; j <= n; ++j)
+        for (uint32_t i = 0; i + j <= n; ++i) {
+            glm::dvec3 p = a + (double(i) / n) * (b - a) + (double(j) / n) * (c - a);
+            grid[gridIndex(i, j)] = welder.vertexOf(p, normal, uint32_t(mi));
+        }
+    double area = 0.5 * twiceArea / double(n * n);
+    auto add = [&](uint32_t v0, uint32_t v1, uint32_t v2) {
+        Patch p;
+        p.vertex = flip ? std::array<uint32_t, 3>{v0, v2, v1} : std::array<uint32_t, 3>{v0, v1, v2};
+        p.centroid = (out.vertices[v0] + out.vertices[v1] + out.vertices[v2]) / 3.0;
+        p.normal = normal;
+        p.area = area;
+        p.albedo = albedo;
+        out.patches.push_back(p);
+    };
+    for (uint32_t j = 0; j < n; ++j)
+        for (uint32_t i = 0; i + j < n; ++i) {
+            add(grid[gridIndex(i, j)], grid[gridIndex(i + 1, j)], grid[gridIndex(i, j + 1)]);
+            if (i + j < n - 1)
+                add(grid[gridIndex(i + 1, j)], grid[gridIndex(i + 1, j + 1)], grid[gridIndex(i, j + 1)]);
+        }
+}
+
+/// A convex room: no vertex behind any patch (within rounding of the coordinates).
+bool isConvexRoom(const RadiosityMesh& out) {
     double extent = 0.0;
     for (const glm::dvec3& v : out.vertices) extent = std::max(extent, glm::length(v));
-    out.convexRoom = !out.patches.empty();
-    for (size_t p = 0; p < out.patches.size() && out.convexRoom; ++p) {
-        const Patch& patch = out.patches[p];
+    bool convexRoom = !out.patches.empty();
+    for (size_t p = 0; p < out.patches.size() && convexRoom; ++p) {
+        const RadiosityMesh::Patch& patch = out.patches[p];
         for (const glm::dvec3& v : out.vertices)
             if (glm::dot(patch.normal, v - patch.centroid) < -1e-9 * std::max(1.0, extent)) {
-                out.convexRoom = false;
+                convexRoom = false;
                 break;
             }
     }
-    // Patches around each vertex.
+    return convexRoom;
+}
+
+/// Patches around each vertex (out.vertexStart, out.vertexPatches).
+void indexVertexPatches(RadiosityMesh& out) {
     std::vector<uint32_t> counts(out.vertices.size() + 1, 0);
-    for (const Patch& p : out.patches)
+    for (const RadiosityMesh::Patch& p : out.patches)
         for (uint32_t v : p.vertex) ++counts[v + 1];
     out.vertexStart.assign(out.vertices.size() + 1, 0);
     for (size_t v = 0; v < out.vertices.size(); ++v) out.vertexStart[v + 1] = out.vertexStart[v] + counts[v + 1];
@@ -192,6 +208,29 @@ RadiosityMesh RadiosityMesh::build(const Scene& scene, const RadiositySettings& 
     std::vector<uint32_t> fill(out.vertexStart.begin(), out.vertexStart.end() - 1);
     for (uint32_t p = 0; p < out.patches.size(); ++p)
         for (uint32_t v : out.patches[p].vertex) out.vertexPatches[fill[v]++] = p;
+}
+
+}  // namespace
+
+RadiosityMesh RadiosityMesh::build(const Scene& scene, const RadiositySettings& settings) {
+    RadiosityMesh out;
+    double total = sceneArea(scene);
+    // A quad of edge h splits into two patches of h^2 / 2.
+    out.patchSize = settings.patchSize > 0.0 ? settings.patchSize
+                                             : std::sqrt(2.0 * total / double(std::max(1, settings.targetPatches)));
+    double h = std::max(out.patchSize, 1e-9), patchArea = 0.5 * h * h;
+    VertexWelder welder(out.vertices, h);
+    out.splits.resize(scene.meshes.size());
+    for (size_t mi = 0; mi < scene.meshes.size(); ++mi) {
+        const Mesh& m = scene.meshes[mi];
+        glm::dvec3 albedo = m.material < scene.materials.size() ? glm::dvec3(scene.materials[m.material].albedo)
+                                                                : glm::dvec3(0.0);
+        albedo = glm::clamp(albedo, 0.0, 1.0);
+        for (size_t t = 0; t + 2 < m.indices.size(); t += 3)
+            addTrianglePatches(out, welder, m, mi, t, albedo, h, patchArea);
+    }
+    out.convexRoom = isConvexRoom(out);
+    indexVertexPatches(out);
     return out;
 }
 

@@ -120,74 +120,82 @@ struct Leniency {
     std::function<void(const PhotometricData&)> check = [](const PhotometricData&) {};
 };
 
-std::vector<Leniency> leniencies() {
-    std::vector<Leniency> c;
-    auto ldt = [](const std::function<void(std::vector<std::string>&)>& edit) {
-        std::vector<std::string> l = ldtLines();
-        edit(l);
-        return join(l);
-    };
-    auto ies = [](const std::function<void(std::vector<std::string>&)>& edit) {
-        std::vector<std::string> l = iesLines();
-        edit(l);
-        return join(l);
-    };
-    auto keyword = [](const std::string& key, const std::string& expected) {
-        return [key, expected](const PhotometricData& d) {
-            auto it = std::find_if(d.keywords.begin(), d.keywords.end(),
-                                   [&](const auto& kv) { return kv.first == key; });
-            ASSERT_NE(it, d.keywords.end()) << key;
-            EXPECT_EQ(it->second, expected);
-        };
-    };
+/// The strict EULUMDAT file with `edit` applied to its lines.
+std::string ldtWith(const std::function<void(std::vector<std::string>&)>& edit) {
+    std::vector<std::string> l = ldtLines();
+    edit(l);
+    return join(l);
+}
 
-    // EULUMDAT: empty optional fields.
+/// The strict IES file with `edit` applied to its lines.
+std::string iesWith(const std::function<void(std::vector<std::string>&)>& edit) {
+    std::vector<std::string> l = iesLines();
+    edit(l);
+    return join(l);
+}
+
+/// A check that the loaded data keep the keyword `key` with the value `expected`.
+std::function<void(const PhotometricData&)> keywordIs(const std::string& key,
+                                                      const std::string& expected) {
+    return [key, expected](const PhotometricData& d) {
+        auto it = std::find_if(d.keywords.begin(), d.keywords.end(),
+                               [&](const auto& kv) { return kv.first == key; });
+        ASSERT_NE(it, d.keywords.end()) << key;
+        EXPECT_EQ(it->second, expected);
+    };
+}
+
+/// EULUMDAT: empty optional fields.
+void ldtEmptyFields(std::vector<Leniency>& c) {
     c.push_back(
-        {"ldt empty direct ratios", "t.ldt", ldt([](auto& l) {
+        {"ldt empty direct ratios", "t.ldt", ldtWith([](auto& l) {
              for (int k = 32; k < 42; ++k) l[size_t(k)] = "";
          }),
          "t.ldt:33-42: the ten direct ratios are empty; left unknown (Candela does not use them)",
          "t.ldt:33-42: the ten direct ratios are empty",
-         keyword("direct ratios", "? ? ? ? ? ? ? ? ? ?")});
+         keywordIs("direct ratios", "? ? ? ? ? ? ? ? ? ?")});
     c.push_back({"ldt some empty direct ratios", "t.ldt",
-                 ldt([](auto& l) { l[34] = l[36] = "  "; }),
+                 ldtWith([](auto& l) { l[34] = l[36] = "  "; }),
                  "t.ldt:35-37: 2 of the ten direct ratios are empty; left unknown (Candela does "
                  "not use them)",
                  "t.ldt:35-37: 2 of the ten direct ratios are empty",
-                 keyword("direct ratios", "0.5 0.5 ? 0.5 ? 0.5 0.5 0.5 0.5 0.5")});
-    c.push_back({"ldt empty colour temperature", "t.ldt", ldt([](auto& l) { l[29] = ""; }),
+                 keywordIs("direct ratios", "0.5 0.5 ? 0.5 ? 0.5 0.5 0.5 0.5 0.5")});
+    c.push_back({"ldt empty colour temperature", "t.ldt", ldtWith([](auto& l) { l[29] = ""; }),
                  "t.ldt:30: empty colour temperature of lamp set 1; left unknown",
                  "t.ldt:30: empty colour temperature of lamp set 1"});
-    c.push_back({"ldt empty CRI", "t.ldt", ldt([](auto& l) { l[30] = " "; }),
+    c.push_back({"ldt empty CRI", "t.ldt", ldtWith([](auto& l) { l[30] = " "; }),
                  "t.ldt:31: empty colour rendering index of lamp set 1; left unknown",
                  "t.ldt:31: empty colour rendering index of lamp set 1"});
-    c.push_back({"ldt empty lamp type", "t.ldt", ldt([](auto& l) { l[27] = ""; }),
+    c.push_back({"ldt empty lamp type", "t.ldt", ldtWith([](auto& l) { l[27] = ""; }),
                  "t.ldt:28: empty lamp type of lamp set 1; left unknown",
                  "t.ldt:28: empty lamp type of lamp set 1"});
-    c.push_back({"ldt empty wattage", "t.ldt", ldt([](auto& l) { l[31] = ""; }),
+    c.push_back({"ldt empty wattage", "t.ldt", ldtWith([](auto& l) { l[31] = ""; }),
                  "t.ldt:32: empty wattage of lamp set 1; taken as 0 W",
                  "t.ldt:32: empty wattage of lamp set 1",
                  [](const PhotometricData& d) { EXPECT_EQ(d.inputWatts, 0.0); }});
-    c.push_back({"ldt empty DFF", "t.ldt", ldt([](auto& l) { l[21] = ""; }),
+    c.push_back({"ldt empty DFF", "t.ldt", ldtWith([](auto& l) { l[21] = ""; }),
                  "t.ldt:22: empty downward flux fraction DFF (%); left unknown",
                  "t.ldt:22: empty downward flux fraction DFF (%)"});
-    c.push_back({"ldt empty conversion factor", "t.ldt", ldt([](auto& l) { l[23] = ""; }),
+    c.push_back({"ldt empty conversion factor", "t.ldt", ldtWith([](auto& l) { l[23] = ""; }),
                  "t.ldt:24: empty conversion factor for luminous intensities; taken as 1",
                  "t.ldt:24: empty conversion factor"});
-    c.push_back({"ldt conversion factor 0", "t.ldt", ldt([](auto& l) { l[23] = "0"; }),
+    c.push_back({"ldt conversion factor 0", "t.ldt", ldtWith([](auto& l) { l[23] = "0"; }),
                  "t.ldt:24: conversion factor 0; taken as 1", "t.ldt:24: conversion factor 0"});
-    c.push_back({"ldt empty tilt", "t.ldt", ldt([](auto& l) { l[24] = ""; }),
+    c.push_back({"ldt empty tilt", "t.ldt", ldtWith([](auto& l) { l[24] = ""; }),
                  "t.ldt:25: empty tilt of the luminaire during measurement (degrees); taken as 0",
                  "t.ldt:25: empty tilt of the luminaire"});
-    // EULUMDAT: a repeated last C plane, as C360 (a copy of C0) and as the last angle twice.
-    c.push_back({"ldt C360 repeating C0", "t.ldt", ldt([](auto& l) {
+}
+
+/// EULUMDAT: a repeated last C plane, as C360 (a copy of C0) and as the last angle twice.
+void ldtRepeatedPlanes(std::vector<Leniency>& c) {
+    c.push_back({"ldt C360 repeating C0", "t.ldt", ldtWith([](auto& l) {
                      l[3] = "5";
                      l.insert(l.begin() + 46, "360");
                      l.insert(l.end(), {"100", "80", "60"});
                  }),
                  "t.ldt:47: C360 repeats the C0 plane (counted in Mc = 5); dropped",
                  "t.ldt:47: C360 repeats the C0 plane"});
-    c.push_back({"ldt C360 differing from C0", "t.ldt", ldt([](auto& l) {
+    c.push_back({"ldt C360 differing from C0", "t.ldt", ldtWith([](auto& l) {
                      l[3] = "5";
                      l.insert(l.begin() + 46, "360");
                      l.insert(l.end(), {"100", "80", "61.5"});
@@ -196,24 +204,27 @@ std::vector<Leniency> leniencies() {
                  "intensities differ from "
                  "C0's by up to 1.5 cd/klm)",
                  "t.ldt:47: C360 repeats the C0 plane"});
-    c.push_back({"ldt C360 without its intensities", "t.ldt", ldt([](auto& l) {
+    c.push_back({"ldt C360 without its intensities", "t.ldt", ldtWith([](auto& l) {
                      l[3] = "5";
                      l.insert(l.begin() + 46, "360");
                  }),
                  "t.ldt:47: C360 repeats the C0 plane (counted in Mc = 5); dropped",
                  "t.ldt:47: C360 repeats the C0 plane"});
-    c.push_back({"ldt last angle twice", "t.ldt", ldt([](auto& l) {
+    c.push_back({"ldt last angle twice", "t.ldt", ldtWith([](auto& l) {
                      l[3] = "5";
                      l.insert(l.begin() + 46, "270");
                      l.insert(l.end(), {"130", "110", "90"});
                  }),
                  "t.ldt:47: C270 repeats the plane before it (counted in Mc = 5); dropped",
                  "t.ldt:47: C270 repeats the plane before it"});
-    // EULUMDAT: numbers and values the format does not allow.
-    c.push_back({"ldt decimal comma", "t.ldt", ldt([](auto& l) { l[22] = "80,0"; }),
+}
+
+/// EULUMDAT: numbers and values the format does not allow.
+void ldtValues(std::vector<Leniency>& c) {
+    c.push_back({"ldt decimal comma", "t.ldt", ldtWith([](auto& l) { l[22] = "80,0"; }),
                  "t.ldt:23: a decimal comma (not in EULUMDAT); read as a decimal point",
                  "t.ldt:23: a decimal comma"});
-    c.push_back({"ldt LORL 0", "t.ldt", ldt([](auto& l) { l[22] = "0"; }),
+    c.push_back({"ldt LORL 0", "t.ldt", ldtWith([](auto& l) { l[22] = "0"; }),
                  "t.ldt:23: light output ratio LORL 0 %; no declared luminaire flux (the "
                  "intensities are still "
                  "cd/klm of the lamp flux)",
@@ -222,10 +233,13 @@ std::vector<Leniency> leniencies() {
                      EXPECT_EQ(d.lampFlux, 2000.0);
                  }});
     c.push_back({"ldt values after the intensities", "t.ldt",
-                 ldt([](auto& l) { l.push_back("7 8"); }),
+                 ldtWith([](auto& l) { l.push_back("7 8"); }),
                  "t.ldt:62: 2 values after the intensities (from '7'); ignored",
                  "t.ldt:62: 2 values after the intensities"});
-    // Text: trailing blank lines, mixed line endings, encodings (both formats).
+}
+
+/// Text: trailing blank lines, mixed line endings, encodings (both formats).
+void textLeniencies(std::vector<Leniency>& c) {
     for (const std::string path : {"t.ldt", "t.ies"}) {
         bool isLdt = path == "t.ldt";
         std::vector<std::string> lines = isLdt ? ldtLines() : iesLines();
@@ -269,15 +283,27 @@ std::vector<Leniency> leniencies() {
                              path + ":1: text in " + enc + how, named});
             }
     }
-    // IES only: comments and values after the table.
-    c.push_back({"ies // comment", "t.ies", ies([](auto& l) { l[6] += " // vertical angles"; }),
+}
+
+/// IES only: comments and values after the table.
+void iesLeniencies(std::vector<Leniency>& c) {
+    c.push_back({"ies // comment", "t.ies", iesWith([](auto& l) { l[6] += " // vertical angles"; }),
                  "t.ies:7: a '//' comment in the numeric data (not in LM-63); ignored to the end "
                  "of each line",
                  "t.ies:7: a '//' comment"});
     c.push_back({"ies values after the candela table", "t.ies",
-                 ies([](auto& l) { l.push_back("END"); }),
+                 iesWith([](auto& l) { l.push_back("END"); }),
                  "t.ies:11: 1 value after the candela table (from 'END'); ignored",
                  "t.ies:11: 1 value after the candela table"});
+}
+
+std::vector<Leniency> leniencies() {
+    std::vector<Leniency> c;
+    ldtEmptyFields(c);
+    ldtRepeatedPlanes(c);
+    ldtValues(c);
+    textLeniencies(c);
+    iesLeniencies(c);
     return c;
 }
 

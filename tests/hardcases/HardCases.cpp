@@ -282,13 +282,17 @@ namespace {
 
 // --- The cases ------------------------------------------------------------------------------
 
-std::vector<Case> build() {
+/// The table of cases as it is built, group by group; the photometric groups set the table and
+/// opening that add() gives the cases after them.
+struct CaseBuilder {
     std::vector<Case> out;
     std::function<double(double)> table;  // the photometric cases' intensity, set per group
     std::vector<glm::dvec3> opening;       // and their opening (for the upper bound)
     double lMax = 0.0;                     // brightest radiance of the opening, cd/m2
-    auto add = [&](std::string name, std::string kind, Class cls, std::shared_ptr<const Luminaire> light, glm::dvec3 p,
-                   glm::dvec3 n, double expected, std::string how) {
+    const glm::dvec3 up{0, 1, 0}, down{0, -1, 0}, side{1, 0, 0};
+
+    void add(std::string name, std::string kind, Class cls, std::shared_ptr<const Luminaire> light,
+             glm::dvec3 p, glm::dvec3 n, double expected, std::string how) {
         Case c;
         c.name = std::move(name);
         c.kind = std::move(kind);
@@ -305,206 +309,230 @@ std::vector<Case> build() {
             c.upperBound = opening.size() >= 3 ? kPi * lMax * polygonFormFactor(c.p, c.n, opening) : 0.0;
         }
         out.push_back(std::move(c));
-    };
-    const glm::dvec3 up(0, 1, 0), down(0, -1, 0), side(1, 0, 0);
+    }
+    void photometricLambert();
+    void photometricSizes();
+    void photometricSegment();
+    void photometricPoint();
+    void photometricTables();
+    void lambertianRect();
+    void lightFields();
+};
 
-    auto cosine = [](double gamma) { return gamma <= kPi / 2 ? 1000.0 * std::cos(gamma) : 0.0; };
-    auto isotropic = [](double) { return 1000.0; };
-    // Photometric, the cosine table on a 0.6 x 0.3 m opening: a Lambertian emitter of L = I0 / A.
-    {
-        const double a = 0.3, b = 0.15, L = 1000.0 / (4 * a * b);
+/// The cosine table's intensity, cd: 1000 cos(gamma) down, nothing up.
+double cosine(double gamma) { return gamma <= kPi / 2 ? 1000.0 * std::cos(gamma) : 0.0; }
+/// The isotropic table's intensity, cd.
+double isotropic(double) { return 1000.0; }
+
+/// Photometric, the cosine table on a 0.6 x 0.3 m opening: a Lambertian emitter of L = I0 / A.
+void CaseBuilder::photometricLambert() {
+    const double a = 0.3, b = 0.15, L = 1000.0 / (4 * a * b);
+    table = cosine;
+    opening = rectangle(a, b);
+    lMax = L;
+    auto light = photometric(lambertTable(2 * a, 2 * b), 2 * a, 2 * b);
+    auto form = [&](glm::dvec3 p, glm::dvec3 n) { return kPi * L * polygonFormFactor(p, n, rectangle(a, b)); };
+    std::string lam = "pi L F (Lambert's polygon formula)";
+    add("photometric/lambert/ordinary", "photometric", Class::Ordinary, light, {0.4, 1.0, 0.3}, up,
+        form({0.4, 1.0, 0.3}, up), lam);
+    for (double d : {1e-9, 1e-6, 1e-3}) {
+        char name[64];
+        std::snprintf(name, sizeof name, "photometric/lambert/contact-%g", d);
+        add(name, "photometric", Class::Contact, light, {0, kH - d, 0}, up, form({0, kH - d, 0}, up), lam);
+    }
+    add("photometric/lambert/contact-1e-6-off-centre", "photometric", Class::Contact, light, {0.2, kH - 1e-6, 0.1}, up,
+        form({0.2, kH - 1e-6, 0.1}, up), lam);
+    add("photometric/lambert/on-plane-inside", "photometric", Class::OnPlane, light, {0, kH, 0}, up, kPi * L,
+        "the front limit pi L (a receiver on the emitter: any value in [0, pi L])");
+    add("photometric/lambert/in-plane-beside", "photometric", Class::OnPlane, light, {0.5, kH, 0}, {-1, 0, 0}, 0.0,
+        "0: the opening is seen edge-on");
+    add("photometric/lambert/grazing-contact", "photometric", Class::Grazing, light, {0, kH - 1e-9, 0}, side,
+        form({0, kH - 1e-9, 0}, side), lam + ": pi L / 2");
+    glm::dvec3 graze = glm::normalize(glm::dvec3(1, 1e-6, 0));
+    add("photometric/lambert/grazing-normal-1m", "photometric", Class::Grazing, light, {-0.5, 1.0, 0}, graze,
+        form({-0.5, 1.0, 0}, graze), lam);
+    add("photometric/lambert/behind", "photometric", Class::Behind, light, {0, 2.5, 0}, down, 0.0,
+        "0: the table sends nothing up");
+    double r = std::sqrt(1e10 + 9e8);
+    add("photometric/lambert/far-1e5", "photometric", Class::Far, light, {3e4, kH - 1e5, 0}, up,
+        1000.0 * std::pow(1e5 / r, 2) / (r * r), "I cos(gamma) cos / r^2");
+}
+
+/// Tiny and huge openings.
+void CaseBuilder::photometricSizes() {
+    table = cosine;
+    opening = rectangle(0.5e-6, 0.5e-6);
+    lMax = 1000.0 / 1e-12;
+    auto tiny = photometric(lambertTable(1e-6, 1e-6), 1e-6, 1e-6);
+    glm::dvec3 p(0.3, 0.0, 0.2);
+    glm::dvec3 v = glm::dvec3(0, kH, 0) - p;
+    double r = glm::length(v), c = v.y / r;
+    add("photometric/tiny-1e-6/at-2m", "photometric", Class::Tiny, tiny, p, up, 1000.0 * c * c / (r * r),
+        "the point law I cos / r^2 (the opening's size is 1e-6 of r)");
+    p = {0.03, kH - 0.1, 0.02};
+    v = glm::dvec3(0, kH, 0) - p;
+    r = glm::length(v);
+    c = v.y / r;
+    add("photometric/tiny-1e-6/at-0.1m", "photometric", Class::Tiny, tiny, p, up, 1000.0 * c * c / (r * r),
+        "the point law I cos / r^2");
+    auto huge = photometric(lambertTable(100, 100), 100, 100);
+    const double L = 1000.0 / 1e4;
+    opening = rectangle(50, 50);
+    lMax = L;
+    add("photometric/huge-100m/contact-1e-9", "photometric", Class::Huge, huge, {0, kH - 1e-9, 0}, up,
+        kPi * L * polygonFormFactor({0, kH - 1e-9, 0}, up, rectangle(50, 50)), "pi L F");
+    add("photometric/huge-100m/at-1m", "photometric", Class::Huge, huge, {10, kH - 1.0, -5}, up,
+        kPi * L * polygonFormFactor({10, kH - 1.0, -5}, up, rectangle(50, 50)), "pi L F");
+}
+
+/// A segment (zero width) 0.6 m long, centred: the point law averaged along it, in closed form.
+void CaseBuilder::photometricSegment() {
+    opening.clear();
+    auto lam = photometric(lambertTable(0.6, 0.0), 0.6, 0.0);
+    auto iso = photometric(isotropicTable(0.6, 0.0), 0.6, 0.0);
+    for (double d : {1e-9, 1e-3, 1.0}) {
+        // Below its middle: cosine table I0 d^2 / r^4, isotropic I0 d / r^3, over x in [-0.3, 0.3].
+        auto lamInt = [d](double x) { return 0.5 / d * (d * x / (x * x + d * d) + std::atan(x / d)); };
+        auto isoInt = [d](double x) { return x / (d * std::sqrt(x * x + d * d)); };
+        char name[64];
         table = cosine;
-        opening = rectangle(a, b);
-        lMax = L;
-        auto light = photometric(lambertTable(2 * a, 2 * b), 2 * a, 2 * b);
-        auto form = [&](glm::dvec3 p, glm::dvec3 n) { return kPi * L * polygonFormFactor(p, n, rectangle(a, b)); };
-        std::string lam = "pi L F (Lambert's polygon formula)";
-        add("photometric/lambert/ordinary", "photometric", Class::Ordinary, light, {0.4, 1.0, 0.3}, up,
-            form({0.4, 1.0, 0.3}, up), lam);
-        for (double d : {1e-9, 1e-6, 1e-3}) {
-            char name[64];
-            std::snprintf(name, sizeof name, "photometric/lambert/contact-%g", d);
-            add(name, "photometric", Class::Contact, light, {0, kH - d, 0}, up, form({0, kH - d, 0}, up), lam);
-        }
-        add("photometric/lambert/contact-1e-6-off-centre", "photometric", Class::Contact, light, {0.2, kH - 1e-6, 0.1}, up,
-            form({0.2, kH - 1e-6, 0.1}, up), lam);
-        add("photometric/lambert/on-plane-inside", "photometric", Class::OnPlane, light, {0, kH, 0}, up, kPi * L,
-            "the front limit pi L (a receiver on the emitter: any value in [0, pi L])");
-        add("photometric/lambert/in-plane-beside", "photometric", Class::OnPlane, light, {0.5, kH, 0}, {-1, 0, 0}, 0.0,
-            "0: the opening is seen edge-on");
-        add("photometric/lambert/grazing-contact", "photometric", Class::Grazing, light, {0, kH - 1e-9, 0}, side,
-            form({0, kH - 1e-9, 0}, side), lam + ": pi L / 2");
-        glm::dvec3 graze = glm::normalize(glm::dvec3(1, 1e-6, 0));
-        add("photometric/lambert/grazing-normal-1m", "photometric", Class::Grazing, light, {-0.5, 1.0, 0}, graze,
-            form({-0.5, 1.0, 0}, graze), lam);
-        add("photometric/lambert/behind", "photometric", Class::Behind, light, {0, 2.5, 0}, down, 0.0,
-            "0: the table sends nothing up");
-        double r = std::sqrt(1e10 + 9e8);
-        add("photometric/lambert/far-1e5", "photometric", Class::Far, light, {3e4, kH - 1e5, 0}, up,
-            1000.0 * std::pow(1e5 / r, 2) / (r * r), "I cos(gamma) cos / r^2");
-    }
-    // Tiny and huge openings.
-    {
-        table = cosine;
-        opening = rectangle(0.5e-6, 0.5e-6);
-        lMax = 1000.0 / 1e-12;
-        auto tiny = photometric(lambertTable(1e-6, 1e-6), 1e-6, 1e-6);
-        glm::dvec3 p(0.3, 0.0, 0.2);
-        glm::dvec3 v = glm::dvec3(0, kH, 0) - p;
-        double r = glm::length(v), c = v.y / r;
-        add("photometric/tiny-1e-6/at-2m", "photometric", Class::Tiny, tiny, p, up, 1000.0 * c * c / (r * r),
-            "the point law I cos / r^2 (the opening's size is 1e-6 of r)");
-        p = {0.03, kH - 0.1, 0.02};
-        v = glm::dvec3(0, kH, 0) - p;
-        r = glm::length(v);
-        c = v.y / r;
-        add("photometric/tiny-1e-6/at-0.1m", "photometric", Class::Tiny, tiny, p, up, 1000.0 * c * c / (r * r),
-            "the point law I cos / r^2");
-        auto huge = photometric(lambertTable(100, 100), 100, 100);
-        const double L = 1000.0 / 1e4;
-        opening = rectangle(50, 50);
-        lMax = L;
-        add("photometric/huge-100m/contact-1e-9", "photometric", Class::Huge, huge, {0, kH - 1e-9, 0}, up,
-            kPi * L * polygonFormFactor({0, kH - 1e-9, 0}, up, rectangle(50, 50)), "pi L F");
-        add("photometric/huge-100m/at-1m", "photometric", Class::Huge, huge, {10, kH - 1.0, -5}, up,
-            kPi * L * polygonFormFactor({10, kH - 1.0, -5}, up, rectangle(50, 50)), "pi L F");
-    }
-    // A segment (zero width) 0.6 m long, centred: the point law averaged along it, in closed form.
-    {
-        opening.clear();
-        auto lam = photometric(lambertTable(0.6, 0.0), 0.6, 0.0);
-        auto iso = photometric(isotropicTable(0.6, 0.0), 0.6, 0.0);
-        for (double d : {1e-9, 1e-3, 1.0}) {
-            // Below its middle: cosine table I0 d^2 / r^4, isotropic I0 d / r^3, over x in [-0.3, 0.3].
-            auto lamInt = [d](double x) { return 0.5 / d * (d * x / (x * x + d * d) + std::atan(x / d)); };
-            auto isoInt = [d](double x) { return x / (d * std::sqrt(x * x + d * d)); };
-            char name[64];
-            table = cosine;
-            std::snprintf(name, sizeof name, "photometric/segment-cosine/below-%g", d);
-            add(name, "photometric", Class::Segment, lam, {0, kH - d, 0}, up, 1000.0 / 0.6 * (lamInt(0.3) - lamInt(-0.3)),
-                "the line integral of I0 cos cos / r^2 (closed form)");
-            table = isotropic;
-            std::snprintf(name, sizeof name, "photometric/segment-isotropic/below-%g", d);
-            add(name, "photometric", Class::Segment, iso, {0, kH - d, 0}, up, 1000.0 / 0.6 * (isoInt(0.3) - isoInt(-0.3)),
-                "the line integral of I0 cos / r^2 (closed form)");
-        }
-    }
-    // A point: the isotropic table.
-    {
+        std::snprintf(name, sizeof name, "photometric/segment-cosine/below-%g", d);
+        add(name, "photometric", Class::Segment, lam, {0, kH - d, 0}, up, 1000.0 / 0.6 * (lamInt(0.3) - lamInt(-0.3)),
+            "the line integral of I0 cos cos / r^2 (closed form)");
         table = isotropic;
-        auto point = photometric(isotropicTable(0.0, 0.0), 0.0, 0.0);
-        for (double d : {1e-9, 1e-3, 1.0}) {
-            char name[64];
-            std::snprintf(name, sizeof name, "photometric/point/below-%g", d);
-            add(name, "photometric", Class::Point, point, {0, kH - d, 0}, up, 1000.0 / (d * d), "I / d^2");
-        }
-        // A normal 1e-6 rad above perpendicular to the light's direction: cos = sin(1e-6).
-        glm::dvec3 toLight = glm::normalize(glm::dvec3(-1, 1, 0)), across = glm::normalize(glm::dvec3(1, 1, 0));
-        glm::dvec3 n = std::cos(1e-6) * across + std::sin(1e-6) * toLight;
-        add("photometric/point/grazing", "photometric", Class::Grazing, point, {1.0, 1.0, 0}, n,
-            1000.0 * std::sin(1e-6) / 2.0, "I cos / r^2 with cos = sin(1e-6)");
+        std::snprintf(name, sizeof name, "photometric/segment-isotropic/below-%g", d);
+        add(name, "photometric", Class::Segment, iso, {0, kH - d, 0}, up, 1000.0 / 0.6 * (isoInt(0.3) - isoInt(-0.3)),
+            "the line integral of I0 cos / r^2 (closed form)");
     }
-    // A 1e9 cd spike 0.5 degrees wide on the axis over 100 cd elsewhere, on a point and on a
-    // 0.6 x 0.3 m opening; a table of zeros; a table with one non-zero value (on a point).
-    {
-        std::vector<double> g = {0, 0.5, 1, 2, 5, 10, 20, 40, 60, 90}, c = {1e9, 100, 100, 100, 100, 100, 100, 100, 100, 100};
-        auto spike = [&](double gamma) {
-            double deg = gamma * 180.0 / kPi;
-            if (deg > 90.0) return 0.0;
-            if (deg < 0.5) return 1e9 + (100.0 - 1e9) * deg / 0.5;
-            return 100.0;
-        };
-        table = spike;
-        auto point = photometric(iesText(g, c, 0, 0), 0, 0);
-        add("photometric/spike-point/below-1m", "photometric", Class::Spike, point, {0, kH - 1.0, 0}, up, 1e9, "I / d^2");
-        add("photometric/spike-point/off-axis", "photometric", Class::Spike, point, {0.5, kH - 1.0, 0}, up,
-            100.0 * (1.0 / std::sqrt(1.25)) / 1.25, "I cos / r^2 (100 cd there)");
-        auto wide = photometric(iesText(g, c, 0.6, 0.3), 0.6, 0.3);
-        opening = rectangle(0.3, 0.15);
-        lMax = 1e9 / 0.18;
-        // The spike's cone meets the opening within 1 m tan(0.5 deg) = 8.7 mm of the foot point.
-        double w = std::tan(0.5 * kPi / 180.0);
-        add("photometric/spike-opening/below-1m", "photometric", Class::Spike, wide, {0.05, kH - 1.0, 0.02}, up,
-            areaForm({0.05, kH - 1.0, 0.02}, up, 0.3, 0.15, spike, {0.05 - w, 0.05 + w}, {0.02 - w, 0.02 + w}),
-            "the area form by the test's graded quadrature");
-        table = [](double) { return 0.0; };
-        lMax = 0.0;
-        auto zeros = photometric(iesText({0, 90, 180}, {0, 0, 0}, 0.6, 0.3), 0.6, 0.3);
-        add("photometric/zeros/below-1m", "photometric", Class::Zero, zeros, {0.1, 1.0, 0}, up, 0.0, "0");
-        std::vector<double> g1 = {0, 20, 25, 30, 35, 40, 90}, c1 = {0, 0, 0, 500, 0, 0, 0};
-        opening.clear();
-        table = [](double gamma) {
-            double deg = gamma * 180.0 / kPi;
-            if (deg > 25.0 && deg < 30.0) return 500.0 * (deg - 25.0) / 5.0;
-            if (deg >= 30.0 && deg < 35.0) return 500.0 * (35.0 - deg) / 5.0;
-            return 0.0;
-        };
-        auto ring = photometric(iesText(g1, c1, 0, 0), 0, 0);
-        double gamma = 28.0 * kPi / 180.0, h = 1.0, x = h * std::tan(gamma), r = h / std::cos(gamma);
-        add("photometric/single-value/at-28deg", "photometric", Class::SingleValue, ring, {x, kH - h, 0}, up,
-            500.0 * (3.0 / 5.0) * std::cos(gamma) / (r * r), "I (linear between 25 and 30 deg) cos / r^2");
-    }
+}
 
-    // The Lambertian rectangle 0.6 x 0.3 m.
-    {
-        const double a = 0.3, b = 0.15, L = 1000.0;
-        auto light = rect(a, b, L);
-        auto form = [&](glm::dvec3 p, glm::dvec3 n) { return kPi * L * polygonFormFactor(p, n, rectangle(a, b)); };
-        std::string lam = "pi L F (Lambert's polygon formula)";
-        add("lambertian-rect/ordinary", "lambertian-rect", Class::Ordinary, light, {0.4, 1.0, 0.3}, up,
-            form({0.4, 1.0, 0.3}, up), lam);
-        for (double d : {1e-9, 1e-6, 1e-3}) {
-            char name[64];
-            std::snprintf(name, sizeof name, "lambertian-rect/contact-%g", d);
-            add(name, "lambertian-rect", Class::Contact, light, {0, kH - d, 0}, up, form({0, kH - d, 0}, up), lam);
-        }
-        add("lambertian-rect/on-plane-inside", "lambertian-rect", Class::OnPlane, light, {0, kH, 0}, up, kPi * L,
-            "the front limit pi L (a receiver on the emitter: any value in [0, pi L])");
-        add("lambertian-rect/grazing-contact", "lambertian-rect", Class::Grazing, light, {0, kH - 1e-9, 0}, side,
-            form({0, kH - 1e-9, 0}, side), lam + ": pi L / 2");
-        add("lambertian-rect/behind", "lambertian-rect", Class::Behind, light, {0, 2.5, 0}, down, 0.0, "0: it emits down only");
-        double r = std::sqrt(1e10 + 9e8);
-        add("lambertian-rect/far-1e5", "lambertian-rect", Class::Far, light, {3e4, kH - 1e5, 0}, up,
-            L * 4 * a * b * std::pow(1e5 / r, 2) / (r * r), "L A cos cos / r^2");
-        auto tiny = rect(0.5e-6, 0.5e-6, L);
-        glm::dvec3 p(0.3, 0.0, 0.2), v = glm::dvec3(0, kH, 0) - p;
-        double rr = glm::length(v), c = v.y / rr;
-        add("lambertian-rect/tiny-1e-6/at-2m", "lambertian-rect", Class::Tiny, tiny, p, up, L * 1e-12 * c * c / (rr * rr),
-            "L A cos cos / r^2");
-        auto huge = rect(50, 50, L);
-        add("lambertian-rect/huge-100m/contact-1e-9", "lambertian-rect", Class::Huge, huge, {0, kH - 1e-9, 0}, up,
-            kPi * L * polygonFormFactor({0, kH - 1e-9, 0}, up, rectangle(50, 50)), lam);
+/// A point: the isotropic table.
+void CaseBuilder::photometricPoint() {
+    table = isotropic;
+    auto point = photometric(isotropicTable(0.0, 0.0), 0.0, 0.0);
+    for (double d : {1e-9, 1e-3, 1.0}) {
+        char name[64];
+        std::snprintf(name, sizeof name, "photometric/point/below-%g", d);
+        add(name, "photometric", Class::Point, point, {0, kH - d, 0}, up, 1000.0 / (d * d), "I / d^2");
     }
+    // A normal 1e-6 rad above perpendicular to the light's direction: cos = sin(1e-6).
+    glm::dvec3 toLight = glm::normalize(glm::dvec3(-1, 1, 0)), across = glm::normalize(glm::dvec3(1, 1, 0));
+    glm::dvec3 n = std::cos(1e-6) * across + std::sin(1e-6) * toLight;
+    add("photometric/point/grazing", "photometric", Class::Grazing, point, {1.0, 1.0, 0}, n,
+        1000.0 * std::sin(1e-6) / 2.0, "I cos / r^2 with cos = sin(1e-6)");
+}
 
-    // Light fields: a constant one (a Lambertian square on S where the B-splines sum to one) and
-    // one with a single bright pixel; expected values from the test's quadrature over U.
-    {
-        auto constant = lightField(1000.0, false);
-        auto q = [](glm::dvec3 p, glm::dvec3 n) { return lightFieldQuadrature(p, n, 1000.0, false); };
-        std::string how = "the test's quadrature over U";
-        add("lightfield/ordinary", "lightfield", Class::Ordinary, constant, {0.3, 1.0, 0.1}, up, q({0.3, 1.0, 0.1}, up), how);
-        for (double d : {1e-9, 1e-6, 1e-3}) {
-            char name[64];
-            std::snprintf(name, sizeof name, "lightfield/beyond-S-%g", d);
-            add(name, "lightfield", Class::Contact, constant, {0.01, kH - d, 0.02}, up, q({0.01, kH - d, 0.02}, up), how);
-        }
-        add("lightfield/on-S", "lightfield", Class::OnPlane, constant, {0.01, kH, 0.02}, up, q({0.01, kH - 1e-12, 0.02}, up),
-            how + " (Eq. 9: the limit onto S)");
-        add("lightfield/between-U-and-S", "lightfield", Class::Behind, constant, {0, kH + 0.025, 0}, up, 0.0,
-            "0: inside the luminaire");
-        add("lightfield/behind-U", "lightfield", Class::Behind, constant, {0, kH + 0.3, 0}, down, 0.0, "0: behind it");
-        add("lightfield/grazing-contact", "lightfield", Class::Grazing, constant, {0.01, kH - 1e-6, 0.02}, side,
-            q({0.01, kH - 1e-6, 0.02}, side), how);
-        double r = std::sqrt(1e10 + 9e8);
-        add("lightfield/far-1e5", "lightfield", Class::Far, constant, {3e4, kH - 1e5, 0}, up,
-            1000.0 * 0.04 * std::pow(1e5 / r, 2) / (r * r), "its far field: C A_S cos cos / r^2");
-        auto bright = lightField(1e6, true);
-        add("lightfield/bright-pixel/at-1m", "lightfield", Class::BrightPixel, bright, {-0.04, kH - 1.0, -0.03}, up,
-            lightFieldQuadrature({-0.04, kH - 1.0, -0.03}, up, 1e6, true), how);
-        add("lightfield/bright-pixel/near", "lightfield", Class::BrightPixel, bright, {-0.04, kH - 0.01, -0.03}, up,
-            lightFieldQuadrature({-0.04, kH - 0.01, -0.03}, up, 1e6, true), how);
+/// A 1e9 cd spike 0.5 degrees wide on the axis over 100 cd elsewhere, on a point and on a
+/// 0.6 x 0.3 m opening; a table of zeros; a table with one non-zero value (on a point).
+void CaseBuilder::photometricTables() {
+    std::vector<double> g = {0, 0.5, 1, 2, 5, 10, 20, 40, 60, 90}, c = {1e9, 100, 100, 100, 100, 100, 100, 100, 100, 100};
+    auto spike = [&](double gamma) {
+        double deg = gamma * 180.0 / kPi;
+        if (deg > 90.0) return 0.0;
+        if (deg < 0.5) return 1e9 + (100.0 - 1e9) * deg / 0.5;
+        return 100.0;
+    };
+    table = spike;
+    auto point = photometric(iesText(g, c, 0, 0), 0, 0);
+    add("photometric/spike-point/below-1m", "photometric", Class::Spike, point, {0, kH - 1.0, 0}, up, 1e9, "I / d^2");
+    add("photometric/spike-point/off-axis", "photometric", Class::Spike, point, {0.5, kH - 1.0, 0}, up,
+        100.0 * (1.0 / std::sqrt(1.25)) / 1.25, "I cos / r^2 (100 cd there)");
+    auto wide = photometric(iesText(g, c, 0.6, 0.3), 0.6, 0.3);
+    opening = rectangle(0.3, 0.15);
+    lMax = 1e9 / 0.18;
+    // The spike's cone meets the opening within 1 m tan(0.5 deg) = 8.7 mm of the foot point.
+    double w = std::tan(0.5 * kPi / 180.0);
+    add("photometric/spike-opening/below-1m", "photometric", Class::Spike, wide, {0.05, kH - 1.0, 0.02}, up,
+        areaForm({0.05, kH - 1.0, 0.02}, up, 0.3, 0.15, spike, {0.05 - w, 0.05 + w}, {0.02 - w, 0.02 + w}),
+        "the area form by the test's graded quadrature");
+    table = [](double) { return 0.0; };
+    lMax = 0.0;
+    auto zeros = photometric(iesText({0, 90, 180}, {0, 0, 0}, 0.6, 0.3), 0.6, 0.3);
+    add("photometric/zeros/below-1m", "photometric", Class::Zero, zeros, {0.1, 1.0, 0}, up, 0.0, "0");
+    std::vector<double> g1 = {0, 20, 25, 30, 35, 40, 90}, c1 = {0, 0, 0, 500, 0, 0, 0};
+    opening.clear();
+    table = [](double gamma) {
+        double deg = gamma * 180.0 / kPi;
+        if (deg > 25.0 && deg < 30.0) return 500.0 * (deg - 25.0) / 5.0;
+        if (deg >= 30.0 && deg < 35.0) return 500.0 * (35.0 - deg) / 5.0;
+        return 0.0;
+    };
+    auto ring = photometric(iesText(g1, c1, 0, 0), 0, 0);
+    double gamma = 28.0 * kPi / 180.0, h = 1.0, x = h * std::tan(gamma), r = h / std::cos(gamma);
+    add("photometric/single-value/at-28deg", "photometric", Class::SingleValue, ring, {x, kH - h, 0}, up,
+        500.0 * (3.0 / 5.0) * std::cos(gamma) / (r * r), "I (linear between 25 and 30 deg) cos / r^2");
+}
+
+/// The Lambertian rectangle 0.6 x 0.3 m.
+void CaseBuilder::lambertianRect() {
+    const double a = 0.3, b = 0.15, L = 1000.0;
+    auto light = rect(a, b, L);
+    auto form = [&](glm::dvec3 p, glm::dvec3 n) { return kPi * L * polygonFormFactor(p, n, rectangle(a, b)); };
+    std::string lam = "pi L F (Lambert's polygon formula)";
+    add("lambertian-rect/ordinary", "lambertian-rect", Class::Ordinary, light, {0.4, 1.0, 0.3}, up,
+        form({0.4, 1.0, 0.3}, up), lam);
+    for (double d : {1e-9, 1e-6, 1e-3}) {
+        char name[64];
+        std::snprintf(name, sizeof name, "lambertian-rect/contact-%g", d);
+        add(name, "lambertian-rect", Class::Contact, light, {0, kH - d, 0}, up, form({0, kH - d, 0}, up), lam);
     }
-    return out;
+    add("lambertian-rect/on-plane-inside", "lambertian-rect", Class::OnPlane, light, {0, kH, 0}, up, kPi * L,
+        "the front limit pi L (a receiver on the emitter: any value in [0, pi L])");
+    add("lambertian-rect/grazing-contact", "lambertian-rect", Class::Grazing, light, {0, kH - 1e-9, 0}, side,
+        form({0, kH - 1e-9, 0}, side), lam + ": pi L / 2");
+    add("lambertian-rect/behind", "lambertian-rect", Class::Behind, light, {0, 2.5, 0}, down, 0.0, "0: it emits down only");
+    double r = std::sqrt(1e10 + 9e8);
+    add("lambertian-rect/far-1e5", "lambertian-rect", Class::Far, light, {3e4, kH - 1e5, 0}, up,
+        L * 4 * a * b * std::pow(1e5 / r, 2) / (r * r), "L A cos cos / r^2");
+    auto tiny = rect(0.5e-6, 0.5e-6, L);
+    glm::dvec3 p(0.3, 0.0, 0.2), v = glm::dvec3(0, kH, 0) - p;
+    double rr = glm::length(v), c = v.y / rr;
+    add("lambertian-rect/tiny-1e-6/at-2m", "lambertian-rect", Class::Tiny, tiny, p, up, L * 1e-12 * c * c / (rr * rr),
+        "L A cos cos / r^2");
+    auto huge = rect(50, 50, L);
+    add("lambertian-rect/huge-100m/contact-1e-9", "lambertian-rect", Class::Huge, huge, {0, kH - 1e-9, 0}, up,
+        kPi * L * polygonFormFactor({0, kH - 1e-9, 0}, up, rectangle(50, 50)), lam);
+}
+
+/// Light fields: a constant one (a Lambertian square on S where the B-splines sum to one) and
+/// one with a single bright pixel; expected values from the test's quadrature over U.
+void CaseBuilder::lightFields() {
+    auto constant = lightField(1000.0, false);
+    auto q = [](glm::dvec3 p, glm::dvec3 n) { return lightFieldQuadrature(p, n, 1000.0, false); };
+    std::string how = "the test's quadrature over U";
+    add("lightfield/ordinary", "lightfield", Class::Ordinary, constant, {0.3, 1.0, 0.1}, up, q({0.3, 1.0, 0.1}, up), how);
+    for (double d : {1e-9, 1e-6, 1e-3}) {
+        char name[64];
+        std::snprintf(name, sizeof name, "lightfield/beyond-S-%g", d);
+        add(name, "lightfield", Class::Contact, constant, {0.01, kH - d, 0.02}, up, q({0.01, kH - d, 0.02}, up), how);
+    }
+    add("lightfield/on-S", "lightfield", Class::OnPlane, constant, {0.01, kH, 0.02}, up, q({0.01, kH - 1e-12, 0.02}, up),
+        how + " (Eq. 9: the limit onto S)");
+    add("lightfield/between-U-and-S", "lightfield", Class::Behind, constant, {0, kH + 0.025, 0}, up, 0.0,
+        "0: inside the luminaire");
+    add("lightfield/behind-U", "lightfield", Class::Behind, constant, {0, kH + 0.3, 0}, down, 0.0, "0: behind it");
+    add("lightfield/grazing-contact", "lightfield", Class::Grazing, constant, {0.01, kH - 1e-6, 0.02}, side,
+        q({0.01, kH - 1e-6, 0.02}, side), how);
+    double r = std::sqrt(1e10 + 9e8);
+    add("lightfield/far-1e5", "lightfield", Class::Far, constant, {3e4, kH - 1e5, 0}, up,
+        1000.0 * 0.04 * std::pow(1e5 / r, 2) / (r * r), "its far field: C A_S cos cos / r^2");
+    auto bright = lightField(1e6, true);
+    add("lightfield/bright-pixel/at-1m", "lightfield", Class::BrightPixel, bright, {-0.04, kH - 1.0, -0.03}, up,
+        lightFieldQuadrature({-0.04, kH - 1.0, -0.03}, up, 1e6, true), how);
+    add("lightfield/bright-pixel/near", "lightfield", Class::BrightPixel, bright, {-0.04, kH - 0.01, -0.03}, up,
+        lightFieldQuadrature({-0.04, kH - 0.01, -0.03}, up, 1e6, true), how);
+}
+
+std::vector<Case> build() {
+    CaseBuilder b;
+    b.photometricLambert();
+    b.photometricSizes();
+    b.photometricSegment();
+    b.photometricPoint();
+    b.photometricTables();
+    b.lambertianRect();
+    b.lightFields();
+    return std::move(b.out);
 }
 
 }  // namespace
