@@ -53,7 +53,8 @@ inline void copyIntoScratch(const std::vector<std::string>& files) {
     for (const std::string& f : files) {
         fs::path from = fs::path(CANDELA_SOURCE_DIR) / f;
         std::error_code ec;
-        fs::copy_file(from, scratchDir() / from.filename(), fs::copy_options::overwrite_existing, ec);
+        fs::copy_file(from, scratchDir() / from.filename(), fs::copy_options::overwrite_existing,
+                      ec);
         if (ec) violated("cannot copy " + from.string() + ": " + ec.message());
     }
 }
@@ -79,7 +80,8 @@ inline void checkMessage(std::string_view message, const std::string& path) {
 
 /// Every value finite (and within [lo, hi]).
 template <class Range>
-void checkFinite(const Range& values, const char* what, double lo = -HUGE_VAL, double hi = HUGE_VAL) {
+void checkFinite(const Range& values, const char* what, double lo = -HUGE_VAL,
+                 double hi = HUGE_VAL) {
     for (auto v : values)
         if (!(std::isfinite(double(v)) && double(v) >= lo && double(v) <= hi))
             violated(std::string(what) + " holds " + std::to_string(double(v)));

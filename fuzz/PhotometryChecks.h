@@ -22,18 +22,22 @@ inline void checkTable(const PhotometricData& d) {
     checkFinite(d.vertical, "vertical angles", -90.0, 180.0);
     checkFinite(d.horizontal, "horizontal angles", -180.0, 360.0);
     checkFinite(d.candela, "candela", 0.0, kMaxCandela);
-    checkFinite(std::vector<double>{d.fluxFromTable(), d.maxIntensity(), d.declaredFlux()}, "fluxes", 0.0);
-    checkFinite(std::vector<double>{d.opening.length, d.opening.width, d.opening.height, d.opening.area()},
-                "opening", 0.0, kMaxOpening * kMaxOpening);
-    for (const glm::dvec3& w : {glm::dvec3(0, 0, 1), glm::dvec3(0.3, -0.4, 0.8), glm::dvec3(1, 0, 0),
-                                glm::dvec3(0, -1, -1e-9), glm::dvec3(-0.2, 0.1, -0.9)})
+    checkFinite(std::vector<double>{d.fluxFromTable(), d.maxIntensity(), d.declaredFlux()},
+                "fluxes", 0.0);
+    checkFinite(
+        std::vector<double>{d.opening.length, d.opening.width, d.opening.height, d.opening.area()},
+        "opening", 0.0, kMaxOpening * kMaxOpening);
+    for (const glm::dvec3& w :
+         {glm::dvec3(0, 0, 1), glm::dvec3(0.3, -0.4, 0.8), glm::dvec3(1, 0, 0),
+          glm::dvec3(0, -1, -1e-9), glm::dvec3(-0.2, 0.1, -0.9)})
         checkFinite(std::vector<double>{d.intensity(w)}, "intensity", 0.0, kMaxCandela);
     for (const std::string& w : d.warnings) checkMessage(w, d.path);
     if (!isValidUtf8(d.name)) violated("luminaire name is not valid UTF-8");
 }
 
 inline void checkPhotometry(const uint8_t* data, size_t size, bool ldt) {
-    const std::string path = ldt ? "/nonexistent-candela-fuzz/fuzz.ldt" : "/nonexistent-candela-fuzz/fuzz.ies";
+    const std::string path =
+        ldt ? "/nonexistent-candela-fuzz/fuzz.ldt" : "/nonexistent-candela-fuzz/fuzz.ies";
     const std::string text(reinterpret_cast<const char*>(data), size);
     auto parse = [&](bool strict) {
         PhotometryOptions options{.strict = strict};
@@ -49,11 +53,13 @@ inline void checkPhotometry(const uint8_t* data, size_t size, bool ldt) {
     try {
         PhotometricData strict = parse(true);
         if (!lenient) violated("strict mode loads a file that lenient mode refuses");
-        if (!lenient->warnings.empty()) violated("strict mode loads a file with warnings: " + lenient->warnings[0]);
+        if (!lenient->warnings.empty())
+            violated("strict mode loads a file with warnings: " + lenient->warnings[0]);
         if (strict.candela != lenient->candela) violated("strict and lenient tables differ");
     } catch (const InputError& e) {
         checkMessage(e.what(), path);
-        if (lenient && lenient->warnings.empty()) violated("strict mode refuses a file without warnings");
+        if (lenient && lenient->warnings.empty())
+            violated("strict mode refuses a file without warnings");
     }
 }
 

@@ -37,8 +37,10 @@ inline void tm25(const uint8_t* data, size_t size) {
         const Tm25Header& h = f.header;
         if (f.rays.size() != h.rayCount) violated("ray count differs from the header's");
         for (const Tm25Ray& r : f.rays) {
-            checkFinite(std::vector<double>{r.position.x, r.position.y, r.position.z}, "ray position");
-            if (!(std::abs(glm::length(r.direction) - 1.0) < 1e-9)) violated("ray direction not unit");
+            checkFinite(std::vector<double>{r.position.x, r.position.y, r.position.z},
+                        "ray position");
+            if (!(std::abs(glm::length(r.direction) - 1.0) < 1e-9))
+                violated("ray direction not unit");
         }
         for (const std::string& s : h.description)
             if (!isValidUtf8(s)) violated("description is not valid UTF-8");
@@ -58,7 +60,8 @@ inline void lightfield(const uint8_t* data, size_t size) {
         std::vector<std::string> images;
         for (int i = 0; i < 3; ++i)
             for (int j = 0; j < 3; ++j)
-                images.push_back("tests/data/lightfield/tiny_" + std::to_string(i) + "_" + std::to_string(j) + ".exr");
+                images.push_back("tests/data/lightfield/tiny_" + std::to_string(i) + "_" +
+                                 std::to_string(j) + ".exr");
         copyIntoScratch(images);
         return true;
     }();
@@ -78,13 +81,14 @@ inline void lightfield(const uint8_t* data, size_t size) {
 /// and tri.bin, constant_2.exr.
 inline void scene(const uint8_t* data, size_t size) {
     static const bool ready = [] {
-        std::vector<std::string> files = {"tests/data/photometric/lambert.ies", "tests/data/lightfield/tiny.lf.json",
-                                          "tests/data/gltf/tri.bin",
-                                          "tests/data/environment/constant_2.exr",
-                                          "tests/data/photometry/ldt/lidrs/example.ldt"};
+        std::vector<std::string> files = {
+            "tests/data/photometric/lambert.ies", "tests/data/lightfield/tiny.lf.json",
+            "tests/data/gltf/tri.bin", "tests/data/environment/constant_2.exr",
+            "tests/data/photometry/ldt/lidrs/example.ldt"};
         for (int i = 0; i < 3; ++i)
             for (int j = 0; j < 3; ++j)
-                files.push_back("tests/data/lightfield/tiny_" + std::to_string(i) + "_" + std::to_string(j) + ".exr");
+                files.push_back("tests/data/lightfield/tiny_" + std::to_string(i) + "_" +
+                                std::to_string(j) + ".exr");
         copyIntoScratch(files);
         // triangle.gltf without its point primitive, whose warning would flood the log.
         std::ifstream in(fs::path(CANDELA_SOURCE_DIR) / "tests/data/gltf/triangle.gltf");
@@ -129,7 +133,8 @@ inline void gltf(const uint8_t* data, size_t size) {
         for (const Mesh& m : scene.meshes) {
             for (const glm::vec3& v : m.positions)
                 checkFinite(std::vector<double>{v.x, v.y, v.z}, "mesh position");
-            for (const glm::vec3& n : m.normals) checkFinite(std::vector<double>{n.x, n.y, n.z}, "mesh normal");
+            for (const glm::vec3& n : m.normals)
+                checkFinite(std::vector<double>{n.x, n.y, n.z}, "mesh normal");
             for (uint32_t i : m.indices)
                 if (i >= m.positions.size()) violated("mesh index out of range");
             if (m.material >= scene.materials.size()) violated("material index out of range");
@@ -161,7 +166,8 @@ struct Target {
     const char* name;
     void (*run)(const uint8_t* data, size_t size);
 };
-inline constexpr Target kTargets[] = {{"ies", ies},   {"ldt", ldt},     {"tm25", tm25},  {"lightfield", lightfield},
-                                      {"scene", scene}, {"gltf", gltf}, {"image", image}};
+inline constexpr Target kTargets[] = {
+    {"ies", ies},     {"ldt", ldt},   {"tm25", tm25},  {"lightfield", lightfield},
+    {"scene", scene}, {"gltf", gltf}, {"image", image}};
 
 }  // namespace candela::fuzz

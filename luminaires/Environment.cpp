@@ -90,7 +90,9 @@ std::shared_ptr<EnvironmentMap> EnvironmentMap::load(const std::string& path, do
     if (int64_t(w) != 2 * int64_t(h))  // 64-bit: a file may claim any int size
         throw InputError(path + ": " + std::to_string(w) + "x" + std::to_string(h) +
                          " is not a lat-long map (expected width = 2 x height" +
-                         (int64_t(h) == 6 * int64_t(w) ? "; this looks like a cube map, which is not read yet)" : ")"));
+                         (int64_t(h) == 6 * int64_t(w)
+                              ? "; this looks like a cube map, which is not read yet)"
+                              : ")"));
     if (w > kMaxSide)
         throw InputError(path + ": image size " + std::to_string(w) + "x" + std::to_string(h) +
                          " too large (at most " + std::to_string(kMaxSide) + " per side)");
@@ -187,15 +189,16 @@ glm::dvec3 xyYToRgb(double x, double y, double Y) {
 double sunNormalIlluminance(double h, double t) {
     double hDeg = h * 180.0 / kPi;
     double m = 1.0 / (std::sin(h) + 0.50572 * std::pow(hDeg + 6.07995, -1.6364));
-    double rayleigh = m <= 20.0 ? 1.0 / (6.6296 + m * (1.7513 + m * (-0.1202 + m * (0.0065 -
-                                                                                    m * 0.00013))))
-                                : 1.0 / (10.4 + 0.718 * m);
+    double rayleigh =
+        m <= 20.0 ? 1.0 / (6.6296 + m * (1.7513 + m * (-0.1202 + m * (0.0065 - m * 0.00013))))
+                  : 1.0 / (10.4 + 0.718 * m);
     return 128000.0 * std::exp(-0.8662 * t * m * rayleigh);
 }
 
 }  // namespace
 
-std::shared_ptr<EnvironmentMap> EnvironmentMap::adjusted(double intensity, double rotationDeg) const {
+std::shared_ptr<EnvironmentMap> EnvironmentMap::adjusted(double intensity,
+                                                         double rotationDeg) const {
     return std::make_shared<EnvironmentMap>(mWidth, mHeight, mRgb, intensity, rotationDeg, mSource);
 }
 
@@ -205,9 +208,11 @@ SunPosition sunPosition(double latitudeDeg, int dayOfYear, double solarHours) {
     double hourAngle = 15.0 * rad * (solarHours - 12.0);
     double lat = latitudeDeg * rad;
     // East-north-up components of the unit vector to the sun.
-    double up = std::sin(lat) * std::sin(declination) + std::cos(lat) * std::cos(declination) * std::cos(hourAngle);
+    double up = std::sin(lat) * std::sin(declination) +
+                std::cos(lat) * std::cos(declination) * std::cos(hourAngle);
     double east = -std::cos(declination) * std::sin(hourAngle);
-    double north = std::cos(lat) * std::sin(declination) - std::sin(lat) * std::cos(declination) * std::cos(hourAngle);
+    double north = std::cos(lat) * std::sin(declination) -
+                   std::sin(lat) * std::cos(declination) * std::cos(hourAngle);
     SunPosition out;
     out.elevationDeg = std::asin(std::clamp(up, -1.0, 1.0)) / rad;
     // Scene: x = east, z = -north; phi = atan2(z, x).
@@ -299,7 +304,8 @@ void addSunDisc(std::vector<glm::dvec3>& acc, int w, int h, const glm::dvec3& su
             if (d.y <= 0.0) continue;  // below the horizon: hidden by the ground
             double theta = std::acos(std::clamp(d.y, -1.0, 1.0));
             double u = wrap01(std::atan2(d.z, d.x) / (2.0 * kPi));
-            int x = std::clamp(int(u * w), 0, w - 1), y = std::clamp(int(theta / kPi * h), 0, h - 1);
+            int x = std::clamp(int(u * w), 0, w - 1),
+                y = std::clamp(int(theta / kPi * h), 0, h - 1);
             acc[size_t(y) * size_t(w) + size_t(x)] += glm::dvec3(share / texelSolidAngle(y, w, h));
         }
     }
@@ -349,7 +355,10 @@ std::shared_ptr<EnvironmentMap> makeSkyMap(const SkyParams& sky, double intensit
 
 EnvironmentSequence::EnvironmentSequence(std::string pattern, std::vector<std::string> files,
                                          double fps, double intensity, double rotationDeg)
-    : mPattern(std::move(pattern)), mFiles(std::move(files)), mFps(fps), mIntensity(intensity),
+    : mPattern(std::move(pattern)),
+      mFiles(std::move(files)),
+      mFps(fps),
+      mIntensity(intensity),
       mRotationDeg(rotationDeg) {
     if (mFiles.empty()) throw InputError(mPattern + ": no file matches the sequence pattern");
     if (!(fps > 0.0 && std::isfinite(fps)))
@@ -416,10 +425,12 @@ auto withWhere(const json::Where& where, Fn load) {
 }
 
 SkyParams readSky(const nlohmann::json& v, const json::Where& at) {
-    json::checkKeys(v, {"sun_elevation_deg", "sun_azimuth_deg", "turbidity", "ground_albedo",
-                        "resolution"}, at);
+    json::checkKeys(
+        v, {"sun_elevation_deg", "sun_azimuth_deg", "turbidity", "ground_albedo", "resolution"},
+        at);
     SkyParams sky;
-    sky.sunElevationDeg = json::optional(v, "sun_elevation_deg", at, sky.sunElevationDeg, json::number);
+    sky.sunElevationDeg =
+        json::optional(v, "sun_elevation_deg", at, sky.sunElevationDeg, json::number);
     if (!(sky.sunElevationDeg >= 0.0 && sky.sunElevationDeg <= 90.0))
         json::fail(at / "sun_elevation_deg",
                    "an elevation in [0, 90] degrees, got " + v["sun_elevation_deg"].dump());
@@ -429,11 +440,12 @@ SkyParams readSky(const nlohmann::json& v, const json::Where& at) {
         json::fail(at / "turbidity", "a turbidity in [1.7, 10], got " + v["turbidity"].dump());
     sky.groundAlbedo = json::optional(v, "ground_albedo", at, sky.groundAlbedo, json::number);
     if (!(sky.groundAlbedo >= 0.0 && sky.groundAlbedo <= 1.0))
-        json::fail(at / "ground_albedo", "a reflectance in [0, 1], got " + v["ground_albedo"].dump());
+        json::fail(at / "ground_albedo",
+                   "a reflectance in [0, 1], got " + v["ground_albedo"].dump());
     double width = json::optional(v, "resolution", at, double(sky.width), json::number);
     if (!(width >= 8 && width <= kMaxSide && std::floor(width) == width && int(width) % 2 == 0))
-        json::fail(at / "resolution", "an even lat-long width in [8, 16384] texels, got " +
-                                          v["resolution"].dump());
+        json::fail(at / "resolution",
+                   "an even lat-long width in [8, 16384] texels, got " + v["resolution"].dump());
     sky.width = int(width);
     return sky;
 }
@@ -447,7 +459,8 @@ Quantities readUnit(const nlohmann::json& v, const json::Where& where) {
     if (!v.contains("unit")) return Quantities::Radiometric;
     std::string unit = json::string(v["unit"], where / "unit");
     if (unit == "cd/m2") return Quantities::Photometric;
-    if (unit != "W/(m2 sr)") json::fail(where / "unit", "\"W/(m2 sr)\" or \"cd/m2\", got \"" + unit + "\"");
+    if (unit != "W/(m2 sr)")
+        json::fail(where / "unit", "\"W/(m2 sr)\" or \"cd/m2\", got \"" + unit + "\"");
     return Quantities::Radiometric;
 }
 

@@ -16,9 +16,8 @@
 // have any size.
 
 #include <glm/glm.hpp>
-#include <nlohmann/json.hpp>
-
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -33,7 +32,7 @@ inline double luminanceOf(const glm::dvec3& c) {
 }
 
 class EnvironmentMap {
-public:
+  public:
     /// Validates the texels (finite, non-negative) and the size; errors name `source`.
     /// `rgb` holds width * height texels, row 0 at the top (v = 0).
     EnvironmentMap(int width, int height, std::vector<glm::vec3> rgb, double intensity,
@@ -76,7 +75,7 @@ public:
     /// The same texels with another intensity and rotation (the editor's edits of a loaded file).
     std::shared_ptr<EnvironmentMap> adjusted(double intensity, double rotationDeg) const;
 
-private:
+  private:
     int mWidth = 0, mHeight = 0;
     std::vector<glm::vec3> mRgb;
     double mIntensity = 1.0;
@@ -126,7 +125,7 @@ SunPosition sunPosition(double latitudeDeg, int dayOfYear, double solarHours);
 /// Frames of a dynamic environment: files matching a glob pattern (sorted by name), shown at
 /// `fps` frames per second and looping. Frames load on demand; the last one is cached.
 class EnvironmentSequence {
-public:
+  public:
     /// Throws InputError when nothing matches, fps is not positive, or the first frame is bad.
     EnvironmentSequence(std::string pattern, std::vector<std::string> files, double fps,
                         double intensity, double rotationDeg);
@@ -139,9 +138,11 @@ public:
     /// Index of the frame shown at time t (seconds): floor(t fps) modulo the count.
     size_t frameIndex(double seconds) const;
     std::shared_ptr<const EnvironmentMap> frame(size_t index);
-    std::shared_ptr<const EnvironmentMap> frameAt(double seconds) { return frame(frameIndex(seconds)); }
+    std::shared_ptr<const EnvironmentMap> frameAt(double seconds) {
+        return frame(frameIndex(seconds));
+    }
 
-private:
+  private:
     std::string mPattern;
     std::vector<std::string> mFiles;
     double mFps = 10.0;
@@ -152,8 +153,8 @@ private:
 
 /// The parsed "environment" field of a scene.
 struct EnvironmentSource {
-    std::shared_ptr<const EnvironmentMap> map;         ///< The map now (frame 0 of a sequence).
-    std::shared_ptr<EnvironmentSequence> sequence;     ///< Only for {"sequence": ...}.
+    std::shared_ptr<const EnvironmentMap> map;      ///< The map now (frame 0 of a sequence).
+    std::shared_ptr<EnvironmentSequence> sequence;  ///< Only for {"sequence": ...}.
 };
 
 /// Parses {"file": F, "intensity": k, "rotation_deg": a, "unit": U}, {"sky": {...}, "intensity",

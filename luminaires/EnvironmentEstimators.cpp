@@ -34,7 +34,9 @@ constexpr double kGaussW[kGauss] = {0.0506142681451881, 0.1111905172266872, 0.15
 
 /// Integral over psi in [p0, p1] (p1 - p0 <= 2 pi) of max(0, A cos(psi) + B), A >= 0.
 double clippedCosine(double A, double B, double p0, double p1) {
-    auto full = [&](double lo, double hi) { return A * (std::sin(hi) - std::sin(lo)) + B * (hi - lo); };
+    auto full = [&](double lo, double hi) {
+        return A * (std::sin(hi) - std::sin(lo)) + B * (hi - lo);
+    };
     if (A <= 1e-300) return std::max(0.0, B) * (p1 - p0);
     double c = -B / A;
     if (c <= -1.0) return full(p0, p1);
@@ -96,8 +98,8 @@ struct FractionalSum {
 /// Visible part of texel (x, y) of a w x h map from p for the unit normal n: the fraction of
 /// k x k rays at the centres of its sub-cells that escape, each weighted by its cosine and the
 /// sub-cell's solid angle (so the texel's exact integral is kept where nothing occludes).
-double texelVisibility(const EnvironmentMap& map, const glm::dvec3& p, const glm::dvec3& n, int x, int y, int k,
-                       const Visibility& visibility) {
+double texelVisibility(const EnvironmentMap& map, const glm::dvec3& p, const glm::dvec3& n, int x,
+                       int y, int k, const Visibility& visibility) {
     double sum = 0.0, visible = 0.0;
     for (int j = 0; j < k; ++j)
         for (int i = 0; i < k; ++i) {
@@ -131,7 +133,8 @@ Estimate environmentReference(const EnvironmentLighting& lighting, const glm::dv
         double t0 = y * dTheta, t1 = (y + 1) * dTheta, tc = 0.5 * (t0 + t1);
         double s2 = 0.5 * (t1 - t0) - 0.25 * (std::sin(2.0 * t1) - std::sin(2.0 * t0));
         double sc = 0.5 * (std::sin(t1) * std::sin(t1) - std::sin(t0) * std::sin(t0));
-        double sinMax = (t0 <= 0.5 * kPi && t1 >= 0.5 * kPi) ? 1.0 : std::max(std::sin(t0), std::sin(t1));
+        double sinMax =
+            (t0 <= 0.5 * kPi && t1 >= 0.5 * kPi) ? 1.0 : std::max(std::sin(t0), std::sin(t1));
         double diameter = std::sqrt(dTheta * dTheta + sinMax * dPhi * sinMax * dPhi);
         double sinC = std::sin(tc), cosC = std::cos(tc);
         for (int x = 0; x < w; ++x) {
@@ -197,7 +200,8 @@ Estimate environmentBalanced(const EnvironmentLighting& lighting, const glm::dve
                              const glm::dvec3& n, const EstimateOptions& options) {
     glm::dvec3 unit;
     if (!unitNormal(n, unit)) return {};
-    return environmentFaceEstimate(lighting, p, unit, options, lighting.cube().balance(unit), nullptr);
+    return environmentFaceEstimate(lighting, p, unit, options, lighting.cube().balance(unit),
+                                   nullptr);
 }
 
 Estimate environmentBalancedInteger(const EnvironmentLighting& lighting, const glm::dvec3& p,
@@ -250,7 +254,8 @@ Estimate environmentHavran(const EnvironmentLighting& lighting, const glm::dvec3
     if (!unitNormal(normal, n)) return e;
     for (const HavranLights::Light& light : lighting.havran().lights()) {
         double cosine = glm::dot(n, light.direction);
-        if (cosine > 0.0 && visibleAlong(options, p, light.direction)) e.irradiance += light.power * cosine;
+        if (cosine > 0.0 && visibleAlong(options, p, light.direction))
+            e.irradiance += light.power * cosine;
     }
     return e;
 }
@@ -295,8 +300,8 @@ Estimate environmentBalancedMis(const EnvironmentLighting& lighting, const glm::
         // Cosine-weighted hemisphere (Malley's method): pdf_B = cos / pi.
         double u1 = rng.uniform(), u2 = rng.uniform();
         double r = std::sqrt(u1), phi = 2.0 * kPi * u2;
-        glm::dvec3 w = r * std::cos(phi) * t + r * std::sin(phi) * b +
-                       std::sqrt(std::max(0.0, 1.0 - u1)) * n;
+        glm::dvec3 w =
+            r * std::cos(phi) * t + r * std::sin(phi) * b + std::sqrt(std::max(0.0, 1.0 - u1)) * n;
         return weighted(glm::normalize(w));
     });
     e = total.estimate(ns);

@@ -11,7 +11,8 @@ EnvironmentLight::EnvironmentLight(std::shared_ptr<const EnvironmentMap> map, Qu
     this->technique = std::move(technique);
 }
 
-EnvironmentLight::EnvironmentLight(std::shared_ptr<const EnvironmentLighting> lighting, Quantities quantities)
+EnvironmentLight::EnvironmentLight(std::shared_ptr<const EnvironmentLighting> lighting,
+                                   Quantities quantities)
     : mMap(lighting->sharedMap()), mQuantities(quantities), mShared(std::make_shared<Shared>()) {
     name = std::string(kKind);
     technique = "balanced";
@@ -19,12 +20,17 @@ EnvironmentLight::EnvironmentLight(std::shared_ptr<const EnvironmentLighting> li
     std::call_once(mShared->once, [] {});  // built already
 }
 
-std::unique_ptr<Luminaire> EnvironmentLight::clone() const { return std::make_unique<EnvironmentLight>(*this); }
+std::unique_ptr<Luminaire> EnvironmentLight::clone() const {
+    return std::make_unique<EnvironmentLight>(*this);
+}
 
-glm::dvec3 EnvironmentLight::radiance(const glm::dvec3&, const glm::dvec3& w) const { return mMap->radiance(-w); }
+glm::dvec3 EnvironmentLight::radiance(const glm::dvec3&, const glm::dvec3& w) const {
+    return mMap->radiance(-w);
+}
 
 const EnvironmentLighting& EnvironmentLight::lighting() const {
-    std::call_once(mShared->once, [&] { mShared->lighting = std::make_shared<const EnvironmentLighting>(mMap); });
+    std::call_once(mShared->once,
+                   [&] { mShared->lighting = std::make_shared<const EnvironmentLighting>(mMap); });
     return *mShared->lighting;
 }
 
@@ -40,7 +46,9 @@ LightSample EnvironmentLight::sample(const glm::dvec3& p, const glm::dvec2& u) c
     return s;
 }
 
-double EnvironmentLight::pdf(const glm::dvec3&, const glm::dvec3& wi) const { return lighting().global().pdf(wi); }
+double EnvironmentLight::pdf(const glm::dvec3&, const glm::dvec3& wi) const {
+    return lighting().global().pdf(wi);
+}
 
 std::string EnvironmentLight::describe() const {
     return "environment map " + mMap->source() + " (" + std::to_string(mMap->width()) + " x " +

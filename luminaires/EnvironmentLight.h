@@ -15,7 +15,7 @@
 namespace candela {
 
 class EnvironmentLight final : public Luminaire {
-public:
+  public:
     /// `technique`: one of the kind's techniques (the scene's choice; renders may override it).
     EnvironmentLight(std::shared_ptr<const EnvironmentMap> map, Quantities quantities,
                      std::string technique = "balanced");
@@ -51,7 +51,7 @@ public:
     /// use and shared by clones; safe to call from several threads.
     const EnvironmentLighting& lighting() const;
 
-private:
+  private:
     struct Shared {
         std::once_flag once;
         std::shared_ptr<const EnvironmentLighting> lighting;

@@ -30,10 +30,14 @@ constexpr CubeFaceFrame sharedFrame(int f) {
 constexpr CubeFaceFrame kFaces[6] = {sharedFrame(0), sharedFrame(1), sharedFrame(2),
                                      sharedFrame(3), sharedFrame(4), sharedFrame(5)};
 
-double clamp01(double u) { return u > 0.0 ? (u < 1.0 ? u : std::nextafter(1.0, 0.0)) : 0.0; }
+double clamp01(double u) {
+    return u > 0.0 ? (u < 1.0 ? u : std::nextafter(1.0, 0.0)) : 0.0;
+}
 
 /// Signed solid angle of [0, a] x [0, b] on the plane at distance 1.
-double cornerSolidAngle(double a, double b) { return std::atan2(a * b, std::sqrt(1.0 + a * a + b * b)); }
+double cornerSolidAngle(double a, double b) {
+    return std::atan2(a * b, std::sqrt(1.0 + a * a + b * b));
+}
 
 glm::dvec3 faceDirection(int face, double a, double b) {
     const CubeFaceFrame& f = kFaces[face];
@@ -62,19 +66,23 @@ double touchedMaximum(const EnvironmentMap& map, int f, int c, int r, int n) {
         }
     bool pole = (f == 2 || f == 3) && a0 <= 0.0 && a1 >= 0.0 && b0 <= 0.0 && b1 >= 0.0;
     if (pole) (f == 2 ? vMin : vMax) = f == 2 ? 0.0 : 1.0;
-    int y0 = std::max(0, int(std::floor(vMin * h))), y1 = std::min(h - 1, int(std::floor(vMax * h)));
+    int y0 = std::max(0, int(std::floor(vMin * h))),
+        y1 = std::min(h - 1, int(std::floor(vMax * h)));
     bool allColumns = pole || duMax - duMin > 0.25;
     int x0 = int(std::floor((uc + duMin) * w)), x1 = int(std::floor((uc + duMax) * w));
     if (allColumns) x0 = 0, x1 = w - 1;
     double best = 0.0;
     for (int y = y0; y <= y1; ++y)
-        for (int x = x0; x <= x1; ++x) best = std::max(best, map.texelLuminance(((x % w) + w) % w, y));
+        for (int x = x0; x <= x1; ++x)
+            best = std::max(best, map.texelLuminance(((x % w) + w) % w, y));
     return best;
 }
 
 }  // namespace
 
-const CubeFaceFrame& cubeFaceFrame(int face) { return kFaces[face]; }
+const CubeFaceFrame& cubeFaceFrame(int face) {
+    return kFaces[face];
+}
 
 int cubeFaceOf(const glm::dvec3& w, glm::dvec2& ab) {
     double ax = std::abs(w.x), ay = std::abs(w.y), az = std::abs(w.z);
@@ -176,11 +184,12 @@ CubeMapDistribution::CubeMapDistribution(const EnvironmentMap& map, int faceSize
         face.weight.resize(face.luminance.size());
         size_t f = size_t(&face - &mFaces[0]);
         for (size_t i = 0; i < face.luminance.size(); ++i)
-            face.weight[i] = (face.luminance[i] + kMaxShare * maxLum[f * n * n + i] + floor) *
-                             mSolidAngle[i];
+            face.weight[i] =
+                (face.luminance[i] + kMaxShare * maxLum[f * n * n + i] + floor) * mSolidAngle[i];
         face.rows.resize(size_t(n));
         for (int c = 0; c < n; ++c) {
-            for (int r = 0; r < n; ++r) column[size_t(r)] = face.weight[size_t(r) * size_t(n) + size_t(c)];
+            for (int r = 0; r < n; ++r)
+                column[size_t(r)] = face.weight[size_t(r) * size_t(n) + size_t(c)];
             face.rows[size_t(c)].build(column.data(), n);
             colSums[size_t(c)] = face.rows[size_t(c)].total;
         }
@@ -355,7 +364,8 @@ std::vector<glm::dvec2> relaxedHalton(int count, int iterations) {
         return r;
     };
     std::vector<glm::dvec2> pts(size_t(std::max(count, 0)));
-    for (int i = 0; i < count; ++i) pts[size_t(i)] = {radicalInverse(i + 1, 2), radicalInverse(i + 1, 3)};
+    for (int i = 0; i < count; ++i)
+        pts[size_t(i)] = {radicalInverse(i + 1, 2), radicalInverse(i + 1, 3)};
     const int g = 256;
     std::vector<glm::dvec2> sum(pts.size());
     std::vector<int> hits(pts.size());
@@ -396,7 +406,8 @@ void HavranLights::update(const EnvironmentMap& map) {
         if (s.pdf > 0.0) frame[k].direction = s.w;
     }
     if (!global.empty()) {
-        // Spherical Voronoi cells: each texel's RGB radiance x solid angle goes to the nearest light.
+        // Spherical Voronoi cells: each texel's RGB radiance x solid angle goes to the nearest
+        // light.
         for (int y = 0; y < map.height(); ++y) {
             double omega = map.rowSolidAngle(y);
             for (int x = 0; x < map.width(); ++x) {
@@ -462,8 +473,9 @@ glm::ivec2 SampleChart::faceCell(int face) {
     return kCells[face];
 }
 
-SampleChart sampleChart(const EnvironmentMap& map, const CubeMapDistribution& cube, const glm::dvec3& normal,
-                        int spp, bool balanced, uint64_t seed, int facePixels) {
+SampleChart sampleChart(const EnvironmentMap& map, const CubeMapDistribution& cube,
+                        const glm::dvec3& normal, int spp, bool balanced, uint64_t seed,
+                        int facePixels) {
     SampleChart chart;
     const int P = std::max(8, facePixels);
     chart.facePixels = P;
@@ -472,20 +484,24 @@ SampleChart sampleChart(const EnvironmentMap& map, const CubeMapDistribution& cu
     chart.rgb.assign(size_t(chart.width) * size_t(chart.height) * 3, 40);  // the empty cells
     double len = glm::length(normal);
     glm::dvec3 n = len > 0.0 && std::isfinite(len) ? normal / len : glm::dvec3(0, 1, 0);
-    if (balanced) chart.mu = cube.balance(n);
-    else chart.mu.fill(1.0 / 6.0);
+    if (balanced)
+        chart.mu = cube.balance(n);
+    else
+        chart.mu.fill(1.0 / 6.0);
 
     // The map: Reinhard against its mean luminance, dimmed so that the samples stand out.
     double mean = map.totalLuminancePower() / (4.0 * kPi);
     auto pixelOf = [&](int face, const glm::dvec2& ab) {
         glm::ivec2 cell = SampleChart::faceCell(face);
-        int x = std::clamp(int((ab.x + 1.0) * 0.5 * P), 0, P - 1), y = std::clamp(int((ab.y + 1.0) * 0.5 * P), 0, P - 1);
+        int x = std::clamp(int((ab.x + 1.0) * 0.5 * P), 0, P - 1),
+            y = std::clamp(int((ab.y + 1.0) * 0.5 * P), 0, P - 1);
         return glm::ivec2(cell.x * P + x, cell.y * P + y);
     };
     auto put = [&](glm::ivec2 px, glm::dvec3 c) {
         if (px.x < 0 || px.y < 0 || px.x >= chart.width || px.y >= chart.height) return;
         unsigned char* o = &chart.rgb[(size_t(px.y) * size_t(chart.width) + size_t(px.x)) * 3];
-        for (int k = 0; k < 3; ++k) o[k] = (unsigned char)std::clamp(c[k] * 255.0 + 0.5, 0.0, 255.0);
+        for (int k = 0; k < 3; ++k)
+            o[k] = (unsigned char)std::clamp(c[k] * 255.0 + 0.5, 0.0, 255.0);
     };
     for (int f = 0; f < 6; ++f) {
         const CubeFaceFrame& fr = cubeFaceFrame(f);
@@ -503,7 +519,8 @@ SampleChart sampleChart(const EnvironmentMap& map, const CubeMapDistribution& cu
     int nf = cubeFaceOf(n, nab);
     if (nf >= 0) {
         glm::ivec2 c = pixelOf(nf, nab);
-        for (int d = -5; d <= 5; ++d) put(c + glm::ivec2(d, 0), glm::dvec3(1.0)), put(c + glm::ivec2(0, d), glm::dvec3(1.0));
+        for (int d = -5; d <= 5; ++d)
+            put(c + glm::ivec2(d, 0), glm::dvec3(1.0)), put(c + glm::ivec2(0, d), glm::dvec3(1.0));
     }
     // The samples, drawn as the estimators draw them: ceil(N_f) per face (the last one weighted
     // by frac(N_f)).
@@ -520,10 +537,12 @@ SampleChart sampleChart(const EnvironmentMap& map, const CubeMapDistribution& cu
             chart.effective[size_t(f)] += effective;
             glm::dvec2 ab;
             int face = cubeFaceOf(smp.w, ab);
-            glm::ivec2 c = pixelOf(face, ab), lo = SampleChart::faceCell(face) * P, hi = lo + glm::ivec2(P - 1);
+            glm::ivec2 c = pixelOf(face, ab), lo = SampleChart::faceCell(face) * P,
+                       hi = lo + glm::ivec2(P - 1);
             glm::dvec3 colour = effective ? glm::dvec3(0.2, 1.0, 0.3) : glm::dvec3(1.0, 0.2, 0.2);
             for (int dy = -1; dy <= 1; ++dy)  // a 3 x 3 dot, kept inside its face's cell
-                for (int dx = -1; dx <= 1; ++dx) put(glm::clamp(c + glm::ivec2(dx, dy), lo, hi), colour);
+                for (int dx = -1; dx <= 1; ++dx)
+                    put(glm::clamp(c + glm::ivec2(dx, dy), lo, hi), colour);
         }
     }
     return chart;

@@ -13,11 +13,10 @@
 // (OpenEXR's own resampler puts the outermost texel centres on the cube's edges; here texel
 // edges are on the cube's edges, the GPU cube-map convention, so every direction has one texel.)
 
-#include <glm/glm.hpp>
-
 #include <algorithm>
 #include <array>
 #include <deque>
+#include <glm/glm.hpp>
 #include <memory>
 #include <span>
 #include <string>
@@ -62,10 +61,10 @@ struct DirectionSample {
 /// conservative (u, v) box), plus a floor of 1e-3 of the face's mean luminance. The max term
 /// bounds L / pdf on every texel (a one-texel sun between the subsamples cannot make rare,
 /// huge samples: the heavy tail that looks like bias at any practical spp); the floor keeps
-/// pdf_L(w|f) > 0 on the whole of a lit face, so every estimator stays unbiased. Within a texel samples
-/// are uniform in the face plane: pdf_L(w|f) = P_texel / (2/N)^2 * (1 + a^2 + b^2)^(3/2).
+/// pdf_L(w|f) > 0 on the whole of a lit face, so every estimator stays unbiased. Within a texel
+/// samples are uniform in the face plane: pdf_L(w|f) = P_texel / (2/N)^2 * (1 + a^2 + b^2)^(3/2).
 class CubeMapDistribution {
-public:
+  public:
     CubeMapDistribution(const EnvironmentMap& map, int faceSize);
 
     int faceSize() const { return mN; }
@@ -94,7 +93,7 @@ public:
     /// (u0, u1, u2) giving w under `mu` (u0 at the middle of the face's interval).
     glm::dvec3 invert(const std::array<double, 6>& mu, const glm::dvec3& w) const;
 
-private:
+  private:
     struct Face {
         std::vector<double> luminance;  ///< N x N, row-major (row 0 at the top).
         std::vector<double> weight;     ///< N x N.
@@ -112,7 +111,7 @@ private:
 /// conditional over columns; within a texel uniform in solid angle (phi linear, cos(theta)
 /// linear), so pdf(w) = P_texel / Omega_texel exactly.
 class LatLongDistribution {
-public:
+  public:
     explicit LatLongDistribution(const EnvironmentMap& map);
     DirectionSample sample(const glm::dvec2& u) const;
     double pdf(const glm::dvec3& w) const;
@@ -122,7 +121,7 @@ public:
     const Cdf1D& rows() const { return mRows; }
     const Cdf1D& columns(int row) const { return mColumns[size_t(row)]; }
 
-private:
+  private:
     const EnvironmentMap* mMap;
     Cdf1D mRows;
     std::vector<Cdf1D> mColumns;
@@ -143,7 +142,7 @@ std::vector<glm::dvec2> relaxedHalton(int count, int iterations = 16);
 /// taps; this triangular one halves a one-frame flicker while following a steady change within
 /// 4 frames).
 class HavranLights {
-public:
+  public:
     struct Light {
         glm::dvec3 direction{0.0, 1.0, 0.0};  ///< Unit direction towards the light.
         glm::dvec3 power{0.0};                ///< Irradiance at normal incidence, W/m2, RGB.
@@ -161,7 +160,7 @@ public:
     double probability(int light) const;
     static constexpr double kTaps[4] = {0.4, 0.3, 0.2, 0.1};
 
-private:
+  private:
     std::vector<glm::dvec2> mPoints;
     std::deque<std::vector<Light>> mHistory;  ///< Newest first, at most 4.
     std::vector<Light> mLights;
@@ -171,7 +170,7 @@ private:
 /// Everything the environment estimators share for one map (one frame): built once per frame,
 /// used by every receiver.
 class EnvironmentLighting {
-public:
+  public:
     /// faceSize 0: max(8, width / 2): cube texels no larger than the lat-long texels at the
     /// equator, so a one-texel sun stays one or two cube texels (the paper used 256^2 faces).
     explicit EnvironmentLighting(std::shared_ptr<const EnvironmentMap> map, int faceSize = 0,
@@ -184,7 +183,7 @@ public:
     const LatLongDistribution& global() const { return mGlobal; }
     const HavranLights& havran() const { return mHavran; }
 
-private:
+  private:
     std::shared_ptr<const EnvironmentMap> mMap;
     CubeMapDistribution mCube;
     LatLongDistribution mGlobal;
@@ -237,15 +236,16 @@ Estimate environmentFaceEstimate(const EnvironmentLighting& lighting, const glm:
 /// The map is tone-mapped and dimmed (more so on faces with mu_f = 0); effective samples are
 /// green, wasted ones red, the normal a white cross.
 struct SampleChart {
-    int width = 0, height = 0;         ///< 4 x 3 faces of facePixels
+    int width = 0, height = 0;  ///< 4 x 3 faces of facePixels
     int facePixels = 0;
-    std::vector<unsigned char> rgb;    ///< RGB8, row 0 at the top
-    std::array<double, 6> mu{};        ///< the faces' shares of the samples
+    std::vector<unsigned char> rgb;  ///< RGB8, row 0 at the top
+    std::array<double, 6> mu{};      ///< the faces' shares of the samples
     std::array<int, 6> drawn{}, effective{};
     /// Where face f sits in the cross, in faces (column, row).
     static glm::ivec2 faceCell(int face);
 };
-SampleChart sampleChart(const EnvironmentMap& map, const CubeMapDistribution& cube, const glm::dvec3& normal,
-                        int spp, bool balanced, uint64_t seed, int facePixels = 64);
+SampleChart sampleChart(const EnvironmentMap& map, const CubeMapDistribution& cube,
+                        const glm::dvec3& normal, int spp, bool balanced, uint64_t seed,
+                        int facePixels = 64);
 
 }  // namespace candela

@@ -3,15 +3,14 @@
 // options of an estimate, its result with its standard error, and the visibility it may query.
 // Beside the luminaire interface so that a kind's header needs no more than this.
 
-#include <glm/glm.hpp>
-
 #include <cstdint>
+#include <glm/glm.hpp>
 
 namespace candela {
 
 /// Answers whether the segment between two points is free of occluders.
 class Visibility {
-public:
+  public:
     virtual ~Visibility() = default;
     virtual bool visible(const glm::dvec3& from, const glm::dvec3& to) const = 0;
     /// Is the ray from `from` along the unit `dir` free of occluders out to infinity (a distant

@@ -10,7 +10,8 @@
 
 namespace candela {
 
-std::shared_ptr<const PhotometricData> farFieldPhotometry(const LightFieldData& lf, double stepDeg, int points) {
+std::shared_ptr<const PhotometricData> farFieldPhotometry(const LightFieldData& lf, double stepDeg,
+                                                          int points) {
     auto out = std::make_shared<PhotometricData>();
     out->path = lf.path.empty() ? std::string("(light field in memory)") : lf.path.string();
     out->format = "far field of a light field";
@@ -43,7 +44,9 @@ std::shared_ptr<const PhotometricData> farFieldPhotometry(const LightFieldData& 
             if (!(w.z > 1e-6)) continue;  // S emits towards +z only
             glm::dvec2 shift = lf.delta * glm::dvec2(w.x, w.y) / w.z;
             double sum = 0.0;
-            for (const glm::dvec2& s : centres) sum += luminanceOf(lf.radiance(s - shift, s));  // one channel; the colour goes to the tint
+            for (const glm::dvec2& s : centres)
+                sum += luminanceOf(
+                    lf.radiance(s - shift, s));  // one channel; the colour goes to the tint
             out->candela[size_t(h) * size_t(nv) + size_t(v)] = std::max(0.0, sum * dA * w.z);
         }
     }
@@ -59,7 +62,8 @@ std::unique_ptr<PhotometricLuminaire> farFieldTwin(const LightFieldLuminaire& li
     // One table per light-field data, kept while the data lives (instances share data).
     static std::mutex mutex;
     static std::map<const LightFieldData*, std::pair<std::weak_ptr<const LightFieldData>,
-                                                     std::shared_ptr<const PhotometricData>>> cache;
+                                                     std::shared_ptr<const PhotometricData>>>
+        cache;
     std::shared_ptr<const PhotometricData> table;
     {
         std::lock_guard<std::mutex> lock(mutex);
@@ -90,10 +94,12 @@ std::vector<unsigned char> footprintImage(const PhotometricData& data, int size,
     for (int j = 0; j < size; ++j)
         for (int i = 0; i < size; ++i) {
             // Local photometric frame: +z the aim (down to the floor), +x C0, +y C90.
-            double x = -half + (i + 0.5) * 2.0 * half / size, y = half - (j + 0.5) * 2.0 * half / size;
+            double x = -half + (i + 0.5) * 2.0 * half / size,
+                   y = half - (j + 0.5) * 2.0 * half / size;
             glm::dvec3 d(x, y, height);
             double r2 = glm::dot(d, d);
-            double value = data.intensity(d / std::sqrt(r2)) * height / (r2 * std::sqrt(r2));  // I cos / r^2
+            double value =
+                data.intensity(d / std::sqrt(r2)) * height / (r2 * std::sqrt(r2));  // I cos / r^2
             e[size_t(j) * size_t(size) + size_t(i)] = value;
             peak = std::max(peak, value);
         }
@@ -102,8 +108,10 @@ std::vector<unsigned char> footprintImage(const PhotometricData& data, int size,
     for (size_t k = 0; k < e.size(); ++k) {
         double t = e[k] > 0.0 ? std::clamp(1.0 + std::log10(e[k] / peak) / 3.0, 0.0, 1.0) : 0.0;
         // Black through amber to white.
-        glm::dvec3 c(std::min(1.0, 1.6 * t), std::clamp(1.6 * t - 0.35, 0.0, 1.0), std::clamp(2.2 * t - 1.2, 0.0, 1.0));
-        for (int ch = 0; ch < 3; ++ch) rgb[3 * k + size_t(ch)] = (unsigned char)std::lround(255.0 * c[ch]);
+        glm::dvec3 c(std::min(1.0, 1.6 * t), std::clamp(1.6 * t - 0.35, 0.0, 1.0),
+                     std::clamp(2.2 * t - 1.2, 0.0, 1.0));
+        for (int ch = 0; ch < 3; ++ch)
+            rgb[3 * k + size_t(ch)] = (unsigned char)std::lround(255.0 * c[ch]);
     }
     return rgb;
 }

@@ -18,8 +18,8 @@ namespace candela {
 /// degrees) of the light field, in its unit times m2 (cd for cd/m2 data), summed over pixel
 /// centres of S (every k-th pixel when an image is wider than `points`); the opening is S's
 /// image rectangle.
-std::shared_ptr<const PhotometricData> farFieldPhotometry(const LightFieldData& data, double stepDeg = 2.5,
-                                                          int points = 64);
+std::shared_ptr<const PhotometricData> farFieldPhotometry(const LightFieldData& data,
+                                                          double stepDeg = 2.5, int points = 64);
 
 /// A photometric luminaire standing in for `light`: the same name, aim and c0, centred on S's
 /// image rectangle, technique "scattered", with farFieldPhotometry of its data (computed once
@@ -29,7 +29,8 @@ std::unique_ptr<PhotometricLuminaire> farFieldTwin(const LightFieldLuminaire& li
 /// (aimed straight down, C0 along +x), over a square of half-side 2.5 height, size x size RGB8
 /// pixels, rows from +y down. Logarithmic over three decades below its brightest pixel, in a
 /// warm ramp; the opening's footprint is ignored (a point source).
-std::vector<unsigned char> footprintImage(const PhotometricData& data, int size, double height = 1.0);
+std::vector<unsigned char> footprintImage(const PhotometricData& data, int size,
+                                          double height = 1.0);
 
 /// Moves a twin to where `light` now is (its pose, name and nothing else).
 void placeFarFieldTwin(PhotometricLuminaire& twin, const LightFieldLuminaire& light);

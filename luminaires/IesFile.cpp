@@ -55,7 +55,8 @@ std::string upper(std::string s) {
 
 std::string showToken(const std::string& s) {
     std::string shown = s.size() > 40 ? s.substr(0, 40) + "..." : s;
-    for (char& c : shown)  // control characters as '?'; the text is UTF-8 (fail() repairs a cut sequence)
+    for (char& c :
+         shown)  // control characters as '?'; the text is UTF-8 (fail() repairs a cut sequence)
         if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F) c = '?';
     return "'" + shown + "'";
 }
@@ -64,7 +65,7 @@ std::string showToken(const std::string& s) {
 /// the rest of the line. Numbers are converted only when asked for, so trailing junk after the
 /// candela block is never looked at.
 class TokenStream {
-public:
+  public:
     TokenStream(std::string path, const std::vector<std::string>& lines, size_t firstLine)
         : mPath(std::move(path)) {
         for (size_t l = firstLine; l < lines.size(); ++l) {
@@ -97,14 +98,14 @@ public:
             const Token& t = mTokens[mPos++];
             double v;
             if (!parseNumber(t.text, v))
-                fail(mPath, t.line, "a finite number (" + what + ", value " + std::to_string(k + 1) +
-                                        " of " + std::to_string(n) + ")",
+                fail(mPath, t.line,
+                     "a finite number (" + what + ", value " + std::to_string(k + 1) + " of " +
+                         std::to_string(n) + ")",
                      showToken(t.text));
             out.push_back(v);
         }
         if (take < n)
-            fail(mPath, mLastLine,
-                 std::to_string(n) + " " + what,
+            fail(mPath, mLastLine, std::to_string(n) + " " + what,
                  "only " + std::to_string(take) + " before the data ended at line " +
                      std::to_string(mLastLine));
         return out;
@@ -119,7 +120,7 @@ public:
     /// First line holding a "//" comment, 0 when none does.
     int commentLine() const { return mCommentLine; }
 
-private:
+  private:
     std::string mPath;
     std::vector<Token> mTokens;
     size_t mPos = 0;
@@ -128,9 +129,11 @@ private:
 };
 
 /// An integer count field in [lo, hi]; `line` for messages.
-int countField(double v, int lo, int hi, const std::string& path, int line, const std::string& what) {
+int countField(double v, int lo, int hi, const std::string& path, int line,
+               const std::string& what) {
     if (!(std::abs(v - std::round(v)) < 1e-6) || v < lo || v > hi)
-        fail(path, line, what + " (an integer from " + std::to_string(lo) + " to " + std::to_string(hi) + ")",
+        fail(path, line,
+             what + " (an integer from " + std::to_string(lo) + " to " + std::to_string(hi) + ")",
              formatNumber(v));
     return int(std::lround(v));
 }
@@ -139,7 +142,8 @@ void checkAscending(const std::vector<double>& a, double lo, double hi, const st
                     int line, const std::string& what) {
     for (size_t k = 0; k < a.size(); ++k) {
         if (a[k] < lo || a[k] > hi)
-            fail(path, line, what + " between " + formatNumber(lo) + " and " + formatNumber(hi) + " degrees",
+            fail(path, line,
+                 what + " between " + formatNumber(lo) + " and " + formatNumber(hi) + " degrees",
                  formatNumber(a[k]));
         if (k > 0 && !(a[k] > a[k - 1]))
             fail(path, line, what + " in strictly ascending order",
@@ -150,8 +154,8 @@ void checkAscending(const std::vector<double>& a, double lo, double hi, const st
 /// TILT data (from the .ies itself or a TILT file): geometry, count, angles, factors.
 void readTilt(TokenStream& in, PhotometricData& d) {
     int line = in.line();
-    d.tiltGeometry = countField(in.numbers(1, "lamp-to-luminaire geometry")[0], 1, 3, in.path(), line,
-                                "lamp-to-luminaire geometry");
+    d.tiltGeometry = countField(in.numbers(1, "lamp-to-luminaire geometry")[0], 1, 3, in.path(),
+                                line, "lamp-to-luminaire geometry");
     line = in.line();
     int n = countField(in.numbers(1, "number of tilt angles")[0], 1, kMaxCount, in.path(), line,
                        "number of tilt angles");
@@ -161,7 +165,8 @@ void readTilt(TokenStream& in, PhotometricData& d) {
     line = in.line();
     d.tiltFactors = in.numbers(size_t(n), "tilt multiplying factors");
     for (double f : d.tiltFactors)
-        if (f < 0.0) fail(in.path(), line, "non-negative tilt multiplying factors", formatNumber(f));
+        if (f < 0.0)
+            fail(in.path(), line, "non-negative tilt multiplying factors", formatNumber(f));
 }
 
 /// Tilt factor at angle 0 (the standard orientation), linear between table entries and held at
@@ -218,7 +223,8 @@ LuminousOpening openingFrom(double width, double length, double height) {
 
 std::string formatFromHeader(const std::string& header) {
     std::string u = upper(header);
-    u.erase(std::remove_if(u.begin(), u.end(), [](char c) { return std::isspace(static_cast<unsigned char>(c)); }),
+    u.erase(std::remove_if(u.begin(), u.end(),
+                           [](char c) { return std::isspace(static_cast<unsigned char>(c)); }),
             u.end());
     if (u.find("LM-63-2019") != std::string::npos) return "IES LM-63-2019";
     if (u.find("LM-63-2002") != std::string::npos) return "IES LM-63-2002";
@@ -277,13 +283,15 @@ void readTiltSection(const std::string& tiltLineText, size_t tiltLine, TokenStre
     if (upper(tilt) == "INCLUDE") {
         readTilt(in, d);
     } else if (upper(tilt) != "NONE") {
-        if (tilt.empty()) fail(path, int(tiltLine) + 1, "NONE, INCLUDE or a file name after TILT=", "nothing");
+        if (tilt.empty())
+            fail(path, int(tiltLine) + 1, "NONE, INCLUDE or a file name after TILT=", "nothing");
         std::filesystem::path tiltPath = std::filesystem::path(path).parent_path() / tilt;
         std::error_code ec;
         std::ifstream tf;
         if (std::filesystem::is_regular_file(tiltPath, ec)) tf.open(tiltPath, std::ios::binary);
         if (!tf.is_open())
-            fail(path, int(tiltLine) + 1, "the TILT file " + showToken(tilt) + " next to the photometry file",
+            fail(path, int(tiltLine) + 1,
+                 "the TILT file " + showToken(tilt) + " next to the photometry file",
                  "no readable file " + tiltPath.string());
         std::stringstream tiltText;
         tiltText << tf.rdbuf();
@@ -307,14 +315,17 @@ LampLine readLampLine(TokenStream& in, PhotometricData& d, const std::string& pa
     LampLine lamp;
     int headerLine = in.line();
     lamp.line = headerLine;
-    std::vector<double> h = in.numbers(10, "values on the lamp line (number of lamps, lumens per lamp, "
-                                           "candela multiplier, vertical and horizontal angle counts, "
-                                           "photometric type, units type, width, length, height)");
+    std::vector<double> h = in.numbers(10,
+                                       "values on the lamp line (number of lamps, lumens per lamp, "
+                                       "candela multiplier, vertical and horizontal angle counts, "
+                                       "photometric type, units type, width, length, height)");
     lamp.lamps = countField(h[0], 1, kMaxCount, path, headerLine, "number of lamps");
     double lumens = h[1], multiplier = h[2];
     if (!(lumens > 0.0) && lumens != -1.0)
-        fail(path, headerLine, "lumens per lamp > 0, or -1 for absolute photometry", formatNumber(lumens));
-    if (!(multiplier > 0.0)) fail(path, headerLine, "a positive candela multiplier", formatNumber(multiplier));
+        fail(path, headerLine, "lumens per lamp > 0, or -1 for absolute photometry",
+             formatNumber(lumens));
+    if (!(multiplier > 0.0))
+        fail(path, headerLine, "a positive candela multiplier", formatNumber(multiplier));
     lamp.lumens = lumens;
     lamp.multiplier = multiplier;
     lamp.nv = countField(h[3], 1, kMaxCount, path, headerLine, "number of vertical angles");
@@ -330,7 +341,8 @@ LampLine readLampLine(TokenStream& in, PhotometricData& d, const std::string& pa
     for (int k = 0; k < 3; ++k)
         if (!(std::abs(h[7 + k]) * toMetres <= kMaxOpening))
             fail(path, headerLine,
-                 std::string("a luminous opening ") + sizeNames[k] + " of at most " + formatNumber(kMaxOpening) + " m",
+                 std::string("a luminous opening ") + sizeNames[k] + " of at most " +
+                     formatNumber(kMaxOpening) + " m",
                  formatNumber(h[7 + k]) + (units == 1 ? " ft" : " m"));
     d.opening = openingFrom(h[7] * toMetres, h[8] * toMetres, h[9] * toMetres);
     return lamp;
@@ -341,21 +353,25 @@ double readBallastLine(TokenStream& in, PhotometricData& d, const std::string& p
                        const LampLine& lamp) {
     int headerLine = lamp.line;
     int ballastLine = in.line();
-    std::vector<double> b = in.numbers(3, "values on the ballast line (ballast factor, ballast-lamp "
-                                          "photometric factor or file generation type, input watts)");
+    std::vector<double> b = in.numbers(3,
+                                       "values on the ballast line (ballast factor, ballast-lamp "
+                                       "photometric factor or file generation type, input watts)");
     if (!(b[0] > 0.0)) fail(path, ballastLine, "a positive ballast factor", formatNumber(b[0]));
     // LM-63-2019 replaced the ballast-lamp photometric factor by the file generation type
     // (Sec. 5.12), which is a code, not a multiplier.
     bool is2019 = d.format == "IES LM-63-2019";
-    if (is2019) d.keywords.emplace_back("FILEGENTYPE", formatNumber(b[1]));
+    if (is2019)
+        d.keywords.emplace_back("FILEGENTYPE", formatNumber(b[1]));
     else if (!(b[1] > 0.0))
         fail(path, ballastLine, "a positive ballast-lamp photometric factor", formatNumber(b[1]));
     double scale = lamp.multiplier * b[0] * (is2019 ? 1.0 : b[1]);
     d.inputWatts = b[2];
     d.lampFlux = lamp.lumens > 0.0 ? double(lamp.lamps) * lamp.lumens : -1.0;
     if (!(d.lampFlux <= kMaxLumens))
-        fail(path, headerLine, "a lamp flux (lamps x lumens per lamp) of at most " + formatNumber(kMaxLumens) + " lm",
-             std::isfinite(d.lampFlux) ? formatNumber(d.lampFlux) + " lm" : std::string("an overflow"));
+        fail(path, headerLine,
+             "a lamp flux (lamps x lumens per lamp) of at most " + formatNumber(kMaxLumens) + " lm",
+             std::isfinite(d.lampFlux) ? formatNumber(d.lampFlux) + " lm"
+                                       : std::string("an overflow"));
     return scale;
 }
 
@@ -363,8 +379,10 @@ double readBallastLine(TokenStream& in, PhotometricData& d, const std::string& p
 void readVerticalAngles(TokenStream& in, PhotometricData& d, const std::string& path, int nv) {
     int vLine = in.line();
     d.vertical = in.numbers(size_t(nv), "vertical angles");
-    if (d.goniometer == Goniometer::C) checkAscending(d.vertical, 0.0, 180.0, path, vLine, "vertical angles");
-    else checkAscending(d.vertical, -90.0, 90.0, path, vLine, "vertical angles");
+    if (d.goniometer == Goniometer::C)
+        checkAscending(d.vertical, 0.0, 180.0, path, vLine, "vertical angles");
+    else
+        checkAscending(d.vertical, -90.0, 90.0, path, vLine, "vertical angles");
 }
 
 /// The horizontal angles as given, and the symmetry their range implies.
@@ -377,21 +395,30 @@ std::vector<double> readHorizontalAngles(TokenStream& in, PhotometricData& d,
     if (d.goniometer == Goniometer::C) {
         checkAscending(given, 0.0, 360.0, path, hLine, "horizontal angles");
         double f = given.front(), last = given.back();
-        if (nh == 1) d.symmetry = Sym::Axial;
-        else if (near(f, 0.0) && near(last, 90.0)) d.symmetry = Sym::Quadrant;
-        else if (near(f, 0.0) && near(last, 180.0)) d.symmetry = Sym::PlaneC0C180;
-        else if (near(f, 90.0) && near(last, 270.0)) d.symmetry = Sym::PlaneC90C270;
-        else if (near(f, 0.0) && last > 180.0) d.symmetry = Sym::None;
+        if (nh == 1)
+            d.symmetry = Sym::Axial;
+        else if (near(f, 0.0) && near(last, 90.0))
+            d.symmetry = Sym::Quadrant;
+        else if (near(f, 0.0) && near(last, 180.0))
+            d.symmetry = Sym::PlaneC0C180;
+        else if (near(f, 90.0) && near(last, 270.0))
+            d.symmetry = Sym::PlaneC90C270;
+        else if (near(f, 0.0) && last > 180.0)
+            d.symmetry = Sym::None;
         else
             fail(path, hLine,
-                 "type C horizontal angles 0 (axial), 0..90, 0..180, 90..270 or 0..(more than 180, up to 360)",
+                 "type C horizontal angles 0 (axial), 0..90, 0..180, 90..270 or 0..(more than 180, "
+                 "up to 360)",
                  formatNumber(f) + ".." + formatNumber(last));
     } else {
         checkAscending(given, -180.0, 180.0, path, hLine, "horizontal angles");
         double f = given.front();
-        if (nh == 1) d.symmetry = Sym::Axial;
-        else if (near(f, 0.0)) d.symmetry = Sym::PlaneC90C270;  // mirrored about H = 0
-        else if (f < 0.0) d.symmetry = Sym::None;
+        if (nh == 1)
+            d.symmetry = Sym::Axial;
+        else if (near(f, 0.0))
+            d.symmetry = Sym::PlaneC90C270;  // mirrored about H = 0
+        else if (f < 0.0)
+            d.symmetry = Sym::None;
         else
             fail(path, hLine, "type B horizontal angles starting at 0 (symmetric) or below 0",
                  formatNumber(f) + ".." + formatNumber(given.back()));
@@ -405,9 +432,9 @@ std::vector<double> readCandelaTable(TokenStream& in, const PhotometricData& d,
                                      const std::string& path, const std::vector<double>& given,
                                      double scale) {
     size_t nv = d.vertical.size(), nh = given.size();
-    std::vector<double> cd = in.numbers(nv * nh, "candela values (" + std::to_string(nh) +
-                                                     " horizontal x " + std::to_string(nv) +
-                                                     " vertical angles)");
+    std::vector<double> cd =
+        in.numbers(nv * nh, "candela values (" + std::to_string(nh) + " horizontal x " +
+                                std::to_string(nv) + " vertical angles)");
     double tiltScale = tiltFactorAtZero(d);
     for (size_t k = 0; k < cd.size(); ++k) {
         if (cd[k] < 0.0)
@@ -426,7 +453,8 @@ std::vector<double> readCandelaTable(TokenStream& in, const PhotometricData& d,
 void allowCommentsAndTrailingValues(const TokenStream& in, PhotometricData& d,
                                     const PhotometryOptions& options) {
     if (in.commentLine() > 0)
-        photometry_detail::allow(d, options, in.commentLine(), "a '//' comment in the numeric data (not in LM-63)",
+        photometry_detail::allow(d, options, in.commentLine(),
+                                 "a '//' comment in the numeric data (not in LM-63)",
                                  "ignored to the end of each line");
     if (size_t extra = in.remaining())
         photometry_detail::allow(d, options, in.line(),
@@ -437,7 +465,8 @@ void allowCommentsAndTrailingValues(const TokenStream& in, PhotometricData& d,
 
 }  // namespace
 
-PhotometricData parseIes(const std::string& text, const std::string& path, const PhotometryOptions& options) {
+PhotometricData parseIes(const std::string& text, const std::string& path,
+                         const PhotometryOptions& options) {
     PhotometricData d;
     d.path = path;
     std::vector<std::string> lines = photometry_detail::readLines(text, d, options);

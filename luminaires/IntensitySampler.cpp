@@ -16,7 +16,9 @@ constexpr double kTwoPi = 2.0 * gpu::kPi;
 
 /// The coordinate along which solid angle is uniform: cos(gamma) for type C (falling with the
 /// angle), sin(V) for type B (rising).
-double areaCoordinate(bool typeC, double angle) { return typeC ? -std::cos(angle) : std::sin(angle); }
+double areaCoordinate(bool typeC, double angle) {
+    return typeC ? -std::cos(angle) : std::sin(angle);
+}
 
 }  // namespace
 
@@ -34,7 +36,8 @@ IntensitySampler::IntensitySampler(const PhotometricData& data) {
             size_t cell = h * (nv - 1) + v;
             auto at = [&](size_t hh, size_t vv) { return data.candela[hh * nv + vv]; };
             double peak = std::max({at(h, v), at(h, v + 1), at(h + 1, v), at(h + 1, v + 1)});
-            double omega = (areaCoordinate(mTypeC, mV[v + 1]) - areaCoordinate(mTypeC, mV[v])) * (mH[h + 1] - mH[h]);
+            double omega = (areaCoordinate(mTypeC, mV[v + 1]) - areaCoordinate(mTypeC, mV[v])) *
+                           (mH[h + 1] - mH[h]);
             solid[cell] = omega;
             double w = omega > 0.0 && std::isfinite(peak) ? peak * omega : 0.0;
             mCdf[cell + 1] = mCdf[cell] + w;
@@ -45,20 +48,23 @@ IntensitySampler::IntensitySampler(const PhotometricData& data) {
         return;
     }
     for (size_t cell = 0; cell < mDensity.size(); ++cell)
-        mDensity[cell] = solid[cell] > 0.0 ? (mCdf[cell + 1] - mCdf[cell]) / (mTotal * solid[cell]) : 0.0;
+        mDensity[cell] =
+            solid[cell] > 0.0 ? (mCdf[cell + 1] - mCdf[cell]) / (mTotal * solid[cell]) : 0.0;
 }
 
-std::shared_ptr<const IntensitySampler> IntensitySampler::of(const std::shared_ptr<const PhotometricData>& data) {
+std::shared_ptr<const IntensitySampler> IntensitySampler::of(
+    const std::shared_ptr<const PhotometricData>& data) {
     static std::mutex mutex;
     // Keyed by the table; the weak pointer tells a live table from a new one at a reused address.
-    static std::map<const PhotometricData*,
-                    std::pair<std::weak_ptr<const PhotometricData>, std::shared_ptr<const IntensitySampler>>>
+    static std::map<const PhotometricData*, std::pair<std::weak_ptr<const PhotometricData>,
+                                                      std::shared_ptr<const IntensitySampler>>>
         cache;
     if (!data) return nullptr;
     std::lock_guard<std::mutex> lock(mutex);
     auto it = cache.find(data.get());
     if (it != cache.end() && it->second.first.lock() == data) return it->second.second;
-    for (auto i = cache.begin(); i != cache.end();) i = i->second.first.expired() ? cache.erase(i) : std::next(i);
+    for (auto i = cache.begin(); i != cache.end();)
+        i = i->second.first.expired() ? cache.erase(i) : std::next(i);
     auto sampler = std::make_shared<const IntensitySampler>(*data);
     cache[data.get()] = {data, sampler};
     return sampler;
@@ -68,7 +74,8 @@ glm::dvec3 IntensitySampler::sample(double pick, const glm::dvec2& u) const {
     if (!valid()) return glm::dvec3(0.0, 0.0, 1.0);
     const size_t nv = mV.size();
     double target = pick * mTotal;
-    size_t cell = size_t(std::upper_bound(mCdf.begin() + 1, mCdf.end(), target) - (mCdf.begin() + 1));
+    size_t cell =
+        size_t(std::upper_bound(mCdf.begin() + 1, mCdf.end(), target) - (mCdf.begin() + 1));
     cell = std::min(cell, mDensity.size() - 1);
     while (cell > 0 && !(mCdf[cell + 1] > mCdf[cell])) --cell;  // never an empty cell
     size_t h = cell / (nv - 1), v = cell % (nv - 1);
@@ -101,8 +108,10 @@ bool IntensitySampler::locate(const glm::dvec3& d, size_t& v, size_t& h) const {
         ha = std::atan2(d.x, d.z);
     }
     if (va < mV.front() || va > mV.back() || ha < mH.front() || ha > mH.back()) return false;
-    v = std::min(size_t(std::upper_bound(mV.begin(), mV.end(), va) - mV.begin()), mV.size() - 1) - 1;
-    h = std::min(size_t(std::upper_bound(mH.begin(), mH.end(), ha) - mH.begin()), mH.size() - 1) - 1;
+    v = std::min(size_t(std::upper_bound(mV.begin(), mV.end(), va) - mV.begin()), mV.size() - 1) -
+        1;
+    h = std::min(size_t(std::upper_bound(mH.begin(), mH.end(), ha) - mH.begin()), mH.size() - 1) -
+        1;
     return true;
 }
 

@@ -11,7 +11,6 @@
 // the balance heuristic keeps the reference unbiased for any such density.
 
 #include <glm/glm.hpp>
-
 #include <memory>
 #include <vector>
 
@@ -20,11 +19,12 @@
 namespace candela {
 
 class IntensitySampler {
-public:
+  public:
     explicit IntensitySampler(const PhotometricData& data);
 
     /// The shared sampler of a table (built once per table, kept while the table lives).
-    static std::shared_ptr<const IntensitySampler> of(const std::shared_ptr<const PhotometricData>& data);
+    static std::shared_ptr<const IntensitySampler> of(
+        const std::shared_ptr<const PhotometricData>& data);
 
     /// Whether any cell has intensity (a table of zeros cannot be sampled).
     bool valid() const { return mTotal > 0.0; }
@@ -37,14 +37,14 @@ public:
     /// vertical angles) for the GPU twin (shaders/photometric.glsl).
     std::vector<double> normalisedCdf() const;
 
-private:
+  private:
     /// The cell (v, h) holding d, or false outside the table's range.
     bool locate(const glm::dvec3& d, size_t& v, size_t& h) const;
 
-    bool mTypeC = true;                  ///< Polar axis z (type C), else type B (latitude about y).
-    std::vector<double> mV, mH;          ///< Cell edges, radians.
-    std::vector<double> mCdf;            ///< Cumulative cell weights, (nv-1)(nh-1) + 1 entries.
-    std::vector<double> mDensity;        ///< Weight / (total x solid angle) per cell.
+    bool mTypeC = true;            ///< Polar axis z (type C), else type B (latitude about y).
+    std::vector<double> mV, mH;    ///< Cell edges, radians.
+    std::vector<double> mCdf;      ///< Cumulative cell weights, (nv-1)(nh-1) + 1 entries.
+    std::vector<double> mDensity;  ///< Weight / (total x solid angle) per cell.
     double mTotal = 0.0;
 };
 

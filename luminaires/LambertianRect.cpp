@@ -42,10 +42,10 @@ glm::dvec2 extentOf(const LambertianRect& light) {
 /// below except the solid-angle pdf is scale invariant.
 struct LocalRect {
     glm::dvec3 ex{0.0}, ey{0.0}, ez{0.0};  ///< World unit axes: width, height, emitting normal.
-    double x0 = 0.0, x1 = 0.0;  ///< Edge offsets from p along ex (scaled), x0 < x1.
-    double y0 = 0.0, y1 = 0.0;  ///< Edge offsets from p along ey (scaled), y0 < y1.
-    double h = 0.0;             ///< Distance from p to the emitter plane (scaled), > 0.
-    double scale = 0.0;         ///< Metres per local unit.
+    double x0 = 0.0, x1 = 0.0;             ///< Edge offsets from p along ex (scaled), x0 < x1.
+    double y0 = 0.0, y1 = 0.0;             ///< Edge offsets from p along ey (scaled), y0 < y1.
+    double h = 0.0;                        ///< Distance from p to the emitter plane (scaled), > 0.
+    double scale = 0.0;                    ///< Metres per local unit.
 };
 
 /// Fills r and returns true when p is strictly in front of a non-empty emitter.
@@ -130,7 +130,9 @@ double projectedSolidAngle(const LocalRect& r, const glm::dvec3& m) {
 }
 
 /// Clamps a sampler input to [0, 1]; NaN becomes 0.
-double unitInterval(double v) { return v > 0.0 ? (v < 1.0 ? v : 1.0) : 0.0; }
+double unitInterval(double v) {
+    return v > 0.0 ? (v < 1.0 ? v : 1.0) : 0.0;
+}
 
 /// Local coordinates (scaled) of the point uniform in solid angle for inputs u: the map of
 /// Urena, Fajardo and King (2013), Sec. 4, written with the exact corner angles and with
@@ -217,8 +219,8 @@ LightSample makeSample(const LambertianRect& light, const LocalRect& r, double o
 /// Reads "size": two positive numbers (metres) of at most kMaxSize.
 glm::dvec2 readSize(const nlohmann::json& v, const json::Where& where) {
     if (!v.is_array() || v.size() != 2)
-        json::fail(where, "an array of 2 positive numbers (width, height in metres), got " +
-                              v.dump());
+        json::fail(where,
+                   "an array of 2 positive numbers (width, height in metres), got " + v.dump());
     glm::dvec2 size;
     for (int i = 0; i < 2; ++i) {
         size[i] = json::positive(v[size_t(i)], where[size_t(i)]);
@@ -234,8 +236,8 @@ glm::dvec3 readEmitted(const nlohmann::json& v, const json::Where& where, const 
     glm::dvec3 radiance = json::vec3(v, where);
     for (int i = 0; i < 3; ++i)
         if (!(radiance[i] >= 0.0 && radiance[i] <= kMaxRadiance))
-            json::fail(where[size_t(i)], std::string("a non-negative ") + what + " of at most 1e20, got " +
-                                             v[size_t(i)].dump());
+            json::fail(where[size_t(i)], std::string("a non-negative ") + what +
+                                             " of at most 1e20, got " + v[size_t(i)].dump());
     return radiance;
 }
 
@@ -328,9 +330,9 @@ std::string LambertianRect::describe() const {
     glm::dvec3 p = power();
     char text[256];
     Quantities q = quantities();
-    int n = std::snprintf(text, sizeof(text), "lambertian-rect %.2f x %.2f m, L = (%g, %g, %g) %s, %s ", size.x,
-                          size.y, emitted.x, emitted.y, emitted.z, radianceUnit(q),
-                          luminous ? "flux" : "power");
+    int n = std::snprintf(
+        text, sizeof(text), "lambertian-rect %.2f x %.2f m, L = (%g, %g, %g) %s, %s ", size.x,
+        size.y, emitted.x, emitted.y, emitted.z, radianceUnit(q), luminous ? "flux" : "power");
     std::string out(text, size_t(std::clamp(n, 0, int(sizeof(text)) - 1)));
     if (p.x == p.y && p.y == p.z)
         n = std::snprintf(text, sizeof(text), "%.1f %s", p.x, fluxUnit(q));
@@ -341,20 +343,27 @@ std::string LambertianRect::describe() const {
 
 std::unique_ptr<Luminaire> LambertianRect::parse(const nlohmann::json& entry,
                                                  const json::Where& where) {
-    json::checkKeys(entry, {"type", "name", "position", "aim", "c0", "technique", "size",
-                            "radiance", "luminance"}, where);
+    json::checkKeys(
+        entry,
+        {"type", "name", "position", "aim", "c0", "technique", "size", "radiance", "luminance"},
+        where);
     auto light = std::make_unique<LambertianRect>();
     light->size = json::optional(entry, "size", where, light->size, readSize);
     if (entry.contains("radiance") && entry.contains("luminance"))
-        json::fail(where / "luminance", "either \"radiance\" (W/(m2 sr)) or \"luminance\" (cd/m2), not both");
+        json::fail(where / "luminance",
+                   "either \"radiance\" (W/(m2 sr)) or \"luminance\" (cd/m2), not both");
     light->luminous = entry.contains("luminance");
     const char* key = light->luminous ? "luminance" : "radiance";
     if (entry.contains(key))
-        light->emitted = readEmitted(entry[key], where / key, light->luminous ? "luminance (cd/m2)" : "radiance (W/(m2 sr))");
+        light->emitted =
+            readEmitted(entry[key], where / key,
+                        light->luminous ? "luminance (cd/m2)" : "radiance (W/(m2 sr))");
     return light;
 }
 
-std::unique_ptr<Luminaire> LambertianRect::create() { return std::make_unique<LambertianRect>(); }
+std::unique_ptr<Luminaire> LambertianRect::create() {
+    return std::make_unique<LambertianRect>();
+}
 
 Estimate lambertianRectAnalytic(const Luminaire& luminaire, const glm::dvec3& p,
                                 const glm::dvec3& n, const EstimateOptions& options) {

@@ -3,16 +3,16 @@
 // It is centred on pose.position, spans the pose's local x (width) and y (height) axes and emits
 // only into the half-space its aim (local +z) points to.
 
-#include "luminaires/Luminaire.h"
 #include "luminaires/Estimate.h"
+#include "luminaires/Luminaire.h"
 #include "util/JsonRead.h"
 
 namespace candela {
 
 class LambertianRect final : public Luminaire {
-public:
-    glm::dvec2 size{1.0, 0.5};     ///< Width along local x (c0), height along local y, metres.
-    glm::dvec3 emitted{10.0};      ///< Radiance to the +aim side, W/(m2 sr), RGB (cd/m2 if luminous).
+  public:
+    glm::dvec2 size{1.0, 0.5};  ///< Width along local x (c0), height along local y, metres.
+    glm::dvec3 emitted{10.0};   ///< Radiance to the +aim side, W/(m2 sr), RGB (cd/m2 if luminous).
     /// Given as a luminance ("luminance" in cd/m2) rather than a radiance ("radiance", W/(m2 sr)).
     bool luminous = false;
 

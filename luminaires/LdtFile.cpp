@@ -61,7 +61,8 @@ std::string trim(const std::string& s) {
 
 std::string showToken(const std::string& s) {
     std::string shown = s.size() > 40 ? s.substr(0, 40) + "..." : s;
-    for (char& c : shown)  // control characters as '?'; the text is UTF-8 (fail() repairs a cut sequence)
+    for (char& c :
+         shown)  // control characters as '?'; the text is UTF-8 (fail() repairs a cut sequence)
         if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F) c = '?';
     return "'" + shown + "'";
 }
@@ -74,8 +75,9 @@ bool parseLdtNumber(std::string s, double& v) {
 }
 
 class LdtReader {
-public:
-    LdtReader(std::vector<std::string> lines, std::string path) : mPath(std::move(path)), mLines(std::move(lines)) {}
+  public:
+    LdtReader(std::vector<std::string> lines, std::string path)
+        : mPath(std::move(path)), mLines(std::move(lines)) {}
 
     const std::string& path() const { return mPath; }
     int lineCount() const { return int(mLines.size()); }
@@ -91,18 +93,22 @@ public:
     double number(int n, const std::string& what) {
         std::string s = text(n, what);
         double v;
-        if (!parse(s, n, v)) fail(mPath, n, what + " (a number)", s.empty() ? "an empty line" : showToken(s));
+        if (!parse(s, n, v))
+            fail(mPath, n, what + " (a number)", s.empty() ? "an empty line" : showToken(s));
         return v;
     }
 
     /// True when line `n` exists and is empty (white space only).
-    bool empty(int n) const { return n >= 1 && n <= int(mLines.size()) && trim(mLines[size_t(n - 1)]).empty(); }
+    bool empty(int n) const {
+        return n >= 1 && n <= int(mLines.size()) && trim(mLines[size_t(n - 1)]).empty();
+    }
     /// True when line `n` exists and holds at most one word.
     bool atMostOneWord(int n) const {
         if (n < 1 || n > int(mLines.size())) return false;
         std::string s = trim(mLines[size_t(n - 1)]);
-        return std::none_of(s.begin(), s.end(),
-                            [](char c) { return std::isspace(static_cast<unsigned char>(c)) || c == ';'; });
+        return std::none_of(s.begin(), s.end(), [](char c) {
+            return std::isspace(static_cast<unsigned char>(c)) || c == ';';
+        });
     }
 
     /// First line where a number had a decimal comma (0: none).
@@ -111,7 +117,9 @@ public:
     int integer(int n, const std::string& what, int lo, int hi) {
         double v = number(n, what);
         if (!(std::abs(v - std::round(v)) < 1e-6) || v < lo || v > hi)
-            fail(mPath, n, what + " (an integer from " + std::to_string(lo) + " to " + std::to_string(hi) + ")",
+            fail(mPath, n,
+                 what + " (an integer from " + std::to_string(lo) + " to " + std::to_string(hi) +
+                     ")",
                  formatNumber(v));
         return int(std::lround(v));
     }
@@ -128,7 +136,9 @@ public:
         mLastLine = mTokens.empty() ? std::max(1, int(mLines.size())) : mTokens.back().second;
     }
     int tokenLine() const { return mPos < mTokens.size() ? mTokens[mPos].second : mLastLine; }
-    int lineOfToken(size_t index) const { return index < mTokens.size() ? mTokens[index].second : mLastLine; }
+    int lineOfToken(size_t index) const {
+        return index < mTokens.size() ? mTokens[index].second : mLastLine;
+    }
     size_t position() const { return mPos; }
 
     std::vector<double> numbers(size_t n, const std::string& what) {
@@ -139,14 +149,16 @@ public:
             const auto& [s, line] = mTokens[mPos++];
             double v;
             if (!parse(s, line, v))
-                fail(mPath, line, "a finite number (" + what + ", value " + std::to_string(k + 1) + " of " +
-                                      std::to_string(n) + ")",
+                fail(mPath, line,
+                     "a finite number (" + what + ", value " + std::to_string(k + 1) + " of " +
+                         std::to_string(n) + ")",
                      showToken(s));
             out.push_back(v);
         }
         if (take < n)
             fail(mPath, mLastLine, std::to_string(n) + " " + what,
-                 "only " + std::to_string(take) + " before the data ended at line " + std::to_string(mLastLine));
+                 "only " + std::to_string(take) + " before the data ended at line " +
+                     std::to_string(mLastLine));
         return out;
     }
     /// Tokens not read yet.
@@ -154,7 +166,7 @@ public:
     /// The next token's text (call only when remaining() > 0).
     const std::string& peek() const { return mTokens[mPos].first; }
 
-private:
+  private:
     /// parseLdtNumber, noting the first decimal comma.
     bool parse(const std::string& s, int line, double& v) {
         if (!parseLdtNumber(s, v)) return false;
@@ -170,15 +182,17 @@ private:
     int mCommaLine = 0;
 };
 
-void checkAscending(const std::vector<double>& a, double lo, double hi, bool hiOpen, const std::string& path,
-                    int line, const std::string& what) {
+void checkAscending(const std::vector<double>& a, double lo, double hi, bool hiOpen,
+                    const std::string& path, int line, const std::string& what) {
     for (size_t k = 0; k < a.size(); ++k) {
         if (a[k] < lo || a[k] > hi || (hiOpen && a[k] >= hi))
-            fail(path, line, what + " from " + formatNumber(lo) + (hiOpen ? " up to (not including) " : " to ") +
-                                 formatNumber(hi) + " degrees",
+            fail(path, line,
+                 what + " from " + formatNumber(lo) +
+                     (hiOpen ? " up to (not including) " : " to ") + formatNumber(hi) + " degrees",
                  formatNumber(a[k]));
         if (k > 0 && !(a[k] > a[k - 1]))
-            fail(path, line, what + " in strictly ascending order", formatNumber(a[k]) + " after " + formatNumber(a[k - 1]));
+            fail(path, line, what + " in strictly ascending order",
+                 formatNumber(a[k]) + " after " + formatNumber(a[k - 1]));
     }
 }
 
@@ -192,7 +206,9 @@ struct LdtParse {
     double conversion = 1.0;
     double totalFlux = 0.0;  ///< Sum of the lamp sets' flux, lm.
 
-    void keep(const std::string& key, const std::string& value) { d.keywords.emplace_back(key, value); }
+    void keep(const std::string& key, const std::string& value) {
+        d.keywords.emplace_back(key, value);
+    }
 
     /// A text field that a complete file fills; empty is allowed (a warning).
     std::string optionalText(int n, const std::string& what) {
@@ -201,7 +217,8 @@ struct LdtParse {
         return s;
     }
     /// A number field that some exporters leave empty: `fallback` with a warning saying `assumed`.
-    double optionalNumber(int n, const std::string& what, double fallback, const std::string& assumed) {
+    double optionalNumber(int n, const std::string& what, double fallback,
+                          const std::string& assumed) {
         if (!in.empty(n)) return in.number(n, what);
         allow(d, options, n, "empty " + what, assumed);
         return fallback;
@@ -249,15 +266,18 @@ void LdtParse::header() {
     keep("luminaire number", in.text(10, "luminaire number"));
     keep("file name", in.text(11, "file name"));
     keep("date/user", in.text(12, "date/user"));
-    const char* sizes[] = {"luminaire length/diameter (mm)", "luminaire width (mm)", "luminaire height (mm)",
-                           "luminous area length/diameter (mm)", "luminous area width (mm)",
-                           "luminous area height C0 (mm)", "luminous area height C90 (mm)",
-                           "luminous area height C180 (mm)", "luminous area height C270 (mm)"};
+    const char* sizes[] = {"luminaire length/diameter (mm)", "luminaire width (mm)",
+                           "luminaire height (mm)",          "luminous area length/diameter (mm)",
+                           "luminous area width (mm)",       "luminous area height C0 (mm)",
+                           "luminous area height C90 (mm)",  "luminous area height C180 (mm)",
+                           "luminous area height C270 (mm)"};
     for (int k = 0; k < 9; ++k) {
         size[k] = in.number(13 + k, sizes[k]);
-        if (size[k] < 0.0) fail(path, 13 + k, std::string(sizes[k]) + " >= 0", formatNumber(size[k]));
+        if (size[k] < 0.0)
+            fail(path, 13 + k, std::string(sizes[k]) + " >= 0", formatNumber(size[k]));
         if (k >= 3 && !(size[k] <= kMaxOpening * 1e3))
-            fail(path, 13 + k, std::string(sizes[k]) + " of at most " + formatNumber(kMaxOpening * 1e3) + " mm",
+            fail(path, 13 + k,
+                 std::string(sizes[k]) + " of at most " + formatNumber(kMaxOpening * 1e3) + " mm",
                  formatNumber(size[k]));
         keep(sizes[k], formatNumber(size[k]));
     }
@@ -267,13 +287,15 @@ void LdtParse::header() {
     if (lorl == 0.0)
         allow(d, options, 23, "light output ratio LORL 0 %",
               "no declared luminaire flux (the intensities are still cd/klm of the lamp flux)");
-    conversion = optionalNumber(24, "conversion factor for luminous intensities", 1.0, "taken as 1");
+    conversion =
+        optionalNumber(24, "conversion factor for luminous intensities", 1.0, "taken as 1");
     if (conversion < 0.0) fail(path, 24, "a conversion factor >= 0", formatNumber(conversion));
     if (conversion == 0.0) {
         allow(d, options, 24, "conversion factor 0", "taken as 1");
         conversion = 1.0;
     }
-    double tilt = optionalNumber(25, "tilt of the luminaire during measurement (degrees)", 0.0, "taken as 0");
+    double tilt =
+        optionalNumber(25, "tilt of the luminaire during measurement (degrees)", 0.0, "taken as 0");
     keep("DFF %", formatNumber(dff));
     keep("LORL %", formatNumber(lorl));
     keep("conversion factor", formatNumber(conversion));
@@ -301,15 +323,20 @@ void LdtParse::lampSets() {
         totalFlux += flux;
         watts += wattage;
         if (!(totalFlux <= kMaxLumens) || !std::isfinite(watts))
-            fail(path, base + 2, "lamp flux (at most " + formatNumber(kMaxLumens) + " lm in all) and wattage",
+            fail(path, base + 2,
+                 "lamp flux (at most " + formatNumber(kMaxLumens) + " lm in all) and wattage",
                  "an overflow in their sums");
-        keep(set, std::to_string(std::abs(lamps)) + " x " + type + ", " + formatNumber(flux) + " lm, " + cct +
-                      ", CRI " + cri + ", " + formatNumber(wattage) + " W");
+        keep(set, std::to_string(std::abs(lamps)) + " x " + type + ", " + formatNumber(flux) +
+                      " lm, " + cct + ", CRI " + cri + ", " + formatNumber(wattage) + " W");
     }
     if (absolute) keep("absolute photometry", "negative number of lamps");
-    if (!(totalFlux > 0.0)) fail(path, 27 + 2, "a positive total lamp flux (sum over the lamp sets)", formatNumber(totalFlux));
+    if (!(totalFlux > 0.0))
+        fail(path, 27 + 2, "a positive total lamp flux (sum over the lamp sets)",
+             formatNumber(totalFlux));
     if (!(totalFlux * d.lightOutputRatio <= kMaxLumens))
-        fail(path, 23, "a declared luminaire flux (lamp flux x LORL) of at most " + formatNumber(kMaxLumens) + " lm",
+        fail(path, 23,
+             "a declared luminaire flux (lamp flux x LORL) of at most " + formatNumber(kMaxLumens) +
+                 " lm",
              formatNumber(totalFlux) + " lm x " + formatNumber(d.lightOutputRatio));
     d.lampFlux = totalFlux;
     d.inputWatts = watts;
@@ -335,8 +362,9 @@ void LdtParse::directRatios() {
         for (int k = 0; k < 10; ++k) {
             int n = first + k;
             if (k > 0) shown += ' ';
-            shown += in.empty(n) ? std::string("?")
-                                 : formatNumber(in.number(n, "direct ratio " + std::to_string(k + 1)));
+            shown += in.empty(n)
+                         ? std::string("?")
+                         : formatNumber(in.number(n, "direct ratio " + std::to_string(k + 1)));
         }
         std::string lines = std::to_string(firstEmpty);
         if (lastEmpty > firstEmpty) lines += '-' + std::to_string(lastEmpty);
@@ -362,7 +390,8 @@ std::vector<double> LdtParse::cPlaneAngles(RepeatedPlane& repeat) {
     size_t cStart = in.position();
     std::vector<double> cAngles = in.numbers(size_t(mc), "C angles");
     // A repeated last plane: C360 after C0 (the same plane), or the last angle twice.
-    bool repeatsC0 = mc >= 2 && std::abs(cAngles.back() - 360.0) < 1e-6 && std::abs(cAngles.front()) < 1e-6;
+    bool repeatsC0 =
+        mc >= 2 && std::abs(cAngles.back() - 360.0) < 1e-6 && std::abs(cAngles.front()) < 1e-6;
     bool repeated = repeatsC0 || (mc >= 2 && cAngles.back() == cAngles[size_t(mc - 2)]);
     int repeatLine = in.lineOfToken(cStart + size_t(mc) - 1);
     double repeatedAngle = cAngles.back();
@@ -379,30 +408,38 @@ std::vector<double> LdtParse::cPlaneAngles(RepeatedPlane& repeat) {
 std::vector<double> LdtParse::storedPlanes(const std::vector<double>& cAngles, int cLine) {
     const std::string& path = d.path;
     using Sym = PhotometricSymmetry;
-    const Sym symmetries[] = {Sym::None, Sym::Axial, Sym::PlaneC0C180, Sym::PlaneC90C270, Sym::Quadrant};
+    const Sym symmetries[] = {Sym::None, Sym::Axial, Sym::PlaneC0C180, Sym::PlaneC90C270,
+                              Sym::Quadrant};
     d.symmetry = symmetries[isym];
     size_t firstPlane = 0, planes = size_t(mc);
     double expectFirst = 0.0, expectLast = -1.0;
     if ((isym == 2 || isym == 3) && mc % 2 != 0)
-        fail(path, 4, "an even number of C planes Mc for Isym " + std::to_string(isym), std::to_string(mc));
-    if (isym == 4 && mc % 4 != 0) fail(path, 4, "a number of C planes Mc divisible by 4 for Isym 4", std::to_string(mc));
+        fail(path, 4, "an even number of C planes Mc for Isym " + std::to_string(isym),
+             std::to_string(mc));
+    if (isym == 4 && mc % 4 != 0)
+        fail(path, 4, "a number of C planes Mc divisible by 4 for Isym 4", std::to_string(mc));
     if (isym == 1) planes = 1;
     if (isym == 2) planes = size_t(mc / 2 + 1), expectLast = 180.0;
     if (isym == 4) planes = size_t(mc / 4 + 1), expectLast = 90.0;
     if (isym == 3) {
         planes = size_t(mc / 2 + 1), expectFirst = 90.0, expectLast = 270.0;
-        auto it = std::find_if(cAngles.begin(), cAngles.end(), [](double c) { return std::abs(c - 90.0) < 1e-6; });
-        if (it == cAngles.end()) fail(path, cLine, "a C90 plane among the C angles (Isym 3 data start there)", "none");
+        auto it = std::find_if(cAngles.begin(), cAngles.end(),
+                               [](double c) { return std::abs(c - 90.0) < 1e-6; });
+        if (it == cAngles.end())
+            fail(path, cLine, "a C90 plane among the C angles (Isym 3 data start there)", "none");
         firstPlane = size_t(it - cAngles.begin());
     }
     if (firstPlane + planes > cAngles.size())
-        fail(path, cLine, std::to_string(planes) + " C planes from C" + formatNumber(cAngles[firstPlane]),
+        fail(path, cLine,
+             std::to_string(planes) + " C planes from C" + formatNumber(cAngles[firstPlane]),
              "only " + std::to_string(cAngles.size() - firstPlane));
     std::vector<double> given(cAngles.begin() + std::ptrdiff_t(firstPlane),
                               cAngles.begin() + std::ptrdiff_t(firstPlane + planes));
-    if (isym >= 2 && (std::abs(given.front() - expectFirst) > 1e-6 || std::abs(given.back() - expectLast) > 1e-6))
+    if (isym >= 2 && (std::abs(given.front() - expectFirst) > 1e-6 ||
+                      std::abs(given.back() - expectLast) > 1e-6))
         fail(path, cLine,
-             "C planes " + formatNumber(expectFirst) + ".." + formatNumber(expectLast) + " for Isym " + std::to_string(isym),
+             "C planes " + formatNumber(expectFirst) + ".." + formatNumber(expectLast) +
+                 " for Isym " + std::to_string(isym),
              formatNumber(given.front()) + ".." + formatNumber(given.back()));
     return given;
 }
@@ -416,8 +453,8 @@ std::vector<double> LdtParse::intensityValues(const std::vector<double>& given,
     size_t values = planes * size_t(ng);
     size_t start = in.position();
     std::vector<double> cd = in.numbers(values + (repeatedData ? size_t(ng) : 0),
-                                        "intensities (cd/klm, " + std::to_string(planes) + " C planes x " +
-                                            std::to_string(ng) + " gamma angles)");
+                                        "intensities (cd/klm, " + std::to_string(planes) +
+                                            " C planes x " + std::to_string(ng) + " gamma angles)");
     double scale = conversion * totalFlux / 1000.0;
     for (size_t k = 0; k < cd.size(); ++k) {
         int line = in.lineOfToken(start + k);
@@ -427,7 +464,8 @@ std::vector<double> LdtParse::intensityValues(const std::vector<double>& given,
                      formatNumber(k < values ? given[k / size_t(ng)] : repeat.angle) + ", gamma " +
                      formatNumber(d.vertical[k % size_t(ng)]) + ")",
                  formatNumber(cd[k]));
-        photometry_detail::checkCandela(path, line, cd[k] * scale, "intensities (cd/klm x lamp flux)");
+        photometry_detail::checkCandela(path, line, cd[k] * scale,
+                                        "intensities (cd/klm x lamp flux)");
     }
     return cd;
 }
@@ -446,14 +484,14 @@ void LdtParse::dropRepeatedPlane(std::vector<double>& cd, const std::vector<doub
         for (size_t v = 0; v < size_t(ng); ++v)
             worst = std::max(worst, std::abs(cd[values + v] - cd[same * size_t(ng) + v]));
         if (worst > 0.0)
-            assumed += " (its intensities differ from C" + formatNumber(given[same]) + "'s by up to " +
-                       formatNumber(worst) + " cd/klm)";
+            assumed += " (its intensities differ from C" + formatNumber(given[same]) +
+                       "'s by up to " + formatNumber(worst) + " cd/klm)";
         cd.resize(values);
     }
     allow(d, options, repeat.line,
           std::string("C") + formatNumber(repeat.angle) + " repeats the " +
-              (repeat.ofC0 ? std::string("C0 plane") : "plane before it") + " (counted in Mc = " +
-              std::to_string(mc + 1) + ")",
+              (repeat.ofC0 ? std::string("C0 plane") : "plane before it") +
+              " (counted in Mc = " + std::to_string(mc + 1) + ")",
           assumed);
 }
 
@@ -477,8 +515,8 @@ void LdtParse::intensities() {
     for (double& c : cd) c *= scale;
     if (size_t extra = in.remaining())
         allow(d, options, in.tokenLine(),
-              std::to_string(extra) + " value" + (extra == 1 ? "" : "s") + " after the intensities (from " +
-                  showToken(in.peek()) + ")",
+              std::to_string(extra) + " value" + (extra == 1 ? "" : "s") +
+                  " after the intensities (from " + showToken(in.peek()) + ")",
               "ignored");
     d.goniometer = Goniometer::C;
     photometry_detail::unfold(d, given, cd);
@@ -494,7 +532,8 @@ void LdtParse::opening() {
         d.opening.shape = LuminousOpening::Shape::Point;
         d.opening.height = 0.0;
     } else if (width == 0.0) {
-        d.opening.shape = height > 0.0 ? LuminousOpening::Shape::Cylinder : LuminousOpening::Shape::Ellipse;
+        d.opening.shape =
+            height > 0.0 ? LuminousOpening::Shape::Cylinder : LuminousOpening::Shape::Ellipse;
         d.opening.length = d.opening.width = length;
     } else {
         d.opening.shape = LuminousOpening::Shape::Rectangle;
@@ -505,7 +544,8 @@ void LdtParse::opening() {
 
 }  // namespace
 
-PhotometricData parseEulumdat(const std::string& text, const std::string& path, const PhotometryOptions& options) {
+PhotometricData parseEulumdat(const std::string& text, const std::string& path,
+                              const PhotometryOptions& options) {
     PhotometricData d;
     d.path = path;
     d.format = "EULUMDAT";

@@ -25,8 +25,8 @@ double bspline2(double x) {
 
 namespace {
 
-constexpr int kMaxImages = 4096;         // 64 x 64 basis functions
-constexpr int kMaxImageSide = 8192;      // pixels
+constexpr int kMaxImages = 4096;     // 64 x 64 basis functions
+constexpr int kMaxImageSide = 8192;  // pixels
 constexpr double kGauss4X[4] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563,
                                 0.8611363115940526};
 constexpr double kGauss4W[4] = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461,
@@ -85,13 +85,15 @@ int findPiece(int n, double target, const Fn& value) {
 
 void readImage(const fs::path& file, const std::string& where, int& w, int& h, int& channels,
                std::vector<float>& pixels) {
-    ImageFileReader in(file.string(), where + ": " + file.string(), kMaxImageSide);  // util/ImageRead.h
+    ImageFileReader in(file.string(), where + ": " + file.string(),
+                       kMaxImageSide);  // util/ImageRead.h
     w = in.width();
     h = in.height();
     channels = in.channels();
     if (w <= 0 || h <= 0 || w > kMaxImageSide || h > kMaxImageSide)
         throw InputError(where + ": " + file.string() + ": image size " + std::to_string(w) + "x" +
-                         std::to_string(h) + " out of range (1.." + std::to_string(kMaxImageSide) + ")");
+                         std::to_string(h) + " out of range (1.." + std::to_string(kMaxImageSide) +
+                         ")");
     if (channels != 1 && channels != 3 && channels != 4)
         throw InputError(where + ": " + file.string() + ": " + std::to_string(channels) +
                          " channels; expected 1 (luminance), 3 (RGB) or 4 (RGBA)");
@@ -110,10 +112,13 @@ std::string modelName(LightFieldData::Model m) {
 
 void LightFieldData::validate(const std::string& what) const {
     auto bad = [&](const std::string& msg) { throw InputError(what + ": " + msg); };
-    if (!(delta > 0.0) || !std::isfinite(delta)) bad("delta must be a positive distance in metres, got " + fmt(delta));
+    if (!(delta > 0.0) || !std::isfinite(delta))
+        bad("delta must be a positive distance in metres, got " + fmt(delta));
     if (count.x < 1 || count.y < 1 || count.x * count.y > kMaxImages)
-        bad("basis count must be at least 1x1 and at most " + std::to_string(kMaxImages) + " images");
-    if (!(spacing.x > 0.0 && spacing.y > 0.0) || !std::isfinite(spacing.x) || !std::isfinite(spacing.y))
+        bad("basis count must be at least 1x1 and at most " + std::to_string(kMaxImages) +
+            " images");
+    if (!(spacing.x > 0.0 && spacing.y > 0.0) || !std::isfinite(spacing.x) ||
+        !std::isfinite(spacing.y))
         bad("basis spacing must be positive, got [" + fmt(spacing.x) + ", " + fmt(spacing.y) + "]");
     if (!std::isfinite(origin.x) || !std::isfinite(origin.y)) bad("basis origin must be finite");
     if (!(imageMax.x > imageMin.x && imageMax.y > imageMin.y) || !std::isfinite(imageMin.x) ||
@@ -130,8 +135,8 @@ void LightFieldData::validate(const std::string& what) const {
             bad("image " + std::to_string(m) + " has the wrong number of pixels");
         for (size_t k = 0; k < pixels; ++k)
             if (!(img.luminance[k] >= 0.f) || !std::isfinite(img.luminance[k]))
-                bad("image " + std::to_string(m) + " pixel (" + std::to_string(k % size_t(width)) + ", " +
-                    std::to_string(k / size_t(width)) + ") is negative, NaN or infinite");
+                bad("image " + std::to_string(m) + " pixel (" + std::to_string(k % size_t(width)) +
+                    ", " + std::to_string(k / size_t(width)) + ") is negative, NaN or infinite");
     }
 }
 
@@ -155,16 +160,19 @@ nlohmann::json readJsonFile(const fs::path& file) {
 /// The top-level keys, format and version, then the model and delta.
 void readHeader(const nlohmann::json& doc, const json::Where& where, LightFieldData& lf) {
     using Model = LightFieldData::Model;
-    json::checkKeys(doc, {"format", "version", "model", "delta", "basis", "image", "images", "unit"},
-                    where);
+    json::checkKeys(
+        doc, {"format", "version", "model", "delta", "basis", "image", "images", "unit"}, where);
     if (json::optional(doc, "format", where, std::string(), json::string) != "candela-lightfield")
         json::fail(where / "format", "\"candela-lightfield\"");
     if (!doc.contains("version") || !doc["version"].is_number_integer() || doc["version"] != 1)
         json::fail(where / "version", "1");
     std::string model = json::optional(doc, "model", where, std::string("canned"), json::string);
-    if (model == "canned") lf.model = Model::Canned;
-    else if (model == "goesele") lf.model = Model::Goesele;
-    else json::fail(where / "model", "\"canned\" or \"goesele\"");
+    if (model == "canned")
+        lf.model = Model::Canned;
+    else if (model == "goesele")
+        lf.model = Model::Goesele;
+    else
+        json::fail(where / "model", "\"canned\" or \"goesele\"");
     if (!doc.contains("delta")) json::fail(where / "delta", "a positive distance in metres");
     lf.delta = json::positive(doc["delta"], where / "delta");
 }
@@ -178,8 +186,9 @@ void readBasis(const nlohmann::json& doc, const json::Where& where, LightFieldDa
     if (json::optional(basis, "kind", wb, std::string("bspline2"), json::string) != "bspline2")
         json::fail(wb / "kind", "\"bspline2\"");
     auto readCount = [](const nlohmann::json& v, const json::Where& w) {
-        if (!v.is_array() || v.size() != 2 || !v[0].is_number_integer() || !v[1].is_number_integer() ||
-            v[0].get<long>() < 1 || v[1].get<long>() < 1 || v[0].get<long>() > 64 || v[1].get<long>() > 64)
+        if (!v.is_array() || v.size() != 2 || !v[0].is_number_integer() ||
+            !v[1].is_number_integer() || v[0].get<long>() < 1 || v[1].get<long>() < 1 ||
+            v[0].get<long>() > 64 || v[1].get<long>() > 64)
             json::fail(w, "two integers between 1 and 64");
         return glm::ivec2(v[0].get<int>(), v[1].get<int>());
     };
@@ -197,14 +206,16 @@ void readExtentAndUnit(const nlohmann::json& doc, const json::Where& where, Ligh
     if (!doc.contains("image")) json::fail(where / "image", "an object with min and max");
     json::Where wi = where / "image";
     json::checkKeys(doc["image"], {"min", "max"}, wi);
-    if (!doc["image"].contains("min") || !doc["image"].contains("max")) json::fail(wi, "min and max");
+    if (!doc["image"].contains("min") || !doc["image"].contains("max"))
+        json::fail(wi, "min and max");
     lf.imageMin = json::vec2(doc["image"]["min"], wi / "min");
     lf.imageMax = json::vec2(doc["image"]["max"], wi / "max");
     if (!(lf.imageMax.x > lf.imageMin.x && lf.imageMax.y > lf.imageMin.y))
         json::fail(wi, "max greater than min on both axes");
 
     std::string unit = json::optional(doc, "unit", where, std::string("W/(m2 sr)"), json::string);
-    if (unit != "W/(m2 sr)" && unit != "cd/m2") json::fail(where / "unit", "\"W/(m2 sr)\" or \"cd/m2\"");
+    if (unit != "W/(m2 sr)" && unit != "cd/m2")
+        json::fail(where / "unit", "\"W/(m2 sr)\" or \"cd/m2\"");
     lf.unit = unit;
 }
 
@@ -219,7 +230,8 @@ void convertPixels(const std::vector<float>& px, int w, int h, int channels, boo
         const float* v = &px[k * size_t(channels)];
         for (int c = 0; c < std::min(channels, 3); ++c)
             if (!(v[c] >= 0.f) || !std::isfinite(v[c]))
-                throw InputError(file.string() + ": " + imgPath.string() + ": pixel (" + std::to_string(k % size_t(w)) + ", " +
+                throw InputError(file.string() + ": " + imgPath.string() + ": pixel (" +
+                                 std::to_string(k % size_t(w)) + ", " +
                                  std::to_string(k / size_t(w)) + ") is negative, NaN or infinite");
         if (!rgb) {
             img.luminance[k] = v[0];
@@ -227,8 +239,8 @@ void convertPixels(const std::vector<float>& px, int w, int h, int channels, boo
         }
         double y = kLumR * v[0] + kLumG * v[1] + kLumB * v[2];
         img.luminance[k] = float(y);
-        img.colour[k] = y > 0.0 ? glm::vec3(float(v[0] / y), float(v[1] / y), float(v[2] / y))
-                                : glm::vec3(1.f);
+        img.colour[k] =
+            y > 0.0 ? glm::vec3(float(v[0] / y), float(v[1] / y), float(v[2] / y)) : glm::vec3(1.f);
     }
 }
 
@@ -258,11 +270,13 @@ void readImages(const nlohmann::json& doc, const json::Where& where, const fs::p
             lf.height = h;
             lf.rgb = channels >= 3;
         } else if (w != lf.width || h != lf.height) {
-            throw InputError(file.string() + ": " + imgPath.string() + ": image is " + std::to_string(w) + "x" + std::to_string(h) +
+            throw InputError(file.string() + ": " + imgPath.string() + ": image is " +
+                             std::to_string(w) + "x" + std::to_string(h) +
                              " but the first image is " + std::to_string(lf.width) + "x" +
                              std::to_string(lf.height) + " (all images must match)");
         } else if ((channels >= 3) != lf.rgb) {
-            throw InputError(file.string() + ": " + imgPath.string() + ": mixes luminance and RGB images");
+            throw InputError(file.string() + ": " + imgPath.string() +
+                             ": mixes luminance and RGB images");
         }
         convertPixels(px, w, h, channels, lf.rgb, lf.images[m], file, imgPath);
     }
@@ -289,7 +303,8 @@ void LightFieldData::save(const fs::path& file) const {
     fs::path dir = file.parent_path().empty() ? fs::path(".") : file.parent_path();
     std::string stem = file.filename().string();
     const std::string suffix = ".lf.json";
-    if (stem.size() > suffix.size() && stem.compare(stem.size() - suffix.size(), suffix.size(), suffix) == 0)
+    if (stem.size() > suffix.size() &&
+        stem.compare(stem.size() - suffix.size(), suffix.size(), suffix) == 0)
         stem = stem.substr(0, stem.size() - suffix.size());
     else
         throw InputError(file.string() + ": light-field files must be named NAME.lf.json");
@@ -320,15 +335,23 @@ void LightFieldData::save(const fs::path& file) const {
                 px[3 * k + 1] = c.y;
                 px[3 * k + 2] = c.z;
             }
-            files.add(target.string(), encodeImage(target.string(), width, height, channels, px.data(), "zip"),
+            files.add(target.string(),
+                      encodeImage(target.string(), width, height, channels, px.data(), "zip"),
                       "cannot write the image");
         }
     nlohmann::json doc = {
-        {"format", "candela-lightfield"}, {"version", 1}, {"model", modelName(model)}, {"delta", delta},
-        {"basis", {{"kind", "bspline2"}, {"count", {count.x, count.y}}, {"spacing", {spacing.x, spacing.y}},
-                   {"origin", {origin.x, origin.y}}}},
+        {"format", "candela-lightfield"},
+        {"version", 1},
+        {"model", modelName(model)},
+        {"delta", delta},
+        {"basis",
+         {{"kind", "bspline2"},
+          {"count", {count.x, count.y}},
+          {"spacing", {spacing.x, spacing.y}},
+          {"origin", {origin.x, origin.y}}}},
         {"image", {{"min", {imageMin.x, imageMin.y}}, {"max", {imageMax.x, imageMax.y}}}},
-        {"images", names}, {"unit", unit}};
+        {"images", names},
+        {"unit", unit}};
     files.add(file.string(), doc.dump(2) + "\n");
     files.commit();
 }
@@ -356,7 +379,8 @@ void LightFieldData::precompute() {
         t.total = t.sat.back();
         t.marginalCdf.assign(w + 1, 0.0);
         for (size_t i = 0; i <= w; ++i)
-            t.marginalCdf[i] = t.total > 0.0 ? t.sat[h * (w + 1) + i] / t.total : double(i) / double(w);
+            t.marginalCdf[i] =
+                t.total > 0.0 ? t.sat[h * (w + 1) + i] / t.total : double(i) / double(w);
         // Sec. 6.2: s_m with cdf_m(s) = 0.5 and cdf_m(t | s) = 0.5.
         t.median = 0.5 * (imageMin + imageMax);
         if (t.total > 0.0) {
@@ -368,12 +392,15 @@ void LightFieldData::precompute() {
                 for (size_t j = 0; j <= h; ++j) col[j] = t.conditionalCdf(size_t(ci), j, w, h);
                 int rj = findPiece(int(h), 0.5, [&](int k) { return col[size_t(k)]; });
                 if (rj >= 0)
-                    t.median.y = imageMin.y + (double(rj) + (0.5 - col[size_t(rj)]) /
-                                                                (col[size_t(rj) + 1] - col[size_t(rj)])) * px.y;
+                    t.median.y =
+                        imageMin.y + (double(rj) + (0.5 - col[size_t(rj)]) /
+                                                       (col[size_t(rj) + 1] - col[size_t(rj)])) *
+                                         px.y;
             }
         }
     }
-    precomputeMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    precomputeMs =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -416,16 +443,20 @@ double LightFieldData::lum(int m, const glm::dvec2& s) const {
 glm::dvec3 LightFieldData::colour(int m, const glm::dvec2& s) const {
     if (!rgb) return glm::dvec3(1.0);
     glm::dvec2 f = (s - imageMin) / pixelSize();
-    if (!(f.x >= 0.0 && f.y >= 0.0 && f.x < double(width) && f.y < double(height))) return glm::dvec3(1.0);
-    return glm::dvec3(images[size_t(m)].colour[size_t(int(f.y)) * size_t(width) + size_t(int(f.x))]);
+    if (!(f.x >= 0.0 && f.y >= 0.0 && f.x < double(width) && f.y < double(height)))
+        return glm::dvec3(1.0);
+    return glm::dvec3(
+        images[size_t(m)].colour[size_t(int(f.y)) * size_t(width) + size_t(int(f.x))]);
 }
 
 glm::dvec3 LightFieldData::radiance(const glm::dvec2& u, const glm::dvec2& s) const {
     glm::dvec3 sum(0.0);
     // Only the (up to) 3 x 3 basis functions whose support holds u contribute.
     glm::dvec2 g = (u - origin) / spacing;
-    int i0 = std::max(0, int(std::ceil(g.x - 1.5))), i1 = std::min(count.x - 1, int(std::floor(g.x + 1.5)));
-    int j0 = std::max(0, int(std::ceil(g.y - 1.5))), j1 = std::min(count.y - 1, int(std::floor(g.y + 1.5)));
+    int i0 = std::max(0, int(std::ceil(g.x - 1.5))),
+        i1 = std::min(count.x - 1, int(std::floor(g.x + 1.5)));
+    int j0 = std::max(0, int(std::ceil(g.y - 1.5))),
+        j1 = std::min(count.y - 1, int(std::floor(g.y + 1.5)));
     for (int j = j0; j <= j1; ++j)
         for (int i = i0; i <= i1; ++i) {
             int m = j * count.x + i;
@@ -435,7 +466,8 @@ glm::dvec3 LightFieldData::radiance(const glm::dvec2& u, const glm::dvec2& s) co
     return sum;
 }
 
-bool LightFieldData::restrictedBox(int m, const glm::dvec3& q, glm::dvec2& sMin, glm::dvec2& sMax) const {
+bool LightFieldData::restrictedBox(int m, const glm::dvec3& q, glm::dvec2& sMin,
+                                   glm::dvec2& sMax) const {
     if (!(q.z > delta)) return false;
     glm::dvec2 uMin, uMax;
     support(m, uMin, uMax);
@@ -459,7 +491,8 @@ double satAt(const LightFieldData& lf, const LightFieldTables& t, glm::dvec2 s) 
     double fx = f.x - i, fy = f.y - j;
     size_t w1 = size_t(lf.width) + 1;
     double s00 = t.sat[size_t(j) * w1 + size_t(i)], s10 = t.sat[size_t(j) * w1 + size_t(i) + 1];
-    double s01 = t.sat[size_t(j + 1) * w1 + size_t(i)], s11 = t.sat[size_t(j + 1) * w1 + size_t(i) + 1];
+    double s01 = t.sat[size_t(j + 1) * w1 + size_t(i)],
+           s11 = t.sat[size_t(j + 1) * w1 + size_t(i) + 1];
     return s00 + fx * (s10 - s00) + fy * (s01 - s00) + fx * fy * (s11 - s10 - s01 + s00);
 }
 
@@ -507,13 +540,14 @@ double LightFieldData::boxIntegral(int m, glm::dvec2 a, glm::dvec2 b) const {
         for (int j = span.j0; j < span.j1; ++j) {
             double h = overlap(a.y, b.y, imageMin.y, px.y, j);
             for (int i = span.i0; i < span.i1; ++i)
-                sum += double(images[size_t(m)].luminance[size_t(j) * size_t(width) + size_t(i)]) * h *
-                       overlap(a.x, b.x, imageMin.x, px.x, i);
+                sum += double(images[size_t(m)].luminance[size_t(j) * size_t(width) + size_t(i)]) *
+                       h * overlap(a.x, b.x, imageMin.x, px.x, i);
         }
         return sum;
     }
     const LightFieldTables& t = tables[size_t(m)];
-    double v = satAt(*this, t, b) - satAt(*this, t, {a.x, b.y}) - satAt(*this, t, {b.x, a.y}) + satAt(*this, t, a);
+    double v = satAt(*this, t, b) - satAt(*this, t, {a.x, b.y}) - satAt(*this, t, {b.x, a.y}) +
+               satAt(*this, t, a);
     // Below 1e-12 of the image's energy the difference is the table's rounding, not energy.
     return v > kEnergyFloor * t.total ? v : 0.0;
 }
@@ -528,8 +562,8 @@ bool LightFieldData::sampleBox(int m, const glm::dvec2& a, const glm::dvec2& b, 
         // constant along a pixel row), then a row of that column by its energy, y uniform in it.
         const std::vector<float>& image = images[size_t(m)].luminance;
         auto energy = [&](int i, int j) {
-            return double(image[size_t(j) * size_t(width) + size_t(i)]) * overlap(a.x, b.x, imageMin.x, px.x, i) *
-                   overlap(a.y, b.y, imageMin.y, px.y, j);
+            return double(image[size_t(j) * size_t(width) + size_t(i)]) *
+                   overlap(a.x, b.x, imageMin.x, px.x, i) * overlap(a.y, b.y, imageMin.y, px.y, j);
         };
         double column[kDirectPixels] = {}, total = 0.0;
         for (int i = span.i0; i < span.i1; ++i) {
@@ -541,14 +575,17 @@ bool LightFieldData::sampleBox(int m, const glm::dvec2& a, const glm::dvec2& b, 
         int i = span.i0;
         for (; i + 1 < span.i1 && target > column[i - span.i0]; ++i) target -= column[i - span.i0];
         if (!(column[i - span.i0] > 0.0)) return false;
-        double x0 = std::max(a.x, imageMin.x + i * px.x), x1 = std::min(b.x, imageMin.x + (i + 1) * px.x);
-        s.x = std::clamp(x0 + std::clamp(target / column[i - span.i0], 0.0, 1.0) * (x1 - x0), x0, x1);
+        double x0 = std::max(a.x, imageMin.x + i * px.x),
+               x1 = std::min(b.x, imageMin.x + (i + 1) * px.x);
+        s.x =
+            std::clamp(x0 + std::clamp(target / column[i - span.i0], 0.0, 1.0) * (x1 - x0), x0, x1);
         double targetY = std::clamp(xi.y, 0.0, 1.0) * column[i - span.i0];
         int j = span.j0;
         for (; j + 1 < span.j1 && targetY > energy(i, j); ++j) targetY -= energy(i, j);
         double e = energy(i, j);
         if (!(e > 0.0)) return false;
-        double y0 = std::max(a.y, imageMin.y + j * px.y), y1 = std::min(b.y, imageMin.y + (j + 1) * px.y);
+        double y0 = std::max(a.y, imageMin.y + j * px.y),
+               y1 = std::min(b.y, imageMin.y + (j + 1) * px.y);
         s.y = std::clamp(y0 + std::clamp(targetY / e, 0.0, 1.0) * (y1 - y0), y0, y1);
         return true;
     }
@@ -719,7 +756,8 @@ glm::dvec3 LightFieldData::power() const {
                     for (int a = -1; a <= 1; a += 2)
                         sum += kernel.lookup(centre + 0.5 * px * glm::dvec2(a * g, b * g) - c);
                 double e = v * 0.25 * sum * px.x * px.y;
-                flux += e * (rgb ? glm::dvec3(img.colour[size_t(j) * size_t(width) + size_t(i)]) : glm::dvec3(1.0));
+                flux += e * (rgb ? glm::dvec3(img.colour[size_t(j) * size_t(width) + size_t(i)])
+                                 : glm::dvec3(1.0));
             }
     }
     return flux;
@@ -757,7 +795,8 @@ const GranierTable& LightFieldData::granierTable() const {
             for (int k = 0; k < g.size; ++k) {
                 double c = g.min[axis] + k * step[axis], h = spacing[axis];
                 for (int i = 0; i < pixels; ++i) {
-                    double a = (imageMin[axis] + i * px[axis] - c) / h, b = (imageMin[axis] + (i + 1) * px[axis] - c) / h;
+                    double a = (imageMin[axis] + i * px[axis] - c) / h,
+                           b = (imageMin[axis] + (i + 1) * px[axis] - c) / h;
                     double v = box ? std::max(0.0, std::min(b, 1.5) - std::max(a, -1.5)) / 3.0
                                    : bsplineIntegral(b) - bsplineIntegral(a);
                     w[size_t(k) * size_t(pixels) + size_t(i)] = v * h;
@@ -783,8 +822,10 @@ const GranierTable& LightFieldData::granierTable() const {
                 for (int k = 0; k < g.size; ++k) {
                     double w = 0.0;
                     for (int j = 0; j < height; ++j)
-                        w += rows[size_t(j) * size_t(g.size) + size_t(k)] * by[size_t(l) * size_t(height) + size_t(j)];
-                    g.weighted[(size_t(m) * size_t(g.size) + size_t(l)) * size_t(g.size) + size_t(k)] = float(std::max(0.0, w));
+                        w += rows[size_t(j) * size_t(g.size) + size_t(k)] *
+                             by[size_t(l) * size_t(height) + size_t(j)];
+                    g.weighted[(size_t(m) * size_t(g.size) + size_t(l)) * size_t(g.size) +
+                               size_t(k)] = float(std::max(0.0, w));
                 }
         }
     });

@@ -8,16 +8,15 @@
 // luminaire instances. The file format is `NAME.lf.json` plus one float image per basis function
 // (README.md, "Light-field files"). No GL here.
 
-#include <glm/glm.hpp>
-
 #include <filesystem>
+#include <glm/glm.hpp>
 #include <memory>
 #include <mutex>
 #include <string>
 #include <vector>
 
-#include "luminaires/Luminaire.h"
 #include "luminaires/Estimate.h"
+#include "luminaires/Luminaire.h"
 #include "util/JsonRead.h"
 
 namespace candela {
@@ -29,8 +28,10 @@ double bspline2(double x);
 /// One basis image C_m, piecewise constant per pixel. Row 0 is the smallest s_y, column 0 the
 /// smallest s_x.
 struct LightFieldImage {
-    std::vector<float> luminance;   ///< width*height, C_m (RGB images: 0.2126 R + 0.7152 G + 0.0722 B).
-    std::vector<glm::vec3> colour;  ///< RGB / luminance per pixel (Sec. 5); empty for 1-channel data.
+    std::vector<float>
+        luminance;  ///< width*height, C_m (RGB images: 0.2126 R + 0.7152 G + 0.0722 B).
+    std::vector<glm::vec3>
+        colour;  ///< RGB / luminance per pixel (Sec. 5); empty for 1-channel data.
 };
 
 /// Per-image tables computed once after loading (Sec. 3.1, Eq. 6 and 10).
@@ -50,8 +51,8 @@ struct LightFieldTables {
         double below = sat[j * (width + 1) + i + 1] - sat[j * (width + 1) + i];
         return column > 0.0 ? below / column : double(j) / double(height);
     }
-    double total = 0.0;            ///< Integral of C_m over S (C's unit times m2).
-    glm::dvec2 median{0.0};        ///< s_m with cdf_m(s) = cdf_m(t|s) = 0.5 (Sec. 6.2), metres.
+    double total = 0.0;      ///< Integral of C_m over S (C's unit times m2).
+    glm::dvec2 median{0.0};  ///< s_m with cdf_m(s) = cdf_m(t|s) = 0.5 (Sec. 6.2), metres.
 };
 
 /// granier2003's far-field correction. Far away, Granier et al.'s spot light of image m gives
@@ -71,7 +72,7 @@ struct GranierTable {
 constexpr int kGranierTableSize = 128;
 
 class LightFieldData {
-public:
+  public:
     enum class Model { Canned, Goesele };
 
     // --- File contents ---------------------------------------------------------------------
@@ -79,13 +80,14 @@ public:
     double delta = 0.05;             ///< Distance between U (z = 0) and S (z = delta), metres.
     glm::ivec2 count{1, 1};          ///< Basis functions along x and y (W, H).
     glm::dvec2 spacing{0.01, 0.01};  ///< Node spacing (hx, hy), metres.
-    glm::dvec2 origin{0.0, 0.0};     ///< Node (0, 0) on U, metres; node (i, j) = origin + (i hx, j hy).
+    glm::dvec2 origin{0.0,
+                      0.0};  ///< Node (0, 0) on U, metres; node (i, j) = origin + (i hx, j hy).
     glm::dvec2 imageMin{-0.05}, imageMax{0.05};  ///< Extent of every C_m on S, metres.
-    int width = 0, height = 0;       ///< Pixels of every image.
-    bool rgb = false;                ///< Images carry colour (else luminance only).
-    std::string unit = "W/(m2 sr)";  ///< Or "cd/m2" (then irradiance is illuminance in lux).
+    int width = 0, height = 0;                   ///< Pixels of every image.
+    bool rgb = false;                            ///< Images carry colour (else luminance only).
+    std::string unit = "W/(m2 sr)";       ///< Or "cd/m2" (then irradiance is illuminance in lux).
     std::vector<LightFieldImage> images;  ///< count.x * count.y, index j * W + i.
-    std::filesystem::path path;      ///< Where it was loaded from (empty when built in memory).
+    std::filesystem::path path;  ///< Where it was loaded from (empty when built in memory).
     std::vector<std::filesystem::path> imageFiles;  ///< The image files load() read, in order.
 
     // --- Precomputed -----------------------------------------------------------------------
@@ -142,7 +144,7 @@ public:
     /// granier2003's far-field correction (computed once, thread-safe; GranierTable).
     const GranierTable& granierTable() const;
 
-private:
+  private:
     mutable std::once_flag mPowerOnce, mGranierOnce;
     mutable glm::dvec3 mPower{0.0};
     mutable GranierTable mGranier;
@@ -151,7 +153,7 @@ private:
 /// A light-field luminaire placed in a scene: local +z is aim, +x is c0, position the local
 /// origin (U's node grid is centred there by the converters).
 class LightFieldLuminaire final : public Luminaire {
-public:
+  public:
     /// K_max of the paper's Fig. 9: at most this many samples per image per frame on the GPU
     /// (the samples taken are reweighted, so the cap keeps the estimator unbiased).
     static constexpr int kMaxSamplesPerImage = 64;

@@ -15,11 +15,11 @@ namespace {
 struct Setup {
     const LightFieldLuminaire* light = nullptr;
     const LightFieldData* lf = nullptr;
-    glm::dvec3 q{0.0};       ///< Receiver in the luminaire's frame, metres.
-    glm::dvec3 n{0.0};       ///< Unit receiver normal in the luminaire's frame.
-    double dz = 0.0;         ///< Delta(p): distance from S, metres.
-    glm::dvec3 x, y, z;      ///< The luminaire's frame.
-    glm::dvec3 world{0.0};   ///< The receiver in world space.
+    glm::dvec3 q{0.0};      ///< Receiver in the luminaire's frame, metres.
+    glm::dvec3 n{0.0};      ///< Unit receiver normal in the luminaire's frame.
+    double dz = 0.0;        ///< Delta(p): distance from S, metres.
+    glm::dvec3 x, y, z;     ///< The luminaire's frame.
+    glm::dvec3 world{0.0};  ///< The receiver in world space.
 };
 
 /// False when p cannot receive light (behind S or between U and S): the estimate is exactly 0.
@@ -76,7 +76,8 @@ struct Accumulator {
     Estimate estimate(double scale) const {
         Estimate e;
         e.irradiance = mean * scale;
-        if (count > 1) e.stdError = glm::sqrt(glm::max(m2, 0.0) / double(count - 1) / double(count)) * scale;
+        if (count > 1)
+            e.stdError = glm::sqrt(glm::max(m2, 0.0) / double(count - 1) / double(count)) * scale;
         return e;
     }
 };
@@ -120,8 +121,8 @@ Estimate onPlaneS(const Setup& s, const EstimateOptions& o) {
 
 enum class Strategy { Restricted, Uniform, Global };
 
-Estimate sampled(const Luminaire& l, const glm::dvec3& p, const glm::dvec3& n, const EstimateOptions& o,
-                 Strategy strategy) {
+Estimate sampled(const Luminaire& l, const glm::dvec3& p, const glm::dvec3& n,
+                 const EstimateOptions& o, Strategy strategy) {
     Setup s;
     Estimate e;
     if (!setup(l, p, n, s) || o.spp <= 0) return e;
@@ -129,7 +130,8 @@ Estimate sampled(const Luminaire& l, const glm::dvec3& p, const glm::dvec3& n, c
     const LightFieldData& lf = *s.lf;
     int count = lf.imageCount();
     std::vector<glm::dvec2> lo(static_cast<size_t>(count)), hi(static_cast<size_t>(count));
-    std::vector<double> weight(static_cast<size_t>(count), 0.0), cdf(static_cast<size_t>(count) + 1, 0.0);
+    std::vector<double> weight(static_cast<size_t>(count), 0.0),
+        cdf(static_cast<size_t>(count) + 1, 0.0);
     for (int m = 0; m < count; ++m) {
         if (strategy == Strategy::Global) {
             lo[size_t(m)] = lf.imageMin;
@@ -141,7 +143,7 @@ Estimate sampled(const Luminaire& l, const glm::dvec3& p, const glm::dvec3& n, c
         }
         cdf[size_t(m) + 1] = cdf[size_t(m)] + weight[size_t(m)];
     }
-    double total = cdf.back();  // A(p) (Eq. 12), or all the energy for the global CDF
+    double total = cdf.back();     // A(p) (Eq. 12), or all the energy for the global CDF
     if (!(total > 0.0)) return e;  // every A_m(p) = 0: no sample, exactly 0
 
     Random rng(o.seed);
@@ -182,7 +184,8 @@ Estimate sampled(const Luminaire& l, const glm::dvec3& p, const glm::dvec3& n, c
             // u: where the line from q through s meets U.
             glm::dvec2 u = pq + (sPos - pq) * (s.q.z / s.dz);
             double psi = lf.psi(m, u, sPos);
-            if (cosR > 0.0 && psi > 0.0 && (!o.visibility || o.visibility->visible(p, worldOf(s, sPos)))) {
+            if (cosR > 0.0 && psi > 0.0 &&
+                (!o.visibility || o.visibility->visible(p, worldOf(s, sPos)))) {
                 // Eq. (14): C_m Psi_m c_m cos_r Delta / r^3 divided by the pdf.
                 double c = lf.lum(m, sPos);
                 term = c * psi * lf.colour(m, sPos) * (cosR * s.dz / (r * r * r)) * inversePdf;
@@ -203,7 +206,8 @@ Estimate sampled(const Luminaire& l, const glm::dvec3& p, const glm::dvec3& n, c
         pilotOptions.seed = o.seed * 0x9E3779B97F4A7C15ull + 1;
         Estimate pilot = sampled(l, p, n, pilotOptions, Strategy::Restricted);
         glm::dvec3 miss = glm::abs(pilot.irradiance - e.irradiance);
-        e.stdError = glm::sqrt(e.stdError * e.stdError + miss * miss + pilot.stdError * pilot.stdError);
+        e.stdError =
+            glm::sqrt(e.stdError * e.stdError + miss * miss + pilot.stdError * pilot.stdError);
     }
     return e;
 }
@@ -227,8 +231,8 @@ struct RefContext {
     const Setup* s;
     int m;
     const EstimateOptions* o;
-    glm::dvec2 p;   ///< q.xy
-    double f;       ///< delta / q.z: s(u) = u (1 - f) + p f
+    glm::dvec2 p;  ///< q.xy
+    double f;      ///< delta / q.z: s(u) = u (1 - f) + p f
 };
 
 /// The integrand at u; `shadowed` tells whether a shadow ray removed it (for refCell's
@@ -264,13 +268,17 @@ glm::dvec3 refCell(const RefContext& c, glm::dvec2 lo, glm::dvec2 hi, int depth)
     glm::dvec2 nearest = glm::clamp(c.p, lo, hi);
     double dist = glm::length(nearest - c.p);
     bool narrow = std::max(size.x, size.y) > 0.5 * (dist + s.q.z);
-    auto side = [&](double ux, double uy) { return glm::dot(s.n, glm::dvec3(ux - s.q.x, uy - s.q.y, -s.q.z)); };
-    double h00 = side(lo.x, lo.y), h10 = side(hi.x, lo.y), h01 = side(lo.x, hi.y), h11 = side(hi.x, hi.y);
+    auto side = [&](double ux, double uy) {
+        return glm::dot(s.n, glm::dvec3(ux - s.q.x, uy - s.q.y, -s.q.z));
+    };
+    double h00 = side(lo.x, lo.y), h10 = side(hi.x, lo.y), h01 = side(lo.x, hi.y),
+           h11 = side(hi.x, hi.y);
     bool kink = std::min({h00, h10, h01, h11}) < 0.0 && std::max({h00, h10, h01, h11}) > 0.0;
     if (std::max({h00, h10, h01, h11}) <= 0.0) return glm::dvec3(0.0);  // wholly below the horizon
     if ((narrow && depth < 10) || (kink && depth < 7)) {
         glm::dvec2 mid = 0.5 * (lo + hi);
-        return refCell(c, lo, mid, depth + 1) + refCell(c, {mid.x, lo.y}, {hi.x, mid.y}, depth + 1) +
+        return refCell(c, lo, mid, depth + 1) +
+               refCell(c, {mid.x, lo.y}, {hi.x, mid.y}, depth + 1) +
                refCell(c, {lo.x, mid.y}, {mid.x, hi.y}, depth + 1) + refCell(c, mid, hi, depth + 1);
     }
     glm::dvec3 sum(0.0);
@@ -299,7 +307,8 @@ glm::dvec3 refCell(const RefContext& c, glm::dvec2 lo, glm::dvec2 hi, int depth)
     // so halve the cell until the edge's cells are 2^-kShadowDepth of the support.
     if (shadowedPoints > 0 && litPoints > 0 && depth < kShadowDepth) {
         glm::dvec2 mid = 0.5 * (lo + hi);
-        return refCell(c, lo, mid, depth + 1) + refCell(c, {mid.x, lo.y}, {hi.x, mid.y}, depth + 1) +
+        return refCell(c, lo, mid, depth + 1) +
+               refCell(c, {mid.x, lo.y}, {hi.x, mid.y}, depth + 1) +
                refCell(c, {lo.x, mid.y}, {mid.x, hi.y}, depth + 1) + refCell(c, mid, hi, depth + 1);
     }
     return sum * (0.25 * size.x * size.y);
@@ -335,7 +344,8 @@ Estimate lightFieldReference(const Luminaire& l, const glm::dvec3& p, const glm:
         }
         if (g > 0.0) {
             // Pixel edges i px + imageMin, mapped back to U.
-            auto edges = [&](double a, double b, double o0, double step, double pc, std::vector<double>& out) {
+            auto edges = [&](double a, double b, double o0, double step, double pc,
+                             std::vector<double>& out) {
                 double sa = a * g + pc * c.f, sb = b * g + pc * c.f;
                 for (int i = int(std::ceil((sa - o0) / step)); o0 + i * step < sb; ++i)
                     out.push_back((o0 + i * step - pc * c.f) / g);
@@ -395,8 +405,10 @@ Estimate lightFieldGranier2003(const Luminaire& l, const glm::dvec3& p, const gl
         glm::dvec2 half = 1.5 * lf.spacing;
         double uniform = lf.boxIntegral(m, farCentre - half, farCentre + half) / 9.0;
         double blend = (1.0 - lf.delta / s.q.z) * (1.0 - lf.delta / s.q.z);
-        double conserve = uniform > 0.0 ? (1.0 - blend) + blend * farField.at(m, farCentre) / uniform : 1.0;
-        e.irradiance += conserve * phiIntegral * mean * model * lf.colour(m, centre) * (cosR * cosL / (dist * dist));
+        double conserve =
+            uniform > 0.0 ? (1.0 - blend) + blend * farField.at(m, farCentre) / uniform : 1.0;
+        e.irradiance += conserve * phiIntegral * mean * model * lf.colour(m, centre) *
+                        (cosR * cosL / (dist * dist));
     }
     return e;
 }

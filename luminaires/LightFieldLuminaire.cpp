@@ -2,16 +2,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <glm/gtc/packing.hpp>
 #include <map>
 #include <mutex>
 
 #include "luminaires/LightField.h"
 #include "luminaires/ShadowCells.h"
 #include "shaders/shared/GpuTypes.h"
-
-#include <glm/gtc/packing.hpp>
-
-#include <cstring>
 #include "util/Error.h"
 #include "util/JsonRead.h"
 
@@ -25,7 +23,8 @@ namespace {
 /// duplicating a luminaire, shares one copy.
 std::shared_ptr<const LightFieldData> loadShared(const fs::path& file) {
     static std::mutex mutex;
-    static std::map<std::string, std::pair<fs::file_time_type, std::weak_ptr<const LightFieldData>>> cache;
+    static std::map<std::string, std::pair<fs::file_time_type, std::weak_ptr<const LightFieldData>>>
+        cache;
     std::error_code ec;
     fs::path canonical = fs::weakly_canonical(file, ec);
     std::string key = (ec ? file : canonical).string();
@@ -75,13 +74,16 @@ glm::dvec3 LightFieldLuminaire::displayRadiance() const {
     const int n = 32;
     for (int j = 0; j < n; ++j)
         for (int i = 0; i < n; ++i) {
-            glm::dvec2 s = lf.imageMin + (glm::dvec2(i, j) + 0.5) / double(n) * (lf.imageMax - lf.imageMin);
+            glm::dvec2 s =
+                lf.imageMin + (glm::dvec2(i, j) + 0.5) / double(n) * (lf.imageMax - lf.imageMin);
             sum += lf.radiance(s, s);
         }
     return sum / double(n * n);
 }
 
-glm::dvec3 LightFieldLuminaire::power() const { return data->cachedPower(); }
+glm::dvec3 LightFieldLuminaire::power() const {
+    return data->cachedPower();
+}
 
 LightSample LightFieldLuminaire::sample(const glm::dvec3& p, const glm::dvec2& u) const {
     LightSample out;
@@ -92,7 +94,9 @@ LightSample LightFieldLuminaire::sample(const glm::dvec3& p, const glm::dvec2& u
     std::vector<double> cdf(size_t(lf.imageCount()) + 1, 0.0);
     std::vector<glm::dvec2> lo(size_t(lf.imageCount())), hi(size_t(lf.imageCount()));
     for (int m = 0; m < lf.imageCount(); ++m) {
-        double a = lf.restrictedBox(m, q, lo[size_t(m)], hi[size_t(m)]) ? lf.boxIntegral(m, lo[size_t(m)], hi[size_t(m)]) : 0.0;
+        double a = lf.restrictedBox(m, q, lo[size_t(m)], hi[size_t(m)])
+                       ? lf.boxIntegral(m, lo[size_t(m)], hi[size_t(m)])
+                       : 0.0;
         cdf[size_t(m) + 1] = cdf[size_t(m)] + a;
     }
     double total = cdf.back();
@@ -153,7 +157,9 @@ std::vector<glm::dvec3> LightFieldLuminaire::outline() const {
             c + lf.imageMax.x * x + lf.imageMax.y * y, c + lf.imageMin.x * x + lf.imageMax.y * y};
 }
 
-void LightFieldLuminaire::writeJson(nlohmann::json& out) const { out["file"] = file; }
+void LightFieldLuminaire::writeJson(nlohmann::json& out) const {
+    out["file"] = file;
+}
 
 std::vector<std::byte> LightFieldLuminaire::gpuData() const {
     const LightFieldData& lf = *data;
@@ -166,7 +172,8 @@ std::vector<std::byte> LightFieldLuminaire::gpuData() const {
     h.axisZ = glm::vec4(glm::vec3(z), 0.f);
     h.geometry = glm::vec4(float(lf.delta), float(lf.spacing.x), float(lf.spacing.y),
                            lf.model == LightFieldData::Model::Goesele ? 1.f : 0.f);
-    h.origin = glm::vec4(float(lf.origin.x), float(lf.origin.y), float(lf.imageMin.x), float(lf.imageMin.y));
+    h.origin = glm::vec4(float(lf.origin.x), float(lf.origin.y), float(lf.imageMin.x),
+                         float(lf.imageMin.y));
     glm::dvec2 px = lf.pixelSize();
     h.image = glm::vec4(float(lf.imageMax.x), float(lf.imageMax.y), float(px.x), float(px.y));
     h.dims = glm::ivec4(lf.count.x, lf.count.y, lf.width, lf.height);
@@ -174,9 +181,9 @@ std::vector<std::byte> LightFieldLuminaire::gpuData() const {
     size_t images = size_t(lf.imageCount());
     size_t satCount = size_t(lf.width + 1) * size_t(lf.height + 1);
     size_t pixels = size_t(lf.width) * size_t(lf.height);
-    size_t satOffset = sizeof(h) / sizeof(double);            // doubles
-    size_t lumOffset = (satOffset + images * satCount) * 2;   // floats
-    size_t colourOffset = lumOffset + images * pixels;        // uints
+    size_t satOffset = sizeof(h) / sizeof(double);           // doubles
+    size_t lumOffset = (satOffset + images * satCount) * 2;  // floats
+    size_t colourOffset = lumOffset + images * pixels;       // uints
     size_t colourCount = lf.rgb ? images * pixels * 2 : 0;
     h.offsets = glm::ivec4(int(satOffset), int(lumOffset), int(colourOffset), lf.rgb ? 1 : 0);
     // granier2003's far-field correction (LightFieldData::granierTable, made once per light field):
@@ -192,7 +199,8 @@ std::vector<std::byte> LightFieldLuminaire::gpuData() const {
     auto* lum = reinterpret_cast<float*>(out.data()) + lumOffset;
     auto* colour = reinterpret_cast<uint32_t*>(out.data()) + colourOffset;
     auto* far = reinterpret_cast<float*>(out.data()) + granierOffset;
-    far[0] = float(granier.min.x), far[1] = float(granier.min.y), far[2] = float(granier.max.x), far[3] = float(granier.max.y);
+    far[0] = float(granier.min.x), far[1] = float(granier.min.y), far[2] = float(granier.max.x),
+    far[3] = float(granier.max.y);
     std::memcpy(far + 4, granier.weighted.data(), granier.weighted.size() * sizeof(float));
     for (size_t m = 0; m < images; ++m) {
         std::memcpy(sat + m * satCount, lf.tables[m].sat.data(), satCount * sizeof(double));
@@ -222,7 +230,8 @@ ShadowLights LightFieldLuminaire::shadowLights(int count) const {
     out.shares.resize(size_t(lf.imageCount()) * 9);
     for (size_t m = 0; m < layout.perImage.size(); ++m)
         for (size_t j = 0; j < layout.perImage[m].size(); ++j)
-            out.shares[m * 9 + j] = {layout.perImage[m][j].map, float(layout.perImage[m][j].weight)};
+            out.shares[m * 9 + j] = {layout.perImage[m][j].map,
+                                     float(layout.perImage[m][j].weight)};
     return out;
 }
 
@@ -232,12 +241,13 @@ std::string LightFieldLuminaire::describe() const {
     glm::dvec3 flux = lf.cachedPower();
     bool photometric = lf.unit == "cd/m2";
     double total = 0.2126 * flux.x + 0.7152 * flux.y + 0.0722 * flux.z;
-    std::snprintf(buf, sizeof buf,
-                  "lightfield %s: %dx%d images of %dx%d %s, delta %.4g m, S %.4g x %.4g m, radiance "
-                  "in %s, flux %.4g %s, precomputed in %.1f ms",
-                  file.c_str(), lf.count.x, lf.count.y, lf.width, lf.height, lf.rgb ? "RGB" : "luminance",
-                  lf.delta, lf.imageMax.x - lf.imageMin.x, lf.imageMax.y - lf.imageMin.y,
-                  photometric ? "cd/m2" : "W/(m2 sr)", total, photometric ? "lm" : "W", lf.precomputeMs);
+    std::snprintf(
+        buf, sizeof buf,
+        "lightfield %s: %dx%d images of %dx%d %s, delta %.4g m, S %.4g x %.4g m, radiance "
+        "in %s, flux %.4g %s, precomputed in %.1f ms",
+        file.c_str(), lf.count.x, lf.count.y, lf.width, lf.height, lf.rgb ? "RGB" : "luminance",
+        lf.delta, lf.imageMax.x - lf.imageMin.x, lf.imageMax.y - lf.imageMin.y,
+        photometric ? "cd/m2" : "W/(m2 sr)", total, photometric ? "lm" : "W", lf.precomputeMs);
     return buf;
 }
 
@@ -249,9 +259,11 @@ std::vector<std::string> LightFieldLuminaire::sourceFiles() const {
     return files;
 }
 
-std::unique_ptr<Luminaire> LightFieldLuminaire::parse(const nlohmann::json& entry, const json::Where& where) {
+std::unique_ptr<Luminaire> LightFieldLuminaire::parse(const nlohmann::json& entry,
+                                                      const json::Where& where) {
     json::checkKeys(entry, {"type", "name", "position", "aim", "c0", "technique", "file"}, where);
-    if (!entry.contains("file")) json::fail(where / "file", "the path of a .lf.json light-field file");
+    if (!entry.contains("file"))
+        json::fail(where / "file", "the path of a .lf.json light-field file");
     auto light = std::make_unique<LightFieldLuminaire>();
     light->file = json::string(entry["file"], where / "file");
     fs::path resolved(light->file);

@@ -3,11 +3,10 @@
 // radiance, power in closed form, a light sampler with its pdf, and the data its GPU passes read.
 // No GL here: renderer/ uploads what gpuData() packs.
 
-#include <glm/glm.hpp>
-#include <nlohmann/json.hpp>
-
 #include <cstddef>
+#include <glm/glm.hpp>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -55,7 +54,7 @@ struct ShadowLights {
 };
 
 class Luminaire {
-public:
+  public:
     virtual ~Luminaire() = default;
 
     /// Kind name as in scene files ("lambertian-rect").

@@ -34,15 +34,16 @@ using spherical::Polygon;
 
 struct Setup {
     const PhotometricLuminaire* light;
-    glm::dvec3 p;  ///< Receiver, local frame (opening centre at the origin).
-    glm::dvec3 n;  ///< Receiver's unit normal, local frame.
+    glm::dvec3 p;        ///< Receiver, local frame (opening centre at the origin).
+    glm::dvec3 n;        ///< Receiver's unit normal, local frame.
     glm::dvec3 x, y, z;  ///< The photometric frame (world directions of local axes).
     glm::dvec3 pWorld;   ///< Receiver, world, metres.
     const Visibility* visibility = nullptr;  ///< null: no shadowing.
 
     /// Whether the opening's local point q is free of occluders from the receiver.
     bool visible(const glm::dvec3& q) const {
-        return !visibility || visibility->visible(pWorld, light->pose.position + q.x * x + q.y * y + q.z * z);
+        return !visibility ||
+               visibility->visible(pWorld, light->pose.position + q.x * x + q.y * y + q.z * z);
     }
 };
 
@@ -120,27 +121,30 @@ bool degenerate(const Setup& s, double& e) {
     e = 0.0;
     if (!(length > 0.0)) return true;
     glm::dvec3 axis = (b - a) / length;
-    double foot = glm::dot(s.p - a, axis);           // the foot's position along the segment
+    double foot = glm::dot(s.p - a, axis);            // the foot's position along the segment
     double d = glm::length((a + foot * axis) - s.p);  // the receiver's distance from the line
-    if (!(d > 1e-300)) return true;                   // on the line itself: no direction to light it
+    if (!(d > 1e-300)) return true;  // on the line itself: no direction to light it
     double theta0 = std::atan2(-foot, d), theta1 = std::atan2(length - foot, d);
     // Both sides of the foot (theta = 0) when it lies on the segment, so the peak is an end.
     double split = std::clamp(0.0, theta0, theta1);
     const int kPanels = 4;
     for (auto [from, to] : {std::pair{theta0, split}, std::pair{split, theta1}})
         for (int panel = 0; panel < kPanels && to > from; ++panel) {
-        double lo = from + (to - from) * panel / kPanels, hi = from + (to - from) * (panel + 1) / kPanels;
-        for (int i = 0; i < 8; ++i)
-            for (double sign : {-1.0, 1.0}) {
-                double theta = 0.5 * (lo + hi) + 0.5 * sign * node[i] * (hi - lo);
-                double x = foot + d * std::tan(theta);
-                glm::dvec3 q = a + x * axis;
-                double point = pointIrradiance(s, q);
-                // dx = d / cos^2(theta) dtheta; the average over the segment divides by its length.
-                double c = std::cos(theta);
-                if (point > 0.0 && s.visible(q)) e += 0.5 * weight[i] * (hi - lo) * point * d / (c * c) / length;
-            }
-    }
+            double lo = from + (to - from) * panel / kPanels,
+                   hi = from + (to - from) * (panel + 1) / kPanels;
+            for (int i = 0; i < 8; ++i)
+                for (double sign : {-1.0, 1.0}) {
+                    double theta = 0.5 * (lo + hi) + 0.5 * sign * node[i] * (hi - lo);
+                    double x = foot + d * std::tan(theta);
+                    glm::dvec3 q = a + x * axis;
+                    double point = pointIrradiance(s, q);
+                    // dx = d / cos^2(theta) dtheta; the average over the segment divides by its
+                    // length.
+                    double c = std::cos(theta);
+                    if (point > 0.0 && s.visible(q))
+                        e += 0.5 * weight[i] * (hi - lo) * point * d / (c * c) / length;
+                }
+        }
     return true;
 }
 
@@ -329,7 +333,8 @@ double mrpValue(const Setup& s) {
     }
     glm::dvec3 half = glm::normalize(pc) + glm::normalize(pn);
     glm::dvec3 pm = pc;
-    if (std::abs(half.z) > 1e-12 && h / half.z > 0.0) pm = closestTo(visible, (h / half.z) * half, tol).point;
+    if (std::abs(half.z) > 1e-12 && h / half.z > 0.0)
+        pm = closestTo(visible, (h / half.z) * half, tol).point;
     double lm = glm::length(pm);
     if (!(lm > 0.0)) return 0.0;
     // The radiance at that point times the closed-form projected solid angle (Drobot's use of the
@@ -338,9 +343,15 @@ double mrpValue(const Setup& s) {
     return spherical::projectedSolidAngle(visible, s.n) * radianceAlong(s, pm / lm);
 }
 
-double scatteredOnly(const Setup& s) { return scatteredValue(s); }
-double poisson24Value(const Setup& s) { return areaFormFixed(s, poissonSet(24)); }
-double poisson40Value(const Setup& s) { return areaFormFixed(s, poissonSet(40)); }
+double scatteredOnly(const Setup& s) {
+    return scatteredValue(s);
+}
+double poisson24Value(const Setup& s) {
+    return areaFormFixed(s, poissonSet(24));
+}
+double poisson40Value(const Setup& s) {
+    return areaFormFixed(s, poissonSet(40));
+}
 
 double hybridValue(const Setup& s) {
     // Scattered sampling near the opening, where a fixed point set shows light bumps, the
@@ -413,7 +424,8 @@ Estimate photometricReference(const Luminaire& l, const glm::dvec3& p, const glm
     Polygon visible = spherical::clip(openingFromReceiver(s), s.n);
     std::shared_ptr<const IntensitySampler> table = IntensitySampler::of(s.light->data);
     const double cTable = table && table->valid() ? 0.25 : 0.0;
-    const double formFactor = visible.count >= 3 ? spherical::projectedSolidAngle(visible, s.n) / kPi : 0.0;
+    const double formFactor =
+        visible.count >= 3 ? spherical::projectedSolidAngle(visible, s.n) / kPi : 0.0;
     const double cCosine = (1.0 - cTable) * std::clamp(formFactor, 0.05, 0.5);
     const double cArea = 1.0 - cTable - cCosine;
     // f / (sum of c_i pdf_i) for the direction d toward opening point q at distance r, with
@@ -440,7 +452,8 @@ Estimate photometricReference(const Luminaire& l, const glm::dvec3& p, const glm
     };
     // A frame about the receiver's normal (Duff et al. 2017).
     double sign = std::copysign(1.0, s.n.z), a = -1.0 / (sign + s.n.z), b = s.n.x * s.n.y * a;
-    glm::dvec3 t(1.0 + sign * s.n.x * s.n.x * a, sign * b, -sign * s.n.x), bt(b, sign + s.n.y * s.n.y * a, -s.n.y);
+    glm::dvec3 t(1.0 + sign * s.n.x * s.n.x * a, sign * b, -sign * s.n.x),
+        bt(b, sign + s.n.y * s.n.y * a, -s.n.y);
     Random rng(options.seed);
     double mean = 0.0, m2 = 0.0;
     for (int k = 0; k < options.spp; ++k) {
@@ -450,7 +463,8 @@ Estimate photometricReference(const Luminaire& l, const glm::dvec3& p, const glm
         // miss) cut the variance by a factor of about three. The average of the strata is the
         // uniform pick, so the estimate stays unbiased; the sample variance below ignores the
         // strata and so overstates the error (a conservative error bar).
-        double value = 0.0, pick = (k + rng.uniform()) / options.spp, u1 = rng.uniform(), u2 = rng.uniform();
+        double value = 0.0, pick = (k + rng.uniform()) / options.spp, u1 = rng.uniform(),
+               u2 = rng.uniform();
         if (pick < cArea) {
             // A point on the bounding rectangle (outside the opening it counts 0).
             glm::dvec3 q(lo + glm::dvec2(u1, u2) * (hi - lo), 0.0);
@@ -459,7 +473,8 @@ Estimate photometricReference(const Luminaire& l, const glm::dvec3& p, const glm
             if (r > 0.0) value = term(q, v / r, r);
         } else if (pick < cArea + cCosine) {
             double rad = std::sqrt(u1), phi = 2.0 * kPi * u2;
-            value = along(rad * std::cos(phi) * t + rad * std::sin(phi) * bt + std::sqrt(std::max(0.0, 1.0 - u1)) * s.n);
+            value = along(rad * std::cos(phi) * t + rad * std::sin(phi) * bt +
+                          std::sqrt(std::max(0.0, 1.0 - u1)) * s.n);
         } else {
             // The table's direction w leaves the opening toward the receiver: look along -w.
             double cell = (pick - cArea - cCosine) / cTable;

@@ -48,7 +48,9 @@ double signedArea(const std::vector<glm::dvec2>& p) {
 std::shared_ptr<const PhotometricData> PhotometricLuminaire::load(const std::string& path) {
     // One copy per file and modification time, shared by every instance that places it.
     static std::mutex mutex;
-    static std::map<std::string, std::pair<fs::file_time_type, std::weak_ptr<const PhotometricData>>> cache;
+    static std::map<std::string,
+                    std::pair<fs::file_time_type, std::weak_ptr<const PhotometricData>>>
+        cache;
     std::error_code ec;
     if (!fs::exists(path, ec)) throw InputError(path + ": no such file");
     fs::path canonical = fs::weakly_canonical(path, ec);
@@ -125,7 +127,8 @@ glm::dvec3 PhotometricLuminaire::radiance(const glm::dvec3& xWorld, const glm::d
     if (mArea <= 0.0) return glm::dvec3(0.0);
     glm::dvec3 x = toLocalDir(*this, xWorld - pose.position);
     double size = std::max(mSize, 1e-9);
-    if (std::abs(x.z) > 1e-6 * size || !contains(glm::dvec2(x), 1e-9 * size)) return glm::dvec3(0.0);
+    if (std::abs(x.z) > 1e-6 * size || !contains(glm::dvec2(x), 1e-9 * size))
+        return glm::dvec3(0.0);
     double l = glm::length(w);
     if (!(l > 0.0)) return glm::dvec3(0.0);
     double cosL = std::abs(glm::dot(toLocalDir(*this, w), glm::dvec3(0, 0, 1))) / l;
@@ -162,7 +165,8 @@ LightSample PhotometricLuminaire::sample(const glm::dvec3& p, const glm::dvec2& 
         }
         // Uniform in the triangle (P0, P1, P2): P0 (1 - sqrt v) + sqrt v ((1 - w) P1 + w P2).
         double su = std::sqrt(v), w = std::clamp(u.y, 0.0, 1.0);
-        local = mPolygon[0] * (1.0 - su) + mPolygon[tri] * (su * (1.0 - w)) + mPolygon[tri + 1] * (su * w);
+        local = mPolygon[0] * (1.0 - su) + mPolygon[tri] * (su * (1.0 - w)) +
+                mPolygon[tri + 1] * (su * w);
     } else if (mPolygon.size() == 2) {
         local = mPolygon[0] + std::clamp(u.x, 0.0, 1.0) * (mPolygon[1] - mPolygon[0]);
     }
@@ -277,14 +281,18 @@ std::vector<std::byte> PhotometricLuminaire::gpuData() const {
     const auto& p40 = poissonSet(40);
     // The reference's intensity-proportional directions: the cells' CDF (IntensitySampler.h).
     std::vector<double> cdf;
-    if (auto sampler = IntensitySampler::of(data); sampler && sampler->valid()) cdf = sampler->normalisedCdf();
+    if (auto sampler = IntensitySampler::of(data); sampler && sampler->valid())
+        cdf = sampler->normalisedCdf();
     h.samples = glm::ivec4(h.offsets.w + 2 * corners, h.offsets.w + 2 * corners + 48, 0, 0);
     if (!cdf.empty()) h.samples.z = h.samples.y + 80;
     std::vector<float> values(size_t(h.samples.y + 80) + cdf.size(), 0.f);
     for (size_t i = 0; i < cdf.size(); ++i) values[size_t(h.samples.z) + i] = float(cdf[i]);
-    for (int i = 0; i < nv; ++i) values[size_t(h.offsets.x + i)] = float(d.vertical[size_t(i)] * kPi / 180.0);
-    for (int i = 0; i < nh; ++i) values[size_t(h.offsets.y + i)] = float(d.horizontal[size_t(i)] * kPi / 180.0);
-    for (int i = 0; i < nv * nh; ++i) values[size_t(h.offsets.z + i)] = float(scale * d.candela[size_t(i)]);
+    for (int i = 0; i < nv; ++i)
+        values[size_t(h.offsets.x + i)] = float(d.vertical[size_t(i)] * kPi / 180.0);
+    for (int i = 0; i < nh; ++i)
+        values[size_t(h.offsets.y + i)] = float(d.horizontal[size_t(i)] * kPi / 180.0);
+    for (int i = 0; i < nv * nh; ++i)
+        values[size_t(h.offsets.z + i)] = float(scale * d.candela[size_t(i)]);
     for (int i = 0; i < corners; ++i) {
         values[size_t(h.offsets.w + 2 * i)] = float(mPolygon[size_t(i)].x);
         values[size_t(h.offsets.w + 2 * i + 1)] = float(mPolygon[size_t(i)].y);
@@ -307,14 +315,15 @@ std::string PhotometricLuminaire::describe() const {
     const PhotometricData& d = *data;
     const char* shape = mPolygon.empty() ? "point" : (mPolygon.size() == 2 ? "segment" : "polygon");
     char buf[768];
-    std::snprintf(buf, sizeof buf,
-                  "photometric %s: %s, type %s, %zu x %zu angles, opening %.4g x %.4g m (%s, %.4g m2), "
-                  "flux %.5g lm from the table%s",
-                  file.c_str(), d.format.c_str(), d.goniometer == Goniometer::B ? "B" : "C",
-                  d.vertical.size(), d.horizontal.size(),
-                  openingOverride.x > 0.0 ? openingOverride.x : d.opening.length,
-                  openingOverride.x > 0.0 ? openingOverride.y : d.opening.width, shape, mArea,
-                  scale * d.fluxFromTable(), scale != 1.0 ? " (scaled)" : "");
+    std::snprintf(
+        buf, sizeof buf,
+        "photometric %s: %s, type %s, %zu x %zu angles, opening %.4g x %.4g m (%s, %.4g m2), "
+        "flux %.5g lm from the table%s",
+        file.c_str(), d.format.c_str(), d.goniometer == Goniometer::B ? "B" : "C",
+        d.vertical.size(), d.horizontal.size(),
+        openingOverride.x > 0.0 ? openingOverride.x : d.opening.length,
+        openingOverride.x > 0.0 ? openingOverride.y : d.opening.width, shape, mArea,
+        scale * d.fluxFromTable(), scale != 1.0 ? " (scaled)" : "");
     std::string out = buf;
     if (d.lampFlux > 0.0) {
         std::snprintf(buf, sizeof buf, ", lamps %.5g lm x LOR %.3g = %.5g lm", d.lampFlux,
@@ -331,10 +340,14 @@ std::vector<std::string> PhotometricLuminaire::sourceFiles() const {
     return files;
 }
 
-std::unique_ptr<Luminaire> PhotometricLuminaire::parse(const nlohmann::json& entry, const json::Where& where) {
-    json::checkKeys(entry, {"type", "name", "position", "aim", "c0", "technique", "file", "scale",
-                            "colour", "opening"}, where);
-    if (!entry.contains("file")) json::fail(where / "file", "the path of an .ies or .ldt photometric file");
+std::unique_ptr<Luminaire> PhotometricLuminaire::parse(const nlohmann::json& entry,
+                                                       const json::Where& where) {
+    json::checkKeys(entry,
+                    {"type", "name", "position", "aim", "c0", "technique", "file", "scale",
+                     "colour", "opening"},
+                    where);
+    if (!entry.contains("file"))
+        json::fail(where / "file", "the path of an .ies or .ldt photometric file");
     auto light = std::make_unique<PhotometricLuminaire>();
     light->file = json::string(entry["file"], where / "file");
     fs::path resolved(light->file);
@@ -347,13 +360,14 @@ std::unique_ptr<Luminaire> PhotometricLuminaire::parse(const nlohmann::json& ent
                                            json::fail(w, "a colour with no negative component");
                                        return c;
                                    });
-    light->openingOverride = json::optional(entry, "opening", where, glm::dvec2(0.0),
-                                            [](const nlohmann::json& v, const json::Where& w) {
-                                                glm::dvec2 s = json::vec2(v, w);
-                                                if (!(s.x >= 0.0 && s.y >= 0.0 && s.x + s.y > 0.0))
-                                                    json::fail(w, "[length, width] in metres, not negative, not both 0");
-                                                return s;
-                                            });
+    light->openingOverride =
+        json::optional(entry, "opening", where, glm::dvec2(0.0),
+                       [](const nlohmann::json& v, const json::Where& w) {
+                           glm::dvec2 s = json::vec2(v, w);
+                           if (!(s.x >= 0.0 && s.y >= 0.0 && s.x + s.y > 0.0))
+                               json::fail(w, "[length, width] in metres, not negative, not both 0");
+                           return s;
+                       });
     light->data = load(resolved.string());
     light->updateOpening();
     return light;
@@ -362,7 +376,8 @@ std::unique_ptr<Luminaire> PhotometricLuminaire::parse(const nlohmann::json& ent
 std::unique_ptr<Luminaire> PhotometricLuminaire::create() {
     // The editor's "Add": a bundled real file (resources/luminaires/photometric/LICENSE.md).
     auto light = std::make_unique<PhotometricLuminaire>();
-    fs::path bundled = fs::path(CANDELA_SOURCE_DIR) / "resources/luminaires/photometric/linear-pendant.ies";
+    fs::path bundled =
+        fs::path(CANDELA_SOURCE_DIR) / "resources/luminaires/photometric/linear-pendant.ies";
     light->file = bundled.generic_string();
     light->data = load(light->file);
     light->updateOpening();

@@ -12,20 +12,21 @@
 #include <string>
 #include <vector>
 
+#include "luminaires/Estimate.h"
 #include "luminaires/Luminaire.h"
 #include "luminaires/Photometry.h"
-#include "luminaires/Estimate.h"
 #include "util/JsonRead.h"
 
 namespace candela {
 
 class PhotometricLuminaire final : public Luminaire {
-public:
+  public:
     std::shared_ptr<const PhotometricData> data;
-    std::string file;                ///< As written in the scene (relative to it or absolute).
-    double scale = 1.0;              ///< Dimming: multiplies every intensity.
-    glm::dvec3 colour{1.0};          ///< RGB tint of the luminous quantities (white: lux in all three).
-    glm::dvec2 openingOverride{0.0}; ///< > 0: a length x width rectangle instead of the file's opening.
+    std::string file;        ///< As written in the scene (relative to it or absolute).
+    double scale = 1.0;      ///< Dimming: multiplies every intensity.
+    glm::dvec3 colour{1.0};  ///< RGB tint of the luminous quantities (white: lux in all three).
+    glm::dvec2 openingOverride{
+        0.0};  ///< > 0: a length x width rectangle instead of the file's opening.
 
     std::string_view kind() const override { return "photometric"; }
     std::unique_ptr<Luminaire> clone() const override;
@@ -74,7 +75,7 @@ public:
     /// Loads (shared between instances) a photometric file; throws InputError naming it.
     static std::shared_ptr<const PhotometricData> load(const std::string& path);
 
-private:
+  private:
     std::vector<glm::dvec2> mPolygon;
     double mArea = 0.0;
     double mSize = 0.0;
@@ -82,14 +83,22 @@ private:
 
 /// The techniques (luminaires/PhotometricEstimators.cpp); all take world p and unit normal n and
 /// return illuminance in lux (per channel, times the colour).
-Estimate photometricReference(const Luminaire&, const glm::dvec3& p, const glm::dvec3& n, const EstimateOptions&);
-Estimate photometricPoint(const Luminaire&, const glm::dvec3& p, const glm::dvec3& n, const EstimateOptions&);
-Estimate photometricStructured(const Luminaire&, const glm::dvec3& p, const glm::dvec3& n, const EstimateOptions&);
-Estimate photometricMrp(const Luminaire&, const glm::dvec3& p, const glm::dvec3& n, const EstimateOptions&);
-Estimate photometricScattered(const Luminaire&, const glm::dvec3& p, const glm::dvec3& n, const EstimateOptions&);
-Estimate photometricPoisson24(const Luminaire&, const glm::dvec3& p, const glm::dvec3& n, const EstimateOptions&);
-Estimate photometricPoisson40(const Luminaire&, const glm::dvec3& p, const glm::dvec3& n, const EstimateOptions&);
-Estimate photometricHybrid(const Luminaire&, const glm::dvec3& p, const glm::dvec3& n, const EstimateOptions&);
+Estimate photometricReference(const Luminaire&, const glm::dvec3& p, const glm::dvec3& n,
+                              const EstimateOptions&);
+Estimate photometricPoint(const Luminaire&, const glm::dvec3& p, const glm::dvec3& n,
+                          const EstimateOptions&);
+Estimate photometricStructured(const Luminaire&, const glm::dvec3& p, const glm::dvec3& n,
+                               const EstimateOptions&);
+Estimate photometricMrp(const Luminaire&, const glm::dvec3& p, const glm::dvec3& n,
+                        const EstimateOptions&);
+Estimate photometricScattered(const Luminaire&, const glm::dvec3& p, const glm::dvec3& n,
+                              const EstimateOptions&);
+Estimate photometricPoisson24(const Luminaire&, const glm::dvec3& p, const glm::dvec3& n,
+                              const EstimateOptions&);
+Estimate photometricPoisson40(const Luminaire&, const glm::dvec3& p, const glm::dvec3& n,
+                              const EstimateOptions&);
+Estimate photometricHybrid(const Luminaire&, const glm::dvec3& p, const glm::dvec3& n,
+                           const EstimateOptions&);
 
 /// The fixed Poisson-disk set of the mc-poisson-N techniques: N points in [0,1)^2 by dart
 /// throwing with a fixed seed and the largest minimum distance that admits them.

@@ -8,10 +8,11 @@
 
 namespace candela {
 
-Estimate photometricUniformArea(const Luminaire& luminaire, const glm::dvec3& p, const glm::dvec3& n,
-                                const EstimateOptions& options) {
+Estimate photometricUniformArea(const Luminaire& luminaire, const glm::dvec3& p,
+                                const glm::dvec3& n, const EstimateOptions& options) {
     const auto& light = static_cast<const PhotometricLuminaire&>(luminaire);
-    if (!(light.area() > 0.0)) return photometricReference(luminaire, p, n, options);  // a segment or a point
+    if (!(light.area() > 0.0))
+        return photometricReference(luminaire, p, n, options);  // a segment or a point
     glm::dvec3 x, y, z;
     light.photometricFrame(x, y, z);
     glm::dvec2 lo(std::numeric_limits<double>::infinity()), hi(-lo);

@@ -13,7 +13,7 @@ namespace candela {
 /// Irradiance at p for the unit normal n: (1/N) sum of I(-w) cos_p S_rect / (A r^2) over N points
 /// uniform on the opening's bounding rectangle (0 outside the opening or in shadow), times the
 /// light's colour; a segment or a point opening takes the reference's closed forms.
-Estimate photometricUniformArea(const Luminaire& luminaire, const glm::dvec3& p, const glm::dvec3& n,
-                                const EstimateOptions& options);
+Estimate photometricUniformArea(const Luminaire& luminaire, const glm::dvec3& p,
+                                const glm::dvec3& n, const EstimateOptions& options);
 
 }  // namespace candela

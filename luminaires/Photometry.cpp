@@ -115,8 +115,10 @@ std::vector<std::string> splitLines(const std::string& text) {
     return lines;
 }
 
-void fail(const std::string& path, int line, const std::string& expected, const std::string& found) {
-    throw InputError(toValidUtf8(path + ":" + std::to_string(line) + ": expected " + expected + ", found " + found));
+void fail(const std::string& path, int line, const std::string& expected,
+          const std::string& found) {
+    throw InputError(toValidUtf8(path + ":" + std::to_string(line) + ": expected " + expected +
+                                 ", found " + found));
 }
 
 void allow(PhotometricData& data, const PhotometryOptions& options, const std::string& lines,
@@ -132,8 +134,10 @@ std::vector<std::string> readLines(const std::string& bytes, PhotometricData& da
     if (text.encoding != DecodedText::Encoding::Utf8) {
         bool utf16 = text.encoding != DecodedText::Encoding::Windows1252;
         std::string what = std::string("text in ") + encodingName(text.encoding);
-        if (utf16) what += text.byteOrderMark ? " with a byte-order mark" : " without a byte-order mark";
-        else what += ", not UTF-8";
+        if (utf16)
+            what += text.byteOrderMark ? " with a byte-order mark" : " without a byte-order mark";
+        else
+            what += ", not UTF-8";
         allow(data, options, text.firstLine, what, "transcoded to UTF-8");
     }
     // Line endings: the first kind seen, and the first line ending in another kind.
@@ -142,21 +146,27 @@ std::vector<std::string> readLines(const std::string& bytes, PhotometricData& da
     const std::string& t = text.utf8;
     for (size_t i = 0; i < t.size(); ++i) {
         int kind = -1;
-        if (t[i] == '\n') kind = 0;
-        else if (t[i] == '\r') kind = i + 1 < t.size() && t[i + 1] == '\n' ? 1 : 2;
+        if (t[i] == '\n')
+            kind = 0;
+        else if (t[i] == '\r')
+            kind = i + 1 < t.size() && t[i + 1] == '\n' ? 1 : 2;
         if (kind < 0) continue;
         if (kind == 1) ++i;
-        if (first < 0) first = kind;
-        else if (kind != first && other < 0) other = kind, otherLine = line;
+        if (first < 0)
+            first = kind;
+        else if (kind != first && other < 0)
+            other = kind, otherLine = line;
         ++line;
     }
     if (other >= 0)
         allow(data, options, otherLine,
-              std::string("mixed line endings (") + names[first] + " before this line, " + names[other] + " here)",
+              std::string("mixed line endings (") + names[first] + " before this line, " +
+                  names[other] + " here)",
               "each read as the end of a line");
     std::vector<std::string> lines = splitLines(t);
     auto blank = [](const std::string& s) {
-        return std::all_of(s.begin(), s.end(), [](char c) { return std::isspace(static_cast<unsigned char>(c)); });
+        return std::all_of(s.begin(), s.end(),
+                           [](char c) { return std::isspace(static_cast<unsigned char>(c)); });
     };
     size_t end = lines.size();
     while (end > 0 && blank(lines[end - 1])) --end;
@@ -164,7 +174,8 @@ std::vector<std::string> readLines(const std::string& bytes, PhotometricData& da
         size_t n = lines.size() - end;
         std::string where = std::to_string(end + 1);
         if (n > 1) where += '-' + std::to_string(lines.size());
-        allow(data, options, where, std::to_string(n) + " trailing blank line" + (n == 1 ? "" : "s"), "ignored");
+        allow(data, options, where,
+              std::to_string(n) + " trailing blank line" + (n == 1 ? "" : "s"), "ignored");
         lines.resize(end);
     }
     return lines;
@@ -172,8 +183,10 @@ std::vector<std::string> readLines(const std::string& bytes, PhotometricData& da
 
 void checkCandela(const std::string& path, int line, double candela, const std::string& what) {
     if (!(candela <= kMaxCandela))
-        fail(path, line, what + " of at most " + formatNumber(kMaxCandela) + " cd (no luminaire is that bright)",
-             std::isfinite(candela) ? formatNumber(candela) + " cd" : std::string("an overflow"));
+        fail(
+            path, line,
+            what + " of at most " + formatNumber(kMaxCandela) + " cd (no luminaire is that bright)",
+            std::isfinite(candela) ? formatNumber(candela) + " cd" : std::string("an overflow"));
 }
 
 bool parseNumber(const std::string& token, double& value) {
@@ -230,43 +243,43 @@ void unfold(PhotometricData& data, const std::vector<double>& given,
         }
     } else {
         switch (data.symmetry) {
-        case Sym::Quadrant:
-            fold = [](double t) {
-                double m = std::fmod(t, 180.0);
-                return m <= 90.0 ? m : 180.0 - m;
-            };
-            for (double a : given) addImages({a, 180.0 - a, 180.0 + a, 360.0 - a}, a);
-            break;
-        case Sym::PlaneC0C180:
-            fold = [](double t) { return t <= 180.0 ? t : 360.0 - t; };
-            for (double a : given) addImages({a, 360.0 - a}, a);
-            break;
-        case Sym::PlaneC90C270:
-            fold = [](double t) { return t < 90.0 ? 180.0 - t : (t > 270.0 ? 540.0 - t : t); };
-            for (double a : given) addImages({a, 180.0 - a, 540.0 - a}, a);
-            break;
-        default: {
-            // Full turn: wrap periodically so the piece between the last plane and 360 (or
-            // between 0 and the first plane) interpolates towards the other end.
-            double first = g.front(), last = g.back();
-            std::vector<double> firstRow(rows.begin(), rows.begin() + std::ptrdiff_t(nv));
-            std::vector<double> lastRow(rows.end() - std::ptrdiff_t(nv), rows.end());
-            // C = 360 is the C = 0 plane: a file's own 360 row is replaced by its 0 row so the
-            // unfolded table is continuous (Photometry.h: first and last rows equal).
-            if (last >= 360.0 - kAngleEps && first <= kAngleEps)
-                std::copy(firstRow.begin(), firstRow.end(), rows.end() - std::ptrdiff_t(nv));
-            if (last < 360.0 - kAngleEps) {
-                g.push_back(first + 360.0);
-                rows.insert(rows.end(), firstRow.begin(), firstRow.end());
+            case Sym::Quadrant:
+                fold = [](double t) {
+                    double m = std::fmod(t, 180.0);
+                    return m <= 90.0 ? m : 180.0 - m;
+                };
+                for (double a : given) addImages({a, 180.0 - a, 180.0 + a, 360.0 - a}, a);
+                break;
+            case Sym::PlaneC0C180:
+                fold = [](double t) { return t <= 180.0 ? t : 360.0 - t; };
+                for (double a : given) addImages({a, 360.0 - a}, a);
+                break;
+            case Sym::PlaneC90C270:
+                fold = [](double t) { return t < 90.0 ? 180.0 - t : (t > 270.0 ? 540.0 - t : t); };
+                for (double a : given) addImages({a, 180.0 - a, 540.0 - a}, a);
+                break;
+            default: {
+                // Full turn: wrap periodically so the piece between the last plane and 360 (or
+                // between 0 and the first plane) interpolates towards the other end.
+                double first = g.front(), last = g.back();
+                std::vector<double> firstRow(rows.begin(), rows.begin() + std::ptrdiff_t(nv));
+                std::vector<double> lastRow(rows.end() - std::ptrdiff_t(nv), rows.end());
+                // C = 360 is the C = 0 plane: a file's own 360 row is replaced by its 0 row so the
+                // unfolded table is continuous (Photometry.h: first and last rows equal).
+                if (last >= 360.0 - kAngleEps && first <= kAngleEps)
+                    std::copy(firstRow.begin(), firstRow.end(), rows.end() - std::ptrdiff_t(nv));
+                if (last < 360.0 - kAngleEps) {
+                    g.push_back(first + 360.0);
+                    rows.insert(rows.end(), firstRow.begin(), firstRow.end());
+                }
+                if (first > kAngleEps) {
+                    g.insert(g.begin(), last - 360.0);
+                    rows.insert(rows.begin(), lastRow.begin(), lastRow.end());
+                }
+                fold = [](double t) { return t; };
+                for (double a : given) addImages({a, a - 360.0, a + 360.0}, a);
+                break;
             }
-            if (first > kAngleEps) {
-                g.insert(g.begin(), last - 360.0);
-                rows.insert(rows.begin(), lastRow.begin(), lastRow.end());
-            }
-            fold = [](double t) { return t; };
-            for (double a : given) addImages({a, a - 360.0, a + 360.0}, a);
-            break;
-        }
         }
         if (data.symmetry != Sym::Axial) {
             targets.push_back(0.0);
@@ -391,8 +404,12 @@ PhotometryOptions& defaults() {
 }
 }  // namespace
 
-const PhotometryOptions& defaultPhotometryOptions() { return defaults(); }
-void setDefaultPhotometryOptions(const PhotometryOptions& options) { defaults() = options; }
+const PhotometryOptions& defaultPhotometryOptions() {
+    return defaults();
+}
+void setDefaultPhotometryOptions(const PhotometryOptions& options) {
+    defaults() = options;
+}
 
 PhotometricData loadPhotometry(const std::string& path, const PhotometryOptions& options) {
     std::string ext = lowerExtension(path);
@@ -410,7 +427,8 @@ PhotometricData loadPhotometry(const std::string& path, const PhotometryOptions&
     in.seekg(0, std::ios::beg);
     std::stringstream text;
     text << in.rdbuf();
-    return ext == ".ies" ? parseIes(text.str(), path, options) : parseEulumdat(text.str(), path, options);
+    return ext == ".ies" ? parseIes(text.str(), path, options)
+                         : parseEulumdat(text.str(), path, options);
 }
 
 }  // namespace candela

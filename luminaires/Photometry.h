@@ -4,9 +4,9 @@
 //
 // Local frame (PhotometricLuminaire::photometricFrame): +z is the aim (gamma = 0, nadir for a
 // downlight), +x is C = 0 (the pose's c0), +y is C = 90 = c0 x aim, so C grows counter-clockwise
-// seen from above a downlight (Pose::frame's y, aim x c0, is the opposite direction). For type B files the polar
-// axis is local +y: horizontal angle H turns about +y from +z towards +x, vertical angle V lifts
-// towards +y, so (H, V) = (0, 0) is the aim.
+// seen from above a downlight (Pose::frame's y, aim x c0, is the opposite direction). For type B
+// files the polar axis is local +y: horizontal angle H turns about +y from +z towards +x, vertical
+// angle V lifts towards +y, so (H, V) = (0, 0) is the aim.
 //
 // The table is stored expanded to the full range its goniometer covers (symmetries unfolded), in
 // absolute candela (candela multiplier, ballast factor, ballast-lamp factor and EULUMDAT's cd/klm
@@ -26,7 +26,6 @@
 // intensities, intensities above kMaxCandela, openings above kMaxOpening) are always errors.
 
 #include <glm/glm.hpp>
-
 #include <string>
 #include <utility>
 #include <vector>
@@ -85,10 +84,11 @@ constexpr double kMaxLumens = 1e16;
 constexpr double kMaxOpening = 1e3;
 
 struct PhotometricData {
-    std::string path;    ///< File it came from (for messages).
-    std::string format;  ///< "IES LM-63-1986", "IES LM-63-1991", "-1995", "-2002", "-2019", "EULUMDAT".
+    std::string path;  ///< File it came from (for messages).
+    std::string
+        format;  ///< "IES LM-63-1986", "IES LM-63-1991", "-1995", "-2002", "-2019", "EULUMDAT".
     std::vector<std::pair<std::string, std::string>> keywords;  ///< IES [KEY] value / LDT fields.
-    std::string name;    ///< Luminaire name (IES [LUMINAIRE] or LDT luminaire name), may be empty.
+    std::string name;  ///< Luminaire name (IES [LUMINAIRE] or LDT luminaire name), may be empty.
 
     Goniometer goniometer = Goniometer::C;
     PhotometricSymmetry symmetry = PhotometricSymmetry::Axial;
@@ -104,7 +104,8 @@ struct PhotometricData {
 
     LuminousOpening opening;
 
-    double lampFlux = -1.0;      ///< Rated lamp lumens in total (all lamps); -1 for absolute photometry.
+    double lampFlux =
+        -1.0;  ///< Rated lamp lumens in total (all lamps); -1 for absolute photometry.
     double lightOutputRatio = 1.0;  ///< EULUMDAT LORL / 100; 1 when the file does not say.
     double inputWatts = 0.0;
 

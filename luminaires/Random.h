@@ -7,7 +7,7 @@ namespace candela {
 
 /// SplitMix64 (Steele, Lea, Flood 2014): 64-bit state, full period, good equidistribution.
 class Random {
-public:
+  public:
     explicit Random(uint64_t seed) : mState(seed) {}
     uint64_t next() {
         uint64_t z = (mState += 0x9E3779B97F4A7C15ull);
@@ -18,7 +18,7 @@ public:
     /// Uniform in [0, 1) with 53 random bits.
     double uniform() { return double(next() >> 11) * 0x1.0p-53; }
 
-private:
+  private:
     uint64_t mState;
 };
 

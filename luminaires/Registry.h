@@ -4,11 +4,10 @@
 // shaders/KIND_TECHNIQUE.frag) and adding one line to the table in Registry.cpp, with what it
 // promises at the extremes; nothing in the core or the tests changes.
 
-#include <glm/glm.hpp>
-#include <nlohmann/json.hpp>
-
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <span>
 #include <string>
 #include <string_view>
@@ -34,7 +33,7 @@ struct StatedLimits {
         Approximate,  ///< Within `tolerance` near the source, `farTolerance` far from it.
     };
     Accuracy accuracy = Exact;
-    double tolerance = 1e-3;    ///< Relative.
+    double tolerance = 1e-3;     ///< Relative.
     double farTolerance = -1.0;  ///< Approximate: 1e5 m away; < 0: `tolerance`.
     /// The promise holds from this distance on, in opening diagonals (photometric openings);
     /// nearer the estimate is only finite and non-negative.

@@ -49,7 +49,8 @@ ShadowMapLayout shadowMapLayout(const LightFieldData& lf, glm::ivec2 maps) {
         for (int b = 0; b < n; ++b)
             for (int a = 0; a < n; ++a) {
                 int map = mapOf(i + a, j + b);
-                auto it = std::find_if(shares.begin(), shares.end(), [&](const auto& s) { return s.map == map; });
+                auto it = std::find_if(shares.begin(), shares.end(),
+                                       [&](const auto& s) { return s.map == map; });
                 if (it == shares.end()) shares.push_back({map, 0.0}), it = shares.end() - 1;
                 it->weight += 1.0 / double(n * n);
                 if (energy && std::find(seen.begin(), seen.end(), map) == seen.end()) {
@@ -63,7 +64,8 @@ ShadowMapLayout shadowMapLayout(const LightFieldData& lf, glm::ivec2 maps) {
     for (int k = 0; k < layout.mapCount(); ++k) {
         ShadowMapLayout::Map& map = layout.mapList[size_t(k)];
         map.lit = images[size_t(k)] > 0;
-        glm::dvec2 s = map.lit ? sum[size_t(k)] / double(images[size_t(k)]) : 0.5 * (lf.imageMin + lf.imageMax);
+        glm::dvec2 s = map.lit ? sum[size_t(k)] / double(images[size_t(k)])
+                               : 0.5 * (lf.imageMin + lf.imageMax);
         map.light = glm::dvec3(s, lf.delta);
     }
     return layout;

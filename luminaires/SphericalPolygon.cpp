@@ -64,7 +64,8 @@ ClosestPoint closestPoint(const Polygon& p, double tolerance) {
     // The foot of the perpendicular, when it falls inside and clear of the boundary. Newell's
     // normal is zero for a degenerate polygon (a segment), which only has a boundary.
     glm::dvec3 normal(0.0);
-    for (int i = 0; i < p.count; ++i) normal += glm::cross(p.v[size_t(i)], p.v[size_t((i + 1) % p.count)]);
+    for (int i = 0; i < p.count; ++i)
+        normal += glm::cross(p.v[size_t(i)], p.v[size_t((i + 1) % p.count)]);
     double ln = glm::length(normal);
     if (ln > 0.0 && p.count >= 3) {
         normal /= ln;
@@ -117,7 +118,9 @@ Triangulation initialTriangulation(int n, const ClosestPoint& cp) {
     if (n < 3) return t;
     auto corner = [n](int i) { return 1 + ((i % n) + n) % n; };
     if (cp.place == Place::Corner) {
-        for (int j = 1; j + 1 < n; ++j) t.tri[size_t(t.count++)] = {corner(cp.index), corner(cp.index + j), corner(cp.index + j + 1)};
+        for (int j = 1; j + 1 < n; ++j)
+            t.tri[size_t(t.count++)] = {corner(cp.index), corner(cp.index + j),
+                                        corner(cp.index + j + 1)};
         return t;
     }
     for (int i = 0; i < n; ++i) {
@@ -170,8 +173,9 @@ void makeDelaunay(Triangulation& t, const glm::dvec3* dirs) {
                     if (!inCircumcircle(dirs[a], dirs[b], dirs[c], dirs[d])) break;
                     // Only a convex quadrilateral can flip: c, d on opposite sides of ab and
                     // a, b on opposite sides of cd.
-                    bool convex = side(dirs[a], dirs[b], dirs[c]) * side(dirs[a], dirs[b], dirs[d]) < 0.0 &&
-                                  side(dirs[c], dirs[d], dirs[a]) * side(dirs[c], dirs[d], dirs[b]) < 0.0;
+                    bool convex =
+                        side(dirs[a], dirs[b], dirs[c]) * side(dirs[a], dirs[b], dirs[d]) < 0.0 &&
+                        side(dirs[c], dirs[d], dirs[a]) * side(dirs[c], dirs[d], dirs[b]) < 0.0;
                     if (!convex) break;
                     // Triangle (a, b, c) and its neighbour (b, a, d) become (a, d, c), (d, b, c).
                     t.tri[size_t(i)] = {a, d, c};

@@ -5,9 +5,8 @@
 // (Prost 2019, seed 004, Sec. 5.1-5.2). Vectors are relative to the receiver. The GLSL twin is
 // shaders/photometric.glsl; tests/photometric_test.cpp checks both against closed forms.
 
-#include <glm/glm.hpp>
-
 #include <array>
+#include <glm/glm.hpp>
 
 #include "shaders/shared/Photometric.h"
 

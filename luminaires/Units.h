@@ -48,8 +48,14 @@ inline UnitSystem unitSystemOf(bool anyPhotometric, bool anyRadiometric) {
 }
 
 /// Flux unit of a source: "lm" or "W"; intensity "cd" or "W/sr"; radiance "cd/m2" or "W/(m2 sr)".
-inline const char* fluxUnit(Quantities q) { return q == Quantities::Photometric ? "lm" : "W"; }
-inline const char* intensityUnit(Quantities q) { return q == Quantities::Photometric ? "cd" : "W/sr"; }
-inline const char* radianceUnit(Quantities q) { return q == Quantities::Photometric ? "cd/m2" : "W/(m2 sr)"; }
+inline const char* fluxUnit(Quantities q) {
+    return q == Quantities::Photometric ? "lm" : "W";
+}
+inline const char* intensityUnit(Quantities q) {
+    return q == Quantities::Photometric ? "cd" : "W/sr";
+}
+inline const char* radianceUnit(Quantities q) {
+    return q == Quantities::Photometric ? "cd/m2" : "W/(m2 sr)";
+}
 
 }  // namespace candela

@@ -36,7 +36,9 @@ double meanDistance(const std::vector<glm::vec3>& a, const std::vector<glm::vec3
     return n ? sum / double(n) : 0.0;
 }
 
-bool powerOfTwo(int n) { return n > 0 && (n & (n - 1)) == 0; }
+bool powerOfTwo(int n) {
+    return n > 0 && (n & (n - 1)) == 0;
+}
 
 }  // namespace
 
@@ -84,17 +86,21 @@ RenderSettings Comparison::referenceSettings() const {
     return s;
 }
 
-void Comparison::configure(const std::vector<PaneSpec>& panes, const RenderSettings& shared, int referenceSamples) {
+void Comparison::configure(const std::vector<PaneSpec>& panes, const RenderSettings& shared,
+                           int referenceSamples) {
     RenderSettings s = shared;
     s.techniqueOverride.clear();
     s.environmentTechnique.clear();
     s.maxSamples = 0;
     s.bandBudgetMs = 0.0;
     // What makes every image a different one: the size, the quantity, the sampling settings.
-    bool restartAll = s.width != mShared.width || s.height != mShared.height || s.quantity != mShared.quantity ||
+    bool restartAll = s.width != mShared.width || s.height != mShared.height ||
+                      s.quantity != mShared.quantity ||
                       s.samplesPerFrame != mShared.samplesPerFrame || s.seed != mShared.seed ||
-                      s.environmentFaceSize != mShared.environmentFaceSize || !(s.shadowMaps == mShared.shadowMaps);
-    bool toneChanged = s.toneMap != mShared.toneMap || s.exposure != mShared.exposure || s.legend != mShared.legend;
+                      s.environmentFaceSize != mShared.environmentFaceSize ||
+                      !(s.shadowMaps == mShared.shadowMaps);
+    bool toneChanged = s.toneMap != mShared.toneMap || s.exposure != mShared.exposure ||
+                       s.legend != mShared.legend;
     mShared = s;
     if (referenceSamples != mReferenceSamples || restartAll) {
         mReferenceSamples = referenceSamples;
@@ -168,7 +174,9 @@ bool Comparison::panesDone() const {
     return std::all_of(mPanes.begin(), mPanes.end(), [](const Pane& p) { return p.result.done; });
 }
 
-bool Comparison::referenceDone() const { return mReference.renderer->converged() && !mReference.image.empty(); }
+bool Comparison::referenceDone() const {
+    return mReference.renderer->converged() && !mReference.image.empty();
+}
 
 double Comparison::referenceNoise() const {
     const Reference& r = mReference;
@@ -182,7 +190,8 @@ void Comparison::setErrorScale(float scale) {
     if (scale == mErrorScale) return;
     mErrorScale = scale;
     for (Pane& pane : mPanes)
-        if (!pane.snapshots.empty() && pane.result.measured) updateErrorMap(pane, pane.snapshots.back());
+        if (!pane.snapshots.empty() && pane.result.measured)
+            updateErrorMap(pane, pane.snapshots.back());
 }
 
 bool Comparison::advance(Renderer& r, int& frames, double& gpuMs) {
@@ -286,7 +295,9 @@ void Comparison::referenceAdvanced() {
 
 void Comparison::setToneAverage(double average) {
     if (!(average > 0.0) || !std::isfinite(average)) return;
-    if (mToneAverage > 0.0 && std::abs(average - mToneAverage) <= kToneAverageTolerance * mToneAverage) return;
+    if (mToneAverage > 0.0 &&
+        std::abs(average - mToneAverage) <= kToneAverageTolerance * mToneAverage)
+        return;
     mToneAverage = average;
     mReference.renderer->setSettings(referenceSettings());
     mReference.displayStale = true;
@@ -324,7 +335,8 @@ const std::vector<float>& Comparison::paneImage(size_t pane) const {
 
 std::vector<unsigned char> Comparison::toneMapped(const std::vector<float>& linear) const {
     double average = mToneAverage > 0.0 ? mToneAverage : meanLuminance(linear);
-    return toneMapSrgb8(linear, average, mShared.exposure, mShared.toneMap == ToneMapOperator::Reinhard);
+    return toneMapSrgb8(linear, average, mShared.exposure,
+                        mShared.toneMap == ToneMapOperator::Reinhard);
 }
 
 const std::vector<glm::vec3>& Comparison::Measured::lab(const Comparison& c) {
@@ -340,7 +352,8 @@ void Comparison::measure(Pane& pane, Snapshot& shot) {
     double raw = relRmse(shot.image.linear(), r.image.linear(), r.emitters);
     double noise = referenceNoise();
     // The pane and the reference are independent: E|x - r|^2 = |x - truth|^2 + |r - truth|^2.
-    double corrected = std::isfinite(noise) ? std::sqrt(std::max(0.0, raw * raw - noise * noise)) : raw;
+    double corrected =
+        std::isfinite(noise) ? std::sqrt(std::max(0.0, raw * raw - noise * noise)) : raw;
     shot.point.relRmse = corrected;
     shot.point.deltaE = meanDistance(shot.image.lab(*this), r.image.lab(*this));
     if (&shot == &pane.snapshots.back()) {
@@ -383,7 +396,8 @@ void Comparison::updateErrorMap(Pane& pane, const Snapshot& shot) {
             // Rows bottom-up in the texture, as the renderer's display.
             size_t t = (size_t(h - 1 - y) * size_t(w) + size_t(x)) * 4;
             for (int k = 0; k < 3; ++k) {
-                double s = c[k] <= 0.0031308 ? 12.92 * c[k] : 1.055 * std::pow(c[k], 1.0 / 2.4) - 0.055;
+                double s =
+                    c[k] <= 0.0031308 ? 12.92 * c[k] : 1.055 * std::pow(c[k], 1.0 / 2.4) - 0.055;
                 auto v = static_cast<unsigned char>(std::lround(std::clamp(s, 0.0, 1.0) * 255.0));
                 pane.errorRgb[i + size_t(k)] = v;
                 rgba[t + size_t(k)] = v;
@@ -391,7 +405,8 @@ void Comparison::updateErrorMap(Pane& pane, const Snapshot& shot) {
         }
     if (pane.errorTexture.width() != w || pane.errorTexture.height() != h)
         pane.errorTexture = gl::Texture2D(w, h, GL_RGBA8);
-    glTextureSubImage2D(pane.errorTexture.id(), 0, 0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+    glTextureSubImage2D(pane.errorTexture.id(), 0, 0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE,
+                        rgba.data());
 }
 
 }  // namespace candela

@@ -25,7 +25,8 @@ struct PaneSpec {
     /// RenderSettings::techniqueOverride: names separated by commas, each luminaire (and the
     /// environment) uses the first its kind has; empty: the scene's own techniques.
     std::string technique;
-    int samples = 64;  ///< Sample budget, samples per pixel (a deterministic technique stops after one pass).
+    int samples =
+        64;  ///< Sample budget, samples per pixel (a deterministic technique stops after one pass).
     bool operator==(const PaneSpec&) const = default;
 };
 
@@ -34,8 +35,8 @@ struct PaneResult {
     double gpuMs = 0.0;  ///< GPU time of its shading and shadow passes over the accumulation, ms.
     int spp = 0;         ///< Samples per pixel so far (0 for a deterministic technique).
     bool done = false;   ///< Reached its sample budget (or deterministic and shaded).
-    bool measured = false;  ///< `latest` holds a measurement against the reference.
-    ErrorPoint latest;      ///< The last measurement.
+    bool measured = false;    ///< `latest` holds a measurement against the reference.
+    ErrorPoint latest;        ///< The last measurement.
     double rawRelRmse = 0.0;  ///< latest's relative RMSE before the reference's noise is removed.
     std::vector<ErrorPoint> series;  ///< All measurements, increasing time.
 };
@@ -48,7 +49,8 @@ class Comparison {
     /// The reference's techniques (an override list): the light field's sampler with a shadow
     /// ray per sample, Monte Carlo for the others, the environment's MIS estimator.
     static constexpr const char* kReferenceTechniques =
-        "lightfield=restricted-cdf-raytraced,lambertian-rect=reference,photometric=reference,environment=balanced-mis";
+        "lightfield=restricted-cdf-raytraced,lambertian-rect=reference,photometric=reference,"
+        "environment=balanced-mis";
 
     explicit Comparison(ShaderLibrary& shaders);
     ~Comparison();
@@ -58,7 +60,8 @@ class Comparison {
     /// Panes (1 to 4), the settings they share (size, samples per pass, tone mapping, quantity,
     /// shadow maps, seed; techniqueOverride and maxSamples are the panes' own) and the
     /// reference's sample budget. Only what changed restarts.
-    void configure(const std::vector<PaneSpec>& panes, const RenderSettings& shared, int referenceSamples);
+    void configure(const std::vector<PaneSpec>& panes, const RenderSettings& shared,
+                   int referenceSamples);
     /// The scene (it must outlive the next step) and what changed: everything restarts.
     void update(const Scene& scene, unsigned changes);
     /// About budgetMs of work: a band of each pane still refining and of the reference, then
@@ -86,7 +89,9 @@ class Comparison {
     /// +-errorScale. RGBA8, row 0 at the bottom (as Renderer::displayTexture).
     const gl::Texture2D& errorMap(size_t pane) const { return mPanes[pane].errorTexture; }
     /// The same as sRGB8 RGB rows top to bottom (empty until measured).
-    const std::vector<unsigned char>& errorImage(size_t pane) const { return mPanes[pane].errorRgb; }
+    const std::vector<unsigned char>& errorImage(size_t pane) const {
+        return mPanes[pane].errorRgb;
+    }
     void setErrorScale(float scale);
     float errorScale() const { return mErrorScale; }
 
@@ -130,11 +135,11 @@ class Comparison {
         PaneSpec spec;
         std::unique_ptr<Renderer> renderer;
         PaneResult result;
-        int frames = 0;                 ///< Renderer's accumulated frames at the last step.
-        int snapshotFrames = 0;         ///< Its frames at the last snapshot.
-        double passGpuMs = 0.0;         ///< result.gpuMs when its last pass completed.
-        bool displayStale = false;      ///< Tone-mapped with an older average.
-        int nextSnapshot = 1;           ///< Snapshot when the frames reach this (doubles).
+        int frames = 0;             ///< Renderer's accumulated frames at the last step.
+        int snapshotFrames = 0;     ///< Its frames at the last snapshot.
+        double passGpuMs = 0.0;     ///< result.gpuMs when its last pass completed.
+        bool displayStale = false;  ///< Tone-mapped with an older average.
+        int nextSnapshot = 1;       ///< Snapshot when the frames reach this (doubles).
         std::vector<Snapshot> snapshots;
         gl::Texture2D errorTexture;
         std::vector<unsigned char> errorRgb;
@@ -145,11 +150,11 @@ class Comparison {
         int spp = 0;
         double gpuMs = 0.0;
         bool displayStale = false;
-        Measured image;                 ///< At the last measurement.
-        int imageFrames = 0;            ///< frames when image was read.
-        std::vector<float> half;        ///< At the last power-of-two pass count.
+        Measured image;           ///< At the last measurement.
+        int imageFrames = 0;      ///< frames when image was read.
+        std::vector<float> half;  ///< At the last power-of-two pass count.
         int halfFrames = 0;
-        double noise2 = -1.0;           ///< Relative MSE of noise at noiseSpp; < 0 unknown.
+        double noise2 = -1.0;  ///< Relative MSE of noise at noiseSpp; < 0 unknown.
         int noiseSpp = 0;
         /// Pixels that see a luminaire: left out of the relative RMSE, whose sum of squares
         /// they would dominate with an emitted radiance every image shares exactly.

@@ -1,8 +1,7 @@
 #include "renderer/FramePlan.h"
 
-#include <sstream>
-
 #include <glm/gtc/matrix_transform.hpp>
+#include <sstream>
 
 #include "renderer/passes/SourcePass.h"
 #include "scene/Occlusion.h"
@@ -20,7 +19,8 @@ glm::mat4 cameraViewProj(const Camera& c, double aspect) {
 }
 
 std::string shadowPassName(const ShadeStep& step) {
-    return "shadow:" + step.name.substr(step.name.find(':') + 1, step.name.rfind(':') - step.name.find(':') - 1);
+    return "shadow:" + step.name.substr(step.name.find(':') + 1,
+                                        step.name.rfind(':') - step.name.find(':') - 1);
 }
 
 bool FramePlan::progressive() const {
@@ -69,7 +69,8 @@ std::string overrideFor(const std::string& techniqueOverride, std::string_view k
 
 void checkTechniqueList(const std::string& techniqueOverride) {
     std::string kinds;
-    for (const LuminaireKindInfo& k : sourceKinds()) kinds += (kinds.empty() ? "" : ", ") + std::string(k.kind);
+    for (const LuminaireKindInfo& k : sourceKinds())
+        kinds += (kinds.empty() ? "" : ", ") + std::string(k.kind);
     std::istringstream list(techniqueOverride);
     for (std::string item; std::getline(list, item, ',');) {
         size_t eq = item.find('=');
@@ -77,16 +78,20 @@ void checkTechniqueList(const std::string& techniqueOverride) {
         std::string name = eq == std::string::npos ? item : item.substr(eq + 1);
         if (eq != std::string::npos) {
             if (!findKind(kind))
-                throw InputError("technique list \"" + techniqueOverride + "\": unknown kind \"" + kind + "\" in \"" +
-                                 item + "\" (kinds: " + kinds + ")");
+                throw InputError("technique list \"" + techniqueOverride + "\": unknown kind \"" +
+                                 kind + "\" in \"" + item + "\" (kinds: " + kinds + ")");
             if (!findTechnique(kind, name))
-                throw InputError("technique list \"" + techniqueOverride + "\": " + kind + " has no technique \"" + name +
+                throw InputError("technique list \"" + techniqueOverride + "\": " + kind +
+                                 " has no technique \"" + name +
                                  "\" (available: " + techniqueNames(kind) + ")");
             continue;
         }
         bool known = false;
-        for (const LuminaireKindInfo& k : sourceKinds()) known = known || findTechnique(k.kind, name) != nullptr;
-        if (!known) throw InputError("technique list \"" + techniqueOverride + "\": no kind has a technique \"" + name + "\"");
+        for (const LuminaireKindInfo& k : sourceKinds())
+            known = known || findTechnique(k.kind, name) != nullptr;
+        if (!known)
+            throw InputError("technique list \"" + techniqueOverride +
+                             "\": no kind has a technique \"" + name + "\"");
     }
 }
 
@@ -98,23 +103,26 @@ std::string described(const Luminaire& source) {
 }
 
 /// The technique a source is shaded with: the list's, else its own.
-const TechniqueInfo& chosenTechnique(const Luminaire& source, const std::string& techniqueOverride) {
+const TechniqueInfo& chosenTechnique(const Luminaire& source,
+                                     const std::string& techniqueOverride) {
     std::string name = overrideFor(techniqueOverride, source.kind());
     if (name.empty()) name = source.technique;
     const TechniqueInfo* t = findTechnique(source.kind(), name);
     if (!t)
-        throw InputError(described(source) + ": unknown technique \"" + name + "\" for " + std::string(source.kind()) +
+        throw InputError(described(source) + ": unknown technique \"" + name + "\" for " +
+                         std::string(source.kind()) +
                          " (available: " + techniqueNames(source.kind()) + ")");
     if (t->shader.empty())
-        throw InputError(described(source) + ": technique \"" + name + "\" of " + std::string(source.kind()) +
-                         " runs on the CPU only (`candela probe`, benches); pick another technique to render");
+        throw InputError(
+            described(source) + ": technique \"" + name + "\" of " + std::string(source.kind()) +
+            " runs on the CPU only (`candela probe`, benches); pick another technique to render");
     return *t;
 }
 
 }  // namespace
 
-FramePlan planFrame(const Scene& scene, const glm::mat4& viewProj, const std::string& techniqueOverride,
-                    Quantity quantity) {
+FramePlan planFrame(const Scene& scene, const glm::mat4& viewProj,
+                    const std::string& techniqueOverride, Quantity quantity) {
     checkTechniqueList(techniqueOverride);  // a typo would silently leave sources their own
     FramePlan plan;
     plan.glossy = quantity == Quantity::Radiance && scene.hasGlossy();

@@ -5,7 +5,6 @@
 // a glossy material exists.
 
 #include <glm/glm.hpp>
-
 #include <optional>
 #include <string>
 #include <vector>
@@ -23,14 +22,14 @@ struct ShadeStep {
     /// What it shades: a luminaire or the environment (an entry of Scene::sources()).
     /// The plan keeps the pointer: read the fields below instead where the scene may be gone.
     const Luminaire* source = nullptr;
-    bool atInfinity = false;  ///< The source is at infinity (the environment).
+    bool atInfinity = false;                   ///< The source is at infinity (the environment).
     const TechniqueInfo* technique = nullptr;  ///< Its kind is the source's.
-    ProgramKey program;                     ///< Shader file and variant defines.
-    bool shadows = false;                   ///< An occluder may block the source.
-    bool shadowMaps = false;                ///< ... and the technique reads shadow maps for it
-                                            ///< (else it traces a shadow ray per sample).
-    bool progressive = false;               ///< Needs more than one frame to converge.
-    std::string name;                       ///< "shade:Panel:analytic", "shade:environment:balanced"
+    ProgramKey program;                        ///< Shader file and variant defines.
+    bool shadows = false;                      ///< An occluder may block the source.
+    bool shadowMaps = false;                   ///< ... and the technique reads shadow maps for it
+                                               ///< (else it traces a shadow ray per sample).
+    bool progressive = false;                  ///< Needs more than one frame to converge.
+    std::string name;  ///< "shade:Panel:analytic", "shade:environment:balanced"
     /// Multiplies what the step writes: 683 lm/W for a radiometric source in a mixed scene
     /// (Scene::unitScale), else 1.
     float unitScale = 1.f;
@@ -41,7 +40,7 @@ struct ShadeStep {
 
 struct FramePlan {
     std::vector<ShadeStep> shading;  ///< One step per source, in Scene::sources() order.
-    bool needsBvh = false;  ///< Some step traces shadow rays: build and upload the BVH.
+    bool needsBvh = false;           ///< Some step traces shadow rays: build and upload the BVH.
     bool glossy = false;
     bool progressive() const;
     /// Pass names in execution order for the first frame: the G-buffer, then per step its

@@ -12,8 +12,8 @@ namespace {
 template <class T>
 void checkSize(const std::string& path, int width, int height, const std::vector<T>& rgb) {
     if (width <= 0 || height <= 0 || rgb.size() < size_t(width) * size_t(height) * 3)
-        throw InputError(path + ": " + std::to_string(rgb.size()) + " values for a " + std::to_string(width) +
-                           "x" + std::to_string(height) + " RGB image");
+        throw InputError(path + ": " + std::to_string(rgb.size()) + " values for a " +
+                         std::to_string(width) + "x" + std::to_string(height) + " RGB image");
 }
 
 }  // namespace
@@ -24,7 +24,8 @@ void writeImage8(const std::string& path, int width, int height,
     writeImageAtomically(path, width, height, 3, rgb.data());
 }
 
-void writeImageFloat(const std::string& path, int width, int height, const std::vector<float>& rgb) {
+void writeImageFloat(const std::string& path, int width, int height,
+                     const std::vector<float>& rgb) {
     checkSize(path, width, height, rgb);
     writeImageAtomically(path, width, height, 3, rgb.data());
 }

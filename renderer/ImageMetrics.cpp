@@ -5,11 +5,16 @@
 
 namespace candela {
 
-double luma(const float* c) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; }
+double luma(const float* c) {
+    return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
+}
 
-double relRmse(const std::vector<float>& x, const std::vector<float>& r) { return relRmse(x, r, {}); }
+double relRmse(const std::vector<float>& x, const std::vector<float>& r) {
+    return relRmse(x, r, {});
+}
 
-double relRmse(const std::vector<float>& x, const std::vector<float>& r, const std::vector<unsigned char>& skip) {
+double relRmse(const std::vector<float>& x, const std::vector<float>& r,
+               const std::vector<unsigned char>& skip) {
     double num = 0.0, den = 0.0;
     for (size_t i = 0; i + 2 < r.size() && i + 2 < x.size(); i += 3) {
         if (i / 3 < skip.size() && skip[i / 3]) continue;
@@ -36,7 +41,9 @@ glm::dvec3 lab(const unsigned char* c) {
     double X = (0.4124 * r + 0.3576 * g + 0.1805 * b) / 0.95047;
     double Y = 0.2126 * r + 0.7152 * g + 0.0722 * b;
     double Z = (0.0193 * r + 0.1192 * g + 0.9505 * b) / 1.08883;
-    auto f = [](double t) { return t > 216.0 / 24389.0 ? std::cbrt(t) : (24389.0 / 27.0 * t + 16.0) / 116.0; };
+    auto f = [](double t) {
+        return t > 216.0 / 24389.0 ? std::cbrt(t) : (24389.0 / 27.0 * t + 16.0) / 116.0;
+    };
     return {116.0 * f(Y) - 16.0, 500.0 * (f(X) - f(Y)), 200.0 * (f(Y) - f(Z))};
 }
 
@@ -47,8 +54,8 @@ double meanDeltaE(const std::vector<unsigned char>& x, const std::vector<unsigne
     return n ? sum / double(n) : 0.0;
 }
 
-std::vector<unsigned char> toneMapSrgb8(const std::vector<float>& rgb, double average, double exposure,
-                                        bool reinhard) {
+std::vector<unsigned char> toneMapSrgb8(const std::vector<float>& rgb, double average,
+                                        double exposure, bool reinhard) {
     double avg = std::max(average, 1e-8);
     std::vector<unsigned char> out(rgb.size());
     for (size_t i = 0; i < rgb.size(); ++i) {
@@ -56,7 +63,8 @@ std::vector<unsigned char> toneMapSrgb8(const std::vector<float>& rgb, double av
         double m = reinhard ? 0.18 * exposure * c / avg : 0.0;
         double mapped = reinhard ? m / (1.0 + m) : 1.0 - std::exp(-exposure * c / avg);
         mapped = std::clamp(mapped, 0.0, 1.0);
-        double s = mapped <= 0.0031308 ? 12.92 * mapped : 1.055 * std::pow(mapped, 1.0 / 2.4) - 0.055;
+        double s =
+            mapped <= 0.0031308 ? 12.92 * mapped : 1.055 * std::pow(mapped, 1.0 / 2.4) - 0.055;
         out[i] = static_cast<unsigned char>(std::lround(std::clamp(s, 0.0, 1.0) * 255.0));
     }
     return out;

@@ -13,7 +13,7 @@
 namespace candela {
 
 class ImageTextures {
-public:
+  public:
     struct Shown {
         uint64_t id = 0;  ///< The GL texture name, as ImGui::Image takes it; 0: none.
         int width = 0, height = 0;
@@ -21,11 +21,12 @@ public:
 
     /// Uploads width x height RGB8 pixels (rgb.size() == 3 width height) under key, replacing
     /// what was there.
-    void upload(const std::string& key, int width, int height, const std::vector<unsigned char>& rgb);
+    void upload(const std::string& key, int width, int height,
+                const std::vector<unsigned char>& rgb);
     /// The texture under key; id 0 when there is none.
     Shown find(const std::string& key) const;
 
-private:
+  private:
     std::map<std::string, gl::Texture2D> mTextures;
 };
 

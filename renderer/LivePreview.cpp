@@ -14,7 +14,8 @@ RenderSettings previewSettings(const RenderSettings& full, const PreviewPolicy& 
     s.height = std::max(1, int(std::lround(full.height * policy.scale)));
     s.samplesPerFrame = policy.samplesPerFrame;
     s.catchUpPasses = 1;  // a drag frame's time counts: the moved luminaire takes the usual samples
-    s.maxSamples = full.maxSamples > 0 ? std::min(full.maxSamples, policy.maxSamples) : policy.maxSamples;
+    s.maxSamples =
+        full.maxSamples > 0 ? std::min(full.maxSamples, policy.maxSamples) : policy.maxSamples;
     std::string list = policy.techniques;
     for (const LuminaireKindInfo& kind : luminaireKinds()) {
         if (!list.empty()) list.push_back(',');
@@ -23,7 +24,8 @@ RenderSettings previewSettings(const RenderSettings& full, const PreviewPolicy& 
     s.techniqueOverride = list;
     s.shadowMaps.count = policy.shadowMaps;
     s.shadowMaps.resolution = std::min(full.shadowMaps.resolution, policy.shadowMapSize);
-    s.shadowMaps.directionalResolution = std::min(full.shadowMaps.directionalResolution, 4 * policy.shadowMapSize);
+    s.shadowMaps.directionalResolution =
+        std::min(full.shadowMaps.directionalResolution, 4 * policy.shadowMapSize);
     return s;
 }
 

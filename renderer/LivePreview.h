@@ -13,11 +13,11 @@
 namespace candela {
 
 struct PreviewPolicy {
-    float scale = 0.5f;         ///< Render pixels per full-resolution pixel, per axis.
-    int samplesPerFrame = 1;    ///< Light samples per pixel per luminaire each frame.
-    int maxSamples = 16;        ///< Refines this far while the mouse holds still mid-drag.
-    int shadowMaps = 1;         ///< Maps per luminaire (ShadowMapSettings::count).
-    int shadowMapSize = 64;     ///< Texels along a cube face (ShadowMapSettings::resolution).
+    float scale = 0.5f;       ///< Render pixels per full-resolution pixel, per axis.
+    int samplesPerFrame = 1;  ///< Light samples per pixel per luminaire each frame.
+    int maxSamples = 16;      ///< Refines this far while the mouse holds still mid-drag.
+    int shadowMaps = 1;       ///< Maps per luminaire (ShadowMapSettings::count).
+    int shadowMapSize = 64;   ///< Texels along a cube face (ShadowMapSettings::resolution).
     /// Comma-separated techniques tried first (as RenderSettings::techniqueOverride); each
     /// kind's previewTechnique follows them.
     std::string techniques;

@@ -19,8 +19,9 @@ void PassTimer::timed(FrameStats& stats, const std::string& name, const std::fun
         auto start = std::chrono::steady_clock::now();
         fn();
         glFinish();
-        stats.passes.push_back(
-            {name, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count()});
+        stats.passes.push_back({name, std::chrono::duration<double, std::milli>(
+                                          std::chrono::steady_clock::now() - start)
+                                          .count()});
         return;
     }
     if (mMode == Waited) {

@@ -18,15 +18,18 @@ namespace candela {
 bool softwareRasterizer();
 
 class PassTimer {
-public:
+  public:
     enum Mode {
         Wall,    ///< The wall time between a glFinish before the pass and one after it.
-        Waited,  ///< A GPU timer query, waited for: exact, but the CPU stalls until the GPU is done.
+        Waited,  ///< A GPU timer query, waited for: exact, but the CPU stalls until the GPU is
+                 ///< done.
         Pooled,  ///< GPU timer queries from a pool, read back a frame or more later, never waiting.
     };
     /// On a software rasterizer always Wall (the CPU is the GPU); on a GPU, Pooled, or Waited
     /// where each frame's own times matter more than a stall (benches, the comparison).
-    static Mode defaultMode(bool exact) { return softwareRasterizer() ? Wall : exact ? Waited : Pooled; }
+    static Mode defaultMode(bool exact) {
+        return softwareRasterizer() ? Wall : exact ? Waited : Pooled;
+    }
     explicit PassTimer(Mode mode) : mMode(mode) {}
     void setMode(Mode mode) { mMode = mode; }
     Mode mode() const { return mMode; }
@@ -44,7 +47,7 @@ public:
     /// The last GPU time read for pass `name`, milliseconds; negative when none yet.
     double lastMs(const std::string& name) const;
 
-private:
+  private:
     struct Pending {
         gl::TimerQuery query;
         std::string name;

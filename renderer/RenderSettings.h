@@ -21,26 +21,26 @@ enum class ToneMapOperator { Exponential = 0, Reinhard = 1, FalseColour = 2 };
 struct RenderSettings {
     int width = 512;
     int height = 512;
-    int samplesPerFrame = 4;        ///< Light samples per pixel per luminaire each frame.
-    int maxSamples = 0;             ///< Stop refining at this many samples per pixel; 0 = never.
+    int samplesPerFrame = 4;  ///< Light samples per pixel per luminaire each frame.
+    int maxSamples = 0;       ///< Stop refining at this many samples per pixel; 0 = never.
     /// Empty: each luminaire's own technique. Else names separated by commas; each luminaire
     /// uses the first its kind has (see planFrame).
     std::string techniqueOverride;
     ToneMapOperator toneMap = ToneMapOperator::Exponential;
-    float exposure = 1.0f;          ///< k of the operators in shaders/tonemap.frag.
-    float fixedAverage = 0.0f;      ///< > 0: tone-map against this luminance, not the frame mean.
+    float exposure = 1.0f;      ///< k of the operators in shaders/tonemap.frag.
+    float fixedAverage = 0.0f;  ///< > 0: tone-map against this luminance, not the frame mean.
     /// Radiance: what the camera sees. Illuminance: every surface but the luminaires is a white
     /// Lambertian receiver of albedo pi (no glossy lobe), so each pixel holds the irradiance E on
     /// the surface, W/m2 (lux for photometric luminaires); luminaires show no value.
     Quantity quantity = Quantity::Radiance;
-    FalseColourLegend legend;       ///< Used by ToneMapOperator::FalseColour.
+    FalseColourLegend legend;              ///< Used by ToneMapOperator::FalseColour.
     LightParts parts = LightParts::Total;  ///< Display only: changing it re-renders nothing.
-    uint32_t seed = 0;              ///< Seeds the random numbers (independent renders differ).
+    uint32_t seed = 0;  ///< Seeds the random numbers (independent renders differ).
     /// The environment's technique; empty: techniqueOverride if it names one, else its own
     /// ("balanced"). Shorthand for "environment=NAME" in front of techniqueOverride.
     std::string environmentTechnique;
-    int environmentFaceSize = 0;    ///< Cube faces of N^2 texels; 0: EnvironmentPass's default.
-    ShadowMapSettings shadowMaps;   ///< For techniques that read shadow maps.
+    int environmentFaceSize = 0;   ///< Cube faces of N^2 texels; 0: EnvironmentPass's default.
+    ShadowMapSettings shadowMaps;  ///< For techniques that read shadow maps.
     /// > 0: renderFrame() shades only a band of rows that takes about this long (ms), so an
     /// interactive caller gets control back in time whatever one pass over the image costs; the
     /// image shown is updated when a pass is complete (band by band during the first pass).

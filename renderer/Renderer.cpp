@@ -44,11 +44,11 @@ void Renderer::update(const Scene& scene, unsigned changes) {
 
 void Renderer::setSettings(const RenderSettings& s) {
     const RenderSettings& o = mSettings;
-    bool restart = s.width != o.width || s.height != o.height ||
-                   s.samplesPerFrame != o.samplesPerFrame || s.maxSamples != o.maxSamples ||
-                   s.techniqueOverride != o.techniqueOverride || s.quantity != o.quantity ||
-                   s.environmentTechnique != o.environmentTechnique ||
-                   s.environmentFaceSize != o.environmentFaceSize || !(s.shadowMaps == o.shadowMaps);
+    bool restart =
+        s.width != o.width || s.height != o.height || s.samplesPerFrame != o.samplesPerFrame ||
+        s.maxSamples != o.maxSamples || s.techniqueOverride != o.techniqueOverride ||
+        s.quantity != o.quantity || s.environmentTechnique != o.environmentTechnique ||
+        s.environmentFaceSize != o.environmentFaceSize || !(s.shadowMaps == o.shadowMaps);
     bool display = s.toneMap != o.toneMap || s.exposure != o.exposure ||
                    s.fixedAverage != o.fixedAverage || s.legend != o.legend || s.parts != o.parts;
     mSettings = s;
@@ -57,13 +57,16 @@ void Renderer::setSettings(const RenderSettings& s) {
     if (display) mNeedDisplay = true;
 }
 
-void Renderer::setIndirect(std::shared_ptr<const RadiosityMesh> mesh, std::vector<glm::vec3> vertexIrradiance) {
+void Renderer::setIndirect(std::shared_ptr<const RadiosityMesh> mesh,
+                           std::vector<glm::vec3> vertexIrradiance) {
     mIndirectMesh = std::move(mesh);
     mIndirectIrradiance = std::move(vertexIrradiance);
     mIndirectUpload = true;
 }
 
-bool Renderer::hasIndirect() const { return mIndirectUpload ? mIndirectMesh != nullptr : mIndirect->hasLight(); }
+bool Renderer::hasIndirect() const {
+    return mIndirectUpload ? mIndirectMesh != nullptr : mIndirect->hasLight();
+}
 
 glm::mat4 Renderer::viewProj() const {
     return cameraViewProj(mScene ? mScene->camera : Camera{},
@@ -146,8 +149,10 @@ std::vector<const Luminaire*> Renderer::choosePass() {
     int spf = mSettings.samplesPerFrame;
     mPassSpp = spf;
     if (catchUp && !pass.empty())
-        mPassSpp = std::clamp(ahead - std::max(fewest, 0), spf, std::max(1, mSettings.catchUpPasses) * spf);
-    if (mSettings.maxSamples > 0) mPassSpp = std::max(1, std::min(mPassSpp, mSettings.maxSamples - std::max(fewest, 0)));
+        mPassSpp = std::clamp(ahead - std::max(fewest, 0), spf,
+                              std::max(1, mSettings.catchUpPasses) * spf);
+    if (mSettings.maxSamples > 0)
+        mPassSpp = std::max(1, std::min(mPassSpp, mSettings.maxSamples - std::max(fewest, 0)));
     return pass;
 }
 
@@ -229,8 +234,14 @@ void Renderer::runShading(int spp, int row0, int rows) {
         for (const Luminaire* source : mPass)
             if (int st = stepOf(source); st >= 0) steps.push_back(st);
     }
-    SourceContext context{mShaders, mStats, mTimer, *mGBuffer, mSettings, [this]() -> const ShadowGeometry& { return shadowGeometry(); },
-                          mGeometryGeneration, mPointMode};
+    SourceContext context{mShaders,
+                          mStats,
+                          mTimer,
+                          *mGBuffer,
+                          mSettings,
+                          [this]() -> const ShadowGeometry& { return shadowGeometry(); },
+                          mGeometryGeneration,
+                          mPointMode};
     for (int st : steps) {
         const ShadeStep& step = mPlan.shading[size_t(st)];
         SourcePass& pass = *mSourcePasses.at(step.source).pass;
@@ -257,7 +268,8 @@ void Renderer::runShading(int spp, int row0, int rows) {
 }
 
 void Renderer::applyChanges() {
-    if (mPointMode || mGBuffer->width() != mSettings.width || mGBuffer->height() != mSettings.height) {
+    if (mPointMode || mGBuffer->width() != mSettings.width ||
+        mGBuffer->height() != mSettings.height) {
         resize(mSettings.width, mSettings.height);
         mPending = kChangeAll;
         mPointMode = false;
@@ -298,7 +310,8 @@ void Renderer::applyChanges() {
 void Renderer::restartAccumulations(bool everything) {
     // A pass under way is dropped (what it shaded so far was kept apart, in `working`).
     for (const Luminaire* source : mPass)
-        if (int st = stepOf(source); st >= 0) glClearNamedFramebufferfv(accumulationOf(st).workingFbo.id(), GL_COLOR, 0, kZero);
+        if (int st = stepOf(source); st >= 0)
+            glClearNamedFramebufferfv(accumulationOf(st).workingFbo.id(), GL_COLOR, 0, kZero);
     mPass.clear();
     mBandRow = 0;
     // Each accumulation restarts when what it was shaded for changed: everything after a
@@ -359,7 +372,9 @@ void Renderer::shadeBand() {
     runShading(spp, mBandRow, rows);
     if (mSettings.bandBudgetMs > 0.0) {
         glFinish();  // the band's real cost sets the next band's height
-        double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        double ms =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                .count();
         // Per pixel, so the rate carries over when the size changes (preview <-> full).
         mPixelsPerMs = double(rows) * double(width) / std::max(ms, 1e-3);
     }
@@ -400,9 +415,12 @@ void Renderer::resolve() {
     if (mIndirect->hasLight() && mSettings.parts != LightParts::Direct)
         terms.push_back(ResolvePass::Term{&mIndirect->image(), 1.f});
     glBindVertexArray(mEmptyVao.id());
-    mTimer.timed(mStats, "resolve", [&] { mResolve->execute(mShaders, terms, mGBuffer->texture(gpu::kGBufferEmission)); });
+    mTimer.timed(mStats, "resolve", [&] {
+        mResolve->execute(mShaders, terms, mGBuffer->texture(gpu::kGBufferEmission));
+    });
     mTimer.timed(mStats, "tonemap", [&] {
-        mTonemap->execute(mShaders, mResolve->linear(), mResolve->luminance(), mGBuffer->texture(gpu::kGBufferPosition),
+        mTonemap->execute(mShaders, mResolve->linear(), mResolve->luminance(),
+                          mGBuffer->texture(gpu::kGBufferPosition),
                           mGBuffer->texture(gpu::kGBufferEmission), mSettings);
     });
     mNeedDisplay = false;
@@ -417,8 +435,10 @@ void Renderer::updateStatistics() {
         const Accumulation& a = accumulationOf(st);
         bool progressive = progressiveStep(st);
         if (fewest < 0 || a.frames < fewest) fewest = a.frames;
-        if (progressive && (fewestProgressive < 0 || a.frames < fewestProgressive)) fewestProgressive = a.frames;
-        if (progressive && (fewestSamples < 0 || a.samples < fewestSamples)) fewestSamples = a.samples;
+        if (progressive && (fewestProgressive < 0 || a.frames < fewestProgressive))
+            fewestProgressive = a.frames;
+        if (progressive && (fewestSamples < 0 || a.samples < fewestSamples))
+            fewestSamples = a.samples;
     }
     mStats.accumulatedFrames = std::max(fewestProgressive >= 0 ? fewestProgressive : fewest, 0);
     mStats.samplesPerPixel = mPlan.progressive() ? std::max(fewestSamples, 0) : 0;
@@ -437,13 +457,16 @@ void Renderer::renderFrame() {
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
-const gl::Texture2D& Renderer::displayTexture() const { return mTonemap->display(); }
+const gl::Texture2D& Renderer::displayTexture() const {
+    return mTonemap->display();
+}
 
 std::vector<float> Renderer::readLinear() const {
     const gl::Texture2D& t = mResolve->linear();
     int w = t.width(), h = t.height();
     std::vector<float> rgba(size_t(w) * size_t(h) * 4);
-    glGetTextureImage(t.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(rgba.size() * sizeof(float)), rgba.data());
+    glGetTextureImage(t.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(rgba.size() * sizeof(float)),
+                      rgba.data());
     return rgbTopDown(rgba, w, h);
 }
 
@@ -459,12 +482,14 @@ std::vector<unsigned char> Renderer::readEmitterMask() const {
     const gl::Texture2D& t = mGBuffer->texture(gpu::kGBufferEmission);
     int w = t.width(), h = t.height();
     std::vector<float> rgba(size_t(w) * size_t(h) * 4);
-    glGetTextureImage(t.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(rgba.size() * sizeof(float)), rgba.data());
+    glGetTextureImage(t.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(rgba.size() * sizeof(float)),
+                      rgba.data());
     // Alpha marks a luminaire's pixel from either side (shaders/gbuffer.frag); rows bottom-up.
     std::vector<unsigned char> mask(size_t(w) * size_t(h));
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x)
-            mask[size_t(y) * size_t(w) + size_t(x)] = rgba[(size_t(h - 1 - y) * size_t(w) + size_t(x)) * 4 + 3] > 0.5f;
+            mask[size_t(y) * size_t(w) + size_t(x)] =
+                rgba[(size_t(h - 1 - y) * size_t(w) + size_t(x)) * 4 + 3] > 0.5f;
     return mask;
 }
 
@@ -495,7 +520,8 @@ std::vector<glm::vec3> Renderer::probe(const Scene& scene, const std::vector<glm
     int frames = mPlan.progressive() ? std::max(1, (spp + perFrame - 1) / perFrame) : 1;
     for (mFrames = 0; mFrames < frames; ++mFrames) runShading(perFrame, 0, h);
     std::vector<glm::vec4> accum(static_cast<size_t>(w) * size_t(h), glm::vec4(0.f));
-    glGetTextureImage(mAccum.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(accum.size() * sizeof(glm::vec4)), accum.data());
+    glGetTextureImage(mAccum.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(accum.size() * sizeof(glm::vec4)),
+                      accum.data());
     std::vector<glm::vec3> out(points.size());
     for (size_t i = 0; i < points.size(); ++i) out[i] = glm::vec3(accum[i]) / float(frames);
     mPending = kChangeAll;

@@ -8,8 +8,9 @@
 // resolve and tone mapping when the image changed, statistics.
 
 #include <cstddef>
-#include <memory>
 #include <cstdint>
+#include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -21,8 +22,6 @@
 #include "renderer/gl/GlObjects.h"
 #include "renderer/passes/ShadowMapPass.h"
 #include "scene/Scene.h"
-
-#include <map>
 
 namespace candela {
 
@@ -49,7 +48,7 @@ enum ChangeFlags : unsigned {
 };
 
 class Renderer {
-public:
+  public:
     explicit Renderer(ShaderLibrary& shaders);
     ~Renderer();
 
@@ -91,26 +90,27 @@ public:
     /// Interreflected light to add to the image (scene/InterreflectionWorker.h): the patches and
     /// their vertices' interreflected irradiance in the scene's units; a null mesh removes it.
     /// The "indirect" pass draws it again only when this or the view changes.
-    void setIndirect(std::shared_ptr<const RadiosityMesh> mesh, std::vector<glm::vec3> vertexIrradiance);
+    void setIndirect(std::shared_ptr<const RadiosityMesh> mesh,
+                     std::vector<glm::vec3> vertexIrradiance);
     bool hasIndirect() const;
 
     glm::mat4 viewProj() const;
     /// Pick: index of the luminaire under the pixel (x right, y down), or -1.
     int pickLuminaire(const Scene& scene, double x, double y) const;
 
-private:
+  private:
     /// One source's estimates, summed over its own passes: moving a luminaire restarts its
     /// accumulation alone, and the others keep theirs.
     struct Accumulation {
-        gl::Texture2D texture;         ///< Complete passes, summed.
+        gl::Texture2D texture;  ///< Complete passes, summed.
         gl::Framebuffer fbo;
-        gl::Texture2D working;         ///< The pass under way (added to texture when complete,
-        gl::Framebuffer workingFbo;    ///< dropped when the pass is abandoned).
-        int frames = 0;                ///< Complete passes in texture.
-        int samples = 0;               ///< Their samples per pixel (texture holds each pass's
-                                       ///< estimate times its samples).
-        bool catchingUp = false;       ///< Restarted alone: behind the others, larger passes.
-        std::vector<std::byte> key;    ///< What it was shaded for (record, technique, variant).
+        gl::Texture2D working;       ///< The pass under way (added to texture when complete,
+        gl::Framebuffer workingFbo;  ///< dropped when the pass is abandoned).
+        int frames = 0;              ///< Complete passes in texture.
+        int samples = 0;             ///< Their samples per pixel (texture holds each pass's
+                                     ///< estimate times its samples).
+        bool catchingUp = false;     ///< Restarted alone: behind the others, larger passes.
+        std::vector<std::byte> key;  ///< What it was shaded for (record, technique, variant).
     };
 
     // The phases of a frame, in order.
@@ -161,9 +161,9 @@ private:
     FrameStats mStats;
     PassTimer mTimer{PassTimer::defaultMode(false)};  ///< Times every pass (renderer/PassTimer.h).
     unsigned mPending = kChangeAll;
-    int mFrames = 0;             ///< Passes of a probe (probe mode only).
-    int mBandRow = 0;            ///< Next row of the pass under way (banded refinement).
-    double mPixelsPerMs = 0.0;   ///< Pixels shaded per ms in the last band (0: not measured yet).
+    int mFrames = 0;            ///< Passes of a probe (probe mode only).
+    int mBandRow = 0;           ///< Next row of the pass under way (banded refinement).
+    double mPixelsPerMs = 0.0;  ///< Pixels shaded per ms in the last band (0: not measured yet).
     bool mNeedDisplay = false;
     bool mPointMode = false;  ///< The G-buffer holds probe points, not a camera view.
 
@@ -178,9 +178,9 @@ private:
     gl::Buffer mFrameUniforms;
     gl::Buffer mBvhNodes, mBvhTris;
     ShadowGeometry mShadowGeometry;
-    int mGeometryGeneration = 0;        ///< Counts geometry changes.
-    int mShadowGeometryGeneration = -1; ///< The generation mShadowGeometry holds.
-    gl::Texture2D mAccum;        ///< Probe mode: every step's estimates.
+    int mGeometryGeneration = 0;         ///< Counts geometry changes.
+    int mShadowGeometryGeneration = -1;  ///< The generation mShadowGeometry holds.
+    gl::Texture2D mAccum;                ///< Probe mode: every step's estimates.
     gl::Framebuffer mAccumFbo;
     /// Per source of the plan: its GPU pass, its record as uploaded, its accumulation
     /// (deterministic steps hold their one pass: shaded once, not again on every pass).

@@ -24,7 +24,7 @@ struct ProgramKey {
 };
 
 class ShaderLibrary {
-public:
+  public:
     /// shaderDir: folder with the .glsl/.vert/.frag/.comp files. Empty: defaultShaderDir().
     explicit ShaderLibrary(std::filesystem::path shaderDir = {});
 
@@ -42,15 +42,15 @@ public:
     /// CANDELA_SHADER_DIR if set, else the source tree's shaders/ folder.
     static std::filesystem::path defaultShaderDir();
 
-private:
+  private:
     struct Entry {
         gl::Program program;
         std::map<std::filesystem::path, std::filesystem::file_time_type> files;
     };
     /// Compiles key; on success fills entry, on failure returns false and sets mErrorLog.
     bool build(const ProgramKey& key, Entry& entry);
-    GLuint compileStage(GLenum stage, const std::string& file, const ProgramKey& key,
-                        Entry& entry, bool& ok);
+    GLuint compileStage(GLenum stage, const std::string& file, const ProgramKey& key, Entry& entry,
+                        bool& ok);
     std::string preprocess(const std::string& file, std::vector<std::string>& fileTable,
                            Entry& entry, int depth);
 

@@ -299,7 +299,8 @@ bool Bvh::occludedToward(const glm::dvec3& from, const glm::dvec3& dir) const {
     return occludedAlong(from, dir, kRayEpsilon, std::numeric_limits<double>::infinity());
 }
 
-bool Bvh::occludedAlong(const glm::dvec3& from, const glm::dvec3& dir, double tMin, double tMax) const {
+bool Bvh::occludedAlong(const glm::dvec3& from, const glm::dvec3& dir, double tMin,
+                        double tMax) const {
     if (nodes.empty()) return false;
     int stack[kMaxDepth + 1];
     int top = 0;

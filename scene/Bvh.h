@@ -30,10 +30,10 @@ namespace candela {
 
 /// The nearest surface along a ray (Bvh::closestHit).
 struct BvhHit {
-    double t = 0.0;           ///< Distance along the unit direction, metres.
-    glm::dvec3 point{0.0};    ///< World position, metres.
-    glm::dvec3 normal{0.0};   ///< Unit geometric normal, turned to face the ray's origin.
-    int triangle = -1;        ///< Index into Bvh::triangles.
+    double t = 0.0;          ///< Distance along the unit direction, metres.
+    glm::dvec3 point{0.0};   ///< World position, metres.
+    glm::dvec3 normal{0.0};  ///< Unit geometric normal, turned to face the ray's origin.
+    int triangle = -1;       ///< Index into Bvh::triangles.
 };
 
 struct Bvh {
@@ -71,8 +71,8 @@ struct Bvh {
     /// The ray a shadow segment from `from` to `to` tests: unit dir and tMin < t < tMax, shrunk by
     /// segmentEpsilon at both ends. False when nothing is left to test (shorter than the bias,
     /// or NaN). Shared by every visibility implementation, so all have the same bias.
-    static bool segmentRay(const glm::dvec3& from, const glm::dvec3& to, glm::dvec3& dir, double& tMin,
-                           double& tMax);
+    static bool segmentRay(const glm::dvec3& from, const glm::dvec3& to, glm::dvec3& dir,
+                           double& tMin, double& tMax);
     /// Start bias of a ray to infinity, metres (a segment's bias for lengths up to 1 m).
     static constexpr double kRayEpsilon = 1e-4;
     /// Barycentric slack of the triangle test (double here, 1e-6 in the float GLSL twin): rays
@@ -83,7 +83,8 @@ struct Bvh {
     int depth() const;
 
   private:
-    bool occludedAlong(const glm::dvec3& from, const glm::dvec3& dir, double tMin, double tMax) const;
+    bool occludedAlong(const glm::dvec3& from, const glm::dvec3& dir, double tMin,
+                       double tMax) const;
 };
 
 /// Visibility through a BVH, for the CPU estimators' EstimateOptions::visibility. Holds a

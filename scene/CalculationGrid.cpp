@@ -4,8 +4,8 @@
 #include "scene/CalculationGrid.h"
 
 #include <algorithm>
-#include <cmath>
 #include <atomic>
+#include <cmath>
 #include <memory>
 #include <thread>
 
@@ -72,8 +72,9 @@ namespace {
 void addIndirect(const Scene& scene, const GridSpec& spec, GridResult& r,
                  const std::function<void(const std::string&)>& status) {
     if (scene.meshes.empty())
-        throw InputError((scene.path.empty() ? std::string("the scene") : scene.path) +
-                         ": geometry: no surfaces, so no light is interreflected (--indirect needs a room)");
+        throw InputError(
+            (scene.path.empty() ? std::string("the scene") : scene.path) +
+            ": geometry: no surfaces, so no light is interreflected (--indirect needs a room)");
     InterreflectionOptions o;
     o.mesh.targetPatches = spec.patches;
     o.technique = spec.technique;
@@ -82,11 +83,12 @@ void addIndirect(const Scene& scene, const GridSpec& spec, GridResult& r,
         if (status) status(s);
     };
     say("interreflection: " + std::to_string(ir.mesh().patches.size()) + " patches, form factors");
-    if (std::string warning = ir.orientationWarning(scene); !warning.empty()) say("warning: " + warning);
+    if (std::string warning = ir.orientationWarning(scene); !warning.empty())
+        say("warning: " + warning);
     Progress progress;
     if (!ir.compute(progress)) throw InputError("interreflection: cancelled");
-    say("interreflection: solved in " + std::to_string(ir.lastIterations()) + " iterations; final gather at " +
-        std::to_string(r.u.size() * r.v.size()) + " points");
+    say("interreflection: solved in " + std::to_string(ir.lastIterations()) +
+        " iterations; final gather at " + std::to_string(r.u.size() * r.v.size()) + " points");
     size_t count = r.u.size() * r.v.size();
     r.indirect.assign(count, 0.0);
     r.indirectStdError.assign(count, 0.0);
@@ -114,7 +116,8 @@ void addIndirect(const Scene& scene, const GridSpec& spec, GridResult& r,
     r.hasIndirect = true;
     for (size_t k = 0; k < count; ++k) {
         r.E[k] = r.direct[k] + r.indirect[k];
-        r.stdError[k] = std::sqrt(r.directStdError[k] * r.directStdError[k] + r.indirectStdError[k] * r.indirectStdError[k]);
+        r.stdError[k] = std::sqrt(r.directStdError[k] * r.directStdError[k] +
+                                  r.indirectStdError[k] * r.indirectStdError[k]);
     }
 }
 
@@ -159,16 +162,19 @@ GridResult computeGrid(const Scene& scene, const GridSpec& spec,
     const TechniqueInfo* envChosen = nullptr;
     if (scene.environmentMap) {
         std::string name = spec.environmentTechnique;
-        if (name.empty()) name = findTechnique("environment", spec.technique) ? spec.technique : "reference";
+        if (name.empty())
+            name = findTechnique("environment", spec.technique) ? spec.technique : "reference";
         envChosen = findTechnique("environment", name);
         if (!envChosen)
-            throw InputError("--env-technique: \"" + name + "\" is not an environment technique (available: " +
+            throw InputError("--env-technique: \"" + name +
+                             "\" is not an environment technique (available: " +
                              techniqueNames("environment") + ")");
     }
     std::vector<const TechniqueInfo*> chosen;
     for (const auto& l : scene.luminaires) {
         std::string name = spec.technique.empty() ? l->technique : spec.technique;
-        if (!spec.technique.empty() && !findTechnique(l->kind(), name) && findTechnique("environment", name))
+        if (!spec.technique.empty() && !findTechnique(l->kind(), name) &&
+            findTechnique("environment", name))
             name = l->technique;  // a name only the environment has leaves luminaires on their own
         const TechniqueInfo* t = findTechnique(l->kind(), name);
         if (!t || !t->irradiance)

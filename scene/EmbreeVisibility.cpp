@@ -35,10 +35,12 @@ EmbreeVisibility::EmbreeVisibility(const Scene& scene) : mHandles(std::make_uniq
         const Mesh& mesh = scene.meshes[m];
         if (mesh.triangleCount() == 0) continue;
         RTCGeometry geometry = rtcNewGeometry(mHandles->device, RTC_GEOMETRY_TYPE_TRIANGLE);
-        auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
-            geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.positions.size()));
-        auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-            geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), mesh.triangleCount()));
+        auto* vertices = static_cast<float*>(
+            rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                    3 * sizeof(float), mesh.positions.size()));
+        auto* indices = static_cast<unsigned*>(
+            rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                    3 * sizeof(unsigned), mesh.triangleCount()));
         for (size_t i = 0; i < mesh.positions.size(); ++i)
             for (int k = 0; k < 3; ++k) vertices[3 * i + size_t(k)] = mesh.positions[i][k];
         for (size_t i = 0; i < mesh.indices.size(); ++i) indices[i] = mesh.indices[i];
@@ -52,7 +54,8 @@ EmbreeVisibility::EmbreeVisibility(const Scene& scene) : mHandles(std::make_uniq
     rtcCommitScene(mHandles->scene);
     RTCError error = rtcGetDeviceError(mHandles->device);
     if (error != RTC_ERROR_NONE)
-        throw std::runtime_error("Embree: building the scene failed (error " + std::to_string(int(error)) + ")");
+        throw std::runtime_error("Embree: building the scene failed (error " +
+                                 std::to_string(int(error)) + ")");
 }
 
 EmbreeVisibility::~EmbreeVisibility() = default;
@@ -85,7 +88,8 @@ bool EmbreeVisibility::intersect(const glm::dvec3& origin, const glm::dvec3& dir
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(mHandles->scene, &context, &rh);
-    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID || rh.hit.geomID >= mMeshOfGeometry.size()) return false;
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID || rh.hit.geomID >= mMeshOfGeometry.size())
+        return false;
     hit.t = rh.ray.tfar;
     hit.mesh = mMeshOfGeometry[rh.hit.geomID];
     hit.triangle = rh.hit.primID;

@@ -11,8 +11,8 @@
 //
 // Thread-safe after construction: the estimators may query it from several threads.
 
-#include <glm/glm.hpp>
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <memory>
 #include <vector>
 
@@ -22,7 +22,7 @@
 namespace candela {
 
 class EmbreeVisibility : public Visibility {
-public:
+  public:
     /// Builds an Embree scene of every mesh of `scene` (world space). Throws std::runtime_error
     /// if Embree cannot create its device.
     explicit EmbreeVisibility(const Scene& scene);
@@ -36,17 +36,17 @@ public:
     /// The first surface along a ray from `origin` (biased by Bvh::kRayEpsilon) in the unit
     /// direction `dir`: false when it escapes. For the final gather of interreflected light.
     struct Hit {
-        double t = 0.0;          ///< Distance along dir, metres.
-        uint32_t mesh = 0;       ///< Index into Scene::meshes.
-        uint32_t triangle = 0;   ///< Triangle of that mesh.
-        double u = 0.0, v = 0.0; ///< Barycentrics: p = (1-u-v) a + u b + v c.
+        double t = 0.0;           ///< Distance along dir, metres.
+        uint32_t mesh = 0;        ///< Index into Scene::meshes.
+        uint32_t triangle = 0;    ///< Triangle of that mesh.
+        double u = 0.0, v = 0.0;  ///< Barycentrics: p = (1-u-v) a + u b + v c.
     };
     bool intersect(const glm::dvec3& origin, const glm::dvec3& dir, Hit& hit) const;
 
     /// Triangles in the Embree scene.
     size_t triangleCount() const { return mTriangles; }
 
-private:
+  private:
     bool occluded(const glm::dvec3& origin, const glm::dvec3& dir, double tNear, double tFar) const;
 
     struct Handles;

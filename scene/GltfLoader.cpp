@@ -501,7 +501,8 @@ void GltfImport::run(const glm::dmat4& transform) {
 std::string percentDecoded(const std::string& uri) {
     std::string out;
     for (size_t i = 0; i < uri.size(); ++i) {
-        if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
+        if (uri[i] == '%' && i + 2 < uri.size() &&
+            std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
             std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
             out += char(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
             i += 2;
@@ -514,8 +515,8 @@ std::string percentDecoded(const std::string& uri) {
 
 }  // namespace
 
-std::vector<std::string> loadGltf(const std::string& path, const glm::dmat4& transform, Scene& scene,
-                                  const json::Where& where) {
+std::vector<std::string> loadGltf(const std::string& path, const glm::dmat4& transform,
+                                  Scene& scene, const json::Where& where) {
     const std::string prefix = where.file.empty() ? path : where.str() + ": " + path;
     errno = 0;
     std::FILE* probe = std::fopen(path.c_str(), "rb");

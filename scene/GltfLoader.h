@@ -23,7 +23,7 @@ namespace candela {
 /// (glTF units are metres, Y-up, as in Candela), to `scene`. Each primitive becomes one Mesh with
 /// shape General. `where` names the scene-file entry in error messages. Returns the files read:
 /// `path`, then the external buffers and images it names (data: URIs are not files).
-std::vector<std::string> loadGltf(const std::string& path, const glm::dmat4& transform, Scene& scene,
-              const json::Where& where);
+std::vector<std::string> loadGltf(const std::string& path, const glm::dmat4& transform,
+                                  Scene& scene, const json::Where& where);
 
 }  // namespace candela

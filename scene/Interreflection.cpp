@@ -16,13 +16,13 @@ using gpu::kPi;
 }  // namespace
 
 struct Interreflection::Source {
-    std::vector<std::byte> key;                         ///< What its direct light depends on.
-    std::shared_ptr<const Luminaire> luminaire;         ///< Its own copy (a luminaire or the environment).
-    const Luminaire* origin = nullptr;                  ///< The scene's, while sync() runs.
+    std::vector<std::byte> key;                  ///< What its direct light depends on.
+    std::shared_ptr<const Luminaire> luminaire;  ///< Its own copy (a luminaire or the environment).
+    const Luminaire* origin = nullptr;           ///< The scene's, while sync() runs.
     IrradianceFn irradiance = nullptr;
-    double scale = 1.0;                                 ///< The scene's unit conversion.
-    int spp = 0;                                        ///< Samples of `direct`.
-    std::vector<glm::dvec3> direct;                     ///< Per patch.
+    double scale = 1.0;              ///< The scene's unit conversion.
+    int spp = 0;                     ///< Samples of `direct`.
+    std::vector<glm::dvec3> direct;  ///< Per patch.
 
     Estimate estimate(const glm::dvec3& p, const glm::dvec3& n, const EstimateOptions& o) const {
         Estimate e = irradiance(*luminaire, p, n, o);
@@ -38,7 +38,9 @@ void append(std::vector<std::byte>& key, const void* data, size_t bytes) {
     const auto* b = static_cast<const std::byte*>(data);
     key.insert(key.end(), b, b + bytes);
 }
-void append(std::vector<std::byte>& key, const std::string& text) { append(key, text.data(), text.size() + 1); }
+void append(std::vector<std::byte>& key, const std::string& text) {
+    append(key, text.data(), text.size() + 1);
+}
 
 }  // namespace
 
@@ -52,11 +54,14 @@ Interreflection::Interreflection(const Scene& scene, const InterreflectionOption
 
 Interreflection::~Interreflection() = default;
 
-size_t Interreflection::sourceCount() const { return mSources.size(); }
+size_t Interreflection::sourceCount() const {
+    return mSources.size();
+}
 
 int Interreflection::samples() const {
     int fewest = 0;
-    for (size_t i = 0; i < mSources.size(); ++i) fewest = i == 0 ? mSources[i].spp : std::min(fewest, mSources[i].spp);
+    for (size_t i = 0; i < mSources.size(); ++i)
+        fewest = i == 0 ? mSources[i].spp : std::min(fewest, mSources[i].spp);
     return fewest;
 }
 
@@ -72,26 +77,32 @@ bool Interreflection::buildTransfer(const Progress& progress) {
     return mTransferBuilt;
 }
 
-bool Interreflection::computeDirect(Source& s, int spp, std::vector<glm::dvec3>& out, const Progress& progress) const {
+bool Interreflection::computeDirect(Source& s, int spp, std::vector<glm::dvec3>& out,
+                                    const Progress& progress) const {
     EstimateOptions o;
     o.spp = spp;
     o.seed = 0x5eed0000ull + uint64_t(spp);
     for (std::byte b : s.key) o.seed = o.seed * 131ull + uint64_t(b);
     o.visibility = mVisibility.get();
     return directOnPatches(
-        mMesh, [&](const glm::dvec3& p, const glm::dvec3& n, const EstimateOptions& opt) { return s.estimate(p, n, opt); },
+        mMesh,
+        [&](const glm::dvec3& p, const glm::dvec3& n, const EstimateOptions& opt) {
+            return s.estimate(p, n, opt);
+        },
         o, mOptions.threads, out, progress);
 }
 
 bool Interreflection::solveChange(const std::vector<glm::dvec3>& change, const Progress& progress) {
     // E_ind is linear in E_dir: solve for the change and add it.
     std::vector<glm::dvec3> delta;
-    int iterations = solveRadiosity(mTransfer, mMesh, change, delta, mOptions.tolerance, mOptions.threads, progress);
+    int iterations = solveRadiosity(mTransfer, mMesh, change, delta, mOptions.tolerance,
+                                    mOptions.threads, progress);
     if (iterations < 0) return false;
     mLastIterations = iterations;
     for (size_t i = 0; i < change.size(); ++i) {
         mDirectTotal[i] += change[i];
-        mIndirect[i] = glm::max(mIndirect[i] + delta[i], glm::dvec3(0.0));  // rounding of differences
+        mIndirect[i] =
+            glm::max(mIndirect[i] + delta[i], glm::dvec3(0.0));  // rounding of differences
         mDirectTotal[i] = glm::max(mDirectTotal[i], glm::dvec3(0.0));
     }
     mIndirectVertices = vertexValues(mMesh, mIndirect);
@@ -106,11 +117,13 @@ bool Interreflection::sync(const Scene& scene, int spp, const Progress& progress
     for (const auto& l : scene.luminaires) {
         // As `candela probe --technique`: the named technique where the kind has it, else the
         // luminaire's own.
-        std::string name = findTechnique(l->kind(), mOptions.technique) ? mOptions.technique : l->technique;
+        std::string name =
+            findTechnique(l->kind(), mOptions.technique) ? mOptions.technique : l->technique;
         const TechniqueInfo* t = findTechnique(l->kind(), name);
         if (!t || !t->irradiance)
-            throw InputError("--technique: \"" + name + "\" is not a technique of " + std::string(l->kind()) +
-                             " with a CPU estimator (available: " + techniqueNames(l->kind()) + ")");
+            throw InputError(
+                "--technique: \"" + name + "\" is not a technique of " + std::string(l->kind()) +
+                " with a CPU estimator (available: " + techniqueNames(l->kind()) + ")");
         Source s;
         s.origin = l.get();
         s.irradiance = t->irradiance;
@@ -125,11 +138,13 @@ bool Interreflection::sync(const Scene& scene, int spp, const Progress& progress
         fresh.push_back(std::move(s));
     }
     if (scene.environmentMap) {
-        std::string name = mOptions.environmentTechnique.empty() ? "balanced-mis" : mOptions.environmentTechnique;
+        std::string name =
+            mOptions.environmentTechnique.empty() ? "balanced-mis" : mOptions.environmentTechnique;
         Source s;
         const TechniqueInfo* t = findTechnique("environment", name);
         if (!t)
-            throw InputError("--env-technique: \"" + name + "\" is not an environment technique (available: " +
+            throw InputError("--env-technique: \"" + name +
+                             "\" is not an environment technique (available: " +
                              techniqueNames("environment") + ")");
         s.origin = scene.environmentLight();
         s.irradiance = t->irradiance;
@@ -157,7 +172,8 @@ bool Interreflection::sync(const Scene& scene, int spp, const Progress& progress
             // Cancelled: keep the old sources (their light is still in the solution).
             for (size_t i = 0; i < mSources.size(); ++i)
                 for (Source& f : fresh)
-                    if (taken[i] && f.key == mSources[i].key && !f.direct.empty()) mSources[i].direct = std::move(f.direct);
+                    if (taken[i] && f.key == mSources[i].key && !f.direct.empty())
+                        mSources[i].direct = std::move(f.direct);
             return false;
         }
         s.spp = spp;
@@ -203,7 +219,8 @@ bool Interreflection::compute(const Progress& progress) {
     return buildTransfer(progress) && sync(mGeometry, mOptions.directSpp, progress);
 }
 
-glm::dvec3 Interreflection::directAt(const glm::dvec3& x, const glm::dvec3& n, const EstimateOptions& o) const {
+glm::dvec3 Interreflection::directAt(const glm::dvec3& x, const glm::dvec3& n,
+                                     const EstimateOptions& o) const {
     glm::dvec3 sum(0.0);
     for (size_t s = 0; s < mSources.size(); ++s) {
         EstimateOptions so = o;
@@ -233,8 +250,10 @@ std::string Interreflection::orientationWarning(const Scene& scene) const {
             backs += glm::dot(mMesh.patches[p].normal, d) > 0.0;
         }
         if (hits > 0 && backs > hits / 4)
-            return "luminaire \"" + l->name + "\" lights the back of surfaces (" + std::to_string(100 * backs / hits) +
-                   " % of the surfaces around it), which reflect nothing: surfaces reflect on their normal's side "
+            return "luminaire \"" + l->name + "\" lights the back of surfaces (" +
+                   std::to_string(100 * backs / hits) +
+                   " % of the surfaces around it), which reflect nothing: surfaces reflect on "
+                   "their normal's side "
                    "(a room: a box with \"inside\": true, planes with normals into the room)";
     }
     return {};
@@ -248,23 +267,25 @@ glm::dvec3 Interreflection::fromPatches(const glm::dvec3& p, const glm::dvec3& n
         const RadiosityMesh::Patch& q = mMesh.patches[j];
         if (!(q.albedo.x + q.albedo.y + q.albedo.z > 0.0)) continue;
         if (!(glm::dot(q.normal, p - q.centroid) > 0.0)) continue;  // p behind its reflecting side
-        double f = pointTriangleFormFactor(p, n, mMesh.vertices[q.vertex[0]], mMesh.vertices[q.vertex[1]],
-                                           mMesh.vertices[q.vertex[2]]);
+        double f =
+            pointTriangleFormFactor(p, n, mMesh.vertices[q.vertex[0]], mMesh.vertices[q.vertex[1]],
+                                    mMesh.vertices[q.vertex[2]]);
         if (!(f > 0.0) || !mVisibility->visible(p, q.centroid)) continue;
         sum += f * q.albedo * (mDirectTotal[j] + mIndirect[j]);
     }
     return sum;
 }
 
-Estimate Interreflection::gather(const glm::dvec3& p, const glm::dvec3& normal, const EstimateOptions& options,
-                                 int directSpp) const {
+Estimate Interreflection::gather(const glm::dvec3& p, const glm::dvec3& normal,
+                                 const EstimateOptions& options, int directSpp) const {
     Estimate out;
     double len = glm::length(normal);
     if (!(len > 0.0) || options.spp <= 0 || mMesh.patches.empty()) return out;
     glm::dvec3 n = normal / len;
     // An orthonormal frame around n (Duff et al. 2017).
     double sign = std::copysign(1.0, n.z), a = -1.0 / (sign + n.z), b = n.x * n.y * a;
-    glm::dvec3 t(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x), bt(b, sign + n.y * n.y * a, -n.y);
+    glm::dvec3 t(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x),
+        bt(b, sign + n.y * n.y * a, -n.y);
     // Stratified cosine-weighted directions: a k x k grid of jittered cells (Malley's method),
     // then the remainder unstratified.
     int k = int(std::floor(std::sqrt(double(options.spp))));
@@ -281,7 +302,8 @@ Estimate Interreflection::gather(const glm::dvec3& p, const glm::dvec3& normal, 
             u2 = (double(i / k) + u2) / k;
         }
         double r = std::sqrt(u1), phi = 2.0 * kPi * u2;
-        glm::dvec3 w = glm::normalize(r * std::cos(phi) * t + r * std::sin(phi) * bt + std::sqrt(std::max(0.0, 1.0 - u1)) * n);
+        glm::dvec3 w = glm::normalize(r * std::cos(phi) * t + r * std::sin(phi) * bt +
+                                      std::sqrt(std::max(0.0, 1.0 - u1)) * n);
         glm::dvec3 f(0.0);
         EmbreeVisibility::Hit hit;
         if (mVisibility->intersect(origin, w, hit)) {
@@ -305,7 +327,8 @@ Estimate Interreflection::gather(const glm::dvec3& p, const glm::dvec3& normal, 
         m2 += d * (f - mean);
     }
     out.irradiance = mean;
-    if (options.spp > 1) out.stdError = glm::sqrt(glm::max(m2, 0.0) / double(options.spp - 1) / double(options.spp));
+    if (options.spp > 1)
+        out.stdError = glm::sqrt(glm::max(m2, 0.0) / double(options.spp - 1) / double(options.spp));
     return out;
 }
 

@@ -15,7 +15,6 @@
 // Units: the scene's (Scene::units(): lx, or W/m2 for a radiometric scene).
 
 #include <glm/glm.hpp>
-
 #include <memory>
 #include <string>
 #include <vector>
@@ -45,7 +44,7 @@ struct InterreflectionOptions {
 };
 
 class Interreflection {
-public:
+  public:
     /// The patches and the shadow-ray scene of `scene`'s geometry (its luminaires and
     /// environment join with sync()). Nothing heavy runs yet.
     Interreflection(const Scene& scene, const InterreflectionOptions& options);
@@ -89,18 +88,20 @@ public:
     /// The final gather at p for the unit normal n with options.spp rays (seeded by
     /// options.seed; options.visibility is ignored: Embree is used). `directSpp` samples for
     /// each source's estimate at the hit points.
-    Estimate gather(const glm::dvec3& p, const glm::dvec3& n, const EstimateOptions& options, int directSpp = 16) const;
+    Estimate gather(const glm::dvec3& p, const glm::dvec3& n, const EstimateOptions& options,
+                    int directSpp = 16) const;
     /// The interreflected irradiance at p from the patches' solution alone (each patch's
     /// reflected light rho (E_dir + E_ind), Lambert's form factor from p, a shadow ray to its
     /// centroid): deterministic, smooth and fast (the editor's grid, the bench's work plane).
     glm::dvec3 fromPatches(const glm::dvec3& p, const glm::dvec3& n) const;
 
-private:
+  private:
     struct Source;
     /// Every source's direct irradiance at point x with normal n, in the scene's units.
     glm::dvec3 directAt(const glm::dvec3& x, const glm::dvec3& n, const EstimateOptions& o) const;
     /// The direct light of source s at `spp` samples into s's patch values.
-    bool computeDirect(Source& s, int spp, std::vector<glm::dvec3>& out, const Progress& progress) const;
+    bool computeDirect(Source& s, int spp, std::vector<glm::dvec3>& out,
+                       const Progress& progress) const;
     /// Adds the solution of a change of the direct light to the indirect one.
     bool solveChange(const std::vector<glm::dvec3>& change, const Progress& progress);
 
@@ -112,7 +113,7 @@ private:
     TransferMatrix mTransfer;
     bool mTransferBuilt = false;
     std::vector<glm::dvec3> mDirectTotal, mIndirect;
-    std::vector<glm::dvec3> mIndirectVertices;     ///< For display and the gather's interpolation.
+    std::vector<glm::dvec3> mIndirectVertices;  ///< For display and the gather's interpolation.
     int mLastIterations = 0;
 };
 

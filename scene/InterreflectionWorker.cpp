@@ -8,7 +8,8 @@
 
 namespace candela {
 
-InterreflectionWorker::InterreflectionWorker(InterreflectionOptions options) : mOptions(std::move(options)) {
+InterreflectionWorker::InterreflectionWorker(InterreflectionOptions options)
+    : mOptions(std::move(options)) {
     // One core stays with the render thread (and llvmpipe), so the editor keeps its frame rate.
     if (mOptions.threads <= 0) mOptions.threads = std::max(1, workerThreads(0) - 1);
     mThread = std::thread([this] { run(); });
@@ -148,7 +149,8 @@ void InterreflectionWorker::run() {
             mSolver.reset();
         }
         std::lock_guard<std::mutex> lock(mMutex);
-        mStatus.lastSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        mStatus.lastSeconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         mStatus.stage = "idle";
     }
 }

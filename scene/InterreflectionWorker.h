@@ -12,11 +12,10 @@
 // (kFineSpp) and published again as converged. A newer scene cancels the work under way at the
 // next patch. Solutions are published as snapshots the render thread polls (latest()).
 
-#include <glm/glm.hpp>
-
 #include <atomic>
 #include <condition_variable>
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -30,7 +29,7 @@ namespace candela {
 struct Scene;
 
 class InterreflectionWorker {
-public:
+  public:
     /// Direct-light samples per patch point of the quick and the refined pass.
     static constexpr int kQuickSpp = 4, kFineSpp = 32;
 
@@ -47,10 +46,10 @@ public:
     bool enabled() const { return mEnabled; }
 
     struct Snapshot {
-        uint64_t version = 0;                        ///< Grows with every published solution.
-        std::shared_ptr<const RadiosityMesh> mesh;   ///< null: no interreflected light (yet).
-        std::vector<glm::vec3> vertexIrradiance;     ///< Interreflected irradiance per mesh vertex.
-        bool converged = false;                      ///< Refined, and nothing left to do.
+        uint64_t version = 0;                       ///< Grows with every published solution.
+        std::shared_ptr<const RadiosityMesh> mesh;  ///< null: no interreflected light (yet).
+        std::vector<glm::vec3> vertexIrradiance;    ///< Interreflected irradiance per mesh vertex.
+        bool converged = false;                     ///< Refined, and nothing left to do.
         size_t patches = 0;
     };
     /// The latest published solution (copied).
@@ -59,7 +58,7 @@ public:
 
     struct Status {
         bool busy = false;
-        std::string stage;       ///< "form factors", "direct light (quick)", "refining", "solving"...
+        std::string stage;  ///< "form factors", "direct light (quick)", "refining", "solving"...
         double progress = 0.0;   ///< Of the stage, 0..1.
         double lastSeconds = 0;  ///< Wall time of the last finished job.
         std::string error;       ///< The last job's failure (a bad technique), else empty.
@@ -68,7 +67,7 @@ public:
     /// Blocks until nothing is left to do (headless renders, tests).
     void wait();
 
-private:
+  private:
     void run();
     void publish(bool converged);
     void setStage(const std::string& stage, double progress);

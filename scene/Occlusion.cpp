@@ -182,7 +182,8 @@ bool environmentNeedsShadows(const Scene& scene, const glm::mat4& viewProj) {
                     glm::dvec3 p0(occluder.positions[0]);
                     double eps = 1e-6 * std::max(1.0, largestCoordinate(rb));
                     bool inPlane = true;
-                    for (const glm::dvec3& c : corners(rb)) inPlane = inPlane && std::abs(glm::dot(c - p0, n)) <= eps;
+                    for (const glm::dvec3& c : corners(rb))
+                        inPlane = inPlane && std::abs(glm::dot(c - p0, n)) <= eps;
                     if (inPlane) continue;
                 }
             }

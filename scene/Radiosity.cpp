@@ -18,7 +18,9 @@ using gpu::kPi;
 /// Largest number of divisions of one triangle edge (a 1 km plane at 1 cm patches stops here).
 constexpr uint32_t kMaxSubdivisions = 256;
 
-double luminance(const glm::dvec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+double luminance(const glm::dvec3& c) {
+    return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
+}
 
 /// Runs body(i) for i in [0, count) on `threads` threads, in chunks taken in order; stops early
 /// when `progress` is cancelled (returns false then). Progress is reported from the calling thread.
@@ -53,8 +55,8 @@ uint32_t localIndex(uint32_t i, uint32_t j, bool down, uint32_t n) {
 
 }  // namespace
 
-double pointTriangleFormFactor(const glm::dvec3& x, const glm::dvec3& n, const glm::dvec3& a, const glm::dvec3& b,
-                               const glm::dvec3& c) {
+double pointTriangleFormFactor(const glm::dvec3& x, const glm::dvec3& n, const glm::dvec3& a,
+                               const glm::dvec3& b, const glm::dvec3& c) {
     glm::dvec3 in[3] = {a - x, b - x, c - x}, poly[4];
     int count = 0;
     for (int i = 0; i < 3; ++i) {
@@ -88,7 +90,8 @@ double sceneArea(const Scene& scene) {
     double total = 0.0;
     for (const Mesh& m : scene.meshes)
         for (size_t t = 0; t + 2 < m.indices.size(); t += 3) {
-            glm::dvec3 a(m.positions[m.indices[t]]), b(m.positions[m.indices[t + 1]]), c(m.positions[m.indices[t + 2]]);
+            glm::dvec3 a(m.positions[m.indices[t]]), b(m.positions[m.indices[t + 1]]),
+                c(m.positions[m.indices[t + 2]]);
             total += 0.5 * glm::length(glm::cross(b - a, c - a));
         }
     return total;
@@ -97,7 +100,7 @@ double sceneArea(const Scene& scene) {
 /// Welds patch vertices within a mesh and a flat surface: the key is the position rounded to a
 /// millionth of the patch size; vertices with one key but normals apart stay separate.
 class VertexWelder {
-public:
+  public:
     VertexWelder(std::vector<glm::dvec3>& vertices, double h)
         : mVertices(vertices), mQuantum(1e-6 * h) {}
 
@@ -115,7 +118,7 @@ public:
         return v;
     }
 
-private:
+  private:
     std::vector<glm::dvec3>& mVertices;
     double mQuantum;
     std::map<std::tuple<int64_t, int64_t, int64_t, uint32_t>, std::vector<uint32_t>> mWeld;
@@ -144,7 +147,8 @@ void addTrianglePatches(RadiosityMesh& out, VertexWelder& welder, const Mesh& m,
     // winding's (counter-clockwise seen from outside).
     bool flip = false;
     if (ia < m.normals.size() && ib < m.normals.size() && ic < m.normals.size()) {
-        glm::dvec3 nv = glm::dvec3(m.normals[ia]) + glm::dvec3(m.normals[ib]) + glm::dvec3(m.normals[ic]);
+        glm::dvec3 nv =
+            glm::dvec3(m.normals[ia]) + glm::dvec3(m.normals[ib]) + glm::dvec3(m.normals[ic]);
         flip = glm::dot(nv, normal) < 0.0;
     }
     if (flip) normal = -normal;
@@ -177,7 +181,8 @@ void addTrianglePatches(RadiosityMesh& out, VertexWelder& welder, const Mesh& m,
         for (uint32_t i = 0; i + j < n; ++i) {
             add(grid[gridIndex(i, j)], grid[gridIndex(i + 1, j)], grid[gridIndex(i, j + 1)]);
             if (i + j < n - 1)
-                add(grid[gridIndex(i + 1, j)], grid[gridIndex(i + 1, j + 1)], grid[gridIndex(i, j + 1)]);
+                add(grid[gridIndex(i + 1, j)], grid[gridIndex(i + 1, j + 1)],
+                    grid[gridIndex(i, j + 1)]);
         }
 }
 
@@ -203,7 +208,8 @@ void indexVertexPatches(RadiosityMesh& out) {
     for (const RadiosityMesh::Patch& p : out.patches)
         for (uint32_t v : p.vertex) ++counts[v + 1];
     out.vertexStart.assign(out.vertices.size() + 1, 0);
-    for (size_t v = 0; v < out.vertices.size(); ++v) out.vertexStart[v + 1] = out.vertexStart[v] + counts[v + 1];
+    for (size_t v = 0; v < out.vertices.size(); ++v)
+        out.vertexStart[v + 1] = out.vertexStart[v] + counts[v + 1];
     out.vertexPatches.assign(out.vertexStart.back(), 0);
     std::vector<uint32_t> fill(out.vertexStart.begin(), out.vertexStart.end() - 1);
     for (uint32_t p = 0; p < out.patches.size(); ++p)
@@ -216,15 +222,17 @@ RadiosityMesh RadiosityMesh::build(const Scene& scene, const RadiositySettings& 
     RadiosityMesh out;
     double total = sceneArea(scene);
     // A quad of edge h splits into two patches of h^2 / 2.
-    out.patchSize = settings.patchSize > 0.0 ? settings.patchSize
-                                             : std::sqrt(2.0 * total / double(std::max(1, settings.targetPatches)));
+    out.patchSize = settings.patchSize > 0.0
+                        ? settings.patchSize
+                        : std::sqrt(2.0 * total / double(std::max(1, settings.targetPatches)));
     double h = std::max(out.patchSize, 1e-9), patchArea = 0.5 * h * h;
     VertexWelder welder(out.vertices, h);
     out.splits.resize(scene.meshes.size());
     for (size_t mi = 0; mi < scene.meshes.size(); ++mi) {
         const Mesh& m = scene.meshes[mi];
-        glm::dvec3 albedo = m.material < scene.materials.size() ? glm::dvec3(scene.materials[m.material].albedo)
-                                                                : glm::dvec3(0.0);
+        glm::dvec3 albedo = m.material < scene.materials.size()
+                                ? glm::dvec3(scene.materials[m.material].albedo)
+                                : glm::dvec3(0.0);
         albedo = glm::clamp(albedo, 0.0, 1.0);
         for (size_t t = 0; t + 2 < m.indices.size(); t += 3)
             addTrianglePatches(out, welder, m, mi, t, albedo, h, patchArea);
@@ -234,7 +242,8 @@ RadiosityMesh RadiosityMesh::build(const Scene& scene, const RadiositySettings& 
     return out;
 }
 
-uint32_t RadiosityMesh::patchAt(uint32_t mesh, uint32_t triangle, double u, double v, glm::dvec3& weights) const {
+uint32_t RadiosityMesh::patchAt(uint32_t mesh, uint32_t triangle, double u, double v,
+                                glm::dvec3& weights) const {
     const Split& s = splits.at(mesh).at(triangle);
     uint32_t n = s.subdivisions;
     if (n == 0) {
@@ -254,7 +263,8 @@ uint32_t RadiosityMesh::patchAt(uint32_t mesh, uint32_t triangle, double u, doub
         weights = {std::max(0.0, 1.0 - r - q), r, q};
     // A patch stored with the other winding (its vertices 1 and 2 swapped).
     const Patch& p = patches[index];
-    glm::dvec3 e1 = vertices[p.vertex[1]] - vertices[p.vertex[0]], e2 = vertices[p.vertex[2]] - vertices[p.vertex[0]];
+    glm::dvec3 e1 = vertices[p.vertex[1]] - vertices[p.vertex[0]],
+               e2 = vertices[p.vertex[2]] - vertices[p.vertex[0]];
     if (glm::dot(glm::cross(e1, e2), p.normal) < 0.0) std::swap(weights.y, weights.z);
     return index;
 }
@@ -271,8 +281,8 @@ double RadiosityMesh::totalArea() const {
     return a;
 }
 
-bool TransferMatrix::build(const RadiosityMesh& mesh, const EmbreeVisibility& visibility, int threads,
-                           const Progress& progress) {
+bool TransferMatrix::build(const RadiosityMesh& mesh, const EmbreeVisibility& visibility,
+                           int threads, const Progress& progress) {
     size = mesh.patches.size();
     t.assign(size * size, 0.f);
     const auto& patches = mesh.patches;
@@ -289,14 +299,16 @@ bool TransferMatrix::build(const RadiosityMesh& mesh, const EmbreeVisibility& vi
                 if (k == j) continue;
                 const RadiosityMesh::Patch& receiver = patches[k];
                 // A receiver reflects on its normal's side only: the shooter must be in front.
-                if (!(glm::dot(receiver.normal, shooter.centroid - receiver.centroid) > 0.0)) continue;
+                if (!(glm::dot(receiver.normal, shooter.centroid - receiver.centroid) > 0.0))
+                    continue;
                 const glm::dvec3& a = vertices[receiver.vertex[0]];
                 const glm::dvec3& b = vertices[receiver.vertex[1]];
                 const glm::dvec3& c = vertices[receiver.vertex[2]];
                 // From the shooter's centroid: over a closed room the row sums to exactly one.
                 double f = pointTriangleFormFactor(shooter.centroid, shooter.normal, a, b, c);
                 if (!(f > 0.0)) continue;
-                if (!mesh.convexRoom && !visibility.visible(shooter.centroid, receiver.centroid)) continue;
+                if (!mesh.convexRoom && !visibility.visible(shooter.centroid, receiver.centroid))
+                    continue;
                 t[k * size + j] = float(shooter.area * f / receiver.area);
             }
         }
@@ -306,8 +318,9 @@ bool TransferMatrix::build(const RadiosityMesh& mesh, const EmbreeVisibility& vi
     });
 }
 
-bool directOnPatches(const RadiosityMesh& mesh, const PointEstimator& estimate, const EstimateOptions& options,
-                     int threads, std::vector<glm::dvec3>& out, const Progress& progress) {
+bool directOnPatches(const RadiosityMesh& mesh, const PointEstimator& estimate,
+                     const EstimateOptions& options, int threads, std::vector<glm::dvec3>& out,
+                     const Progress& progress) {
     out.assign(mesh.patches.size(), glm::dvec3(0.0));
     static const double kRule[3][3] = {{2.0 / 3.0, 1.0 / 6.0, 1.0 / 6.0},
                                        {1.0 / 6.0, 2.0 / 3.0, 1.0 / 6.0},
@@ -320,12 +333,14 @@ bool directOnPatches(const RadiosityMesh& mesh, const PointEstimator& estimate, 
         const RadiosityMesh::Patch& p = mesh.patches[i];
         glm::dvec3 sum(0.0);
         for (int q = 0; q < 3; ++q) {
-            glm::dvec3 x = kRule[q][0] * mesh.vertices[p.vertex[0]] + kRule[q][1] * mesh.vertices[p.vertex[1]] +
+            glm::dvec3 x = kRule[q][0] * mesh.vertices[p.vertex[0]] +
+                           kRule[q][1] * mesh.vertices[p.vertex[1]] +
                            kRule[q][2] * mesh.vertices[p.vertex[2]];
             EstimateOptions o = options;
             o.seed = options.seed * 0x9E3779B97F4A7C15ull + uint64_t(i) * 3 + uint64_t(q) + 1;
             Estimate e = estimate(x, p.normal, o);
-            if (std::isfinite(e.irradiance.x + e.irradiance.y + e.irradiance.z)) sum += e.irradiance;
+            if (std::isfinite(e.irradiance.x + e.irradiance.y + e.irradiance.z))
+                sum += e.irradiance;
         }
         out[i] = sum / 3.0;
         size_t done = count.fetch_add(1) + 1;
@@ -334,8 +349,9 @@ bool directOnPatches(const RadiosityMesh& mesh, const PointEstimator& estimate, 
     });
 }
 
-int solveRadiosity(const TransferMatrix& transfer, const RadiosityMesh& mesh, const std::vector<glm::dvec3>& direct,
-                   std::vector<glm::dvec3>& indirect, double tolerance, int threads, const Progress& progress) {
+int solveRadiosity(const TransferMatrix& transfer, const RadiosityMesh& mesh,
+                   const std::vector<glm::dvec3>& direct, std::vector<glm::dvec3>& indirect,
+                   double tolerance, int threads, const Progress& progress) {
     const size_t n = mesh.patches.size();
     if (indirect.size() != n) indirect.assign(n, glm::dvec3(0.0));
     if (n == 0 || transfer.size != n) return 0;
@@ -344,7 +360,8 @@ int solveRadiosity(const TransferMatrix& transfer, const RadiosityMesh& mesh, co
     const int kMaxIterations = 100000;  // rho < 1 converges long before; a guard only
     for (int iteration = 1; iteration <= kMaxIterations; ++iteration) {
         // M_j = rho_j (E_dir + E_ind), then E_ind'_k = sum_j T_kj M_j.
-        for (size_t j = 0; j < n; ++j) exitance[j] = mesh.patches[j].albedo * (direct[j] + indirect[j]);
+        for (size_t j = 0; j < n; ++j)
+            exitance[j] = mesh.patches[j].albedo * (direct[j] + indirect[j]);
         Progress quiet;
         quiet.cancel = progress.cancel;
         bool finished = parallelFor(n, workers, quiet, [&](size_t k) {
@@ -366,7 +383,8 @@ int solveRadiosity(const TransferMatrix& transfer, const RadiosityMesh& mesh, co
     return kMaxIterations;
 }
 
-std::vector<glm::dvec3> vertexValues(const RadiosityMesh& mesh, const std::vector<glm::dvec3>& perPatch) {
+std::vector<glm::dvec3> vertexValues(const RadiosityMesh& mesh,
+                                     const std::vector<glm::dvec3>& perPatch) {
     std::vector<glm::dvec3> out(mesh.vertices.size(), glm::dvec3(0.0));
     for (size_t v = 0; v < mesh.vertices.size(); ++v) {
         glm::dvec3 sum(0.0);

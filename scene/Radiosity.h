@@ -20,12 +20,11 @@
 //
 // E_ind is linear in E_dir, so each source's share can be updated alone (Interreflection.h).
 
-#include <glm/glm.hpp>
-
 #include <array>
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <glm/glm.hpp>
 #include <vector>
 
 #include "luminaires/Registry.h"
@@ -54,7 +53,7 @@ struct RadiosityMesh {
     };
     std::vector<glm::dvec3> vertices;  ///< Metres.
     std::vector<Patch> patches;
-    double patchSize = 0.0;            ///< Longest edge asked for, metres.
+    double patchSize = 0.0;  ///< Longest edge asked for, metres.
     /// Every patch sees every other unobstructed: all vertices lie on or in front of every
     /// patch's plane (a convex room seen from inside, such as a closed box or sphere). Then the
     /// form factors need no shadow rays.
@@ -76,7 +75,8 @@ struct RadiosityMesh {
     static RadiosityMesh build(const Scene& scene, const RadiositySettings& settings);
     /// The patch that holds the point of barycentric (u, v) (Embree's: p = (1-u-v) a + u b + v c)
     /// on triangle `triangle` of mesh `mesh`, and the point's barycentrics within that patch.
-    uint32_t patchAt(uint32_t mesh, uint32_t triangle, double u, double v, glm::dvec3& weights) const;
+    uint32_t patchAt(uint32_t mesh, uint32_t triangle, double u, double v,
+                     glm::dvec3& weights) const;
     /// True when some patch reflects light (a non-zero albedo).
     bool reflects() const;
     double totalArea() const;
@@ -84,8 +84,8 @@ struct RadiosityMesh {
 
 /// Cooperative cancellation and progress of a long computation (all optional).
 struct Progress {
-    const std::atomic<bool>* cancel = nullptr;       ///< Stop early when it becomes true.
-    std::function<void(double fraction)> report;     ///< 0..1, from the calling thread.
+    const std::atomic<bool>* cancel = nullptr;    ///< Stop early when it becomes true.
+    std::function<void(double fraction)> report;  ///< 0..1, from the calling thread.
     bool cancelled() const { return cancel && cancel->load(std::memory_order_relaxed); }
 };
 
@@ -103,24 +103,28 @@ struct TransferMatrix {
 /// estimator at three points of the patch (the degree-2 rule with barycentrics (2/3, 1/6, 1/6)
 /// and permutations), each with `options` (seeded per patch and point) and Embree visibility.
 /// `estimate` is the source's estimator at (p, n). Returns false when cancelled.
-using PointEstimator = std::function<Estimate(const glm::dvec3& p, const glm::dvec3& n, const EstimateOptions& o)>;
-bool directOnPatches(const RadiosityMesh& mesh, const PointEstimator& estimate, const EstimateOptions& options,
-                     int threads, std::vector<glm::dvec3>& out, const Progress& progress = {});
+using PointEstimator =
+    std::function<Estimate(const glm::dvec3& p, const glm::dvec3& n, const EstimateOptions& o)>;
+bool directOnPatches(const RadiosityMesh& mesh, const PointEstimator& estimate,
+                     const EstimateOptions& options, int threads, std::vector<glm::dvec3>& out,
+                     const Progress& progress = {});
 
 /// Solves E_ind = T (rho o (E_dir + E_ind)) for the patches' interreflected irradiance, starting
 /// from `indirect` (zero, or a previous solution of a nearby problem), until an iteration adds
 /// less than `tolerance` of the flux reflected so far. Returns the iterations it took (-1 when
 /// cancelled).
-int solveRadiosity(const TransferMatrix& transfer, const RadiosityMesh& mesh, const std::vector<glm::dvec3>& direct,
-                   std::vector<glm::dvec3>& indirect, double tolerance, int threads, const Progress& progress = {});
+int solveRadiosity(const TransferMatrix& transfer, const RadiosityMesh& mesh,
+                   const std::vector<glm::dvec3>& direct, std::vector<glm::dvec3>& indirect,
+                   double tolerance, int threads, const Progress& progress = {});
 
 /// Per-vertex values for display: the area-weighted mean of the patches around each vertex.
-std::vector<glm::dvec3> vertexValues(const RadiosityMesh& mesh, const std::vector<glm::dvec3>& perPatch);
+std::vector<glm::dvec3> vertexValues(const RadiosityMesh& mesh,
+                                     const std::vector<glm::dvec3>& perPatch);
 
 /// The form factor from a point x with unit normal n to the triangle (a, b, c), all in metres:
 /// 1 / pi times Lambert's integral of cos over the part of the triangle above x's horizon.
-double pointTriangleFormFactor(const glm::dvec3& x, const glm::dvec3& n, const glm::dvec3& a, const glm::dvec3& b,
-                               const glm::dvec3& c);
+double pointTriangleFormFactor(const glm::dvec3& x, const glm::dvec3& n, const glm::dvec3& a,
+                               const glm::dvec3& b, const glm::dvec3& c);
 
 /// Threads to use for `requested` (0: the hardware's, at least 1).
 int workerThreads(int requested);

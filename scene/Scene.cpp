@@ -47,7 +47,8 @@ Scene Scene::clone() const {
 std::vector<std::string> Scene::inputFiles() const {
     std::vector<std::string> files;
     if (!path.empty()) files.push_back(path);
-    for (const GeometryItem& item : geometry) files.insert(files.end(), item.files.begin(), item.files.end());
+    for (const GeometryItem& item : geometry)
+        files.insert(files.end(), item.files.begin(), item.files.end());
     for (const auto& luminaire : luminaires) {
         std::vector<std::string> own = luminaire->sourceFiles();
         files.insert(files.end(), own.begin(), own.end());
@@ -85,7 +86,9 @@ glm::vec3 Scene::boundsMax() const {
 
 UnitSystem Scene::units() const {
     bool photometric = false, radiometric = false;
-    auto count = [&](Quantities q) { (q == Quantities::Photometric ? photometric : radiometric) = true; };
+    auto count = [&](Quantities q) {
+        (q == Quantities::Photometric ? photometric : radiometric) = true;
+    };
     for (const auto& l : luminaires) count(l->quantities());
     if (!environment.is_null()) count(environmentQuantities(environment));
     return unitSystemOf(photometric, radiometric);
@@ -102,8 +105,10 @@ double Scene::environmentUnitScale() const {
 const Luminaire* Scene::environmentLight() const {
     if (!environmentMap) return nullptr;
     auto* light = static_cast<const EnvironmentLight*>(mEnvironmentLight.get());
-    if (!light || light->sharedMap() != environmentMap || light->quantities() != environmentQuantities(environment))
-        mEnvironmentLight = std::make_shared<EnvironmentLight>(environmentMap, environmentQuantities(environment));
+    if (!light || light->sharedMap() != environmentMap ||
+        light->quantities() != environmentQuantities(environment))
+        mEnvironmentLight =
+            std::make_shared<EnvironmentLight>(environmentMap, environmentQuantities(environment));
     return mEnvironmentLight.get();
 }
 

@@ -3,9 +3,8 @@
 // instances, the camera. World is Y-up, lengths in metres.
 
 #include <glm/glm.hpp>
-#include <nlohmann/json.hpp>
-
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -32,9 +31,9 @@ struct Material {
 
 /// How a mesh is shaped, which bounds what it can occlude (see scene/Occlusion.h).
 enum class MeshShape {
-    Plane,     ///< A single flat polygon: cannot shadow itself.
-    Convex,    ///< A closed convex solid (procedural box): cannot shadow itself.
-    General,   ///< Anything else (glTF meshes): may shadow itself.
+    Plane,    ///< A single flat polygon: cannot shadow itself.
+    Convex,   ///< A closed convex solid (procedural box): cannot shadow itself.
+    General,  ///< Anything else (glTF meshes): may shadow itself.
 };
 
 /// Triangles in world space, one material.
@@ -53,8 +52,8 @@ struct Mesh {
 
 /// One entry of the scene file's "geometry" list, kept as written so saving loses nothing.
 struct GeometryItem {
-    nlohmann::json source;          ///< The entry as read (paths as the user wrote them).
-    std::vector<uint32_t> meshes;   ///< The meshes it produced, indices into Scene::meshes.
+    nlohmann::json source;         ///< The entry as read (paths as the user wrote them).
+    std::vector<uint32_t> meshes;  ///< The meshes it produced, indices into Scene::meshes.
     /// The files it was read from: a glTF file and the buffers and images it names (empty for
     /// planes, discs and boxes).
     std::vector<std::string> files;
@@ -109,7 +108,7 @@ struct Scene {
     /// there is one), then the luminaires.
     std::vector<const Luminaire*> sources() const;
 
-private:
+  private:
     mutable std::shared_ptr<const Luminaire> mEnvironmentLight;  ///< Made for the map it holds.
 };
 

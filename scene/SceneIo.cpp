@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <map>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
@@ -10,6 +9,7 @@
 #include <cstring>
 #include <filesystem>
 #include <glm/gtc/matrix_transform.hpp>
+#include <map>
 #include <vector>
 
 #include "luminaires/Environment.h"
@@ -113,7 +113,8 @@ glm::dvec3 positive3(const nlohmann::json& v, const json::Where& where) {
     return s;
 }
 
-/// Material of a procedural geometry entry (plane, disc, box); its name is the entry's "name" or `fallbackName`.
+/// Material of a procedural geometry entry (plane, disc, box); its name is the entry's "name" or
+/// `fallbackName`.
 uint32_t addItemMaterial(const nlohmann::json& item, const json::Where& where,
                          const std::string& fallbackName, Scene& scene) {
     Material material;
@@ -135,8 +136,8 @@ void planeTangents(const glm::dvec3& n, glm::dvec3& u, glm::dvec3& v) {
 }
 
 /// A mesh for a procedural geometry item: its material (from the item's fields), name and shape.
-Mesh itemMesh(const nlohmann::json& item, const json::Where& where, const std::string& label, MeshShape shape,
-              Scene& scene) {
+Mesh itemMesh(const nlohmann::json& item, const json::Where& where, const std::string& label,
+              MeshShape shape, Scene& scene) {
     Mesh mesh;
     mesh.material = addItemMaterial(item, where, label, scene);
     mesh.name = scene.materials[mesh.material].name;
@@ -200,7 +201,8 @@ void parseDisc(const nlohmann::json& item, const json::Where& where, size_t inde
     }
     // Counter-clockwise seen from the normal's side (u x v = n).
     for (uint32_t k = 0; k < uint32_t(segments); ++k)
-        for (uint32_t i : {0u, 1u + k, 1u + (k + 1) % uint32_t(segments)}) mesh.indices.push_back(i);
+        for (uint32_t i : {0u, 1u + k, 1u + (k + 1) % uint32_t(segments)})
+            mesh.indices.push_back(i);
     mesh.computeBounds();
     scene.meshes.push_back(std::move(mesh));
 }
@@ -219,8 +221,8 @@ void parseBox(const nlohmann::json& item, const json::Where& where, size_t index
     // "inside": a room seen from within: the faces look inwards (they reflect light inside).
     bool inside = json::optional(spec, "inside", at, false, json::boolean);
 
-    Mesh mesh = itemMesh(item, where, "box " + std::to_string(index), inside ? MeshShape::General : MeshShape::Convex,
-                         scene);
+    Mesh mesh = itemMesh(item, where, "box " + std::to_string(index),
+                         inside ? MeshShape::General : MeshShape::Convex, scene);
     // Six faces, four vertices each (flat normals). For axis a, e_b x e_c = e_a with b = a + 1,
     // c = a + 2 (mod 3); swapping u and v on the negative face keeps u x v = outward normal.
     for (int a = 0; a < 3; ++a) {
@@ -262,16 +264,18 @@ void parseSphere(const nlohmann::json& item, const json::Where& where, size_t in
     if (levels != std::floor(levels) || levels < 0 || levels > 7)
         json::fail(at / "subdivisions", "a whole number from 0 to 7 (20 x 4^n triangles)");
     bool inside = json::optional(spec, "inside", at, false, json::boolean);
-    Mesh mesh = itemMesh(item, where, "sphere " + std::to_string(index), inside ? MeshShape::General : MeshShape::Convex,
-                         scene);
+    Mesh mesh = itemMesh(item, where, "sphere " + std::to_string(index),
+                         inside ? MeshShape::General : MeshShape::Convex, scene);
     // The icosahedron: (0, +-1, +-t) and its cyclic permutations, t the golden ratio.
     const double t = (1.0 + std::sqrt(5.0)) / 2.0;
-    std::vector<glm::dvec3> dirs = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                                    {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+    std::vector<glm::dvec3> dirs = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0},
+                                    {0, -1, t}, {0, 1, t}, {0, -1, -t}, {0, 1, -t},
+                                    {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
     for (glm::dvec3& d : dirs) d = glm::normalize(d);
     std::vector<std::array<uint32_t, 3>> faces = {
-        {0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
-        {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8}, {3, 8, 9}, {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
+        {0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+        {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+        {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
     for (int level = 0; level < int(levels); ++level) {
         std::map<std::pair<uint32_t, uint32_t>, uint32_t> midpoints;
         auto middle = [&](uint32_t a, uint32_t b) {
@@ -284,7 +288,8 @@ void parseSphere(const nlohmann::json& item, const json::Where& where, size_t in
         std::vector<std::array<uint32_t, 3>> finer;
         for (const auto& f : faces) {
             uint32_t ab = middle(f[0], f[1]), bc = middle(f[1], f[2]), ca = middle(f[2], f[0]);
-            finer.insert(finer.end(), {{f[0], ab, ca}, {f[1], bc, ab}, {f[2], ca, bc}, {ab, bc, ca}});
+            finer.insert(finer.end(),
+                         {{f[0], ab, ca}, {f[1], bc, ab}, {f[2], ca, bc}, {ab, bc, ca}});
         }
         faces = std::move(finer);
     }
@@ -293,13 +298,15 @@ void parseSphere(const nlohmann::json& item, const json::Where& where, size_t in
         mesh.normals.push_back(glm::vec3(inside ? -d : d));
     }
     // The faces are counter-clockwise seen from outside; a room turns them round.
-    for (const auto& f : faces) mesh.indices.insert(mesh.indices.end(), {f[0], inside ? f[2] : f[1], inside ? f[1] : f[2]});
+    for (const auto& f : faces)
+        mesh.indices.insert(mesh.indices.end(), {f[0], inside ? f[2] : f[1], inside ? f[1] : f[2]});
     mesh.computeBounds();
     scene.meshes.push_back(std::move(mesh));
 }
 
 /// Returns the files read (loadGltf).
-std::vector<std::string> parseGltfItem(const nlohmann::json& item, const json::Where& where, Scene& scene) {
+std::vector<std::string> parseGltfItem(const nlohmann::json& item, const json::Where& where,
+                                       Scene& scene) {
     json::checkKeys(item, {"gltf", "transform"}, where);
     std::string file = json::string(item["gltf"], where / "gltf");
     fs::path resolved(file);
@@ -324,9 +331,11 @@ std::vector<std::string> parseGltfItem(const nlohmann::json& item, const json::W
 void parseGeometryItem(const nlohmann::json& item, const json::Where& where, size_t index,
                        Scene& scene) {
     if (!item.is_object()) json::fail(where, "an object, got " + std::string(item.type_name()));
-    int kinds = int(item.contains("gltf")) + int(item.contains("plane")) + int(item.contains("box")) +
-                int(item.contains("disc")) + int(item.contains("sphere"));
-    if (kinds != 1) json::fail(where, "exactly one of \"gltf\", \"plane\", \"disc\", \"box\" or \"sphere\"");
+    int kinds = int(item.contains("gltf")) + int(item.contains("plane")) +
+                int(item.contains("box")) + int(item.contains("disc")) +
+                int(item.contains("sphere"));
+    if (kinds != 1)
+        json::fail(where, "exactly one of \"gltf\", \"plane\", \"disc\", \"box\" or \"sphere\"");
 
     GeometryItem geometry;
     geometry.source = item;
@@ -379,7 +388,8 @@ size_t addGeneratedItem(Scene& scene, nlohmann::json item, const Material& mater
 }
 
 /// Rewrites relative glTF, luminaire and environment paths of `doc` written for a scene in the
-/// folder of `fromPath` so they resolve from the folder of `toPath`. Paths stay as written when the folder does not change.
+/// folder of `fromPath` so they resolve from the folder of `toPath`. Paths stay as written when the
+/// folder does not change.
 void rebaseGltfPaths(nlohmann::json& doc, const std::string& fromPath, const std::string& toPath) {
     fs::path fromDir = fs::absolute(fs::path(fromPath).parent_path()).lexically_normal();
     fs::path toDir = fs::absolute(fs::path(toPath).parent_path()).lexically_normal();
@@ -416,7 +426,6 @@ void rebaseGltfPaths(nlohmann::json& doc, const std::string& fromPath, const std
         *it = (relative.empty() ? target : relative).generic_string();
     }
 }
-
 
 }  // namespace
 

@@ -23,9 +23,13 @@ namespace {
 
 using gpu::kPi;
 
-std::string resource(const std::string& relative) { return std::string(CANDELA_SOURCE_DIR) + "/resources/" + relative; }
+std::string resource(const std::string& relative) {
+    return std::string(CANDELA_SOURCE_DIR) + "/resources/" + relative;
+}
 
-double luminance(const glm::dvec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+double luminance(const glm::dvec3& c) {
+    return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
+}
 
 std::string number(double x) {
     char text[32];
@@ -41,14 +45,16 @@ Scene sceneOf(const std::string& geometry, const std::string& luminaire) {
 /// A closed cube room of edge 2 m, its six faces looking in, of uniform reflectance rho.
 std::string cubeRoom(double rho) {
     std::string a = number(rho);
-    return R"({"box": {"center": [0, 1, 0], "size": [2, 2, 2], "inside": true}, "albedo": [)" + a + "," + a + "," + a + "]}";
+    return R"({"box": {"center": [0, 1, 0], "size": [2, 2, 2], "inside": true}, "albedo": [)" + a +
+           "," + a + "," + a + "]}";
 }
 
 /// The luminaires of the validation cases: an isotropic point source (1000 cd, synthetic), a
 /// Lambertian table on a 0.6 x 0.3 m opening (synthetic), the measured OSRAM LED light field.
 std::string isotropicAt(const glm::dvec3& p) {
-    return R"({"type": "photometric", "name": "Isotropic", "file": ")" + resource("validation/isotropic.ies") +
-           R"(", "position": [)" + number(p.x) + "," + number(p.y) + "," + number(p.z) + R"(], "technique": "point"})";
+    return R"({"type": "photometric", "name": "Isotropic", "file": ")" +
+           resource("validation/isotropic.ies") + R"(", "position": [)" + number(p.x) + "," +
+           number(p.y) + "," + number(p.z) + R"(], "technique": "point"})";
 }
 const char* kAreaSource = "Lambertian table on a 0.6 x 0.3 m opening (scattered)";
 
@@ -68,16 +74,20 @@ ValidationResult cube(const std::string& source, double rho) {
     std::string luminaire;
     if (source == "point") {
         luminaire = isotropicAt({0.13, 1.21, -0.17});
-        r.description = "integrating cube, isotropic point source, rho " + number(rho) + ": mean E = Phi / (S (1 - rho))";
-    } else if (source == "area") {
-        luminaire = R"({"type": "photometric", "name": "Area", "file": ")" + resource("validation/lambert.ies") +
-                    R"(", "position": [0.1, 1.7, 0], "technique": "scattered"})";
-        r.description = "integrating cube, " + std::string(kAreaSource) + ", rho " + number(rho) + ": mean E = Phi / (S (1 - rho))";
-    } else {
-        luminaire = R"({"type": "lightfield", "name": "LED", "file": ")" + resource("luminaires/osram-lertduw.lf.json") +
-                    R"(", "position": [0, 1.5, 0], "technique": "restricted-cdf"})";
-        r.description = "integrating cube, OSRAM LED light field (restricted-cdf), rho " + number(rho) +
+        r.description = "integrating cube, isotropic point source, rho " + number(rho) +
                         ": mean E = Phi / (S (1 - rho))";
+    } else if (source == "area") {
+        luminaire = R"({"type": "photometric", "name": "Area", "file": ")" +
+                    resource("validation/lambert.ies") +
+                    R"(", "position": [0.1, 1.7, 0], "technique": "scattered"})";
+        r.description = "integrating cube, " + std::string(kAreaSource) + ", rho " + number(rho) +
+                        ": mean E = Phi / (S (1 - rho))";
+    } else {
+        luminaire = R"({"type": "lightfield", "name": "LED", "file": ")" +
+                    resource("luminaires/osram-lertduw.lf.json") +
+                    R"(", "position": [0, 1.5, 0], "technique": "restricted-cdf"})";
+        r.description = "integrating cube, OSRAM LED light field (restricted-cdf), rho " +
+                        number(rho) + ": mean E = Phi / (S (1 - rho))";
     }
     Scene scene = sceneOf(cubeRoom(rho), luminaire);
     InterreflectionOptions o;
@@ -95,8 +105,9 @@ ValidationResult cube(const std::string& source, double rho) {
         direct += mesh.patches[i].area * luminance(ir.direct()[i]);
     }
     double phi = luminance(scene.luminaires[0]->power());
-    r.detail = std::to_string(mesh.patches.size()) + " patches, " + std::to_string(ir.lastIterations()) +
-               " iterations; direct flux on the walls " + number(direct) + " of " + number(phi) + " lm";
+    r.detail = std::to_string(mesh.patches.size()) + " patches, " +
+               std::to_string(ir.lastIterations()) + " iterations; direct flux on the walls " +
+               number(direct) + " of " + number(phi) + " lm";
     return finish(r, phi / (area * (1.0 - rho)), flux / area, 0.01);
 }
 
@@ -105,11 +116,14 @@ ValidationResult cube(const std::string& source, double rho) {
 ValidationResult sphere(double rho) {
     ValidationResult r;
     r.unit = "lx";
-    r.description = "closed geodesic sphere (r 1 m, 5120 facets), isotropic source 0.3 m off centre, rho " + number(rho) +
-                    ": interreflected E = rho Phi / (A (1 - rho)) everywhere";
+    r.description =
+        "closed geodesic sphere (r 1 m, 5120 facets), isotropic source 0.3 m off centre, rho " +
+        number(rho) + ": interreflected E = rho Phi / (A (1 - rho)) everywhere";
     std::string a = number(rho);
-    std::string geometry = R"({"sphere": {"center": [0, 0, 0], "radius": 1, "subdivisions": 4, "inside": true},
-                             "albedo": [)" + a + "," + a + "," + a + "]}";
+    std::string geometry =
+        R"({"sphere": {"center": [0, 0, 0], "radius": 1, "subdivisions": 4, "inside": true},
+                             "albedo": [)" +
+        a + "," + a + "," + a + "]}";
     // The direct light on the wall varies 3.4-fold from the nearest point to the farthest.
     Scene scene = sceneOf(geometry, isotropicAt({0.25, 0.15, -0.1}));
     InterreflectionOptions o;
@@ -124,18 +138,22 @@ ValidationResult sphere(double rho) {
         if (std::abs(luminance(e) - expected) > std::abs(worst - expected)) worst = luminance(e);
     // The final gather at points of the wall, facing in: within 2 % plus three standard errors.
     double gatherWorst = 0.0;
-    for (glm::dvec3 d : {glm::dvec3(0, -1, 0), glm::dvec3(-0.6, 0.0, 0.8), glm::dvec3(0.0, 0.9, -0.43)}) {
+    for (glm::dvec3 d :
+         {glm::dvec3(0, -1, 0), glm::dvec3(-0.6, 0.0, 0.8), glm::dvec3(0.0, 0.9, -0.43)}) {
         d = glm::normalize(d);
         EstimateOptions g;
         g.spp = 4096;
         g.seed = 11;
         Estimate e = ir.gather(0.995 * d, -d, g);
-        double dev = (std::abs(luminance(e.irradiance) - expected) - 3.0 * luminance(e.stdError)) / expected;
+        double dev =
+            (std::abs(luminance(e.irradiance) - expected) - 3.0 * luminance(e.stdError)) / expected;
         gatherWorst = std::max(gatherWorst, dev);
         if (dev > std::abs(worst - expected) / expected) worst = luminance(e.irradiance);
     }
-    r.detail = std::to_string(mesh.patches.size()) + " patches, " + std::to_string(ir.lastIterations()) +
-               " iterations; gather at 3 wall points within " + number(100.0 * gatherWorst) + " % (beyond 3 sigma)";
+    r.detail = std::to_string(mesh.patches.size()) + " patches, " +
+               std::to_string(ir.lastIterations()) +
+               " iterations; gather at 3 wall points within " + number(100.0 * gatherWorst) +
+               " % (beyond 3 sigma)";
     return finish(r, expected, worst, 0.02);
 }
 
@@ -159,7 +177,8 @@ struct Worst {
 ValidationResult fromWorst(ValidationResult r, const Worst& w, double tolerance) {
     r.detail = "largest deviation: " + w.where;
     // Stochastic estimates are held to the tolerance beyond three standard errors.
-    double shown = w.expected * (1.0 + (w.measured >= w.expected ? 1.0 : -1.0) * std::max(0.0, w.deviation));
+    double shown =
+        w.expected * (1.0 + (w.measured >= w.expected ? 1.0 : -1.0) * std::max(0.0, w.deviation));
     return finish(r, w.expected, shown, tolerance);
 }
 
@@ -171,7 +190,8 @@ std::unique_ptr<LightFieldLuminaire> lambertianLightField(double L, double a, do
     auto lf = std::make_shared<LightFieldData>();
     lf->delta = 0.05;
     lf->spacing = {0.05, 0.05};
-    glm::ivec2 n(int(std::ceil((2.0 * a + 0.6) / 0.05)) + 2, int(std::ceil((2.0 * b + 0.6) / 0.05)) + 2);
+    glm::ivec2 n(int(std::ceil((2.0 * a + 0.6) / 0.05)) + 2,
+                 int(std::ceil((2.0 * b + 0.6) / 0.05)) + 2);
     lf->count = n;
     lf->origin = -0.5 * glm::dvec2(n - 1) * 0.05;
     lf->imageMin = {-a, -b};
@@ -202,21 +222,29 @@ std::vector<Emitter> lambertianEmitters(double a, double b, double H, double& L)
     rect->emitted = glm::dvec3(L);
     rect->luminous = true;
     rect->pose.position = {0, H, 0};
-    out.push_back({std::move(rect), {findTechnique("lambertian-rect", "analytic"), findTechnique("lambertian-rect", "reference")}});
-    std::string lamp = R"({"type": "photometric", "name": "T", "file": ")" + resource("validation/lambert.ies") +
-                       R"(", "opening": [)" + number(2 * a) + "," + number(2 * b) + R"(], "position": [0, )" + number(H) + ", 0]}";
+    out.push_back({std::move(rect),
+                   {findTechnique("lambertian-rect", "analytic"),
+                    findTechnique("lambertian-rect", "reference")}});
+    std::string lamp = R"({"type": "photometric", "name": "T", "file": ")" +
+                       resource("validation/lambert.ies") + R"(", "opening": [)" + number(2 * a) +
+                       "," + number(2 * b) + R"(], "position": [0, )" + number(H) + ", 0]}";
     Scene s = sceneOf("", lamp);
-    out.push_back({std::move(s.luminaires[0]), {findTechnique("photometric", "scattered"), findTechnique("photometric", "reference")}});
+    out.push_back(
+        {std::move(s.luminaires[0]),
+         {findTechnique("photometric", "scattered"), findTechnique("photometric", "reference")}});
     auto lf = lambertianLightField(L, a, b);
     lf->pose.position = {0, H + 0.05, 0};  // S at height H
-    out.push_back({std::move(lf), {findTechnique("lightfield", "reference"), findTechnique("lightfield", "restricted-cdf")}});
+    out.push_back({std::move(lf),
+                   {findTechnique("lightfield", "reference"),
+                    findTechnique("lightfield", "restricted-cdf")}});
     return out;
 }
 
 ValidationResult directPointPlane() {
     ValidationResult r;
     r.unit = "lx";
-    r.description = "isotropic point source 2 m over a plane (every photometric technique): E = I cos^3 / h^2";
+    r.description =
+        "isotropic point source 2 m over a plane (every photometric technique): E = I cos^3 / h^2";
     Scene scene = sceneOf("", isotropicAt({0, 2, 0}));
     const Luminaire& lamp = *scene.luminaires[0];
     Worst w;
@@ -249,19 +277,21 @@ ValidationResult directRectangle(bool perpendicular) {
             if (perpendicular)
                 for (double y : {0.2, 0.8, 1.3}) points.push_back({{1.0, y, 0.1}, {-1, 0, 0}});
             else
-                for (glm::dvec3 p : {glm::dvec3(0, 0, 0), glm::dvec3(0.4, 0, 0.2), glm::dvec3(1.5, 0, -1), glm::dvec3(3, 0.5, 2)})
+                for (glm::dvec3 p : {glm::dvec3(0, 0, 0), glm::dvec3(0.4, 0, 0.2),
+                                     glm::dvec3(1.5, 0, -1), glm::dvec3(3, 0.5, 2)})
                     points.push_back({p, {0, 1, 0}});
             for (const auto& [p, n] : points) {
                 double F;
-                if (perpendicular)  // element normal -x; the rectangle's plane y = H is c = H - p.y away
+                if (perpendicular)  // element normal -x; the rectangle's plane y = H is c = H - p.y
+                                    // away
                     F = perpendicularRectangleFactor(-b - p.z, b - p.z, p.x - a, p.x + a, H - p.y);
                 else
                     F = parallelRectangleFactor(-a - p.x, a - p.x, -b - p.z, b - p.z, H - p.y);
                 EstimateOptions o;
                 o.spp = 65536;
                 w.add(L * kPi * F, t->irradiance(*e.light, p, n, o),
-                      std::string(t->kind) + " " + std::string(t->name) + " at (" + number(p.x) + ", " + number(p.y) + ", " +
-                          number(p.z) + ")");
+                      std::string(t->kind) + " " + std::string(t->name) + " at (" + number(p.x) +
+                          ", " + number(p.y) + ", " + number(p.z) + ")");
             }
         }
     return fromWorst(r, w, 0.005);
@@ -270,22 +300,27 @@ ValidationResult directRectangle(bool perpendicular) {
 ValidationResult obstruction() {
     ValidationResult r;
     r.unit = "lx";
-    r.description = "a 0.8 x 0.6 m table 1.25 m under a 0.2 m Lambertian square: E = L pi F of the part seen";
+    r.description =
+        "a 0.8 x 0.6 m table 1.25 m under a 0.2 m Lambertian square: E = L pi F of the part seen";
     double L = 0.0, H = 2.0, table = 0.75, half = 0.4;
     Worst w;
     for (Emitter& e : lambertianEmitters(0.1, 0.1, H, L)) {
-        Scene scene = sceneOf(R"({"plane": {"center": [0, 0.75, 0], "normal": [0, 1, 0], "size": [0.8, 0.6]}})", "");
+        Scene scene = sceneOf(
+            R"({"plane": {"center": [0, 0.75, 0], "normal": [0, 1, 0], "size": [0.8, 0.6]}})", "");
         EmbreeVisibility visibility(scene);
         for (const TechniqueInfo* t : e.techniques)
             for (double x : {0.0, 0.6, 0.64, 0.68, 1.2}) {
                 // The point sees the strip qx >= x + (half - x) H / table of the emitter.
                 double lo = std::max(-0.1, x + (half - x) * H / table);
-                double want = lo >= 0.1 ? 0.0 : L * kPi * parallelRectangleFactor(lo - x, 0.1 - x, -0.1, 0.1, H);
+                double want =
+                    lo >= 0.1 ? 0.0
+                              : L * kPi * parallelRectangleFactor(lo - x, 0.1 - x, -0.1, 0.1, H);
                 EstimateOptions o;
                 o.spp = 65536;
                 o.visibility = &visibility;
                 Estimate got = t->irradiance(*e.light, {x, 0, 0}, {0, 1, 0}, o);
-                std::string label = std::string(t->kind) + " " + std::string(t->name) + " at x = " + number(x);
+                std::string label =
+                    std::string(t->kind) + " " + std::string(t->name) + " at x = " + number(x);
                 if (want == 0.0) {
                     // The umbra: exactly dark (a relative deviation would divide by zero).
                     if (luminance(got.irradiance) != 0.0) w.add(1e-300, got, label + " (umbra)");
@@ -302,10 +337,14 @@ ValidationResult obstruction() {
 ValidationResult validateClosedRoom(const Scene& scene, int patches) {
     auto start = std::chrono::steady_clock::now();
     const std::string file = scene.path.empty() ? "the scene" : scene.path;
-    if (scene.meshes.empty()) throw InputError(file + ": geometry: no surfaces (a closed room needs its walls)");
-    if (scene.luminaires.empty()) throw InputError(file + ": luminaires: none, so there is no light to balance");
+    if (scene.meshes.empty())
+        throw InputError(file + ": geometry: no surfaces (a closed room needs its walls)");
+    if (scene.luminaires.empty())
+        throw InputError(file + ": luminaires: none, so there is no light to balance");
     if (scene.environmentMap)
-        throw InputError(file + ": environment: light from outside the room; a closed room has none (set it to null)");
+        throw InputError(
+            file +
+            ": environment: light from outside the room; a closed room has none (set it to null)");
     // Closed: every ray from each luminaire meets a surface from the side that faces it.
     EmbreeVisibility visibility(scene);
     RadiosityMesh mesh = RadiosityMesh::build(scene, RadiositySettings{patches, 0.0});
@@ -328,20 +367,25 @@ ValidationResult validateClosedRoom(const Scene& scene, int patches) {
             }
             glm::dvec3 w;
             uint32_t p = mesh.patchAt(hit.mesh, hit.triangle, hit.u, hit.v, w);
-            if (p != UINT32_MAX && glm::dot(mesh.patches[p].normal, d) > 0.0 && backs++ == 0) firstBack = d;
+            if (p != UINT32_MAX && glm::dot(mesh.patches[p].normal, d) > 0.0 && backs++ == 0)
+                firstBack = d;
         }
         char where[96];
         if (escaped) {
-            std::snprintf(where, sizeof where, "(%.2f, %.2f, %.2f)", firstEscape.x, firstEscape.y, firstEscape.z);
-            throw InputError(file + ": geometry: not a closed room: " + std::to_string(escaped) + " of " +
-                             std::to_string(kRays) + " rays from luminaire \"" + l->name + "\" escape (the first toward " +
-                             where + ")");
+            std::snprintf(where, sizeof where, "(%.2f, %.2f, %.2f)", firstEscape.x, firstEscape.y,
+                          firstEscape.z);
+            throw InputError(file + ": geometry: not a closed room: " + std::to_string(escaped) +
+                             " of " + std::to_string(kRays) + " rays from luminaire \"" + l->name +
+                             "\" escape (the first toward " + where + ")");
         }
         if (backs) {
-            std::snprintf(where, sizeof where, "(%.2f, %.2f, %.2f)", firstBack.x, firstBack.y, firstBack.z);
-            throw InputError(file + ": geometry: " + std::to_string(backs) + " of " + std::to_string(kRays) +
-                             " rays from luminaire \"" + l->name + "\" reach the back of a surface (the first toward " + where +
-                             "): a room's surfaces must face into it (a box with \"inside\": true, planes' normals inwards)");
+            std::snprintf(where, sizeof where, "(%.2f, %.2f, %.2f)", firstBack.x, firstBack.y,
+                          firstBack.z);
+            throw InputError(file + ": geometry: " + std::to_string(backs) + " of " +
+                             std::to_string(kRays) + " rays from luminaire \"" + l->name +
+                             "\" reach the back of a surface (the first toward " + where +
+                             "): a room's surfaces must face into it (a box with \"inside\": true, "
+                             "planes' normals inwards)");
         }
     }
     InterreflectionOptions o;
@@ -351,15 +395,19 @@ ValidationResult validateClosedRoom(const Scene& scene, int patches) {
     double absorbed = 0.0, flux = 0.0;
     for (size_t i = 0; i < ir.mesh().patches.size(); ++i) {
         const RadiosityMesh::Patch& p = ir.mesh().patches[i];
-        absorbed += p.area * luminance((glm::dvec3(1.0) - p.albedo) * (ir.direct()[i] + ir.indirect()[i]));
+        absorbed +=
+            p.area * luminance((glm::dvec3(1.0) - p.albedo) * (ir.direct()[i] + ir.indirect()[i]));
     }
     for (const auto& l : scene.luminaires) flux += scene.unitScale(*l) * luminance(l->power());
     ValidationResult r;
     r.name = "closed-room";
     r.unit = scene.units().photometric ? "lm" : "W";
-    r.description = file + ": light absorbed by every surface, sum A (1 - rho) E, = the luminaires' flux";
-    r.detail = std::to_string(ir.mesh().patches.size()) + " patches, " + std::to_string(ir.lastIterations()) +
-               " iterations; closed: every one of " + std::to_string(kRays) + " rays from each luminaire meets a surface "
+    r.description =
+        file + ": light absorbed by every surface, sum A (1 - rho) E, = the luminaires' flux";
+    r.detail = std::to_string(ir.mesh().patches.size()) + " patches, " +
+               std::to_string(ir.lastIterations()) + " iterations; closed: every one of " +
+               std::to_string(kRays) +
+               " rays from each luminaire meets a surface "
                "facing it";
     r = finish(r, flux, absorbed, 0.01);
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -368,8 +416,8 @@ ValidationResult validateClosedRoom(const Scene& scene, int patches) {
 
 double parallelRectangleFactor(double x0, double x1, double y0, double y1, double h) {
     // Howell C-11, element parallel to an a x b rectangle with a corner above it: with X = a/h,
-    // Y = b/h, F = 1/(2 pi) [X/sqrt(1+X^2) atan(Y/sqrt(1+X^2)) + Y/sqrt(1+Y^2) atan(X/sqrt(1+Y^2))],
-    // odd in a and in b, so signed corners add up to any rectangle.
+    // Y = b/h, F = 1/(2 pi) [X/sqrt(1+X^2) atan(Y/sqrt(1+X^2)) + Y/sqrt(1+Y^2)
+    // atan(X/sqrt(1+Y^2))], odd in a and in b, so signed corners add up to any rectangle.
     auto corner = [h](double a, double b) {
         double X = a / h, Y = b / h, sx = std::sqrt(1 + X * X), sy = std::sqrt(1 + Y * Y);
         return (X / sx * std::atan(Y / sx) + Y / sy * std::atan(X / sy)) / (2 * kPi);
@@ -395,9 +443,11 @@ double perpendicularRectangleFactor(double y0, double y1, double z0, double z1, 
 std::vector<std::string> validationCases() {
     std::vector<std::string> names;
     for (const char* source : {"point", "area", "lightfield"})
-        for (const char* rho : {"0", "0.2", "0.5", "0.8"}) names.push_back(std::string("cube-") + source + "-rho" + rho);
+        for (const char* rho : {"0", "0.2", "0.5", "0.8"})
+            names.push_back(std::string("cube-") + source + "-rho" + rho);
     for (const char* rho : {"0.2", "0.5", "0.8"}) names.push_back(std::string("sphere-rho") + rho);
-    names.insert(names.end(), {"direct-point-plane", "direct-rect-parallel", "direct-rect-perpendicular", "obstruction-table"});
+    names.insert(names.end(), {"direct-point-plane", "direct-rect-parallel",
+                               "direct-rect-perpendicular", "obstruction-table"});
     return names;
 }
 
@@ -405,14 +455,22 @@ ValidationResult runValidationCase(const std::string& name) {
     auto start = std::chrono::steady_clock::now();
     ValidationResult r;
     auto rhoOf = [&](const std::string& prefix) { return std::stod(name.substr(prefix.size())); };
-    if (name.starts_with("cube-point-rho")) r = cube("point", rhoOf("cube-point-rho"));
-    else if (name.starts_with("cube-area-rho")) r = cube("area", rhoOf("cube-area-rho"));
-    else if (name.starts_with("cube-lightfield-rho")) r = cube("lightfield", rhoOf("cube-lightfield-rho"));
-    else if (name.starts_with("sphere-rho")) r = sphere(rhoOf("sphere-rho"));
-    else if (name == "direct-point-plane") r = directPointPlane();
-    else if (name == "direct-rect-parallel") r = directRectangle(false);
-    else if (name == "direct-rect-perpendicular") r = directRectangle(true);
-    else if (name == "obstruction-table") r = obstruction();
+    if (name.starts_with("cube-point-rho"))
+        r = cube("point", rhoOf("cube-point-rho"));
+    else if (name.starts_with("cube-area-rho"))
+        r = cube("area", rhoOf("cube-area-rho"));
+    else if (name.starts_with("cube-lightfield-rho"))
+        r = cube("lightfield", rhoOf("cube-lightfield-rho"));
+    else if (name.starts_with("sphere-rho"))
+        r = sphere(rhoOf("sphere-rho"));
+    else if (name == "direct-point-plane")
+        r = directPointPlane();
+    else if (name == "direct-rect-parallel")
+        r = directRectangle(false);
+    else if (name == "direct-rect-perpendicular")
+        r = directRectangle(true);
+    else if (name == "obstruction-table")
+        r = obstruction();
     else {
         std::string known;
         for (const std::string& n : validationCases()) known += (known.empty() ? "" : ", ") + n;

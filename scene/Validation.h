@@ -27,12 +27,12 @@ struct ValidationResult {
     std::string description;  ///< One line: what is compared.
     std::string unit;         ///< Of expected and measured ("lx").
     double expected = 0.0;
-    double measured = 0.0;    ///< For cases over many points: the one that deviates most.
-    double deviation = 0.0;   ///< (measured - expected) / expected.
-    double tolerance = 0.0;   ///< Largest |deviation| that passes.
+    double measured = 0.0;   ///< For cases over many points: the one that deviates most.
+    double deviation = 0.0;  ///< (measured - expected) / expected.
+    double tolerance = 0.0;  ///< Largest |deviation| that passes.
     bool pass = false;
-    double seconds = 0.0;     ///< Wall time of the case.
-    std::string detail;       ///< What else was measured (patches, iterations, points).
+    double seconds = 0.0;  ///< Wall time of the case.
+    std::string detail;    ///< What else was measured (patches, iterations, points).
 };
 
 /// Every case, in the order `candela validate` prints them.

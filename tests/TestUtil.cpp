@@ -1,9 +1,9 @@
 #include "tests/TestUtil.h"
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
-
-#include <gtest/gtest.h>
 
 #include "renderer/ShaderLibrary.h"
 #include "renderer/context/GlContext.h"
@@ -41,9 +41,12 @@ static double gammaQ(double a, double x) {
     return std::clamp(std::exp(lnPrefix) * h, 0.0, 1.0);
 }
 
-double chiSquareSurvival(double x, double k) { return gammaQ(0.5 * k, 0.5 * x); }
+double chiSquareSurvival(double x, double k) {
+    return gammaQ(0.5 * k, 0.5 * x);
+}
 
-ChiSquareResult chiSquare(const std::vector<double>& observed, const std::vector<double>& expected) {
+ChiSquareResult chiSquare(const std::vector<double>& observed,
+                          const std::vector<double>& expected) {
     ChiSquareResult r;
     double pooledObs = 0.0, pooledExp = 0.0;
     int cells = 0;
@@ -88,9 +91,9 @@ GlContext& glContext() {
     return *context;
 }
 
-std::vector<std::byte> runComputeTest(const std::string& shader, const std::vector<std::byte>& record,
-                                      const void* inputs, size_t inputBytes, size_t count,
-                                      size_t outputBytes) {
+std::vector<std::byte> runComputeTest(const std::string& shader,
+                                      const std::vector<std::byte>& record, const void* inputs,
+                                      size_t inputBytes, size_t count, size_t outputBytes) {
     glContext();
     ShaderLibrary shaders;
     ProgramKey key;
@@ -120,8 +123,12 @@ std::vector<glm::dvec3> cubeNormals26() {
     return out;
 }
 
-std::string dataDir() { return CANDELA_TEST_DATA; }
-std::string sourceDir() { return CANDELA_SOURCE_DIR; }
+std::string dataDir() {
+    return CANDELA_TEST_DATA;
+}
+std::string sourceDir() {
+    return CANDELA_SOURCE_DIR;
+}
 
 double rectangleFormFactor(double x0, double x1, double z0, double z1, double h) {
     // The rectangle [0, a] x [0, b] with a corner above the point: with X = a/h and Y = b/h,
@@ -129,7 +136,8 @@ double rectangleFormFactor(double x0, double x1, double z0, double z1, double h)
     // odd in a and in b, so signed corners add up to any rectangle.
     auto corner = [h](double a, double b) {
         double X = a / h, Y = b / h, sx = std::sqrt(1.0 + X * X), sy = std::sqrt(1.0 + Y * Y);
-        return (X / sx * std::atan(Y / sx) + Y / sy * std::atan(X / sy)) / (2.0 * 3.14159265358979323846);
+        return (X / sx * std::atan(Y / sx) + Y / sy * std::atan(X / sy)) /
+               (2.0 * 3.14159265358979323846);
     };
     return corner(x1, z1) - corner(x0, z1) - corner(x1, z0) + corner(x0, z0);
 }

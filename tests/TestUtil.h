@@ -1,11 +1,11 @@
 #pragma once
 // Helpers shared by the tests: statistics for sampler tests and a GL context for *_gltest.cpp.
 
-#include <glm/glm.hpp>
 #include <gtest/gtest.h>
 
 #include <cstddef>
 #include <cstring>
+#include <glm/glm.hpp>
 #include <memory>
 #include <string>
 #include <vector>
@@ -25,15 +25,17 @@ namespace candela::test {
 inline std::vector<std::string> unbiasedGpuTechniques(std::string_view kind) {
     std::vector<std::string> out;
     for (const TechniqueInfo& t : techniquesOf(kind))
-        if (t.progressive && !t.shader.empty() && t.limits.accuracy == StatedLimits::Unbiased) out.emplace_back(t.name);
+        if (t.progressive && !t.shader.empty() && t.limits.accuracy == StatedLimits::Unbiased)
+            out.emplace_back(t.name);
     return out;
 }
 
 /// The environment as a source over tables a test built (its face size, its Havran lights), for
 /// the registry's estimators; it refers to `lighting`, which must outlive it.
 inline EnvironmentLight lightOf(const EnvironmentLighting& lighting) {
-    return EnvironmentLight(std::shared_ptr<const EnvironmentLighting>(std::shared_ptr<void>(), &lighting),
-                            Quantities::Radiometric);
+    return EnvironmentLight(
+        std::shared_ptr<const EnvironmentLighting>(std::shared_ptr<void>(), &lighting),
+        Quantities::Radiometric);
 }
 
 /// Upper tail of the chi-square distribution with k degrees of freedom: P(X >= x).
@@ -68,9 +70,9 @@ GlContext& glContext();
 /// Runs a test compute shader (a path relative to shaders/, e.g. "../tests/shaders/x.comp") with
 /// 64-wide groups over `count` inputs: `record` (a luminaire's gpuData) at binding 1, the inputs
 /// at binding 6, the outputs at 7, the count in uniform location 0. Returns the output bytes.
-std::vector<std::byte> runComputeTest(const std::string& shader, const std::vector<std::byte>& record,
-                                      const void* inputs, size_t inputBytes, size_t count,
-                                      size_t outputBytes);
+std::vector<std::byte> runComputeTest(const std::string& shader,
+                                      const std::vector<std::byte>& record, const void* inputs,
+                                      size_t inputBytes, size_t count, size_t outputBytes);
 
 template <class Out, class In>
 std::vector<Out> runComputeTest(const std::string& shader, const std::vector<std::byte>& record,

@@ -199,7 +199,8 @@ TEST(Bvh, ClosestHitMatchesBruteForceInTheCornellBox) {
     int hits = 0, misses = 0;
     for (int i = 0; i < 4000; ++i) {
         glm::dvec3 origin(-4.0 + 8.0 * u01(rng), -1.0 + 5.0 * u01(rng), -4.0 + 8.0 * u01(rng));
-        double z = 2.0 * u01(rng) - 1.0, phi = 6.283185307179586 * u01(rng), r = std::sqrt(1.0 - z * z);
+        double z = 2.0 * u01(rng) - 1.0, phi = 6.283185307179586 * u01(rng),
+               r = std::sqrt(1.0 - z * z);
         glm::dvec3 dir(r * std::cos(phi), z, r * std::sin(phi));
         double nearest = std::numeric_limits<double>::infinity();
         int nearestTriangle = -1;

@@ -40,7 +40,8 @@ void runToEnd(Comparison& c) {
 }
 
 /// An independent render of the scene with the reference's techniques at spp samples.
-std::vector<float> referenceRender(ShaderLibrary& shaders, const Scene& scene, int spp, uint32_t seed) {
+std::vector<float> referenceRender(ShaderLibrary& shaders, const Scene& scene, int spp,
+                                   uint32_t seed) {
     Renderer r(shaders);
     RenderSettings s = shared();
     s.techniqueOverride = Comparison::kReferenceTechniques;
@@ -63,8 +64,9 @@ TEST(Comparison, ReferenceNoiseMatchesTwoIndependentRenders) {
     runToEnd(c);
     ASSERT_EQ(c.referenceSpp(), 64);
     // Two more independent 64-spp references: |A - B|^2 = 2 sigma^2.
-    double independent = relRmse(referenceRender(shaders, scene, 64, 11), referenceRender(shaders, scene, 64, 23)) /
-                         std::sqrt(2.0);
+    double independent =
+        relRmse(referenceRender(shaders, scene, 64, 11), referenceRender(shaders, scene, 64, 23)) /
+        std::sqrt(2.0);
     ASSERT_GT(independent, 0.0);
     // Both are estimates of sigma from about 3000 lit pixels with correlated neighbours (a
     // sample pattern per pixel, not per image): 20 % covers their spread (measured: 0.97).
@@ -105,9 +107,11 @@ TEST(Comparison, MixedDeterministicAndProgressiveLuminairesRefineToTheBudget) {
     // its single pass while the other refines, and the pane still reaches its budget and ends.
     test::glContext();
     Scene scene = panelScene();
-    std::string second = R"({"type": "lambertian-rect", "name": "B", "size": [0.5, 0.5], "radiance": [4, 4, 4],
+    std::string second =
+        R"({"type": "lambertian-rect", "name": "B", "size": [0.5, 0.5], "radiance": [4, 4, 4],
                             "position": [-1, 2, 0.5], "technique": "reference"})";
-    scene.luminaires.push_back(parseLuminaire(nlohmann::json::parse(second), {"test.json", "luminaires[1]"}));
+    scene.luminaires.push_back(
+        parseLuminaire(nlohmann::json::parse(second), {"test.json", "luminaires[1]"}));
     ShaderLibrary shaders;
     Comparison c(shaders);
     c.configure({{"", 32}}, shared(), 32);
@@ -166,8 +170,10 @@ TEST(Comparison, ErrorMapSignAndRowsFollowThePixels) {
         if (std::abs(e) < 0.2) continue;  // too close to 0 for the colour to tell
         ++checked;
         // Above the reference: orange (red over blue); below: blue.
-        if (e > 0) EXPECT_GT(map[i], map[i + 2]) << "pixel " << i / 3;
-        else EXPECT_GT(map[i + 2], map[i]) << "pixel " << i / 3;
+        if (e > 0)
+            EXPECT_GT(map[i], map[i + 2]) << "pixel " << i / 3;
+        else
+            EXPECT_GT(map[i + 2], map[i]) << "pixel " << i / 3;
     }
     EXPECT_GT(checked, 100);  // 4 spp against 64: most lit pixels differ by more than that
     // The texture holds the same image, bottom row first.
@@ -175,7 +181,8 @@ TEST(Comparison, ErrorMapSignAndRowsFollowThePixels) {
     ASSERT_EQ(tex.width(), 64);
     std::vector<unsigned char> rgba(size_t(64) * 48 * 4);
     glGetTextureImage(tex.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(rgba.size()), rgba.data());
-    for (int k = 0; k < 3; ++k) EXPECT_EQ(rgba[size_t(47 * 64 + 5) * 4 + size_t(k)], map[5 * 3 + size_t(k)]);
+    for (int k = 0; k < 3; ++k)
+        EXPECT_EQ(rgba[size_t(47 * 64 + 5) * 4 + size_t(k)], map[5 * 3 + size_t(k)]);
 }
 
 TEST(Comparison, EmitterPixelsAreLeftOutOfTheRelativeRmse) {
@@ -193,7 +200,8 @@ TEST(Comparison, EmitterPixelsAreLeftOutOfTheRelativeRmse) {
     EXPECT_EQ(mask[size_t(24 * 64 + 32)], 1);  // the centre sees the panel
     EXPECT_EQ(mask[0], 0);                     // a corner sees the dark beyond it
     // Closed form on three pixels: the skipped one would dominate both sums.
-    std::vector<float> x = {1, 1, 1, 2, 2, 2, 1000, 1000, 1000}, ref = {1, 1, 1, 1, 1, 1, 1000, 1000, 1000};
+    std::vector<float> x = {1, 1, 1, 2, 2, 2, 1000, 1000, 1000},
+                       ref = {1, 1, 1, 1, 1, 1, 1000, 1000, 1000};
     EXPECT_NEAR(relRmse(x, ref, {0, 0, 1}), std::sqrt(1.0 / 2.0), 1e-12);
     EXPECT_NEAR(relRmse(x, ref), std::sqrt(1.0 / (2.0 + 1e6)), 1e-12);
 }
@@ -216,9 +224,11 @@ TEST(Comparison, MeasuredErrorsAreThoseOfTheImagesShown) {
             ASSERT_TRUE(r.measured);
             // Recomputed from the images themselves (double CIELAB per pixel here, cached float
             // CIELAB there: 1e-4 of a Delta E covers the float rounding).
-            EXPECT_NEAR(r.latest.deltaE, meanDeltaE(c.toneMapped(c.paneImage(p)), c.toneMapped(ref)), 1e-4)
+            EXPECT_NEAR(r.latest.deltaE,
+                        meanDeltaE(c.toneMapped(c.paneImage(p)), c.toneMapped(ref)), 1e-4)
                 << "pane " << p << " after " << steps << " steps";
-            EXPECT_NEAR(r.rawRelRmse, relRmse(c.paneImage(p), ref), 1e-9) << "pane " << p;  // no emitter in view
+            EXPECT_NEAR(r.rawRelRmse, relRmse(c.paneImage(p), ref), 1e-9)
+                << "pane " << p;  // no emitter in view
             EXPECT_EQ(r.series.back().deltaE, r.latest.deltaE);
         }
     }
@@ -237,11 +247,13 @@ TEST(Comparison, CpuToneMapMatchesTheRenderers) {
         r.setSettings(s);
         r.update(scene, kChangeAll);
         r.renderFrame();
-        std::vector<unsigned char> cpu = toneMapSrgb8(r.readLinear(), 0.37, 1.7, op == ToneMapOperator::Reinhard);
+        std::vector<unsigned char> cpu =
+            toneMapSrgb8(r.readLinear(), 0.37, 1.7, op == ToneMapOperator::Reinhard);
         std::vector<unsigned char> gpu = r.readDisplay();
         ASSERT_EQ(cpu.size(), gpu.size());
         int worst = 0;
-        for (size_t i = 0; i < cpu.size(); ++i) worst = std::max(worst, std::abs(int(cpu[i]) - int(gpu[i])));
+        for (size_t i = 0; i < cpu.size(); ++i)
+            worst = std::max(worst, std::abs(int(cpu[i]) - int(gpu[i])));
         // One 8-bit step: float pow/exp on the GPU against double on the CPU, then rounding.
         EXPECT_LE(worst, 1) << int(op);
     }

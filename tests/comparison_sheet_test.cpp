@@ -11,9 +11,9 @@
 #include <nlohmann/json.hpp>
 
 #include "renderer/ImageFile.h"
+#include "tests/TestUtil.h"
 #include "ui/ComparisonSheet.h"
 #include "util/Error.h"
-#include "tests/TestUtil.h"
 
 namespace candela::ui {
 namespace {

@@ -32,7 +32,8 @@ TEST(EditorPlacement, OnAWallAlongItsNormalOrDownWithClearanceAndSnap) {
 }
 
 TEST(EditorPlacement, PickingTheDemoRoomsCeilingAimsDownAndTheBvhFollowsTheGeometry) {
-    setenv("CANDELA_STATE_DIR", (std::filesystem::temp_directory_path() / "candela-placement-test").c_str(), 1);
+    setenv("CANDELA_STATE_DIR",
+           (std::filesystem::temp_directory_path() / "candela-placement-test").c_str(), 1);
     EditorState state;
     ASSERT_TRUE(openSceneFile(state, CANDELA_SOURCE_DIR "/resources/scenes/demo.json"));
     // Look straight up from the middle of the room: the centre pixel sees the ceiling (y = 3).
@@ -41,7 +42,8 @@ TEST(EditorPlacement, PickingTheDemoRoomsCeilingAimsDownAndTheBvhFollowsTheGeome
     auto hit = pickSurface(surfaceBvh(state), viewProj, 50.0, 50.0, 100, 100);
     ASSERT_TRUE(hit.has_value());
     EXPECT_NEAR(hit->point.y, 3.0, 1e-4);
-    Pose pose = poseOnSurface(state.scene.luminaires[0]->pose, hit->point, hit->normal, true, 0.02, 0.0);
+    Pose pose =
+        poseOnSurface(state.scene.luminaires[0]->pose, hit->point, hit->normal, true, 0.02, 0.0);
     EXPECT_NEAR(pose.position.y, 2.98, 1e-4);
     EXPECT_NEAR(pose.aim.y, -1.0, 1e-9);  // the ceiling's normal, turned to the camera: down
 
@@ -62,11 +64,13 @@ namespace candela::ui {
 namespace {
 
 TEST(EditorPlacement, SwapKeepsPoseAndNameAndIsOneUndoStep) {
-    setenv("CANDELA_STATE_DIR", (std::filesystem::temp_directory_path() / "candela-placement-test").c_str(), 1);
+    setenv("CANDELA_STATE_DIR",
+           (std::filesystem::temp_directory_path() / "candela-placement-test").c_str(), 1);
     EditorState state;
     ASSERT_TRUE(openSceneFile(state, CANDELA_SOURCE_DIR "/resources/scenes/editor-room.json"));
     const Pose pose = state.scene.luminaires[0]->pose;  // the analytic ceiling panel
-    ASSERT_TRUE(swapLuminaireFile(state, 0, CANDELA_SOURCE_DIR "/resources/luminaires/photometric/prolicht-e30.ldt"));
+    ASSERT_TRUE(swapLuminaireFile(
+        state, 0, CANDELA_SOURCE_DIR "/resources/luminaires/photometric/prolicht-e30.ldt"));
     const Luminaire& swapped = *state.scene.luminaires[0];
     EXPECT_EQ(swapped.kind(), "photometric");
     EXPECT_EQ(swapped.name, "Ceiling panel");
@@ -74,7 +78,8 @@ TEST(EditorPlacement, SwapKeepsPoseAndNameAndIsOneUndoStep) {
     EXPECT_EQ(swapped.pose.aim, pose.aim);
     EXPECT_EQ(swapped.technique, "hybrid");  // "analytic" is not photometric: the kind's default
     // A light field in place of the pendant keeps nothing of the photometric technique either.
-    ASSERT_TRUE(swapLuminaireFile(state, 2, CANDELA_SOURCE_DIR "/resources/luminaires/osram-lertduw.lf.json"));
+    ASSERT_TRUE(swapLuminaireFile(
+        state, 2, CANDELA_SOURCE_DIR "/resources/luminaires/osram-lertduw.lf.json"));
     EXPECT_EQ(state.scene.luminaires[2]->technique, "restricted-cdf");
     // A file that cannot be read changes nothing and says why.
     size_t steps = state.history.undo.size();
@@ -94,7 +99,8 @@ namespace candela::ui {
 namespace {
 
 TEST(EditorPlacement, ArrayIsAGridOfCopiesAndOneUndoStep) {
-    setenv("CANDELA_STATE_DIR", (std::filesystem::temp_directory_path() / "candela-placement-test").c_str(), 1);
+    setenv("CANDELA_STATE_DIR",
+           (std::filesystem::temp_directory_path() / "candela-placement-test").c_str(), 1);
     EditorState state;
     ASSERT_TRUE(openSceneFile(state, CANDELA_SOURCE_DIR "/resources/scenes/editor-room.json"));
     const Luminaire& source = *state.scene.luminaires[2];
@@ -121,7 +127,8 @@ namespace candela::ui {
 namespace {
 
 TEST(EditorPlacement, DroppedFilesBecomeLuminairesEnvironmentOrGeometry) {
-    setenv("CANDELA_STATE_DIR", (std::filesystem::temp_directory_path() / "candela-placement-test").c_str(), 1);
+    setenv("CANDELA_STATE_DIR",
+           (std::filesystem::temp_directory_path() / "candela-placement-test").c_str(), 1);
     EditorState state;
     ASSERT_TRUE(openSceneFile(state, CANDELA_SOURCE_DIR "/resources/scenes/demo.json"));
     size_t meshes = state.scene.meshes.size(), items = state.scene.geometry.size();
@@ -130,13 +137,15 @@ TEST(EditorPlacement, DroppedFilesBecomeLuminairesEnvironmentOrGeometry) {
     ASSERT_TRUE(state.scene.environmentMap);
     EXPECT_NE(state.pendingChanges & kChangeEnvironment, 0u);
 
-    ASSERT_TRUE(dropFile(state, CANDELA_SOURCE_DIR "/resources/gltf/cornellBox/cornellBox-2.80-Eevee-gltf.gltf"));
+    ASSERT_TRUE(dropFile(
+        state, CANDELA_SOURCE_DIR "/resources/gltf/cornellBox/cornellBox-2.80-Eevee-gltf.gltf"));
     EXPECT_GT(state.scene.meshes.size(), meshes);
     EXPECT_EQ(state.scene.geometry.size(), items + 1);
     for (const Mesh& m : state.scene.meshes) EXPECT_LT(m.material, state.scene.materials.size());
     for (uint32_t m : state.scene.geometry.back().meshes) EXPECT_LT(m, state.scene.meshes.size());
 
-    ASSERT_TRUE(dropFile(state, CANDELA_SOURCE_DIR "/resources/luminaires/photometric/floor-washlight.ies"));
+    ASSERT_TRUE(dropFile(
+        state, CANDELA_SOURCE_DIR "/resources/luminaires/photometric/floor-washlight.ies"));
     EXPECT_EQ(state.scene.luminaires.back()->kind(), "photometric");
     EXPECT_TRUE(state.placement.armed);  // the next click on a surface places it
 

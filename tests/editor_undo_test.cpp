@@ -15,7 +15,9 @@ namespace {
 EditorState demo() {
     // Opening a scene records it in the recent files: keep that out of the user's home.
     static const bool isolated = [] {
-        return setenv("CANDELA_STATE_DIR", (std::filesystem::temp_directory_path() / "candela-undo-test").c_str(), 1) == 0;
+        return setenv("CANDELA_STATE_DIR",
+                      (std::filesystem::temp_directory_path() / "candela-undo-test").c_str(),
+                      1) == 0;
     }();
     EXPECT_TRUE(isolated);
     EditorState state;

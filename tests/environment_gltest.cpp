@@ -20,21 +20,25 @@ namespace candela {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-double lum(const glm::dvec3& c) { return luminanceOf(c); }
+double lum(const glm::dvec3& c) {
+    return luminanceOf(c);
+}
 
 std::shared_ptr<const EnvironmentMap> realMap(const char* file) {
     return EnvironmentMap::load(test::dataDir() + "/hdr/" + file);
 }
 
 std::shared_ptr<const EnvironmentMap> constantMap(float value, int w = 64) {
-    return std::make_shared<EnvironmentMap>(w, w / 2, std::vector<glm::vec3>(size_t(w) * size_t(w / 2), glm::vec3(value)),
-                                            1.0, 0.0, "constant");
+    return std::make_shared<EnvironmentMap>(
+        w, w / 2, std::vector<glm::vec3>(size_t(w) * size_t(w / 2), glm::vec3(value)), 1.0, 0.0,
+        "constant");
 }
 
-
 /// Irradiance through the production shading pass (Renderer::probe) for normals at the origin.
-std::vector<glm::dvec3> gpuProbe(std::shared_ptr<const EnvironmentMap> map, const std::string& technique,
-                                 const std::vector<glm::dvec3>& normals, int spp, int faceSize = 0) {
+std::vector<glm::dvec3> gpuProbe(std::shared_ptr<const EnvironmentMap> map,
+                                 const std::string& technique,
+                                 const std::vector<glm::dvec3>& normals, int spp,
+                                 int faceSize = 0) {
     test::glContext();
     static ShaderLibrary shaders;
     Renderer renderer(shaders);
@@ -74,7 +78,8 @@ TEST(EnvironmentGl, TablesMatchTheCpuTwin) {
         for (int f = 0; f < 6; ++f) {
             // I_f sums n^2 weights, a few of which differ slightly (below): 1e-3 relative
             // (measured at most 3.7e-4).
-            EXPECT_NEAR(faces[size_t(f)].totals.x, cpu.faceImportance(f), 1e-3 * cpu.faceImportance(f) + 1e-30)
+            EXPECT_NEAR(faces[size_t(f)].totals.x, cpu.faceImportance(f),
+                        1e-3 * cpu.faceImportance(f) + 1e-30)
                 << map->source() << " face " << f;
             for (int r = 0; r < n; ++r)
                 for (int c = 0; c < n; ++c) {
@@ -86,7 +91,8 @@ TEST(EnvironmentGl, TablesMatchTheCpuTwin) {
                     // 1e-2 relative). The GPU samples its own tables and reports its own pdf, so
                     // this is no bias; here the tables must agree within 5 % on 99 % of the
                     // texels, and exactly where nothing is ambiguous (the I_f check above).
-                    if (std::abs(g.y - w) > 0.05 * w || std::abs(g.x - l) > 0.05 * l + 1e-30) ++mismatched;
+                    if (std::abs(g.y - w) > 0.05 * w || std::abs(g.x - l) > 0.05 * l + 1e-30)
+                        ++mismatched;
                     worst = std::max(worst, std::abs(g.y - w) / w);
                 }
             // Each CDF starts at 0, never decreases, and ends at exactly 1 on a lit face.
@@ -101,9 +107,10 @@ TEST(EnvironmentGl, TablesMatchTheCpuTwin) {
             }
         }
         EXPECT_LE(mismatched, 6 * n * n / 100) << map->source();
-        std::printf("[ info ] %s: %d of %d cube texels differ from the CPU by more than 5 %%, "
-                    "largest relative weight difference %.2e\n",
-                    map->source().c_str(), mismatched, 6 * n * n, worst);
+        std::printf(
+            "[ info ] %s: %d of %d cube texels differ from the CPU by more than 5 %%, "
+            "largest relative weight difference %.2e\n",
+            map->source().c_str(), mismatched, 6 * n * n, worst);
     }
 }
 
@@ -138,10 +145,12 @@ TEST(EnvironmentGl, SamplesPassChiSquareAndReportTheCpuPdf) {
         }
         for (int r = 0; r < n; ++r)
             for (int c = 0; c < n; ++c)
-                expected[size_t(r) * n + c] = pool * cpu.texelWeight(f, c, r) / cpu.faceImportance(f);
+                expected[size_t(r) * n + c] =
+                    pool * cpu.texelWeight(f, c, r) / cpu.faceImportance(f);
         test::ChiSquareResult chi = test::chiSquare(observed, expected);
         // A correct sampler fails this 1 time in 1000 per face.
-        EXPECT_GT(chi.pValue, 1e-3) << "face " << f << " chi2 " << chi.statistic << " dof " << chi.degreesOfFreedom;
+        EXPECT_GT(chi.pValue, 1e-3)
+            << "face " << f << " chi2 " << chi.statistic << " dof " << chi.degreesOfFreedom;
         EXPECT_LE(pdfMismatch, pool / 100) << "face " << f;
     }
 }
@@ -169,7 +178,8 @@ TEST(EnvironmentGl, ShadingPassMatchesTheReference) {
         // The Havran lights are deterministic: the GPU sums the same lights as the CPU.
         std::vector<glm::dvec3> havran = gpuProbe(map, "havran2005", test::cubeNormals26(), 1);
         for (size_t i = 0; i < havran.size(); ++i) {
-            double cpu = lum(environmentHavran(lighting, {}, test::cubeNormals26()[i], o).irradiance);
+            double cpu =
+                lum(environmentHavran(lighting, {}, test::cubeNormals26()[i], o).irradiance);
             EXPECT_NEAR(lum(havran[i]), cpu, 1e-4 * cpu + 1e-6) << file << " " << i;
         }
     }
@@ -188,7 +198,8 @@ TEST(EnvironmentGl, ConstantMapGivesPiL) {
         for (size_t i = 0; i < e.size(); ++i) {
             // No sampler here has the cosine in its pdf, so none is exact on a constant map:
             // 1e-3 plus 4 standard errors of the CPU twin at the same spp.
-            double se = t->irradiance(test::lightOf(lighting), {}, test::cubeNormals26()[i], o).stdError.x;
+            double se =
+                t->irradiance(test::lightOf(lighting), {}, test::cubeNormals26()[i], o).stdError.x;
             EXPECT_NEAR(e[i].x, kPi * L, 1e-3 * kPi * L + 4.0 * se) << technique << " " << i;
         }
     }
@@ -199,7 +210,8 @@ TEST(EnvironmentGl, BlackMapsAndHugeSunsStayFinite) {
     std::vector<glm::vec3> rgb(64 * 32, glm::vec3(0.01f));
     rgb[10 * 64 + 20] = glm::vec3(1e6f);  // a one-texel sun 1e8 times the rest
     auto sun = std::make_shared<EnvironmentMap>(64, 32, rgb, 1.0, 0.0, "sun");
-    for (const TechniqueInfo& info : techniquesOf("environment")) {  // every technique with a GPU pass
+    for (const TechniqueInfo& info :
+         techniquesOf("environment")) {  // every technique with a GPU pass
         if (info.shader.empty()) continue;
         const std::string technique(info.name);
         for (const glm::dvec3& v : gpuProbe(black, technique, test::cubeNormals26(), 64)) {
@@ -207,7 +219,8 @@ TEST(EnvironmentGl, BlackMapsAndHugeSunsStayFinite) {
         }
         std::vector<glm::dvec3> e = gpuProbe(sun, technique, test::cubeNormals26(), 4096);
         for (size_t i = 0; i < e.size(); ++i) {
-            ASSERT_TRUE(std::isfinite(e[i].x) && std::isfinite(e[i].y) && std::isfinite(e[i].z)) << technique;
+            ASSERT_TRUE(std::isfinite(e[i].x) && std::isfinite(e[i].y) && std::isfinite(e[i].z))
+                << technique;
             EXPECT_GE(lum(e[i]), 0.0);
         }
         // Accuracy is not asserted here: for normals facing away from the sun, balanced and
@@ -218,7 +231,8 @@ TEST(EnvironmentGl, BlackMapsAndHugeSunsStayFinite) {
 }
 
 Scene groundScene(bool withBox) {
-    std::string json = R"({"geometry": [{"plane": {"center": [0,0,0], "normal": [0,1,0], "size": [10,10]}})";
+    std::string json =
+        R"({"geometry": [{"plane": {"center": [0,0,0], "normal": [0,1,0], "size": [10,10]}})";
     if (withBox) json += R"(, {"box": {"center": [0,0.5,0], "size": [1,1,1]}})";
     json += R"(], "luminaires": [], "camera": {"position": [3,2.5,4], "target": [0,0.4,0]}})";
     Scene scene = parseScene(nlohmann::json::parse(json), "ground.json");
@@ -232,7 +246,9 @@ std::vector<std::string> passNames(const FrameStats& stats) {
     for (const PassTiming& p : stats.passes) out.push_back(p.name);
     return out;
 }
-bool has(const std::vector<std::string>& v, const std::string& s) { return std::find(v.begin(), v.end(), s) != v.end(); }
+bool has(const std::vector<std::string>& v, const std::string& s) {
+    return std::find(v.begin(), v.end(), s) != v.end();
+}
 
 TEST(EnvironmentGl, TablesAreBuiltOnlyWhenTheMapChanges) {
     test::glContext();
@@ -254,7 +270,7 @@ TEST(EnvironmentGl, TablesAreBuiltOnlyWhenTheMapChanges) {
     EXPECT_FALSE(has(renderer.plan().stepOfKind("environment")->program.defines, "SHADOWS"));
     renderer.renderFrame();
     std::vector<std::string> second = passNames(renderer.stats());
-    EXPECT_FALSE(has(second, "env:cdf"));  // same map: the tables are kept
+    EXPECT_FALSE(has(second, "env:cdf"));     // same map: the tables are kept
     EXPECT_TRUE(has(second, "env:samples"));  // a fresh pool of samples every frame
     // A new map (the next frame of a sequence, a moved sun) rebuilds them and restarts.
     scene.environmentMap = realMap("hilly_terrain_01_256.hdr");
@@ -275,7 +291,8 @@ TEST(EnvironmentGl, ARoofShadowsTheGround) {
     Scene scene = parseScene(nlohmann::json::parse(R"({"geometry": [
         {"plane": {"center": [0, 0, 0], "normal": [0, 1, 0], "size": [20, 20]}},
         {"box": {"center": [0.2, 1.025, -0.1], "size": [1.0, 0.05, 0.6]}}],
-      "camera": {"position": [3, 0.9, 0], "target": [0, 0, 0], "fov_deg": 10}})"), "roof.json");
+      "camera": {"position": [3, 0.9, 0], "target": [0, 0, 0], "fov_deg": 10}})"),
+                             "roof.json");
     scene.environment = {{"file", "test"}};
     scene.environmentMap = constantMap(1.f);
     double expected = kPi * (1.0 - test::rectangleFormFactor(-0.3, 0.7, -0.4, 0.2, 1.0));
@@ -313,10 +330,14 @@ TEST(EnvironmentGl, FractionalCountsChangeSmoothly) {
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x) {
                 double theta = kPi * (y + 0.5) / h, phi = 2.0 * kPi * (x + 0.5) / w;
-                double up = std::cos(theta), side = std::sin(theta) * std::max(std::abs(std::cos(phi)), std::abs(std::sin(phi)));
+                double up = std::cos(theta),
+                       side = std::sin(theta) *
+                              std::max(std::abs(std::cos(phi)), std::abs(std::sin(phi)));
                 float v = 1.f + 3.f * float(x % 16 < 4);  // some structure in every face
-                if (up > side / 0.8) v *= float(1.0 + 0.03 * k);  // inside the +Y face
-                else if (up > side * 0.8) v = 0.f;               // the band around its border
+                if (up > side / 0.8)
+                    v *= float(1.0 + 0.03 * k);  // inside the +Y face
+                else if (up > side * 0.8)
+                    v = 0.f;  // the band around its border
                 rgb[size_t(y) * w + x] = glm::vec3(v);
             }
         return std::make_shared<EnvironmentMap>(w, h, std::move(rgb), 1.0, 0.0, "scaled");
@@ -331,18 +352,22 @@ TEST(EnvironmentGl, FractionalCountsChangeSmoothly) {
     }
     auto worstJump = [&](const char* technique) {
         std::vector<std::vector<glm::dvec3>> e;
-        for (int k = 0; k < steps; ++k) e.push_back(gpuProbe(mapAt(k), technique, test::cubeNormals26(), spp, 16));
+        for (int k = 0; k < steps; ++k)
+            e.push_back(gpuProbe(mapAt(k), technique, test::cubeNormals26(), spp, 16));
         double worst = 0.0;
         for (int k = 0; k + 1 < steps; ++k)
             for (size_t i = 0; i < exact[0].size(); ++i) {
-                double step = lum(e[k + 1][i]) - lum(e[k][i]), truth = exact[k + 1][i] - exact[k][i];
+                double step = lum(e[k + 1][i]) - lum(e[k][i]),
+                       truth = exact[k + 1][i] - exact[k][i];
                 worst = std::max(worst, std::abs(step - truth) / exact[k][i]);
             }
         return worst;
     };
     double fractional = worstJump("balanced"), whole = worstJump("balanced-integer");
-    std::printf("[ info ] largest frame-to-frame deviation from the exact change: fractional N_f %.4f, "
-                "whole N_f %.4f\n", fractional, whole);
+    std::printf(
+        "[ info ] largest frame-to-frame deviation from the exact change: fractional N_f %.4f, "
+        "whole N_f %.4f\n",
+        fractional, whole);
     // Measured (llvmpipe): 0.024 against 0.18. What is left with fractional counts comes from the
     // few cube texels that straddle the band and still change shape; whole counts jump by a
     // sample's worth, about 1/16 of a noisy estimate. Deterministic (fixed seed): the bounds
@@ -356,7 +381,8 @@ TEST(EnvironmentGl, PlanRunsOnlyWhatTheSceneNeeds) {
     glm::mat4 vp = cameraViewProj(boxed.camera, 4.0 / 3.0);
     FramePlan p = planFrame(boxed, vp);
     ASSERT_TRUE(p.stepOfKind("environment"));
-    EXPECT_TRUE(has(p.stepOfKind("environment")->program.defines, "SHADOWS"));  // the box shadows the ground
+    EXPECT_TRUE(has(p.stepOfKind("environment")->program.defines,
+                    "SHADOWS"));  // the box shadows the ground
     EXPECT_TRUE(p.needsBvh);
     EXPECT_FALSE(planFrame(plain, vp).needsBvh);
     Scene none = groundScene(false);
@@ -368,7 +394,8 @@ TEST(EnvironmentGl, PlanRunsOnlyWhatTheSceneNeeds) {
     EXPECT_THROW(planFrame(plain, vp, "environment=reference", Quantity::Radiance), InputError);
     EXPECT_THROW(planFrame(plain, vp, "environment=no-such", Quantity::Radiance), InputError);
     // global-cdf and havran2005 build their tables on the CPU: no cube passes.
-    EXPECT_FALSE(has(planFrame(plain, vp, "environment=global-cdf", Quantity::Radiance).passNames(), "env:cdf"));
+    EXPECT_FALSE(has(planFrame(plain, vp, "environment=global-cdf", Quantity::Radiance).passNames(),
+                     "env:cdf"));
 }
 
 }  // namespace

@@ -2,8 +2,10 @@
 // contract, loading and its errors, the sky, sequences, the cube-map and global CDFs (chi-square
 // against their pdfs, inversion), the balanced estimator of Lu et al. 2013 against the exact
 // reference, Havran et al.'s lights and their temporal filter, hard cases, and scene parsing.
-#include <gtest/gtest.h>
+#include "luminaires/Environment.h"
+
 #include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
@@ -13,7 +15,6 @@
 #include <string>
 #include <vector>
 
-#include "luminaires/Environment.h"
 #include "luminaires/EnvironmentSampling.h"
 #include "luminaires/Random.h"
 #include "scene/Bvh.h"
@@ -36,7 +37,6 @@ std::shared_ptr<EnvironmentMap> makeMap(int w, int h, const TexelFn& fn, double 
     return std::make_shared<EnvironmentMap>(w, h, std::move(rgb), 1.0, rotationDeg, "test map");
 }
 
-
 std::string inputError(const std::function<void()>& fn) {
     try {
         fn();
@@ -46,10 +46,12 @@ std::string inputError(const std::function<void()>& fn) {
     return "(no error)";
 }
 
-#define EXPECT_CONTAINS(text, part) EXPECT_NE(std::string(text).find(part), std::string::npos) << text
+#define EXPECT_CONTAINS(text, part) \
+    EXPECT_NE(std::string(text).find(part), std::string::npos) << text
 
 std::string tempDir(const std::string& name) {
-    fs::path dir = fs::temp_directory_path() / ("candela_env_" + name + "_" + std::to_string(::getpid()));
+    fs::path dir =
+        fs::temp_directory_path() / ("candela_env_" + name + "_" + std::to_string(::getpid()));
     fs::remove_all(dir);
     fs::create_directories(dir);
     return dir.string();
@@ -64,7 +66,9 @@ void writeImage(const std::string& path, int w, int h, const std::vector<float>&
     ASSERT_TRUE(out->close());
 }
 
-double lum(const glm::dvec3& c) { return luminanceOf(c); }
+double lum(const glm::dvec3& c) {
+    return luminanceOf(c);
+}
 
 // ---------------------------------------------------------------------------------------------
 // Conventions
@@ -73,11 +77,13 @@ TEST(Environment, BrightTexelLightsTheContractDirection) {
     const int w = 64, h = 32;
     // Texel (16, 8): u = 16.5 / 64, v = 8.5 / 32: theta = pi v, phi = 2 pi u.
     for (double rotation : {0.0, 90.0, -30.0}) {
-        auto map = makeMap(w, h, [](int x, int y) { return glm::vec3(x == 16 && y == 8 ? 100.f : 0.f); },
-                           rotation);
+        auto map = makeMap(
+            w, h, [](int x, int y) { return glm::vec3(x == 16 && y == 8 ? 100.f : 0.f); },
+            rotation);
         double u = 16.5 / w, v = 8.5 / h;
         double theta = kPi * v, phi = 2.0 * kPi * u + rotation * kPi / 180.0;
-        glm::dvec3 d(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
+        glm::dvec3 d(std::sin(theta) * std::cos(phi), std::cos(theta),
+                     std::sin(theta) * std::sin(phi));
         EXPECT_EQ(map->radiance(d), glm::dvec3(100.0)) << "rotation " << rotation;
         EXPECT_LT(glm::length(map->direction(u, v) - d), 1e-12);
         EXPECT_EQ(map->radiance(-d), glm::dvec3(0.0));
@@ -88,15 +94,17 @@ TEST(Environment, BrightTexelLightsTheContractDirection) {
         EXPECT_GT(facing, 0.0);
         EXPECT_EQ(away, 0.0);
         for (const glm::dvec3& n : test::cubeNormals26())
-            EXPECT_LE(lum(environmentReference(lighting, {}, n, {}).irradiance), facing * (1 + 1e-12));
+            EXPECT_LE(lum(environmentReference(lighting, {}, n, {}).irradiance),
+                      facing * (1 + 1e-12));
     }
     // Known directions: the top row is +Y, u = 0 is +X, u = 1/4 is +Z; rotation 90 turns +X to +Z.
     auto map = makeMap(4, 2, [](int x, int y) { return glm::vec3(float(1 + x + 4 * y)); });
-    EXPECT_EQ(map->radiance({0, 1, 0}), glm::dvec3(1 + 0));      // zenith: row 0
-    EXPECT_EQ(map->radiance({0, -1, 0}), glm::dvec3(1 + 4));     // nadir: row 1
-    EXPECT_EQ(map->radiance({1, 0.1, 0.01}), glm::dvec3(1));     // phi just above 0: column 0
-    EXPECT_EQ(map->radiance({-0.01, 0.1, 1}), glm::dvec3(2));    // phi just above pi/2: column 1
-    auto turned = makeMap(4, 2, [](int x, int y) { return glm::vec3(float(1 + x + 4 * y)); }, 90.0);
+    EXPECT_EQ(map->radiance({0, 1, 0}), glm::dvec3(1 + 0));    // zenith: row 0
+    EXPECT_EQ(map->radiance({0, -1, 0}), glm::dvec3(1 + 4));   // nadir: row 1
+    EXPECT_EQ(map->radiance({1, 0.1, 0.01}), glm::dvec3(1));   // phi just above 0: column 0
+    EXPECT_EQ(map->radiance({-0.01, 0.1, 1}), glm::dvec3(2));  // phi just above pi/2: column 1
+    auto turned = makeMap(
+        4, 2, [](int x, int y) { return glm::vec3(float(1 + x + 4 * y)); }, 90.0);
     EXPECT_EQ(turned->radiance({-0.01, 0.1, 1}), glm::dvec3(1));  // column 0 now starts at +Z
 }
 
@@ -104,7 +112,8 @@ TEST(Environment, SeamLookupAndSamplingAgree) {
     // Column 0 bright, column W-1 dim: just either side of phi = 0 the lookup switches, and
     // samples drawn from column 0 land on the phi >= 0 side.
     const int w = 32, h = 16;
-    auto map = makeMap(w, h, [&](int x, int) { return glm::vec3(x == 0 ? 50.f : (x == w - 1 ? 5.f : 0.f)); });
+    auto map = makeMap(
+        w, h, [&](int x, int) { return glm::vec3(x == 0 ? 50.f : (x == w - 1 ? 5.f : 0.f)); });
     double eps = 1e-9;
     EXPECT_EQ(map->radiance({1, 0, eps}), glm::dvec3(50.0));
     EXPECT_EQ(map->radiance({1, 0, -eps}), glm::dvec3(5.0));
@@ -119,7 +128,8 @@ TEST(Environment, SeamLookupAndSamplingAgree) {
         ASSERT_NEAR(lighting.global().pdf(s.w), s.pdf, 1e-9 * s.pdf);
         std::array<double, 6> mu;
         mu.fill(1.0 / 6.0);
-        DirectionSample c = lighting.cube().sample(mu, {rng.uniform(), rng.uniform(), rng.uniform()});
+        DirectionSample c =
+            lighting.cube().sample(mu, {rng.uniform(), rng.uniform(), rng.uniform()});
         if (c.pdf > 0.0) {
             ASSERT_NEAR(lighting.cube().pdf(mu, c.w), c.pdf, 1e-9 * c.pdf);
         }
@@ -138,7 +148,8 @@ TEST(Environment, LoadsRealMapsAndRejectsBadFiles) {
     EXPECT_DOUBLE_EQ(map->intensity(), 2.0);
 
     EXPECT_CONTAINS(inputError([&] { EnvironmentMap::load(data + "nowhere.hdr"); }), "nowhere.hdr");
-    EXPECT_CONTAINS(inputError([&] { EnvironmentMap::load(data + "nowhere.hdr"); }), "No such file");
+    EXPECT_CONTAINS(inputError([&] { EnvironmentMap::load(data + "nowhere.hdr"); }),
+                    "No such file");
     EXPECT_CONTAINS(inputError([&] { EnvironmentMap::load(data + "LICENSE.md"); }),
                     "LICENSE.md: unsupported environment map type \".md\"");
     std::string dir = tempDir("load");
@@ -174,17 +185,19 @@ TEST(Environment, ConstantMapGivesPiL) {
     o.spp = 1 << 18;
     for (const glm::dvec3& n : test::cubeNormals26()) {
         // The reference is exact up to the 8-point Gauss-Legendre rule on the horizon band.
-        EXPECT_NEAR(lum(environmentReference(lighting, {}, n, o).irradiance), kPi * L, 1e-3 * kPi * L);
+        EXPECT_NEAR(lum(environmentReference(lighting, {}, n, o).irradiance), kPi * L,
+                    1e-3 * kPi * L);
         for (const auto& t : techniquesOf("environment")) {
-            if (t.name == "reference" || t.irradiance == &onEnvironmentLight<&environmentHavran>) continue;  // both havran2005s
+            if (t.name == "reference" || t.irradiance == &onEnvironmentLight<&environmentHavran>)
+                continue;  // both havran2005s
             Estimate e = t.irradiance(test::lightOf(lighting), {}, n, o);
             double se = lum(e.stdError);
             // 2^18 samples: the standard error must be below 3e-3 pi L (global-cdf's is
             // sqrt(16/6 - 1) / sqrt(spp) = 2.5e-3 pi L for a constant map, the face-balanced
             // ones lower), and the estimate within 1e-3 pi L plus 4 standard errors.
             EXPECT_LT(se, 3e-3 * kPi * L) << t.name;
-            EXPECT_NEAR(lum(e.irradiance), kPi * L, 1e-3 * kPi * L + 4.0 * se) << t.name << " n " << n.x
-                                                                                << "," << n.y << "," << n.z;
+            EXPECT_NEAR(lum(e.irradiance), kPi * L, 1e-3 * kPi * L + 4.0 * se)
+                << t.name << " n " << n.x << "," << n.y << "," << n.z;
         }
         // 1024 lights carrying their Voronoi cells' energy: the cosine varies over a cell of
         // ~0.0123 sr (about 3.6 deg across), so the deterministic error stays below 0.5 %.
@@ -211,7 +224,8 @@ std::shared_ptr<EnvironmentMap> bumpyMap() {
 /// pdf q^(3/2) is constant in a texel, so pdf dw is constant in da db).
 test::ChiSquareResult cubeChiSquare(const CubeMapDistribution& cube,
                                     const std::function<DirectionSample(Random&)>& draw,
-                                    const std::function<double(const glm::dvec3&)>& pdf, int samples) {
+                                    const std::function<double(const glm::dvec3&)>& pdf,
+                                    int samples) {
     const int n = cube.faceSize(), m = 2 * n;
     std::vector<double> observed(size_t(6 * m * m) + 1, 0.0), expected(observed.size(), 0.0);
     Random rng(12345);
@@ -223,7 +237,8 @@ test::ChiSquareResult cubeChiSquare(const CubeMapDistribution& cube,
         }
         glm::dvec2 ab;
         int f = cubeFaceOf(s.w, ab);
-        int c = std::clamp(int((ab.x + 1) * 0.5 * m), 0, m - 1), r = std::clamp(int((ab.y + 1) * 0.5 * m), 0, m - 1);
+        int c = std::clamp(int((ab.x + 1) * 0.5 * m), 0, m - 1),
+            r = std::clamp(int((ab.y + 1) * 0.5 * m), 0, m - 1);
         observed[size_t((f * m + r) * m + c)] += 1.0;
     }
     const double g = 0.5 / std::sqrt(3.0);
@@ -236,7 +251,8 @@ test::ChiSquareResult cubeChiSquare(const CubeMapDistribution& cube,
                     for (double gx : {0.5 - g, 0.5 + g}) {
                         double a = -1 + (c + gx) * h, b = -1 + (r + gy) * h, q = 1 + a * a + b * b;
                         const CubeFaceFrame& fr = cubeFaceFrame(f);
-                        sum += pdf(glm::normalize(fr.centre + a * fr.right + b * fr.down)) / (q * std::sqrt(q));
+                        sum += pdf(glm::normalize(fr.centre + a * fr.right + b * fr.down)) /
+                               (q * std::sqrt(q));
                     }
                 double p = sum * 0.25 * h * h;
                 expected[size_t((f * m + r) * m + c)] = p * samples;
@@ -259,9 +275,13 @@ TEST(Environment, CubeSamplersPassChiSquare) {
     uniform.fill(1.0 / 6.0);
     for (auto [name, mu] : {std::pair{"balanced", balanced}, std::pair{"uniform-faces", uniform}}) {
         auto r = cubeChiSquare(
-            cube, [&](Random& rng) { return cube.sample(mu, {rng.uniform(), rng.uniform(), rng.uniform()}); },
+            cube,
+            [&](Random& rng) {
+                return cube.sample(mu, {rng.uniform(), rng.uniform(), rng.uniform()});
+            },
             [&](const glm::dvec3& w) { return cube.pdf(mu, w); }, samples);
-        EXPECT_GT(r.pValue, kAlpha) << name << ": chi2 " << r.statistic << " dof " << r.degreesOfFreedom;
+        EXPECT_GT(r.pValue, kAlpha)
+            << name << ": chi2 " << r.statistic << " dof " << r.degreesOfFreedom;
         EXPECT_GT(r.degreesOfFreedom, 500) << name;  // the cells are really tested, not pooled away
     }
     // Balanced: a face wholly behind n gets no samples (mu_f = 0).
@@ -295,10 +315,12 @@ TEST(Environment, GlobalCdfPassesChiSquare) {
     for (int ty = 0; ty < h; ++ty) {
         double c0 = std::cos(kPi * ty / h), c1 = std::cos(kPi * (ty + 1) / h);
         for (int half = 0; half < 2; ++half) {
-            double ca = c0 - half * 0.5 * (c0 - c1), cb = ca - 0.5 * (c0 - c1), cm = 0.5 * (ca + cb);
+            double ca = c0 - half * 0.5 * (c0 - c1), cb = ca - 0.5 * (c0 - c1),
+                   cm = 0.5 * (ca + cb);
             for (int x = 0; x < 2 * w; ++x) {
                 double phi = 2 * kPi * (x + 0.5) / (2 * w), s = std::sqrt(1 - cm * cm);
-                double p = global.pdf({s * std::cos(phi), cm, s * std::sin(phi)}) * (ca - cb) * (kPi / w);
+                double p =
+                    global.pdf({s * std::cos(phi), cm, s * std::sin(phi)}) * (ca - cb) * (kPi / w);
                 expected[size_t((2 * ty + half) * 2 * w + x)] = p * samples;
                 mass += p;
             }
@@ -376,10 +398,13 @@ TEST(Environment, BalancedAgreesWithReferenceOnRealMaps) {
             EXPECT_LT(err, 0.01) << file << " n " << n.x << "," << n.y << "," << n.z;
             EXPECT_LT(lum(e.stdError), 0.01 * ref) << file;
             Estimate mis = environmentBalancedMis(lighting, {}, n, o);
-            EXPECT_LT(std::abs(lum(mis.irradiance) - ref), 0.01 * ref + 4 * lum(mis.stdError)) << file;
+            EXPECT_LT(std::abs(lum(mis.irradiance) - ref), 0.01 * ref + 4 * lum(mis.stdError))
+                << file;
         }
-        std::printf("[ info ] %s: balanced at 2^18 spp, worst relative error %.2e, worst relative "
-                    "standard error %.2e\n", file, worst, worstSe);
+        std::printf(
+            "[ info ] %s: balanced at 2^18 spp, worst relative error %.2e, worst relative "
+            "standard error %.2e\n",
+            file, worst, worstSe);
     }
 }
 
@@ -389,13 +414,15 @@ TEST(Environment, BalancedAgreesWithReferenceOnRealMaps) {
 TEST(Environment, SunBehindTheSurfaceWastesNoSample) {
     // A sun (one texel near the nadir, 1e6 x the sky) behind a surface facing up.
     const int w = 64, h = 32;
-    auto map = makeMap(w, h, [&](int x, int y) { return glm::vec3(x == 10 && y == h - 2 ? 1e6f : 1.f); });
+    auto map =
+        makeMap(w, h, [&](int x, int y) { return glm::vec3(x == 10 && y == h - 2 ? 1e6f : 1.f); });
     EnvironmentLighting lighting(map, 16, 16);
     EstimateOptions o;
     o.spp = 4096;
     glm::dvec3 n(0, 1, 0);
     SampleCounts balanced, uniform;
-    Estimate eb = environmentFaceEstimate(lighting, {}, n, o, lighting.cube().balance(n), &balanced);
+    Estimate eb =
+        environmentFaceEstimate(lighting, {}, n, o, lighting.cube().balance(n), &balanced);
     std::array<double, 6> mu;
     mu.fill(1.0 / 6.0);
     Estimate eu = environmentFaceEstimate(lighting, {}, n, o, mu, &uniform);
@@ -419,8 +446,10 @@ TEST(Environment, SunBehindTheSurfaceWastesNoSample) {
         onFaceBalanced += sb.pdf > 0.0 && cubeFaceOf(sb.w, ab) == 3;
         onFaceUniform += su.pdf > 0.0 && cubeFaceOf(su.w, ab) == 3;
     }
-    std::printf("[ info ] of 6000 samples, on the sun's texel / on its face: balanced %d / %d, "
-                "uniform-faces %d / %d\n", onSunBalanced, onFaceBalanced, onSunUniform, onFaceUniform);
+    std::printf(
+        "[ info ] of 6000 samples, on the sun's texel / on its face: balanced %d / %d, "
+        "uniform-faces %d / %d\n",
+        onSunBalanced, onFaceBalanced, onSunUniform, onFaceUniform);
     EXPECT_EQ(onSunBalanced, 0);
     EXPECT_EQ(onFaceBalanced, 0);
     EXPECT_GT(onSunUniform, 0);
@@ -438,7 +467,8 @@ TEST(Environment, ARoofShadowsTheSky) {
     // form rectangle form factor. (Shadow rays once ran as 1e6 m segments whose end bias, 1e-4 of
     // their length, skipped the first 100 m: this roof cast no shadow at all.)
     Scene scene = parseScene(nlohmann::json::parse(R"({"geometry": [
-        {"box": {"center": [0.2, 1.025, -0.1], "size": [1.0, 0.05, 0.6]}}]})"), "roof.json");
+        {"box": {"center": [0.2, 1.025, -0.1], "size": [1.0, 0.05, 0.6]}}]})"),
+                             "roof.json");
     Bvh bvh = Bvh::build(scene);
     BvhVisibility visibility(bvh);
     auto map = makeMap(64, 32, [](int, int) { return glm::vec3(1.f); });
@@ -450,7 +480,8 @@ TEST(Environment, ARoofShadowsTheSky) {
     double expected = kPi * (1.0 - F);
     ASSERT_GT(F, 0.1);  // the test means something: the roof blocks a tenth of the sky or more
     for (const std::string& name : test::unbiasedGpuTechniques("environment")) {
-        Estimate e = findTechnique("environment", name)->irradiance(test::lightOf(lighting), {}, glm::dvec3(0, 1, 0), o);
+        Estimate e = findTechnique("environment", name)
+                         ->irradiance(test::lightOf(lighting), {}, glm::dvec3(0, 1, 0), o);
         // 4 standard errors at 2^16 spp, plus 1e-3 for the float vertices of the box.
         EXPECT_NEAR(lum(e.irradiance), expected, 4.0 * lum(e.stdError) + 1e-3 * expected) << name;
     }
@@ -463,12 +494,15 @@ TEST(Environment, ARoofShadowsTheSky) {
 TEST(Environment, SampleChartShowsSelectedAndEffectiveSamples) {
     // Fig. 1-2 of the paper for a receiver facing up under a map whose sun is below the horizon.
     const int w = 64, h = 32;
-    auto map = makeMap(w, h, [&](int x, int y) { return glm::vec3(x == 10 && y == h - 2 ? 1e6f : 1.f); });
+    auto map =
+        makeMap(w, h, [&](int x, int y) { return glm::vec3(x == 10 && y == h - 2 ? 1e6f : 1.f); });
     CubeMapDistribution cube(*map, 16);
     const int spp = 120;
     auto colourAt = [](const SampleChart& c, int face, int x, int y) {
         glm::ivec2 cell = SampleChart::faceCell(face);
-        const unsigned char* p = &c.rgb[(size_t(cell.y * c.facePixels + y) * size_t(c.width) + size_t(cell.x * c.facePixels + x)) * 3];
+        const unsigned char* p = &c.rgb[(size_t(cell.y * c.facePixels + y) * size_t(c.width) +
+                                         size_t(cell.x * c.facePixels + x)) *
+                                        3];
         return glm::ivec3(p[0], p[1], p[2]);
     };
     auto marks = [&](const SampleChart& c, int face, bool green) {
@@ -496,11 +530,11 @@ TEST(Environment, SampleChartShowsSelectedAndEffectiveSamples) {
         EXPECT_EQ(c.effective[3], 0);           // no -Y sample does
         EXPECT_EQ(marks(c, 3, true), 0);        // nothing green below
         if (balanced) {
-            EXPECT_EQ(c.drawn[3], 0);           // the sun's face gets no sample (mu = 0)
+            EXPECT_EQ(c.drawn[3], 0);  // the sun's face gets no sample (mu = 0)
             EXPECT_EQ(marks(c, 3, false), 0);
         } else {
             EXPECT_EQ(c.drawn[3], spp / 6);
-            EXPECT_GT(marks(c, 3, false), 0);   // the wasted samples show in red
+            EXPECT_GT(marks(c, 3, false), 0);  // the wasted samples show in red
         }
         EXPECT_GT(marks(c, 2, true), 0);
     }
@@ -536,7 +570,8 @@ TEST(Environment, BlackFaceAndBlackMap) {
     EXPECT_EQ(lighting.cube().pdf(lighting.cube().balance({0, 1, 0}), {0, 1, 0}), 0.0);
     EstimateOptions o;
     o.spp = 1 << 16;
-    for (glm::dvec3 n : {glm::dvec3(0, 1, 0), glm::dvec3(1, 0, 0), glm::normalize(glm::dvec3(1, 1, 1))}) {
+    for (glm::dvec3 n :
+         {glm::dvec3(0, 1, 0), glm::dvec3(1, 0, 0), glm::normalize(glm::dvec3(1, 1, 1))}) {
         double ref = lum(environmentReference(lighting, {}, n, o).irradiance);
         Estimate e = environmentBalanced(lighting, {}, n, o);
         EXPECT_NEAR(lum(e.irradiance), ref, 4 * lum(e.stdError) + 1e-3 * ref);
@@ -575,7 +610,8 @@ TEST(Environment, SingleTexelSunAndPoles) {
     }
     std::printf("[ info ] single-texel sun and poles: balanced worst relative error %.2e\n", worst);
     // The pole texels are found by lookup and by both samplers' pdfs.
-    glm::dvec3 northPole = map->direction(5.5 / w, 0.5 / h), southPole = map->direction(90.5 / w, (h - 0.5) / h);
+    glm::dvec3 northPole = map->direction(5.5 / w, 0.5 / h),
+               southPole = map->direction(90.5 / w, (h - 0.5) / h);
     EXPECT_EQ(lum(map->radiance(northPole)), 5e4 * 1.0);
     EXPECT_EQ(lum(map->radiance(southPole)), 5e4 * 1.0);
     EXPECT_GT(lighting.global().pdf(northPole), lighting.global().pdf(map->direction(0.5, 0.5)));
@@ -592,7 +628,8 @@ TEST(Environment, HugeSunOnAFaceHalfBehindIsUnbiasedButHeavyTailed) {
     // that one run's standard error misses it (this is the GPU test's 4-17 % in
     // BlackMapsAndHugeSunsStayFinite). The estimator is still unbiased: the mean of independent
     // runs converges. BRDF sampling covers that sky, so balanced-mis is accurate in one run.
-    auto map = makeMap(64, 32, [](int x, int y) { return glm::vec3(x == 20 && y == 10 ? 1e6f : 0.01f); });
+    auto map =
+        makeMap(64, 32, [](int x, int y) { return glm::vec3(x == 20 && y == 10 ? 1e6f : 0.01f); });
     EnvironmentLighting lighting(map);
     for (const glm::dvec3& n : {glm::dvec3(0, -1, 0), glm::dvec3(1, 0, 0)}) {
         EstimateOptions o;
@@ -600,7 +637,8 @@ TEST(Environment, HugeSunOnAFaceHalfBehindIsUnbiasedButHeavyTailed) {
         double ref = lum(environmentReference(lighting, {}, n, o).irradiance);
         Estimate mis = environmentBalancedMis(lighting, {}, n, o);
         // 1 % plus 4 standard errors: balanced-mis's weights are bounded here.
-        EXPECT_NEAR(lum(mis.irradiance), ref, 0.01 * ref + 4 * lum(mis.stdError)) << n.x << "," << n.y << "," << n.z;
+        EXPECT_NEAR(lum(mis.irradiance), ref, 0.01 * ref + 4 * lum(mis.stdError))
+            << n.x << "," << n.y << "," << n.z;
         const int kRuns = 32;
         double sum = 0.0, sumSq = 0.0, reported = 0.0;
         o.spp = 4096;
@@ -613,10 +651,12 @@ TEST(Environment, HugeSunOnAFaceHalfBehindIsUnbiasedButHeavyTailed) {
         }
         double mean = sum / kRuns, spread = std::sqrt(std::max(0.0, sumSq / kRuns - mean * mean));
         // Unbiased: the mean of 32 runs within 4 of its standard errors (from the runs' spread).
-        EXPECT_NEAR(mean, ref, 4.0 * spread / std::sqrt(double(kRuns - 1))) << n.x << "," << n.y << "," << n.z;
-        std::printf("[ info ] 1e8 sun behind n = (%g, %g, %g): balanced mean of %d runs %.5f (exact %.5f), "
-                    "spread of one run %.2g against its reported standard error %.2g; balanced-mis %.5f\n",
-                    n.x, n.y, n.z, kRuns, mean, ref, spread, reported, lum(mis.irradiance));
+        EXPECT_NEAR(mean, ref, 4.0 * spread / std::sqrt(double(kRuns - 1)))
+            << n.x << "," << n.y << "," << n.z;
+        std::printf(
+            "[ info ] 1e8 sun behind n = (%g, %g, %g): balanced mean of %d runs %.5f (exact %.5f), "
+            "spread of one run %.2g against its reported standard error %.2g; balanced-mis %.5f\n",
+            n.x, n.y, n.z, kRuns, mean, ref, spread, reported, lum(mis.irradiance));
     }
 }
 
@@ -624,8 +664,10 @@ TEST(Environment, HugeSunOnAFaceHalfBehindIsUnbiasedButHeavyTailed) {
 // Havran et al.'s lights
 
 TEST(Environment, HavranTemporalFilter) {
-    auto a = makeMap(64, 32, [](int x, int y) { return glm::vec3(float(1 + (x * 7 + y * 3) % 5)); });
-    auto b = makeMap(64, 32, [](int x, int y) { return glm::vec3(float(2 * (1 + (x * 7 + y * 3) % 5))); });
+    auto a =
+        makeMap(64, 32, [](int x, int y) { return glm::vec3(float(1 + (x * 7 + y * 3) % 5)); });
+    auto b = makeMap(64, 32,
+                     [](int x, int y) { return glm::vec3(float(2 * (1 + (x * 7 + y * 3) % 5))); });
     HavranLights lights(32);
     lights.update(*a);
     std::vector<HavranLights::Light> first = lights.lights();
@@ -643,7 +685,8 @@ TEST(Environment, HavranTemporalFilter) {
     }
     for (int i = 0; i < 3; ++i) lights.update(*b);
     for (size_t k = 0; k < first.size(); ++k)
-        EXPECT_NEAR(lum(lights.lights()[k].power), 2 * lum(first[k].power), 1e-9 * lum(first[k].power));
+        EXPECT_NEAR(lum(lights.lights()[k].power), 2 * lum(first[k].power),
+                    1e-9 * lum(first[k].power));
     // Relaxation spreads the points: the smallest distance between two grows.
     auto minDistance = [](const std::vector<glm::dvec2>& p) {
         double d = 1e9;
@@ -686,7 +729,12 @@ TEST(Environment, SkyPutsTheSunWhereAsked) {
     double az2 = 210 * kPi / 180;
     glm::dvec3 sun2(std::cos(el) * std::cos(az2), std::sin(el), std::cos(el) * std::sin(az2));
     EXPECT_GT(lum(turned->radiance(sun2)), 1e6);  // a sun texel is far above any sky texel
-    EXPECT_CONTAINS(inputError([&] { SkyParams s; s.turbidity = 20; makeSkyMap(s); }), "turbidity");
+    EXPECT_CONTAINS(inputError([&] {
+                        SkyParams s;
+                        s.turbidity = 20;
+                        makeSkyMap(s);
+                    }),
+                    "turbidity");
 }
 
 TEST(Environment, SequenceFramesAtTime) {
@@ -715,7 +763,8 @@ TEST(Environment, SceneParsesTheThreeFormsAndTheirErrors) {
     fs::copy_file(test::dataDir() + "/hdr/hilly_terrain_01_256.hdr", dir + "/sky.hdr");
     fs::create_directories(dir + "/frames");
     for (int i = 0; i < 2; ++i)
-        writeImage(dir + "/frames/" + std::to_string(i) + ".exr", 8, 4, std::vector<float>(96, 1.f));
+        writeImage(dir + "/frames/" + std::to_string(i) + ".exr", 8, 4,
+                   std::vector<float>(96, 1.f));
     auto load = [&](const std::string& env) {
         std::ofstream(dir + "/s.json") << R"({"geometry": [], "environment": )" + env + "}";
         return loadScene(dir + "/s.json");
@@ -740,7 +789,8 @@ TEST(Environment, SceneParsesTheThreeFormsAndTheirErrors) {
     Scene again = loadScene(dir + "/saved.json");
     EXPECT_EQ(again.environment, a.environment);
 
-    EXPECT_CONTAINS(inputError([&] { load(R"({"file": "nowhere.hdr"})"); }), "s.json: environment.file: ");
+    EXPECT_CONTAINS(inputError([&] { load(R"({"file": "nowhere.hdr"})"); }),
+                    "s.json: environment.file: ");
     EXPECT_CONTAINS(inputError([&] { load(R"({"file": "nowhere.hdr"})"); }), "nowhere.hdr");
     EXPECT_CONTAINS(inputError([&] { load(R"({"file": "sky.hdr", "intensty": 1})"); }), "intensty");
     EXPECT_CONTAINS(inputError([&] { load(R"({"file": "sky.hdr", "intensity": -1})"); }),
@@ -755,7 +805,8 @@ TEST(Environment, SceneParsesTheThreeFormsAndTheirErrors) {
                     "environment.fps: expected a positive number");
     EXPECT_CONTAINS(inputError([&] { load(R"({"sequence": "nothing/*.exr"})"); }),
                     "no file matches the sequence pattern");
-    EXPECT_CONTAINS(inputError([&] { load(R"("sky.hdr")"); }), "environment: expected null or an object");
+    EXPECT_CONTAINS(inputError([&] { load(R"("sky.hdr")"); }),
+                    "environment: expected null or an object");
     fs::remove_all(dir);
 }
 

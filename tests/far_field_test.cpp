@@ -15,7 +15,9 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-double luminance(const glm::dvec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+double luminance(const glm::dvec3& c) {
+    return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
+}
 
 LightFieldLuminaire osram(const glm::dvec3& aim, const glm::dvec3& c0) {
     LightFieldLuminaire l;
@@ -78,13 +80,16 @@ TEST(FarField, IntensityMatchesTheExactModelFarAway) {
     const double R = 20.0;  // metres: 300 times the image's extent, so E R^2 = I(w) to 1e-5
     EstimateOptions o;
     double peak = 0.0;
-    struct Probe { double gamma, azimuth, reference, twin; };
+    struct Probe {
+        double gamma, azimuth, reference, twin;
+    };
     std::vector<Probe> probes;
     for (double gamma : {0.0, 20.0, 40.0, 60.0})
         for (double azimuth : {45.0, 135.0, 225.0, 315.0}) {
             double g = gamma * kPi / 180.0, a = azimuth * kPi / 180.0;
             // Azimuth in the light field's own frame (from x towards its y = aim x c0).
-            glm::dvec3 w = std::sin(g) * std::cos(a) * x + std::sin(g) * std::sin(a) * y + std::cos(g) * z;
+            glm::dvec3 w =
+                std::sin(g) * std::cos(a) * x + std::sin(g) * std::sin(a) * y + std::cos(g) * z;
             glm::dvec3 p = l.pose.position + R * w;
             double e = luminance(lightFieldReference(l, p, -w, o).irradiance);
             probes.push_back({gamma, azimuth, e * R * R, twin->intensity(w)});
@@ -96,8 +101,8 @@ TEST(FarField, IntensityMatchesTheExactModelFarAway) {
         // Bilinear between table directions 2.5 x 5 degrees apart: within 3 % of the peak
         // intensity (measured under 1 %).
         EXPECT_NEAR(p.twin, p.reference, 0.03 * peak)
-            << "gamma " << p.gamma << " azimuth " << p.azimuth << ": far field " << p.twin << " cd, exact "
-            << p.reference << " cd";
+            << "gamma " << p.gamma << " azimuth " << p.azimuth << ": far field " << p.twin
+            << " cd, exact " << p.reference << " cd";
     }
     // Azimuths 45 and 315, 135 and 225 (probes 0 and 3, 1 and 2 of each gamma) mirror in y.
     for (size_t g = 0; g < probes.size(); g += 4)

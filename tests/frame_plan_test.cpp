@@ -11,8 +11,9 @@ namespace candela {
 namespace {
 
 Scene sceneFrom(const std::string& geometry, const std::string& luminaires) {
-    std::string text = R"({"geometry": [)" + geometry + R"(], "luminaires": [)" + luminaires +
-                       R"(], "camera": {"position": [0, 1.5, 4], "target": [0, 0.5, 0], "fov_deg": 50}})";
+    std::string text =
+        R"({"geometry": [)" + geometry + R"(], "luminaires": [)" + luminaires +
+        R"(], "camera": {"position": [0, 1.5, 4], "target": [0, 0.5, 0], "fov_deg": 50}})";
     return parseScene(nlohmann::json::parse(text), "test.json");
 }
 
@@ -25,7 +26,9 @@ const std::string kGlossyBox =
 const std::string kPanel =
     R"({"type": "lambertian-rect", "name": "Panel", "position": [0,2.5,0], "technique": "analytic"})";
 
-glm::mat4 view(const Scene& s) { return cameraViewProj(s.camera, 1.0); }
+glm::mat4 view(const Scene& s) {
+    return cameraViewProj(s.camera, 1.0);
+}
 
 bool has(const std::vector<std::string>& v, const std::string& s) {
     return std::find(v.begin(), v.end(), s) != v.end();
@@ -34,8 +37,8 @@ bool has(const std::vector<std::string>& v, const std::string& s) {
 TEST(FramePlan, FloorAndLightOnlyRunsNoShadowsAndConvergesAtOnce) {
     Scene scene = sceneFrom(kFloor, kPanel);
     FramePlan plan = planFrame(scene, view(scene));
-    EXPECT_EQ(plan.passNames(), (std::vector<std::string>{"gbuffer", "shade:Panel:analytic",
-                                                          "resolve", "tonemap"}));
+    EXPECT_EQ(plan.passNames(),
+              (std::vector<std::string>{"gbuffer", "shade:Panel:analytic", "resolve", "tonemap"}));
     ASSERT_EQ(plan.shading.size(), 1u);
     // The analytic technique's own shader, and no variant (no SHADOWS, no GLOSSY).
     EXPECT_EQ(plan.shading[0].program.fragment, "lambertian_rect_analytic.frag");
@@ -82,8 +85,9 @@ TEST(FramePlan, OneShadingPassPerLuminaireWithItsTechnique) {
 }
 
 TEST(FramePlan, OverrideListGivesEachKindTheFirstItHas) {
-    std::string photometric = R"({"type": "photometric", "name": "Pendant", "file": ")" CANDELA_SOURCE_DIR
-                              R"(/resources/luminaires/photometric/linear-pendant.ies", "position": [1,2.5,0],
+    std::string photometric =
+        R"({"type": "photometric", "name": "Pendant", "file": ")" CANDELA_SOURCE_DIR
+        R"(/resources/luminaires/photometric/linear-pendant.ies", "position": [1,2.5,0],
                                    "technique": "hybrid"})";
     Scene scene = sceneFrom(kFloor, kPanel + "," + photometric);
     // "point" is photometric only, "reference" both kinds': the rectangle takes reference.
@@ -98,18 +102,22 @@ TEST(FramePlan, OverrideListGivesEachKindTheFirstItHas) {
     EXPECT_EQ(overrideFor("point,havran2005", "environment"), "havran2005");
     EXPECT_EQ(overrideFor("point", "lightfield"), "");
     // Scoped items: both kinds have "reference", only the photometric one is asked to use it.
-    FramePlan scoped = planFrame(scene, view(scene), "photometric=reference,lambertian-rect=analytic");
+    FramePlan scoped =
+        planFrame(scene, view(scene), "photometric=reference,lambertian-rect=analytic");
     EXPECT_EQ(scoped.shading[0].name, "shade:Panel:analytic");
     EXPECT_EQ(scoped.shading[1].name, "shade:Pendant:reference");
     EXPECT_EQ(overrideFor("photometric=reference", "lambertian-rect"), "");
-    EXPECT_EQ(overrideFor("lightfield=reference,environment=balanced-mis", "environment"), "balanced-mis");
+    EXPECT_EQ(overrideFor("lightfield=reference,environment=balanced-mis", "environment"),
+              "balanced-mis");
 }
 
 TEST(FramePlan, TechniqueListsAreChecked) {
     EXPECT_NO_THROW(checkTechniqueList(""));
     EXPECT_NO_THROW(checkTechniqueList("point,reference,havran2005"));
-    EXPECT_NO_THROW(checkTechniqueList("lightfield=restricted-cdf-raytraced,environment=balanced-mis"));
-    for (const char* bad : {"magic", "point,magic", "photometric=restricted-cdf", "lamp=point", "environment=point"}) {
+    EXPECT_NO_THROW(
+        checkTechniqueList("lightfield=restricted-cdf-raytraced,environment=balanced-mis"));
+    for (const char* bad : {"magic", "point,magic", "photometric=restricted-cdf", "lamp=point",
+                            "environment=point"}) {
         try {
             checkTechniqueList(bad);
             ADD_FAILURE() << bad << ": expected an InputError";

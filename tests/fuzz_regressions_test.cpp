@@ -25,7 +25,8 @@ TEST(FuzzRegressions, EveryRegressionInputPassesItsTargetsChecks) {
         if (!fs::is_directory(dir)) continue;
         for (const auto& entry : fs::directory_iterator(dir)) {
             std::ifstream in(entry.path(), std::ios::binary);
-            std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+            std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)),
+                                       std::istreambuf_iterator<char>());
             SCOPED_TRACE(entry.path().string());
             target.run(bytes.data(), bytes.size());
             ++replayed;

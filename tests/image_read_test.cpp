@@ -1,8 +1,8 @@
 // Reading user images (util/ImageRead.h) as fuzzing left it: only the reader the extension names,
 // OpenEXR headers checked before OpenEXR allocates what they declare, channels beyond RGB never
 // read, tiled files read like scanline ones.
-#include <gtest/gtest.h>
 #include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -22,7 +22,8 @@ namespace {
 namespace fs = std::filesystem;
 
 struct TempDir {
-    fs::path path = fs::temp_directory_path() / ("candela_image_read_" + std::to_string(::getpid()));
+    fs::path path =
+        fs::temp_directory_path() / ("candela_image_read_" + std::to_string(::getpid()));
     TempDir() { fs::create_directories(path); }
     ~TempDir() { fs::remove_all(path); }
     std::string operator/(const std::string& name) const { return (path / name).string(); }
@@ -42,7 +43,9 @@ void writeImage(const std::string& path, int width, int height, int channels, in
     out->close();
 }
 
-std::string regression(const std::string& name) { return test::sourceDir() + "/fuzz/regressions/image/" + name; }
+std::string regression(const std::string& name) {
+    return test::sourceDir() + "/fuzz/regressions/image/" + name;
+}
 
 TEST(ImageRead, OnlyTheReaderTheExtensionNames) {
     TempDir dir;
@@ -58,8 +61,10 @@ TEST(ImageRead, OnlyTheReaderTheExtensionNames) {
 TEST(ImageRead, ExrHeadersCannotClaimMoreThanTheFile) {
     // Fuzzing's inputs: a string attribute declaring 2 GB (OpenEXR 3.1 allocated and cleared it)
     // and a data window 1e9 rows high (OpenEXR spent half a minute on its tables).
-    std::string m = test::inputError([] { EnvironmentMap::load(regression("exr-string-attribute-2gb.exr")); });
-    EXPECT_NE(m.find("its header attribute \"Exif:ImageHistory\" declares 1979711607 bytes, more than the 681 left in the file"),
+    std::string m =
+        test::inputError([] { EnvironmentMap::load(regression("exr-string-attribute-2gb.exr")); });
+    EXPECT_NE(m.find("its header attribute \"Exif:ImageHistory\" declares 1979711607 bytes, more "
+                     "than the 681 left in the file"),
               std::string::npos)
         << m;
     m = test::inputError([] { EnvironmentMap::load(regression("exr-data-window-slow.exr")); });

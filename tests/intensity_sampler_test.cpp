@@ -57,7 +57,9 @@ TEST(IntensitySampler, DirectionsFollowThePdf) {
             double r = angleDeg * kPi / 180.0;
             return typeC ? -std::cos(r) : std::sin(r);
         };
-        auto cellPhi = [&](double angleDeg) { return angleDeg * kPi / 180.0 + (typeC ? 0.0 : kPi); };
+        auto cellPhi = [&](double angleDeg) {
+            return angleDeg * kPi / 180.0 + (typeC ? 0.0 : kPi);
+        };
         double total = 0.0;
         for (size_t h = 0; h + 1 < data.horizontal.size(); ++h)
             for (size_t v = 0; v + 1 < data.vertical.size(); ++v) {
@@ -93,7 +95,8 @@ TEST(IntensitySampler, DirectionsFollowThePdf) {
         }
         test::ChiSquareResult chi = test::chiSquare(observed, expected);
         // 1e-3: one chance in a thousand of a false alarm per file at these fixed seeds.
-        EXPECT_GT(chi.pValue, 1e-3) << path << ": chi2 " << chi.statistic << " dof " << chi.degreesOfFreedom;
+        EXPECT_GT(chi.pValue, 1e-3)
+            << path << ": chi2 " << chi.statistic << " dof " << chi.degreesOfFreedom;
     }
 }
 

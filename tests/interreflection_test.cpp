@@ -1,6 +1,8 @@
 // Interreflected light (issue 17, part 3): radiosity over patches with Embree form factors,
 // their pieces: hit lookup, convex rooms, per-source updates, black surfaces, the final gather.
 // (Energy balance in closed rooms is the validation suite's, tests/validation_test.cpp.)
+#include "scene/Interreflection.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,25 +11,27 @@
 
 #include "TestUtil.h"
 #include "scene/EmbreeVisibility.h"
-#include "scene/Interreflection.h"
 #include "scene/SceneIo.h"
 
 namespace candela {
 namespace {
 
 Scene withLamp(const std::string& geometry, const std::string& lamps) {
-    return parseScene(nlohmann::json::parse(R"({"geometry": [)" + geometry + R"(], "luminaires": [)" + lamps + "]}"),
+    return parseScene(nlohmann::json::parse(R"({"geometry": [)" + geometry +
+                                            R"(], "luminaires": [)" + lamps + "]}"),
                       test::dataDir() + "/scene.json");
 }
 
 std::string lampAt(double x, double y, double z) {
     return R"({"type": "photometric", "name": "Lamp", "file": ")" + test::dataDir() +
-           R"(/photometric/lambert.ies", "position": [)" + std::to_string(x) + "," + std::to_string(y) + "," +
-           std::to_string(z) + R"(], "technique": "scattered"})";
+           R"(/photometric/lambert.ies", "position": [)" + std::to_string(x) + "," +
+           std::to_string(y) + "," + std::to_string(z) + R"(], "technique": "scattered"})";
 }
 
-const char* kRoom = R"({"box": {"center": [0, 1.4, 0], "size": [4, 2.8, 3], "inside": true}, "albedo": [0.6, 0.5, 0.4]})";
-const char* kDesk = R"({"box": {"center": [0.5, 0.4, 0.2], "size": [1.2, 0.8, 0.7]}, "albedo": [0.3, 0.3, 0.3]})";
+const char* kRoom =
+    R"({"box": {"center": [0, 1.4, 0], "size": [4, 2.8, 3], "inside": true}, "albedo": [0.6, 0.5, 0.4]})";
+const char* kDesk =
+    R"({"box": {"center": [0.5, 0.4, 0.2], "size": [1.2, 0.8, 0.7]}, "albedo": [0.3, 0.3, 0.3]})";
 
 TEST(Interreflection, EveryHitFindsThePatchThatHoldsIt) {
     // Points of known barycentrics on every triangle of a room and a desk: the patch patchAt
@@ -45,15 +49,17 @@ TEST(Interreflection, EveryHitFindsThePatchThatHoldsIt) {
                 double u = u01(rng), v = u01(rng);
                 if (u + v > 1.0) u = 1.0 - u, v = 1.0 - v;
                 const Mesh& mm = s.meshes[m];
-                glm::dvec3 a(mm.positions[mm.indices[3 * t]]), b(mm.positions[mm.indices[3 * t + 1]]),
-                    c(mm.positions[mm.indices[3 * t + 2]]);
+                glm::dvec3 a(mm.positions[mm.indices[3 * t]]),
+                    b(mm.positions[mm.indices[3 * t + 1]]), c(mm.positions[mm.indices[3 * t + 2]]);
                 glm::dvec3 p = (1.0 - u - v) * a + u * b + v * c, w;
                 uint32_t patch = mesh.patchAt(uint32_t(m), uint32_t(t), u, v, w);
                 ASSERT_LT(patch, mesh.patches.size());
                 const auto& q = mesh.patches[patch];
-                glm::dvec3 rebuilt = w.x * mesh.vertices[q.vertex[0]] + w.y * mesh.vertices[q.vertex[1]] +
+                glm::dvec3 rebuilt = w.x * mesh.vertices[q.vertex[0]] +
+                                     w.y * mesh.vertices[q.vertex[1]] +
                                      w.z * mesh.vertices[q.vertex[2]];
-                EXPECT_NEAR(glm::length(rebuilt - p), 0.0, 1e-9) << "mesh " << m << " triangle " << t;
+                EXPECT_NEAR(glm::length(rebuilt - p), 0.0, 1e-9)
+                    << "mesh " << m << " triangle " << t;
                 EXPECT_GE(std::min({w.x, w.y, w.z}), -1e-9);
                 ++checked;
             }
@@ -64,7 +70,9 @@ TEST(Interreflection, AConvexRoomNeedsNoShadowRays) {
     RadiositySettings settings;
     settings.targetPatches = 400;
     EXPECT_TRUE(RadiosityMesh::build(withLamp(kRoom, lampAt(0, 2.7, 0)), settings).convexRoom);
-    EXPECT_FALSE(RadiosityMesh::build(withLamp(std::string(kRoom) + "," + kDesk, lampAt(0, 2.7, 0)), settings).convexRoom);
+    EXPECT_FALSE(RadiosityMesh::build(withLamp(std::string(kRoom) + "," + kDesk, lampAt(0, 2.7, 0)),
+                                      settings)
+                     .convexRoom);
     // Patches face their normals: a box seen from outside is no room.
     EXPECT_FALSE(RadiosityMesh::build(withLamp(kDesk, lampAt(0, 2.7, 0)), settings).convexRoom);
 }
@@ -74,7 +82,8 @@ TEST(Interreflection, MovingOneLuminaireUpdatesItsShareAlone) {
     // share is recomputed (its direct light, then the solution for the change). The result must
     // equal a fresh computation of the moved scene, to the solver's tolerance (1e-6 of the flux
     // per iteration, so 1e-5 relative with these reflectances) on every patch.
-    Scene s = withLamp(std::string(kRoom) + "," + kDesk, lampAt(-1, 2.7, 0) + "," + lampAt(1, 2.7, 0.5));
+    Scene s =
+        withLamp(std::string(kRoom) + "," + kDesk, lampAt(-1, 2.7, 0) + "," + lampAt(1, 2.7, 0.5));
     InterreflectionOptions o;
     o.mesh.targetPatches = 700;
     Interreflection live(s, o);
@@ -98,12 +107,15 @@ TEST(Interreflection, NothingIsReflectedByBlackOrLonelySurfaces) {
     InterreflectionOptions o;
     o.mesh.targetPatches = 300;
     // Black walls reflect nothing.
-    Scene black = withLamp(R"({"box": {"center": [0, 1.4, 0], "size": [4, 2.8, 3], "inside": true}, "albedo": [0, 0, 0]})",
-                           lampAt(0, 2.7, 0));
+    Scene black = withLamp(
+        R"({"box": {"center": [0, 1.4, 0], "size": [4, 2.8, 3], "inside": true}, "albedo": [0, 0, 0]})",
+        lampAt(0, 2.7, 0));
     Interreflection a(black, o);
     EXPECT_FALSE(a.hasInterreflection());
     // A lone floor cannot see itself: its form factors are all 0.
-    Scene floor = withLamp(R"({"plane": {"center": [0, 0, 0], "normal": [0, 1, 0], "size": [4, 4]}})", lampAt(0, 2, 0));
+    Scene floor =
+        withLamp(R"({"plane": {"center": [0, 0, 0], "normal": [0, 1, 0], "size": [4, 4]}})",
+                 lampAt(0, 2, 0));
     Interreflection b(floor, o);
     ASSERT_TRUE(b.compute());
     EXPECT_FALSE(b.hasInterreflection());
@@ -119,8 +131,10 @@ TEST(Interreflection, TheFinalGatherAgreesWithThePatches) {
     o.mesh.targetPatches = 2000;
     Interreflection ir(s, o);
     ASSERT_TRUE(ir.compute());
-    for (glm::dvec3 p : {glm::dvec3(0.1, 0.0, 0.2), glm::dvec3(-2.0, 1.2, 0.4), glm::dvec3(0.7, 2.8, 1.1)}) {
-        glm::dvec3 n = p.y == 0.0 ? glm::dvec3(0, 1, 0) : (p.y == 2.8 ? glm::dvec3(0, -1, 0) : glm::dvec3(1, 0, 0));
+    for (glm::dvec3 p :
+         {glm::dvec3(0.1, 0.0, 0.2), glm::dvec3(-2.0, 1.2, 0.4), glm::dvec3(0.7, 2.8, 1.1)}) {
+        glm::dvec3 n = p.y == 0.0 ? glm::dvec3(0, 1, 0)
+                                  : (p.y == 2.8 ? glm::dvec3(0, -1, 0) : glm::dvec3(1, 0, 0));
         EstimateOptions g;
         g.spp = 8192;
         Estimate e = ir.gather(p, n, g);
@@ -133,8 +147,8 @@ TEST(Interreflection, TheFinalGatherAgreesWithThePatches) {
             if (glm::dot(q.normal, n) > 0.99 && d < bestDistance) bestDistance = d, best = i;
         }
         double patch = ir.indirect()[best].y;
-        std::printf("gather at (%.1f, %.1f, %.1f): %.4g lx +- %.2g, patch %.4g lx\n", p.x, p.y, p.z, e.irradiance.y,
-                    e.stdError.y, patch);
+        std::printf("gather at (%.1f, %.1f, %.1f): %.4g lx +- %.2g, patch %.4g lx\n", p.x, p.y, p.z,
+                    e.irradiance.y, e.stdError.y, patch);
         EXPECT_NEAR(e.irradiance.y, patch, 0.03 * patch + 3.0 * e.stdError.y);
         EXPECT_GT(e.stdError.y, 0.0);
     }

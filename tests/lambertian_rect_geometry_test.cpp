@@ -28,9 +28,9 @@ using test::toWorld;
 void expectFrame(const Pose& pose) {
     glm::dvec3 x, y, z;
     pose.frame(x, y, z);
-    SCOPED_TRACE(testing::Message() << "aim " << pose.aim.x << "," << pose.aim.y << ","
-                                    << pose.aim.z << " c0 " << pose.c0.x << "," << pose.c0.y
-                                    << "," << pose.c0.z);
+    SCOPED_TRACE(testing::Message()
+                 << "aim " << pose.aim.x << "," << pose.aim.y << "," << pose.aim.z << " c0 "
+                 << pose.c0.x << "," << pose.c0.y << "," << pose.c0.z);
     // Orthonormal and right-handed to a few roundings.
     const double tol = 1e-14;
     EXPECT_NEAR(glm::length(x), 1.0, tol);
@@ -67,9 +67,9 @@ TEST(Pose, FrameIsOrthonormalAndRightHanded) {
         pose.c0 = pose.aim + glm::dvec3(1e-12, -1e-12, 0.0);  // nearly parallel
         expectFrame(pose);
     }
-    for (glm::dvec3 aim : {glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0), glm::dvec3(0, 0, -1),
-                           glm::dvec3(1e-200, 0, 0), glm::dvec3(1e200, 1e200, 0),
-                           glm::dvec3(0.0), glm::dvec3(std::nan(""), 0, 0)}) {
+    for (glm::dvec3 aim :
+         {glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0), glm::dvec3(0, 0, -1), glm::dvec3(1e-200, 0, 0),
+          glm::dvec3(1e200, 1e200, 0), glm::dvec3(0.0), glm::dvec3(std::nan(""), 0, 0)}) {
         Pose pose;
         pose.aim = aim;
         for (glm::dvec3 c0 : {aim, glm::dvec3(1, 0, 0), glm::dvec3(0, 0, 1), glm::dvec3(0.0),
@@ -98,8 +98,7 @@ TEST(LambertianRect, OutlineIsCounterClockwiseFromTheEmittingSide) {
     }
     EXPECT_NEAR(glm::length(c[1] - c[0]), 1.2, 1e-12);
     EXPECT_NEAR(glm::length(c[3] - c[0]), 0.6, 1e-12);
-    EXPECT_NEAR(glm::length(0.25 * (c[0] + c[1] + c[2] + c[3]) - light.pose.position), 0.0,
-                1e-12);
+    EXPECT_NEAR(glm::length(0.25 * (c[0] + c[1] + c[2] + c[3]) - light.pose.position), 0.0, 1e-12);
     EXPECT_GT(glm::dot(c[1] - c[0], f.x), 0.0);
 }
 
@@ -164,7 +163,8 @@ TEST(LambertianRect, ParsesAndWritesItsFields) {
     nlohmann::json out;
     light.writeJson(out);
     EXPECT_EQ(out, nlohmann::json::parse(R"({"size": [2.0, 0.25], "radiance": [1.0, 2.0, 0.0]})"));
-    auto defaults = LambertianRect::parse(nlohmann::json::parse(R"({"name": "a"})"), {"t.json", ""});
+    auto defaults =
+        LambertianRect::parse(nlohmann::json::parse(R"({"name": "a"})"), {"t.json", ""});
     EXPECT_EQ(static_cast<const LambertianRect&>(*defaults).size, glm::dvec2(1.0, 0.5));
     EXPECT_EQ(static_cast<const LambertianRect&>(*defaults).emitted, glm::dvec3(10.0));
     auto copy = light.clone();

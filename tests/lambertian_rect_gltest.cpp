@@ -8,8 +8,8 @@
 
 #include "luminaires/LambertianRect.h"
 #include "renderer/ShaderLibrary.h"
-#include "renderer/gl/GlObjects.h"
 #include "renderer/context/GlContext.h"
+#include "renderer/gl/GlObjects.h"
 #include "tests/TestUtil.h"
 
 namespace candela {
@@ -23,7 +23,8 @@ struct ParityOut {
 };
 
 std::vector<ParityOut> runParity(const LambertianRect& light, const std::vector<ParityIn>& in) {
-    return test::runComputeTest<ParityOut>("../tests/shaders/lambertian_rect_parity.comp", light.gpuData(), in);
+    return test::runComputeTest<ParityOut>("../tests/shaders/lambertian_rect_parity.comp",
+                                           light.gpuData(), in);
 }
 
 LambertianRect testLight() {
@@ -104,8 +105,9 @@ TEST(LambertianRectGl, GlslSamplerPassesChiSquare) {
         std::mt19937 rng(3);
         std::uniform_real_distribution<float> U(0.f, 1.f);
         std::vector<ParityIn> in(kSamples);
-        for (auto& v : in) v = {glm::vec4(glm::vec3(p), 1.f), glm::vec4(0.f, 1.f, 0.f, 0.f),
-                                 glm::vec4(U(rng), U(rng), 0.f, 0.f)};
+        for (auto& v : in)
+            v = {glm::vec4(glm::vec3(p), 1.f), glm::vec4(0.f, 1.f, 0.f, 0.f),
+                 glm::vec4(U(rng), U(rng), 0.f, 0.f)};
         std::vector<ParityOut> out = runParity(light, in);
         std::vector<double> observed(kBins * kBins + 1, 0.0), expected(kBins * kBins + 1, 0.0);
         double omega = 0.0;

@@ -86,7 +86,8 @@ double integrate(const Fn1& f, double a, double b, std::vector<double> breaks, d
     for (double x : breaks)
         if (x >= a && x <= b && (pts.empty() || x > pts.back())) pts.push_back(x);
     double estimate = 0.0;
-    for (size_t i = 0; i + 1 < pts.size(); ++i) estimate += std::abs(gauss16(f, pts[i], pts[i + 1]));
+    for (size_t i = 0; i + 1 < pts.size(); ++i)
+        estimate += std::abs(gauss16(f, pts[i], pts[i + 1]));
     double sum = 0.0;
     for (size_t i = 0; i + 1 < pts.size(); ++i) {
         double piece = gauss16(f, pts[i], pts[i + 1]);
@@ -324,8 +325,8 @@ TEST(LambertianRect, PowerMatchesIntegralOfEmittedRadiance) {
 
 TEST(LambertianRect, SolidAngleMatchesQuadrature) {
     LambertianRect light = makeLight();
-    const glm::dvec3 points[] = {{0.0, 0.0, 1.0},  {0.4, -0.2, 0.1}, {3.0, 2.0, 0.5},
-                                 {0.2, 0.1, 1e-3}, {-0.9, 0.1, 1e-6}, {0.0, 0.0, 100.0},
+    const glm::dvec3 points[] = {{0.0, 0.0, 1.0},     {0.4, -0.2, 0.1},  {3.0, 2.0, 0.5},
+                                 {0.2, 0.1, 1e-3},    {-0.9, 0.1, 1e-6}, {0.0, 0.0, 100.0},
                                  {40.0, -70.0, 100.0}};
     double hw = 0.5 * light.size.x, hh = 0.5 * light.size.y;
     for (const glm::dvec3& q : points) {
@@ -344,7 +345,9 @@ TEST(LambertianRect, SolidAngleMatchesQuadrature) {
 
 /// Upper regularised incomplete gamma function Q(a, x), through the shared chi-square survival
 /// function (Q(k/2, x/2) is the chi-square survival of x with k degrees of freedom).
-double gammaQ(double a, double x) { return test::chiSquareSurvival(2.0 * x, 2.0 * a); }
+double gammaQ(double a, double x) {
+    return test::chiSquareSurvival(2.0 * x, 2.0 * a);
+}
 
 TEST(LambertianRect, IncompleteGammaMatchesKnownValues) {
     // Q(1, x) = exp(-x); Q(k/2, x/2) is the chi-square survival function: 3.841 is the 5% point
@@ -387,11 +390,11 @@ ChiSquare pearson(const std::vector<double>& observed, const std::vector<double>
 }
 
 const glm::dvec3 kChiSquareReceivers[] = {
-    {0.0, 0.0, 1.0},     // below the centre
-    {2.5, 1.0, 0.7},     // oblique
-    {-0.8, 0.1, 1e-3},   // close to the plane, beside the light
-    {0.1, 0.05, 0.02},   // close to the plane, over the light
-    {0.3, -0.2, 50.0},   // far away
+    {0.0, 0.0, 1.0},    // below the centre
+    {2.5, 1.0, 0.7},    // oblique
+    {-0.8, 0.1, 1e-3},  // close to the plane, beside the light
+    {0.1, 0.05, 0.02},  // close to the plane, over the light
+    {0.3, -0.2, 50.0},  // far away
 };
 
 TEST(LambertianRect, SamplerPassesChiSquare) {
@@ -427,8 +430,10 @@ TEST(LambertianRect, SamplerPassesChiSquare) {
             double ls = glm::dot(local, f.x), lt = glm::dot(local, f.y);
             int i = std::min(int(std::floor((ls + hw) / (2.0 * hw) * kBins)), kBins - 1);
             int j = std::min(int(std::floor((lt + hh) / (2.0 * hh) * kBins)), kBins - 1);
-            if (i < 0 || j < 0) ++offLight;
-            else observed[size_t(j * kBins + i)] += 1.0;
+            if (i < 0 || j < 0)
+                ++offLight;
+            else
+                observed[size_t(j * kBins + i)] += 1.0;
         }
         EXPECT_EQ(offLight, 0);
         ChiSquare r = pearson(observed, expected);
@@ -495,8 +500,8 @@ TEST(LambertianRect, SamplerInvertsItsCdfPrecisely) {
     LambertianRect light = makeLight();
     Frame f = frameOf(light.pose);
     double hw = 0.5 * light.size.x, hh = 0.5 * light.size.y;
-    const glm::dvec3 points[] = {{-0.9, 0.1, 1e-6}, {0.9, -0.1, 1e-6}, {0.2, 0.5, 1e-6},
-                                 {-0.2, -0.5, 1e-6}, {0.1, 0.05, 1e-6}, {0.0, 0.0, 100.0},
+    const glm::dvec3 points[] = {{-0.9, 0.1, 1e-6},   {0.9, -0.1, 1e-6}, {0.2, 0.5, 1e-6},
+                                 {-0.2, -0.5, 1e-6},  {0.1, 0.05, 1e-6}, {0.0, 0.0, 100.0},
                                  {60.0, -80.0, 10.0}, {0.7, 0.4, 1e-3}};
     const double us[] = {0.001, 0.1, 0.37, 0.5, 0.8, 0.999};
     for (const glm::dvec3& q : points) {
@@ -513,7 +518,9 @@ TEST(LambertianRect, SamplerInvertsItsCdfPrecisely) {
                 // whose integral is y / (d^2 sqrt(d^2 + y^2)): the split is a ratio of
                 // eta(y) = y / sqrt(d^2 + y^2).
                 double d2 = (xs - q.x) * (xs - q.x) + q.z * q.z;
-                auto eta = [&](double t) { return (t - q.y) / std::sqrt(d2 + (t - q.y) * (t - q.y)); };
+                auto eta = [&](double t) {
+                    return (t - q.y) / std::sqrt(d2 + (t - q.y) * (t - q.y));
+                };
                 double below = eta(ys) - eta(-hh), all = eta(hh) - eta(-hh);
                 // The world position's rounding (~4e-16 m) is up to 4e-10 of a 1e-6 m height:
                 // 1e-8 of the solid angle bounds the resulting shift of the split.
@@ -541,19 +548,19 @@ TEST(LambertianRect, PdfIsZeroOffTheLightAndBehindIt) {
 
 /// Blocks every segment that ends on the light's x < 0 half.
 class HalfBlocked final : public Visibility {
-public:
+  public:
     explicit HalfBlocked(const LambertianRect& light) : mLight(light) {}
     bool visible(const glm::dvec3&, const glm::dvec3& to) const override {
         return glm::dot(to - mLight.pose.position, frameOf(mLight.pose).x) >= 0.0;
     }
     bool visibleToward(const glm::dvec3&, const glm::dvec3&) const override { return true; }
 
-private:
+  private:
     const LambertianRect& mLight;
 };
 
 class AllVisible final : public Visibility {
-public:
+  public:
     bool visible(const glm::dvec3&, const glm::dvec3&) const override { return true; }
     bool visibleToward(const glm::dvec3&, const glm::dvec3&) const override { return true; }
 };
@@ -654,14 +661,12 @@ TEST(LambertianRect, HardCasesStayFinite) {
     }
     glm::dvec3 p1 = toWorld(tiny, {0.0, 0.0, 1.0});
     double farTiny = tiny.emitted.x * 1e-18;
-    EXPECT_NEAR(lambertianRectAnalytic(tiny, p1, facing, {}).irradiance.x, farTiny,
-                1e-6 * farTiny);
+    EXPECT_NEAR(lambertianRectAnalytic(tiny, p1, facing, {}).irradiance.x, farTiny, 1e-6 * farTiny);
     // Bad receivers: zero or NaN normal, NaN or infinite position.
     expectFinite(light, toWorld(light, {0.0, 0.0, 1.0}), glm::dvec3(0.0));
     expectFinite(light, toWorld(light, {0.0, 0.0, 1.0}), glm::dvec3(std::nan("")));
     expectFinite(light, glm::dvec3(std::nan("")), facing);
-    expectFinite(light, glm::dvec3(1e300, -1e300, std::numeric_limits<double>::infinity()),
-                 facing);
+    expectFinite(light, glm::dvec3(1e300, -1e300, std::numeric_limits<double>::infinity()), facing);
     // Degenerate lights from the editor: zero or negative size.
     LambertianRect flat = light;
     flat.size = {0.0, 1.0};

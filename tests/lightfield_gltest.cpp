@@ -33,8 +33,10 @@ LightFieldLuminaire tiny() {
     return l;
 }
 
-std::vector<ParityOut> runParity(const LightFieldLuminaire& light, const std::vector<ParityIn>& in) {
-    return test::runComputeTest<ParityOut>("../tests/shaders/lightfield_parity.comp", light.gpuData(), in);
+std::vector<ParityOut> runParity(const LightFieldLuminaire& light,
+                                 const std::vector<ParityIn>& in) {
+    return test::runComputeTest<ParityOut>("../tests/shaders/lightfield_parity.comp",
+                                           light.gpuData(), in);
 }
 
 TEST(LightFieldGl, BoxIntegralAndSamplerMatchCpp) {
@@ -45,8 +47,10 @@ TEST(LightFieldGl, BoxIntegralAndSamplerMatchCpp) {
     std::vector<ParityIn> in;
     for (int k = 0; k < 512; ++k) {
         glm::vec2 a = glm::vec2(lf.imageMin) + glm::vec2(U(rng), U(rng)) * 0.07f;
-        glm::vec2 b = glm::min(a + glm::vec2(0.002f + 0.05f * U(rng), 0.002f + 0.05f * U(rng)), glm::vec2(lf.imageMax));
-        in.push_back({glm::vec4(a, b), glm::vec4(U(rng), U(rng), 0, 0), glm::ivec4(k % lf.imageCount(), 0, 0, 0)});
+        glm::vec2 b = glm::min(a + glm::vec2(0.002f + 0.05f * U(rng), 0.002f + 0.05f * U(rng)),
+                               glm::vec2(lf.imageMax));
+        in.push_back({glm::vec4(a, b), glm::vec4(U(rng), U(rng), 0, 0),
+                      glm::ivec4(k % lf.imageCount(), 0, 0, 0)});
     }
     std::vector<ParityOut> out = runParity(light, in);
     for (size_t k = 0; k < in.size(); ++k) {
@@ -57,8 +61,9 @@ TEST(LightFieldGl, BoxIntegralAndSamplerMatchCpp) {
         EXPECT_NEAR(out[k].area.x, area, 1e-6 * area + 1e-9) << k;
         glm::dvec2 s;
         bool ok = lf.sampleBox(m, a, b, glm::dvec2(in[k].xi), s);
-        ASSERT_EQ(out[k].sampled.z > 0.5f, ok) << k << " m " << m << " box " << a.x << "," << a.y << " .. " << b.x << "," << b.y
-                                               << " xi " << in[k].xi.x << "," << in[k].xi.y << " area " << area;
+        ASSERT_EQ(out[k].sampled.z > 0.5f, ok)
+            << k << " m " << m << " box " << a.x << "," << a.y << " .. " << b.x << "," << b.y
+            << " xi " << in[k].xi.x << "," << in[k].xi.y << " area " << area;
         if (!ok) continue;
         // Compare in CDF space: the same search on the same doubles, but knot positions and the
         // result are floats, and in a pixel much dimmer than its neighbours a tiny CDF difference
@@ -73,7 +78,9 @@ TEST(LightFieldGl, BoxIntegralAndSamplerMatchCpp) {
         double xl = std::max(a.x, colL), xr = std::min(b.x, colL + px.x);
         if (xr - xl > 1e-9) {
             double column = lf.boxIntegral(m, {xl, a.y}, {xr, b.y});
-            auto conditional = [&](double y) { return lf.boxIntegral(m, {xl, a.y}, {xr, y}) / column; };
+            auto conditional = [&](double y) {
+                return lf.boxIntegral(m, {xl, a.y}, {xr, y}) / column;
+            };
             if (column > 0.0) {
                 EXPECT_NEAR(conditional(g.y), conditional(s.y), 1e-5) << k;
             }
@@ -90,7 +97,8 @@ TEST(LightFieldGl, GlslSamplerPassesChiSquare) {
     LightFieldLuminaire light = tiny();
     const LightFieldData& lf = *light.data;
     const int kBins = 6, kSamples = 60000;
-    const glm::vec2 boxes[][2] = {{{-0.031f, -0.025f}, {0.029f, 0.013f}}, {{-0.04f, -0.04f}, {0.04f, 0.04f}}};
+    const glm::vec2 boxes[][2] = {{{-0.031f, -0.025f}, {0.029f, 0.013f}},
+                                  {{-0.04f, -0.04f}, {0.04f, 0.04f}}};
     double alpha = 1.0 - std::pow(1.0 - 1e-3, 1.0 / 2.0);  // Sidak over both boxes
     for (int t = 0; t < 2; ++t) {
         int m = 4 + t;
@@ -98,7 +106,8 @@ TEST(LightFieldGl, GlslSamplerPassesChiSquare) {
         std::mt19937 rng(9);
         std::uniform_real_distribution<float> U(0.f, 1.f);
         std::vector<ParityIn> in(kSamples);
-        for (auto& v : in) v = {glm::vec4(a, b), glm::vec4(U(rng), U(rng), 0, 0), glm::ivec4(m, 0, 0, 0)};
+        for (auto& v : in)
+            v = {glm::vec4(a, b), glm::vec4(U(rng), U(rng), 0, 0), glm::ivec4(m, 0, 0, 0)};
         std::vector<ParityOut> out = runParity(light, in);
         // Expected counts by direct pixel overlaps (not through the summed-area table).
         std::vector<double> expected(kBins * kBins, 0.0), observed(kBins * kBins, 0.0);
@@ -106,8 +115,10 @@ TEST(LightFieldGl, GlslSamplerPassesChiSquare) {
         double total = 0.0;
         for (int bj = 0; bj < kBins; ++bj)
             for (int bi = 0; bi < kBins; ++bi) {
-                glm::dvec2 lo = glm::dvec2(a) + glm::dvec2(b - a) * glm::dvec2(bi, bj) / double(kBins);
-                glm::dvec2 hi = glm::dvec2(a) + glm::dvec2(b - a) * glm::dvec2(bi + 1, bj + 1) / double(kBins);
+                glm::dvec2 lo =
+                    glm::dvec2(a) + glm::dvec2(b - a) * glm::dvec2(bi, bj) / double(kBins);
+                glm::dvec2 hi =
+                    glm::dvec2(a) + glm::dvec2(b - a) * glm::dvec2(bi + 1, bj + 1) / double(kBins);
                 double e = 0.0;
                 for (int j = 0; j < lf.height; ++j)
                     for (int i = 0; i < lf.width; ++i) {
@@ -127,7 +138,8 @@ TEST(LightFieldGl, GlslSamplerPassesChiSquare) {
         }
         for (double& e : expected) e *= kSamples / total;
         test::ChiSquareResult r = test::chiSquare(observed, expected);
-        EXPECT_GT(r.pValue, alpha) << "box " << t << " chi2 " << r.statistic << " dof " << r.degreesOfFreedom;
+        EXPECT_GT(r.pValue, alpha)
+            << "box " << t << " chi2 " << r.statistic << " dof " << r.degreesOfFreedom;
     }
 }
 
@@ -136,10 +148,15 @@ TEST(LightFieldGl, ShadingPassMatchesTheCpuReference) {
     Scene scene = loadScene(CANDELA_TEST_DATA "/lightfield/scene.json");
     const Luminaire& light = *scene.luminaires[0];
     // Receivers from 1 mm to 2.5 m beyond S, facing the light, tilted and grazing.
-    std::vector<glm::vec3> points = {{0.0f, 0.96f, 0.0f}, {0.01f, 0.95f, 0.005f}, {0.2f, 0.5f, -0.1f},
-                                     {-0.5f, 0.0f, 0.4f}, {0.003f, 0.9f, 0.001f}, {1.5f, -1.5f, 0.5f}};
-    std::vector<glm::vec3> normals = {{0, 1, 0}, {0, 1, 0}, glm::normalize(glm::vec3(0.3f, 1, 0)), {0, 1, 0},
-                                      glm::normalize(glm::vec3(1, 0.05f, 0)), {0, 1, 0}};
+    std::vector<glm::vec3> points = {{0.0f, 0.96f, 0.0f},    {0.01f, 0.95f, 0.005f},
+                                     {0.2f, 0.5f, -0.1f},    {-0.5f, 0.0f, 0.4f},
+                                     {0.003f, 0.9f, 0.001f}, {1.5f, -1.5f, 0.5f}};
+    std::vector<glm::vec3> normals = {{0, 1, 0},
+                                      {0, 1, 0},
+                                      glm::normalize(glm::vec3(0.3f, 1, 0)),
+                                      {0, 1, 0},
+                                      glm::normalize(glm::vec3(1, 0.05f, 0)),
+                                      {0, 1, 0}};
     ShaderLibrary shaders;
     Renderer renderer(shaders);
     RenderSettings settings;
@@ -156,7 +173,8 @@ TEST(LightFieldGl, ShadingPassMatchesTheCpuReference) {
         std::vector<glm::vec3> gpu = renderer.probe(scene, points, normals, 16384);
         for (size_t i = 0; i < points.size(); ++i) {
             EstimateOptions o;
-            Estimate ref = lightFieldReference(light, glm::dvec3(points[i]), glm::dvec3(normals[i]), o);
+            Estimate ref =
+                lightFieldReference(light, glm::dvec3(points[i]), glm::dvec3(normals[i]), o);
             o.spp = 16384;
             const TechniqueInfo* t = findTechnique("lightfield", technique);
             Estimate cpu = t->irradiance(light, glm::dvec3(points[i]), glm::dvec3(normals[i]), o);
@@ -173,8 +191,10 @@ TEST(LightFieldGl, Granier2003MatchesCpp) {
     test::glContext();
     Scene scene = loadScene(CANDELA_TEST_DATA "/lightfield/scene.json");
     const Luminaire& light = *scene.luminaires[0];
-    std::vector<glm::vec3> points = {{0.0f, 0.96f, 0.0f}, {0.2f, 0.5f, -0.1f}, {-0.5f, 0.0f, 0.4f}, {1.5f, -1.5f, 0.5f}};
-    std::vector<glm::vec3> normals = {{0, 1, 0}, glm::normalize(glm::vec3(0.3f, 1, 0)), {0, 1, 0}, {0, 1, 0}};
+    std::vector<glm::vec3> points = {
+        {0.0f, 0.96f, 0.0f}, {0.2f, 0.5f, -0.1f}, {-0.5f, 0.0f, 0.4f}, {1.5f, -1.5f, 0.5f}};
+    std::vector<glm::vec3> normals = {
+        {0, 1, 0}, glm::normalize(glm::vec3(0.3f, 1, 0)), {0, 1, 0}, {0, 1, 0}};
     ShaderLibrary shaders;
     Renderer renderer(shaders);
     RenderSettings s;
@@ -183,7 +203,8 @@ TEST(LightFieldGl, Granier2003MatchesCpp) {
     renderer.setSettings(s);
     std::vector<glm::vec3> gpu = renderer.probe(scene, points, normals, 1);
     for (size_t i = 0; i < points.size(); ++i) {
-        Estimate e = lightFieldGranier2003(light, glm::dvec3(points[i]), glm::dvec3(normals[i]), {});
+        Estimate e =
+            lightFieldGranier2003(light, glm::dvec3(points[i]), glm::dvec3(normals[i]), {});
         // Deterministic; the same sums in float (the box mean divides two float differences): 1e-3.
         EXPECT_NEAR(gpu[i].y, e.irradiance.y, 1e-3 * e.irradiance.y) << i;
     }

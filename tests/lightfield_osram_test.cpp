@@ -29,13 +29,15 @@ LightFieldLuminaire osram() {
 /// Flux (lm) through each 15-degree polar band of a sphere of radius R around the LED, integrated
 /// from the restricted-CDF estimator with the receiver facing the centre: per band, the midpoint
 /// rule in z (equal areas, Archimedes: dA = R dz dphi) and in azimuth, so band edges are exact.
-std::vector<double> bandFlux(const LightFieldLuminaire& l, double R, int nzPerBand, int nphi, double& total) {
+std::vector<double> bandFlux(const LightFieldLuminaire& l, double R, int nzPerBand, int nphi,
+                             double& total) {
     std::vector<double> bands(kBands, 0.0);
     total = 0.0;
     EstimateOptions o;
     o.spp = 256;
     for (int b = 0; b < kBands; ++b) {
-        double z0 = R * std::cos((b + 1) * kPi / 2.0 / kBands), z1 = R * std::cos(b * kPi / 2.0 / kBands);
+        double z0 = R * std::cos((b + 1) * kPi / 2.0 / kBands),
+               z1 = R * std::cos(b * kPi / 2.0 / kBands);
         double dA = R * ((z1 - z0) / nzPerBand) * (2.0 * kPi / nphi);
         for (int i = 0; i < nzPerBand; ++i) {
             double z = z0 + (i + 0.5) / nzPerBand * (z1 - z0);
@@ -45,7 +47,8 @@ std::vector<double> bandFlux(const LightFieldLuminaire& l, double R, int nzPerBa
                 glm::dvec3 p(rho * std::cos(phi), rho * std::sin(phi), z);
                 o.seed = uint64_t((b * nzPerBand + i) * nphi + j + 1);
                 Estimate e = lightFieldRestrictedCdf(l, p, -p / R, o);
-                double lum = 0.2126 * e.irradiance.x + 0.7152 * e.irradiance.y + 0.0722 * e.irradiance.z;
+                double lum =
+                    0.2126 * e.irradiance.x + 0.7152 * e.irradiance.y + 0.0722 * e.irradiance.z;
                 bands[size_t(b)] += lum * dA;
             }
         }
@@ -63,7 +66,8 @@ TEST(LightFieldOsram, SphereFluxIsThe337LumenOfTheRayFile) {
     // backwards or misses the images), and the sphere's midpoint rule with 256-spp estimates at
     // 9216 points adds well under 0.5 %. (The band nearest the plane of S, z < delta, is
     // sampled too and receives nothing, as it should.)
-    std::printf("sphere flux %.3f lm, power() %.3f lm\n", total, 0.2126 * l.power().x + 0.7152 * l.power().y + 0.0722 * l.power().z);
+    std::printf("sphere flux %.3f lm, power() %.3f lm\n", total,
+                0.2126 * l.power().x + 0.7152 * l.power().y + 0.0722 * l.power().z);
     EXPECT_NEAR(total, kHeaderFlux, 0.02 * kHeaderFlux);
     // And it is the model's own flux: quadrature error of power() and of the sphere, 1 %.
     double power = 0.7152 * l.power().y + 0.2126 * l.power().x + 0.0722 * l.power().z;
@@ -71,7 +75,8 @@ TEST(LightFieldOsram, SphereFluxIsThe337LumenOfTheRayFile) {
 }
 
 TEST(LightFieldOsram, FarFieldIntensityMatchesTheRayHistogram) {
-    Tm25RayFile rays = readTm25(CANDELA_SOURCE_DIR "/tests/data/nearfield/"
+    Tm25RayFile rays = readTm25(CANDELA_SOURCE_DIR
+                                "/tests/data/nearfield/"
                                 "rayfile_LERTDUW_S2WP_green_100k_20161013_IES_TM25.TM25RAY");
     LightFieldLuminaire l = osram();
     std::vector<double> histogram(kBands, 0.0);
@@ -95,8 +100,10 @@ TEST(LightFieldOsram, FarFieldIntensityMatchesTheRayHistogram) {
         // of the flux (backward rays, grazing rays that miss S, which shows in the last band).
         // Bound: 4 % of the peak (on-axis) intensity; the 100k rays' own noise is ~1 % per band.
         double peak = histogram[0] / (2.0 * kPi * (1.0 - std::cos(kPi / 2.0 / kBands)));
-        EXPECT_NEAR(iField, iRays, 0.04 * peak) << "band " << b * 15 << "-" << (b + 1) * 15 << " deg";
-        std::printf("band %2d-%2d deg: rays %.3f cd, light field %.3f cd\n", b * 15, (b + 1) * 15, iRays, iField);
+        EXPECT_NEAR(iField, iRays, 0.04 * peak)
+            << "band " << b * 15 << "-" << (b + 1) * 15 << " deg";
+        std::printf("band %2d-%2d deg: rays %.3f cd, light field %.3f cd\n", b * 15, (b + 1) * 15,
+                    iRays, iField);
     }
 }
 

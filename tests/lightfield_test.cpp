@@ -2,6 +2,8 @@
 // do not share their code path: the closed form of a Lambertian rectangle (a light field whose
 // images are constant and whose basis sums to one over every ray it emits), an independent
 // integrator over S, direct pixel sums, and chi-square tests.
+#include "luminaires/LightField.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,7 +12,6 @@
 #include <random>
 
 #include "luminaires/LambertianRect.h"
-#include "luminaires/LightField.h"
 #include "tests/TestUtil.h"
 #include "util/Error.h"
 
@@ -21,8 +22,8 @@ namespace fs = std::filesystem;
 
 /// A light field built in memory: W x H basis, images of res x res pixels filled by `fill`.
 template <class Fill>
-std::shared_ptr<LightFieldData> makeField(glm::ivec2 count, double spacing, double delta, double halfS,
-                                          int res, Fill fill) {
+std::shared_ptr<LightFieldData> makeField(glm::ivec2 count, double spacing, double delta,
+                                          double halfS, int res, Fill fill) {
     auto lf = std::make_shared<LightFieldData>();
     lf->count = count;
     lf->spacing = {spacing, spacing};
@@ -35,7 +36,8 @@ std::shared_ptr<LightFieldData> makeField(glm::ivec2 count, double spacing, doub
     for (int m = 0; m < count.x * count.y; ++m) {
         lf->images[size_t(m)].luminance.resize(size_t(res * res));
         for (int j = 0; j < res; ++j)
-            for (int i = 0; i < res; ++i) lf->images[size_t(m)].luminance[size_t(j * res + i)] = fill(m, i, j);
+            for (int i = 0; i < res; ++i)
+                lf->images[size_t(m)].luminance[size_t(j * res + i)] = fill(m, i, j);
     }
     lf->validate("test");
     lf->precompute();
@@ -50,7 +52,7 @@ std::shared_ptr<LightFieldData> randomField(uint32_t seed, double delta = 0.05) 
     for (auto& v : values) v = U(rng) < 0.2f ? 0.f : 100.f * U(rng) * U(rng);
     return makeField({5, 4}, 0.02, delta, 0.06, 24, [&](int m, int i, int j) {
         float v = values[size_t((m * 24 + j) * 24 + i)];
-        if (i < 6 && j > 16) v = 0.f;           // a dark corner
+        if (i < 6 && j > 16) v = 0.f;               // a dark corner
         if (m == 7 && i == 12 && j == 3) v = 5e4f;  // one bright pixel
         return v;
     });
@@ -77,14 +79,18 @@ glm::dvec3 worldDir(const LightFieldLuminaire& l, glm::dvec3 local) {
     return glm::normalize(local.x * x + local.y * y + local.z * z);
 }
 
-double luma(glm::dvec3 v) { return 0.2126 * v.x + 0.7152 * v.y + 0.0722 * v.z; }
+double luma(glm::dvec3 v) {
+    return 0.2126 * v.x + 0.7152 * v.y + 0.0722 * v.z;
+}
 
 /// Independent integrator over S (the paper's Eq. 2 parametrisation, not the reference's U):
 /// E = Delta int_S L(u(s) -> s) cos_r / r^3 ds, Gauss-Legendre 4 x 4 on a grid of sub-cells of
 /// each pixel fine enough for the kernel (width Delta) and the basis (knots mapped to S).
 double integrateOverS(const LightFieldData& lf, glm::dvec3 q, glm::dvec3 n) {
-    const double gx[4] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563, 0.8611363115940526};
-    const double gw[4] = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461, 0.3478548451374538};
+    const double gx[4] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563,
+                          0.8611363115940526};
+    const double gw[4] = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461,
+                          0.3478548451374538};
     double dz = q.z - lf.delta;
     glm::dvec2 px = lf.pixelSize();
     // Sub-cells per pixel: basis knots map to S with scale Delta / q.z; keep cells below a
@@ -104,7 +110,8 @@ double integrateOverS(const LightFieldData& lf, glm::dvec3 q, glm::dvec3 n) {
                     double c = std::max(0.0, glm::dot(n, d / r));
                     if (c <= 0.0) continue;
                     glm::dvec2 u = glm::dvec2(q.x, q.y) + (s - glm::dvec2(q.x, q.y)) * (q.z / dz);
-                    sum += gw[a] * gw[b] * 0.25 * size.x * size.y * luma(lf.radiance(u, s)) * c * dz / (r * r * r);
+                    sum += gw[a] * gw[b] * 0.25 * size.x * size.y * luma(lf.radiance(u, s)) * c *
+                           dz / (r * r * r);
                 }
         }
     return sum;
@@ -137,7 +144,7 @@ TEST(LightField, ConstantImagesActAsALambertianRectangle) {
     rect.pose.position = l.pose.position + delta * z;
     double interior = 0.5 * (13 - 1) * 0.05 - 0.5 * 0.05;  // |u| <= 0.275 sums to one
     const glm::dvec3 points[] = {{0.0, 0.0, 0.07}, {0.03, -0.02, 0.12}, {0.1, 0.05, 0.3},
-                                 {-0.3, 0.2, 0.6}, {0.0, 0.0, 5.05}, {1.0, -0.5, 2.0}};
+                                 {-0.3, 0.2, 0.6}, {0.0, 0.0, 5.05},    {1.0, -0.5, 2.0}};
     const glm::dvec3 normals[] = {{0, 0, -1}, {0.3, 0.1, -1}, {1, 0, -0.05}, {0, -1, -0.01}};
     EstimateOptions o;
     for (glm::dvec3 q : points) {
@@ -145,7 +152,8 @@ TEST(LightField, ConstantImagesActAsALambertianRectangle) {
         double dz = q.z - delta;
         for (double sx : {-half, half})
             for (double sy : {-half, half}) {
-                glm::dvec2 u = glm::dvec2(q.x, q.y) + (glm::dvec2(sx, sy) - glm::dvec2(q.x, q.y)) * (q.z / dz);
+                glm::dvec2 u =
+                    glm::dvec2(q.x, q.y) + (glm::dvec2(sx, sy) - glm::dvec2(q.x, q.y)) * (q.z / dz);
                 ASSERT_LE(std::max(std::abs(u.x), std::abs(u.y)), interior) << "test geometry";
             }
         for (glm::dvec3 nl : normals) {
@@ -173,7 +181,8 @@ TEST(LightField, Granier2003ConvergesWhereItsAssumptionsHold) {
     LightFieldLuminaire l = place(lf);
     EstimateOptions o;
     for (double z : {1.05, 2.0, 5.05}) {
-        glm::dvec3 p = worldOf(l, {0.05, -0.03, z}), n = worldDir(l, glm::normalize(glm::dvec3(0.2, 0.1, -1)));
+        glm::dvec3 p = worldOf(l, {0.05, -0.03, z}),
+                   n = worldDir(l, glm::normalize(glm::dvec3(0.2, 0.1, -1)));
         double ref = lightFieldReference(l, p, n, o).irradiance.x;
         double granier = lightFieldGranier2003(l, p, n, o).irradiance.x;
         EXPECT_NEAR(granier, ref, ((0.3 / z) * (0.3 / z) + 0.005) * ref) << z;
@@ -186,7 +195,8 @@ TEST(LightField, Granier2003ConvergesWhereItsAssumptionsHold) {
         glm::dvec3 p = worldOf(r, 1e4 * glm::normalize(d)), n = worldDir(r, -glm::normalize(d));
         double ref = lightFieldReference(r, p, n, o).irradiance.x;
         ASSERT_GT(ref, 0.0);
-        EXPECT_NEAR(lightFieldGranier2003(r, p, n, o).irradiance.x, ref, 0.005 * ref) << d.x << " " << d.y;
+        EXPECT_NEAR(lightFieldGranier2003(r, p, n, o).irradiance.x, ref, 0.005 * ref)
+            << d.x << " " << d.y;
     }
     // Hard cases: on S the limit from beyond it (within 10 % of the reference there); behind S
     // exactly 0; a grazing receiver finite and non-negative.
@@ -195,14 +205,17 @@ TEST(LightField, Granier2003ConvergesWhereItsAssumptionsHold) {
     double onSRef = lightFieldReference(l, worldOf(l, {0.0, 0.0, delta}), down, o).irradiance.x;
     EXPECT_NEAR(onS, onSRef, 0.1 * onSRef);
     EXPECT_EQ(lightFieldGranier2003(l, worldOf(l, {0.0, 0.0, 0.01}), down, o).irradiance.x, 0.0);
-    double g = lightFieldGranier2003(l, worldOf(l, {0.0, 0.0, delta + 1e-6}), worldDir(l, {1, 0, 0}), o).irradiance.x;
+    double g =
+        lightFieldGranier2003(l, worldOf(l, {0.0, 0.0, delta + 1e-6}), worldDir(l, {1, 0, 0}), o)
+            .irradiance.x;
     EXPECT_TRUE(std::isfinite(g) && g >= 0.0);
 }
 
 TEST(LightField, ReferenceMatchesAnIndependentIntegralOverS) {
     auto lf = randomField(3);
     LightFieldLuminaire l = place(lf);
-    const glm::dvec3 points[] = {{0.0, 0.0, 0.07}, {0.05, -0.03, 0.2}, {-0.4, 0.3, 1.0}, {0.0, 0.1, 0.09}};
+    const glm::dvec3 points[] = {
+        {0.0, 0.0, 0.07}, {0.05, -0.03, 0.2}, {-0.4, 0.3, 1.0}, {0.0, 0.1, 0.09}};
     const glm::dvec3 normals[] = {{0, 0, -1}, {0.9, 0.2, -0.3}};
     EstimateOptions o;
     for (glm::dvec3 q : points)
@@ -219,9 +232,9 @@ TEST(LightField, ReferenceMatchesAnIndependentIntegralOverS) {
 TEST(LightField, RestrictedCdfAgreesWithReferenceFrom2cmTo5m) {
     auto lf = randomField(5);
     LightFieldLuminaire l = place(lf);
-    const glm::dvec3 points[] = {{0.0, 0.0, 0.07},  {0.02, 0.01, 0.07}, {0.04, -0.05, 0.1},
-                                 {0.1, 0.1, 0.3},   {-0.2, 0.0, 0.5},  {0.0, 0.3, 1.0},
-                                 {0.5, -0.5, 2.0},  {0.0, 0.0, 5.05},  {-1.0, 2.0, 4.0}};
+    const glm::dvec3 points[] = {{0.0, 0.0, 0.07}, {0.02, 0.01, 0.07}, {0.04, -0.05, 0.1},
+                                 {0.1, 0.1, 0.3},  {-0.2, 0.0, 0.5},   {0.0, 0.3, 1.0},
+                                 {0.5, -0.5, 2.0}, {0.0, 0.0, 5.05},   {-1.0, 2.0, 4.0}};
     const glm::dvec3 normals[] = {{0, 0, -1}, {0.4, -0.3, -1}, {1, 0, -0.02}};
     EstimateOptions o;
     o.spp = 4096;
@@ -236,7 +249,8 @@ TEST(LightField, RestrictedCdfAgreesWithReferenceFrom2cmTo5m) {
             // see only a sliver of the light and 4096 samples are noisier than that.
             double se = luma(e.stdError);
             EXPECT_NEAR(est, ref, std::max(0.01 * ref, 4.0 * se) + 1e-9)
-                << "q " << q.x << "," << q.y << "," << q.z << " n " << nl.x << "," << nl.y << "," << nl.z;
+                << "q " << q.x << "," << q.y << "," << q.z << " n " << nl.x << "," << nl.y << ","
+                << nl.z;
         }
 }
 
@@ -276,7 +290,8 @@ TEST(LightField, BoxSamplerPassesChiSquare) {
     auto lf = randomField(11);
     std::mt19937 rng(2);
     const int kBins = 8, kSamples = 40000;
-    const glm::dvec2 boxes[][2] = {{{-0.05, -0.04}, {0.031, 0.017}}, {{0.0123, -0.06}, {0.0191, 0.06}},
+    const glm::dvec2 boxes[][2] = {{{-0.05, -0.04}, {0.031, 0.017}},
+                                   {{0.0123, -0.06}, {0.0191, 0.06}},
                                    {{-0.06, 0.01}, {-0.02, 0.06}}};
     const int images[] = {7, 3, 12};
     double alpha = 1.0 - std::pow(1.0 - 1e-3, 1.0 / 3.0);  // Sidak over the three tests
@@ -308,7 +323,8 @@ TEST(LightField, BoxSamplerPassesChiSquare) {
             ASSERT_TRUE(lf->sampleBox(m, a, b, {U(rng), U(rng)}, s));
             ASSERT_TRUE(s.x >= a.x && s.x <= b.x && s.y >= a.y && s.y <= b.y);
             ASSERT_GT(lf->lum(m, s), 0.0) << "sample in a zero-energy pixel";
-            glm::ivec2 bin = glm::clamp(glm::ivec2(glm::floor((s - a) / (b - a) * double(kBins))), 0, kBins - 1);
+            glm::ivec2 bin =
+                glm::clamp(glm::ivec2(glm::floor((s - a) / (b - a) * double(kBins))), 0, kBins - 1);
             observed[size_t(bin.y * kBins + bin.x)] += 1.0;
         }
         for (double& e : expected) e *= kSamples / total;
@@ -345,7 +361,8 @@ TEST(LightField, GlobalCdfsAndMediansMatchDirectSums) {
             double below = 0.0;
             for (size_t j = 0; j <= h; ++j) {
                 double expected = column[i] > 0.0 ? below / column[i] : double(j) / double(h);
-                EXPECT_NEAR(t.conditionalCdf(i, j, w, h), expected, 1e-12) << "image " << m << " column " << i;
+                EXPECT_NEAR(t.conditionalCdf(i, j, w, h), expected, 1e-12)
+                    << "image " << m << " column " << i;
                 if (j < h) below += c[j * w + i];
             }
         }
@@ -389,10 +406,12 @@ TEST(LightField, HardCasesStayFiniteAndExact) {
     for (glm::dvec3 q : {onS, near}) {
         glm::dvec3 p = worldOf(l, q);
         Estimate e = lightFieldRestrictedCdf(l, p, down, o);
-        EXPECT_NEAR(luma(e.irradiance), refOn, std::max(0.01 * refOn, 4.0 * luma(e.stdError))) << q.z;
+        EXPECT_NEAR(luma(e.irradiance), refOn, std::max(0.01 * refOn, 4.0 * luma(e.stdError)))
+            << q.z;
     }
     // Grazing receivers: normal in S's plane, and tilted below it (nothing visible).
-    for (double v : all({0.0, 0.0, 0.3}, worldDir(l, {1, 0, 0}))) EXPECT_TRUE(std::isfinite(v) && v >= 0.0);
+    for (double v : all({0.0, 0.0, 0.3}, worldDir(l, {1, 0, 0})))
+        EXPECT_TRUE(std::isfinite(v) && v >= 0.0);
     for (double v : all({0.0, 0.0, 0.3}, worldDir(l, {0, 0, 1}))) EXPECT_EQ(v, 0.0);
     // All-zero images: exactly 0 everywhere.
     auto dark = makeField({3, 3}, 0.02, 0.05, 0.04, 8, [](int, int, int) { return 0.f; });

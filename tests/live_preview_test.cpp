@@ -52,7 +52,8 @@ TEST(LivePreview, LightFieldsBecomeTheirFarFieldAndFollowTheirPose) {
     scene.luminaires[0]->pose.aim = glm::dvec3(0.0, -1.0, 0.3);
     scene.camera.fovDeg = 30.0;
     ASSERT_TRUE(syncPreviewScene(preview, scene));
-    EXPECT_EQ(preview.luminaires[1].get(), kept);  // moved in place: its shadow maps are kept by address
+    EXPECT_EQ(preview.luminaires[1].get(),
+              kept);  // moved in place: its shadow maps are kept by address
     EXPECT_EQ(preview.luminaires[0]->pose.aim, scene.luminaires[0]->pose.aim);
     EXPECT_EQ(preview.camera.fovDeg, 30.0);
     // The twin sits on S's image centre, delta along the aim from the light field's origin.

@@ -13,14 +13,13 @@
 // point sees exactly the strip qx >= x + (0.4 - x) / t of the emitter: a rectangle, whose
 // irradiance is L pi F with F the closed-form form factor (test::rectangleFormFactor).
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <map>
 #include <string>
-
-#include <unistd.h>
 
 #include "TestUtil.h"
 #include "luminaires/EnvironmentSampling.h"
@@ -35,7 +34,8 @@ namespace {
 namespace fs = std::filesystem;
 constexpr double kPi = 3.14159265358979323846;
 
-constexpr double kL = 25000.0;       ///< Luminance of every emitter, cd/m2 (lambert.ies: 1000 cd / 0.04 m2).
+constexpr double kL =
+    25000.0;  ///< Luminance of every emitter, cd/m2 (lambert.ies: 1000 cd / 0.04 m2).
 constexpr double kHalf = 0.1;        ///< Half-size of the emitter, m.
 constexpr double kHeight = 2.0;      ///< Emitter above the floor, m.
 constexpr double kTable = 0.75;      ///< Table plane above the floor, m.
@@ -52,10 +52,10 @@ double closedForm(double x, bool shadowed) {
 
 /// How a technique's shadow is defined, when it is not the visible part of the whole emitter.
 enum class ShadowModel {
-    Area,   ///< The visible part of the emitter (every technique by default).
-    Centre, ///< A point light at the centre: all or nothing (photometric `point`).
-    Nodes,  ///< One spot light per basis function at its node (`granier2003`): the visible
-            ///< fraction moves in steps of one node's share of the emitter.
+    Area,    ///< The visible part of the emitter (every technique by default).
+    Centre,  ///< A point light at the centre: all or nothing (photometric `point`).
+    Nodes,   ///< One spot light per basis function at its node (`granier2003`): the visible
+             ///< fraction moves in steps of one node's share of the emitter.
 };
 
 ShadowModel modelOf(std::string_view kind, std::string_view name) {
@@ -85,7 +85,7 @@ fs::path writeConstantField(const fs::path& dir) {
 }
 
 class Obstruction : public testing::Test {
-protected:
+  protected:
     static void SetUpTestSuite() {
         dir = fs::temp_directory_path() / ("candela-obstruction-" + std::to_string(::getpid()));
         fs::create_directories(dir);
@@ -100,13 +100,15 @@ protected:
             luminaire = R"({"type": "lambertian-rect", "name": "L", "size": [0.2, 0.2],
                             "radiance": [25000, 25000, 25000], "position": [0, 2, 0]})";
         else if (kind == "photometric")
-            luminaire = R"({"type": "photometric", "name": "L", "file": ")" + test::dataDir() +
-                        R"(/photometric/lambert.ies", "opening": [0.2, 0.2], "position": [0, 2, 0]})";
+            luminaire =
+                R"({"type": "photometric", "name": "L", "file": ")" + test::dataDir() +
+                R"(/photometric/lambert.ies", "opening": [0.2, 0.2], "position": [0, 2, 0]})";
         else if (kind == "lightfield")  // U 0.05 m above S, so S is at 2 m
-            luminaire = R"({"type": "lightfield", "name": "L", "file": ")" + (dir / "square.lf.json").string() +
-                        R"(", "position": [0, 2.05, 0]})";
+            luminaire = R"({"type": "lightfield", "name": "L", "file": ")" +
+                        (dir / "square.lf.json").string() + R"(", "position": [0, 2.05, 0]})";
         std::string text = R"({"geometry": [{"plane": {"center": [0, 0.75, 0], "normal": [0, 1, 0],
-                                "size": [0.8, 0.6]}}], "luminaires": [)" + luminaire + "]}";
+                                "size": [0.8, 0.6]}}], "luminaires": [)" +
+                           luminaire + "]}";
         return parseScene(nlohmann::json::parse(text), (dir / "scene.json").string());
     }
 
@@ -140,8 +142,10 @@ TEST_F(Obstruction, EveryTechniqueOfEveryKindShadowsTheTableClosedForm) {
             };
             for (double x : kUmbra) {
                 Estimate free = estimate(x, open);
-                ASSERT_GT(free.irradiance.y, 0.0) << "x = " << x << ": the table must hide some light";
-                EXPECT_EQ(estimate(x, shadowed).irradiance.y, 0.0) << "x = " << x << " is in the umbra";
+                ASSERT_GT(free.irradiance.y, 0.0)
+                    << "x = " << x << ": the table must hide some light";
+                EXPECT_EQ(estimate(x, shadowed).irradiance.y, 0.0)
+                    << "x = " << x << " is in the umbra";
             }
             for (double x : kLit) {
                 // Every ray is free, so the shadowed estimate is the unshadowed one to rounding
@@ -175,13 +179,17 @@ TEST_F(Obstruction, EveryTechniqueOfEveryKindShadowsTheTableClosedForm) {
                 // the cosine table's interpolation and the light field's pixel grid) must give
                 // the closed form; approximate ones (mrp, a fixed point set, ...) must scale their
                 // own value by the visible fraction, within four of its standard errors.
-                bool accurate = std::abs(free.irradiance.y - cfFree) <= 4.0 * free.stdError.y + 0.005 * cfFree;
+                bool accurate =
+                    std::abs(free.irradiance.y - cfFree) <= 4.0 * free.stdError.y + 0.005 * cfFree;
                 if (accurate)
                     EXPECT_NEAR(got, cfShadow, 4.0 * sigma + 0.005 * cfFree)
-                        << "x = " << x << ", unshadowed " << free.irradiance.y << " (closed form " << cfFree << ")";
+                        << "x = " << x << ", unshadowed " << free.irradiance.y << " (closed form "
+                        << cfFree << ")";
                 else
-                    EXPECT_NEAR(got / free.irradiance.y, fraction, 4.0 * sigma / free.irradiance.y + 1e-3)
-                        << "x = " << x << ", unshadowed " << free.irradiance.y << " (closed form " << cfFree << ")";
+                    EXPECT_NEAR(got / free.irradiance.y, fraction,
+                                4.0 * sigma / free.irradiance.y + 1e-3)
+                        << "x = " << x << ", unshadowed " << free.irradiance.y << " (closed form "
+                        << cfFree << ")";
             }
         }
     }
@@ -222,7 +230,8 @@ TEST_F(Obstruction, EveryEnvironmentTechniqueShadowsTheTableClosedForm) {
         SCOPED_TRACE(std::string(t.name));
         ++checked;
         for (double x : {0.0, 0.3, 0.5, 1.0, 2.5}) {
-            double F = test::rectangleFormFactor(-kTableHalfX - x, kTableHalfX - x, -0.3, 0.3, kTable);
+            double F =
+                test::rectangleFormFactor(-kTableHalfX - x, kTableHalfX - x, -0.3, 0.3, kTable);
             double want = 2.0 * kPi * (1.0 - F);
             EstimateOptions o;
             o.spp = 8192;
@@ -232,7 +241,8 @@ TEST_F(Obstruction, EveryEnvironmentTechniqueShadowsTheTableClosedForm) {
             // of its visibility at 6 x 6 rays per texel along the table's outline. havran2005's
             // 256 lights (one direction each) see the table's solid angle in steps of one
             // light's: 3 % of the sky.
-            double tolerance = 4.0 * e.stdError.y + (t.name.starts_with("havran") ? 0.03 : 0.005) * 2.0 * kPi;
+            double tolerance =
+                4.0 * e.stdError.y + (t.name.starts_with("havran") ? 0.03 : 0.005) * 2.0 * kPi;
             EXPECT_NEAR(e.irradiance.y, want, tolerance) << "x = " << x << ", F = " << F;
         }
     }

@@ -35,7 +35,8 @@ spherical::Polygon rectangle(double x0, double y0, double x1, double y1, double 
 double cornerFormFactor(double a, double b, double h) {
     double A = a / h, B = b / h;
     return (A / std::sqrt(1 + A * A) * std::atan(B / std::sqrt(1 + A * A)) +
-            B / std::sqrt(1 + B * B) * std::atan(A / std::sqrt(1 + B * B))) / (2 * kPi);
+            B / std::sqrt(1 + B * B) * std::atan(A / std::sqrt(1 + B * B))) /
+           (2 * kPi);
 }
 
 TEST(SphericalPolygon, SolidAnglesMatchClosedForms) {
@@ -94,11 +95,13 @@ TEST(SphericalPolygon, FlipsGiveADelaunayTriangulationCoveringThePolygon) {
         spherical::Polygon q;
         double start = rng.uniform() * 2 * kPi;
         std::vector<double> angles;
-        for (int i = 0; i < n; ++i) angles.push_back(start + 2 * kPi * (i + 0.8 * rng.uniform()) / n);
+        for (int i = 0; i < n; ++i)
+            angles.push_back(start + 2 * kPi * (i + 0.8 * rng.uniform()) / n);
         double z = 0.05 + 2 * rng.uniform();
         glm::dvec3 centre(rng.uniform() - 0.5, rng.uniform() - 0.5, 0);
         for (int i = 0; i < n; ++i)
-            q.v[size_t(q.count++)] = centre + glm::dvec3(std::cos(angles[size_t(i)]), std::sin(angles[size_t(i)]), z);
+            q.v[size_t(q.count++)] =
+                centre + glm::dvec3(std::cos(angles[size_t(i)]), std::sin(angles[size_t(i)]), z);
         spherical::ClosestPoint cp;
         cp.point = q.v[0] * 0.3 + q.v[1] * 0.3 + q.v[2] * 0.4;  // inside (a convex combination)
         spherical::Triangulation t = spherical::initialTriangulation(n, cp);
@@ -114,7 +117,8 @@ TEST(SphericalPolygon, FlipsGiveADelaunayTriangulationCoveringThePolygon) {
             sum += spherical::triangleSolidAngle(dirs[tr[0]], dirs[tr[1]], dirs[tr[2]]);
             for (int v = 0; v <= n; ++v) {
                 if (v == tr[0] || v == tr[1] || v == tr[2]) continue;
-                EXPECT_FALSE(spherical::inCircumcircle(dirs[tr[0]], dirs[tr[1]], dirs[tr[2]], dirs[v]))
+                EXPECT_FALSE(
+                    spherical::inCircumcircle(dirs[tr[0]], dirs[tr[1]], dirs[tr[2]], dirs[v]))
                     << "trial " << trial << " triangle " << i << " vertex " << v;
             }
         }
@@ -123,8 +127,10 @@ TEST(SphericalPolygon, FlipsGiveADelaunayTriangulationCoveringThePolygon) {
     EXPECT_GT(totalFlips, 0);  // the test did exercise flipping
 }
 
-std::unique_ptr<PhotometricLuminaire> place(const std::string& file, glm::dvec3 position = {0, 2, 0},
-                                            glm::dvec3 aim = {0, -1, 0}, glm::dvec3 c0 = {1, 0, 0}) {
+std::unique_ptr<PhotometricLuminaire> place(const std::string& file,
+                                            glm::dvec3 position = {0, 2, 0},
+                                            glm::dvec3 aim = {0, -1, 0},
+                                            glm::dvec3 c0 = {1, 0, 0}) {
     auto light = std::make_unique<PhotometricLuminaire>();
     light->file = kData + file;
     light->data = PhotometricLuminaire::load(light->file);
@@ -135,7 +141,8 @@ std::unique_ptr<PhotometricLuminaire> place(const std::string& file, glm::dvec3 
     return light;
 }
 
-Estimate run(const char* technique, const Luminaire& l, glm::dvec3 p, glm::dvec3 n, int spp = 4096) {
+Estimate run(const char* technique, const Luminaire& l, glm::dvec3 p, glm::dvec3 n,
+             int spp = 4096) {
     const TechniqueInfo* t = findTechnique("photometric", technique);
     EXPECT_NE(t, nullptr) << technique;
     EstimateOptions o;
@@ -149,7 +156,8 @@ double lambertExact(const PhotometricLuminaire& l, double radianceL, glm::dvec3 
     glm::dvec3 x, y, z;
     l.pose.frame(x, y, z);
     spherical::Polygon q;
-    for (glm::dvec2 c : {glm::dvec2(-0.3, -0.15), glm::dvec2(0.3, -0.15), glm::dvec2(0.3, 0.15), glm::dvec2(-0.3, 0.15)})
+    for (glm::dvec2 c : {glm::dvec2(-0.3, -0.15), glm::dvec2(0.3, -0.15), glm::dvec2(0.3, 0.15),
+                         glm::dvec2(-0.3, 0.15)})
         q.v[size_t(q.count++)] = l.pose.position + c.x * x + c.y * y - p;
     if (glm::dot(p - l.pose.position, z) <= 0.0) return 0.0;
     return radianceL * spherical::projectedSolidAngle(spherical::clip(q, n), glm::normalize(n));
@@ -163,22 +171,26 @@ TEST(PhotometricLuminaire, LambertianFileIsALambertianRectangle) {
     EXPECT_NEAR(l->area(), 0.18, 1e-12);
     EXPECT_NEAR(l->power().y, kPi * 1000.0, 1e-4 * kPi * 1000.0);
     const double L = 1000.0 / 0.18;
-    struct Case { glm::dvec3 p, n; };
+    struct Case {
+        glm::dvec3 p, n;
+    };
     std::vector<Case> cases = {
-        {{0, 0, 0}, {0, 1, 0}},            // under the centre, 2 m
-        {{0.1, 1.95, 0.05}, {0, 1, 0}},    // 5 cm below the opening, under it
-        {{0.5, 1.9, 0.3}, {0, 1, 0}},      // near, beside the opening
-        {{0.2, 1.9, 0}, {1, 0.2, 0}},      // tilted: the opening is half below its horizon
+        {{0, 0, 0}, {0, 1, 0}},          // under the centre, 2 m
+        {{0.1, 1.95, 0.05}, {0, 1, 0}},  // 5 cm below the opening, under it
+        {{0.5, 1.9, 0.3}, {0, 1, 0}},    // near, beside the opening
+        {{0.2, 1.9, 0}, {1, 0.2, 0}},    // tilted: the opening is half below its horizon
         {{1.0, 1.5, -0.5}, {-1, 0.1, 0.3}},
-        {{3, 0, 2}, {0, 1, 0}},            // far and oblique
+        {{3, 0, 2}, {0, 1, 0}},  // far and oblique
     };
     for (size_t i = 0; i < cases.size(); ++i) {
         double exact = lambertExact(*l, L, cases[i].p, cases[i].n);
         ASSERT_GT(exact, 0.0) << i;
         // Scattered sampling is exact for a Lambertian emitter (the cubature's mean of a constant
         // is that constant, times the closed-form projected solid angle): 1e-4 covers the table.
-        EXPECT_NEAR(run("scattered", *l, cases[i].p, cases[i].n).irradiance.y, exact, 1e-4 * exact) << i;
-        EXPECT_NEAR(run("hybrid", *l, cases[i].p, cases[i].n).irradiance.y, exact, 0.05 * exact) << i;
+        EXPECT_NEAR(run("scattered", *l, cases[i].p, cases[i].n).irradiance.y, exact, 1e-4 * exact)
+            << i;
+        EXPECT_NEAR(run("hybrid", *l, cases[i].p, cases[i].n).irradiance.y, exact, 0.05 * exact)
+            << i;
         // The reference is unbiased: within 4 standard errors (+ the table's 1e-4).
         Estimate ref = run("reference", *l, cases[i].p, cases[i].n, 200000);
         EXPECT_NEAR(ref.irradiance.y, exact, 4 * ref.stdError.y + 1e-4 * exact) << i;
@@ -213,7 +225,10 @@ TEST(PhotometricLuminaire, CGrowsCounterClockwiseSeenFromAboveADownlight) {
     // counter-clockwise from +X is -Z. cplanes.ies has 100, 200, 300, 400 cd at C 0, 90, 180, 270.
     auto l = place("cplanes.ies", {0, 2, 0}, {0, -1, 0}, {1, 0, 0});
     const double s = std::sqrt(0.5);
-    struct Case { glm::dvec3 dir; double cd; };
+    struct Case {
+        glm::dvec3 dir;
+        double cd;
+    };
     for (Case c : {Case{{s, -s, 0}, 100.0}, Case{{0, -s, -s}, 200.0}, Case{{-s, -s, 0}, 300.0},
                    Case{{0, -s, s}, 400.0}}) {
         EXPECT_NEAR(l->intensity(c.dir), c.cd, 1e-9) << c.dir.x << " " << c.dir.z;
@@ -259,14 +274,21 @@ TEST(PhotometricLuminaire, HardCasesStayFinite) {
     auto side = place("side.ies");
     auto lambert = place("lambert.ies");
     glm::dvec3 origin = side->pose.position;
-    struct Case { const char* what; const PhotometricLuminaire* l; glm::dvec3 p, n; };
+    struct Case {
+        const char* what;
+        const PhotometricLuminaire* l;
+        glm::dvec3 p, n;
+    };
     std::vector<Case> cases = {
         {"in the light's plane", side.get(), origin + glm::dvec3(1, 0, 0), {-1, 0, 0}},
         {"1e-6 m from the plane", side.get(), origin + glm::dvec3(1, -1e-6, 0), {-1, 0, 0}},
         {"on the opening itself", lambert.get(), origin, {0, -1, 0}},
         {"light below the horizon", lambert.get(), origin + glm::dvec3(0, -1, 0), {0, -1, 0}},
         {"light half below the horizon", lambert.get(), origin + glm::dvec3(0, -0.5, 0), {1, 0, 0}},
-        {"closest point on a corner", lambert.get(), origin + glm::dvec3(0.3, -0.4, 0.15), {0, 1, 0}},
+        {"closest point on a corner",
+         lambert.get(),
+         origin + glm::dvec3(0.3, -0.4, 0.15),
+         {0, 1, 0}},
         {"closest point on an edge", lambert.get(), origin + glm::dvec3(0.3, -0.4, 0.0), {0, 1, 0}},
         {"grazing receiver", lambert.get(), origin + glm::dvec3(2, -0.01, 0), {0, 1, 0}},
         {"behind the light", lambert.get(), origin + glm::dvec3(0, 1, 0), {0, -1, 0}},
@@ -275,19 +297,30 @@ TEST(PhotometricLuminaire, HardCasesStayFinite) {
         for (const auto& t : techniques()) {
             if (t.kind != "photometric") continue;
             Estimate e = run(std::string(t.name).c_str(), *c.l, c.p, c.n, 1000);
-            EXPECT_TRUE(std::isfinite(e.irradiance.y) && e.irradiance.y >= 0.0) << c.what << " " << t.name;
+            EXPECT_TRUE(std::isfinite(e.irradiance.y) && e.irradiance.y >= 0.0)
+                << c.what << " " << t.name;
         }
     // The side emitter lights receivers in its own plane; the reference sees it (finite, > 0),
     // and 1e-6 m off the plane agrees with the in-plane value within 1 %.
     Estimate inPlane = run("reference", *side, origin + glm::dvec3(1, 0, 0), {-1, 0, 0}, 100000);
-    Estimate offPlane = run("reference", *side, origin + glm::dvec3(1, -1e-6, 0), {-1, 0, 0}, 100000);
+    Estimate offPlane =
+        run("reference", *side, origin + glm::dvec3(1, -1e-6, 0), {-1, 0, 0}, 100000);
     EXPECT_GT(inPlane.irradiance.y, 0.0);
-    EXPECT_NEAR(offPlane.irradiance.y, inPlane.irradiance.y, 0.01 * inPlane.irradiance.y + 4 * inPlane.stdError.y);
+    EXPECT_NEAR(offPlane.irradiance.y, inPlane.irradiance.y,
+                0.01 * inPlane.irradiance.y + 4 * inPlane.stdError.y);
     // Below the horizon: exactly 0 for every technique; behind a downlight: exactly 0.
     for (const auto& t : techniques())
         if (t.kind == "photometric") {
-            EXPECT_EQ(run(std::string(t.name).c_str(), *lambert, origin + glm::dvec3(0, -1, 0), {0, -1, 0}).irradiance.y, 0.0) << t.name;
-            EXPECT_EQ(run(std::string(t.name).c_str(), *lambert, origin + glm::dvec3(0, 1, 0), {0, -1, 0}).irradiance.y, 0.0) << t.name;
+            EXPECT_EQ(run(std::string(t.name).c_str(), *lambert, origin + glm::dvec3(0, -1, 0),
+                          {0, -1, 0})
+                          .irradiance.y,
+                      0.0)
+                << t.name;
+            EXPECT_EQ(
+                run(std::string(t.name).c_str(), *lambert, origin + glm::dvec3(0, 1, 0), {0, -1, 0})
+                    .irradiance.y,
+                0.0)
+                << t.name;
         }
     // Coincident scattered samples (closest point on a corner or an edge) still give the exact
     // Lambertian answer.
@@ -322,7 +355,9 @@ TEST(PhotometricLuminaire, DegenerateOpeningIsASegment) {
             // which costs it ~6 % here; the others are the 16-point Gauss-Legendre rule on a
             // smooth integrand (1e-6).
             double tol = t.name == "point" ? 0.1 : 1e-6;
-            EXPECT_NEAR(run(std::string(t.name).c_str(), *l, p, n).irradiance.y, expected, tol * expected) << t.name;
+            EXPECT_NEAR(run(std::string(t.name).c_str(), *l, p, n).irradiance.y, expected,
+                        tol * expected)
+                << t.name;
         }
 }
 
@@ -338,7 +373,8 @@ TEST(PhotometricLuminaire, AreaSamplerDrawsItsPdf) {
         LightSample s = l->sample(p, {rng.uniform(), rng.uniform()});
         ASSERT_GT(s.pdf, 0.0);
         EXPECT_NEAR(l->pdf(p, s.wi), s.pdf, 1e-9 * s.pdf);
-        double x = s.position.x + 0.3, z = s.position.z + 0.15;  // local x = world x, local y = world z
+        double x = s.position.x + 0.3,
+               z = s.position.z + 0.15;  // local x = world x, local y = world z
         int i = std::clamp(int(x / 0.1), 0, 5), j = std::clamp(int(z / 0.1), 0, 2);
         observed[size_t(j * 6 + i)] += 1.0;
     }
@@ -355,11 +391,13 @@ TEST(PhotometricLuminaire, FluxFromASphereOfProbesMatchesTheTable) {
     // noise summed over 26k receivers to ~1e-4).
     namespace fs = std::filesystem;
     std::vector<std::string> files;
-    for (const char* f : {"lambert.ies", "side.ies", "spot.ies", "cplanes.ies"}) files.push_back(kData + f);
+    for (const char* f : {"lambert.ies", "side.ies", "spot.ies", "cplanes.ies"})
+        files.push_back(kData + f);
     for (const auto& e : fs::recursive_directory_iterator(CANDELA_TEST_DATA "/photometry")) {
         std::string ext = e.path().extension().string();
         for (char& c : ext) c = char(std::tolower((unsigned char)c));
-        if (e.is_regular_file() && (ext == ".ies" || ext == ".ldt")) files.push_back(e.path().string());
+        if (e.is_regular_file() && (ext == ".ies" || ext == ".ldt"))
+            files.push_back(e.path().string());
     }
     std::sort(files.begin(), files.end());
     int loaded = 0;
@@ -373,7 +411,8 @@ TEST(PhotometricLuminaire, FluxFromASphereOfProbesMatchesTheTable) {
         } catch (const std::exception& e) {
             // Only the two deliberately broken files may fail.
             EXPECT_TRUE(file.find("Invalid Profile") != std::string::npos ||
-                        file.find("Truncated Profile") != std::string::npos) << e.what();
+                        file.find("Truncated Profile") != std::string::npos)
+                << e.what();
             continue;
         }
         ++loaded;
@@ -393,7 +432,8 @@ TEST(PhotometricLuminaire, FluxFromASphereOfProbesMatchesTheTable) {
             double th = kPi * (i + 0.5) / nt;
             for (int j = 0; j < np; ++j) {
                 double ph = 2 * kPi * (j + 0.5) / np;
-                glm::dvec3 d = std::sin(th) * std::cos(ph) * x + std::sin(th) * std::sin(ph) * y + std::cos(th) * z;
+                glm::dvec3 d = std::sin(th) * std::cos(ph) * x + std::sin(th) * std::sin(ph) * y +
+                               std::cos(th) * z;
                 o.seed = uint64_t(i * np + j + 1);
                 sum += ref->irradiance(*l, R * d, -d, o).irradiance.y * std::sin(th);
             }

@@ -1,7 +1,10 @@
 // Far-field photometry: IES LM-63 and EULUMDAT parsers, symmetry unfolding, bilinear evaluation
 // and the exact flux of the table (luminaires/Photometry.h).
 
+#include "luminaires/Photometry.h"
+
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -15,10 +18,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include <unistd.h>
-
 #include "TestUtil.h"
-#include "luminaires/Photometry.h"
 
 namespace candela {
 namespace {
@@ -27,7 +27,9 @@ namespace fs = std::filesystem;
 constexpr double kPi = std::numbers::pi;
 constexpr double kDeg = kPi / 180.0;
 
-std::string photometryDir() { return test::dataDir() + "/photometry"; }
+std::string photometryDir() {
+    return test::dataDir() + "/photometry";
+}
 
 bool isBroken(const fs::path& p) {
     std::string name = p.filename().string();
@@ -40,7 +42,8 @@ std::vector<fs::path> sharedFiles(bool includeBroken) {
     for (const auto& e : fs::recursive_directory_iterator(photometryDir())) {
         if (!e.is_regular_file()) continue;
         std::string ext = e.path().extension().string();
-        std::transform(ext.begin(), ext.end(), ext.begin(), [](char c) { return char(std::tolower(c)); });
+        std::transform(ext.begin(), ext.end(), ext.begin(),
+                       [](char c) { return char(std::tolower(c)); });
         if (ext != ".ies" && ext != ".ldt") continue;
         if (!includeBroken && isBroken(e.path())) continue;
         files.push_back(e.path());
@@ -91,8 +94,8 @@ struct Ies {
         s.precision(17);
         if (!header.empty()) s << header << "\n";
         s << keywords << tilt;
-        s << lamps << " " << lumens << " " << multiplier << " " << v.size() << " " << h.size() << " " << type
-          << " " << units << " " << width << " " << length << " " << height << "\n";
+        s << lamps << " " << lumens << " " << multiplier << " " << v.size() << " " << h.size()
+          << " " << type << " " << units << " " << width << " " << length << " " << height << "\n";
         s << ballast << " " << blp << " " << watts << "\n";
         for (double a : v) s << a << " ";
         s << "\n";
@@ -104,7 +107,9 @@ struct Ies {
         }
         return s.str();
     }
-    PhotometricData parse(const std::string& path = "test.ies") const { return parseIes(text(), path); }
+    PhotometricData parse(const std::string& path = "test.ies") const {
+        return parseIes(text(), path);
+    }
 };
 
 /// Independent check of fluxFromTable(): midpoint rule over a (gamma, azimuth) grid of
@@ -117,7 +122,8 @@ double bruteForceFlux(const PhotometricData& d, int ngamma = 2048, int nphi = 10
         double row = 0.0;
         for (int j = 0; j < nphi; ++j) {
             double phi = (j + 0.5) * 2.0 * kPi / nphi;
-            row += d.intensity({std::sin(g) * std::cos(phi), std::sin(g) * std::sin(phi), std::cos(g)});
+            row += d.intensity(
+                {std::sin(g) * std::cos(phi), std::sin(g) * std::sin(phi), std::cos(g)});
         }
         sum += row * std::sin(g);
     }
@@ -126,11 +132,16 @@ double bruteForceFlux(const PhotometricData& d, int ngamma = 2048, int nphi = 10
 
 const char* symmetryName(PhotometricSymmetry s) {
     switch (s) {
-    case PhotometricSymmetry::None: return "none";
-    case PhotometricSymmetry::Axial: return "axial";
-    case PhotometricSymmetry::Quadrant: return "quadrant";
-    case PhotometricSymmetry::PlaneC0C180: return "C0-C180";
-    case PhotometricSymmetry::PlaneC90C270: return "C90-C270";
+        case PhotometricSymmetry::None:
+            return "none";
+        case PhotometricSymmetry::Axial:
+            return "axial";
+        case PhotometricSymmetry::Quadrant:
+            return "quadrant";
+        case PhotometricSymmetry::PlaneC0C180:
+            return "C0-C180";
+        case PhotometricSymmetry::PlaneC90C270:
+            return "C90-C270";
     }
     return "?";
 }
@@ -141,14 +152,17 @@ void expectValidTable(const PhotometricData& d, const std::string& what) {
     ASSERT_GE(d.horizontal.size(), 2u) << what;
     ASSERT_EQ(d.candela.size(), d.vertical.size() * d.horizontal.size()) << what;
     for (double c : d.candela) ASSERT_TRUE(std::isfinite(c) && c >= 0.0) << what;
-    for (size_t k = 1; k < d.vertical.size(); ++k) ASSERT_GT(d.vertical[k], d.vertical[k - 1]) << what;
-    for (size_t k = 1; k < d.horizontal.size(); ++k) ASSERT_GT(d.horizontal[k], d.horizontal[k - 1]) << what;
+    for (size_t k = 1; k < d.vertical.size(); ++k)
+        ASSERT_GT(d.vertical[k], d.vertical[k - 1]) << what;
+    for (size_t k = 1; k < d.horizontal.size(); ++k)
+        ASSERT_GT(d.horizontal[k], d.horizontal[k - 1]) << what;
     if (d.goniometer == Goniometer::C) {
         EXPECT_EQ(d.horizontal.front(), 0.0) << what;
         EXPECT_EQ(d.horizontal.back(), 360.0) << what;
         size_t nv = d.vertical.size(), last = d.horizontal.size() - 1;
         for (size_t v = 0; v < nv; ++v)  // rows at 0 and 360 are the same plane
-            EXPECT_NEAR(d.candela[v], d.candela[last * nv + v], 1e-9 * (1.0 + d.candela[v])) << what;
+            EXPECT_NEAR(d.candela[v], d.candela[last * nv + v], 1e-9 * (1.0 + d.candela[v]))
+                << what;
     } else {
         EXPECT_GE(d.horizontal.front(), -180.0) << what;
         EXPECT_LE(d.horizontal.back(), 180.0) << what;
@@ -173,10 +187,12 @@ TEST(PhotometryFiles, EveryWellFormedFileLoadsAndPrintsSummary) {
         expectValidTable(d, p.string());
         double flux = d.fluxFromTable();
         std::string rel = fs::relative(p, photometryDir()).string();
-        std::string counts = std::to_string(d.vertical.size()) + "x" + std::to_string(d.horizontal.size());
-        std::printf("%-72s %-15s %-4s %-9s %-9s %12.2f %10.1f %8.4f\n", rel.c_str(), d.format.c_str(),
-                    d.goniometer == Goniometer::C ? "C" : "B", symmetryName(d.symmetry), counts.c_str(), flux,
-                    d.lampFlux, d.lampFlux > 0.0 ? flux / d.lampFlux : 0.0);
+        std::string counts =
+            std::to_string(d.vertical.size()) + "x" + std::to_string(d.horizontal.size());
+        std::printf("%-72s %-15s %-4s %-9s %-9s %12.2f %10.1f %8.4f\n", rel.c_str(),
+                    d.format.c_str(), d.goniometer == Goniometer::C ? "C" : "B",
+                    symmetryName(d.symmetry), counts.c_str(), flux, d.lampFlux,
+                    d.lampFlux > 0.0 ? flux / d.lampFlux : 0.0);
     }
 }
 
@@ -196,7 +212,8 @@ TEST(PhotometryFiles, BrokenFilesThrowWithFileAndLine) {
         FAIL() << "no exception";
     } catch (const std::runtime_error& e) {
         std::string m = e.what();
-        EXPECT_NE(m.find(truncated + ":24: expected 10 values on the lamp line"), std::string::npos) << m;
+        EXPECT_NE(m.find(truncated + ":24: expected 10 values on the lamp line"), std::string::npos)
+            << m;
         EXPECT_NE(m.find("found only 4 before the data ended at line 24"), std::string::npos) << m;
     }
 }
@@ -218,7 +235,8 @@ TEST(PhotometryFiles, OddFilesLoadCorrectly) {
     EXPECT_NEAR(a.intensity(dirC(22.5, 135.0)), 35000.0, 1e-6);  // quadrant mirror
     bool more = false;
     for (const auto& [k, v] : a.keywords)
-        if (k == "OTHER" && v.find("\nand to reduce light pollution") != std::string::npos) more = true;
+        if (k == "OTHER" && v.find("\nand to reduce light pollution") != std::string::npos)
+            more = true;
     EXPECT_TRUE(more) << "[MORE] should continue [OTHER]";
     // 1 ft = 0.3048 m: width .5 ft (local y), length .6 ft (local x).
     EXPECT_NEAR(a.opening.width, 0.5 * 0.3048, 1e-12);
@@ -264,12 +282,14 @@ TEST(PhotometryFiles, OpeningShapesFromFiles) {
     EXPECT_EQ(round.axis, LuminousOpening::Axis::Z);
     EXPECT_DOUBLE_EQ(round.length, 0.12);
     EXPECT_DOUBLE_EQ(round.height, 0.34);
-    LuminousOpening hl = loadPhotometry(dir + "horizontal_cylinder_opening_along_length.ies").opening;
+    LuminousOpening hl =
+        loadPhotometry(dir + "horizontal_cylinder_opening_along_length.ies").opening;
     EXPECT_EQ(hl.shape, S::Cylinder);
     EXPECT_EQ(hl.axis, LuminousOpening::Axis::X);
     EXPECT_DOUBLE_EQ(hl.length, 0.12);
     EXPECT_DOUBLE_EQ(hl.width, 0.34);
-    LuminousOpening hw = loadPhotometry(dir + "horizontal_cylinder_opening_along_width.ies").opening;
+    LuminousOpening hw =
+        loadPhotometry(dir + "horizontal_cylinder_opening_along_width.ies").opening;
     EXPECT_EQ(hw.axis, LuminousOpening::Axis::Y);
     EXPECT_DOUBLE_EQ(hw.width, 0.12);
     EXPECT_DOUBLE_EQ(hw.length, 0.34);
@@ -342,7 +362,8 @@ TEST(PhotometryIes, ExactQuadratureMatchesBruteForce) {
         ies.v = range(0, 180, 7.5);
         ies.h = h;
         ies.f = [](double v, double c) {
-            return 200.0 + 150.0 * std::cos(v * kDeg) + 40.0 * std::cos(2.0 * c * kDeg) * std::sin(v * kDeg);
+            return 200.0 + 150.0 * std::cos(v * kDeg) +
+                   40.0 * std::cos(2.0 * c * kDeg) * std::sin(v * kDeg);
         };
         PhotometricData d = ies.parse();
         double exact = d.fluxFromTable(), brute = bruteForceFlux(d);
@@ -354,10 +375,12 @@ TEST(PhotometryIes, ExactQuadratureMatchesBruteForce) {
     for (const fs::path& p : sharedFiles(false)) {
         PhotometricData d = loadPhotometry(p.string());
         double exact = d.fluxFromTable();
-        if (std::any_of(seen.begin(), seen.end(), [&](double f) { return std::abs(f - exact) < 1e-9 * exact; }))
+        if (std::any_of(seen.begin(), seen.end(),
+                        [&](double f) { return std::abs(f - exact) < 1e-9 * exact; }))
             continue;
         seen.push_back(exact);
-        double brute = bruteForceFlux(d, 2048, d.symmetry == PhotometricSymmetry::Axial ? 16 : 1024);
+        double brute =
+            bruteForceFlux(d, 2048, d.symmetry == PhotometricSymmetry::Axial ? 16 : 1024);
         EXPECT_NEAR(exact, brute, 1e-4 * brute) << p;
     }
 }
@@ -380,28 +403,31 @@ TEST(PhotometryIes, SymmetryUnfoldingMirrorsDirections) {
             double g = gamma(rng), c = azim(rng);
             double ref = d.intensity(dirC(g, c));
             switch (sym) {
-            case PhotometricSymmetry::Axial:
-                EXPECT_NEAR(d.intensity(dirC(g, c * 4.0 - 17.0)), ref, 1e-9);
-                break;
-            case PhotometricSymmetry::Quadrant:
-                EXPECT_NEAR(d.intensity(dirC(g, 180.0 - c)), ref, 1e-9);
-                EXPECT_NEAR(d.intensity(dirC(g, 180.0 + c)), ref, 1e-9);
-                EXPECT_NEAR(d.intensity(dirC(g, 360.0 - c)), ref, 1e-9);
-                break;
-            case PhotometricSymmetry::PlaneC0C180:  // y -> -y
-                EXPECT_NEAR(d.intensity(dirC(g, 360.0 - 2.0 * c)), d.intensity(dirC(g, 2.0 * c)), 1e-9);
-                break;
-            case PhotometricSymmetry::PlaneC90C270:  // x -> -x
-                EXPECT_NEAR(d.intensity(dirC(g, 180.0 - (90.0 + 2.0 * c))), d.intensity(dirC(g, 90.0 + 2.0 * c)),
-                            1e-9);
-                break;
-            default: break;
+                case PhotometricSymmetry::Axial:
+                    EXPECT_NEAR(d.intensity(dirC(g, c * 4.0 - 17.0)), ref, 1e-9);
+                    break;
+                case PhotometricSymmetry::Quadrant:
+                    EXPECT_NEAR(d.intensity(dirC(g, 180.0 - c)), ref, 1e-9);
+                    EXPECT_NEAR(d.intensity(dirC(g, 180.0 + c)), ref, 1e-9);
+                    EXPECT_NEAR(d.intensity(dirC(g, 360.0 - c)), ref, 1e-9);
+                    break;
+                case PhotometricSymmetry::PlaneC0C180:  // y -> -y
+                    EXPECT_NEAR(d.intensity(dirC(g, 360.0 - 2.0 * c)),
+                                d.intensity(dirC(g, 2.0 * c)), 1e-9);
+                    break;
+                case PhotometricSymmetry::PlaneC90C270:  // x -> -x
+                    EXPECT_NEAR(d.intensity(dirC(g, 180.0 - (90.0 + 2.0 * c))),
+                                d.intensity(dirC(g, 90.0 + 2.0 * c)), 1e-9);
+                    break;
+                default:
+                    break;
             }
         }
         // At the file's own nodes the table holds the file's values (1e-9: printed with 17 digits).
         for (double c : h)
             for (double v : {10.0, 50.0, 120.0})
-                EXPECT_NEAR(d.intensity(dirC(v, c)), f(v, c), 1e-9) << symmetryName(sym) << " C" << c;
+                EXPECT_NEAR(d.intensity(dirC(v, c)), f(v, c), 1e-9)
+                    << symmetryName(sym) << " C" << c;
     }
 }
 
@@ -419,7 +445,8 @@ TEST(PhotometryIes, UnitsMultipliersAndAbsolutePhotometry) {
     ies.units = 2;
     PhotometricData metres = ies.parse();
     EXPECT_DOUBLE_EQ(metres.opening.length, 0.5);
-    // 16-gon inscribed in the circle of diameter 0.5: area 8 sin(pi/8)... = (16/2) r^2 sin(2 pi/16).
+    // 16-gon inscribed in the circle of diameter 0.5: area 8 sin(pi/8)... = (16/2) r^2 sin(2
+    // pi/16).
     EXPECT_NEAR(metres.opening.area(), 8.0 * 0.25 * 0.25 * std::sin(2.0 * kPi / 16.0), 1e-12);
 
     // Multiplier x ballast factor x ballast-lamp factor scale the candela; lamp flux does not.
@@ -496,7 +523,8 @@ TEST(PhotometryIes, TiltIncludeIsApplied) {
     EXPECT_NEAR(d.maxIntensity(), 400.0 * 0.4, 1e-9);
 
     // TILT=<file> next to the .ies.
-    fs::path dir = fs::temp_directory_path() / ("candela_photometry_tilt_" + std::to_string(::getpid()));
+    fs::path dir =
+        fs::temp_directory_path() / ("candela_photometry_tilt_" + std::to_string(::getpid()));
     fs::create_directories(dir);
     {
         std::ofstream(dir / "lamp.tlt") << "1\n2\n0 90\n0.25 1\n";
@@ -532,20 +560,25 @@ TEST(PhotometryIes, DefectsAreReportedWithLine) {
             EXPECT_NE(m.find(needle), std::string::npos) << m;
         }
     };
-    // Lines: 1 header, 2-3 keywords, 4 TILT, 5 lamp line, 6 ballast, 7 vertical, 8 horizontal, 9+ candela.
+    // Lines: 1 header, 2-3 keywords, 4 TILT, 5 lamp line, 6 ballast, 7 vertical, 8 horizontal, 9+
+    // candela.
     Ies b = good;
     b.type = 3;
-    expectError(b.text(), "x.ies:5: expected photometric type 1 (C) or 2 (B), found 3: type A (automotive) "
-                          "photometry is not supported");
+    expectError(b.text(),
+                "x.ies:5: expected photometric type 1 (C) or 2 (B), found 3: type A (automotive) "
+                "photometry is not supported");
     b = good;
     b.f = [](double v, double h) { return h == 90 && v == 45 ? -1.0 : 1.0; };
-    expectError(b.text(), "x.ies:10: expected non-negative candela values (horizontal angle 90, vertical angle 45)");
+    expectError(
+        b.text(),
+        "x.ies:10: expected non-negative candela values (horizontal angle 90, vertical angle 45)");
     std::string nan = good.text();
     nan.replace(nan.rfind("55"), 2, "nan");
     expectError(nan, "x.ies:10: expected a finite number (candela values");
     b = good;
     b.v = {0, 60, 45};
-    expectError(b.text(), "x.ies:7: expected vertical angles in strictly ascending order, found 45 after 60");
+    expectError(b.text(),
+                "x.ies:7: expected vertical angles in strictly ascending order, found 45 after 60");
     b = good;
     b.h = {0, 45};
     expectError(b.text(), "x.ies:8: expected type C horizontal angles 0 (axial)");
@@ -555,21 +588,28 @@ TEST(PhotometryIes, DefectsAreReportedWithLine) {
     std::string text = good.text();
     std::string counts = text;
     counts.replace(counts.find(" 3 2 1 2 "), 9, " 0 2 1 2 ");
-    expectError(counts, "x.ies:5: expected number of vertical angles (an integer from 1 to 100000), found 0");
+    expectError(
+        counts,
+        "x.ies:5: expected number of vertical angles (an integer from 1 to 100000), found 0");
     counts = text;
     counts.replace(counts.find(" 3 2 1 2 "), 9, " 3 200000 1 2 ");
-    expectError(counts, "expected number of horizontal angles (an integer from 1 to 100000), found 200000");
+    expectError(counts,
+                "expected number of horizontal angles (an integer from 1 to 100000), found 200000");
     // Truncated in the candela block: 6 values expected, the last line dropped.
     std::string cut = text.substr(0, text.rfind('\n', text.size() - 2) + 1);
-    expectError(cut, "x.ies:9: expected 6 candela values (2 horizontal x 3 vertical angles), found only 3 before "
-                     "the data ended at line 9");
+    expectError(cut,
+                "x.ies:9: expected 6 candela values (2 horizontal x 3 vertical angles), found only "
+                "3 before "
+                "the data ended at line 9");
     expectError("IESNA:LM-63-2002\n[TEST] x\n", "x.ies:2: expected a TILT= line");
     expectError("", "x.ies:1: expected a TILT= line");
     // CRLF line ends and comma separators are fine.
     std::string crlf;
     for (char c : text) {
-        if (c == '\n') crlf += "\r\n";
-        else crlf += c;
+        if (c == '\n')
+            crlf += "\r\n";
+        else
+            crlf += c;
     }
     EXPECT_NO_THROW(parseIes(crlf, "x.ies"));
     EXPECT_THROW(loadPhotometry(photometryDir() + "/LICENSE.md"), std::runtime_error);
@@ -581,7 +621,8 @@ TEST(PhotometryIes, DefectsAreReportedWithLine) {
 
 /// A hand-made EULUMDAT file for symmetry `isym` with Mc = 24 planes (15 degrees), Ng gamma
 /// angles from `gammas` (Dg = 0), intensities f(C, gamma) in cd/klm for the planes Isym needs.
-std::string makeLdt(int isym, const std::vector<double>& gammas, const std::function<double(double, double)>& f,
+std::string makeLdt(int isym, const std::vector<double>& gammas,
+                    const std::function<double(double, double)>& f,
                     const std::string& lampCount = "1", bool decimalComma = false) {
     const int mc = 24;
     std::ostringstream s;
@@ -594,9 +635,14 @@ std::string makeLdt(int isym, const std::vector<double>& gammas, const std::func
         if (decimalComma) std::replace(out.begin(), out.end(), '.', ',');
         return out;
     };
-    s << "Test company\n1\n" << isym << "\n" << mc << "\n15\n" << gammas.size() << "\n0\nREPORT\nTest luminaire\n"
-      << "NUM\nfile.ldt\ndate\n600\n0\n50\n500\n0\n0\n0\n0\n0\n100\n" << num(80.5) << "\n1\n0\n1\n"
-      << lampCount << "\nLED\n" << num(2000) << "\n3000K\n80\n20\n";
+    s << "Test company\n1\n"
+      << isym << "\n"
+      << mc << "\n15\n"
+      << gammas.size() << "\n0\nREPORT\nTest luminaire\n"
+      << "NUM\nfile.ldt\ndate\n600\n0\n50\n500\n0\n0\n0\n0\n0\n100\n"
+      << num(80.5) << "\n1\n0\n1\n"
+      << lampCount << "\nLED\n"
+      << num(2000) << "\n3000K\n80\n20\n";
     for (int k = 0; k < 10; ++k) s << "0.5\n";
     for (int k = 0; k < mc; ++k) s << k * 15 << "\n";
     for (double g : gammas) s << num(g) << "\n";
@@ -618,16 +664,22 @@ TEST(PhotometryLdt, EachIsymUnfoldsAndScales) {
         {0, [](double c, double g) { return 100.0 + g + 0.5 * c; }},
         {1, [](double, double g) { return 100.0 + g; }},
         {2, [](double c, double g) { return 100.0 + g + std::abs(c <= 180 ? c : 360 - c); }},
-        {3, [](double c, double g) { return 100.0 + g + std::abs(std::sin(c * kDeg) * 30.0) + (c > 90 && c < 270 ? c : 0); }},
+        {3,
+         [](double c, double g) {
+             return 100.0 + g + std::abs(std::sin(c * kDeg) * 30.0) + (c > 90 && c < 270 ? c : 0);
+         }},
         {4, [](double c, double g) { return 100.0 + g + 20.0 * std::abs(std::sin(c * kDeg)); }}};
-    const PhotometricSymmetry expected[] = {PhotometricSymmetry::None, PhotometricSymmetry::Axial,
-                                            PhotometricSymmetry::PlaneC0C180, PhotometricSymmetry::PlaneC90C270,
-                                            PhotometricSymmetry::Quadrant};
+    const PhotometricSymmetry expected[] = {
+        PhotometricSymmetry::None, PhotometricSymmetry::Axial, PhotometricSymmetry::PlaneC0C180,
+        PhotometricSymmetry::PlaneC90C270, PhotometricSymmetry::Quadrant};
     for (int isym = 0; isym <= 4; ++isym) {
         auto f = funcs[isym];
         // Isym 3: the function must itself be mirror-symmetric about C90-C270 (C -> 180 - C).
         std::function<double(double, double)> sym = f;
-        if (isym == 3) sym = [f](double c, double g) { return (c >= 90 && c <= 270) ? f(c, g) : f(c < 90 ? 180 - c : 540 - c, g); };
+        if (isym == 3)
+            sym = [f](double c, double g) {
+                return (c >= 90 && c <= 270) ? f(c, g) : f(c < 90 ? 180 - c : 540 - c, g);
+            };
         PhotometricData d = parseEulumdat(makeLdt(isym, gammas, sym), "t.ldt");
         EXPECT_EQ(d.symmetry, expected[isym]);
         EXPECT_EQ(d.vertical, gammas);
@@ -638,7 +690,7 @@ TEST(PhotometryLdt, EachIsymUnfoldsAndScales) {
             for (double g : gammas)
                 if (g > 0.0 && g < 180.0) {  // at the poles every C plane is the same direction
                     EXPECT_NEAR(d.intensity(dirC(g, c)), 2.0 * sym(isym == 1 ? 0.0 : c, g), 1e-9)
-                    << "Isym " << isym << " C" << c << " gamma " << g;
+                        << "Isym " << isym << " C" << c << " gamma " << g;
                 }
         expectValidTable(d, "Isym " + std::to_string(isym));
         // Round luminous area (width 0), 500 mm diameter.
@@ -665,11 +717,12 @@ TEST(PhotometryLdt, SharedSymmetryFilesMirror) {
         const char* file;
         std::function<double(double)> mirror;
     };
-    std::vector<Case> cases = {{"symmetry_to_c0c180.ldt", [](double c) { return 360.0 - c; }},
-                               {"symmetry_to_c90c270.ldt", [](double c) { return std::fmod(540.0 - c, 360.0); }},
-                               {"symmetry_to_c0c90c180c270.ldt", [](double c) { return std::fmod(180.0 + c, 360.0); }},
-                               {"symmetry_to_c0c90c180c270.ldt", [](double c) { return 360.0 - c; }},
-                               {"symmetry_about_vertical_axis.ldt", [](double c) { return std::fmod(c + 77.0, 360.0); }}};
+    std::vector<Case> cases = {
+        {"symmetry_to_c0c180.ldt", [](double c) { return 360.0 - c; }},
+        {"symmetry_to_c90c270.ldt", [](double c) { return std::fmod(540.0 - c, 360.0); }},
+        {"symmetry_to_c0c90c180c270.ldt", [](double c) { return std::fmod(180.0 + c, 360.0); }},
+        {"symmetry_to_c0c90c180c270.ldt", [](double c) { return 360.0 - c; }},
+        {"symmetry_about_vertical_axis.ldt", [](double c) { return std::fmod(c + 77.0, 360.0); }}};
     for (const Case& k : cases) {
         PhotometricData d = loadPhotometry(dir + k.file);
         for (int n = 0; n < 200; ++n) {
@@ -691,8 +744,9 @@ TEST(PhotometryLdt, LampFluxTimesLorAgainstTable) {
         if (expected == 0.0) continue;  // lenient/lorl_zero.ldt declares no luminaire flux
         double ratio = d.fluxFromTable() / expected;
         std::string rel = fs::relative(p, photometryDir() + "/ldt").string();
-        std::printf("%-70s table %10.2f lm, lamp x LOR %10.2f lm, ratio %.4f%s\n", rel.c_str(), d.fluxFromTable(),
-                    expected, ratio, consistent.count(rel) ? "" : "  (inconsistent file)");
+        std::printf("%-70s table %10.2f lm, lamp x LOR %10.2f lm, ratio %.4f%s\n", rel.c_str(),
+                    d.fluxFromTable(), expected, ratio,
+                    consistent.count(rel) ? "" : "  (inconsistent file)");
         if (consistent.count(rel)) {
             EXPECT_NEAR(ratio, 1.0, 0.01) << rel;  // 1 %: rounding of the published cd/klm values
         }
@@ -715,10 +769,12 @@ TEST(PhotometryLdt, DefectsAreReportedWithLine) {
     std::string bad = good;
     bad.replace(bad.find("\n1\n0\n"), 5, "\n1\n7\n");  // Isym 7
     expectError(bad, "t.ldt:3: expected symmetry indicator Isym (an integer from 0 to 4), found 7");
-    expectError(good.substr(0, good.find("Test luminaire")), "t.ldt:8: expected luminaire name on line 9, found the end");
+    expectError(good.substr(0, good.find("Test luminaire")),
+                "t.ldt:8: expected luminaire name on line 9, found the end");
     // 24 planes x 3 values = 72 intensities; drop the last line.
     std::string cut = good.substr(0, good.rfind('\n', good.size() - 2) + 1);
-    expectError(cut, "expected 72 intensities (cd/klm, 24 C planes x 3 gamma angles), found only 71");
+    expectError(cut,
+                "expected 72 intensities (cd/klm, 24 C planes x 3 gamma angles), found only 71");
     std::string neg = good.substr(0, good.rfind('\n', good.size() - 2) + 1) + "-3\n";
     expectError(neg, "expected non-negative intensities (C345, gamma 90), found -3");
 }
@@ -739,7 +795,8 @@ TEST(PhotometryOpening, PolygonsAndAreas) {
     EXPECT_NEAR(o.area(), 0.08, 1e-15);
     o.shape = LuminousOpening::Shape::Ellipse;
     EXPECT_EQ(o.polygon().size(), 16u);
-    // Inscribed 16-gon of the 0.2 x 0.1 (semi-axes) ellipse: 8 a b sin(pi/8)... = 8 a b sin(2 pi/16).
+    // Inscribed 16-gon of the 0.2 x 0.1 (semi-axes) ellipse: 8 a b sin(pi/8)... = 8 a b sin(2
+    // pi/16).
     EXPECT_NEAR(o.area(), 8.0 * 0.2 * 0.1 * std::sin(2.0 * kPi / 16.0), 1e-15);
     o.shape = LuminousOpening::Shape::Cylinder;
     o.axis = LuminousOpening::Axis::X;
@@ -772,7 +829,8 @@ TEST(PhotometryFuzz, TruncatedAndFlippedFilesLoadOrThrow) {
         std::uniform_int_distribution<size_t> pos(0, text.empty() ? 0 : text.size() - 1);
         std::uniform_int_distribution<int> byte(0, 255);
         const char specials[] = {'\n', '\r', ' ', ',', '-', '9', '0', '.', 'e', '\0', '[', '/'};
-        for (int k = 0; k < 64; ++k) attempt(text.substr(0, text.size() * size_t(k) / 64), ldt, path);
+        for (int k = 0; k < 64; ++k)
+            attempt(text.substr(0, text.size() * size_t(k) / 64), ldt, path);
         for (int k = 0; k < 64; ++k) {
             std::string t = text;
             if (t.empty()) break;

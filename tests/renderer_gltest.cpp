@@ -15,7 +15,8 @@ namespace candela {
 namespace {
 
 Scene sceneFrom(const std::string& geometry, const std::string& luminaires,
-                const std::string& camera = R"({"position": [0, 1.5, 4], "target": [0, 0.5, 0], "fov_deg": 50})") {
+                const std::string& camera =
+                    R"({"position": [0, 1.5, 4], "target": [0, 0.5, 0], "fov_deg": 50})") {
     std::string text = R"({"geometry": [)" + geometry + R"(], "luminaires": [)" + luminaires +
                        R"(], "camera": )" + camera + "}";
     return parseScene(nlohmann::json::parse(text), "test.json");
@@ -56,7 +57,8 @@ TEST(Renderer, RunsExactlyThePlannedPassesThenNothingOnceConverged) {
     for (const auto& p : renderer.stats().passes) EXPECT_GE(p.gpuMs, 0.0) << p.name;
     renderer.renderFrame();
     EXPECT_TRUE(renderer.stats().passes.empty());
-    for (const auto& v : shaders.compiledVariants()) EXPECT_EQ(v.find("SHADOWS"), std::string::npos) << v;
+    for (const auto& v : shaders.compiledVariants())
+        EXPECT_EQ(v.find("SHADOWS"), std::string::npos) << v;
 
     scene.camera.position.x += 0.5;  // a camera move re-renders the G-buffer and restarts
     renderer.update(scene, kChangeCamera);
@@ -108,7 +110,8 @@ TEST(Renderer, BandedRefinementGivesTheSameImageAndShowsOnlyWholePasses) {
     do {
         renderer.renderFrame();
         ++calls;
-        if (renderer.stats().accumulatedFrames == 1 && shownAfterPass1.empty()) shownAfterPass1 = renderer.readLinear();
+        if (renderer.stats().accumulatedFrames == 1 && shownAfterPass1.empty())
+            shownAfterPass1 = renderer.readLinear();
         if (renderer.stats().accumulatedFrames == 1 && !renderer.stats().passes.empty()) {
             // Mid-way through pass 2: still pass 1's image.
             ASSERT_EQ(renderer.readLinear(), shownAfterPass1) << "call " << calls;
@@ -138,7 +141,8 @@ TEST(Renderer, MovingOneLuminaireRefinesOnlyIt) {
     // show the floor, lit by both, as the fresh render has them.
     test::glContext();
     const std::string a = kLowPanelA, b = kMonteCarloPanelB;
-    const std::string camera = R"({"position": [0, 2.5, 3.5], "target": [0, 0.3, 0], "fov_deg": 60})";
+    const std::string camera =
+        R"({"position": [0, 2.5, 3.5], "target": [0, 0.3, 0], "fov_deg": 60})";
     Scene scene = sceneFrom(kFloor, a + "," + b, camera);
     ShaderLibrary shaders;
     Renderer renderer(shaders);
@@ -152,7 +156,8 @@ TEST(Renderer, MovingOneLuminaireRefinesOnlyIt) {
     scene.luminaires[0]->pose.position = glm::dvec3(0.7, 1.2, 0.9);
     renderer.update(scene, kChangeLuminaires);
     renderer.renderFrame();
-    EXPECT_EQ(names(renderer.stats()), (std::vector<std::string>{"gbuffer", "shade:A:analytic", "resolve", "tonemap"}));
+    EXPECT_EQ(names(renderer.stats()),
+              (std::vector<std::string>{"gbuffer", "shade:A:analytic", "resolve", "tonemap"}));
     EXPECT_TRUE(renderer.converged());
     std::vector<float> moved = renderer.readLinear();
     std::vector<unsigned char> maskAfter = renderer.readEmitterMask();
@@ -173,7 +178,8 @@ TEST(Renderer, MovingOneLuminaireRefinesOnlyIt) {
     for (size_t p = 0; p < maskBefore.size(); ++p) uncovered += maskBefore[p] && !maskAfter[p];
     int before = 0;
     for (unsigned char m : maskBefore) before += m;
-    EXPECT_GT(uncovered, 5) << "A covered " << before << " pixels";  // A's old place is in view, now the floor
+    EXPECT_GT(uncovered, 5) << "A covered " << before
+                            << " pixels";  // A's old place is in view, now the floor
     // The same estimates summed in another order: 1e-5 of the brightest pixel.
     EXPECT_LT(worst, 1e-5 * peak) << "largest difference " << worst << " of " << peak;
 }
@@ -201,7 +207,8 @@ TEST(Renderer, AMovedLuminaireCatchesUpInLargerPasses) {
     scene.luminaires[1]->pose.position = glm::dvec3(0.2, 2.3, 0.4);
     renderer.update(scene, kChangeLuminaires);
     renderer.renderFrame();
-    EXPECT_EQ(names(renderer.stats()), (std::vector<std::string>{"gbuffer", "shade:B:reference", "resolve", "tonemap"}));
+    EXPECT_EQ(names(renderer.stats()),
+              (std::vector<std::string>{"gbuffer", "shade:B:reference", "resolve", "tonemap"}));
     EXPECT_EQ(renderer.stats().samplesPerPixel, 12);
     renderer.renderFrame();
     EXPECT_EQ(renderer.stats().samplesPerPixel, 24);
@@ -238,8 +245,9 @@ TEST(Renderer, DeterministicStepsOfAProgressiveFrameAreShadedOnce) {
     // the panel's own image (the pendant dimmed to 1e-20, same step indices, so the same random
     // numbers) plus the pendant's alone (a non-progressive frame: the ordinary path).
     test::glContext();
-    const std::string pendant = R"({"type": "photometric", "name": "Pendant", "file": ")" CANDELA_SOURCE_DIR
-                                R"(/resources/luminaires/photometric/linear-pendant.ies", "position": [-0.5,2.2,0],
+    const std::string pendant =
+        R"({"type": "photometric", "name": "Pendant", "file": ")" CANDELA_SOURCE_DIR
+        R"(/resources/luminaires/photometric/linear-pendant.ies", "position": [-0.5,2.2,0],
                                 "technique": "hybrid", "scale": SCALE})";
     auto withScale = [&](const char* scale) {
         std::string p = pendant;
@@ -297,7 +305,8 @@ TEST(Renderer, PixelRadianceMatchesTheClosedForm) {
         for (int x = 0; x < s.width; x += 5) {
             // Ray through the pixel centre (row 0 at the top) meets the floor y = 0.
             double ndcX = (x + 0.5) / s.width * 2.0 - 1.0, ndcY = 1.0 - (y + 0.5) / s.height * 2.0;
-            glm::dvec4 a = inv * glm::dvec4(ndcX, ndcY, -1.0, 1.0), b = inv * glm::dvec4(ndcX, ndcY, 1.0, 1.0);
+            glm::dvec4 a = inv * glm::dvec4(ndcX, ndcY, -1.0, 1.0),
+                       b = inv * glm::dvec4(ndcX, ndcY, 1.0, 1.0);
             glm::dvec3 o = glm::dvec3(a) / a.w, d = glm::dvec3(b) / b.w - o;
             if (d.y >= 0.0) continue;
             glm::dvec3 p = o - d * (o.y / d.y);
@@ -319,7 +328,8 @@ TEST(Renderer, GpuProbeMatchesCpuProbe) {
     const auto& light = static_cast<const LambertianRect&>(*scene.luminaires[0]);
     std::vector<glm::vec3> points, normals;
     for (int i = 0; i < 16; ++i) {
-        points.push_back({-1.5f + 0.2f * float(i), 0.1f * float(i % 3), 0.3f - 0.1f * float(i % 5)});
+        points.push_back(
+            {-1.5f + 0.2f * float(i), 0.1f * float(i % 3), 0.3f - 0.1f * float(i % 5)});
         normals.push_back(glm::normalize(glm::vec3(0.1f * float(i % 4), 1.f, -0.05f * float(i))));
     }
     ShaderLibrary shaders;
@@ -331,7 +341,8 @@ TEST(Renderer, GpuProbeMatchesCpuProbe) {
     renderer.setSettings(ref);
     std::vector<glm::vec3> reference = renderer.probe(scene, points, normals, 8192);
     for (size_t i = 0; i < points.size(); ++i) {
-        Estimate e = lambertianRectAnalytic(light, glm::dvec3(points[i]), glm::dvec3(normals[i]), {});
+        Estimate e =
+            lambertianRectAnalytic(light, glm::dvec3(points[i]), glm::dvec3(normals[i]), {});
         // Float closed form against double: see lambertian_rect_gltest.
         EXPECT_NEAR(analytic[i].x, e.irradiance.x, 1e-4 * e.irradiance.x + 1e-4) << i;
         // 8192 solid-angle samples: the estimator's relative standard deviation is below
@@ -350,8 +361,9 @@ TEST(Renderer, ReceiversInTheLightsPlaneStayFinite) {
         R"({"plane": {"center": [0.7,1.5,0], "normal": [-1,0,0], "size": [6,3]}, "albedo": [0.8,0.8,0.8]})";
     std::string light =
         R"({"type": "lambertian-rect", "name": "L", "size": [1, 0.5], "radiance": [1e6, 1e6, 1e6], "position": [0.2,2.5,0], "technique": "reference"})";
-    Scene scene = sceneFrom(kFloor + "," + ceiling + "," + wall, light,
-                            R"({"position": [-2, 1.5, 2.5], "target": [0.5, 2.2, 0], "fov_deg": 70})");
+    Scene scene =
+        sceneFrom(kFloor + "," + ceiling + "," + wall, light,
+                  R"({"position": [-2, 1.5, 2.5], "target": [0.5, 2.2, 0], "fov_deg": 70})");
     ShaderLibrary shaders;
     Renderer renderer(shaders);
     renderer.setSettings(small());
@@ -367,8 +379,9 @@ TEST(Renderer, AMixedSceneShowsRadiometricLightAt683LumensPerWatt) {
     // times brighter, in the image and through the GPU probe (float: 1e-5 relative).
     test::glContext();
     Scene alone = sceneFrom(kFloor, kPanel);
-    std::string dark = R"({"type": "photometric", "name": "Dark", "file": ")" + test::dataDir() +
-                       R"(/photometric/lambert.ies", "colour": [0, 0, 0], "position": [1, 2, 0], "technique": "point"})";
+    std::string dark =
+        R"({"type": "photometric", "name": "Dark", "file": ")" + test::dataDir() +
+        R"(/photometric/lambert.ies", "colour": [0, 0, 0], "position": [1, 2, 0], "technique": "point"})";
     Scene mixed = sceneFrom(kFloor, kPanel + "," + dark);
     ASSERT_FALSE(alone.units().converted);
     ASSERT_TRUE(mixed.units().converted);

@@ -11,8 +11,8 @@
 #include <sstream>
 
 #include "scene/SceneIo.h"
-#include "util/Error.h"
 #include "tests/TestUtil.h"
+#include "util/Error.h"
 
 namespace candela {
 namespace {
@@ -223,7 +223,8 @@ TEST(SceneIo, DiscIsARegularPolygonFacingItsNormal) {
     ASSERT_EQ(m.triangleCount(), 64u);
     double area = 0.0;
     for (size_t t = 0; t < m.indices.size(); t += 3) {
-        glm::dvec3 a = m.positions[m.indices[t]], b = m.positions[m.indices[t + 1]], c = m.positions[m.indices[t + 2]];
+        glm::dvec3 a = m.positions[m.indices[t]], b = m.positions[m.indices[t + 1]],
+                   c = m.positions[m.indices[t + 2]];
         glm::dvec3 cross = glm::cross(b - a, c - a);
         area += 0.5 * glm::length(cross);
         // Counter-clockwise seen from the normal's side; 1e-5: float vertices.
@@ -235,9 +236,13 @@ TEST(SceneIo, DiscIsARegularPolygonFacingItsNormal) {
     }
     // The inscribed 64-gon: (n / 2) sin(2 pi / n) r^2.
     EXPECT_NEAR(area, 32.0 * std::sin(2.0 * 3.141592653589793 / 64.0) * 0.25, 1e-6);
-    EXPECT_CONTAINS(inputError([] { parse(R"({"geometry": [{"disc": {"radius": 0}}]})"); }), "t.json: geometry[0].disc.radius");
-    EXPECT_CONTAINS(inputError([] { parse(R"({"geometry": [{"disc": {"radius": 1, "segments": 2.5}}]})"); }), "t.json: geometry[0].disc.segments: expected a whole number of segments from 3 to 65536");
-    EXPECT_CONTAINS(inputError([] { parse(R"({"geometry": [{"disc": {"center": [0,0,0]}}]})"); }), "t.json: geometry[0].disc.radius");
+    EXPECT_CONTAINS(inputError([] { parse(R"({"geometry": [{"disc": {"radius": 0}}]})"); }),
+                    "t.json: geometry[0].disc.radius");
+    EXPECT_CONTAINS(
+        inputError([] { parse(R"({"geometry": [{"disc": {"radius": 1, "segments": 2.5}}]})"); }),
+        "t.json: geometry[0].disc.segments: expected a whole number of segments from 3 to 65536");
+    EXPECT_CONTAINS(inputError([] { parse(R"({"geometry": [{"disc": {"center": [0,0,0]}}]})"); }),
+                    "t.json: geometry[0].disc.radius");
 }
 
 TEST(SceneIo, BoxHasOutwardFlatFaces) {
@@ -386,7 +391,8 @@ TEST(SceneIo, SaveToAnotherFolderRebasesRelativeLuminaireFiles) {
     ASSERT_EQ(second.luminaires.size(), 1u);
     // Saved in place, the path stays as written.
     saveScene(first, path.string());
-    EXPECT_EQ(nlohmann::json::parse(readText(path))["luminaires"][0]["file"], "../photometry/lambert.ies");
+    EXPECT_EQ(nlohmann::json::parse(readText(path))["luminaires"][0]["file"],
+              "../photometry/lambert.ies");
 }
 
 TEST(SceneIo, SaveLeavesNoTemporaryFile) {

@@ -1,11 +1,11 @@
 // The per-cell shadow-map layout of a light field (Lu et al. 2015, Sec. 6.2), against geometry:
 // which cells of U each basis function's support covers, found by interval overlap rather than
 // by the layout's index arithmetic.
-#include "luminaires/ShadowCells.h"
-
 #include <gtest/gtest.h>
 
 #include <random>
+
+#include "luminaires/ShadowCells.h"
 
 namespace candela {
 namespace {
@@ -25,7 +25,8 @@ std::shared_ptr<LightFieldData> field(glm::ivec2 count, int dark, uint32_t seed)
     std::uniform_real_distribution<float> u(0.f, 1.f);
     for (int m = 0; m < count.x * count.y; ++m) {
         lf->images[size_t(m)].luminance.resize(144);
-        for (float& v : lf->images[size_t(m)].luminance) v = m == dark ? 0.f : (u(rng) < 0.7f ? 0.f : u(rng) * u(rng));
+        for (float& v : lf->images[size_t(m)].luminance)
+            v = m == dark ? 0.f : (u(rng) < 0.7f ? 0.f : u(rng) * u(rng));
     }
     lf->validate("test");
     lf->precompute();
@@ -57,7 +58,8 @@ void checkLayout(const LightFieldData& lf, glm::ivec2 maps) {
     };
     // Cells of U run beyond the supports' union by nothing: every cell meets some support.
     std::vector<glm::dvec2> sum(layout.mapList.size(), glm::dvec2(0.0));
-    std::vector<std::vector<bool>> member(layout.mapList.size(), std::vector<bool>(size_t(lf.imageCount()), false));
+    std::vector<std::vector<bool>> member(layout.mapList.size(),
+                                          std::vector<bool>(size_t(lf.imageCount()), false));
     for (int m = 0; m < lf.imageCount(); ++m) {
         std::vector<double> weight(layout.mapList.size(), 0.0);
         int covered = 0;
@@ -71,7 +73,8 @@ void checkLayout(const LightFieldData& lf, glm::ivec2 maps) {
         EXPECT_EQ(covered, 9) << "image " << m << ": a quadratic B-spline covers 3 x 3 cells";
         double total = 0.0;
         for (const ShadowMapLayout::Share& s : layout.perImage[size_t(m)]) {
-            EXPECT_NEAR(s.weight, weight[size_t(s.map)], 1e-12) << "image " << m << " map " << s.map;
+            EXPECT_NEAR(s.weight, weight[size_t(s.map)], 1e-12)
+                << "image " << m << " map " << s.map;
             total += s.weight;
             weight[size_t(s.map)] = 0.0;
         }
@@ -82,7 +85,8 @@ void checkLayout(const LightFieldData& lf, glm::ivec2 maps) {
         glm::dvec2 mean(0.0);
         int lit = 0;
         for (int m = 0; m < lf.imageCount(); ++m)
-            if (member[k][size_t(m)] && lf.tables[size_t(m)].total > 0.0) mean += lf.tables[size_t(m)].median, ++lit;
+            if (member[k][size_t(m)] && lf.tables[size_t(m)].total > 0.0)
+                mean += lf.tables[size_t(m)].median, ++lit;
         EXPECT_EQ(layout.mapList[k].lit, lit > 0) << "map " << k;
         if (lit == 0) continue;
         mean /= double(lit);

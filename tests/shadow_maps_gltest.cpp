@@ -22,12 +22,15 @@
 namespace candela {
 namespace {
 
-std::string headlight() { return test::sourceDir() + "/resources/luminaires/generated/car-headlight.lf.json"; }
+std::string headlight() {
+    return test::sourceDir() + "/resources/luminaires/generated/car-headlight.lf.json";
+}
 
 nlohmann::json lightField(const std::string& name, glm::dvec3 position, glm::dvec3 aim) {
-    return {{"type", "lightfield"}, {"name", name}, {"file", headlight()},
-            {"position", {position.x, position.y, position.z}}, {"aim", {aim.x, aim.y, aim.z}},
-            {"c0", {1, 0, 0}}, {"technique", "restricted-cdf"}};
+    return {{"type", "lightfield"},         {"name", name},
+            {"file", headlight()},          {"position", {position.x, position.y, position.z}},
+            {"aim", {aim.x, aim.y, aim.z}}, {"c0", {1, 0, 0}},
+            {"technique", "restricted-cdf"}};
 }
 
 /// The demo room lit by the car headlight (resources/scenes/headlight-room.json), with or
@@ -39,10 +42,12 @@ nlohmann::json headlightRoomDoc(bool occluders) {
         {"plane": {"center": [3, 1.5, 0], "normal": [-1, 0, 0], "size": [6, 3]}, "albedo": [0.25, 0.4, 0.6]}],
       "camera": {"position": [0.3, 1.7, 2.9], "target": [0, 0.7, -0.6], "fov_deg": 55}})");
     if (occluders) {
-        for (const char* box : {R"({"box": {"center": [0, 0.725, -0.5], "size": [1.6, 0.05, 0.9]}})",
-                                R"({"box": {"center": [-0.72, 0.35, -0.87], "size": [0.06, 0.7, 0.06]}})",
-                                R"({"box": {"center": [0.72, 0.35, -0.13], "size": [0.06, 0.7, 0.06]}})",
-                                R"({"box": {"center": [1.6, 0.45, 0.9], "size": [0.5, 0.9, 0.5], "rotate_y_deg": 30}})"})
+        for (
+            const char* box :
+            {R"({"box": {"center": [0, 0.725, -0.5], "size": [1.6, 0.05, 0.9]}})",
+             R"({"box": {"center": [-0.72, 0.35, -0.87], "size": [0.06, 0.7, 0.06]}})",
+             R"({"box": {"center": [0.72, 0.35, -0.13], "size": [0.06, 0.7, 0.06]}})",
+             R"({"box": {"center": [1.6, 0.45, 0.9], "size": [0.5, 0.9, 0.5], "rotate_y_deg": 30}})"})
             doc["geometry"].push_back(nlohmann::json::parse(box));
     }
     doc["luminaires"] = {lightField("Headlight", {-1.3, 1.9, 1.3}, {0.45, -0.55, -0.7})};
@@ -67,8 +72,8 @@ bool has(const std::vector<std::string>& v, const std::string& s) {
 }
 
 /// Illuminance image (lux) of `scene` by `technique`, seed 3.
-std::vector<float> illuminance(Renderer& renderer, const Scene& scene, const std::string& technique, int spp,
-                               ShadowMapSettings maps = {}) {
+std::vector<float> illuminance(Renderer& renderer, const Scene& scene, const std::string& technique,
+                               int spp, ShadowMapSettings maps = {}) {
     RenderSettings s;
     s.width = 160;
     s.height = 90;
@@ -87,7 +92,7 @@ std::vector<float> illuminance(Renderer& renderer, const Scene& scene, const std
 
 /// The GL tests share one context; each gets its own shader library and renderer.
 class ShadowMapsGl : public ::testing::Test {
-protected:
+  protected:
     GlContext& context = test::glContext();  // first: the members below make GL objects
     ShaderLibrary shaders;
     Renderer renderer{shaders};
@@ -121,7 +126,8 @@ TEST(ShadowMapLayout, LightFieldLightsLieOnSAndSharesSumToOne) {
             const ShadowLights::Share& s = lights.shares[m * 9 + size_t(j)];
             sum += s.weight;
             if (s.weight > 0.f) {
-                EXPECT_TRUE(lights.lit[size_t(s.map)]) << "image " << m << " reads an unrendered map";
+                EXPECT_TRUE(lights.lit[size_t(s.map)])
+                    << "image " << m << " reads an unrendered map";
             }
         }
         EXPECT_NEAR(sum, 1.0, 1e-6);  // nine cells of 1/9 each, in float
@@ -221,7 +227,8 @@ TEST_F(ShadowMapsGl, VisibilityAgreesWithRayTracingWithoutAcneOrLeaks) {
             leak += vMaps > 0.1;
         }
     }
-    std::printf("lit %d (acne %d), dark %d (leak %d), maps / rays %.4f\n", lit, acne, dark, leak, sumMaps / sumRays);
+    std::printf("lit %d (acne %d), dark %d (leak %d), maps / rays %.4f\n", lit, acne, dark, leak,
+                sumMaps / sumRays);
     ASSERT_GT(lit, 2000);
     ASSERT_GT(dark, 300);
     // The maps see from 49 points on S, not from each sample's point, and filter over 3 x 3
@@ -229,8 +236,10 @@ TEST_F(ShadowMapsGl, VisibilityAgreesWithRayTracingWithoutAcneOrLeaks) {
     // Measured with the default bias (1 + 1 texels): 0.35 % acne, 2.2 % leak (the legs' thin
     // shadows are mostly edge). Without bias every lit pixel is acne; with half the bias 12 %
     // are; with 8 texels 18 % of the shadowed pixels leak. The bounds sit between.
-    EXPECT_LT(double(acne) / lit, 0.01) << acne << " of " << lit << " lit pixels darkened by the maps";
-    EXPECT_LT(double(leak) / dark, 0.03) << leak << " of " << dark << " shadowed pixels lit by the maps";
+    EXPECT_LT(double(acne) / lit, 0.01)
+        << acne << " of " << lit << " lit pixels darkened by the maps";
+    EXPECT_LT(double(leak) / dark, 0.03)
+        << leak << " of " << dark << " shadowed pixels lit by the maps";
     // The light reaching the floor and walls in all: measured -0.9 %; within 2 %.
     EXPECT_NEAR(sumMaps / sumRays, 1.0, 0.02);
 }
@@ -253,14 +262,15 @@ TEST_F(ShadowMapsGl, LuminaireInAClosedBoxLightsNothingOutside) {
     }
     // Without the box the same view is lit (the test can fail).
     doc["geometry"].erase(1);
-    std::vector<float> open = illuminance(renderer, parseScene(doc, test::dataDir() + "/open.json"), "restricted-cdf", 8);
+    std::vector<float> open =
+        illuminance(renderer, parseScene(doc, test::dataDir() + "/open.json"), "restricted-cdf", 8);
     EXPECT_GT(*std::max_element(open.begin(), open.end()), 1.f);
 }
 
-
 /// A ground with or without a box under a real sky map (noon, sun and grass), Havran's lights.
 Scene skyScene(bool box) {
-    std::string json = R"({"geometry": [{"plane": {"center": [0,0,0], "normal": [0,1,0], "size": [10,10]}})";
+    std::string json =
+        R"({"geometry": [{"plane": {"center": [0,0,0], "normal": [0,1,0], "size": [10,10]}})";
     if (box) json += R"(, {"box": {"center": [0,0.5,0], "size": [1,1,1], "rotate_y_deg": 25}})";
     json += R"(], "luminaires": [], "camera": {"position": [3,2.5,4], "target": [0,0.4,0]}})";
     Scene scene = parseScene(nlohmann::json::parse(json), "sky.json");
@@ -269,7 +279,8 @@ Scene skyScene(bool box) {
     return scene;
 }
 
-std::vector<float> skyIlluminance(Renderer& renderer, const Scene& scene, const std::string& technique) {
+std::vector<float> skyIlluminance(Renderer& renderer, const Scene& scene,
+                                  const std::string& technique) {
     RenderSettings s;
     s.width = 160;
     s.height = 90;
@@ -318,15 +329,14 @@ TEST_F(ShadowMapsGl, HavranLightsGetOneDirectionalMapEach) {
             sumDiff += std::abs(vMaps - vRays);
         }
     }
-    std::printf("sky: lit %d (acne %d), shaded %d (mean |maps - rays| %.4f), maps / rays %.4f\n", lit, acne,
-                shaded, sumDiff / std::max(shaded, 1), sumMaps / sumRays);
+    std::printf("sky: lit %d (acne %d), shaded %d (mean |maps - rays| %.4f), maps / rays %.4f\n",
+                lit, acne, shaded, sumDiff / std::max(shaded, 1), sumMaps / sumRays);
     ASSERT_GT(lit, 1000);
     ASSERT_GT(shaded, 300);
     EXPECT_LT(double(acne) / lit, 0.01);
     EXPECT_LT(sumDiff / shaded, 0.05);
     EXPECT_NEAR(sumMaps / sumRays, 1.0, 0.02);
 }
-
 
 /// The photometric room (resources/scenes/photometric.json: a pendant and a wall washer over a
 /// table), with or without its boxes (the table and other furniture, its only occluders).
@@ -374,7 +384,8 @@ TEST_F(ShadowMapsGl, PhotometricLightsShadowFromTheirOpeningInOneFrame) {
         }
     }
     double fRays = sumRays / sumOpenRays, fMaps = sumMaps / sumOpenMaps;
-    std::printf("photometric: lit %d (acne %d), visible fraction rays %.4f, maps %.4f\n", lit, acne, fRays, fMaps);
+    std::printf("photometric: lit %d (acne %d), visible fraction rays %.4f, maps %.4f\n", lit, acne,
+                fRays, fMaps);
     ASSERT_GT(lit, 2000);
     EXPECT_LT(double(acne) / lit, 0.01);
     // Five points stand for the whole opening, so penumbrae differ in shape; the light that
@@ -383,7 +394,6 @@ TEST_F(ShadowMapsGl, PhotometricLightsShadowFromTheirOpeningInOneFrame) {
     EXPECT_NEAR(fMaps / fRays, 1.0, 0.02);
     EXPECT_LT(fRays, 0.99);  // the occluders do block light (the test can fail)
 }
-
 
 TEST_F(ShadowMapsGl, OccluderBetweenUAndSShadowsNothing) {
     // The headlight 0.5 m over a floor with a post beside it (so the plan asks for shadows),
@@ -410,7 +420,6 @@ TEST_F(ShadowMapsGl, OccluderBetweenUAndSShadowsNothing) {
     EXPECT_EQ(differ, 0);
     EXPECT_GT(lit, 1000);
 }
-
 
 TEST_F(ShadowMapsGl, PlannedPassesAreThoseOfTheFirstFrameInOrder) {
     RenderSettings s;

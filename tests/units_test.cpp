@@ -23,8 +23,10 @@ std::string lamp() {
 }
 
 Scene sceneOf(const std::string& luminaires, const std::string& environment = "null") {
-    std::string text = R"({"geometry": [{"plane": {"center": [0,0,0], "normal": [0,1,0], "size": [4,4]}}],
-                           "luminaires": [)" + luminaires + R"(], "environment": )" + environment + "}";
+    std::string text =
+        R"({"geometry": [{"plane": {"center": [0,0,0], "normal": [0,1,0], "size": [4,4]}}],
+                           "luminaires": [)" +
+        luminaires + R"(], "environment": )" + environment + "}";
     return parseScene(nlohmann::json::parse(text), test::dataDir() + "/units.json");
 }
 
@@ -38,9 +40,12 @@ TEST(Units, EachSourceSaysWhatItEmitsIn) {
     s.luminaires[1]->writeJson(out);
     EXPECT_TRUE(out.contains("luminance"));
     EXPECT_FALSE(out.contains("radiance"));
-    EXPECT_NE(s.luminaires[1]->describe().find("cd/m2"), std::string::npos) << s.luminaires[1]->describe();
-    EXPECT_NE(s.luminaires[1]->describe().find(" lm"), std::string::npos) << s.luminaires[1]->describe();
-    EXPECT_NE(s.luminaires[0]->describe().find("W/(m2 sr)"), std::string::npos) << s.luminaires[0]->describe();
+    EXPECT_NE(s.luminaires[1]->describe().find("cd/m2"), std::string::npos)
+        << s.luminaires[1]->describe();
+    EXPECT_NE(s.luminaires[1]->describe().find(" lm"), std::string::npos)
+        << s.luminaires[1]->describe();
+    EXPECT_NE(s.luminaires[0]->describe().find("W/(m2 sr)"), std::string::npos)
+        << s.luminaires[0]->describe();
 }
 
 TEST(Units, AScenesUnitsFollowItsSources) {
@@ -76,7 +81,8 @@ TEST(Units, BadUnitsAreClearErrors) {
     EXPECT_NE(e.find("not both"), std::string::npos) << e;
     e = test::inputError([&] { sceneOf(R"({"type": "lambertian-rect", "luminance": [1,-1,1]})"); });
     EXPECT_NE(e.find("luminance[1]"), std::string::npos) << e;
-    std::string map = R"({"file": ")" + test::dataDir() + R"(/environment/constant_2.exr", "unit": "lux"})";
+    std::string map =
+        R"({"file": ")" + test::dataDir() + R"(/environment/constant_2.exr", "unit": "lux"})";
     e = test::inputError([&] { sceneOf(kPanelW, map); });
     EXPECT_NE(e.find("environment.unit"), std::string::npos) << e;
     EXPECT_NE(e.find("cd/m2"), std::string::npos) << e;

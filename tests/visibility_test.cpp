@@ -1,22 +1,20 @@
 // Ray-traced visibility: Embree (the CPU reference) against Candela's own BVH (what the GPU
 // traverses), closed boxes that must not leak, and `candela probe --visibility` against the
 // closed form of a disc occluder under a light field.
-#include "scene/EmbreeVisibility.h"
-
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 #include <random>
 #include <sstream>
 
-#include <unistd.h>
-
 #include "TestUtil.h"
 #include "app/commands/Commands.h"
 #include "luminaires/LambertianRect.h"
 #include "luminaires/LightField.h"
 #include "scene/Bvh.h"
+#include "scene/EmbreeVisibility.h"
 #include "scene/GltfLoader.h"
 #include "scene/SceneIo.h"
 
@@ -28,8 +26,8 @@ constexpr double kPi = 3.14159265358979323846;
 
 Scene cornellScene() {
     Scene scene;
-    loadGltf(test::sourceDir() + "/resources/gltf/cornellBox/cornellBox-2.80-Eevee-gltf.gltf", glm::dmat4(1.0),
-             scene, {});
+    loadGltf(test::sourceDir() + "/resources/gltf/cornellBox/cornellBox-2.80-Eevee-gltf.gltf",
+             glm::dmat4(1.0), scene, {});
     return scene;
 }
 
@@ -43,7 +41,9 @@ TEST(EmbreeVisibility, AgreesWithTheBvhInTheCornellBox) {
     EXPECT_EQ(embree.triangleCount(), bvh.triangles.size());
     std::mt19937_64 rng(99);
     std::uniform_real_distribution<double> u01(0.0, 1.0);
-    auto anywhere = [&] { return glm::dvec3(-3 + 6 * u01(rng), -0.5 + 4 * u01(rng), -3 + 6 * u01(rng)); };
+    auto anywhere = [&] {
+        return glm::dvec3(-3 + 6 * u01(rng), -0.5 + 4 * u01(rng), -3 + 6 * u01(rng));
+    };
     auto onSurface = [&] {
         const gpu::BvhTriangle& t = bvh.triangles[size_t(u01(rng) * double(bvh.triangles.size()))];
         double a = u01(rng), b = u01(rng);
@@ -59,7 +59,8 @@ TEST(EmbreeVisibility, AgreesWithTheBvhInTheCornellBox) {
         blocked += !ours;
         double z = 2 * u01(rng) - 1, phi = 2 * kPi * u01(rng), r = std::sqrt(1 - z * z);
         glm::dvec3 dir(r * std::cos(phi), z, r * std::sin(phi));
-        bool oursToward = !bvh.occludedToward(from, dir), theirsToward = embree.visibleToward(from, dir);
+        bool oursToward = !bvh.occludedToward(from, dir),
+             theirsToward = embree.visibleToward(from, dir);
         rayMismatch += oursToward != theirsToward;
         escaped += oursToward;
     }
@@ -74,9 +75,10 @@ TEST(EmbreeVisibility, AgreesWithTheBvhInTheCornellBox) {
 TEST(EmbreeVisibility, ClosedBoxesDoNotLeak) {
     // Rays from inside a closed box (12 triangles sharing edges) never get out, including those
     // aimed exactly at its edges and corners, where an unrobust traversal slips between triangles.
-    Scene scene = parseScene(nlohmann::json::parse(R"({"geometry": [{"box": {"center": [0.3, 1, -0.2],
+    Scene scene =
+        parseScene(nlohmann::json::parse(R"({"geometry": [{"box": {"center": [0.3, 1, -0.2],
                                                       "size": [1, 2, 0.5], "rotate_y_deg": 30}}]})"),
-                             "box.json");
+                   "box.json");
     EmbreeVisibility embree(scene);
     Bvh bvh = Bvh::build(scene);
     std::mt19937_64 rng(5);
@@ -84,14 +86,17 @@ TEST(EmbreeVisibility, ClosedBoxesDoNotLeak) {
     const Mesh& box = scene.meshes[0];
     int leaks = 0, bvhLeaks = 0;
     for (int i = 0; i < 20000; ++i) {
-        glm::dvec3 from = glm::dvec3(0.3, 1, -0.2) + glm::dvec3(u01(rng) - 0.5, u01(rng) - 0.5, u01(rng) - 0.5) * 0.3;
+        glm::dvec3 from = glm::dvec3(0.3, 1, -0.2) +
+                          glm::dvec3(u01(rng) - 0.5, u01(rng) - 0.5, u01(rng) - 0.5) * 0.3;
         glm::dvec3 target;
         if (i % 2) {
-            target = glm::dvec3(box.positions[size_t(u01(rng) * double(box.positions.size()))]);  // a corner
+            target = glm::dvec3(
+                box.positions[size_t(u01(rng) * double(box.positions.size()))]);  // a corner
         } else {
             // A point on an edge: halfway between two corners of one face.
             size_t face = size_t(u01(rng) * 6.0) * 4, k = size_t(u01(rng) * 4.0);
-            target = 0.5 * (glm::dvec3(box.positions[face + k]) + glm::dvec3(box.positions[face + (k + 1) % 4]));
+            target = 0.5 * (glm::dvec3(box.positions[face + k]) +
+                            glm::dvec3(box.positions[face + (k + 1) % 4]));
         }
         glm::dvec3 dir = glm::normalize(target - from);
         leaks += embree.visibleToward(from, dir);
@@ -175,21 +180,23 @@ TEST(LightFieldVisibility, ProbeMatchesADiscOccludersClosedForm) {
     std::string scene = (dir / "scene.json").string(), points = (dir / "points.csv").string();
     double embreeReference = 0.0;
     for (const char* backend : {"embree", "bvh"}) {
-        std::vector<double> ref = probeColumn({scene, "--points", points, "--technique", "reference",
-                                               "--visibility", backend});
+        std::vector<double> ref = probeColumn(
+            {scene, "--points", points, "--technique", "reference", "--visibility", backend});
         ASSERT_EQ(ref.size(), 2u);
         if (std::string(backend) == "embree") embreeReference = ref[0];
         EXPECT_NEAR(ref[0], shadowed, 0.01 * shadowed) << backend << ": reference, under the disc";
         EXPECT_NEAR(ref[1], free1, 0.01 * free1) << backend << ": reference, beside the shadow";
     }
-    std::vector<double> rc = probeColumn({scene, "--points", points, "--technique", "restricted-cdf", "--spp",
-                                          "65536", "--visibility"});
+    std::vector<double> rc = probeColumn({scene, "--points", points, "--technique",
+                                          "restricted-cdf", "--spp", "65536", "--visibility"});
     ASSERT_EQ(rc.size(), 2u);
     EXPECT_NEAR(rc[0], shadowed, 0.01 * shadowed) << "restricted-cdf, under the disc";
     std::vector<double> open = probeColumn({scene, "--points", points, "--technique", "reference"});
     EXPECT_NEAR(open[0], free0, 1e-4 * free0) << "no --visibility: no shadow";
-    std::printf("disc: closed form %.5f W/m2, reference (Embree) %.5f, restricted-cdf %.5f; unshadowed %.5f\n",
-                shadowed, embreeReference, rc[0], free0);
+    std::printf(
+        "disc: closed form %.5f W/m2, reference (Embree) %.5f, restricted-cdf %.5f; unshadowed "
+        "%.5f\n",
+        shadowed, embreeReference, rc[0], free0);
     fs::remove_all(dir);
 }
 
@@ -201,25 +208,29 @@ TEST(LightFieldVisibility, ABoxedLuminaireLightsNothingAndUToSIsInsideTheLuminai
     fs::path dir = fs::temp_directory_path() / ("candela-boxed-" + std::to_string(::getpid()));
     fs::create_directories(dir);
     writeConstantField(dir, 250.0);
-    const char* luminaire = R"("luminaires": [{"type": "lightfield", "name": "L", "file": "constant.lf.json",
+    const char* luminaire =
+        R"("luminaires": [{"type": "lightfield", "name": "L", "file": "constant.lf.json",
                       "position": [0, 1, 0], "aim": [0, -1, 0], "c0": [1, 0, 0], "technique": "restricted-cdf"}])";
-    std::ofstream(dir / "boxed.json") << R"({"geometry": [{"box": {"center": [0, 1, 0], "size": [0.6, 0.6, 0.6]}}], )"
-                                      << luminaire << "}";
+    std::ofstream(dir / "boxed.json")
+        << R"({"geometry": [{"box": {"center": [0, 1, 0], "size": [0.6, 0.6, 0.6]}}], )"
+        << luminaire << "}";
     std::ofstream(dir / "between.json")
-        << R"({"geometry": [{"disc": {"center": [0, 0.975, 0], "normal": [0, 1, 0], "radius": 0.02}}], )" << luminaire
-        << "}";
-    std::ofstream(dir / "points.csv") << "x,y,z,nx,ny,nz\n0,0.5,0,0,1,0\n0.5,0.2,0.3,0,1,0\n0.02,0.6,0,0,1,0\n";
+        << R"({"geometry": [{"disc": {"center": [0, 0.975, 0], "normal": [0, 1, 0], "radius": 0.02}}], )"
+        << luminaire << "}";
+    std::ofstream(dir / "points.csv")
+        << "x,y,z,nx,ny,nz\n0,0.5,0,0,1,0\n0.5,0.2,0.3,0,1,0\n0.02,0.6,0,0,1,0\n";
     std::string points = (dir / "points.csv").string();
     for (const TechniqueInfo& info : techniquesOf("lightfield")) {
         const std::string t(info.name);
-        std::vector<double> e = probeColumn({(dir / "boxed.json").string(), "--points", points, "--technique", t,
-                                             "--spp", "4096", "--visibility"});
+        std::vector<double> e = probeColumn({(dir / "boxed.json").string(), "--points", points,
+                                             "--technique", t, "--spp", "4096", "--visibility"});
         ASSERT_EQ(e.size(), 3u) << t;
         for (double v : e) EXPECT_EQ(v, 0.0) << t << " leaks out of the box";
     }
-    std::vector<double> open = probeColumn({(dir / "between.json").string(), "--points", points, "--technique", "reference"});
-    std::vector<double> shadowed = probeColumn({(dir / "between.json").string(), "--points", points, "--technique",
-                                                "reference", "--visibility"});
+    std::vector<double> open = probeColumn(
+        {(dir / "between.json").string(), "--points", points, "--technique", "reference"});
+    std::vector<double> shadowed = probeColumn({(dir / "between.json").string(), "--points", points,
+                                                "--technique", "reference", "--visibility"});
     ASSERT_EQ(shadowed.size(), 3u);
     for (size_t i = 0; i < 3; ++i) {
         EXPECT_GT(open[i], 0.0);

@@ -282,9 +282,13 @@ std::string metricLabel(double value, ErrorMetric metric, int digits) {
 
 }  // namespace
 
-std::string timeTickLabel(double ms) { return timeLabel(ms, 6); }
+std::string timeTickLabel(double ms) {
+    return timeLabel(ms, 6);
+}
 
-std::string metricTickLabel(double value, ErrorMetric metric) { return metricLabel(value, metric, 6); }
+std::string metricTickLabel(double value, ErrorMetric metric) {
+    return metricLabel(value, metric, 6);
+}
 
 // ---------------------------------------------------------------------------------------------
 // Drawing.
@@ -335,9 +339,13 @@ int decadeStride(double lo, double hi) {
     return std::max(1, (int(hi - lo) + 9) / 10);
 }
 
-std::string timeText(double ms) { return timeLabel(ms, 4); }
+std::string timeText(double ms) {
+    return timeLabel(ms, 4);
+}
 
-std::string errorText(double value, ErrorMetric metric) { return metricLabel(value, metric, 3); }
+std::string errorText(double value, ErrorMetric metric) {
+    return metricLabel(value, metric, 3);
+}
 
 void addText(ImDrawList* draw, ImVec2 at, ImU32 colour, const std::string& text) {
     draw->AddText(at, colour, text.c_str(), text.c_str() + text.size());

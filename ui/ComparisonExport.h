@@ -6,10 +6,9 @@
 // Export sheet and `candela render --compare` both write it.
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "renderer/Comparison.h"
 #include "scene/Scene.h"
@@ -22,14 +21,16 @@ std::string formatMs(double ms, int msDecimals = 1);
 
 /// The sidecar's description of the comparison: panes (name, technique list, techniques used,
 /// budget, results and measured series), the reference, the shared settings.
-nlohmann::json comparisonJson(const Comparison& comparison, const std::vector<std::string>& paneNames);
+nlohmann::json comparisonJson(const Comparison& comparison,
+                              const std::vector<std::string>& paneNames);
 
 /// Measures the panes as they are (Comparison::measureNow), then writes DIR/sheet-NNN.{png,exr,
 /// json}: the panes (their signed error maps instead of the images when errorMaps; the EXR keeps
 /// the linear images) in two columns, then the reference, each image the one its label's
 /// samples, time and errors were measured on, tone-mapped as the Delta E saw it. paneNames
 /// labels the panes ("A", "B"). Throws InputError naming the file on failure.
-SheetFiles exportComparisonSheet(const std::filesystem::path& dir, Comparison& comparison, const Scene& scene,
-                                 const std::vector<std::string>& paneNames, bool errorMaps);
+SheetFiles exportComparisonSheet(const std::filesystem::path& dir, Comparison& comparison,
+                                 const Scene& scene, const std::vector<std::string>& paneNames,
+                                 bool errorMaps);
 
 }  // namespace candela::ui

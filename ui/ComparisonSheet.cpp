@@ -385,7 +385,7 @@ SheetFiles writeSheet(const fs::path& dir, const SheetImage& sheet, const nlohma
     out["tile_rects"] = std::move(rects);
     // Invalid UTF-8 in caller-supplied strings is replaced rather than thrown on.
     writeFileAtomically(files.json,
-                    out.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+                        out.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
     return files;
 }
 

@@ -53,12 +53,14 @@ namespace {
 constexpr double kReloadIntervalS = 0.5;  ///< How often shader files are checked, seconds.
 constexpr double kIdleWaitS = 0.1;        ///< Longest sleep of an idle editor, seconds.
 constexpr int kBusyFramesAfterInput = 3;  ///< Frames drawn after input before sleeping.
-constexpr double kBandBudgetMs = 40.0;   ///< Longest shading work per editor frame, ms.
+constexpr double kBandBudgetMs = 40.0;    ///< Longest shading work per editor frame, ms.
 constexpr float kLeftWidth = 330.f;       ///< Outline and inspector column, pixels.
 constexpr float kRightWidth = 330.f;      ///< Render and statistics column, pixels.
 
 /// True when this frame saw mouse motion, a wheel turn, or a button or key held down.
-double now0() { return glfwGetTime(); }
+double now0() {
+    return glfwGetTime();
+}
 
 bool hadInput() {
     const ImGuiIO& io = ImGui::GetIO();
@@ -280,8 +282,10 @@ void Editor::drawUi() {
         // A new input gesture at each press or release: the edits of one drag are one undo step.
         const ImGuiIO& io = ImGui::GetIO();
         bool gesture = false;
-        for (int b = 0; b < 3; ++b) gesture = gesture || ImGui::IsMouseClicked(b) || ImGui::IsMouseReleased(b);
-        for (int k = 0; k < IM_ARRAYSIZE(io.KeysDown); ++k) gesture = gesture || ImGui::IsKeyPressed(k, false);
+        for (int b = 0; b < 3; ++b)
+            gesture = gesture || ImGui::IsMouseClicked(b) || ImGui::IsMouseReleased(b);
+        for (int k = 0; k < IM_ARRAYSIZE(io.KeysDown); ++k)
+            gesture = gesture || ImGui::IsKeyPressed(k, false);
         if (gesture) ++state.history.gesture;
     }
     buildUi();
@@ -332,7 +336,8 @@ void Editor::updateInterreflection() {
     // environment; the camera and the render settings change nothing of it.
     unsigned mask = kChangeGeometry | kChangeLuminaires | kChangeEnvironment;
     if (!mInterreflectionStarted || (state.pendingChanges & mask) != 0) {
-        mInterreflection->update(state.scene, !mInterreflectionStarted || (state.pendingChanges & kChangeGeometry) != 0);
+        mInterreflection->update(
+            state.scene, !mInterreflectionStarted || (state.pendingChanges & kChangeGeometry) != 0);
         mInterreflectionStarted = true;
     }
     if (mInterreflection->version() != mIndirectVersion) {
@@ -394,14 +399,17 @@ void Editor::exportSheet() {
     if (!mComparison->measurable()) {
         // Taken as soon as every pane and the reference have a pass over the image.
         ui.sheetRequested = true;
-        setStatus(state, "The comparison sheet is written when the reference and every pane have a pass");
+        setStatus(state,
+                  "The comparison sheet is written when the reference and every pane have a pass");
         return;
     }
     try {
         std::vector<std::string> names;
         for (size_t i = 0; i < mComparison->paneCount(); ++i) names.push_back(paneName(ui, i));
-        SheetFiles files = exportComparisonSheet(state.screenshotDir, *mComparison, state.scene, names, ui.showError);
-        std::printf("sheet: %s\nsheet: %s\nsheet: %s\n", files.png.c_str(), files.exr.c_str(), files.json.c_str());
+        SheetFiles files = exportComparisonSheet(state.screenshotDir, *mComparison, state.scene,
+                                                 names, ui.showError);
+        std::printf("sheet: %s\nsheet: %s\nsheet: %s\n", files.png.c_str(), files.exr.c_str(),
+                    files.json.c_str());
         std::fflush(stdout);
         ++ui.sheetsTaken;
         ui.lastSheet = files.png;
@@ -428,10 +436,12 @@ void Editor::prepareRender() {
         } else {
             preview.frameMs = 0.7 * preview.frameMs + 0.3 * frameMs;
             // Render time goes with the pixel count, the square of the scale.
-            if (preview.adaptive && (preview.frameMs > 1.15 * preview.targetMs || preview.frameMs < 0.7 * preview.targetMs))
-                preview.policy.scale = std::clamp(
-                    float(preview.policy.scale * std::sqrt(preview.targetMs / std::max(1.0, preview.frameMs))), 0.15f,
-                    0.5f);
+            if (preview.adaptive && (preview.frameMs > 1.15 * preview.targetMs ||
+                                     preview.frameMs < 0.7 * preview.targetMs))
+                preview.policy.scale =
+                    std::clamp(float(preview.policy.scale *
+                                     std::sqrt(preview.targetMs / std::max(1.0, preview.frameMs))),
+                               0.15f, 0.5f);
         }
         if (!mPreviewScene || !syncPreviewScene(*mPreviewScene, state.scene)) {
             try {
@@ -459,7 +469,8 @@ void Editor::prepareRender() {
             mPreviewRenderer->setIndirect(s.mesh, s.vertexIrradiance);
         }
         mPreviewRenderer->setSettings(settings);
-        if (changes != kChangeNone) mPreviewRenderer->update(*mPreviewScene, changes | kChangeLuminaires);
+        if (changes != kChangeNone)
+            mPreviewRenderer->update(*mPreviewScene, changes | kChangeLuminaires);
         mFullOwed |= state.pendingChanges;
         state.pendingChanges = kChangeNone;
         preview.active = true;
@@ -503,8 +514,10 @@ void Editor::buildUi() {
     PanelRect inspector{0.f, top + outline.h + library.h, left, middle - outline.h - library.h};
     // With an environment the Render panel holds its section too and takes more of the column.
     bool environment = state.scene.environmentMap != nullptr;
-    PanelRect render{display.x - right, top, right, std::floor(middle * (environment ? 0.58f : 0.36f))};
-    PanelRect measure{display.x - right, top + render.h, right, std::floor(middle * (environment ? 0.26f : 0.4f))};
+    PanelRect render{display.x - right, top, right,
+                     std::floor(middle * (environment ? 0.58f : 0.36f))};
+    PanelRect measure{display.x - right, top + render.h, right,
+                      std::floor(middle * (environment ? 0.26f : 0.4f))};
     PanelRect stats{display.x - right, top + render.h + measure.h, right,
                     middle - render.h - measure.h};
     PanelRect status{0.f, top + middle, display.x, statusHeight};
@@ -520,7 +533,9 @@ void Editor::buildUi() {
         comparePanel(state, mComparison.get(), measure);
     else
         measurePanel(state, shownRenderer(), measure);
-    accuracyWindow(state, state.compare.layout != CompareLayout::Single ? mComparison.get() : nullptr, viewport);
+    accuracyWindow(state,
+                   state.compare.layout != CompareLayout::Single ? mComparison.get() : nullptr,
+                   viewport);
     statsPanel(state, shownRenderer(), *mShaders, stats);
     statusBar(state, shownRenderer(), status);
     fileDialogs(state);
@@ -597,8 +612,11 @@ static nlohmann::json environmentUiJson(const EditorState& state) {
                            v.y + float(ui.pickedPixel.y) * v.w / float(std::max(1, s.height)))},
         {"counts", ui.chartCounts},
     };
-    return {{"latitude_deg", ui.latitudeDeg}, {"day_of_year", ui.dayOfYear}, {"solar_hours", ui.solarHours},
-            {"playing", ui.playing}, {"chart", std::move(chart)}};
+    return {{"latitude_deg", ui.latitudeDeg},
+            {"day_of_year", ui.dayOfYear},
+            {"solar_hours", ui.solarHours},
+            {"playing", ui.playing},
+            {"chart", std::move(chart)}};
 }
 
 /// The technique of each shading step of the renderer's plan ("Ceiling panel": "analytic"); the
@@ -616,9 +634,15 @@ static nlohmann::json planTechniques(const Scene& scene, const Renderer& rendere
 static nlohmann::json compareState(const EditorState& state, const Comparison* comparison) {
     const CompareUi& ui = state.compare;
     const char* layouts[] = {"single", "two", "four", "wipe"};
-    nlohmann::json j = {{"layout", layouts[int(ui.layout)]}, {"error_map", ui.showError}, {"wipe", ui.wipe},
-                        {"sheets", ui.sheetsTaken}, {"last_sheet", ui.lastSheet}, {"plot_open", ui.plotOpen},
-                        {"bench_series", ui.benchSeries.size()}, {"budget_ms", ui.budgetMs}, {"winner", ui.winner},
+    nlohmann::json j = {{"layout", layouts[int(ui.layout)]},
+                        {"error_map", ui.showError},
+                        {"wipe", ui.wipe},
+                        {"sheets", ui.sheetsTaken},
+                        {"last_sheet", ui.lastSheet},
+                        {"plot_open", ui.plotOpen},
+                        {"bench_series", ui.benchSeries.size()},
+                        {"budget_ms", ui.budgetMs},
+                        {"winner", ui.winner},
                         {"bench_winner", ui.benchWinner}};
     if (comparison && ui.layout != CompareLayout::Single) {
         std::vector<std::string> names;

@@ -95,7 +95,8 @@ class Editor {
     std::unique_ptr<EditorState> mState;
     std::unique_ptr<KeyLatch> mKeyLatch;
     std::unique_ptr<Scene> mPreviewScene;  ///< What the preview renderer shows while dragging.
-    std::unique_ptr<Renderer> mPreviewRenderer;  ///< Renders the live preview (renderer/LivePreview.h).
+    std::unique_ptr<Renderer>
+        mPreviewRenderer;    ///< Renders the live preview (renderer/LivePreview.h).
     unsigned mFullOwed = 0;  ///< Changes made during a drag, owed to mRenderer (ChangeFlags).
     std::unique_ptr<Comparison> mComparison;  ///< The panes, while the viewport is split.
     std::unique_ptr<ImageTextures> mImages;   ///< The panels' pictures (EditorState::images).
@@ -103,10 +104,10 @@ class Editor {
     std::unique_ptr<InterreflectionWorker> mInterreflection;
     uint64_t mIndirectVersion = 0;  ///< The solution the renderers were handed (0: none yet).
     bool mInterreflectionStarted = false;  ///< The worker was handed a scene.
-    bool mIndirectEnabled = true;   ///< The worker's switch as last set.
-    unsigned mComparisonChanges = 0;          ///< Scene changes the comparison took (ChangeFlags).
-    unsigned mComparisonOwed = 0;             ///< Changes made while navigating the split view.
-    bool mPreviewingSplit = false;            ///< The split view shows the preview while navigating.
+    bool mIndirectEnabled = true;          ///< The worker's switch as last set.
+    unsigned mComparisonChanges = 0;       ///< Scene changes the comparison took (ChangeFlags).
+    unsigned mComparisonOwed = 0;          ///< Changes made while navigating the split view.
+    bool mPreviewingSplit = false;         ///< The split view shows the preview while navigating.
     std::chrono::steady_clock::time_point mLastFrame;
     double mLastAutosave = 0.0;  ///< glfwGetTime() of the last autosave check that wrote, s.
     int mAutosavedEdits = 0;     ///< EditorState::edits at the last autosave.

@@ -57,7 +57,8 @@ void restore(EditorState& state, SceneSnapshot& from) {
 }
 
 /// Moves the top step of `from` to `to`, restoring its scene and keeping the current one.
-bool step(EditorState& state, std::vector<UndoStep>& from, std::vector<UndoStep>& to, const char* verb) {
+bool step(EditorState& state, std::vector<UndoStep>& from, std::vector<UndoStep>& to,
+          const char* verb) {
     if (from.empty()) return false;
     UndoStep s = std::move(from.back());
     from.pop_back();
@@ -78,9 +79,11 @@ void applyEdit(EditorState& state, std::string_view label, unsigned changes,
                const std::function<void(Scene&)>& edit) {
     UndoHistory& h = state.history;
     bool recorded = (changes & ~unsigned(kChangeCamera)) != 0;
-    bool merge = !h.undo.empty() && h.undo.back().label == label && h.undo.back().gesture == h.gesture;
+    bool merge =
+        !h.undo.empty() && h.undo.back().label == label && h.undo.back().gesture == h.gesture;
     if (recorded && !merge) {
-        h.undo.push_back({std::string(label), changes, h.gesture, snapshot(state, (changes & kChangeGeometry) != 0)});
+        h.undo.push_back({std::string(label), changes, h.gesture,
+                          snapshot(state, (changes & kChangeGeometry) != 0)});
         if (h.undo.size() > UndoHistory::kMaxSteps) h.undo.erase(h.undo.begin());
     }
     if (recorded) {
@@ -103,8 +106,8 @@ const Bvh& surfaceBvh(EditorState& state) {
     return *p.surfaces;
 }
 
-Pose poseOnSurface(const Pose& pose, const glm::dvec3& point, const glm::dvec3& normal, bool aimAlongNormal,
-                   double clearance, double snap) {
+Pose poseOnSurface(const Pose& pose, const glm::dvec3& point, const glm::dvec3& normal,
+                   bool aimAlongNormal, double clearance, double snap) {
     Pose out = pose;
     glm::dvec3 n = glm::normalize(normal);
     glm::dvec3 p = point;
@@ -220,7 +223,8 @@ namespace {
 
 /// Places a new luminaire 0.5 m below the top of the scene, aimed down, and selects it (one undo
 /// step).
-int insertLuminaire(EditorState& state, const LuminaireKindInfo& kind, std::unique_ptr<Luminaire> lum) {
+int insertLuminaire(EditorState& state, const LuminaireKindInfo& kind,
+                    std::unique_ptr<Luminaire> lum) {
     if (!lum) {
         reportError(state, "Add: kind " + std::string(kind.kind) + " has no default luminaire");
         return -1;
@@ -261,7 +265,8 @@ FileKind fileKind(const std::string& path) {
     std::string lower = path;
     for (char& c : lower) c = char(std::tolower((unsigned char)c));
     auto endsWith = [&](std::string_view suffix) {
-        return lower.size() >= suffix.size() && lower.compare(lower.size() - suffix.size(), suffix.size(), suffix) == 0;
+        return lower.size() >= suffix.size() &&
+               lower.compare(lower.size() - suffix.size(), suffix.size(), suffix) == 0;
     };
     if (endsWith(".ies") || endsWith(".ldt")) return FileKind::Photometric;
     if (endsWith(".lf.json")) return FileKind::LightField;
@@ -271,13 +276,16 @@ FileKind fileKind(const std::string& path) {
 }
 
 const char* luminaireKindOf(FileKind kind) {
-    return kind == FileKind::Photometric ? "photometric" : kind == FileKind::LightField ? "lightfield" : nullptr;
+    return kind == FileKind::Photometric  ? "photometric"
+           : kind == FileKind::LightField ? "lightfield"
+                                          : nullptr;
 }
 
 std::unique_ptr<Luminaire> luminaireFromFile(const std::string& path) {
     const char* kind = luminaireKindOf(fileKind(path));
     if (!kind)
-        throw InputError(path + ": cannot make a luminaire from this file (expected .ies, .ldt or .lf.json)");
+        throw InputError(
+            path + ": cannot make a luminaire from this file (expected .ies, .ldt or .lf.json)");
     // Through the scene-file parser, so the file gets the same checks as a loaded scene's.
     nlohmann::json entry = {{"type", kind}, {"file", path}};
     std::unique_ptr<Luminaire> lum = findKind(kind)->parse(entry, json::Where{path, "file"});
@@ -292,7 +300,9 @@ int addLuminaireFromFile(EditorState& state, const std::string& path) {
         std::unique_ptr<Luminaire> lum = luminaireFromFile(path);
         const LuminaireKindInfo* info = findKind(lum->kind());
         int index = insertLuminaire(state, *info, std::move(lum));
-        if (index >= 0) setStatus(state, "Added " + state.scene.luminaires[size_t(index)]->name + " from " + path);
+        if (index >= 0)
+            setStatus(state,
+                      "Added " + state.scene.luminaires[size_t(index)]->name + " from " + path);
         return index;
     } catch (const std::exception& e) {
         reportError(state, e.what());
@@ -306,10 +316,11 @@ bool dropFile(EditorState& state, const std::string& path) {
     try {
         if (kind == FileKind::Environment) {
             nlohmann::json entry = {{"file", absolute}};
-            EnvironmentSource env = parseEnvironment(entry, json::Where{path, "dropped environment"},
-                                                     std::filesystem::path(absolute).parent_path().string());
-            applyEdit(state, "Environment " + std::filesystem::path(path).filename().string(), kChangeEnvironment,
-                      [&](Scene& s) {
+            EnvironmentSource env =
+                parseEnvironment(entry, json::Where{path, "dropped environment"},
+                                 std::filesystem::path(absolute).parent_path().string());
+            applyEdit(state, "Environment " + std::filesystem::path(path).filename().string(),
+                      kChangeEnvironment, [&](Scene& s) {
                           s.environment = entry;
                           s.environmentMap = env.map;
                           s.environmentSequence = env.sequence;
@@ -321,8 +332,8 @@ bool dropFile(EditorState& state, const std::string& path) {
             // Parsed as a one-entry scene, then appended: meshes, their materials, the entry.
             nlohmann::json doc = {{"geometry", nlohmann::json::array({{{"gltf", absolute}}})}};
             Scene part = parseScene(doc, absolute);
-            applyEdit(state, "Add " + std::filesystem::path(path).filename().string(), kChangeGeometry,
-                      [&](Scene& s) {
+            applyEdit(state, "Add " + std::filesystem::path(path).filename().string(),
+                      kChangeGeometry, [&](Scene& s) {
                           uint32_t materialBase = uint32_t(s.materials.size());
                           uint32_t meshBase = uint32_t(s.meshes.size());
                           for (Material& m : part.materials) s.materials.push_back(std::move(m));
@@ -343,8 +354,11 @@ bool dropFile(EditorState& state, const std::string& path) {
             if (index >= 0) state.placement.armed = true;
             return index >= 0;
         }
-        reportError(state, path + ": cannot open a dropped file of this type (expected .ies, .ldt, .lf.json, .hdr, "
-                            ".exr, .gltf or .glb)");
+        reportError(
+            state,
+            path +
+                ": cannot open a dropped file of this type (expected .ies, .ldt, .lf.json, .hdr, "
+                ".exr, .gltf or .glb)");
         return false;
     } catch (const std::exception& e) {
         reportError(state, e.what());
@@ -363,7 +377,8 @@ bool swapLuminaireFile(EditorState& state, int index, const std::string& path) {
         std::string label = "Swap " + old.name;
         applyEdit(state, label, kChangeLuminaires,
                   [&](Scene& s) { s.luminaires[size_t(index)] = std::move(lum); });
-        setStatus(state, "Swapped " + state.scene.luminaires[size_t(index)]->name + " for " + path + " (pose kept)");
+        setStatus(state, "Swapped " + state.scene.luminaires[size_t(index)]->name + " for " + path +
+                             " (pose kept)");
         return true;
     } catch (const std::exception& e) {
         reportError(state, "Swap: " + std::string(e.what()));
@@ -374,7 +389,8 @@ bool swapLuminaireFile(EditorState& state, int index, const std::string& path) {
 std::vector<int> selectedLuminaires(const EditorState& state) {
     std::vector<int> out;
     int n = int(state.scene.luminaires.size());
-    if (state.selectedLuminaire >= 0 && state.selectedLuminaire < n) out.push_back(state.selectedLuminaire);
+    if (state.selectedLuminaire >= 0 && state.selectedLuminaire < n)
+        out.push_back(state.selectedLuminaire);
     for (int i : state.alsoSelected)
         if (i >= 0 && i < n && std::find(out.begin(), out.end(), i) == out.end()) out.push_back(i);
     std::sort(out.begin(), out.end());
@@ -407,7 +423,8 @@ void deleteSelected(EditorState& state) {
     }
     std::string label = "Delete " + std::to_string(group.size()) + " luminaires";
     applyEdit(state, label, kChangeLuminaires, [&](Scene& s) {
-        for (auto it = group.rbegin(); it != group.rend(); ++it) s.luminaires.erase(s.luminaires.begin() + *it);
+        for (auto it = group.rbegin(); it != group.rend(); ++it)
+            s.luminaires.erase(s.luminaires.begin() + *it);
     });
     state.selectedLuminaire = -1;
     state.alsoSelected.clear();

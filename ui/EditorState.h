@@ -7,8 +7,8 @@
 #include <cmath>
 #include <filesystem>
 #include <functional>
-#include <map>
 #include <glm/glm.hpp>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -72,18 +72,19 @@ struct MeasureState {
 
 /// The Environment section's controls that are not part of the scene file.
 struct EnvironmentUi {
-    double latitudeDeg = 48.1;   ///< Time of day: the site (default Munich).
-    int dayOfYear = 172;         ///< 21 June.
-    double solarHours = 14.0;    ///< Apparent solar time, hours.
-    bool playing = false;        ///< The time of day (sky) or the sequence advances.
-    float hoursPerSecond = 0.5f; ///< Playback speed of the time of day.
+    double latitudeDeg = 48.1;    ///< Time of day: the site (default Munich).
+    int dayOfYear = 172;          ///< 21 June.
+    double solarHours = 14.0;     ///< Apparent solar time, hours.
+    bool playing = false;         ///< The time of day (sky) or the sequence advances.
+    float hoursPerSecond = 0.5f;  ///< Playback speed of the time of day.
     double sequenceSeconds = 0.0;
     // The sample chart (Fig. 1-2 of Lu et al. 2013) for a normal chosen by its angles.
     bool chartOpen = false;
     float normalElevationDeg = 90.f, normalAzimuthDeg = 0.f;
     /// The chart's unit normal from its elevation and azimuth (phi from +X towards +Z).
     glm::dvec3 chartNormal() const {
-        double el = glm::radians(double(normalElevationDeg)), az = glm::radians(double(normalAzimuthDeg));
+        double el = glm::radians(double(normalElevationDeg)),
+               az = glm::radians(double(normalAzimuthDeg));
         return {std::cos(el) * std::cos(az), std::sin(el), std::cos(el) * std::sin(az)};
     }
     int chartSpp = 64;
@@ -93,35 +94,35 @@ struct EnvironmentUi {
     bool pixelPicked = false;
     glm::dvec2 pickedPixel{0.0};  ///< Render pixels (x right, y down), at the click.
     glm::dvec3 pickedPoint{0.0};  ///< World position seen there, metres.
-    std::string chartKey;                ///< What the chart image shows (map, normal, spp)
-    std::string chartCounts;             ///< Selected / effective per face, as text
+    std::string chartKey;         ///< What the chart image shows (map, normal, spp)
+    std::string chartCounts;      ///< Selected / effective per face, as text
 };
 
 /// The fallback while the user drags (renderer/LivePreview.h) and what it did last.
 struct LivePreviewUi {
-    bool enabled = true;       ///< Render the preview while a drag is under way.
-    bool adaptive = true;      ///< Adjust the scale to hold targetMs per frame.
-    float targetMs = 45.f;     ///< Frame time the adaptive scale aims for, ms (about 22 fps).
-    PreviewPolicy policy;      ///< Its scale is the current one when adaptive.
-    bool active = false;       ///< This frame rendered the preview.
-    double frameMs = 0.0;      ///< Smoothed wall time of the editor's frames while previewing, ms.
-    int width = 0, height = 0; ///< Preview render size, pixels.
+    bool enabled = true;        ///< Render the preview while a drag is under way.
+    bool adaptive = true;       ///< Adjust the scale to hold targetMs per frame.
+    float targetMs = 45.f;      ///< Frame time the adaptive scale aims for, ms (about 22 fps).
+    PreviewPolicy policy;       ///< Its scale is the current one when adaptive.
+    bool active = false;        ///< This frame rendered the preview.
+    double frameMs = 0.0;       ///< Smoothed wall time of the editor's frames while previewing, ms.
+    int width = 0, height = 0;  ///< Preview render size, pixels.
 };
 
 /// Interreflected light (scene/InterreflectionWorker.h): the user's switch, and what the
 /// editor's worker reported this frame (the panels read it from here).
 struct InterreflectionUi {
-    bool enabled = true;        ///< Off: no interreflection is computed or shown.
-    bool busy = false;          ///< The worker is computing.
-    bool present = false;       ///< The image holds interreflected light.
-    bool converged = false;     ///< The shown solution is refined and nothing is left to do.
-    std::string stage;          ///< What the worker does ("form factors", "direct light", ...).
-    double progress = 0.0;      ///< Of that stage, 0..1.
-    double lastSeconds = 0.0;   ///< Wall time of the worker's last job.
-    std::string error;          ///< Its last failure, else empty.
-    size_t patches = 0;         ///< Patches of the shown solution.
-    uint64_t version = 0;       ///< Of the solution the renderer shows.
-    int updates = 0;            ///< Solutions handed to the renderer so far.
+    bool enabled = true;       ///< Off: no interreflection is computed or shown.
+    bool busy = false;         ///< The worker is computing.
+    bool present = false;      ///< The image holds interreflected light.
+    bool converged = false;    ///< The shown solution is refined and nothing is left to do.
+    std::string stage;         ///< What the worker does ("form factors", "direct light", ...).
+    double progress = 0.0;     ///< Of that stage, 0..1.
+    double lastSeconds = 0.0;  ///< Wall time of the worker's last job.
+    std::string error;         ///< Its last failure, else empty.
+    size_t patches = 0;        ///< Patches of the shown solution.
+    uint64_t version = 0;      ///< Of the solution the renderer shows.
+    int updates = 0;           ///< Solutions handed to the renderer so far.
 };
 
 /// How the viewport shows the comparison (renderer/Comparison.h): one image (no comparison),
@@ -133,27 +134,29 @@ struct CompareUi {
     CompareLayout layout = CompareLayout::Single;
     /// Each pane's technique list and sample budget: A the scene's own techniques, B each kind's
     /// fast preview technique, C and D other estimators of the same kinds.
-    std::array<PaneSpec, 4> panes = {PaneSpec{"", 64}, PaneSpec{"precomputed-global,scattered,analytic,balanced", 64},
-                                     PaneSpec{"uniform-restricted,mc-poisson-24,reference,uniform-faces", 64},
-                                     PaneSpec{"granier2003,point,analytic,global-cdf", 64}};
+    std::array<PaneSpec, 4> panes = {
+        PaneSpec{"", 64}, PaneSpec{"precomputed-global,scattered,analytic,balanced", 64},
+        PaneSpec{"uniform-restricted,mc-poisson-24,reference,uniform-faces", 64},
+        PaneSpec{"granier2003,point,analytic,global-cdf", 64}};
     int referenceSamples = 512;  ///< The reference's sample budget, samples per pixel.
     bool showError = false;      ///< Panes show their signed error map instead of the image.
-    float errorScale = 0.25f;    ///< Error map saturation, fraction of the reference's mean luminance.
-    float wipe = 0.5f;           ///< Wipe line position, fraction of the viewport's width.
-    int wipePanes[2] = {0, 1};   ///< The panes left and right of the wipe line.
-    bool wipeDragging = false;   ///< The wipe line follows the mouse.
+    float errorScale =
+        0.25f;          ///< Error map saturation, fraction of the reference's mean luminance.
+    float wipe = 0.5f;  ///< Wipe line position, fraction of the viewport's width.
+    int wipePanes[2] = {0, 1};  ///< The panes left and right of the wipe line.
+    bool wipeDragging = false;  ///< The wipe line follows the mouse.
     // The accuracy-versus-time window.
     bool plotOpen = false;
-    bool plotDeltaE = false;     ///< Plot mean Delta E instead of relative RMSE.
-    float budgetMs = 5000.f;     ///< The time budget the plot names a winner at, GPU ms.
+    bool plotDeltaE = false;               ///< Plot mean Delta E instead of relative RMSE.
+    float budgetMs = 5000.f;               ///< The time budget the plot names a winner at, GPU ms.
     std::vector<ErrorSeries> benchSeries;  ///< Curves read from `candela bench` CSV files.
     std::string benchPath;                 ///< The window's CSV path field.
-    std::string winner;                    ///< This view's series that wins at budgetMs (empty: none).
-    std::string benchWinner;               ///< The bench curve that wins there.
+    std::string winner;       ///< This view's series that wins at budgetMs (empty: none).
+    std::string benchWinner;  ///< The bench curve that wins there.
     // Export.
     bool sheetRequested = false;  ///< Export the comparison sheet after this frame's render.
     int sheetsTaken = 0;
-    std::string lastSheet;        ///< PNG of the last sheet written.
+    std::string lastSheet;  ///< PNG of the last sheet written.
     /// Panes the layout shows.
     int paneCount() const {
         return layout == CompareLayout::Four ? 4 : layout == CompareLayout::Single ? 1 : 2;
@@ -172,10 +175,10 @@ struct LibraryUi {
     std::vector<std::string> folders;  ///< Added by the user, absolute.
     std::vector<LibraryEntry> entries;
     bool scanned = false;
-    std::string folderText;            ///< The "Add folder" field.
+    std::string folderText;  ///< The "Add folder" field.
     struct Thumbnail {
-        bool hasImage = false;          ///< Uploaded to EditorState::images (key: "library:PATH").
-        std::string info;               ///< Flux and size, or why it failed.
+        bool hasImage = false;  ///< Uploaded to EditorState::images (key: "library:PATH").
+        std::string info;       ///< Flux and size, or why it failed.
         bool failed = false;
     };
     std::map<std::string, Thumbnail> thumbnails;  ///< By path.
@@ -183,13 +186,16 @@ struct LibraryUi {
 
 /// Placing luminaires on the scene's surfaces (the outline's Placement row and the viewport).
 struct PlacementUi {
-    bool armed = false;           ///< The next left click on a surface places the selected luminaire.
-    bool aimAlongNormal = true;   ///< Placed luminaires aim along the surface normal, else straight down.
-    bool alongSurfaces = false;   ///< Dragging moves a luminaire over the surfaces, not in its plane.
-    double clearance = 0.01;      ///< Distance from the surface, metres.
-    double snap = 0.1;            ///< Grid step with Ctrl held while dragging or placing, metres.
-    int arrayCount[2] = {3, 2};            ///< Array: luminaires along x and z.
-    double arraySpacing[2] = {1.2, 1.2};   ///< Array: distance between neighbours along x and z, metres.
+    bool armed = false;  ///< The next left click on a surface places the selected luminaire.
+    bool aimAlongNormal =
+        true;  ///< Placed luminaires aim along the surface normal, else straight down.
+    bool alongSurfaces =
+        false;                ///< Dragging moves a luminaire over the surfaces, not in its plane.
+    double clearance = 0.01;  ///< Distance from the surface, metres.
+    double snap = 0.1;        ///< Grid step with Ctrl held while dragging or placing, metres.
+    int arrayCount[2] = {3, 2};  ///< Array: luminaires along x and z.
+    double arraySpacing[2] = {1.2,
+                              1.2};  ///< Array: distance between neighbours along x and z, metres.
     /// The scene's BVH for picking surfaces, rebuilt when geometryVersion moves on.
     std::shared_ptr<const Bvh> surfaces;
     int surfacesVersion = -1;
@@ -211,10 +217,10 @@ struct SceneSnapshot {
 };
 
 struct UndoStep {
-    std::string label;      ///< "Move Ceiling panel"
-    unsigned changes = 0;   ///< What restoring it changes (ChangeFlags).
-    int gesture = 0;        ///< The input gesture that made it (edits of one gesture merge).
-    SceneSnapshot before;   ///< The scene before the step (after it, on the redo stack).
+    std::string label;     ///< "Move Ceiling panel"
+    unsigned changes = 0;  ///< What restoring it changes (ChangeFlags).
+    int gesture = 0;       ///< The input gesture that made it (edits of one gesture merge).
+    SceneSnapshot before;  ///< The scene before the step (after it, on the redo stack).
 };
 
 /// Undo and redo of every scene edit but camera navigation (orbit, pan, zoom), as in most
@@ -227,11 +233,12 @@ struct UndoHistory {
 
 struct EditorState {
     Scene scene;
-    int selectedLuminaire = -1;  ///< Index into scene.luminaires, or -1: the one the inspector shows.
+    int selectedLuminaire =
+        -1;  ///< Index into scene.luminaires, or -1: the one the inspector shows.
     /// Further luminaires selected with Ctrl+click (outline or viewport); they move and are
     /// deleted with the primary one. Cleared whenever the list of luminaires changes.
     std::vector<int> alsoSelected;
-    int selectedGeometry = -1;   ///< Index into scene.geometry, or -1.
+    int selectedGeometry = -1;  ///< Index into scene.geometry, or -1.
 
     RenderSettings settings;  ///< What the renderer uses; the editor applies it every frame.
     /// The panels' pictures (library thumbnails, the sample chart) as GL textures: owned by the
@@ -245,7 +252,8 @@ struct EditorState {
 
     std::filesystem::path screenshotDir = "candela-screenshots";
     bool screenshotRequested = false;  ///< Set by the Screenshot button; the editor takes it.
-    bool windowShotRequested = false;  ///< F12 or View > Save window image: the whole editor window.
+    bool windowShotRequested =
+        false;  ///< F12 or View > Save window image: the whole editor window.
     int windowShotsTaken = 0;
     int screenshotsTaken = 0;
 
@@ -345,8 +353,8 @@ const Bvh& surfaceBvh(EditorState& state);
 /// The pose of a luminaire put on a surface point: `clearance` off it along the normal, aimed
 /// along the normal or straight down, its C0 kept (made orthogonal by Pose::frame). With a snap
 /// step > 0 the position's coordinates across the surface's main axis are rounded to it.
-Pose poseOnSurface(const Pose& pose, const glm::dvec3& point, const glm::dvec3& normal, bool aimAlongNormal,
-                   double clearance, double snap);
+Pose poseOnSurface(const Pose& pose, const glm::dvec3& point, const glm::dvec3& normal,
+                   bool aimAlongNormal, double clearance, double snap);
 
 /// base, or "base 2", "base 3", ... whichever no luminaire of the scene uses yet.
 /// `alsoTaken` lists names about to be added (copies made in one step).

@@ -176,7 +176,8 @@ bool poseFields(EditorState& state, int index) {
     glm::dvec3 ref, refY;
     spinReference(ez, ref, refY);
     double spin = glm::degrees(std::atan2(glm::dot(ex, refY), glm::dot(ex, ref)));
-    if (ImGui::DragScalar("Spin [deg]", ImGuiDataType_Double, &spin, 0.5f, nullptr, nullptr, "%.1f")) {
+    if (ImGui::DragScalar("Spin [deg]", ImGuiDataType_Double, &spin, 0.5f, nullptr, nullptr,
+                          "%.1f")) {
         double s = glm::radians(spin);
         pose = lum.pose;
         pose.c0 = std::cos(s) * ref + std::sin(s) * refY;
@@ -205,8 +206,9 @@ bool kindFields(EditorState& state, int index) {
                 entry.erase(from);
                 edited = true;
             }
-            itemTooltip("Radiometric (W) or photometric (lm, lx) emission; a scene mixing both converts "
-                        "radiometric sources at 683 lm/W and says so");
+            itemTooltip(
+                "Radiometric (W) or photometric (lm, lx) emission; a scene mixing both converts "
+                "radiometric sources at 683 lm/W and says so");
         }
         edited = editKindFields(state, entry) || edited;
         if (edited) {
@@ -234,8 +236,8 @@ void kindDetails(const Luminaire& shown) {
     } else {
         glm::dvec3 power = shown.power();
         bool luminous = shown.quantities() == Quantities::Photometric;
-        ImGui::Text("%s [%s]: %.4g  %.4g  %.4g", luminous ? "Flux" : "Power", fluxUnit(shown.quantities()), power.x,
-                    power.y, power.z);
+        ImGui::Text("%s [%s]: %.4g  %.4g  %.4g", luminous ? "Flux" : "Power",
+                    fluxUnit(shown.quantities()), power.x, power.y, power.z);
     }
 }
 

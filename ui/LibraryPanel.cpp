@@ -42,13 +42,14 @@ void scan(LibraryUi& lib) {
     roots.insert(roots.end(), lib.folders.begin(), lib.folders.end());
     for (const std::string& root : roots) {
         std::error_code ec;
-        for (auto it = fs::recursive_directory_iterator(root, fs::directory_options::skip_permission_denied, ec);
+        for (auto it = fs::recursive_directory_iterator(
+                 root, fs::directory_options::skip_permission_denied, ec);
              !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
             if (!it->is_regular_file(ec)) continue;
             const char* kind = luminaireKindOf(fileKind(it->path().string()));
             if (kind)
-                lib.entries.push_back(
-                    {fs::absolute(it->path()).lexically_normal().string(), it->path().filename().string(), kind});
+                lib.entries.push_back({fs::absolute(it->path()).lexically_normal().string(),
+                                       it->path().filename().string(), kind});
         }
     }
     std::sort(lib.entries.begin(), lib.entries.end(),
@@ -57,7 +58,9 @@ void scan(LibraryUi& lib) {
 }
 
 /// The key of a file's thumbnail in EditorState::images.
-std::string thumbnailImage(const LibraryEntry& entry) { return "library:" + entry.path; }
+std::string thumbnailImage(const LibraryEntry& entry) {
+    return "library:" + entry.path;
+}
 
 /// The thumbnail (uploaded to `images`) and one line of facts of a file (its flux), made once.
 void makeThumbnail(LibraryUi& lib, ImageTextures& images, const LibraryEntry& entry) {
@@ -69,11 +72,12 @@ void makeThumbnail(LibraryUi& lib, ImageTextures& images, const LibraryEntry& en
             LightFieldLuminaire light;
             light.data = LightFieldData::load(entry.path);
             table = farFieldTwin(light)->data;
-            std::snprintf(info, sizeof info, "light field, %d x %d images, %.0f lm", light.data->count.x,
-                          light.data->count.y, light.data->cachedPower().y);
+            std::snprintf(info, sizeof info, "light field, %d x %d images, %.0f lm",
+                          light.data->count.x, light.data->count.y, light.data->cachedPower().y);
         } else {
             table = PhotometricLuminaire::load(entry.path);
-            std::snprintf(info, sizeof info, "%s, %.0f lm%s", table->format.c_str(), table->fluxFromTable(),
+            std::snprintf(info, sizeof info, "%s, %.0f lm%s", table->format.c_str(),
+                          table->fluxFromTable(),
                           table->warnings.empty() ? "" : ", with warnings (see the inspector)");
         }
         std::vector<unsigned char> rgb = footprintImage(*table, kThumbnailPixels);
@@ -103,7 +107,8 @@ bool libraryRow(EditorState& state, const LibraryEntry& entry, bool& madeOne) {
     }
     ImageTextures::Shown thumbnail =
         found != lib.thumbnails.end() && found->second.hasImage && state.images
-            ? state.images->find(thumbnailImage(entry)) : ImageTextures::Shown{};
+            ? state.images->find(thumbnailImage(entry))
+            : ImageTextures::Shown{};
     if (thumbnail.id) {
         ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(thumbnail.id)),
                      ImVec2(float(kThumbnailPixels), float(kThumbnailPixels)));
@@ -156,7 +161,8 @@ void libraryFolders(EditorState& state) {
         fs::path folder = fs::absolute(lib.folderText).lexically_normal();
         if (lib.folderText.empty() || !fs::is_directory(folder, ec)) {
             reportError(state, "Library: \"" + lib.folderText + "\" is not a folder");
-        } else if (std::find(lib.folders.begin(), lib.folders.end(), folder.string()) == lib.folders.end()) {
+        } else if (std::find(lib.folders.begin(), lib.folders.end(), folder.string()) ==
+                   lib.folders.end()) {
             lib.folders.push_back(folder.string());
             saveFolders(state);
             scan(lib);

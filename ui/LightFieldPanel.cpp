@@ -26,11 +26,13 @@ void lightFieldDetails(const LightFieldLuminaire& light, int& shownImage) {
     bool photometric = lf.unit == "cd/m2";
     glm::dvec3 flux = lf.cachedPower();
     double total = 0.2126 * flux.x + 0.7152 * flux.y + 0.0722 * flux.z;
-    ImGui::TextWrapped("Flux: %.4g %s (from the model, by quadrature)", total, photometric ? "lm" : "W");
-    ImGui::TextWrapped("Basis %d x %d, spacing %.2f x %.2f mm, delta %.2f mm", lf.count.x, lf.count.y,
-                1e3 * lf.spacing.x, 1e3 * lf.spacing.y, 1e3 * lf.delta);
-    ImGui::TextWrapped("Images %d x %d px over %.1f x %.1f mm; precomputed in %.1f ms", lf.width, lf.height,
-                1e3 * (lf.imageMax.x - lf.imageMin.x), 1e3 * (lf.imageMax.y - lf.imageMin.y), lf.precomputeMs);
+    ImGui::TextWrapped("Flux: %.4g %s (from the model, by quadrature)", total,
+                       photometric ? "lm" : "W");
+    ImGui::TextWrapped("Basis %d x %d, spacing %.2f x %.2f mm, delta %.2f mm", lf.count.x,
+                       lf.count.y, 1e3 * lf.spacing.x, 1e3 * lf.spacing.y, 1e3 * lf.delta);
+    ImGui::TextWrapped("Images %d x %d px over %.1f x %.1f mm; precomputed in %.1f ms", lf.width,
+                       lf.height, 1e3 * (lf.imageMax.x - lf.imageMin.x),
+                       1e3 * (lf.imageMax.y - lf.imageMin.y), lf.precomputeMs);
 
     // Basis grid: one disc per node, its brightness the image's share of the energy; the image
     // shown below is outlined.
@@ -45,7 +47,8 @@ void lightFieldDetails(const LightFieldLuminaire& light, int& shownImage) {
     for (int m = 0; m < lf.imageCount(); ++m) {
         int i = m % lf.count.x, j = m / lf.count.x;
         // Row 0 of the grid (smallest y) at the bottom, as seen from the front of the luminaire.
-        ImVec2 c(origin.x + (float(i) + 0.5f) * cell, origin.y + (float(lf.count.y - 1 - j) + 0.5f) * cell);
+        ImVec2 c(origin.x + (float(i) + 0.5f) * cell,
+                 origin.y + (float(lf.count.y - 1 - j) + 0.5f) * cell);
         double share = most > 0.0 ? lf.tables[size_t(m)].total / most : 0.0;
         draw->AddCircleFilled(c, 0.4f * cell, grey(std::sqrt(share)));
         if (m == shownImage) draw->AddCircle(c, 0.45f * cell, IM_COL32(255, 170, 0, 255), 0, 2.f);
@@ -57,25 +60,30 @@ void lightFieldDetails(const LightFieldLuminaire& light, int& shownImage) {
         int j = lf.count.y - 1 - std::clamp(int((mouse.y - origin.y) / cell), 0, lf.count.y - 1);
         shownImage = j * lf.count.x + i;
     }
-    itemTooltip("Basis functions on U (brightness: energy of their image C_m). Click one to show its image.");
+    itemTooltip(
+        "Basis functions on U (brightness: energy of their image C_m). Click one to show its "
+        "image.");
 
     shownImage = std::clamp(shownImage, 0, lf.imageCount() - 1);
     ImGui::SliderInt("Image", &shownImage, 0, lf.imageCount() - 1);
     const LightFieldImage& img = lf.images[size_t(shownImage)];
-    // The image at up to 64 x 64 cells (the mean of the pixels each covers), normalised to its peak.
+    // The image at up to 64 x 64 cells (the mean of the pixels each covers), normalised to its
+    // peak.
     int cw = std::min(lf.width, 64), ch = std::min(lf.height, 64);
     std::vector<double> cells(size_t(cw * ch), 0.0);
     for (int y = 0; y < lf.height; ++y)
         for (int x = 0; x < lf.width; ++x)
-            cells[size_t((y * ch / lf.height) * cw + x * cw / lf.width)] += img.luminance[size_t(y * lf.width + x)];
+            cells[size_t((y * ch / lf.height) * cw + x * cw / lf.width)] +=
+                img.luminance[size_t(y * lf.width + x)];
     double peak = *std::max_element(cells.begin(), cells.end());
     ImVec2 o2 = ImGui::GetCursorScreenPos();
     float px = side / float(std::max(cw, ch));
     for (int y = 0; y < ch; ++y)
         for (int x = 0; x < cw; ++x) {
             ImVec2 a(o2.x + float(x) * px, o2.y + float(ch - 1 - y) * px);
-            draw->AddRectFilled(a, ImVec2(a.x + px, a.y + px),
-                                grey(peak > 0.0 ? std::sqrt(cells[size_t(y * cw + x)] / peak) : 0.0));
+            draw->AddRectFilled(
+                a, ImVec2(a.x + px, a.y + px),
+                grey(peak > 0.0 ? std::sqrt(cells[size_t(y * cw + x)] / peak) : 0.0));
         }
     ImGui::Dummy(ImVec2(px * float(cw), px * float(ch)));
     ImGui::TextDisabled("C_%d: %.4g %s m2 in all (square-root scale)", shownImage,

@@ -136,7 +136,8 @@ bool legendControls(EditorState& state, MeasureState& measure, const Renderer& r
     legend = sanitizedLegend(legend);
     colourBar(legend, unit);
     if (!illuminance)
-        ImGui::TextDisabled("Radiance mode: the scale shows %s", units.photometric ? "luminance" : "radiance");
+        ImGui::TextDisabled("Radiance mode: the scale shows %s",
+                            units.photometric ? "luminance" : "radiance");
     if (units.converted) ImGui::TextDisabled("Mixed scene: %s", units.note().c_str());
     return changed;
 }
@@ -177,7 +178,8 @@ void computeNow(const EditorState& state, MeasureState& measure) {
         if (!measure.extentSet) defaultGridExtent(state.scene, measure.grid);
         measure.extentSet = true;
         GridSpec spec = measure.grid;
-        spec.indirectMethod = GridSpec::Indirect::Patches;  // interactive: the fast deterministic way
+        spec.indirectMethod =
+            GridSpec::Indirect::Patches;  // interactive: the fast deterministic way
         spec.patches = 2500;
         measure.result = computeGrid(state.scene, spec);
         measure.summary = summariseGrid(measure.result->E);
@@ -232,9 +234,12 @@ void gridSpecControls(EditorState& state, MeasureState& measure) {
     itemTooltip("Shadow rays through the scene (occluders block light)");
     ImGui::Checkbox("Interreflected light##grid", &g.indirect);
     recordRect(state, "measure.indirect");
-    itemTooltip("Adds the light the surfaces reflect onto each other (radiosity over patches, then each point's "
-                "light from the patches; a few seconds). Turns shadows on. candela grid --indirect gives the "
-                "reference (a final gather with a standard error).");
+    itemTooltip(
+        "Adds the light the surfaces reflect onto each other (radiosity over patches, then each "
+        "point's "
+        "light from the patches; a few seconds). Turns shadows on. candela grid --indirect gives "
+        "the "
+        "reference (a final gather with a standard error).");
 }
 
 /// Emin, Eavg, Emax and the uniformities of the computed grid; with interreflected light, Em
@@ -263,8 +268,10 @@ void gridResultTables(const GridResult& r, const GridSummary& s) {
         ImGui::TableSetupColumn((std::string("Em [") + r.units.irradiance() + "]").c_str());
         ImGui::TableSetupColumn("U0");
         ImGui::TableHeadersRow();
-        for (auto [name, values] : {std::pair<const char*, const std::vector<double>*>{"direct", &r.direct},
-                                    {"interreflected", &r.indirect}, {"total", &r.E}}) {
+        for (auto [name, values] :
+             {std::pair<const char*, const std::vector<double>*>{"direct", &r.direct},
+              {"interreflected", &r.indirect},
+              {"total", &r.E}}) {
             GridSummary p = summariseGrid(*values);
             ImGui::TableNextRow();
             ImGui::TableNextColumn();

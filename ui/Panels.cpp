@@ -54,15 +54,15 @@ const char* fieldUnit(const std::string& key) {
         const char* unit;
     };
     static const Unit kUnits[] = {
-        {"size", " [m]"},       {"width", " [m]"},
-        {"height", " [m]"},     {"length", " [m]"},
-        {"radius", " [m]"},     {"diameter", " [m]"},
-        {"distance", " [m]"},   {"radiance", " [W/(m2 sr)]"},
-        {"luminance", " [cd/m2]"},
-        {"power", " [W]"},      {"irradiance", " [W/m2]"},
-        {"intensity", " [cd]"}, {"lumens", " [lm]"},
-        {"flux", " [lm]"},      {"illuminance", " [lx]"},
-        {"opening", " [m]"},    {"scale", " [x]"},
+        {"size", " [m]"},          {"width", " [m]"},
+        {"height", " [m]"},        {"length", " [m]"},
+        {"radius", " [m]"},        {"diameter", " [m]"},
+        {"distance", " [m]"},      {"radiance", " [W/(m2 sr)]"},
+        {"luminance", " [cd/m2]"}, {"power", " [W]"},
+        {"irradiance", " [W/m2]"}, {"intensity", " [cd]"},
+        {"lumens", " [lm]"},       {"flux", " [lm]"},
+        {"illuminance", " [lx]"},  {"opening", " [m]"},
+        {"scale", " [x]"},
     };
     for (const Unit& u : kUnits)
         if (key == u.key) return u.unit;
@@ -88,10 +88,12 @@ bool mainMenuBar(EditorState& state, float& barHeight) {
                 std::vector<std::string> recent = recentFiles();
                 if (recent.empty()) ImGui::TextDisabled("(none yet)");
                 for (const std::string& path : recent)
-                    if (ImGui::MenuItem(path.c_str())) changed = openSceneFile(state, path) || changed;
+                    if (ImGui::MenuItem(path.c_str()))
+                        changed = openSceneFile(state, path) || changed;
                 ImGui::EndMenu();
             }
-            if (ImGui::MenuItem("Revert to Saved", nullptr, false, state.dirty && !state.scene.path.empty())) {
+            if (ImGui::MenuItem("Revert to Saved", nullptr, false,
+                                state.dirty && !state.scene.path.empty())) {
                 std::string path = state.scene.path;
                 removeAutosave(path);
                 changed = openSceneFile(state, path) || changed;
@@ -104,8 +106,10 @@ bool mainMenuBar(EditorState& state, float& barHeight) {
             const auto& h = state.history;
             std::string undoLabel = h.undo.empty() ? "Undo" : "Undo " + h.undo.back().label;
             std::string redoLabel = h.redo.empty() ? "Redo" : "Redo " + h.redo.back().label;
-            if (ImGui::MenuItem(undoLabel.c_str(), "Ctrl+Z", false, !h.undo.empty())) changed = undo(state) || changed;
-            if (ImGui::MenuItem(redoLabel.c_str(), "Ctrl+Y", false, !h.redo.empty())) changed = redo(state) || changed;
+            if (ImGui::MenuItem(undoLabel.c_str(), "Ctrl+Z", false, !h.undo.empty()))
+                changed = undo(state) || changed;
+            if (ImGui::MenuItem(redoLabel.c_str(), "Ctrl+Y", false, !h.redo.empty()))
+                changed = redo(state) || changed;
             ImGui::EndMenu();
         }
         if (ImGui::BeginMenu("View")) {
@@ -120,9 +124,11 @@ bool mainMenuBar(EditorState& state, float& barHeight) {
         // GLFW key codes equal ASCII for letters (the 1.86 backend indexes KeysDown by them).
         if (io.KeyCtrl && ImGui::IsKeyPressed('S', false)) requestSave(state);
         if (io.KeyCtrl && ImGui::IsKeyPressed('O', false)) state.files.openRequested = true;
-        if (io.KeyCtrl && !io.KeyShift && ImGui::IsKeyPressed('Z', false)) changed = undo(state) || changed;
+        if (io.KeyCtrl && !io.KeyShift && ImGui::IsKeyPressed('Z', false))
+            changed = undo(state) || changed;
         if (ImGui::IsKeyPressed(GLFW_KEY_F12, false)) state.windowShotRequested = true;
-        if (io.KeyCtrl && (ImGui::IsKeyPressed('Y', false) || (io.KeyShift && ImGui::IsKeyPressed('Z', false))))
+        if (io.KeyCtrl &&
+            (ImGui::IsKeyPressed('Y', false) || (io.KeyShift && ImGui::IsKeyPressed('Z', false))))
             changed = redo(state) || changed;
         if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Delete), false) &&
             state.selectedLuminaire >= 0) {
@@ -185,16 +191,18 @@ static void placementControls(EditorState& state, bool noSelection) {
     ImGui::BeginDisabled(noSelection);
     if (ImGui::Button(p.armed ? "Click a surface..." : "Place on a surface")) p.armed = !p.armed;
     recordRect(state, "outline.place");
-    itemTooltip("The next left click on a surface in the viewport puts the selected luminaire "
-                "there (Shift+click to place it again, Ctrl to snap, Escape to cancel)");
+    itemTooltip(
+        "The next left click on a surface in the viewport puts the selected luminaire "
+        "there (Shift+click to place it again, Ctrl to snap, Escape to cancel)");
     ImGui::EndDisabled();
     if (noSelection) p.armed = false;
     if (p.armed && ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false)) p.armed = false;
     ImGui::SameLine();
     ImGui::Checkbox("Over surfaces", &p.alongSurfaces);
     recordRect(state, "outline.over_surfaces");
-    itemTooltip("Dragging a luminaire moves it over the surface under the mouse (aimed as "
-                "below) instead of in its horizontal plane");
+    itemTooltip(
+        "Dragging a luminaire moves it over the surface under the mouse (aimed as "
+        "below) instead of in its horizontal plane");
     int aim = p.aimAlongNormal ? 0 : 1;
     ImGui::TextUnformatted("Aim:");
     ImGui::SameLine();
@@ -205,7 +213,8 @@ static void placementControls(EditorState& state, bool noSelection) {
     recordRect(state, "outline.aim_down");
     ImGui::SetNextItemWidth(80.f);
     double minClear = 0.0, maxClear = 1.0, minSnap = 0.01, maxSnap = 2.0;
-    ImGui::SliderScalar("Clearance [m]", ImGuiDataType_Double, &p.clearance, &minClear, &maxClear, "%.3f");
+    ImGui::SliderScalar("Clearance [m]", ImGuiDataType_Double, &p.clearance, &minClear, &maxClear,
+                        "%.3f");
     ImGui::SameLine();
     ImGui::SetNextItemWidth(70.f);
     ImGui::SliderScalar("Snap [m]", ImGuiDataType_Double, &p.snap, &minSnap, &maxSnap, "%.2f");
@@ -217,17 +226,18 @@ static void placementControls(EditorState& state, bool noSelection) {
     ImGui::SameLine();
     ImGui::SetNextItemWidth(100.f);
     double minSpacing = 0.05, maxSpacing = 20.0;
-    ImGui::DragScalarN("##arrayspacing", ImGuiDataType_Double, p.arraySpacing, 2, 0.01f, &minSpacing, &maxSpacing,
-                       "%.2f");
+    ImGui::DragScalarN("##arrayspacing", ImGuiDataType_Double, p.arraySpacing, 2, 0.01f,
+                       &minSpacing, &maxSpacing, "%.2f");
     itemTooltip("Spacing along x and along z, metres");
     ImGui::SameLine();
     ImGui::BeginDisabled(noSelection);
     if (ImGui::Button("Array"))
-        arrayLuminaire(state, state.selectedLuminaire, p.arrayCount[0], p.arrayCount[1], p.arraySpacing[0],
-                       p.arraySpacing[1]);
+        arrayLuminaire(state, state.selectedLuminaire, p.arrayCount[0], p.arrayCount[1],
+                       p.arraySpacing[0], p.arraySpacing[1]);
     recordRect(state, "outline.array");
     ImGui::EndDisabled();
-    itemTooltip("Copies the selected luminaire into a grid (a row with one count 1), as one undo step");
+    itemTooltip(
+        "Copies the selected luminaire into a grid (a row with one count 1), as one undo step");
 }
 
 /// The scene's luminaires, each selectable (Ctrl+click adds to the selection). True on a click.
@@ -371,7 +381,8 @@ void statusBar(const EditorState& state, const Renderer& renderer, const PanelRe
 
 void recordPanelRect(EditorState& state, const std::string& name) {
     ImVec2 lo = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
-    state.widgetRects.emplace_back("panel." + name, glm::vec4(lo.x, lo.y, lo.x + size.x, lo.y + size.y));
+    state.widgetRects.emplace_back("panel." + name,
+                                   glm::vec4(lo.x, lo.y, lo.x + size.x, lo.y + size.y));
 }
 
 void recordRect(EditorState& state, std::string name, float width) {

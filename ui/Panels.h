@@ -13,7 +13,7 @@
 namespace candela {
 class LightFieldLuminaire;
 class PhotometricLuminaire;
-}
+}  // namespace candela
 
 namespace candela::ui {
 
@@ -71,7 +71,8 @@ std::string paneName(const CompareUi& ui, size_t pane);
 /// The viewport's layout bar (Single, 2 panes, 4 panes, Wipe; error map, plot, export).
 bool compareToolbar(EditorState& state);
 /// Draws the panes (image or error map, labels, the wipe line, which it also drags).
-void compareView(EditorState& state, const Comparison& comparison, ImVec2 origin, ImVec2 size, bool hovered);
+void compareView(EditorState& state, const Comparison& comparison, ImVec2 origin, ImVec2 size,
+                 bool hovered);
 /// Each pane's techniques per kind and sample budget, the reference, results, export.
 bool comparePanel(EditorState& state, const Comparison* comparison, const PanelRect& rect);
 /// The accuracy-versus-time window (when state.compare.plotOpen), placed over the viewport.

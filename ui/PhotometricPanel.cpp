@@ -20,8 +20,8 @@ namespace {
 void photometryWarnings(const PhotometricData& d) {
     if (d.warnings.empty()) return;
     ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.75f, 0.3f, 1.0f));
-    bool open = ImGui::TreeNode("photometry-warnings", "%zu warning%s reading the file", d.warnings.size(),
-                                d.warnings.size() == 1 ? "" : "s");
+    bool open = ImGui::TreeNode("photometry-warnings", "%zu warning%s reading the file",
+                                d.warnings.size(), d.warnings.size() == 1 ? "" : "s");
     ImGui::PopStyleColor();
     if (!open) return;
     for (const std::string& w : d.warnings) ImGui::TextWrapped("%s", w.c_str());
@@ -32,11 +32,13 @@ void photometryWarnings(const PhotometricData& d) {
 
 void photometricDetails(const PhotometricLuminaire& light) {
     const PhotometricData& d = *light.data;
-    ImGui::TextWrapped("%s: %s, type %s", toValidUtf8(std::filesystem::path(light.file).filename().string()).c_str(),
+    ImGui::TextWrapped("%s: %s, type %s",
+                       toValidUtf8(std::filesystem::path(light.file).filename().string()).c_str(),
                        d.format.c_str(), d.goniometer == Goniometer::B ? "B" : "C");
     if (!d.name.empty()) ImGui::TextWrapped("%s", d.name.c_str());
     double flux = light.scale * d.fluxFromTable();
-    ImGui::TextWrapped("Flux: %.5g lm (exact quadrature of the table%s)", flux, light.scale != 1.0 ? ", scaled" : "");
+    ImGui::TextWrapped("Flux: %.5g lm (exact quadrature of the table%s)", flux,
+                       light.scale != 1.0 ? ", scaled" : "");
     if (double declared = d.declaredFlux(); declared > 0.0)
         ImGui::TextWrapped("Lamps %.5g lm x LOR %.3g = %.5g lm (table / declared %.3f)", d.lampFlux,
                            d.lightOutputRatio, declared, d.fluxFromTable() / declared);
@@ -44,14 +46,16 @@ void photometricDetails(const PhotometricLuminaire& light) {
         ImGui::TextWrapped("Lamps %.5g lm, LOR 0: no declared luminaire flux", d.lampFlux);
     else
         ImGui::TextDisabled("Absolute photometry (no lamp flux declared)");
-    ImGui::TextWrapped("Peak %.5g cd; %zu x %zu angles", light.scale * d.maxIntensity(), d.vertical.size(),
-                       d.horizontal.size());
+    ImGui::TextWrapped("Peak %.5g cd; %zu x %zu angles", light.scale * d.maxIntensity(),
+                       d.vertical.size(), d.horizontal.size());
     const auto& poly = light.polygon();
     if (poly.empty())
-        ImGui::TextWrapped("Opening: a point (the file gives no size): every technique is the point law");
+        ImGui::TextWrapped(
+            "Opening: a point (the file gives no size): every technique is the point law");
     else
-        ImGui::TextWrapped("Opening: %.3g x %.3g m, %s of %.4g m2%s", d.opening.length, d.opening.width,
-                           poly.size() == 2 ? "a segment" : "a polygon", light.area(),
+        ImGui::TextWrapped("Opening: %.3g x %.3g m, %s of %.4g m2%s", d.opening.length,
+                           d.opening.width, poly.size() == 2 ? "a segment" : "a polygon",
+                           light.area(),
                            light.openingOverride.x > 0.0 ? " (overridden in the scene)" : "");
     photometryWarnings(d);
     float side = std::min(ImGui::GetContentRegionAvail().x, 260.f);

@@ -19,8 +19,10 @@ constexpr size_t kMaxRecent = 10;
 
 fs::path stateDir() {
     if (const char* dir = std::getenv("CANDELA_STATE_DIR"); dir && *dir) return dir;
-    if (const char* dir = std::getenv("XDG_STATE_HOME"); dir && *dir) return fs::path(dir) / "candela";
-    if (const char* home = std::getenv("HOME"); home && *home) return fs::path(home) / ".local/state/candela";
+    if (const char* dir = std::getenv("XDG_STATE_HOME"); dir && *dir)
+        return fs::path(dir) / "candela";
+    if (const char* home = std::getenv("HOME"); home && *home)
+        return fs::path(home) / ".local/state/candela";
     return fs::temp_directory_path() / "candela-state";
 }
 
@@ -28,7 +30,8 @@ fs::path autosavePath(const std::string& scenePath) {
     if (scenePath.empty()) return stateDir() / "untitled.autosave.json";
     fs::path p = fs::absolute(scenePath);
     std::string stem = p.filename().string();
-    if (stem.size() > 5 && stem.compare(stem.size() - 5, 5, ".json") == 0) stem.resize(stem.size() - 5);
+    if (stem.size() > 5 && stem.compare(stem.size() - 5, 5, ".json") == 0)
+        stem.resize(stem.size() - 5);
     return p.parent_path() / ("." + stem + ".autosave.json");
 }
 
@@ -64,7 +67,9 @@ bool restoreAutosave(EditorState& state, const std::string& scenePath) {
                              " (File > Revert to Saved discards them)");
         return true;
     } catch (const std::exception& e) {
-        setStatus(state, std::string("The autosave could not be read (kept, not restored): ") + e.what(), true);
+        setStatus(state,
+                  std::string("The autosave could not be read (kept, not restored): ") + e.what(),
+                  true);
         return false;
     }
 }
@@ -88,7 +93,8 @@ std::vector<std::string> readStateList(const std::string& file, const char* key)
     return out;
 }
 
-void writeStateList(const std::string& file, const char* key, const std::vector<std::string>& list) {
+void writeStateList(const std::string& file, const char* key,
+                    const std::vector<std::string>& list) {
     fs::create_directories(stateDir());
     writeFileAtomically((stateDir() / file).string(), nlohmann::json{{key, list}}.dump(1) + "\n");
 }

@@ -44,7 +44,8 @@ std::string interreflectionLine(const InterreflectionUi& ir) {
     if (!ir.enabled) return "Interreflection: off";
     if (!ir.error.empty()) return "Interreflection failed: " + ir.error;
     if (ir.busy) {
-        std::snprintf(text, sizeof text, "Interreflection: %s %.0f %%", ir.stage.c_str(), 100.0 * ir.progress);
+        std::snprintf(text, sizeof text, "Interreflection: %s %.0f %%", ir.stage.c_str(),
+                      100.0 * ir.progress);
         return text;
     }
     if (!ir.present) return "Interreflection: none (no surface reflects onto another)";
@@ -57,9 +58,12 @@ bool interreflectionControls(EditorState& state) {
     InterreflectionUi& ir = state.interreflection;
     bool changed = ImGui::Checkbox("Interreflected light", &ir.enabled);
     recordRect(state, "render.indirect");
-    itemTooltip("Diffuse light the surfaces reflect onto each other, all bounces (radiosity over patches, each "
-                "luminaire through its own estimator; computed on the CPU in the background). Not modelled: "
-                "specular interreflection, transmission.");
+    itemTooltip(
+        "Diffuse light the surfaces reflect onto each other, all bounces (radiosity over patches, "
+        "each "
+        "luminaire through its own estimator; computed on the CPU in the background). Not "
+        "modelled: "
+        "specular interreflection, transmission.");
     ImGui::TextDisabled("%s", interreflectionLine(ir).c_str());
     return changed;
 }
@@ -135,8 +139,9 @@ bool shadowMapControls(ShadowMapSettings& maps) {
         maps.resolution = sizes[size];
         changed = true;
     }
-    itemTooltip("Texels per cube-map face of each shadow map; the edges of shadows move by about "
-                "a texel (the bias), so finer faces are closer to the ray-traced truth");
+    itemTooltip(
+        "Texels per cube-map face of each shadow map; the edges of shadows move by about "
+        "a texel (the bias), so finer faces are closer to the ray-traced truth");
     return changed;
 }
 
@@ -237,8 +242,9 @@ void statsPanel(const EditorState& state, const Renderer& renderer, const Shader
     ImGui::Begin("Frame statistics", nullptr, kPanelFlags);
     if (state.compare.layout != CompareLayout::Single) {
         ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.f, 0.8f, 0.3f, 1.f));
-        ImGui::TextWrapped("The single view waits while the viewport is split: each pane's samples, GPU time "
-                           "and errors are in the Compare panel and on the pane.");
+        ImGui::TextWrapped(
+            "The single view waits while the viewport is split: each pane's samples, GPU time "
+            "and errors are in the Compare panel and on the pane.");
         ImGui::PopStyleColor();
     }
     const FrameStats& stats = renderer.stats();

@@ -58,13 +58,15 @@ Gizmo gizmo(const EditorState& state, const Renderer& renderer, const ImageMappi
         if (px) out = map.toWindow(*px);
         return px.has_value();
     };
-    if (!toWindow(pose.position, g.centre) || !toWindow(pose.position + kAimHandleM * z, g.aimKnob) ||
+    if (!toWindow(pose.position, g.centre) ||
+        !toWindow(pose.position + kAimHandleM * z, g.aimKnob) ||
         !toWindow(pose.position + kSpinRingM * x, g.spinKnob))
         return g;
     for (int i = 0; i <= 48; ++i) {
         double a = 2.0 * gpu::kPi * i / 48;
         ImVec2 p;
-        if (!toWindow(pose.position + kSpinRingM * (std::cos(a) * x + std::sin(a) * y), p)) return g;
+        if (!toWindow(pose.position + kSpinRingM * (std::cos(a) * x + std::sin(a) * y), p))
+            return g;
         g.ring.push_back(p);
     }
     g.valid = true;
@@ -76,7 +78,8 @@ Gizmo gizmo(const EditorState& state, const Renderer& renderer, const ImageMappi
 void drawGizmo(const Gizmo& g) {
     if (!g.valid) return;
     ImDrawList* draw = ImGui::GetWindowDrawList();
-    draw->AddPolyline(g.ring.data(), int(g.ring.size()), IM_COL32(90, 200, 255, 200), ImDrawFlags_None, 1.5f);
+    draw->AddPolyline(g.ring.data(), int(g.ring.size()), IM_COL32(90, 200, 255, 200),
+                      ImDrawFlags_None, 1.5f);
     draw->AddLine(g.centre, g.aimKnob, IM_COL32(255, 120, 60, 230), 2.f);
     draw->AddCircleFilled(g.aimKnob, 6.f, IM_COL32(255, 120, 60, 255));
     draw->AddCircleFilled(g.spinKnob, 5.f, IM_COL32(90, 200, 255, 255));
@@ -107,7 +110,8 @@ void drawOutlines(const EditorState& state, const Renderer& renderer, const Imag
         }
         if (points.size() != outline.size() || points.size() < 2) continue;
         bool selected = int(i) == state.selectedLuminaire ||
-                        std::find(state.alsoSelected.begin(), state.alsoSelected.end(), int(i)) != state.alsoSelected.end();
+                        std::find(state.alsoSelected.begin(), state.alsoSelected.end(), int(i)) !=
+                            state.alsoSelected.end();
         ImU32 colour = selected ? IM_COL32(255, 210, 40, 255) : IM_COL32(255, 255, 255, 70);
         draw->AddPolyline(points.data(), int(points.size()), colour, ImDrawFlags_Closed,
                           selected ? 2.f : 1.f);
@@ -115,8 +119,8 @@ void drawOutlines(const EditorState& state, const Renderer& renderer, const Imag
 }
 
 /// Left press: picks a luminaire (select it and start moving it) or starts an orbit.
-void beginLeftDrag(EditorState& state, const Renderer& renderer, const ImageMapping& map, const Gizmo& g,
-                   const ImVec2& mouse) {
+void beginLeftDrag(EditorState& state, const Renderer& renderer, const ImageMapping& map,
+                   const Gizmo& g, const ImVec2& mouse) {
     glm::dvec2 px = map.toRender(mouse);
     state.drag = {};
     if (DragMode knob = grabbed(g, mouse); knob != DragMode::None) {
@@ -172,9 +176,11 @@ bool continueLuminaireDrag(EditorState& state, const Renderer& renderer, const I
     double step = snap ? state.placement.snap : 0.0;
     if (state.drag.onSurfaces) {
         const PlacementUi& p = state.placement;
-        auto hit = pickSurface(surfaceBvh(state), renderer.viewProj(), px.x, px.y, map.renderWidth, map.renderHeight);
+        auto hit = pickSurface(surfaceBvh(state), renderer.viewProj(), px.x, px.y, map.renderWidth,
+                               map.renderHeight);
         if (!hit) return false;
-        Pose pose = poseOnSurface(lum.pose, hit->point, hit->normal, p.aimAlongNormal, p.clearance, step);
+        Pose pose =
+            poseOnSurface(lum.pose, hit->point, hit->normal, p.aimAlongNormal, p.clearance, step);
         if (pose.position == lum.pose.position && pose.aim == lum.pose.aim) return false;
         applyEdit(state, "Move " + lum.name, kChangeLuminaires,
                   [&](Scene& s) { s.luminaires[size_t(index)]->pose = pose; });
@@ -194,7 +200,8 @@ bool continueLuminaireDrag(EditorState& state, const Renderer& renderer, const I
     glm::dvec3 shift = position - lum.pose.position;
     std::vector<int> group = selectedLuminaires(state);
     if (std::find(group.begin(), group.end(), index) == group.end()) group = {index};
-    std::string label = group.size() > 1 ? "Move " + std::to_string(group.size()) + " luminaires" : "Move " + lum.name;
+    std::string label = group.size() > 1 ? "Move " + std::to_string(group.size()) + " luminaires"
+                                         : "Move " + lum.name;
     applyEdit(state, label, kChangeLuminaires, [&](Scene& s) {
         for (int i : group) s.luminaires[size_t(i)]->pose.position += shift;
         s.luminaires[size_t(index)]->pose.position = position;  // exactly where the mouse put it
@@ -204,25 +211,29 @@ bool continueLuminaireDrag(EditorState& state, const Renderer& renderer, const I
 
 /// Aim handle: the luminaire turns to face the surface point under the mouse (or, over empty
 /// space, the point of the mouse ray at the handle's distance); C0 is kept as far as it can be.
-bool continueAimDrag(EditorState& state, const Renderer& renderer, const ImageMapping& map, const ImVec2& mouse) {
+bool continueAimDrag(EditorState& state, const Renderer& renderer, const ImageMapping& map,
+                     const ImVec2& mouse) {
     int index = state.drag.luminaire;
     if (index < 0 || index >= int(state.scene.luminaires.size())) return false;
     Luminaire& lum = *state.scene.luminaires[size_t(index)];
     glm::dvec2 px = map.toRender(mouse);
     Ray ray = pixelRay(renderer.viewProj(), px.x, px.y, map.renderWidth, map.renderHeight);
-    auto hit = pickSurface(surfaceBvh(state), renderer.viewProj(), px.x, px.y, map.renderWidth, map.renderHeight);
-    glm::dvec3 target = hit ? hit->point
-                            : ray.origin + ray.dir * glm::length(lum.pose.position - ray.origin);
+    auto hit = pickSurface(surfaceBvh(state), renderer.viewProj(), px.x, px.y, map.renderWidth,
+                           map.renderHeight);
+    glm::dvec3 target =
+        hit ? hit->point : ray.origin + ray.dir * glm::length(lum.pose.position - ray.origin);
     glm::dvec3 aim = target - lum.pose.position;
     if (!(glm::length(aim) > 1e-6)) return false;
     aim = glm::normalize(aim);
     if (aim == lum.pose.aim) return false;
-    applyEdit(state, "Aim " + lum.name, kChangeLuminaires, [&](Scene& s) { s.luminaires[size_t(index)]->pose.aim = aim; });
+    applyEdit(state, "Aim " + lum.name, kChangeLuminaires,
+              [&](Scene& s) { s.luminaires[size_t(index)]->pose.aim = aim; });
     return true;
 }
 
 /// Spin ring: C0 turns about the aim to follow the mouse around the ring (Ctrl: 15 degree steps).
-bool continueSpinDrag(EditorState& state, const Renderer& renderer, const ImageMapping& map, const ImVec2& mouse) {
+bool continueSpinDrag(EditorState& state, const Renderer& renderer, const ImageMapping& map,
+                      const ImVec2& mouse) {
     int index = state.drag.luminaire;
     if (index < 0 || index >= int(state.scene.luminaires.size())) return false;
     Luminaire& lum = *state.scene.luminaires[size_t(index)];
@@ -247,18 +258,21 @@ bool continueSpinDrag(EditorState& state, const Renderer& renderer, const ImageM
         spin = std::round(spin / step) * step;
         glm::dvec3 c0 = std::cos(spin) * ref + std::sin(spin) * refY;
         if (c0 == lum.pose.c0) return false;
-        applyEdit(state, "Spin " + lum.name, kChangeLuminaires, [&](Scene& s) { s.luminaires[size_t(index)]->pose.c0 = c0; });
+        applyEdit(state, "Spin " + lum.name, kChangeLuminaires,
+                  [&](Scene& s) { s.luminaires[size_t(index)]->pose.c0 = c0; });
         return true;
     }
     if (std::abs(angle) < 1e-9) return false;
     glm::dvec3 c0 = std::cos(angle) * x + std::sin(angle) * y;
-    applyEdit(state, "Spin " + lum.name, kChangeLuminaires, [&](Scene& s) { s.luminaires[size_t(index)]->pose.c0 = c0; });
+    applyEdit(state, "Spin " + lum.name, kChangeLuminaires,
+              [&](Scene& s) { s.luminaires[size_t(index)]->pose.c0 = c0; });
     return true;
 }
 
 /// Left click while "Place on a surface" is armed: the selected luminaire moves onto the surface
 /// seen through the pixel (Shift keeps placement armed for the next click).
-void placeAtPixel(EditorState& state, const Renderer& renderer, const ImageMapping& map, const ImVec2& mouse) {
+void placeAtPixel(EditorState& state, const Renderer& renderer, const ImageMapping& map,
+                  const ImVec2& mouse) {
     PlacementUi& p = state.placement;
     int index = state.selectedLuminaire;
     if (index < 0 || index >= int(state.scene.luminaires.size())) {
@@ -267,9 +281,11 @@ void placeAtPixel(EditorState& state, const Renderer& renderer, const ImageMappi
         return;
     }
     glm::dvec2 px = map.toRender(mouse);
-    auto hit = pickSurface(surfaceBvh(state), renderer.viewProj(), px.x, px.y, map.renderWidth, map.renderHeight);
+    auto hit = pickSurface(surfaceBvh(state), renderer.viewProj(), px.x, px.y, map.renderWidth,
+                           map.renderHeight);
     if (!hit) {
-        setStatus(state, "That pixel sees no surface: click a surface to place the luminaire", true);
+        setStatus(state, "That pixel sees no surface: click a surface to place the luminaire",
+                  true);
         return;
     }
     const ImGuiIO& io = ImGui::GetIO();
@@ -280,8 +296,9 @@ void placeAtPixel(EditorState& state, const Renderer& renderer, const ImageMappi
               [&](Scene& s) { s.luminaires[size_t(index)]->pose = pose; });
     p.armed = io.KeyShift;
     char text[200];
-    std::snprintf(text, sizeof text, "Placed %s at (%.2f, %.2f, %.2f) m, aimed (%.2f, %.2f, %.2f)", lum.name.c_str(),
-                  pose.position.x, pose.position.y, pose.position.z, pose.aim.x, pose.aim.y, pose.aim.z);
+    std::snprintf(text, sizeof text, "Placed %s at (%.2f, %.2f, %.2f) m, aimed (%.2f, %.2f, %.2f)",
+                  lum.name.c_str(), pose.position.x, pose.position.y, pose.position.z, pose.aim.x,
+                  pose.aim.y, pose.aim.z);
     setStatus(state, text);
 }
 
@@ -293,7 +310,8 @@ void pickChartPixel(EditorState& state, const Renderer& renderer, const ImageMap
     ui.pickingPixel = false;
     glm::dvec2 px = map.toRender(mouse);
     Bvh bvh = Bvh::build(state.scene);
-    std::optional<BvhHit> hit = pickSurface(bvh, renderer.viewProj(), px.x, px.y, map.renderWidth, map.renderHeight);
+    std::optional<BvhHit> hit =
+        pickSurface(bvh, renderer.viewProj(), px.x, px.y, map.renderWidth, map.renderHeight);
     if (!hit) {
         setStatus(state, "That pixel sees no surface: pick another", true);
         ui.pickingPixel = true;
@@ -316,7 +334,8 @@ void drawPickedPixel(const EditorState& state, const ImageMapping& map) {
     if (!ui.pixelPicked || !ui.chartOpen) return;
     ImVec2 c = map.toWindow(ui.pickedPixel);
     ImDrawList* draw = ImGui::GetWindowDrawList();
-    for (auto [colour, width] : {std::pair{IM_COL32(0, 0, 0, 200), 3.f}, std::pair{IM_COL32(80, 255, 120, 255), 1.5f}}) {
+    for (auto [colour, width] :
+         {std::pair{IM_COL32(0, 0, 0, 200), 3.f}, std::pair{IM_COL32(80, 255, 120, 255), 1.5f}}) {
         draw->AddLine(ImVec2(c.x - 9.f, c.y), ImVec2(c.x - 3.f, c.y), colour, width);
         draw->AddLine(ImVec2(c.x + 3.f, c.y), ImVec2(c.x + 9.f, c.y), colour, width);
         draw->AddLine(ImVec2(c.x, c.y - 9.f), ImVec2(c.x, c.y - 3.f), colour, width);
@@ -405,11 +424,13 @@ void setCursor(const EditorState& state, const Renderer& renderer, const ImageMa
     const ImGuiIO& io = ImGui::GetIO();
     if (cameraOnly) {
         if (hovered && state.compare.wipeDragging) ImGui::SetMouseCursor(ImGuiMouseCursor_ResizeEW);
-    } else if (hovered && ((state.environment.pickingPixel && state.environment.chartOpen) || state.placement.armed)) {
+    } else if (hovered && ((state.environment.pickingPixel && state.environment.chartOpen) ||
+                           state.placement.armed)) {
         ImGui::SetMouseCursor(ImGuiMouseCursor_Hand);
     } else if (hovered && state.drag.mode == DragMode::None) {
         glm::dvec2 px = map.toRender(io.MousePos);
-        if (grabbed(g, io.MousePos) != DragMode::None || renderer.pickLuminaire(state.scene, px.x, px.y) >= 0)
+        if (grabbed(g, io.MousePos) != DragMode::None ||
+            renderer.pickLuminaire(state.scene, px.x, px.y) >= 0)
             ImGui::SetMouseCursor(ImGuiMouseCursor_Hand);
     }
 }
@@ -432,7 +453,8 @@ bool handleInput(EditorState& state, const Renderer& renderer, const ImageMappin
 
 }  // namespace
 
-bool viewportPanel(EditorState& state, const Renderer& renderer, const PanelRect& rect, const Comparison* comparison) {
+bool viewportPanel(EditorState& state, const Renderer& renderer, const PanelRect& rect,
+                   const Comparison* comparison) {
     placeNextWindow(rect);
     ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(0.f, 0.f));
     ImGui::PushStyleVar(ImGuiStyleVar_WindowBorderSize, 0.f);

@@ -7,13 +7,13 @@ namespace candela {
 /// Bad input from a file or a user value. The message names the file (and line or field where
 /// known) and what was expected. Loaders throw it; the CLI and the editor catch it and report it.
 class InputError : public std::runtime_error {
-public:
+  public:
     explicit InputError(const std::string& message) : std::runtime_error(message) {}
 };
 
 /// A GL or system failure that is not the user's input (context creation, shader compile).
 class RuntimeError : public std::runtime_error {
-public:
+  public:
     explicit RuntimeError(const std::string& message) : std::runtime_error(message) {}
 };
 

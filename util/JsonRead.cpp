@@ -14,7 +14,9 @@ Where Where::operator[](size_t index) const {
     return {file, field + "[" + std::to_string(index) + "]"};
 }
 
-std::string Where::str() const { return field.empty() ? file : file + ": " + field; }
+std::string Where::str() const {
+    return field.empty() ? file : file + ": " + field;
+}
 
 void fail(const Where& where, const std::string& expected) {
     throw InputError(where.str() + ": expected " + expected);
@@ -51,8 +53,12 @@ static glm::vec<N, double> readVec(const nlohmann::json& v, const Where& where) 
     return out;
 }
 
-glm::dvec3 vec3(const nlohmann::json& v, const Where& where) { return readVec<3>(v, where); }
-glm::dvec2 vec2(const nlohmann::json& v, const Where& where) { return readVec<2>(v, where); }
+glm::dvec3 vec3(const nlohmann::json& v, const Where& where) {
+    return readVec<3>(v, where);
+}
+glm::dvec2 vec2(const nlohmann::json& v, const Where& where) {
+    return readVec<2>(v, where);
+}
 
 glm::dvec3 direction(const nlohmann::json& v, const Where& where) {
     glm::dvec3 d = vec3(v, where);
@@ -74,8 +80,8 @@ void checkKeys(const nlohmann::json& object, std::initializer_list<const char*> 
         if (!known) {
             std::string list;
             for (const char* key : allowed) list += std::string(list.empty() ? "" : ", ") + key;
-            throw InputError(where.str() + ": unknown field \"" + it.key() + "\" (expected one of " +
-                             list + ")");
+            throw InputError(where.str() + ": unknown field \"" + it.key() +
+                             "\" (expected one of " + list + ")");
         }
     }
 }

@@ -4,7 +4,6 @@
 
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
-
 #include <string>
 
 namespace candela::json {

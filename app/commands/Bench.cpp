@@ -70,19 +70,31 @@ Sweep lightFieldSweep(const LightFieldOptions& o) {
 /// restricted boxes are much smaller than the images) and the wall shows the beam.
 Scene benchScene(const fs::path& lightField, const fs::path& outDir, ProtectedInputs& inputs) {
     auto lf = LightFieldData::load(lightField);
-    double R = std::max({std::abs(lf->imageMin.x), std::abs(lf->imageMin.y), lf->imageMax.x, lf->imageMax.y});
+    double R = std::max(
+        {std::abs(lf->imageMin.x), std::abs(lf->imageMin.y), lf->imageMax.x, lf->imageMax.y});
     auto num = [](double v) { return std::to_string(v); };
-    std::string text = R"({"geometry": [
-        {"plane": {"center": [0,0,)" + num(-6 * R) + R"(], "normal": [0,1,0], "size": [)" + num(24 * R) + "," + num(20 * R) + R"(]}, "albedo": [0.6,0.6,0.6]},
-        {"plane": {"center": [0,)" + num(5 * R) + "," + num(-8 * R) + R"(], "normal": [0,0,1], "size": [)" + num(24 * R) + "," + num(10 * R) + R"(]}, "albedo": [0.7,0.7,0.7]}],
+    std::string text =
+        R"({"geometry": [
+        {"plane": {"center": [0,0,)" +
+        num(-6 * R) + R"(], "normal": [0,1,0], "size": [)" + num(24 * R) + "," + num(20 * R) +
+        R"(]}, "albedo": [0.6,0.6,0.6]},
+        {"plane": {"center": [0,)" +
+        num(5 * R) + "," + num(-8 * R) + R"(], "normal": [0,0,1], "size": [)" + num(24 * R) + "," +
+        num(10 * R) + R"(]}, "albedo": [0.7,0.7,0.7]}],
       "luminaires": [{"type": "lightfield", "name": "LF", "file": ")" +
-                       fs::absolute(lightField).generic_string() + R"(",
-        "position": [0, )" + num(1.5 * R) + R"(, 0], "aim": [0, -0.25, -1], "c0": [1, 0, 0], "technique": "restricted-cdf"}],
-      "camera": {"position": [)" + num(3 * R) + "," + num(4 * R) + "," + num(3 * R) + R"(], "target": [0, )" + num(0.5 * R) + "," + num(-4 * R) + R"(], "fov_deg": 65}})";
-    Scene scene = parseScene(nlohmann::json::parse(text), (fs::absolute(lightField).parent_path() / "bench.json").string());
+        fs::absolute(lightField).generic_string() + R"(",
+        "position": [0, )" +
+        num(1.5 * R) +
+        R"(, 0], "aim": [0, -0.25, -1], "c0": [1, 0, 0], "technique": "restricted-cdf"}],
+      "camera": {"position": [)" +
+        num(3 * R) + "," + num(4 * R) + "," + num(3 * R) + R"(], "target": [0, )" + num(0.5 * R) +
+        "," + num(-4 * R) + R"(], "fov_deg": 65}})";
+    Scene scene = parseScene(nlohmann::json::parse(text),
+                             (fs::absolute(lightField).parent_path() / "bench.json").string());
     inputs.add(scene.luminaires[0]->sourceFiles());
     // Kept beside the results, so `candela render` can reproduce any image.
-    writeFileAtomically((outDir / "bench_scene.json").string(), nlohmann::json::parse(text).dump(2) + "\n");
+    writeFileAtomically((outDir / "bench_scene.json").string(),
+                        nlohmann::json::parse(text).dump(2) + "\n");
     return scene;
 }
 
@@ -135,7 +147,9 @@ int benchLightField(const Args& args) {
     auto loadStart = std::chrono::steady_clock::now();
     ProtectedInputs inputs;  // the light field and its images, once loaded
     Scene scene = benchScene(o.lightField, out, inputs);
-    double loadMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - loadStart).count();
+    double loadMs =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - loadStart)
+            .count();
     const auto& lf = *static_cast<const LightFieldLuminaire&>(*scene.luminaires[0]).data;
     BenchGpu gpu;
     RenderSettings settings;

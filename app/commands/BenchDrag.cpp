@@ -66,8 +66,8 @@ struct ReleasePoint {
 /// Renders `frames` frames while luminaire `index` of `scene` moves around its circle, showing
 /// `shown` (the scene itself, or its preview scene kept in step); the luminaire is back at its
 /// place afterwards.
-DragRow drag(Renderer& renderer, Scene& scene, Scene& shown, size_t index, const RenderSettings& settings,
-             int frames, const std::string& mode) {
+DragRow drag(Renderer& renderer, Scene& scene, Scene& shown, size_t index,
+             const RenderSettings& settings, int frames, const std::string& mode) {
     Luminaire& lum = *scene.luminaires[index];
     glm::dvec3 home = lum.pose.position;
     renderer.setSettings(settings);
@@ -311,9 +311,10 @@ int benchDrag(const Args& args) {
     full.maxSamples = 256;
     DragReference reference = renderReference(gpu.renderer, scene, full, o.referenceSpp, out);
     RenderSettings preview = previewSettings(full, o.policy);
-    std::fprintf(stderr, "bench: preview %dx%d, %d spp per frame, techniques %s, %d shadow map(s) of %d^2\n",
-                 preview.width, preview.height, preview.samplesPerFrame, preview.techniqueOverride.c_str(),
-                 preview.shadowMaps.count, preview.shadowMaps.resolution);
+    std::fprintf(
+        stderr, "bench: preview %dx%d, %d spp per frame, techniques %s, %d shadow map(s) of %d^2\n",
+        preview.width, preview.height, preview.samplesPerFrame, preview.techniqueOverride.c_str(),
+        preview.shadowMaps.count, preview.shadowMaps.resolution);
 
     Scene shownWhileDragging = previewScene(scene);
     Renderer fullRenderer(gpu.shaders);

@@ -35,15 +35,20 @@ namespace fs = std::filesystem;
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-double lum(const glm::dvec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+double since(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+double lum(const glm::dvec3& c) {
+    return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
+}
 
 /// The work plane's interreflected illuminance at `points` (facing up), from the patches.
 std::vector<double> workPlane(const Interreflection& ir, const std::vector<glm::dvec3>& points) {
     std::vector<double> out(points.size());
     std::atomic<size_t> next{0};
     auto work = [&] {
-        for (size_t i; (i = next.fetch_add(1)) < points.size();) out[i] = lum(ir.fromPatches(points[i], {0, 1, 0}));
+        for (size_t i; (i = next.fetch_add(1)) < points.size();)
+            out[i] = lum(ir.fromPatches(points[i], {0, 1, 0}));
     };
     std::vector<std::thread> pool;
     for (int t = 1; t < workerThreads(0); ++t) pool.emplace_back(work);
@@ -61,14 +66,15 @@ double mean(const std::vector<double>& v) {
 /// The largest deviation of any point from the converged values, relative to their mean.
 double worstDeviation(const std::vector<double>& v, const std::vector<double>& converged) {
     double worst = 0.0, m = mean(converged);
-    for (size_t i = 0; i < v.size(); ++i) worst = std::max(worst, std::abs(v[i] - converged[i]) / m);
+    for (size_t i = 0; i < v.size(); ++i)
+        worst = std::max(worst, std::abs(v[i] - converged[i]) / m);
     return worst;
 }
 
 struct Step {
     std::string phase, step;
-    double seconds = 0.0;          ///< Since the phase began (wall time, this thread and its pool).
-    std::vector<double> values;    ///< Work plane, lx.
+    double seconds = 0.0;        ///< Since the phase began (wall time, this thread and its pool).
+    std::vector<double> values;  ///< Work plane, lx.
 };
 
 struct IndirectOptions {
@@ -121,7 +127,8 @@ Timeline runWorkerSteps(Scene& scene, const InterreflectionOptions& options, Lum
     auto record = [&](const std::string& phase, const std::string& step, Clock::time_point start) {
         Step s{phase, step, 0.0, workPlane(ir, points)};
         s.seconds = since(start);
-        std::printf("  %-6s %-24s %7.2f s  Em %.4g lx\n", phase.c_str(), step.c_str(), s.seconds, mean(s.values));
+        std::printf("  %-6s %-24s %7.2f s  Em %.4g lx\n", phase.c_str(), step.c_str(), s.seconds,
+                    mean(s.values));
         std::fflush(stdout);
         t.steps.push_back(std::move(s));
     };
@@ -203,8 +210,9 @@ void measureScaling(const Scene& scene, const InterreflectionOptions& options,
         double direct = since(s1);
         scaling.row("patches", x.mesh().patches.size(), scene.luminaires.size(), ff, direct,
                     x.lastIterations());
-        std::printf("  %6zu patches, %zu luminaires: form factors %.2f s, direct light + solve %.2f s\n",
-                    x.mesh().patches.size(), scene.luminaires.size(), ff, direct);
+        std::printf(
+            "  %6zu patches, %zu luminaires: form factors %.2f s, direct light + solve %.2f s\n",
+            x.mesh().patches.size(), scene.luminaires.size(), ff, direct);
     }
     for (size_t keep : {size_t(1), size_t(3), scene.luminaires.size()}) {
         Scene some = scene.clone();
@@ -216,8 +224,8 @@ void measureScaling(const Scene& scene, const InterreflectionOptions& options,
         double direct = since(s1);
         scaling.row("luminaires", x.mesh().patches.size(), some.luminaires.size(), "", direct,
                     x.lastIterations());
-        std::printf("  %6zu patches, %zu luminaires: direct light + solve %.2f s\n", x.mesh().patches.size(),
-                    some.luminaires.size(), direct);
+        std::printf("  %6zu patches, %zu luminaires: direct light + solve %.2f s\n",
+                    x.mesh().patches.size(), some.luminaires.size(), direct);
     }
     scaling.write(out / "scaling.csv");
 }
@@ -255,7 +263,8 @@ void addSummary(BenchSummary& summary, const IndirectReport& r, const Timeline& 
     };
     const IndirectOptions& o = r.options;
     std::string shown = o.scenePath;
-    if (shown.rfind(CANDELA_SOURCE_DIR "/", 0) == 0) shown = shown.substr(std::string(CANDELA_SOURCE_DIR "/").size());
+    if (shown.rfind(CANDELA_SOURCE_DIR "/", 0) == 0)
+        shown = shown.substr(std::string(CANDELA_SOURCE_DIR "/").size());
     std::ostringstream text;
     text << "scene: " << shown << "; " << r.patches << " patches (about " << o.patches
          << " asked), " << r.scene.luminaires.size() << " luminaires, " << workerThreads(0)

@@ -3,14 +3,14 @@
 //
 // The normalised setup: every file's intensity table on the same 1 x 1 m opening, at heights 0.1,
 // 1.1, 3.1 and 5.1 m over a ground plane (of its lower edge while it stands vertical), its normal
-// turned from horizontal (pi/2 from the ground's normal) to straight down (pi) in five steps. The ground is imaged from
-// above (an orthographic grid of receivers through the production shading passes, the GPU probe).
-// Per technique, file, height and rotation: NMSE (Eq. 6.7) against the `reference` technique,
-// upper and lower error bounds (the extreme signed differences of the tone-mapped images, Eq. 6.8,
-// which also saturate the error images: orange too bright, blue too dark), the NMSE of the near
-// field (receivers within 1.5 m of the opening's centre, where the thesis sees light bumps), the
-// light bumps (local maxima there that the smoothed reference does not have) and the GPU time of
-// the shading pass.
+// turned from horizontal (pi/2 from the ground's normal) to straight down (pi) in five steps. The
+// ground is imaged from above (an orthographic grid of receivers through the production shading
+// passes, the GPU probe). Per technique, file, height and rotation: NMSE (Eq. 6.7) against the
+// `reference` technique, upper and lower error bounds (the extreme signed differences of the
+// tone-mapped images, Eq. 6.8, which also saturate the error images: orange too bright, blue too
+// dark), the NMSE of the near field (receivers within 1.5 m of the opening's centre, where the
+// thesis sees light bumps), the light bumps (local maxima there that the smoothed reference does
+// not have) and the GPU time of the shading pass.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -54,10 +54,13 @@ struct Metrics {
 };
 
 /// Eq. (6.8) with a fixed scale: Ld = L / (1 + L), L = a E.
-double toneMap(double e, double a) { return a * e / (1.0 + a * e); }
+double toneMap(double e, double a) {
+    return a * e / (1.0 + a * e);
+}
 
 /// Eq. (6.7): mean over pixels of (R - A)^2 / (mean R * mean A).
-double nmse(const std::vector<double>& r, const std::vector<double>& a, const std::vector<char>* mask = nullptr) {
+double nmse(const std::vector<double>& r, const std::vector<double>& a,
+            const std::vector<char>* mask = nullptr) {
     double sr = 0.0, sa = 0.0, se = 0.0;
     size_t n = 0;
     for (size_t i = 0; i < r.size(); ++i) {
@@ -97,7 +100,8 @@ int localMaxima(const std::vector<double>& img, const std::vector<char>& mask, i
 /// Orange where the approximation is too bright, blue where too dark, white where right; full
 /// saturation at the bound (Prost Fig. 6.5).
 void errorColour(double d, double ueb, double leb, unsigned char* out) {
-    double t = d >= 0.0 ? (ueb > 0.0 ? std::min(1.0, d / ueb) : 0.0) : (leb < 0.0 ? std::min(1.0, d / leb) : 0.0);
+    double t = d >= 0.0 ? (ueb > 0.0 ? std::min(1.0, d / ueb) : 0.0)
+                        : (leb < 0.0 ? std::min(1.0, d / leb) : 0.0);
     const double orange[3] = {255, 140, 0}, blue[3] = {30, 90, 255};
     const double* c = d >= 0.0 ? orange : blue;
     for (int k = 0; k < 3; ++k) out[k] = (unsigned char)std::lround(255.0 + t * (c[k] - 255.0));
@@ -108,7 +112,10 @@ struct Sheet {
     int cell, cols, rows;
     std::vector<unsigned char> rgb;
     Sheet(int cell_, int cols_, int rows_)
-        : cell(cell_), cols(cols_), rows(rows_), rgb(size_t(cell_ * cols_) * size_t(cell_ * rows_) * 3, 40) {}
+        : cell(cell_),
+          cols(cols_),
+          rows(rows_),
+          rgb(size_t(cell_ * cols_) * size_t(cell_ * rows_) * 3, 40) {}
     unsigned char* at(int col, int row, int x, int y) {
         size_t w = size_t(cell * cols);
         return &rgb[((size_t(row * cell + y)) * w + size_t(col * cell + x)) * 3];
@@ -154,8 +161,9 @@ ProstOptions parseOptions(const Args& args) {
         .positional([&o](const std::string& a) { addFiles(a, o.files); })
         .parse(args, [](const std::string& a) { return "bench --prost: unknown option " + a; });
     if (o.files.empty())
-        throw InputError("usage: candela bench --prost FILE.ies|FILE.ldt|DIR... [--out DIR] [--size N] "
-                         "[--reference-spp N]");
+        throw InputError(
+            "usage: candela bench --prost FILE.ies|FILE.ldt|DIR... [--out DIR] [--size N] "
+            "[--reference-spp N]");
     std::sort(o.files.begin(), o.files.end());
     return o;
 }

@@ -46,8 +46,12 @@ BenchRow benchRow(std::string technique, int spp, double shadeMs, const std::vec
                   const std::vector<unsigned char>& display, const std::vector<float>& refLinear,
                   const std::vector<unsigned char>& refDisplay, double refNoise) {
     double raw = relRmse(linear, refLinear);
-    return {std::move(technique), spp, shadeMs, std::sqrt(std::max(0.0, raw * raw - refNoise * refNoise)),
-            meanDeltaE(display, refDisplay), raw};
+    return {std::move(technique),
+            spp,
+            shadeMs,
+            std::sqrt(std::max(0.0, raw * raw - refNoise * refNoise)),
+            meanDeltaE(display, refDisplay),
+            raw};
 }
 
 BenchRow rowAt(const std::vector<BenchRow>& rows, const std::string& technique, int spp) {
@@ -60,7 +64,8 @@ BenchRow rowAt(const std::vector<BenchRow>& rows, const std::string& technique, 
     return none;
 }
 
-double atError(const std::vector<BenchRow>& rows, const std::string& technique, double error, bool time) {
+double atError(const std::vector<BenchRow>& rows, const std::string& technique, double error,
+               bool time) {
     std::vector<const BenchRow*> c;
     for (const BenchRow& r : rows)
         if (r.technique == technique) c.push_back(&r);
@@ -78,8 +83,8 @@ void writeBenchCsv(const std::string& path, const std::vector<BenchRow>& rows) {
     std::ostringstream csv;
     csv << "technique,spp,gpu_ms,rel_rmse,mean_delta_e,rel_rmse_raw,repeats,rel_rmse_spread\n";
     for (const BenchRow& r : rows)
-        csv << r.technique << "," << r.spp << "," << r.shadeMs << "," << r.rmse << "," << r.deltaE << ","
-            << r.rawRmse << "," << r.repeats << "," << r.rmseSpread << "\n";
+        csv << r.technique << "," << r.spp << "," << r.shadeMs << "," << r.rmse << "," << r.deltaE
+            << "," << r.rawRmse << "," << r.repeats << "," << r.rmseSpread << "\n";
     writeFileAtomically(path, csv.str());
 }
 
@@ -107,8 +112,9 @@ BenchRow meanRow(const std::vector<BenchRow>& repeats) {
 }
 
 std::string sweepPlot(const std::string& techniques, int xColumn, int yColumn) {
-    return "plot for [t in '" + techniques + "'] 'bench.csv' using (strcol(1) eq t ? $" + std::to_string(xColumn) +
-           " : 1/0):" + std::to_string(yColumn) + " with linespoints pointsize 1.5 title t\n";
+    return "plot for [t in '" + techniques + "'] 'bench.csv' using (strcol(1) eq t ? $" +
+           std::to_string(xColumn) + " : 1/0):" + std::to_string(yColumn) +
+           " with linespoints pointsize 1.5 title t\n";
 }
 
 bool runGnuplot(const std::string& dir, const std::string& output) {
@@ -118,7 +124,8 @@ bool runGnuplot(const std::string& dir, const std::string& output) {
         return false;
     }
     try {
-        writeFileAtomically(path, gnuplotOutput("load 'plot.gp'\n", dir, path), "cannot write the plot");
+        writeFileAtomically(path, gnuplotOutput("load 'plot.gp'\n", dir, path),
+                            "cannot write the plot");
     } catch (const RuntimeError& e) {
         std::printf("%s (%s/plot.gp is there to plot the CSV)\n", e.what(), dir.c_str());
         return false;

@@ -2,7 +2,6 @@
 // Image metrics and small helpers shared by the benches (app/commands/Bench*.cpp).
 
 #include <glm/glm.hpp>
-
 #include <string>
 #include <vector>
 
@@ -13,7 +12,8 @@ namespace candela {
 
 /// "4,8,16" as integers (each checked as a sample count); throws InputError.
 std::vector<int> parseList(const std::string& text);
-/// "Intel(R) Xeon(R) ... , 2 cores": the CPU the bench ran on (from /proc/cpuinfo), for its summary.
+/// "Intel(R) Xeon(R) ... , 2 cores": the CPU the bench ran on (from /proc/cpuinfo), for its
+/// summary.
 std::string machineDescription();
 /// "2.3x", or "n/a" for a ratio that could not be measured (NaN or infinite).
 std::string formatRatio(double ratio);
@@ -42,7 +42,8 @@ BenchRow benchRow(std::string technique, int spp, double shadeMs, const std::vec
 BenchRow rowAt(const std::vector<BenchRow>& rows, const std::string& technique, int spp);
 /// Samples (time: GPU ms) a technique needs to reach `error`: log-log interpolation along its
 /// rows; NaN when its sweep never gets there.
-double atError(const std::vector<BenchRow>& rows, const std::string& technique, double error, bool time);
+double atError(const std::vector<BenchRow>& rows, const std::string& technique, double error,
+               bool time);
 /// bench.csv: technique,spp,gpu_ms,rel_rmse,mean_delta_e,rel_rmse_raw,repeats,rel_rmse_spread
 /// (written through a temporary file and a rename, as every bench output: util/FileOutput.h).
 void writeBenchCsv(const std::string& path, const std::vector<BenchRow>& rows);
@@ -60,7 +61,8 @@ int benchEnvironment(const Args& args);
 /// `candela bench --drag`: the editor's frame rate while dragging and refinement after release
 /// (app/commands/BenchDrag.cpp).
 int benchDrag(const Args& args);
-/// `candela bench --shadows`: shadow maps against ray-traced visibility (app/commands/BenchShadows.cpp).
+/// `candela bench --shadows`: shadow maps against ray-traced visibility
+/// (app/commands/BenchShadows.cpp).
 int benchShadows(const Args& args);
 /// `candela bench --indirect`: interreflected light from scratch and after a move, against time
 /// (app/commands/BenchIndirect.cpp).

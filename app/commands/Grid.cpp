@@ -54,7 +54,8 @@ void printGrid(const GridResult& r, const GridSummary& s) {
     const UnitSystem& units = r.units;
     std::printf("%s E [%s]%s%s; rows %s [m], columns %s [m]\n",
                 units.photometric ? "illuminance" : "irradiance", units.irradiance(),
-                units.converted ? ", " : "", units.note().c_str(), p.vName().c_str(), p.uName().c_str());
+                units.converted ? ", " : "", units.note().c_str(), p.vName().c_str(),
+                p.uName().c_str());
     std::printf("%7s\\%s", p.vName().c_str(), p.uName().c_str());
     for (double u : r.u) std::printf(" %9.3f", u);
     std::printf("\n");
@@ -65,7 +66,8 @@ void printGrid(const GridResult& r, const GridSummary& s) {
     }
     std::printf("points: %zu\n", s.count);
     const char* unit = units.irradiance();
-    std::printf("Emin: %.6g %s\nEavg: %.6g %s\nEmax: %.6g %s\n", s.eMin, unit, s.eAvg, unit, s.eMax, unit);
+    std::printf("Emin: %.6g %s\nEavg: %.6g %s\nEmax: %.6g %s\n", s.eMin, unit, s.eAvg, unit, s.eMax,
+                unit);
     std::printf("U0 (Emin/Eavg): %.4f\nEmin/Emax: %.4f\n", s.u0, s.minOverMax);
     if (!r.hasIndirect) {
         std::printf("light: direct only (interreflected light: --indirect)\n");
@@ -74,8 +76,8 @@ void printGrid(const GridResult& r, const GridSummary& s) {
     // Em (the mean) and U0 of each part, as design tools report them.
     auto part = [&](const char* name, const std::vector<double>& values) {
         GridSummary p = summariseGrid(values);
-        std::printf("%-15s Emin %.6g %s, Em %.6g %s, Emax %.6g %s, U0 %.4f\n", name, p.eMin, unit, p.eAvg, unit,
-                    p.eMax, unit, p.u0);
+        std::printf("%-15s Emin %.6g %s, Em %.6g %s, Emax %.6g %s, U0 %.4f\n", name, p.eMin, unit,
+                    p.eAvg, unit, p.eMax, unit, p.u0);
     };
     part("direct:", r.direct);
     part("interreflected:", r.indirect);
@@ -87,18 +89,20 @@ std::string gridCsv(const GridResult& r) {
     std::string unit = r.units.photometric ? "_lx" : "_W_m2";
     std::string out = "x,y,z,E" + unit + ",E_stderr" + unit;
     if (r.hasIndirect)
-        out += ",E_direct" + unit + ",E_direct_stderr" + unit + ",E_indirect" + unit + ",E_indirect_stderr" + unit;
+        out += ",E_direct" + unit + ",E_direct_stderr" + unit + ",E_indirect" + unit +
+               ",E_indirect_stderr" + unit;
     out += "\n";
     char line[160];
     for (size_t j = 0; j < r.v.size(); ++j)
         for (size_t i = 0; i < r.u.size(); ++i) {
             glm::dvec3 q = r.spec.plane.point(r.u[i], r.v[j]);
             size_t k = j * r.u.size() + i;
-            std::snprintf(line, sizeof line, "%.9g,%.9g,%.9g,%.10g,%.4g", q.x, q.y, q.z, r.E[k], r.stdError[k]);
+            std::snprintf(line, sizeof line, "%.9g,%.9g,%.9g,%.10g,%.4g", q.x, q.y, q.z, r.E[k],
+                          r.stdError[k]);
             out += line;
             if (r.hasIndirect) {
-                std::snprintf(line, sizeof line, ",%.10g,%.4g,%.10g,%.4g", r.direct[k], r.directStdError[k],
-                              r.indirect[k], r.indirectStdError[k]);
+                std::snprintf(line, sizeof line, ",%.10g,%.4g,%.10g,%.4g", r.direct[k],
+                              r.directStdError[k], r.indirect[k], r.indirectStdError[k]);
                 out += line;
             }
             out += "\n";
@@ -167,7 +171,8 @@ int cmdGrid(const Args& args) {
     if (scenePath.empty() || !havePlane)
         throw InputError(
             "usage: candela grid scene.json --plane y=0.8 [--extent u0,v0,u1,v1] "
-            "[--spacing 0.25] [--spp N] [--technique T] [--env-technique T] [--visibility] [--indirect [--patches N]] "
+            "[--spacing 0.25] [--spp N] [--technique T] [--env-technique T] [--visibility] "
+            "[--indirect [--patches N]] "
             "[--csv out.csv]");
     if (!(spec.spacing > 0.0))
         throw InputError("--spacing: expected a positive number of metres, got " +
@@ -176,7 +181,8 @@ int cmdGrid(const Args& args) {
     ProtectedInputs inputs(scene.inputFiles());
     checkNotAnInput(csvPath, "--csv");
     if (!haveExtent) defaultGridExtent(scene, spec);
-    GridResult result = computeGrid(scene, spec, [](const std::string& s) { std::fprintf(stderr, "grid: %s\n", s.c_str()); });
+    GridResult result = computeGrid(
+        scene, spec, [](const std::string& s) { std::fprintf(stderr, "grid: %s\n", s.c_str()); });
     GridSummary summary = summariseGrid(result.E);
     printGrid(result, summary);
     if (!csvPath.empty()) {

@@ -2,8 +2,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <memory>
 #include <filesystem>
+#include <memory>
 
 #include "app/commands/Commands.h"
 #include "luminaires/LightField.h"
@@ -18,11 +18,16 @@ namespace candela {
 
 static const char* symmetryName(PhotometricSymmetry s) {
     switch (s) {
-        case PhotometricSymmetry::None: return "none";
-        case PhotometricSymmetry::Axial: return "rotational (one C plane)";
-        case PhotometricSymmetry::Quadrant: return "quadrants (C0-C90 mirrored)";
-        case PhotometricSymmetry::PlaneC0C180: return "mirror about the C0-C180 plane";
-        case PhotometricSymmetry::PlaneC90C270: return "mirror about the C90-C270 plane";
+        case PhotometricSymmetry::None:
+            return "none";
+        case PhotometricSymmetry::Axial:
+            return "rotational (one C plane)";
+        case PhotometricSymmetry::Quadrant:
+            return "quadrants (C0-C90 mirrored)";
+        case PhotometricSymmetry::PlaneC0C180:
+            return "mirror about the C0-C180 plane";
+        case PhotometricSymmetry::PlaneC90C270:
+            return "mirror about the C90-C270 plane";
     }
     return "?";
 }
@@ -39,21 +44,27 @@ static void printPhotometry(const std::string& path) {
     std::printf("format: %s, type %s goniometry, symmetry: %s\n", d.format.c_str(),
                 d.goniometer == Goniometer::B ? "B" : "C", symmetryName(d.symmetry));
     if (!d.name.empty()) std::printf("luminaire: %s\n", d.name.c_str());
-    std::printf("angles: %zu vertical (%.4g..%.4g deg) x %zu horizontal (%.4g..%.4g deg, unfolded)\n",
-                d.vertical.size(), d.vertical.front(), d.vertical.back(), d.horizontal.size(),
-                d.horizontal.front(), d.horizontal.back());
+    std::printf(
+        "angles: %zu vertical (%.4g..%.4g deg) x %zu horizontal (%.4g..%.4g deg, unfolded)\n",
+        d.vertical.size(), d.vertical.front(), d.vertical.back(), d.horizontal.size(),
+        d.horizontal.front(), d.horizontal.back());
     std::printf("max intensity: %.6g cd\n", d.maxIntensity());
-    std::printf("opening: %.4g x %.4g x %.4g m (length along C0, width along C90, height), emitting "
-                "polygon %.4g m2%s\n", d.opening.length, d.opening.width, d.opening.height, light->area(),
-                light->polygon().empty() ? " (a point source)" : "");
+    std::printf(
+        "opening: %.4g x %.4g x %.4g m (length along C0, width along C90, height), emitting "
+        "polygon %.4g m2%s\n",
+        d.opening.length, d.opening.width, d.opening.height, light->area(),
+        light->polygon().empty() ? " (a point source)" : "");
     double flux = d.fluxFromTable();
     std::printf("luminaire flux (exact quadrature of the table): %.6g lm\n", flux);
     double declared = d.declaredFlux();
     if (declared > 0.0)
-        std::printf("lamp flux %.6g lm x light output ratio %.4g = %.6g lm (table / declared %.4f)\n",
-                    d.lampFlux, d.lightOutputRatio, declared, flux / declared);
+        std::printf(
+            "lamp flux %.6g lm x light output ratio %.4g = %.6g lm (table / declared %.4f)\n",
+            d.lampFlux, d.lightOutputRatio, declared, flux / declared);
     else if (d.lampFlux > 0.0)
-        std::printf("lamp flux %.6g lm, light output ratio 0: no declared luminaire flux to compare\n", d.lampFlux);
+        std::printf(
+            "lamp flux %.6g lm, light output ratio 0: no declared luminaire flux to compare\n",
+            d.lampFlux);
     else
         std::printf("absolute photometry: no lamp flux declared\n");
     if (d.inputWatts > 0.0 && std::isfinite(flux / d.inputWatts))
@@ -65,28 +76,33 @@ static void printPhotometry(const std::string& path) {
 static void printLightField(const std::string& path) {
     auto start = std::chrono::steady_clock::now();
     std::shared_ptr<LightFieldData> lf = LightFieldData::load(path);
-    double loadMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    double loadMs =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     const LightFieldData& d = *lf;
     std::printf("light field: %s\n", path.c_str());
     std::printf("model: %s, delta %.4g mm (U at local z = 0, S at z = delta)\n",
                 d.model == LightFieldData::Model::Canned ? "canned" : "goesele", d.delta * 1e3);
     glm::dvec2 last = d.node(d.imageCount() - 1);
-    std::printf("basis: quadratic B-splines, %dx%d, spacing %.4g x %.4g mm, nodes [%.4g, %.4g] x [%.4g, %.4g] mm\n",
-                d.count.x, d.count.y, d.spacing.x * 1e3, d.spacing.y * 1e3, d.origin.x * 1e3, last.x * 1e3,
-                d.origin.y * 1e3, last.y * 1e3);
-    std::printf("images: %d of %dx%d pixels, %s, over [%.4g, %.4g] x [%.4g, %.4g] mm on S, unit %s\n",
-                d.imageCount(), d.width, d.height, d.rgb ? "RGB" : "luminance", d.imageMin.x * 1e3,
-                d.imageMax.x * 1e3, d.imageMin.y * 1e3, d.imageMax.y * 1e3, d.unit.c_str());
+    std::printf(
+        "basis: quadratic B-splines, %dx%d, spacing %.4g x %.4g mm, nodes [%.4g, %.4g] x [%.4g, "
+        "%.4g] mm\n",
+        d.count.x, d.count.y, d.spacing.x * 1e3, d.spacing.y * 1e3, d.origin.x * 1e3, last.x * 1e3,
+        d.origin.y * 1e3, last.y * 1e3);
+    std::printf(
+        "images: %d of %dx%d pixels, %s, over [%.4g, %.4g] x [%.4g, %.4g] mm on S, unit %s\n",
+        d.imageCount(), d.width, d.height, d.rgb ? "RGB" : "luminance", d.imageMin.x * 1e3,
+        d.imageMax.x * 1e3, d.imageMin.y * 1e3, d.imageMax.y * 1e3, d.unit.c_str());
     glm::dvec3 power = d.power();
     bool photometric = d.unit == "cd/m2";
     const char* unit = photometric ? "lm" : "W";
     if (d.rgb)
-        std::printf("flux (quadrature of L cos cos / r^2 over U x S): R %.6g, G %.6g, B %.6g %s\n", power.x,
-                    power.y, power.z, unit);
+        std::printf("flux (quadrature of L cos cos / r^2 over U x S): R %.6g, G %.6g, B %.6g %s\n",
+                    power.x, power.y, power.z, unit);
     else
         std::printf("flux (quadrature of L cos cos / r^2 over U x S): %.6g %s\n", power.y, unit);
-    std::printf("load %.0f ms, of which precomputation (summed-area tables, CDFs, medians) %.1f ms\n",
-                loadMs, d.precomputeMs);
+    std::printf(
+        "load %.0f ms, of which precomputation (summed-area tables, CDFs, medians) %.1f ms\n",
+        loadMs, d.precomputeMs);
 }
 
 static void printMeshes(const Scene& scene) {
@@ -107,7 +123,8 @@ static void printMeshes(const Scene& scene) {
 
 int cmdInfo(const Args& args) {
     if (args.size() != 1)
-        throw InputError("usage: candela info FILE (.json scene, .lf.json, .gltf, .glb, .ies, .ldt) [--strict]");
+        throw InputError(
+            "usage: candela info FILE (.json scene, .lf.json, .gltf, .glb, .ies, .ldt) [--strict]");
     const std::string& path = args[0];
     std::string ext = std::filesystem::path(path).extension().string();
     for (char& c : ext) c = char(std::tolower((unsigned char)c));
@@ -130,22 +147,24 @@ int cmdInfo(const Args& args) {
             const TechniqueInfo* t = findTechnique(l->kind(), l->technique);
             glm::dvec3 p = l->pose.position;
             std::printf("  \"%s\": %s\n    at (%.3f, %.3f, %.3f) m, technique %s (%s)\n",
-                        l->name.c_str(), l->describe().c_str(), p.x, p.y, p.z,
-                        l->technique.c_str(), t ? std::string(t->description).c_str() : "?");
+                        l->name.c_str(), l->describe().c_str(), p.x, p.y, p.z, l->technique.c_str(),
+                        t ? std::string(t->description).c_str() : "?");
             auto* photometric = dynamic_cast<const PhotometricLuminaire*>(l.get());
             if (photometric && photometric->data && !photometric->data->warnings.empty())
                 std::printf("    %zu warning(s) reading %s (candela info lists them)\n",
-                            photometric->data->warnings.size(), toValidUtf8(photometric->file).c_str());
+                            photometric->data->warnings.size(),
+                            toValidUtf8(photometric->file).c_str());
         }
-        std::printf("environment: %s\n", scene.environment.is_null() ? "none" : scene.environment.dump().c_str());
+        std::printf("environment: %s\n",
+                    scene.environment.is_null() ? "none" : scene.environment.dump().c_str());
         UnitSystem units = scene.units();
         std::printf("units: %s (%s)%s%s\n", units.photometric ? "photometric" : "radiometric",
-                    units.photometric ? "lm, cd, cd/m2, lx" : "W, W/sr, W/(m2 sr), W/m2", units.converted ? "; " : "",
-                    units.note().c_str());
+                    units.photometric ? "lm, cd, cd/m2, lx" : "W, W/sr, W/(m2 sr), W/m2",
+                    units.converted ? "; " : "", units.note().c_str());
         const Camera& c = scene.camera;
-        std::printf("camera: at (%.3f, %.3f, %.3f) m looking at (%.3f, %.3f, %.3f) m, fov %.1f deg\n",
-                    c.position.x, c.position.y, c.position.z, c.target.x, c.target.y, c.target.z,
-                    c.fovDeg);
+        std::printf(
+            "camera: at (%.3f, %.3f, %.3f) m looking at (%.3f, %.3f, %.3f) m, fov %.1f deg\n",
+            c.position.x, c.position.y, c.position.z, c.target.x, c.target.y, c.target.z, c.fovDeg);
         return 0;
     }
     if (ext == ".gltf" || ext == ".glb") {
@@ -155,7 +174,8 @@ int cmdInfo(const Args& args) {
         printMeshes(scene);
         return 0;
     }
-    throw InputError(path + ": unsupported file type \"" + ext + "\" (expected .json, .lf.json, .gltf, .glb, .ies or .ldt)");
+    throw InputError(path + ": unsupported file type \"" + ext +
+                     "\" (expected .json, .lf.json, .gltf, .glb, .ies or .ldt)");
 }
 
 }  // namespace candela

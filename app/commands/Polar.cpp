@@ -51,14 +51,14 @@ std::string singleQuoted(const std::string& s) {
 }
 
 void plotPng(const PhotometricData& data, const ui::PolarCurves& curves, const std::string& out) {
-    if (!gnuplotAvailable()) throw RuntimeError("gnuplot not found (install gnuplot-nox: scripts/setup.sh)");
+    if (!gnuplotAvailable())
+        throw RuntimeError("gnuplot not found (install gnuplot-nox: scripts/setup.sh)");
     std::vector<double> rings = ui::polarRings(curves.peak);
     std::string title = (data.name.empty() ? fs::path(data.path).filename().string() : data.name) +
                         ": luminous intensity [cd]";
     // The image comes back on gnuplot's standard output, then is written like every output.
     std::ostringstream gp;
-    gp << plotData(curves)
-       << "set terminal pngcairo size 720,720 noenhanced\n"
+    gp << plotData(curves) << "set terminal pngcairo size 720,720 noenhanced\n"
        << "set title " << singleQuoted(title)
        << " . \"\\n\" . 'left half C180 / C270, right half C0 / C90, "
           "gamma from the aim'\n"

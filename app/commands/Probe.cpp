@@ -7,13 +7,13 @@
 #include "app/commands/Commands.h"
 #include "luminaires/EnvironmentSampling.h"
 #include "luminaires/Registry.h"
+#include "renderer/FramePlan.h"
 #include "renderer/ImageFile.h"
 #include "renderer/Renderer.h"
 #include "renderer/context/GlContext.h"
 #include "scene/Bvh.h"
 #include "scene/EmbreeVisibility.h"
 #include "scene/Interreflection.h"
-#include "renderer/FramePlan.h"
 #include "scene/SceneIo.h"
 #include "ui/ViewportMath.h"
 #include "util/Error.h"
@@ -69,8 +69,7 @@ std::vector<ProbePoint> readPoints(const std::string& path) {
                                  std::to_string(count + 1) + ", got \"" + f + "\"");
             ++count;
         }
-        if (count != 6)
-            throw InputError(where + "expected 6 values, got " + std::to_string(count));
+        if (count != 6) throw InputError(where + "expected 6 values, got " + std::to_string(count));
         glm::dvec3 n(v[3], v[4], v[5]);
         if (glm::length(n) < 1e-12) throw InputError(where + "expected a non-zero normal");
         points.push_back({{v[0], v[1], v[2]}, glm::normalize(n)});
@@ -79,12 +78,14 @@ std::vector<ProbePoint> readPoints(const std::string& path) {
     return points;
 }
 
-double lum(const glm::dvec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+double lum(const glm::dvec3& c) {
+    return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
+}
 
 /// --show-samples: Fig. 1-2 of Lu et al. 2013 for the first point's normal, as an image, and
 /// the selected and effective samples per face on stderr (stdout stays the CSV).
-void writeSampleChart(const Scene& scene, const glm::dvec3& normal, std::string_view technique, int spp,
-                      const std::string& path) {
+void writeSampleChart(const Scene& scene, const glm::dvec3& normal, std::string_view technique,
+                      int spp, const std::string& path) {
     if (!scene.environmentMap) throw InputError("--show-samples: the scene has no environment");
     bool balanced = technique != "uniform-faces";
     const EnvironmentMap& map = *scene.environmentMap;
@@ -93,15 +94,17 @@ void writeSampleChart(const Scene& scene, const glm::dvec3& normal, std::string_
     writeImage8(path, chart.width, chart.height, chart.rgb);
     const char* names[6] = {"+X", "-X", "+Y", "-Y", "+Z", "-Z"};
     int drawn = 0, effective = 0;
-    std::fprintf(stderr, "samples of %s at %d spp for n = (%.3f, %.3f, %.3f):\nface  share  selected  effective\n",
-                 balanced ? "balanced" : "uniform-faces", spp, normal.x, normal.y, normal.z);
+    std::fprintf(
+        stderr,
+        "samples of %s at %d spp for n = (%.3f, %.3f, %.3f):\nface  share  selected  effective\n",
+        balanced ? "balanced" : "uniform-faces", spp, normal.x, normal.y, normal.z);
     for (int f = 0; f < 6; ++f) {
-        std::fprintf(stderr, "%-4s  %5.3f  %8d  %9d\n", names[f], chart.mu[size_t(f)], chart.drawn[size_t(f)],
-                     chart.effective[size_t(f)]);
+        std::fprintf(stderr, "%-4s  %5.3f  %8d  %9d\n", names[f], chart.mu[size_t(f)],
+                     chart.drawn[size_t(f)], chart.effective[size_t(f)]);
         drawn += chart.drawn[size_t(f)], effective += chart.effective[size_t(f)];
     }
-    std::fprintf(stderr, "all   1.000  %8d  %9d (%.0f %% effective); chart in %s\n", drawn, effective,
-                 drawn ? 100.0 * effective / drawn : 0.0, path.c_str());
+    std::fprintf(stderr, "all   1.000  %8d  %9d (%.0f %% effective); chart in %s\n", drawn,
+                 effective, drawn ? 100.0 * effective / drawn : 0.0, path.c_str());
 }
 
 /// --pixel X,Y: the surface point and normal the camera sees through that pixel of a
@@ -116,11 +119,13 @@ ProbePoint pixelPoint(const Scene& scene, const std::string& text, int width, in
     glm::mat4 viewProj = cameraViewProj(scene.camera, double(width) / double(height));
     std::optional<BvhHit> hit = ui::pickSurface(bvh, viewProj, x + 0.5, y + 0.5, width, height);
     if (!hit)
-        throw InputError("--pixel: pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") of " +
-                         std::to_string(width) + "x" + std::to_string(height) + " sees no surface");
-    std::fprintf(stderr, "pixel (%d, %d) of %dx%d sees (%.4f, %.4f, %.4f) m, normal (%.4f, %.4f, %.4f)\n", x, y,
-                 width, height, hit->point.x, hit->point.y, hit->point.z, hit->normal.x, hit->normal.y,
-                 hit->normal.z);
+        throw InputError("--pixel: pixel (" + std::to_string(x) + ", " + std::to_string(y) +
+                         ") of " + std::to_string(width) + "x" + std::to_string(height) +
+                         " sees no surface");
+    std::fprintf(stderr,
+                 "pixel (%d, %d) of %dx%d sees (%.4f, %.4f, %.4f) m, normal (%.4f, %.4f, %.4f)\n",
+                 x, y, width, height, hit->point.x, hit->point.y, hit->point.z, hit->normal.x,
+                 hit->normal.y, hit->normal.z);
     return {hit->point, hit->normal};
 }
 
@@ -168,10 +173,12 @@ ProbeOptions parseProbeOptions(const Args& args) {
             o.chartSpp = parseInt(a, flagValue(args, i), 1, 4096);
         else if (a == "--device")
             o.device = flagValue(args, i);
-        else if (!a.empty() && a[0] == '-') throw InputError("probe: unknown option " + a);
+        else if (!a.empty() && a[0] == '-')
+            throw InputError("probe: unknown option " + a);
         else if (o.scenePath.empty())
             o.scenePath = a;
-        else throw InputError("probe: unexpected argument " + a);
+        else
+            throw InputError("probe: unexpected argument " + a);
     }
     return o;
 }
@@ -180,27 +187,31 @@ ProbeOptions parseProbeOptions(const Args& args) {
 /// geometry, so it brings shadows for the direct light too).
 void checkProbeOptions(ProbeOptions& o) {
     if (o.scenePath.empty() || o.pointsPath.empty() == o.pixel.empty())
-        throw InputError("usage: candela probe scene.json --points pts.csv|--pixel X,Y [--size WxH] [--technique T] "
-                         "[--spp N] [--visibility [embree|bvh]] [--indirect [--patches N]] [--device cpu|gpu] [--seed S] "
-                         "[--env-technique T] "
-                         "[--show-samples chart.png [--chart-spp N]]");
+        throw InputError(
+            "usage: candela probe scene.json --points pts.csv|--pixel X,Y [--size WxH] "
+            "[--technique T] "
+            "[--spp N] [--visibility [embree|bvh]] [--indirect [--patches N]] [--device cpu|gpu] "
+            "[--seed S] "
+            "[--env-technique T] "
+            "[--show-samples chart.png [--chart-spp N]]");
     if (o.device != "cpu" && o.device != "gpu")
         throw InputError("--device: expected cpu or gpu, got \"" + o.device + "\"");
     if (o.device == "gpu" && o.indirect)
-        throw InputError("--device gpu: --indirect is computed on the CPU only (the default device)");
+        throw InputError(
+            "--device gpu: --indirect is computed on the CPU only (the default device)");
     if (o.indirect && !o.withVisibility) {
         o.withVisibility = true;
         o.visibilityBackend = "embree";
     }
     if (o.device == "gpu" && o.withVisibility)
-        throw InputError("--device gpu: --visibility is not available on the GPU probe yet; "
-                         "use the CPU probe (the default)");
+        throw InputError(
+            "--device gpu: --visibility is not available on the GPU probe yet; "
+            "use the CPU probe (the default)");
 }
 
 /// The environment's technique: --env-technique, else --technique when it names one of the
 /// environment's, else the exact reference (on the GPU, which has no exact reference, balanced).
-const TechniqueInfo* chooseEnvironmentTechnique(const ProbeOptions& o,
-                                                           const Scene& scene) {
+const TechniqueInfo* chooseEnvironmentTechnique(const ProbeOptions& o, const Scene& scene) {
     const TechniqueInfo* chosen = nullptr;
     if (!o.envTechnique.empty()) {
         chosen = findTechnique("environment", o.envTechnique);
@@ -289,8 +300,7 @@ CpuProbeSetup setUpCpuProbe(const Scene& scene, const ProbeOptions& o) {
 
 /// Every technique's double-precision C++ estimator at every point.
 ProbeSums probeCpu(const Scene& scene, const std::vector<ProbePoint>& points, const ProbeOptions& o,
-                   const TechniqueInfo& env,
-                   const std::vector<const TechniqueInfo*>& chosen) {
+                   const TechniqueInfo& env, const std::vector<const TechniqueInfo*>& chosen) {
     CpuProbeSetup setup = setUpCpuProbe(scene, o);
     EstimateOptions options = o.estimate;
     options.visibility = setup.visibility.get();
@@ -341,7 +351,8 @@ ProbeSums probeGpu(const Scene& scene, const std::vector<ProbePoint>& points, co
 void printProbeCsv(const Scene& scene, const std::vector<ProbePoint>& points, const ProbeSums& sums,
                    bool indirect) {
     UnitSystem units = scene.units();
-    std::fprintf(stderr, "probe: E, E_r, E_g, E_b and E_stderr in %s%s\n", units.irradianceLabel().c_str(),
+    std::fprintf(stderr, "probe: E, E_r, E_g, E_b and E_stderr in %s%s\n",
+                 units.irradianceLabel().c_str(),
                  indirect ? ", direct plus interreflected light" : "");
     std::printf("x,y,z,nx,ny,nz,E,E_r,E_g,E_b,E_stderr\n");
     for (size_t i = 0; i < points.size(); ++i) {

@@ -8,9 +8,9 @@
 #include "renderer/Comparison.h"
 #include "renderer/ImageFile.h"
 #include "renderer/Renderer.h"
+#include "renderer/context/GlContext.h"
 #include "scene/Interreflection.h"
 #include "scene/InterreflectionWorker.h"
-#include "renderer/context/GlContext.h"
 #include "scene/SceneIo.h"
 #include "ui/ComparisonExport.h"
 #include "util/Error.h"
@@ -19,7 +19,6 @@
 namespace candela {
 
 namespace {
-
 
 /// The brightest pixel's luminance (lux in illuminance mode).
 float peakLuminance(const std::vector<float>& rgb) {
@@ -36,7 +35,8 @@ void parseSize(const std::string& text, int& width, int& height) {
     char x = 0, extra = 0;
     if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w < 1 ||
         h < 1 || w > 16384 || h > 16384)
-        throw InputError("--size: expected WIDTHxHEIGHT with each in 1..16384, got \"" + text + "\"");
+        throw InputError("--size: expected WIDTHxHEIGHT with each in 1..16384, got \"" + text +
+                         "\"");
     width = w;
     height = h;
 }
@@ -55,7 +55,8 @@ std::vector<float> parseNumberList(const std::string& flag, const std::string& t
             used = 0;
         }
         if (item.empty() || used != item.size() || !std::isfinite(v))
-            throw InputError(flag + ": expected comma-separated finite numbers, got \"" + text + "\"");
+            throw InputError(flag + ": expected comma-separated finite numbers, got \"" + text +
+                             "\"");
         values.push_back(float(v));
         if (comma == std::string::npos) break;
         start = comma + 1;
@@ -94,8 +95,9 @@ PaneSpec parsePane(const std::string& text, int spp) {
 }
 
 /// `candela render --pane ... --sheet DIR`: the editor's comparison, headless, to its sheet.
-int renderComparison(const std::string& scenePath, const RenderSettings& settings, const std::vector<PaneSpec>& panes,
-                     int referenceSpp, const std::string& dir, bool errorMaps) {
+int renderComparison(const std::string& scenePath, const RenderSettings& settings,
+                     const std::vector<PaneSpec>& panes, int referenceSpp, const std::string& dir,
+                     bool errorMaps) {
     Scene scene = loadScene(scenePath);
     ProtectedInputs inputs(scene.inputFiles());  // the sheet's files are new names, checked anyway
     auto context = createOffscreenContext();
@@ -106,28 +108,30 @@ int renderComparison(const std::string& scenePath, const RenderSettings& setting
     auto start = std::chrono::steady_clock::now();
     while (!comparison.done()) {
         comparison.step(0.0);
-        std::string line = "\rcompare: reference " + std::to_string(comparison.referenceSpp()) + "/" +
-                           std::to_string(referenceSpp) + " spp";
+        std::string line = "\rcompare: reference " + std::to_string(comparison.referenceSpp()) +
+                           "/" + std::to_string(referenceSpp) + " spp";
         for (size_t i = 0; i < comparison.paneCount(); ++i)
-            line += ", " + std::string(1, char('A' + i)) + " " + std::to_string(comparison.result(i).spp) + " spp";
+            line += ", " + std::string(1, char('A' + i)) + " " +
+                    std::to_string(comparison.result(i).spp) + " spp";
         std::fprintf(stderr, "%s", line.c_str());
     }
     std::fprintf(stderr, "\n");
     std::vector<std::string> names;
     for (size_t i = 0; i < panes.size(); ++i) names.emplace_back(1, char('A' + i));
     ui::SheetFiles files = ui::exportComparisonSheet(dir, comparison, scene, names, errorMaps);
-    double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::printf("pane,techniques,spp,gpu_ms,mean_delta_e,rel_rmse\n");
     for (size_t i = 0; i < comparison.paneCount(); ++i) {
         const PaneResult& r = comparison.result(i);
         std::printf("%s,%s,%d,%.3f,%.4f,%.5f\n", names[i].c_str(),
-                    techniqueSummary(comparison.paneRenderer(i).plan()).c_str(), r.spp, r.gpuMs, r.latest.deltaE,
-                    r.latest.relRmse);
+                    techniqueSummary(comparison.paneRenderer(i).plan()).c_str(), r.spp, r.gpuMs,
+                    r.latest.deltaE, r.latest.relRmse);
     }
     std::printf("reference: %d spp, own noise (rel. RMSE) %.5f\n", comparison.referenceSpp(),
                 comparison.referenceNoise());
-    std::printf("wrote %s\nwrote %s\nwrote %s\n(%.1f s)\n", files.png.c_str(), files.exr.c_str(), files.json.c_str(),
-                seconds);
+    std::printf("wrote %s\nwrote %s\nwrote %s\n(%.1f s)\n", files.png.c_str(), files.exr.c_str(),
+                files.json.c_str(), seconds);
     return 0;
 }
 
@@ -137,7 +141,8 @@ struct RenderOptions {
     RenderSettings settings;
     int spp = 64, referenceSpp = 512;
     std::vector<std::string> paneTexts;
-    bool printStats = false, falseColour = false, haveLegend = false, errorMaps = false, indirect = true;
+    bool printStats = false, falseColour = false, haveLegend = false, errorMaps = false,
+         indirect = true;
     int patches = 4000;  ///< Asked of the interreflection's mesher.
 };
 
@@ -218,26 +223,32 @@ RenderOptions parseRenderOptions(const Args& args) {
             o.referenceSpp = parseInt(a, flagValue(args, i), 1, 1 << 20);
         else if (a == "--error-maps")
             o.errorMaps = true;
-        else if (a == "--technique") settings.techniqueOverride = flagValue(args, i);
-        else if (a == "--env-technique") settings.environmentTechnique = flagValue(args, i);
+        else if (a == "--technique")
+            settings.techniqueOverride = flagValue(args, i);
+        else if (a == "--env-technique")
+            settings.environmentTechnique = flagValue(args, i);
         else if (a == "--env-face-size")
             settings.environmentFaceSize = parseInt(a, flagValue(args, i), 4, 2048);
         else if (a == "--spp")
             o.spp = parseInt(a, flagValue(args, i), 1, 1 << 24);
-        else if (a == "--size") parseSize(flagValue(args, i), settings.width, settings.height);
-        else if (a == "--shadow-maps") settings.shadowMaps.count = parseInt(a, flagValue(args, i), 0, 4096);
+        else if (a == "--size")
+            parseSize(flagValue(args, i), settings.width, settings.height);
+        else if (a == "--shadow-maps")
+            settings.shadowMaps.count = parseInt(a, flagValue(args, i), 0, 4096);
         else if (a == "--shadow-map-size")
             settings.shadowMaps.resolution = parseInt(a, flagValue(args, i), 8, 4096);
         else if (a == "--stats")
             o.printStats = true;
         else if (a == "--patches")
             o.patches = parseInt(a, flagValue(args, i), 16, 50000);
-        else if (a == "--exposure") settings.exposure = parseNumberList(a, flagValue(args, i)).at(0);
+        else if (a == "--exposure")
+            settings.exposure = parseNumberList(a, flagValue(args, i)).at(0);
         else if (!a.empty() && a[0] == '-')
             throw InputError("render: unknown option " + a);
         else if (o.scenePath.empty())
             o.scenePath = a;
-        else throw InputError("render: unexpected argument " + a);
+        else
+            throw InputError("render: unexpected argument " + a);
     }
     return o;
 }
@@ -260,12 +271,14 @@ int renderSheet(RenderOptions& o) {
 /// Checks an image render's options; returns the output's extension.
 std::string checkImageOptions(RenderOptions& o) {
     if (o.scenePath.empty() || o.out.empty())
-        throw InputError("usage: candela render scene.json --out img.png|img.exr [--technique T] "
-                         "[--env-technique T] [--env-face-size N] [--spp N] [--size WxH] [--shadow-maps N] "
-                         "[--shadow-map-size R] [--indirect on|off] [--patches N] [--light total|direct|interreflected] "
-                         "[--stats]\n"
-                         "       candela render scene.json --sheet DIR --pane TECHNIQUES[:SPP] [--pane ...] "
-                         "[--reference-spp N] [--error-maps]");
+        throw InputError(
+            "usage: candela render scene.json --out img.png|img.exr [--technique T] "
+            "[--env-technique T] [--env-face-size N] [--spp N] [--size WxH] [--shadow-maps N] "
+            "[--shadow-map-size R] [--indirect on|off] [--patches N] [--light "
+            "total|direct|interreflected] "
+            "[--stats]\n"
+            "       candela render scene.json --sheet DIR --pane TECHNIQUES[:SPP] [--pane ...] "
+            "[--reference-spp N] [--error-maps]");
     RenderSettings& settings = o.settings;
     if (o.falseColour) {
         settings.quantity = Quantity::Illuminance;
@@ -320,11 +333,14 @@ std::vector<PassTiming> refine(Renderer& renderer, int spp, int& frames) {
         for (const auto& p : renderer.stats().passes) {
             auto it = std::find_if(totals.begin(), totals.end(),
                                    [&](const PassTiming& t) { return t.name == p.name; });
-            if (it == totals.end()) totals.push_back(p);
-            else it->gpuMs += p.gpuMs;
+            if (it == totals.end())
+                totals.push_back(p);
+            else
+                it->gpuMs += p.gpuMs;
         }
         if (renderer.plan().progressive() && frames % 8 == 0)
-            std::fprintf(stderr, "\rrender: %d / %d samples per pixel", renderer.stats().samplesPerPixel, spp);
+            std::fprintf(stderr, "\rrender: %d / %d samples per pixel",
+                         renderer.stats().samplesPerPixel, spp);
     } while (!renderer.converged());
     if (renderer.plan().progressive()) std::fprintf(stderr, "\n");
     return totals;
@@ -375,7 +391,8 @@ void writeRender(const Renderer& renderer, const Scene& scene, const RenderOptio
     if (ext != ".png") {
         UnitSystem units = scene.units();
         bool illuminance = settings.quantity == Quantity::Illuminance;
-        std::printf("linear values in %s%s%s\n", illuminance ? units.irradiance() : units.radiance(),
+        std::printf("linear values in %s%s%s\n",
+                    illuminance ? units.irradiance() : units.radiance(),
                     units.converted ? ", " : "", units.note().c_str());
     }
 }

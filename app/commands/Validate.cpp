@@ -16,11 +16,16 @@ int cmdValidate(const Args& args) {
     std::string closed;
     bool list = false;
     for (size_t i = 0; i < args.size(); ++i) {
-        if (args[i] == "--case") names.push_back(flagValue(args, i));
-        else if (args[i] == "--closed") closed = flagValue(args, i);
-        else if (args[i] == "--list") list = true;
-        else throw InputError("validate: unknown option " + args[i] +
-                              " (usage: candela validate [--case NAME]... [--list] | --closed SCENE.json)");
+        if (args[i] == "--case")
+            names.push_back(flagValue(args, i));
+        else if (args[i] == "--closed")
+            closed = flagValue(args, i);
+        else if (args[i] == "--list")
+            list = true;
+        else
+            throw InputError(
+                "validate: unknown option " + args[i] +
+                " (usage: candela validate [--case NAME]... [--list] | --closed SCENE.json)");
     }
     if (list) {
         for (const std::string& n : validationCases()) std::printf("%s\n", n.c_str());
@@ -37,12 +42,13 @@ int cmdValidate(const Args& args) {
     for (const std::string& name : names) {
         ValidationResult r = room ? validateClosedRoom(*room) : runValidationCase(name);
         if (results.empty())
-            std::printf("%-27s %12s %12s %10s %9s  %-6s %7s\n", "case", "expected", "measured", "deviation", "tolerance",
-                        "result", "time");
+            std::printf("%-27s %12s %12s %10s %9s  %-6s %7s\n", "case", "expected", "measured",
+                        "deviation", "tolerance", "result", "time");
         failed += !r.pass;
-        std::printf("%-27s %9.5g %s %9.5g %s %+9.3f%% %8.2f%%  %-6s %6.1fs\n", r.name.c_str(), r.expected, r.unit.c_str(),
-                    r.measured, r.unit.c_str(), std::abs(r.deviation) < 5e-6 ? 0.0 : 100.0 * r.deviation, 100.0 * r.tolerance, r.pass ? "pass" : "FAIL",
-                    r.seconds);
+        std::printf("%-27s %9.5g %s %9.5g %s %+9.3f%% %8.2f%%  %-6s %6.1fs\n", r.name.c_str(),
+                    r.expected, r.unit.c_str(), r.measured, r.unit.c_str(),
+                    std::abs(r.deviation) < 5e-6 ? 0.0 : 100.0 * r.deviation, 100.0 * r.tolerance,
+                    r.pass ? "pass" : "FAIL", r.seconds);
         std::fflush(stdout);
         results.push_back(r);
     }

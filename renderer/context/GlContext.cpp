@@ -12,13 +12,16 @@
 #include <cstdio>
 #include <cstdlib>
 #include <vector>
+
 #include "util/Error.h"
 
 namespace candela {
 
 static GlDebugHandler gDebugHandler = nullptr;
 
-void setGlDebugHandler(GlDebugHandler handler) { gDebugHandler = handler; }
+void setGlDebugHandler(GlDebugHandler handler) {
+    gDebugHandler = handler;
+}
 
 static void APIENTRY debugCallback(GLenum, GLenum type, GLuint, GLenum severity, GLsizei,
                                    const GLchar* message, const void*) {
@@ -56,7 +59,7 @@ std::string GlContext::description() const {
 namespace {
 
 class OsMesaContext final : public GlContext {
-public:
+  public:
     OsMesaContext() {
         const int attribs[] = {OSMESA_FORMAT,
                                OSMESA_RGBA,
@@ -74,8 +77,9 @@ public:
             throw RuntimeError(
                 "OSMesa: could not create a GL 4.5 core context (is libosmesa6 installed?)");
         makeCurrent();
-        finishSetup([](const char* name) { return reinterpret_cast<void*>(OSMesaGetProcAddress(name)); },
-                    "OSMesa");
+        finishSetup(
+            [](const char* name) { return reinterpret_cast<void*>(OSMesaGetProcAddress(name)); },
+            "OSMesa");
     }
     ~OsMesaContext() override { OSMesaDestroyContext(mContext); }
     void makeCurrent() override {
@@ -84,14 +88,16 @@ public:
             throw RuntimeError("OSMesa: OSMesaMakeCurrent failed");
     }
 
-private:
+  private:
     OSMesaContext mContext = nullptr;
     std::vector<unsigned char> mPixels = std::vector<unsigned char>(4 * 4);
 };
 
 }  // namespace
 
-std::unique_ptr<GlContext> createOffscreenContext() { return std::make_unique<OsMesaContext>(); }
+std::unique_ptr<GlContext> createOffscreenContext() {
+    return std::make_unique<OsMesaContext>();
+}
 
 bool displayAvailable() {
     const char* x = std::getenv("DISPLAY");
@@ -100,9 +106,8 @@ bool displayAvailable() {
 }
 
 WindowContext::WindowContext(int width, int height, const std::string& title) {
-    glfwSetErrorCallback([](int code, const char* msg) {
-        std::fprintf(stderr, "GLFW error %d: %s\n", code, msg);
-    });
+    glfwSetErrorCallback(
+        [](int code, const char* msg) { std::fprintf(stderr, "GLFW error %d: %s\n", code, msg); });
     if (!glfwInit()) throw RuntimeError("GLFW: initialisation failed (no display?)");
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
@@ -124,6 +129,8 @@ WindowContext::~WindowContext() {
     glfwTerminate();
 }
 
-void WindowContext::makeCurrent() { glfwMakeContextCurrent(mWindow); }
+void WindowContext::makeCurrent() {
+    glfwMakeContextCurrent(mWindow);
+}
 
 }  // namespace candela

@@ -10,7 +10,7 @@ struct GLFWwindow;
 namespace candela {
 
 class GlContext {
-public:
+  public:
     virtual ~GlContext() = default;
     virtual void makeCurrent() = 0;
     /// "GL_RENDERER / GL_VERSION" of the context, for logs and bench results.
@@ -30,13 +30,13 @@ std::unique_ptr<GlContext> createOffscreenContext();
 
 /// A GLFW window with a GL 4.5 core context, for the editor.
 class WindowContext : public GlContext {
-public:
+  public:
     WindowContext(int width, int height, const std::string& title);
     ~WindowContext() override;
     void makeCurrent() override;
     GLFWwindow* window() const { return mWindow; }
 
-private:
+  private:
     GLFWwindow* mWindow = nullptr;
 };
 

@@ -29,7 +29,8 @@ Texture2D::Texture2D(int width, int height, GLenum internalFormat, int levels)
     glCreateTextures(GL_TEXTURE_2D, 1, &id);
     mHandle = Handle<detail::deleteTexture>(id);
     glTextureStorage2D(id, levels, internalFormat, width, height);
-    glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, levels > 1 ? GL_LINEAR_MIPMAP_NEAREST : GL_NEAREST);
+    glTextureParameteri(id, GL_TEXTURE_MIN_FILTER,
+                        levels > 1 ? GL_LINEAR_MIPMAP_NEAREST : GL_NEAREST);
     glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
@@ -59,8 +60,8 @@ TextureArray::TextureArray(GLenum target, int width, int height, int layers, GLe
     glCreateTextures(target, 1, &id);
     mHandle = Handle<detail::deleteTexture>(id);
     glTextureStorage3D(id, 1, internalFormat, width, height, layers);
-    bool depth = internalFormat == GL_DEPTH_COMPONENT32F || internalFormat == GL_DEPTH_COMPONENT24 ||
-                 internalFormat == GL_DEPTH_COMPONENT16;
+    bool depth = internalFormat == GL_DEPTH_COMPONENT32F ||
+                 internalFormat == GL_DEPTH_COMPONENT24 || internalFormat == GL_DEPTH_COMPONENT16;
     GLint filter = depth ? GL_LINEAR : GL_NEAREST;
     glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, filter);
     glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, filter);
@@ -86,19 +87,18 @@ void Framebuffer::attachDepthLayer(const TextureArray& array, int layer) {
     glNamedFramebufferTextureLayer(id(), GL_DEPTH_ATTACHMENT, array.id(), 0, layer);
     GLenum status = glCheckNamedFramebufferStatus(id(), GL_FRAMEBUFFER);
     if (status != GL_FRAMEBUFFER_COMPLETE)
-        throw RuntimeError("shadow-map framebuffer incomplete (status 0x" + std::to_string(status) + ")");
+        throw RuntimeError("shadow-map framebuffer incomplete (status 0x" + std::to_string(status) +
+                           ")");
 }
 
 VertexArray::VertexArray() {
-    mHandle = Handle<detail::deleteVertexArray>(createName([](GLsizei n, GLuint* ids) {
-        glCreateVertexArrays(n, ids);
-    }));
+    mHandle = Handle<detail::deleteVertexArray>(
+        createName([](GLsizei n, GLuint* ids) { glCreateVertexArrays(n, ids); }));
 }
 
 TimerQuery::TimerQuery() {
-    mHandle = Handle<detail::deleteQuery>(createName([](GLsizei n, GLuint* ids) {
-        glCreateQueries(GL_TIME_ELAPSED, n, ids);
-    }));
+    mHandle = Handle<detail::deleteQuery>(
+        createName([](GLsizei n, GLuint* ids) { glCreateQueries(GL_TIME_ELAPSED, n, ids); }));
 }
 
 bool TimerQuery::available() const {

@@ -10,7 +10,7 @@ namespace candela::gl {
 
 template <void (*Delete)(GLuint)>
 class Handle {
-public:
+  public:
     Handle() = default;
     explicit Handle(GLuint id) : mId(id) {}
     ~Handle() { reset(); }
@@ -32,22 +32,34 @@ public:
         mId = 0;
     }
 
-private:
+  private:
     GLuint mId = 0;
 };
 
 namespace detail {
-inline void deleteBuffer(GLuint id) { glDeleteBuffers(1, &id); }
-inline void deleteTexture(GLuint id) { glDeleteTextures(1, &id); }
-inline void deleteFramebuffer(GLuint id) { glDeleteFramebuffers(1, &id); }
-inline void deleteVertexArray(GLuint id) { glDeleteVertexArrays(1, &id); }
-inline void deleteQuery(GLuint id) { glDeleteQueries(1, &id); }
-inline void deleteProgram(GLuint id) { glDeleteProgram(id); }
+inline void deleteBuffer(GLuint id) {
+    glDeleteBuffers(1, &id);
+}
+inline void deleteTexture(GLuint id) {
+    glDeleteTextures(1, &id);
+}
+inline void deleteFramebuffer(GLuint id) {
+    glDeleteFramebuffers(1, &id);
+}
+inline void deleteVertexArray(GLuint id) {
+    glDeleteVertexArrays(1, &id);
+}
+inline void deleteQuery(GLuint id) {
+    glDeleteQueries(1, &id);
+}
+inline void deleteProgram(GLuint id) {
+    glDeleteProgram(id);
+}
 }  // namespace detail
 
 /// Immutable-storage buffer (glNamedBufferStorage), dynamic so it can be updated in place.
 class Buffer {
-public:
+  public:
     Buffer() = default;
     Buffer(GLsizeiptr size, const void* data, GLbitfield flags = GL_DYNAMIC_STORAGE_BIT);
     void update(GLintptr offset, GLsizeiptr size, const void* data);
@@ -55,14 +67,14 @@ public:
     GLuint id() const { return mHandle.id(); }
     GLsizeiptr size() const { return mSize; }
 
-private:
+  private:
     Handle<detail::deleteBuffer> mHandle;
     GLsizeiptr mSize = 0;
 };
 
 /// 2D texture with immutable storage.
 class Texture2D {
-public:
+  public:
     Texture2D() = default;
     Texture2D(int width, int height, GLenum internalFormat, int levels = 1);
     GLuint id() const { return mHandle.id(); }
@@ -70,7 +82,7 @@ public:
     int height() const { return mHeight; }
     GLenum format() const { return mFormat; }
 
-private:
+  private:
     Handle<detail::deleteTexture> mHandle;
     int mWidth = 0, mHeight = 0;
     GLenum mFormat = 0;
@@ -80,20 +92,20 @@ private:
 /// (layers = 6 x cubes, face-major within a cube). Depth formats get linear filtering and
 /// GL_LEQUAL comparison, for shadow samplers (hardware 2 x 2 percentage-closer filtering).
 class TextureArray {
-public:
+  public:
     TextureArray() = default;
     TextureArray(GLenum target, int width, int height, int layers, GLenum internalFormat);
     GLuint id() const { return mHandle.id(); }
     int width() const { return mWidth; }
     int layers() const { return mLayers; }
 
-private:
+  private:
     Handle<detail::deleteTexture> mHandle;
     int mWidth = 0, mHeight = 0, mLayers = 0;
 };
 
 class Framebuffer {
-public:
+  public:
     Framebuffer() = default;
     /// Attaches colour textures in order and an optional depth texture; throws if incomplete.
     Framebuffer(std::initializer_list<const Texture2D*> colour, const Texture2D* depth);
@@ -103,34 +115,34 @@ public:
     void attachDepthLayer(const TextureArray& array, int layer);
     GLuint id() const { return mHandle.id(); }
 
-private:
+  private:
     Handle<detail::deleteFramebuffer> mHandle;
 };
 
 class VertexArray {
-public:
+  public:
     VertexArray();
     GLuint id() const { return mHandle.id(); }
 
-private:
+  private:
     Handle<detail::deleteVertexArray> mHandle;
 };
 
 /// A linked program; created by ShaderLibrary.
 class Program {
-public:
+  public:
     Program() = default;
     explicit Program(GLuint id) : mHandle(id) {}
     GLuint id() const { return mHandle.id(); }
     explicit operator bool() const { return bool(mHandle); }
 
-private:
+  private:
     Handle<detail::deleteProgram> mHandle;
 };
 
 /// GL_TIME_ELAPSED query, read back without stalling when possible.
 class TimerQuery {
-public:
+  public:
     TimerQuery();
     void begin() { glBeginQuery(GL_TIME_ELAPSED, mHandle.id()); }
     void end() { glEndQuery(GL_TIME_ELAPSED); }
@@ -139,7 +151,7 @@ public:
     /// Elapsed GPU time in milliseconds (waits for the result).
     double milliseconds() const;
 
-private:
+  private:
     Handle<detail::deleteQuery> mHandle;
 };
 

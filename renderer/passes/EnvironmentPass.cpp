@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-
 #include <sstream>
 
 #include "luminaires/EnvironmentLight.h"
@@ -18,7 +17,8 @@ namespace {
 template <class T>
 std::vector<T> readBuffer(const gl::Buffer& buffer, size_t count) {
     std::vector<T> out(count);
-    if (count > 0) glGetNamedBufferSubData(buffer.id(), 0, GLsizeiptr(count * sizeof(T)), out.data());
+    if (count > 0)
+        glGetNamedBufferSubData(buffer.id(), 0, GLsizeiptr(count * sizeof(T)), out.data());
     return out;
 }
 
@@ -34,12 +34,14 @@ bool EnvironmentPass::setMap(std::shared_ptr<const EnvironmentMap> map, int face
     int n = faceSize > 0 ? faceSize : (map ? defaultFaceSize(*map) : 0);
     bool changed = map != mMap || n != mN;
     if (!changed) return false;
-    bool resized = !mMap || !map || map->width() != mMap->width() || map->height() != mMap->height();
+    bool resized =
+        !mMap || !map || map->width() != mMap->width() || map->height() != mMap->height();
     mMap = std::move(map);
     mBuilt = false;
     mExtraFor.reset();
     if (!mMap) return true;
-    if (resized || !mTexture.id()) mTexture = gl::Texture2D(mMap->width(), mMap->height(), GL_RGB32F);
+    if (resized || !mTexture.id())
+        mTexture = gl::Texture2D(mMap->width(), mMap->height(), GL_RGB32F);
     std::vector<float> rgb(size_t(mMap->width()) * size_t(mMap->height()) * 3);
     for (int y = 0; y < mMap->height(); ++y)
         for (int x = 0; x < mMap->width(); ++x) {
@@ -47,13 +49,15 @@ bool EnvironmentPass::setMap(std::shared_ptr<const EnvironmentMap> map, int face
             float* o = &rgb[(size_t(y) * size_t(mMap->width()) + size_t(x)) * 3];
             o[0] = float(c.x), o[1] = float(c.y), o[2] = float(c.z);
         }
-    glTextureSubImage2D(mTexture.id(), 0, 0, 0, mMap->width(), mMap->height(), GL_RGB, GL_FLOAT, rgb.data());
+    glTextureSubImage2D(mTexture.id(), 0, 0, 0, mMap->width(), mMap->height(), GL_RGB, GL_FLOAT,
+                        rgb.data());
     if (n != mN) {
         mN = n;
         size_t texels = 6 * size_t(n) * size_t(n);
         mCube = gl::Buffer(GLsizeiptr(texels * sizeof(glm::vec2)), nullptr);
         mRowCdf = gl::Buffer(GLsizeiptr(6 * size_t(n) * size_t(n + 1) * sizeof(double)), nullptr);
-        mColCdf = gl::Buffer(GLsizeiptr((6 * size_t(n + 1) + 6 * size_t(n)) * sizeof(double)), nullptr);
+        mColCdf =
+            gl::Buffer(GLsizeiptr((6 * size_t(n + 1) + 6 * size_t(n)) * sizeof(double)), nullptr);
         mFaces = gl::Buffer(GLsizeiptr(6 * sizeof(gpu::EnvironmentFaceGpu)), nullptr);
     }
     mUniforms.dims = glm::ivec4(mMap->width(), mMap->height(), mN, mPool);
@@ -74,7 +78,8 @@ void EnvironmentPass::bindAll() const {
     if (mExtra.id()) mExtra.bindBase(GL_SHADER_STORAGE_BUFFER, gpu::kBindingEnvExtra);
 }
 
-void EnvironmentPass::dispatch(ShaderLibrary& shaders, const char* pass, GLuint x, GLuint y, GLuint z) {
+void EnvironmentPass::dispatch(ShaderLibrary& shaders, const char* pass, GLuint x, GLuint y,
+                               GLuint z) {
     ProgramKey key;
     key.compute = "environment_cdf.comp";
     key.defines = {pass};
@@ -99,7 +104,8 @@ void EnvironmentPass::drawSamples(ShaderLibrary& shaders, uint32_t seed, int poo
     if (!mMap) return;
     if (pool != mPool) {
         mPool = pool;
-        mSamples = gl::Buffer(GLsizeiptr(6 * size_t(pool) * sizeof(gpu::EnvironmentSampleGpu)), nullptr);
+        mSamples =
+            gl::Buffer(GLsizeiptr(6 * size_t(pool) * sizeof(gpu::EnvironmentSampleGpu)), nullptr);
     }
     mUniforms.dims.w = mPool;
     mUniforms.frame.x = int(seed);
@@ -149,8 +155,9 @@ std::vector<glm::dvec3> EnvironmentPass::havranDirections() const {
     return out;
 }
 
-void EnvironmentPass::shade(ShaderLibrary& shaders, const ShadeStep& step, const GBufferPass& gbuffer,
-                            const gl::Framebuffer& target, int width, int height, bool background) {
+void EnvironmentPass::shade(ShaderLibrary& shaders, const ShadeStep& step,
+                            const GBufferPass& gbuffer, const gl::Framebuffer& target, int width,
+                            int height, bool background) {
     if (!mMap) return;
     mUniforms.params.y = background ? 1.f : 0.f;
     mUniformBuffer.update(0, sizeof(mUniforms), &mUniforms);
@@ -183,35 +190,40 @@ void EnvironmentPass::prepare(const ShadeStep& step, SourceContext& context, int
     setMap(mSourceMap, context.settings.environmentFaceSize);
     const TechniqueInfo& t = *step.technique;
     if (reads(t, "cube")) {
-        if (!tablesBuilt()) context.timer.timed(context.stats, "env:cdf", [&] { buildTables(context.shaders); });
+        if (!tablesBuilt())
+            context.timer.timed(context.stats, "env:cdf", [&] { buildTables(context.shaders); });
         // Enough samples per face that a pixel whose faces balance to one face still draws
         // distinct ones; a fresh pool every pass (every band of a pass shares it).
         int pool = std::max(256, spp);
-        uint32_t seed = uint32_t(context.settings.seed) * 2654435761u ^ uint32_t(frame) * 40503u ^ 0x5bd1e995u;
-        context.timer.timed(context.stats, "env:samples", [&] { drawSamples(context.shaders, seed, pool); });
+        uint32_t seed =
+            uint32_t(context.settings.seed) * 2654435761u ^ uint32_t(frame) * 40503u ^ 0x5bd1e995u;
+        context.timer.timed(context.stats, "env:samples",
+                            [&] { drawSamples(context.shaders, seed, pool); });
     }
     if (reads(t, "latlong")) prepareGlobalCdf();
     if (reads(t, "lights")) {
         prepareHavran();
         if (step.shadowMaps) {
             std::vector<glm::dvec3> directions = havranDirections();
-            if (mShadows.stale(directions, context.settings.shadowMaps, context.geometryGeneration)) {
+            if (mShadows.stale(directions, context.settings.shadowMaps,
+                               context.geometryGeneration)) {
                 const ShadowGeometry& geometry = context.geometry();
                 context.timer.timed(context.stats, shadowPassName(step), [&] {
-                    mShadows.render(context.shaders, geometry, directions, context.settings.shadowMaps,
-                                    context.geometryGeneration);
+                    mShadows.render(context.shaders, geometry, directions,
+                                    context.settings.shadowMaps, context.geometryGeneration);
                 });
             }
         }
     }
 }
 
-void EnvironmentPass::shade(const ShadeStep& step, SourceContext& context, const gl::Framebuffer& target) {
+void EnvironmentPass::shade(const ShadeStep& step, SourceContext& context,
+                            const gl::Framebuffer& target) {
     if (step.shadowMaps) mShadows.bind();
     // The map shows behind the scene in an image of radiance (not in probes or illuminance).
     bool background = !context.pointMode && context.settings.quantity == Quantity::Radiance;
-    shade(context.shaders, step, context.gbuffer, target, context.gbuffer.width(), context.gbuffer.height(),
-          background);
+    shade(context.shaders, step, context.gbuffer, target, context.gbuffer.width(),
+          context.gbuffer.height(), background);
 }
 
 std::vector<glm::vec2> EnvironmentPass::readCube() const {

@@ -8,7 +8,6 @@
 // a moving sun), so Havran's temporal filter sees them all.
 
 #include <glm/glm.hpp>
-
 #include <memory>
 #include <vector>
 
@@ -25,7 +24,7 @@ namespace candela {
 class GBufferPass;
 
 class EnvironmentPass final : public SourcePass {
-public:
+  public:
     EnvironmentPass();  ///< Needs a current GL context.
 
     /// The source's map (an EnvironmentLight); the tables follow at the next prepare().
@@ -34,7 +33,8 @@ public:
     /// ("env:cdf") and draws this pass's pools of samples ("env:samples"); "latlong" the CPU's
     /// global CDF; "lights" Havran's lights and, with shadow maps, one map per light.
     void prepare(const ShadeStep& step, SourceContext& context, int frame, int spp) override;
-    void shade(const ShadeStep& step, SourceContext& context, const gl::Framebuffer& target) override;
+    void shade(const ShadeStep& step, SourceContext& context,
+               const gl::Framebuffer& target) override;
     /// The timed prepasses prepare() runs for a technique (FramePlan::passNames).
     static std::vector<std::string> prepassNames(const TechniqueInfo& technique);
 
@@ -70,7 +70,7 @@ public:
     std::vector<gpu::EnvironmentFaceGpu> readFaces() const;
     std::vector<gpu::EnvironmentSampleGpu> readSamples() const;
 
-private:
+  private:
     void bindAll() const;
     void dispatch(ShaderLibrary& shaders, const char* pass, GLuint x, GLuint y, GLuint z);
 
@@ -80,9 +80,10 @@ private:
     gpu::EnvironmentGpu mUniforms{};
     gl::Texture2D mTexture;
     gl::Buffer mUniformBuffer, mCube, mRowCdf, mColCdf, mFaces, mSamples, mExtra;
-    std::weak_ptr<const EnvironmentMap> mExtraFor;  ///< Map whose global CDF or lights mExtra holds.
+    std::weak_ptr<const EnvironmentMap>
+        mExtraFor;  ///< Map whose global CDF or lights mExtra holds.
     std::unique_ptr<HavranLights> mHavran;
-    std::weak_ptr<const EnvironmentMap> mHavranFor;  ///< Newest map the filter has seen.
+    std::weak_ptr<const EnvironmentMap> mHavranFor;    ///< Newest map the filter has seen.
     std::shared_ptr<const EnvironmentMap> mSourceMap;  ///< The source's, made current in prepare().
     DirectionalShadowMaps mShadows;                    ///< One map per Havran light.
 };

@@ -1,7 +1,6 @@
 #include "renderer/passes/GBufferPass.h"
 
 #include <algorithm>
-
 #include <cstddef>
 
 #include "shaders/shared/Constants.h"
@@ -14,9 +13,8 @@ void GBufferPass::resize(int width, int height) {
     mHeight = height;
     for (auto& t : mTextures) t = gl::Texture2D(width, height, GL_RGBA32F);
     mDepth = gl::Texture2D(width, height, GL_DEPTH_COMPONENT32F);
-    mFbo = gl::Framebuffer({&mTextures[0], &mTextures[1], &mTextures[2], &mTextures[3],
-                            &mTextures[4]},
-                           &mDepth);
+    mFbo = gl::Framebuffer(
+        {&mTextures[0], &mTextures[1], &mTextures[2], &mTextures[3], &mTextures[4]}, &mDepth);
 }
 
 GBufferPass::Draw GBufferPass::makeDraw(const std::vector<Vertex>& vertices,
@@ -38,7 +36,8 @@ GBufferPass::Draw GBufferPass::makeDraw(const std::vector<Vertex>& vertices,
                           {3, offsetof(Vertex, emission)}, {1, offsetof(Vertex, flags)}};
     for (GLuint i = 0; i < 6; ++i) {
         glEnableVertexArrayAttrib(vao, i);
-        glVertexArrayAttribFormat(vao, i, attrs[i].size, GL_FLOAT, GL_FALSE, GLuint(attrs[i].offset));
+        glVertexArrayAttribFormat(vao, i, attrs[i].size, GL_FLOAT, GL_FALSE,
+                                  GLuint(attrs[i].offset));
         glVertexArrayAttribBinding(vao, i, 0);
     }
     return d;
@@ -88,7 +87,8 @@ void GBufferPass::execute(ShaderLibrary& shaders, Quantity quantity) {
     glBindFramebuffer(GL_FRAMEBUFFER, mFbo.id());
     glViewport(0, 0, mWidth, mHeight);
     const float zero[4] = {0.f, 0.f, 0.f, 0.f};
-    for (int i = 0; i < gpu::kGBufferCount; ++i) glClearNamedFramebufferfv(mFbo.id(), GL_COLOR, i, zero);
+    for (int i = 0; i < gpu::kGBufferCount; ++i)
+        glClearNamedFramebufferfv(mFbo.id(), GL_COLOR, i, zero);
     const float one = 1.f;
     glClearNamedFramebufferfv(mFbo.id(), GL_DEPTH, 0, &one);
     glEnable(GL_DEPTH_TEST);
@@ -102,11 +102,13 @@ void GBufferPass::execute(ShaderLibrary& shaders, Quantity quantity) {
         // every other luminaire's shading as it was (Renderer accumulates per luminaire).
         bool luminaires = d == &mLuminaires;
         for (int i = 0; i < gpu::kGBufferCount; ++i)
-            if (i != gpu::kGBufferEmission) glColorMaski(GLuint(i), !luminaires, !luminaires, !luminaires, !luminaires);
+            if (i != gpu::kGBufferEmission)
+                glColorMaski(GLuint(i), !luminaires, !luminaires, !luminaires, !luminaires);
         glBindVertexArray(d->vao.id());
         glDrawElements(GL_TRIANGLES, d->indexCount, GL_UNSIGNED_INT, nullptr);
     }
-    for (int i = 0; i < gpu::kGBufferCount; ++i) glColorMaski(GLuint(i), GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    for (int i = 0; i < gpu::kGBufferCount; ++i)
+        glColorMaski(GLuint(i), GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glDisable(GL_DEPTH_TEST);
 }
 
@@ -124,8 +126,8 @@ void GBufferPass::uploadPoints(const std::vector<glm::vec3>& points,
     }
     const std::vector<glm::vec4>* data[] = {&pos, &nrm, &alb, &zero, &zero};
     for (int i = 0; i < gpu::kGBufferCount; ++i)
-        glTextureSubImage2D(mTextures[size_t(i)].id(), 0, 0, 0, w, std::max(h, 1), GL_RGBA, GL_FLOAT,
-                            data[i]->data());
+        glTextureSubImage2D(mTextures[size_t(i)].id(), 0, 0, 0, w, std::max(h, 1), GL_RGBA,
+                            GL_FLOAT, data[i]->data());
 }
 
 }  // namespace candela

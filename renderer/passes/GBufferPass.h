@@ -14,7 +14,7 @@
 namespace candela {
 
 class GBufferPass {
-public:
+  public:
     void resize(int width, int height);
     void setGeometry(const Scene& scene);
     void setLuminaires(const Scene& scene);
@@ -38,7 +38,7 @@ public:
         float flags;
     };
 
-private:
+  private:
     struct Draw {
         gl::Buffer vbo;
         gl::Buffer ibo;

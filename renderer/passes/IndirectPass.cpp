@@ -19,7 +19,8 @@ void IndirectPass::clear() {
     mIndexCount = 0;
 }
 
-void IndirectPass::set(const std::shared_ptr<const RadiosityMesh>& mesh, const std::vector<glm::vec3>& vertexIrradiance) {
+void IndirectPass::set(const std::shared_ptr<const RadiosityMesh>& mesh,
+                       const std::vector<glm::vec3>& vertexIrradiance) {
     if (!mesh || mesh->patches.empty() || vertexIrradiance.size() != mesh->vertices.size()) {
         clear();
         return;
@@ -30,8 +31,10 @@ void IndirectPass::set(const std::shared_ptr<const RadiosityMesh>& mesh, const s
         for (const glm::dvec3& v : mesh->vertices) positions.push_back(glm::vec3(v));
         std::vector<uint32_t> indices;
         indices.reserve(3 * mesh->patches.size());
-        for (const auto& p : mesh->patches) indices.insert(indices.end(), p.vertex.begin(), p.vertex.end());
-        mPositions = gl::Buffer(GLsizeiptr(positions.size() * sizeof(glm::vec3)), positions.data(), 0);
+        for (const auto& p : mesh->patches)
+            indices.insert(indices.end(), p.vertex.begin(), p.vertex.end());
+        mPositions =
+            gl::Buffer(GLsizeiptr(positions.size() * sizeof(glm::vec3)), positions.data(), 0);
         mIndices = gl::Buffer(GLsizeiptr(indices.size() * sizeof(uint32_t)), indices.data(), 0);
         mIrradiance = gl::Buffer(GLsizeiptr(vertexIrradiance.size() * sizeof(glm::vec3)), nullptr);
         mVao = gl::VertexArray();
@@ -47,7 +50,8 @@ void IndirectPass::set(const std::shared_ptr<const RadiosityMesh>& mesh, const s
         mIndexCount = GLsizei(indices.size());
         mMesh = mesh;
     }
-    mIrradiance.update(0, GLsizeiptr(vertexIrradiance.size() * sizeof(glm::vec3)), vertexIrradiance.data());
+    mIrradiance.update(0, GLsizeiptr(vertexIrradiance.size() * sizeof(glm::vec3)),
+                       vertexIrradiance.data());
 }
 
 void IndirectPass::execute(ShaderLibrary& shaders, const GBufferPass& gbuffer) {

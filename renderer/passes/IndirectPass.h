@@ -5,7 +5,6 @@
 // accumulations. It runs only when the solution or the view changed.
 
 #include <glm/glm.hpp>
-
 #include <memory>
 #include <vector>
 
@@ -18,17 +17,18 @@ class GBufferPass;
 struct RadiosityMesh;
 
 class IndirectPass {
-public:
+  public:
     void resize(int width, int height);
     /// The patches (uploaded when the mesh object changes) and their vertices' irradiance.
-    void set(const std::shared_ptr<const RadiosityMesh>& mesh, const std::vector<glm::vec3>& vertexIrradiance);
+    void set(const std::shared_ptr<const RadiosityMesh>& mesh,
+             const std::vector<glm::vec3>& vertexIrradiance);
     void clear();
     bool hasLight() const { return mIndexCount > 0; }
     /// Renders the image of the interreflected light for the current frame uniforms.
     void execute(ShaderLibrary& shaders, const GBufferPass& gbuffer);
     const gl::Texture2D& image() const { return mImage; }
 
-private:
+  private:
     std::shared_ptr<const RadiosityMesh> mMesh;
     gl::Buffer mPositions, mIrradiance, mIndices;
     gl::VertexArray mVao;

@@ -12,12 +12,13 @@
 namespace candela {
 
 class LuminairePass final : public SourcePass {
-public:
+  public:
     void setSource(const Luminaire& source, const std::vector<std::byte>& record) override;
     void prepare(const ShadeStep& step, SourceContext& context, int frame, int spp) override;
-    void shade(const ShadeStep& step, SourceContext& context, const gl::Framebuffer& target) override;
+    void shade(const ShadeStep& step, SourceContext& context,
+               const gl::Framebuffer& target) override;
 
-private:
+  private:
     std::vector<std::byte> mRecord;  ///< As uploaded.
     gl::Buffer mBuffer;
     std::unique_ptr<ShadowMaps> mShadowMaps;

@@ -17,7 +17,8 @@ void ResolvePass::resize(int width, int height) {
     mSumFbo = gl::Framebuffer({&mSum}, nullptr);
 }
 
-void ResolvePass::execute(ShaderLibrary& shaders, const std::vector<Term>& terms, const gl::Texture2D& emission) {
+void ResolvePass::execute(ShaderLibrary& shaders, const std::vector<Term>& terms,
+                          const gl::Texture2D& emission) {
     const float zero[4] = {0.f, 0.f, 0.f, 0.f};
     glClearNamedFramebufferfv(mSumFbo.id(), GL_COLOR, 0, zero);
     addScaled(shaders, mSumFbo, mWidth, mHeight, terms);

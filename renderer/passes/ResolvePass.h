@@ -11,7 +11,7 @@
 namespace candela {
 
 class ResolvePass {
-public:
+  public:
     /// A term of the sum: accumulated estimates and 1 / the passes they hold.
     struct Term {
         const gl::Texture2D* accumulation = nullptr;
@@ -21,11 +21,12 @@ public:
     void resize(int width, int height);
     /// linear = sum of the terms (shaders/accumulate.frag), or the emission where the
     /// G-buffer's emission alpha marks a luminaire (shaders/resolve.frag).
-    void execute(ShaderLibrary& shaders, const std::vector<Term>& terms, const gl::Texture2D& emission);
+    void execute(ShaderLibrary& shaders, const std::vector<Term>& terms,
+                 const gl::Texture2D& emission);
     const gl::Texture2D& linear() const { return mLinear; }
     const gl::Texture2D& luminance() const { return mLuminance; }
 
-private:
+  private:
     gl::Texture2D mLinear, mLuminance, mSum;
     gl::Framebuffer mFbo, mSumFbo;
     int mWidth = 0, mHeight = 0;

@@ -11,7 +11,7 @@ namespace candela {
 class GBufferPass;
 
 class ShadePass {
-public:
+  public:
     /// Binds the G-buffer to units 0-3 and adds one full-screen triangle of the current program
     /// into `target` times `scale` (every shading pass, the environment's too; the scale is the
     /// step's unit conversion, ShadeStep::unitScale).

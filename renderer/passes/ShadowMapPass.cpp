@@ -86,7 +86,8 @@ void ShadowMaps::render(ShaderLibrary& shaders, const ShadowGeometry& geometry,
     int maps = std::max(1, mapCount());
     int res = std::max(8, settings.resolution);
     if (mDepth.layers() != 6 * maps || mDepth.width() != res) {
-        mDepth = gl::TextureArray(GL_TEXTURE_CUBE_MAP_ARRAY, res, res, 6 * maps, GL_DEPTH_COMPONENT32F);
+        mDepth =
+            gl::TextureArray(GL_TEXTURE_CUBE_MAP_ARRAY, res, res, 6 * maps, GL_DEPTH_COMPONENT32F);
         mFbo = gl::Framebuffer::depthOnly();
     }
 
@@ -94,14 +95,16 @@ void ShadowMaps::render(ShaderLibrary& shaders, const ShadowGeometry& geometry,
     double far = 1.0;
     for (const glm::dvec3& l : lights.lights)
         for (int c = 0; c < 8; ++c) {
-            glm::dvec3 corner((c & 1) ? geometry.hi.x : geometry.lo.x, (c & 2) ? geometry.hi.y : geometry.lo.y,
+            glm::dvec3 corner((c & 1) ? geometry.hi.x : geometry.lo.x,
+                              (c & 2) ? geometry.hi.y : geometry.lo.y,
                               (c & 4) ? geometry.hi.z : geometry.lo.z);
             far = std::max(far, 1.01 * glm::length(corner - l) + 2.0 * kNear);
         }
 
     gpu::ShadowMapsGpu header{};
     header.dims = glm::ivec4(mapCount(), res, lights.sharesPerItem, 0);
-    header.params = glm::vec4(float(kNear), float(far), settings.normalOffset, settings.depthOffset);
+    header.params =
+        glm::vec4(float(kNear), float(far), settings.normalOffset, settings.depthOffset);
     std::vector<gpu::ShadowMapGpu> records(static_cast<size_t>(maps));
     for (size_t k = 0; k < lights.lights.size(); ++k)
         records[k].light = glm::vec4(glm::vec3(lights.lights[k]), lights.lit[k] ? 1.f : 0.f);
@@ -113,8 +116,10 @@ void ShadowMaps::render(ShaderLibrary& shaders, const ShadowGeometry& geometry,
 
     // The GL cube-map faces (+x, -x, +y, -y, +z, -z) seen from the light: forward and up as
     // the cube-map lookup expects them, so that a face's texel (s, t) is where it stores depth.
-    static const glm::dvec3 kForward[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-    static const glm::dvec3 kUp[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
+    static const glm::dvec3 kForward[6] = {{1, 0, 0},  {-1, 0, 0}, {0, 1, 0},
+                                           {0, -1, 0}, {0, 0, 1},  {0, 0, -1}};
+    static const glm::dvec3 kUp[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1},
+                                      {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
     glm::dmat4 proj = glm::perspective(glm::radians(90.0), 1.0, kNear, far);
     GLuint program = beginDepthPass(shaders, mFbo, res);
     for (size_t k = 0; k < lights.lights.size(); ++k) {
@@ -138,14 +143,15 @@ void ShadowMaps::bind() const {
     mShares.bindBase(GL_SHADER_STORAGE_BUFFER, gpu::kBindingShadowShares);
 }
 
-bool DirectionalShadowMaps::stale(const std::vector<glm::dvec3>& directions, const ShadowMapSettings& settings,
-                                  int geometryGeneration) const {
-    return geometryGeneration != mGeneration || !(settings == mSettings) || directions != mDirections;
+bool DirectionalShadowMaps::stale(const std::vector<glm::dvec3>& directions,
+                                  const ShadowMapSettings& settings, int geometryGeneration) const {
+    return geometryGeneration != mGeneration || !(settings == mSettings) ||
+           directions != mDirections;
 }
 
 void DirectionalShadowMaps::render(ShaderLibrary& shaders, const ShadowGeometry& geometry,
-                                   const std::vector<glm::dvec3>& directions, const ShadowMapSettings& settings,
-                                   int geometryGeneration) {
+                                   const std::vector<glm::dvec3>& directions,
+                                   const ShadowMapSettings& settings, int geometryGeneration) {
     mDirections = directions;
     mSettings = settings;
     mGeneration = geometryGeneration;
@@ -161,7 +167,8 @@ void DirectionalShadowMaps::render(ShaderLibrary& shaders, const ShadowGeometry&
     gpu::ShadowMapsGpu header{};
     header.dims = glm::ivec4(int(directions.size()), res, 0, 0);
     // x: world size of a texel (m); z, w: the offsets in texels.
-    header.params = glm::vec4(float(2.0 * radius / res), float(radius), settings.normalOffset, settings.depthOffset);
+    header.params = glm::vec4(float(2.0 * radius / res), float(radius), settings.normalOffset,
+                              settings.depthOffset);
     std::vector<glm::mat4> matrices;
     glm::dmat4 proj = glm::ortho(-radius, radius, -radius, radius, 0.0, 2.0 * radius);
     for (const glm::dvec3& w : directions) {

@@ -19,8 +19,8 @@ namespace candela {
 
 /// The user's shadow-map parameters (RenderSettings::shadowMaps).
 struct ShadowMapSettings {
-    int count = 49;        ///< Maps per luminaire, about (0: the kind's natural count, one per cell).
-    int resolution = 192;  ///< Texels along a cube face's edge.
+    int count = 49;  ///< Maps per luminaire, about (0: the kind's natural count, one per cell).
+    int resolution = 192;             ///< Texels along a cube face's edge.
     int directionalResolution = 256;  ///< Texels along a directional map's edge.
     float normalOffset = 1.0f;  ///< Receiver offset along its normal, texels (shadow_maps.glsl).
     float depthOffset = 1.0f;   ///< Then towards the light, texels.
@@ -29,25 +29,26 @@ struct ShadowMapSettings {
 
 /// The scene's triangles as positions only, for depth rendering.
 class ShadowGeometry {
-public:
+  public:
     void set(const Scene& scene);
     void draw() const;
     /// Smallest and largest corner of the triangles' bounds (metres).
     glm::dvec3 lo{0.0}, hi{0.0};
 
-private:
+  private:
     gl::Buffer mVertices, mIndices;
     gl::VertexArray mVao;
     GLsizei mIndexCount = 0;
 };
 
 class ShadowMaps {
-public:
+  public:
     /// Near plane of every face, metres: geometry closer to a map's light casts no shadow.
     static constexpr double kNear = 0.005;
 
     /// Whether render() would produce something different from what the maps hold.
-    bool stale(const ShadowLights& lights, const ShadowMapSettings& settings, int geometryGeneration) const;
+    bool stale(const ShadowLights& lights, const ShadowMapSettings& settings,
+               int geometryGeneration) const;
     /// Renders the lit maps' six faces (unlit maps are skipped and read as lit).
     void render(ShaderLibrary& shaders, const ShadowGeometry& geometry, const ShadowLights& lights,
                 const ShadowMapSettings& settings, int geometryGeneration);
@@ -55,7 +56,7 @@ public:
     void bind() const;
     int mapCount() const { return int(mLights.lights.size()); }
 
-private:
+  private:
     ShadowLights mLights;
     ShadowMapSettings mSettings;
     int mGeneration = -1;
@@ -68,15 +69,16 @@ private:
 /// depth maps over the scene's bounding sphere, in one 2D array texture. Shading reads them
 /// through shaders/shadow_directional.glsl.
 class DirectionalShadowMaps {
-public:
+  public:
     bool stale(const std::vector<glm::dvec3>& directions, const ShadowMapSettings& settings,
                int geometryGeneration) const;
     /// directions: unit vectors towards each light.
-    void render(ShaderLibrary& shaders, const ShadowGeometry& geometry, const std::vector<glm::dvec3>& directions,
-                const ShadowMapSettings& settings, int geometryGeneration);
+    void render(ShaderLibrary& shaders, const ShadowGeometry& geometry,
+                const std::vector<glm::dvec3>& directions, const ShadowMapSettings& settings,
+                int geometryGeneration);
     void bind() const;
 
-private:
+  private:
     std::vector<glm::dvec3> mDirections;
     ShadowMapSettings mSettings;
     int mGeneration = -1;

@@ -38,7 +38,7 @@ struct SourceContext {
 };
 
 class SourcePass {
-public:
+  public:
     virtual ~SourcePass() = default;
     /// The source this pass serves now (a new one, or the same with new data) and its record
     /// (Luminaire::gpuData, made once by the renderer): upload what changed.
@@ -48,7 +48,8 @@ public:
     /// shadowPassName(step). `frame` counts the source's passes; spp is this pass's samples.
     virtual void prepare(const ShadeStep& step, SourceContext& context, int frame, int spp) = 0;
     /// Shades the G-buffer (within the current scissor) into `target`, additively.
-    virtual void shade(const ShadeStep& step, SourceContext& context, const gl::Framebuffer& target) = 0;
+    virtual void shade(const ShadeStep& step, SourceContext& context,
+                       const gl::Framebuffer& target) = 0;
 };
 
 /// The pass for a source of `kind` (needs a current GL context).

@@ -9,9 +9,9 @@
 // Stops are sRGB-encoded display colours, interpolated linearly in that encoding.
 #ifdef __cplusplus
 #pragma once
-#include <glm/glm.hpp>
 #include <algorithm>
 #include <cmath>
+#include <glm/glm.hpp>
 namespace candela::gpu {
 using vec3 = glm::vec3;
 using glm::clamp;

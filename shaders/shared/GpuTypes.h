@@ -3,8 +3,8 @@
 // shader loader's #include. Sizes are checked by static_assert in renderer/GpuLayout.cpp.
 #ifdef __cplusplus
 #pragma once
-#include <glm/glm.hpp>
 #include <cstdint>
+#include <glm/glm.hpp>
 namespace candela::gpu {
 using vec4 = glm::vec4;
 using mat4 = glm::mat4;
@@ -28,19 +28,19 @@ CANDELA_CONST int kGBufferEmission = 4;  // rgb emitted radiance towards the cam
 CANDELA_CONST int kGBufferCount = 5;
 
 /// Buffer binding points.
-CANDELA_CONST int kBindingFrame = 0;       // UBO FrameUniforms
-CANDELA_CONST int kBindingLuminaire = 1;   // SSBO of the luminaire kind's records
-CANDELA_CONST int kBindingBvhNodes = 2;    // SSBO BvhNode[]
-CANDELA_CONST int kBindingBvhTris = 3;     // SSBO BvhTriangle[]
-CANDELA_CONST int kBindingTestIn = 6;      // SSBOs of parity and chi-square compute tests
+CANDELA_CONST int kBindingFrame = 0;      // UBO FrameUniforms
+CANDELA_CONST int kBindingLuminaire = 1;  // SSBO of the luminaire kind's records
+CANDELA_CONST int kBindingBvhNodes = 2;   // SSBO BvhNode[]
+CANDELA_CONST int kBindingBvhTris = 3;    // SSBO BvhTriangle[]
+CANDELA_CONST int kBindingTestIn = 6;     // SSBOs of parity and chi-square compute tests
 CANDELA_CONST int kBindingTestOut = 7;
-CANDELA_CONST int kBindingEnvCube = 8;     // SSBO vec2 per cube texel: luminance x solid angle, weight
-CANDELA_CONST int kBindingEnvRowCdf = 9;   // SSBO float [face][column][row + 1]: CDF(v | u)
-CANDELA_CONST int kBindingEnvColCdf = 10;  // SSBO float [face][column + 1]: CDF(u), then the
-                                           // column totals [face][column] after 6 (N + 1) floats
-CANDELA_CONST int kBindingEnvFaces = 11;   // SSBO EnvironmentFaceGpu[6]
-CANDELA_CONST int kBindingEnvSamples = 12; // SSBO EnvironmentSampleGpu[6][pool]
-CANDELA_CONST int kBindingEnvExtra = 13;   // SSBO of global-cdf tables or Havran lights
+CANDELA_CONST int kBindingEnvCube = 8;  // SSBO vec2 per cube texel: luminance x solid angle, weight
+CANDELA_CONST int kBindingEnvRowCdf = 9;    // SSBO float [face][column][row + 1]: CDF(v | u)
+CANDELA_CONST int kBindingEnvColCdf = 10;   // SSBO float [face][column + 1]: CDF(u), then the
+                                            // column totals [face][column] after 6 (N + 1) floats
+CANDELA_CONST int kBindingEnvFaces = 11;    // SSBO EnvironmentFaceGpu[6]
+CANDELA_CONST int kBindingEnvSamples = 12;  // SSBO EnvironmentSampleGpu[6][pool]
+CANDELA_CONST int kBindingEnvExtra = 13;    // SSBO of global-cdf tables or Havran lights
 
 /// Shadow maps of the luminaire being shaded (renderer/passes/ShadowMapPass.h): the header and
 /// one ShadowMapGpu per map at kBindingShadowMaps, the shares at kBindingShadowShares (vec2
@@ -50,8 +50,8 @@ CANDELA_CONST int kBindingShadowMaps = 14;
 CANDELA_CONST int kBindingShadowShares = 15;
 CANDELA_CONST int kUnitShadowMaps = 6;
 struct ShadowMapsGpu {
-    ivec4 dims;    // x = maps, y = face resolution (texels), z = shares per item, w unused
-    vec4 params;   // x = near, y = far (m); z = normal offset, w = depth offset (texels)
+    ivec4 dims;   // x = maps, y = face resolution (texels), z = shares per item, w unused
+    vec4 params;  // x = near, y = far (m); z = normal offset, w = depth offset (texels)
 };
 /// Directional shadow maps (one per Havran light): at kBindingDirectionalShadowMaps the header
 /// (dims.x = maps, dims.y = resolution; params.x = texel size (m), params.y = the bounding
@@ -60,7 +60,7 @@ struct ShadowMapsGpu {
 CANDELA_CONST int kBindingDirectionalShadowMaps = 16;
 CANDELA_CONST int kUnitDirectionalShadowMaps = 7;
 struct ShadowMapGpu {
-    vec4 light;    // xyz world position of the map's light (m); w = 1 if rendered
+    vec4 light;  // xyz world position of the map's light (m); w = 1 if rendered
 };
 
 /// Texture unit of the lat-long environment map (RGB32F, intensity applied, row 0 = top, v = 0).
@@ -76,13 +76,13 @@ CANDELA_CONST int kEnvTouchedSteps = 16;
 
 /// Per-frame constants (std140 UBO).
 struct FrameUniforms {
-    mat4 viewProj;        // world -> clip
-    mat4 invViewProj;     // clip -> world
-    vec4 cameraPos;       // xyz metres
-    ivec4 frameInfo;      // x = frame index (sample batch), y = samples per pixel per frame,
-                          // z = luminaire index being shaded, w = 1 if shadows are traced
-    vec4 viewport;        // xy size in pixels, zw = 1/size
-    ivec4 seeds;          // x = seed of this accumulation's random numbers, yzw unused
+    mat4 viewProj;     // world -> clip
+    mat4 invViewProj;  // clip -> world
+    vec4 cameraPos;    // xyz metres
+    ivec4 frameInfo;   // x = frame index (sample batch), y = samples per pixel per frame,
+                       // z = luminaire index being shaded, w = 1 if shadows are traced
+    vec4 viewport;     // xy size in pixels, zw = 1/size
+    ivec4 seeds;       // x = seed of this accumulation's random numbers, yzw unused
 };
 
 /// A Lambertian rectangle: corner, edge vectors, radiance (std430).
@@ -108,9 +108,9 @@ struct LightFieldGpu {
     vec4 image;     // xy = image max on S (m), zw = pixel size (m)
     ivec4 dims;     // x, y = basis count W, H; z, w = image width, height (pixels)
     ivec4 offsets;  // x = SAT (doubles), y = luminance (floats), z = colour (uints), w = 1 if RGB
-    ivec4 options;  // x = K_max samples per image per frame (0: no cap), y = granier2003's far-field
-                    // table (floats: min.xy, max.xy of its centres on S, then size^2 ratios per
-                    // image), z = its size, w unused
+    ivec4 options;  // x = K_max samples per image per frame (0: no cap), y = granier2003's
+                    // far-field table (floats: min.xy, max.xy of its centres on S, then size^2
+                    // ratios per image), z = its size, w unused
 };
 
 /// A photometric area light (std430): this header, then in the same buffer as floats the
@@ -135,23 +135,23 @@ struct PhotometricGpu {
 /// Per-frame state of the environment passes (std140 UBO at kBindingEnvironment).
 CANDELA_CONST int kBindingEnvironment = 4;
 struct EnvironmentGpu {
-    ivec4 dims;     // x, y = lat-long width, height; z = cube face size N; w = samples per face
-                    // in the pool
-    vec4 params;    // x = rotation about +Y (rad); y = 1 to show the map behind the scene; zw unused
-    ivec4 frame;    // x = seed of this frame's light samples; y = supersampling k; zw unused
-    ivec4 extra;    // x = count of Havran lights or 0; y = global-cdf tables present; zw unused
+    ivec4 dims;   // x, y = lat-long width, height; z = cube face size N; w = samples per face
+                  // in the pool
+    vec4 params;  // x = rotation about +Y (rad); y = 1 to show the map behind the scene; zw unused
+    ivec4 frame;  // x = seed of this frame's light samples; y = supersampling k; zw unused
+    ivec4 extra;  // x = count of Havran lights or 0; y = global-cdf tables present; zw unused
 };
 
 /// One cube face's totals (std430).
 struct EnvironmentFaceGpu {
-    vec4 totals;    // x = I_f, the face's total sampling weight; y = sum of luminance x solid
-                    // angle (the face's energy); zw unused
+    vec4 totals;  // x = I_f, the face's total sampling weight; y = sum of luminance x solid
+                  // angle (the face's energy); zw unused
 };
 
 /// A light sample of one face drawn before shading (Algorithm 1, line 10), std430.
 struct EnvironmentSampleGpu {
-    vec4 direction; // xyz unit direction; w = pdf_L(w | f), 1/sr (0: no sample)
-    vec4 radiance;  // rgb radiance of the map along it; w unused
+    vec4 direction;  // xyz unit direction; w = pdf_L(w | f), 1/sr (0: no sample)
+    vec4 radiance;   // rgb radiance of the map along it; w unused
 };
 
 /// Most inner levels on any root-to-leaf path of the BVH (Bvh::kMaxDepth): the GLSL traversal

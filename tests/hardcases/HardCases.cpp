@@ -16,9 +16,9 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-const char* const kClassNames[] = {"ordinary", "contact", "on-plane", "grazing", "behind", "far",  "tiny",
-                                   "huge",     "segment", "point",    "spike",   "zero",   "single-value",
-                                   "bright-pixel"};
+const char* const kClassNames[] = {"ordinary", "contact", "on-plane",     "grazing",     "behind",
+                                   "far",      "tiny",    "huge",         "segment",     "point",
+                                   "spike",    "zero",    "single-value", "bright-pixel"};
 
 // --- The test's own closed forms ------------------------------------------------------------
 
@@ -65,14 +65,17 @@ double bspline(double t) {
 }
 
 /// Gauss-Legendre nodes on [0, 1] (8 points).
-constexpr double kGx[8] = {0.0198550717512319, 0.1016667612931866, 0.2372337950418355, 0.4082826787521751,
-                           0.5917173212478249, 0.7627662049581645, 0.8983332387068134, 0.9801449282487681};
-constexpr double kGw[8] = {0.0506142681451881, 0.1111905172266872, 0.1568533229389436, 0.1813418916891810,
-                           0.1813418916891810, 0.1568533229389436, 0.1111905172266872, 0.0506142681451881};
+constexpr double kGx[8] = {0.0198550717512319, 0.1016667612931866, 0.2372337950418355,
+                           0.4082826787521751, 0.5917173212478249, 0.7627662049581645,
+                           0.8983332387068134, 0.9801449282487681};
+constexpr double kGw[8] = {0.0506142681451881, 0.1111905172266872, 0.1568533229389436,
+                           0.1813418916891810, 0.1813418916891810, 0.1568533229389436,
+                           0.1111905172266872, 0.0506142681451881};
 
 /// Integral of f over [x0, x1] x [y0, y1], Gauss-Legendre 8 x 8 on each cell of a grid whose
 /// lines are the given breakpoints (the integrand must be smooth within each cell).
-double gauss2(const std::function<double(double, double)>& f, std::vector<double> bx, std::vector<double> by) {
+double gauss2(const std::function<double(double, double)>& f, std::vector<double> bx,
+              std::vector<double> by) {
     std::sort(bx.begin(), bx.end());
     std::sort(by.begin(), by.end());
     double sum = 0.0;
@@ -110,10 +113,13 @@ std::vector<double> graded(double lo, double hi, double centre) {
 // --- The emitters --------------------------------------------------------------------------
 
 /// An IES LM-63 text of a rotationally symmetric table (one C plane) and its opening in metres.
-std::string iesText(const std::vector<double>& gamma, const std::vector<double>& candela, double length, double width) {
+std::string iesText(const std::vector<double>& gamma, const std::vector<double>& candela,
+                    double length, double width) {
     char head[160];
-    std::snprintf(head, sizeof head, "IESNA:LM-63-2002\n[TEST] hard case\nTILT=NONE\n1 -1 1 %zu 1 1 2 %.9g %.9g 0\n1 1 0\n",
-                  gamma.size(), width, length);
+    std::snprintf(
+        head, sizeof head,
+        "IESNA:LM-63-2002\n[TEST] hard case\nTILT=NONE\n1 -1 1 %zu 1 1 2 %.9g %.9g 0\n1 1 0\n",
+        gamma.size(), width, length);
     std::string text = head;
     for (double g : gamma) text += std::to_string(g) + " ";
     text += "\n0\n";
@@ -123,7 +129,8 @@ std::string iesText(const std::vector<double>& gamma, const std::vector<double>&
 
 /// A photometric light 2 m up, aiming down, C0 along +x: its table and its opening
 /// (length along x, width along z; zero width: a segment; both zero: a point).
-std::shared_ptr<PhotometricLuminaire> photometric(const std::string& ies, double length, double width) {
+std::shared_ptr<PhotometricLuminaire> photometric(const std::string& ies, double length,
+                                                  double width) {
     auto light = std::make_shared<PhotometricLuminaire>();
     light->data = std::make_shared<const PhotometricData>(parseIes(ies, "hard-case.ies"));
     light->openingOverride = {length, width};
@@ -179,7 +186,8 @@ std::shared_ptr<LightFieldLuminaire> lightField(double value, bool bright) {
     lf->images.resize(size_t(kLfNodes * kLfNodes));
     for (size_t m = 0; m < lf->images.size(); ++m) {
         lf->images[m].luminance.assign(16, bright ? 0.f : float(value));
-        if (bright && m == size_t(kLfNodes * kLfNodes / 2)) lf->images[m].luminance[5] = float(value);
+        if (bright && m == size_t(kLfNodes * kLfNodes / 2))
+            lf->images[m].luminance[5] = float(value);
     }
     lf->validate("hard-case light field");
     lf->precompute();
@@ -272,7 +280,8 @@ double areaForm(const glm::dvec3& p, const glm::dvec3& n, double a, double b,
         double gamma = std::acos(std::clamp(v.y / r, -1.0, 1.0));  // from straight down
         return intensity(gamma) * cosP / r2;
     };
-    std::vector<double> bx = graded(-a, a, std::clamp(p.x, -a, a)), bz = graded(-b, b, std::clamp(p.z, -b, b));
+    std::vector<double> bx = graded(-a, a, std::clamp(p.x, -a, a)),
+                        bz = graded(-b, b, std::clamp(p.z, -b, b));
     for (double e : breaks(-a, a, 16, extraX)) bx.push_back(e);
     for (double e : breaks(-b, b, 16, extraZ)) bz.push_back(e);
     return gauss2(f, bx, bz) / (4.0 * a * b);
@@ -287,8 +296,8 @@ namespace {
 struct CaseBuilder {
     std::vector<Case> out;
     std::function<double(double)> table;  // the photometric cases' intensity, set per group
-    std::vector<glm::dvec3> opening;       // and their opening (for the upper bound)
-    double lMax = 0.0;                     // brightest radiance of the opening, cd/m2
+    std::vector<glm::dvec3> opening;      // and their opening (for the upper bound)
+    double lMax = 0.0;                    // brightest radiance of the opening, cd/m2
     const glm::dvec3 up{0, 1, 0}, down{0, -1, 0}, side{1, 0, 0};
 
     void add(std::string name, std::string kind, Class cls, std::shared_ptr<const Luminaire> light,
@@ -306,7 +315,8 @@ struct CaseBuilder {
         c.belowFloat = std::abs(kH - p.y) < 1e-5 && std::abs(kH - p.y) > 0.0;
         if (c.kind == "photometric") {
             c.intensity = table;
-            c.upperBound = opening.size() >= 3 ? kPi * lMax * polygonFormFactor(c.p, c.n, opening) : 0.0;
+            c.upperBound =
+                opening.size() >= 3 ? kPi * lMax * polygonFormFactor(c.p, c.n, opening) : 0.0;
         }
         out.push_back(std::move(c));
     }
@@ -320,9 +330,13 @@ struct CaseBuilder {
 };
 
 /// The cosine table's intensity, cd: 1000 cos(gamma) down, nothing up.
-double cosine(double gamma) { return gamma <= kPi / 2 ? 1000.0 * std::cos(gamma) : 0.0; }
+double cosine(double gamma) {
+    return gamma <= kPi / 2 ? 1000.0 * std::cos(gamma) : 0.0;
+}
 /// The isotropic table's intensity, cd.
-double isotropic(double) { return 1000.0; }
+double isotropic(double) {
+    return 1000.0;
+}
 
 /// Photometric, the cosine table on a 0.6 x 0.3 m opening: a Lambertian emitter of L = I0 / A.
 void CaseBuilder::photometricLambert() {
@@ -331,26 +345,29 @@ void CaseBuilder::photometricLambert() {
     opening = rectangle(a, b);
     lMax = L;
     auto light = photometric(lambertTable(2 * a, 2 * b), 2 * a, 2 * b);
-    auto form = [&](glm::dvec3 p, glm::dvec3 n) { return kPi * L * polygonFormFactor(p, n, rectangle(a, b)); };
+    auto form = [&](glm::dvec3 p, glm::dvec3 n) {
+        return kPi * L * polygonFormFactor(p, n, rectangle(a, b));
+    };
     std::string lam = "pi L F (Lambert's polygon formula)";
     add("photometric/lambert/ordinary", "photometric", Class::Ordinary, light, {0.4, 1.0, 0.3}, up,
         form({0.4, 1.0, 0.3}, up), lam);
     for (double d : {1e-9, 1e-6, 1e-3}) {
         char name[64];
         std::snprintf(name, sizeof name, "photometric/lambert/contact-%g", d);
-        add(name, "photometric", Class::Contact, light, {0, kH - d, 0}, up, form({0, kH - d, 0}, up), lam);
+        add(name, "photometric", Class::Contact, light, {0, kH - d, 0}, up,
+            form({0, kH - d, 0}, up), lam);
     }
-    add("photometric/lambert/contact-1e-6-off-centre", "photometric", Class::Contact, light, {0.2, kH - 1e-6, 0.1}, up,
-        form({0.2, kH - 1e-6, 0.1}, up), lam);
-    add("photometric/lambert/on-plane-inside", "photometric", Class::OnPlane, light, {0, kH, 0}, up, kPi * L,
-        "the front limit pi L (a receiver on the emitter: any value in [0, pi L])");
-    add("photometric/lambert/in-plane-beside", "photometric", Class::OnPlane, light, {0.5, kH, 0}, {-1, 0, 0}, 0.0,
-        "0: the opening is seen edge-on");
-    add("photometric/lambert/grazing-contact", "photometric", Class::Grazing, light, {0, kH - 1e-9, 0}, side,
-        form({0, kH - 1e-9, 0}, side), lam + ": pi L / 2");
+    add("photometric/lambert/contact-1e-6-off-centre", "photometric", Class::Contact, light,
+        {0.2, kH - 1e-6, 0.1}, up, form({0.2, kH - 1e-6, 0.1}, up), lam);
+    add("photometric/lambert/on-plane-inside", "photometric", Class::OnPlane, light, {0, kH, 0}, up,
+        kPi * L, "the front limit pi L (a receiver on the emitter: any value in [0, pi L])");
+    add("photometric/lambert/in-plane-beside", "photometric", Class::OnPlane, light, {0.5, kH, 0},
+        {-1, 0, 0}, 0.0, "0: the opening is seen edge-on");
+    add("photometric/lambert/grazing-contact", "photometric", Class::Grazing, light,
+        {0, kH - 1e-9, 0}, side, form({0, kH - 1e-9, 0}, side), lam + ": pi L / 2");
     glm::dvec3 graze = glm::normalize(glm::dvec3(1, 1e-6, 0));
-    add("photometric/lambert/grazing-normal-1m", "photometric", Class::Grazing, light, {-0.5, 1.0, 0}, graze,
-        form({-0.5, 1.0, 0}, graze), lam);
+    add("photometric/lambert/grazing-normal-1m", "photometric", Class::Grazing, light,
+        {-0.5, 1.0, 0}, graze, form({-0.5, 1.0, 0}, graze), lam);
     add("photometric/lambert/behind", "photometric", Class::Behind, light, {0, 2.5, 0}, down, 0.0,
         "0: the table sends nothing up");
     double r = std::sqrt(1e10 + 9e8);
@@ -367,20 +384,20 @@ void CaseBuilder::photometricSizes() {
     glm::dvec3 p(0.3, 0.0, 0.2);
     glm::dvec3 v = glm::dvec3(0, kH, 0) - p;
     double r = glm::length(v), c = v.y / r;
-    add("photometric/tiny-1e-6/at-2m", "photometric", Class::Tiny, tiny, p, up, 1000.0 * c * c / (r * r),
-        "the point law I cos / r^2 (the opening's size is 1e-6 of r)");
+    add("photometric/tiny-1e-6/at-2m", "photometric", Class::Tiny, tiny, p, up,
+        1000.0 * c * c / (r * r), "the point law I cos / r^2 (the opening's size is 1e-6 of r)");
     p = {0.03, kH - 0.1, 0.02};
     v = glm::dvec3(0, kH, 0) - p;
     r = glm::length(v);
     c = v.y / r;
-    add("photometric/tiny-1e-6/at-0.1m", "photometric", Class::Tiny, tiny, p, up, 1000.0 * c * c / (r * r),
-        "the point law I cos / r^2");
+    add("photometric/tiny-1e-6/at-0.1m", "photometric", Class::Tiny, tiny, p, up,
+        1000.0 * c * c / (r * r), "the point law I cos / r^2");
     auto huge = photometric(lambertTable(100, 100), 100, 100);
     const double L = 1000.0 / 1e4;
     opening = rectangle(50, 50);
     lMax = L;
-    add("photometric/huge-100m/contact-1e-9", "photometric", Class::Huge, huge, {0, kH - 1e-9, 0}, up,
-        kPi * L * polygonFormFactor({0, kH - 1e-9, 0}, up, rectangle(50, 50)), "pi L F");
+    add("photometric/huge-100m/contact-1e-9", "photometric", Class::Huge, huge, {0, kH - 1e-9, 0},
+        up, kPi * L * polygonFormFactor({0, kH - 1e-9, 0}, up, rectangle(50, 50)), "pi L F");
     add("photometric/huge-100m/at-1m", "photometric", Class::Huge, huge, {10, kH - 1.0, -5}, up,
         kPi * L * polygonFormFactor({10, kH - 1.0, -5}, up, rectangle(50, 50)), "pi L F");
 }
@@ -392,16 +409,20 @@ void CaseBuilder::photometricSegment() {
     auto iso = photometric(isotropicTable(0.6, 0.0), 0.6, 0.0);
     for (double d : {1e-9, 1e-3, 1.0}) {
         // Below its middle: cosine table I0 d^2 / r^4, isotropic I0 d / r^3, over x in [-0.3, 0.3].
-        auto lamInt = [d](double x) { return 0.5 / d * (d * x / (x * x + d * d) + std::atan(x / d)); };
+        auto lamInt = [d](double x) {
+            return 0.5 / d * (d * x / (x * x + d * d) + std::atan(x / d));
+        };
         auto isoInt = [d](double x) { return x / (d * std::sqrt(x * x + d * d)); };
         char name[64];
         table = cosine;
         std::snprintf(name, sizeof name, "photometric/segment-cosine/below-%g", d);
-        add(name, "photometric", Class::Segment, lam, {0, kH - d, 0}, up, 1000.0 / 0.6 * (lamInt(0.3) - lamInt(-0.3)),
+        add(name, "photometric", Class::Segment, lam, {0, kH - d, 0}, up,
+            1000.0 / 0.6 * (lamInt(0.3) - lamInt(-0.3)),
             "the line integral of I0 cos cos / r^2 (closed form)");
         table = isotropic;
         std::snprintf(name, sizeof name, "photometric/segment-isotropic/below-%g", d);
-        add(name, "photometric", Class::Segment, iso, {0, kH - d, 0}, up, 1000.0 / 0.6 * (isoInt(0.3) - isoInt(-0.3)),
+        add(name, "photometric", Class::Segment, iso, {0, kH - d, 0}, up,
+            1000.0 / 0.6 * (isoInt(0.3) - isoInt(-0.3)),
             "the line integral of I0 cos / r^2 (closed form)");
     }
 }
@@ -413,10 +434,12 @@ void CaseBuilder::photometricPoint() {
     for (double d : {1e-9, 1e-3, 1.0}) {
         char name[64];
         std::snprintf(name, sizeof name, "photometric/point/below-%g", d);
-        add(name, "photometric", Class::Point, point, {0, kH - d, 0}, up, 1000.0 / (d * d), "I / d^2");
+        add(name, "photometric", Class::Point, point, {0, kH - d, 0}, up, 1000.0 / (d * d),
+            "I / d^2");
     }
     // A normal 1e-6 rad above perpendicular to the light's direction: cos = sin(1e-6).
-    glm::dvec3 toLight = glm::normalize(glm::dvec3(-1, 1, 0)), across = glm::normalize(glm::dvec3(1, 1, 0));
+    glm::dvec3 toLight = glm::normalize(glm::dvec3(-1, 1, 0)),
+               across = glm::normalize(glm::dvec3(1, 1, 0));
     glm::dvec3 n = std::cos(1e-6) * across + std::sin(1e-6) * toLight;
     add("photometric/point/grazing", "photometric", Class::Grazing, point, {1.0, 1.0, 0}, n,
         1000.0 * std::sin(1e-6) / 2.0, "I cos / r^2 with cos = sin(1e-6)");
@@ -425,7 +448,8 @@ void CaseBuilder::photometricPoint() {
 /// A 1e9 cd spike 0.5 degrees wide on the axis over 100 cd elsewhere, on a point and on a
 /// 0.6 x 0.3 m opening; a table of zeros; a table with one non-zero value (on a point).
 void CaseBuilder::photometricTables() {
-    std::vector<double> g = {0, 0.5, 1, 2, 5, 10, 20, 40, 60, 90}, c = {1e9, 100, 100, 100, 100, 100, 100, 100, 100, 100};
+    std::vector<double> g = {0, 0.5, 1, 2, 5, 10, 20, 40, 60, 90},
+                        c = {1e9, 100, 100, 100, 100, 100, 100, 100, 100, 100};
     auto spike = [&](double gamma) {
         double deg = gamma * 180.0 / kPi;
         if (deg > 90.0) return 0.0;
@@ -434,21 +458,25 @@ void CaseBuilder::photometricTables() {
     };
     table = spike;
     auto point = photometric(iesText(g, c, 0, 0), 0, 0);
-    add("photometric/spike-point/below-1m", "photometric", Class::Spike, point, {0, kH - 1.0, 0}, up, 1e9, "I / d^2");
-    add("photometric/spike-point/off-axis", "photometric", Class::Spike, point, {0.5, kH - 1.0, 0}, up,
-        100.0 * (1.0 / std::sqrt(1.25)) / 1.25, "I cos / r^2 (100 cd there)");
+    add("photometric/spike-point/below-1m", "photometric", Class::Spike, point, {0, kH - 1.0, 0},
+        up, 1e9, "I / d^2");
+    add("photometric/spike-point/off-axis", "photometric", Class::Spike, point, {0.5, kH - 1.0, 0},
+        up, 100.0 * (1.0 / std::sqrt(1.25)) / 1.25, "I cos / r^2 (100 cd there)");
     auto wide = photometric(iesText(g, c, 0.6, 0.3), 0.6, 0.3);
     opening = rectangle(0.3, 0.15);
     lMax = 1e9 / 0.18;
     // The spike's cone meets the opening within 1 m tan(0.5 deg) = 8.7 mm of the foot point.
     double w = std::tan(0.5 * kPi / 180.0);
-    add("photometric/spike-opening/below-1m", "photometric", Class::Spike, wide, {0.05, kH - 1.0, 0.02}, up,
-        areaForm({0.05, kH - 1.0, 0.02}, up, 0.3, 0.15, spike, {0.05 - w, 0.05 + w}, {0.02 - w, 0.02 + w}),
+    add("photometric/spike-opening/below-1m", "photometric", Class::Spike, wide,
+        {0.05, kH - 1.0, 0.02}, up,
+        areaForm({0.05, kH - 1.0, 0.02}, up, 0.3, 0.15, spike, {0.05 - w, 0.05 + w},
+                 {0.02 - w, 0.02 + w}),
         "the area form by the test's graded quadrature");
     table = [](double) { return 0.0; };
     lMax = 0.0;
     auto zeros = photometric(iesText({0, 90, 180}, {0, 0, 0}, 0.6, 0.3), 0.6, 0.3);
-    add("photometric/zeros/below-1m", "photometric", Class::Zero, zeros, {0.1, 1.0, 0}, up, 0.0, "0");
+    add("photometric/zeros/below-1m", "photometric", Class::Zero, zeros, {0.1, 1.0, 0}, up, 0.0,
+        "0");
     std::vector<double> g1 = {0, 20, 25, 30, 35, 40, 90}, c1 = {0, 0, 0, 500, 0, 0, 0};
     opening.clear();
     table = [](double gamma) {
@@ -459,38 +487,44 @@ void CaseBuilder::photometricTables() {
     };
     auto ring = photometric(iesText(g1, c1, 0, 0), 0, 0);
     double gamma = 28.0 * kPi / 180.0, h = 1.0, x = h * std::tan(gamma), r = h / std::cos(gamma);
-    add("photometric/single-value/at-28deg", "photometric", Class::SingleValue, ring, {x, kH - h, 0}, up,
-        500.0 * (3.0 / 5.0) * std::cos(gamma) / (r * r), "I (linear between 25 and 30 deg) cos / r^2");
+    add("photometric/single-value/at-28deg", "photometric", Class::SingleValue, ring,
+        {x, kH - h, 0}, up, 500.0 * (3.0 / 5.0) * std::cos(gamma) / (r * r),
+        "I (linear between 25 and 30 deg) cos / r^2");
 }
 
 /// The Lambertian rectangle 0.6 x 0.3 m.
 void CaseBuilder::lambertianRect() {
     const double a = 0.3, b = 0.15, L = 1000.0;
     auto light = rect(a, b, L);
-    auto form = [&](glm::dvec3 p, glm::dvec3 n) { return kPi * L * polygonFormFactor(p, n, rectangle(a, b)); };
+    auto form = [&](glm::dvec3 p, glm::dvec3 n) {
+        return kPi * L * polygonFormFactor(p, n, rectangle(a, b));
+    };
     std::string lam = "pi L F (Lambert's polygon formula)";
     add("lambertian-rect/ordinary", "lambertian-rect", Class::Ordinary, light, {0.4, 1.0, 0.3}, up,
         form({0.4, 1.0, 0.3}, up), lam);
     for (double d : {1e-9, 1e-6, 1e-3}) {
         char name[64];
         std::snprintf(name, sizeof name, "lambertian-rect/contact-%g", d);
-        add(name, "lambertian-rect", Class::Contact, light, {0, kH - d, 0}, up, form({0, kH - d, 0}, up), lam);
+        add(name, "lambertian-rect", Class::Contact, light, {0, kH - d, 0}, up,
+            form({0, kH - d, 0}, up), lam);
     }
-    add("lambertian-rect/on-plane-inside", "lambertian-rect", Class::OnPlane, light, {0, kH, 0}, up, kPi * L,
-        "the front limit pi L (a receiver on the emitter: any value in [0, pi L])");
-    add("lambertian-rect/grazing-contact", "lambertian-rect", Class::Grazing, light, {0, kH - 1e-9, 0}, side,
-        form({0, kH - 1e-9, 0}, side), lam + ": pi L / 2");
-    add("lambertian-rect/behind", "lambertian-rect", Class::Behind, light, {0, 2.5, 0}, down, 0.0, "0: it emits down only");
+    add("lambertian-rect/on-plane-inside", "lambertian-rect", Class::OnPlane, light, {0, kH, 0}, up,
+        kPi * L, "the front limit pi L (a receiver on the emitter: any value in [0, pi L])");
+    add("lambertian-rect/grazing-contact", "lambertian-rect", Class::Grazing, light,
+        {0, kH - 1e-9, 0}, side, form({0, kH - 1e-9, 0}, side), lam + ": pi L / 2");
+    add("lambertian-rect/behind", "lambertian-rect", Class::Behind, light, {0, 2.5, 0}, down, 0.0,
+        "0: it emits down only");
     double r = std::sqrt(1e10 + 9e8);
     add("lambertian-rect/far-1e5", "lambertian-rect", Class::Far, light, {3e4, kH - 1e5, 0}, up,
         L * 4 * a * b * std::pow(1e5 / r, 2) / (r * r), "L A cos cos / r^2");
     auto tiny = rect(0.5e-6, 0.5e-6, L);
     glm::dvec3 p(0.3, 0.0, 0.2), v = glm::dvec3(0, kH, 0) - p;
     double rr = glm::length(v), c = v.y / rr;
-    add("lambertian-rect/tiny-1e-6/at-2m", "lambertian-rect", Class::Tiny, tiny, p, up, L * 1e-12 * c * c / (rr * rr),
-        "L A cos cos / r^2");
+    add("lambertian-rect/tiny-1e-6/at-2m", "lambertian-rect", Class::Tiny, tiny, p, up,
+        L * 1e-12 * c * c / (rr * rr), "L A cos cos / r^2");
     auto huge = rect(50, 50, L);
-    add("lambertian-rect/huge-100m/contact-1e-9", "lambertian-rect", Class::Huge, huge, {0, kH - 1e-9, 0}, up,
+    add("lambertian-rect/huge-100m/contact-1e-9", "lambertian-rect", Class::Huge, huge,
+        {0, kH - 1e-9, 0}, up,
         kPi * L * polygonFormFactor({0, kH - 1e-9, 0}, up, rectangle(50, 50)), lam);
 }
 
@@ -500,26 +534,31 @@ void CaseBuilder::lightFields() {
     auto constant = lightField(1000.0, false);
     auto q = [](glm::dvec3 p, glm::dvec3 n) { return lightFieldQuadrature(p, n, 1000.0, false); };
     std::string how = "the test's quadrature over U";
-    add("lightfield/ordinary", "lightfield", Class::Ordinary, constant, {0.3, 1.0, 0.1}, up, q({0.3, 1.0, 0.1}, up), how);
+    add("lightfield/ordinary", "lightfield", Class::Ordinary, constant, {0.3, 1.0, 0.1}, up,
+        q({0.3, 1.0, 0.1}, up), how);
     for (double d : {1e-9, 1e-6, 1e-3}) {
         char name[64];
         std::snprintf(name, sizeof name, "lightfield/beyond-S-%g", d);
-        add(name, "lightfield", Class::Contact, constant, {0.01, kH - d, 0.02}, up, q({0.01, kH - d, 0.02}, up), how);
+        add(name, "lightfield", Class::Contact, constant, {0.01, kH - d, 0.02}, up,
+            q({0.01, kH - d, 0.02}, up), how);
     }
-    add("lightfield/on-S", "lightfield", Class::OnPlane, constant, {0.01, kH, 0.02}, up, q({0.01, kH - 1e-12, 0.02}, up),
-        how + " (Eq. 9: the limit onto S)");
-    add("lightfield/between-U-and-S", "lightfield", Class::Behind, constant, {0, kH + 0.025, 0}, up, 0.0,
-        "0: inside the luminaire");
-    add("lightfield/behind-U", "lightfield", Class::Behind, constant, {0, kH + 0.3, 0}, down, 0.0, "0: behind it");
-    add("lightfield/grazing-contact", "lightfield", Class::Grazing, constant, {0.01, kH - 1e-6, 0.02}, side,
-        q({0.01, kH - 1e-6, 0.02}, side), how);
+    add("lightfield/on-S", "lightfield", Class::OnPlane, constant, {0.01, kH, 0.02}, up,
+        q({0.01, kH - 1e-12, 0.02}, up), how + " (Eq. 9: the limit onto S)");
+    add("lightfield/between-U-and-S", "lightfield", Class::Behind, constant, {0, kH + 0.025, 0}, up,
+        0.0, "0: inside the luminaire");
+    add("lightfield/behind-U", "lightfield", Class::Behind, constant, {0, kH + 0.3, 0}, down, 0.0,
+        "0: behind it");
+    add("lightfield/grazing-contact", "lightfield", Class::Grazing, constant,
+        {0.01, kH - 1e-6, 0.02}, side, q({0.01, kH - 1e-6, 0.02}, side), how);
     double r = std::sqrt(1e10 + 9e8);
     add("lightfield/far-1e5", "lightfield", Class::Far, constant, {3e4, kH - 1e5, 0}, up,
         1000.0 * 0.04 * std::pow(1e5 / r, 2) / (r * r), "its far field: C A_S cos cos / r^2");
     auto bright = lightField(1e6, true);
-    add("lightfield/bright-pixel/at-1m", "lightfield", Class::BrightPixel, bright, {-0.04, kH - 1.0, -0.03}, up,
-        lightFieldQuadrature({-0.04, kH - 1.0, -0.03}, up, 1e6, true), how);
-    add("lightfield/bright-pixel/near", "lightfield", Class::BrightPixel, bright, {-0.04, kH - 0.01, -0.03}, up,
+    add("lightfield/bright-pixel/at-1m", "lightfield", Class::BrightPixel, bright,
+        {-0.04, kH - 1.0, -0.03}, up, lightFieldQuadrature({-0.04, kH - 1.0, -0.03}, up, 1e6, true),
+        how);
+    add("lightfield/bright-pixel/near", "lightfield", Class::BrightPixel, bright,
+        {-0.04, kH - 0.01, -0.03}, up,
         lightFieldQuadrature({-0.04, kH - 0.01, -0.03}, up, 1e6, true), how);
 }
 
@@ -537,7 +576,9 @@ std::vector<Case> build() {
 
 }  // namespace
 
-const char* className(Class c) { return kClassNames[int(c)]; }
+const char* className(Class c) {
+    return kClassNames[int(c)];
+}
 
 double pointLaw(const Case& c) {
     glm::dvec3 v = glm::dvec3(0, kH, 0) - c.p;
@@ -548,7 +589,8 @@ double pointLaw(const Case& c) {
     return c.intensity(gamma) * cosP / (r * r);
 }
 
-double polygonFormFactor(const glm::dvec3& p, const glm::dvec3& n, const std::vector<glm::dvec3>& corners) {
+double polygonFormFactor(const glm::dvec3& p, const glm::dvec3& n,
+                         const std::vector<glm::dvec3>& corners) {
     std::vector<glm::dvec3> rel;
     for (const glm::dvec3& c : corners) rel.push_back(c - p);
     return lambert(clipAtHorizon(rel, n), n);

@@ -9,9 +9,8 @@
 // without editing this table); TechniqueLimits (hardcases_test.cpp) says what each technique
 // promises there: agreement within a tolerance, or a documented bound.
 
-#include <glm/glm.hpp>
-
 #include <functional>
+#include <glm/glm.hpp>
 #include <memory>
 #include <string>
 #include <vector>
@@ -45,12 +44,12 @@ const char* className(Class c);
 
 struct Case {
     std::string name;
-    std::string kind;                          ///< Luminaire kind.
+    std::string kind;  ///< Luminaire kind.
     Class cls = Class::Ordinary;
     std::shared_ptr<const Luminaire> light;
-    glm::dvec3 p{0.0}, n{0.0, 1.0, 0.0};       ///< Receiver, world, unit normal.
-    double expected = 0.0;                     ///< Irradiance (luminance-weighted), the light's unit.
-    std::string how;                           ///< How the expected value was found.
+    glm::dvec3 p{0.0}, n{0.0, 1.0, 0.0};  ///< Receiver, world, unit normal.
+    double expected = 0.0;                ///< Irradiance (luminance-weighted), the light's unit.
+    std::string how;                      ///< How the expected value was found.
     /// The receiver is within float rounding of the emitter (the GPU sees it on the plane).
     bool belowFloat = false;
     /// Photometric cases: the table's intensity (cd) at the angle gamma from the aim (every
@@ -77,6 +76,7 @@ const std::vector<Case>& cases();
 
 /// Lambert's polygon form factor from p (unit normal n) to the convex polygon `corners` (world),
 /// with the polygon clipped at p's horizon: the test's own closed form.
-double polygonFormFactor(const glm::dvec3& p, const glm::dvec3& n, const std::vector<glm::dvec3>& corners);
+double polygonFormFactor(const glm::dvec3& p, const glm::dvec3& n,
+                         const std::vector<glm::dvec3>& corners);
 
 }  // namespace candela::hard

@@ -1,7 +1,7 @@
 #include "tests/hardcases/TechniqueLimits.h"
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <limits>
 
@@ -11,8 +11,12 @@ namespace candela::hard {
 
 namespace {
 
-Promise exact(double rel, std::string why) { return {Promise::Exact, rel, 0.0, 0.0, 0.0, std::move(why)}; }
-Promise unbiased(double rel, std::string why) { return {Promise::Unbiased, rel, 0.0, 0.0, 0.0, std::move(why)}; }
+Promise exact(double rel, std::string why) {
+    return {Promise::Exact, rel, 0.0, 0.0, 0.0, std::move(why)};
+}
+Promise unbiased(double rel, std::string why) {
+    return {Promise::Unbiased, rel, 0.0, 0.0, 0.0, std::move(why)};
+}
 Promise bounded(double lo, double hi, std::string why) {
     return {Promise::Bounded, 0.0, lo, hi, 0.0, std::move(why)};
 }
@@ -31,7 +35,8 @@ bool common(const TechniqueInfo& t, const Case& c, Promise& out) {
     // A receiver on the emitter itself: the limit from its front is pi L, from behind 0; any
     // value between is a correct reading of an ill-posed question (the README says so).
     if (c.cls == Class::OnPlane && c.kind != "lightfield") {
-        out = bounded(0.0, c.expected * (1.0 + 1e-9), "on the emitter: between the limits 0 and pi L");
+        out = bounded(0.0, c.expected * (1.0 + 1e-9),
+                      "on the emitter: between the limits 0 and pi L");
         return true;
     }
     (void)t;
@@ -48,14 +53,23 @@ Promise stated(const TechniqueInfo& t, const Case& c) {
     if (l.accuracy == StatedLimits::PointLaw) return {Promise::PointLaw, l.tolerance, 0, 0, 0, why};
     // A peak narrower than the technique's few sample directions: within [0, pi F L_max].
     if (!l.resolvesPeaks && c.cls == Class::Spike && c.upperBound > 0.0)
-        return bounded(0.0, c.upperBound, "a peak narrower than the sample directions: within [0, pi F L_max]");
+        return bounded(0.0, c.upperBound,
+                       "a peak narrower than the sample directions: within [0, pi F L_max]");
     if (l.fromOpeningSizes > 0.0 && openingSizesAway(c) < l.fromOpeningSizes)
-        return {Promise::Finite, 0, 0, 0, 0, "nearer than its stated distance: any factor off (" + why + ")"};
+        return {Promise::Finite,
+                0,
+                0,
+                0,
+                0,
+                "nearer than its stated distance: any factor off (" + why + ")"};
     switch (l.accuracy) {
-        case StatedLimits::Unbiased: return unbiased(l.tolerance, why);
+        case StatedLimits::Unbiased:
+            return unbiased(l.tolerance, why);
         case StatedLimits::Approximate:
-            return exact(c.cls == Class::Far && l.farTolerance >= 0.0 ? l.farTolerance : l.tolerance, why);
-        default: return exact(l.tolerance, why);
+            return exact(
+                c.cls == Class::Far && l.farTolerance >= 0.0 ? l.farTolerance : l.tolerance, why);
+        default:
+            return exact(l.tolerance, why);
     }
 }
 
@@ -96,7 +110,8 @@ Promise gpuPromise(const TechniqueInfo& t, const Case& c) {
         // rad of 90 degrees, which float (1e-7 rad of absolute rounding there) reads 2 % off, and
         // the radiance I / (A cos) with it.
         return bounded(0.0, c.expected * (1.0 + 2e-2),
-                       "within float rounding of the emitter (1e-7 of the distance from the origin): the GPU sees "
+                       "within float rounding of the emitter (1e-7 of the distance from the "
+                       "origin): the GPU sees "
                        "the receiver on it, any value between 0 and the front limit (+2 %)");
     // Float: 1e-3 covers rounding through the shaders' trigonometry and sums (single precision
     // keeps ~6 digits; the longest chains, spherical polygons of up to 8 vertices, lose one or
@@ -107,16 +122,19 @@ Promise gpuPromise(const TechniqueInfo& t, const Case& c) {
 }
 
 namespace {
-double luminance(const glm::dvec3& v) { return 0.2126 * v.x + 0.7152 * v.y + 0.0722 * v.z; }
+double luminance(const glm::dvec3& v) {
+    return 0.2126 * v.x + 0.7152 * v.y + 0.0722 * v.z;
+}
 }  // namespace
 
 std::string judge(const Case& c, const Promise& p, const Estimate& e) {
     char buf[768];
     double got = luminance(e.irradiance), se = luminance(e.stdError), want = c.expected;
     for (int k = 0; k < 3; ++k)
-        if (!std::isfinite(e.irradiance[k]) || e.irradiance[k] < 0.0 || !std::isfinite(e.stdError[k]) ||
-            e.stdError[k] < 0.0) {
-            std::snprintf(buf, sizeof buf, "not a finite, non-negative value: %g +- %g", e.irradiance[k], e.stdError[k]);
+        if (!std::isfinite(e.irradiance[k]) || e.irradiance[k] < 0.0 ||
+            !std::isfinite(e.stdError[k]) || e.stdError[k] < 0.0) {
+            std::snprintf(buf, sizeof buf, "not a finite, non-negative value: %g +- %g",
+                          e.irradiance[k], e.stdError[k]);
             return buf;
         }
     bool ok = true;
@@ -124,7 +142,8 @@ std::string judge(const Case& c, const Promise& p, const Estimate& e) {
         case Promise::Exact:
             // A relative tolerance, and a floor of 1e-12 of the value for double rounding;
             // expected 0 requires exactly 0.
-            ok = want == 0.0 ? got == 0.0 : std::abs(got - want) <= (p.rel + 1e-12) * std::abs(want) + p.abs;
+            ok = want == 0.0 ? got == 0.0
+                             : std::abs(got - want) <= (p.rel + 1e-12) * std::abs(want) + p.abs;
             break;
         case Promise::Unbiased:
             // The z-score: four standard errors (a 6e-5 two-sided chance for a normal error at
@@ -142,10 +161,12 @@ std::string judge(const Case& c, const Promise& p, const Estimate& e) {
             want = law;
             break;
         }
-        case Promise::Finite: break;
+        case Promise::Finite:
+            break;
     }
     if (ok) return "";
-    std::snprintf(buf, sizeof buf, "expected %.9g (%s), got %.9g +- %.3g; bounds [%g, %g]; its limit: %s", want,
+    std::snprintf(buf, sizeof buf,
+                  "expected %.9g (%s), got %.9g +- %.3g; bounds [%g, %g]; its limit: %s", want,
                   c.how.c_str(), got, se, p.lo, p.hi, p.why.c_str());
     return buf;
 }

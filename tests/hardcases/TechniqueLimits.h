@@ -24,7 +24,7 @@ struct Promise {
     double rel = 0.0;
     double lo = 0.0, hi = 0.0;
     double abs = 0.0;  ///< An absolute slack added to every tolerance, the case's unit.
-    std::string why;  ///< The README's wording, printed with a failure.
+    std::string why;   ///< The README's wording, printed with a failure.
 };
 
 /// The promise of technique `t` on case `c` (CPU, double precision).

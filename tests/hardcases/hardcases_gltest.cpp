@@ -53,8 +53,8 @@ TEST(HardCasesGl, EveryTechniqueHoldsItsStatedLimitOnTheGpu) {
                     e.stdError = t.irradiance(*c.light, c.p, c.n, o).stdError;
                 }
                 std::string why = hard::judge(c, hard::gpuPromise(t, c), e);
-                EXPECT_TRUE(why.empty()) << c.name << " [" << hard::className(c.cls) << "], " << t.name
-                                         << " on the GPU: " << why;
+                EXPECT_TRUE(why.empty()) << c.name << " [" << hard::className(c.cls) << "], "
+                                         << t.name << " on the GPU: " << why;
                 ++checked;
             }
         }

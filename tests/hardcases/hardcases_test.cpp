@@ -2,13 +2,14 @@
 // every technique the registry lists for its kind, each held to its stated limit
 // (TechniqueLimits.cpp, the README's table). Stochastic techniques run at two sample counts, so a
 // standard error that hides a miss at few samples fails too.
+#include "tests/hardcases/HardCases.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 
 #include "luminaires/Registry.h"
-#include "tests/hardcases/HardCases.h"
 #include "tests/hardcases/TechniqueLimits.h"
 
 namespace candela {
@@ -27,8 +28,8 @@ TEST(HardCases, EveryTechniqueHoldsItsStatedLimit) {
                 o.seed = 17;
                 Estimate e = t.irradiance(*c.light, c.p, c.n, o);
                 std::string why = hard::judge(c, p, e);
-                EXPECT_TRUE(why.empty()) << c.name << " [" << hard::className(c.cls) << "], " << t.name << " at "
-                                         << spp << " spp: " << why;
+                EXPECT_TRUE(why.empty()) << c.name << " [" << hard::className(c.cls) << "], "
+                                         << t.name << " at " << spp << " spp: " << why;
                 ++checked;
             }
         }
@@ -58,7 +59,9 @@ TEST(HardCases, GridCoversEveryKindAndClass) {
 TEST(HardCases, ReferencesAgree) {
     int compared = 0;
     for (const hard::Case& c : hard::cases()) {
-        if (c.name.rfind("photometric/lambert/", 0) != 0 || c.cls == hard::Class::OnPlane || c.expected == 0.0) continue;
+        if (c.name.rfind("photometric/lambert/", 0) != 0 || c.cls == hard::Class::OnPlane ||
+            c.expected == 0.0)
+            continue;
         double quadrature = hard::areaForm(c.p, c.n, 0.3, 0.15, c.intensity);
         EXPECT_NEAR(quadrature, c.expected, 1e-6 * c.expected) << c.name;
         // And no receiver gets more than the opening at its brightest radiance everywhere.
