@@ -27,14 +27,6 @@ float envVisibility(Surface s, vec3 w) {
 #endif
 }
 
-vec3 brdf(Surface s, vec3 wi) {
-    vec3 f = s.albedo / kPi;
-#ifdef GLOSSY
-    if ((s.flags & kMaterialGlossy) != 0) f += glossyBrdf(s, wi);
-#endif
-    return f;
-}
-
 /// radiance x BRDF x cosine x visibility for a direction with a positive cosine, else 0.
 vec3 integrand(Surface s, vec3 w, vec3 radiance) {
     float c = dot(s.n, w);

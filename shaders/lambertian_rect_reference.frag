@@ -10,11 +10,7 @@ vec3 shadeTechnique(Surface s, LambertianRectGpu L, int spp, inout uint rng) {
         if (!lambertRectSample(L, s.p, u, wi, dist, pdf)) continue;
         float c = max(dot(s.n, wi), 0.0);
         if (c <= 0.0) continue;
-        vec3 f = s.albedo / kPi;
-#ifdef GLOSSY
-        if ((s.flags & kMaterialGlossy) != 0) f += glossyBrdf(s, wi);
-#endif
-        result += L.radiance.rgb * f * c * visibility(s, wi, dist) / pdf;
+        result += L.radiance.rgb * brdf(s, wi) * c * visibility(s, wi, dist) / pdf;
     }
     result /= float(spp);
     return result;

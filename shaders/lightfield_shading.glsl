@@ -21,13 +21,6 @@
 layout(location = 0) uniform int uLuminaire;
 layout(location = 0) out vec4 outRadiance;
 
-vec3 brdf(Surface s, vec3 wi) {
-    vec3 f = s.albedo / kPi;
-#ifdef GLOSSY
-    if ((s.flags & kMaterialGlossy) != 0) f += glossyBrdf(s, wi);
-#endif
-    return f;
-}
 
 float visibility(Surface s, vec3 target) {
 #ifdef SHADOWS

@@ -15,11 +15,7 @@ vec3 phMisTerm(Surface s, vec3 n, vec3 q, vec3 d, float r, float rect, vec3 c) {
     float w = phIntensity(-d) * cosP / ph.position.w /
               (c.x * r * r / rect + c.y * cosL * cosP / kPi + c.z * cosL * pdfTable);
     if (!(w > 0.0) || isinf(w)) return vec3(0.0);
-    vec3 brdf = s.albedo / kPi;
-#ifdef GLOSSY
-    if ((s.flags & kMaterialGlossy) != 0) brdf += glossyBrdf(s, normalize(phFromLocal(d)));
-#endif
-    return brdf * w * visibleTo(s, q);
+    return brdf(s, normalize(phFromLocal(d))) * w * visibleTo(s, q);
 }
 
 vec3 shadeTechnique(Surface s, vec3 p, vec3 n, int spp, inout uint rng) {

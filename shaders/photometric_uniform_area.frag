@@ -20,11 +20,7 @@ vec3 shadeTechnique(Surface s, vec3 p, vec3 n, int spp, inout uint rng) {
         if (!(cosP > 0.0)) continue;
         // The radiance I / (A cos_L) times the geometry cos_L cos_p / r^2, over pdf 1 / S_rect.
         float w = phIntensity(-d) * cosP * rect / (ph.position.w * r * r);
-        vec3 brdf = s.albedo / kPi;
-#ifdef GLOSSY
-        if ((s.flags & kMaterialGlossy) != 0) brdf += glossyBrdf(s, normalize(phFromLocal(d)));
-#endif
-        result += brdf * w * visibleTo(s, q);
+        result += brdf(s, normalize(phFromLocal(d))) * w * visibleTo(s, q);
     }
     return result / float(spp);
 }

@@ -41,5 +41,15 @@ vec3 glossyBrdf(Surface s, vec3 wi) {
     return s.specular * (s.exponent + 2.0) / (2.0 * kPi) * pow(c, s.exponent);
 }
 
+/// The surface's BRDF for light arriving from wi: Lambert, plus the Phong lobe on glossy
+/// materials in GLOSSY variants.
+vec3 brdf(Surface s, vec3 wi) {
+    vec3 f = s.albedo / kPi;
+#ifdef GLOSSY
+    if ((s.flags & kMaterialGlossy) != 0) f += glossyBrdf(s, wi);
+#endif
+    return f;
+}
+
 /// Offset origin for shadow rays, so a surface does not shadow itself.
 vec3 shadowOrigin(Surface s) { return s.p + s.n * 1e-4 * max(1.0, length(s.p)); }
