@@ -121,6 +121,64 @@ Estimate onPlaneS(const Setup& s, const EstimateOptions& o) {
 
 enum class Strategy { Restricted, Uniform, Global };
 
+/// Where each image m may be sampled for one receiver (its restricted box, or the whole image for
+/// the global CDF), the energy A_m there, and the CDF over images.
+struct ImageBoxes {
+    std::vector<glm::dvec2> lo, hi;
+    std::vector<double> weight, cdf;
+    double total() const { return cdf.back(); }  ///< A(p) (Eq. 12), or all the energy (global)
+};
+
+ImageBoxes imageBoxes(const LightFieldData& lf, const glm::dvec3& q, Strategy strategy) {
+    size_t count = size_t(lf.imageCount());
+    ImageBoxes b{std::vector<glm::dvec2>(count), std::vector<glm::dvec2>(count),
+                 std::vector<double>(count, 0.0), std::vector<double>(count + 1, 0.0)};
+    for (size_t m = 0; m < count; ++m) {
+        if (strategy == Strategy::Global) {
+            b.lo[m] = lf.imageMin;
+            b.hi[m] = lf.imageMax;
+            b.weight[m] = lf.tables[m].total;
+        } else if (lf.restrictedBox(int(m), q, b.lo[m], b.hi[m])) {
+            // Eq. (10): A_m(p), the energy of C_m in the restricted box.
+            b.weight[m] = lf.boxIntegral(int(m), b.lo[m], b.hi[m]);
+        }
+        b.cdf[m + 1] = b.cdf[m] + b.weight[m];
+    }
+    return b;
+}
+
+/// One sample's contribution f / pdf from image m at the unit square point xi (0 where the
+/// sample carries no light).
+glm::dvec3 sampleTerm(const Setup& s, const glm::dvec3& p, const EstimateOptions& o,
+                      const ImageBoxes& b, int m, glm::dvec2 xi, Strategy strategy) {
+    const LightFieldData& lf = *s.lf;
+    size_t i = size_t(m);
+    glm::dvec2 sPos;
+    double inversePdf = 0.0;  // 1 / pdf of (m, s) over S, in C's unit times m2
+    if (strategy == Strategy::Uniform) {
+        sPos = b.lo[i] + xi * (b.hi[i] - b.lo[i]);
+        glm::dvec2 size = b.hi[i] - b.lo[i];
+        if (lf.lum(m, sPos) > 0.0) inversePdf = b.total() / b.weight[i] * size.x * size.y;
+    } else {
+        if (!lf.sampleBox(m, b.lo[i], b.hi[i], xi, sPos)) return glm::dvec3(0.0);
+        double c = lf.lum(m, sPos);
+        if (c > 0.0) inversePdf = b.total() / c;  // pdf = C_m(s) / A (Eq. 10 times A_m / A)
+    }
+    if (!(inversePdf > 0.0)) return glm::dvec3(0.0);
+    glm::dvec3 d(sPos.x - s.q.x, sPos.y - s.q.y, -s.dz);
+    double r = glm::length(d);
+    double cosR = std::max(0.0, glm::dot(s.n, d / r));
+    // u: where the line from q through s meets U.
+    glm::dvec2 pq(s.q.x, s.q.y);
+    glm::dvec2 u = pq + (sPos - pq) * (s.q.z / s.dz);
+    double psi = lf.psi(m, u, sPos);
+    if (!(cosR > 0.0 && psi > 0.0)) return glm::dvec3(0.0);
+    if (o.visibility && !o.visibility->visible(p, worldOf(s, sPos))) return glm::dvec3(0.0);
+    // Eq. (14): C_m Psi_m c_m cos_r Delta / r^3 divided by the pdf.
+    double c = lf.lum(m, sPos);
+    return c * psi * lf.colour(m, sPos) * (cosR * s.dz / (r * r * r)) * inversePdf;
+}
+
 Estimate sampled(const Luminaire& l, const glm::dvec3& p, const glm::dvec3& n,
                  const EstimateOptions& o, Strategy strategy) {
     Setup s;
@@ -129,27 +187,13 @@ Estimate sampled(const Luminaire& l, const glm::dvec3& p, const glm::dvec3& n,
     if (s.dz == 0.0) return onPlaneS(s, o);
     const LightFieldData& lf = *s.lf;
     int count = lf.imageCount();
-    std::vector<glm::dvec2> lo(static_cast<size_t>(count)), hi(static_cast<size_t>(count));
-    std::vector<double> weight(static_cast<size_t>(count), 0.0),
-        cdf(static_cast<size_t>(count) + 1, 0.0);
-    for (int m = 0; m < count; ++m) {
-        if (strategy == Strategy::Global) {
-            lo[size_t(m)] = lf.imageMin;
-            hi[size_t(m)] = lf.imageMax;
-            weight[size_t(m)] = lf.tables[size_t(m)].total;
-        } else if (lf.restrictedBox(m, s.q, lo[size_t(m)], hi[size_t(m)])) {
-            // Eq. (10): A_m(p), the energy of C_m in the restricted box.
-            weight[size_t(m)] = lf.boxIntegral(m, lo[size_t(m)], hi[size_t(m)]);
-        }
-        cdf[size_t(m) + 1] = cdf[size_t(m)] + weight[size_t(m)];
-    }
-    double total = cdf.back();     // A(p) (Eq. 12), or all the energy for the global CDF
+    ImageBoxes boxes = imageBoxes(lf, s.q, strategy);
+    double total = boxes.total();
     if (!(total > 0.0)) return e;  // every A_m(p) = 0: no sample, exactly 0
 
     Random rng(o.seed);
     double offset = rng.uniform();
     glm::dvec2 shift(rng.uniform(), rng.uniform());
-    glm::dvec2 pq(s.q.x, s.q.y);
     Accumulator acc;
     int hits = 0;  // samples that carried light
     for (int k = 0; k < o.spp; ++k) {
@@ -157,41 +201,13 @@ Estimate sampled(const Luminaire& l, const glm::dvec3& p, const glm::dvec3& n,
         // to A_m with one random offset (systematic sampling), so image m gets the nearest
         // integers below or above K A_m / A, and every slot has the marginal density A_m / A.
         double target = (double(k) + offset) / double(o.spp) * total;
-        int m = int(std::upper_bound(cdf.begin() + 1, cdf.end(), target) - cdf.begin()) - 1;
+        int m = int(std::upper_bound(boxes.cdf.begin() + 1, boxes.cdf.end(), target) -
+                    boxes.cdf.begin()) -
+                1;
         m = std::clamp(m, 0, count - 1);
-        while (m > 0 && !(weight[size_t(m)] > 0.0)) --m;
-        glm::dvec2 xi = halton(uint32_t(k), shift);
-        glm::dvec2 sPos;
-        double inversePdf = 0.0;  // 1 / pdf of (m, s) over S, in C's unit times m2
-        if (strategy == Strategy::Uniform) {
-            glm::dvec2 a = lo[size_t(m)], b = hi[size_t(m)];
-            sPos = a + xi * (b - a);
-            double c = lf.lum(m, sPos);
-            if (c > 0.0) inversePdf = total / weight[size_t(m)] * (b.x - a.x) * (b.y - a.y);
-        } else {
-            if (!lf.sampleBox(m, lo[size_t(m)], hi[size_t(m)], xi, sPos)) {
-                acc.add(glm::dvec3(0.0));
-                continue;
-            }
-            double c = lf.lum(m, sPos);
-            if (c > 0.0) inversePdf = total / c;  // pdf = C_m(s) / A (Eq. 10 times A_m / A)
-        }
-        glm::dvec3 term(0.0);
-        if (inversePdf > 0.0) {
-            glm::dvec3 d(sPos.x - s.q.x, sPos.y - s.q.y, -s.dz);
-            double r = glm::length(d);
-            double cosR = std::max(0.0, glm::dot(s.n, d / r));
-            // u: where the line from q through s meets U.
-            glm::dvec2 u = pq + (sPos - pq) * (s.q.z / s.dz);
-            double psi = lf.psi(m, u, sPos);
-            if (cosR > 0.0 && psi > 0.0 &&
-                (!o.visibility || o.visibility->visible(p, worldOf(s, sPos)))) {
-                // Eq. (14): C_m Psi_m c_m cos_r Delta / r^3 divided by the pdf.
-                double c = lf.lum(m, sPos);
-                term = c * psi * lf.colour(m, sPos) * (cosR * s.dz / (r * r * r)) * inversePdf;
-                hits += term != glm::dvec3(0.0);
-            }
-        }
+        while (m > 0 && !(boxes.weight[size_t(m)] > 0.0)) --m;
+        glm::dvec3 term = sampleTerm(s, p, o, boxes, m, halton(uint32_t(k), shift), strategy);
+        hits += term != glm::dvec3(0.0);
         acc.add(term);
     }
     e = acc.estimate(1.0);

@@ -400,39 +400,48 @@ Estimate photometricPoint(const Luminaire& l, const glm::dvec3& p, const glm::dv
     return withColour(s, e > 0.0 && s.visible(glm::dvec3(0.0)) ? e : 0.0);
 }
 
-Estimate photometricReference(const Luminaire& l, const glm::dvec3& p, const glm::dvec3& n,
-                              const EstimateOptions& options) {
-    // Three strategies combined by the balance heuristic (Veach 1997), one chosen per sample: a
-    // point uniform on the opening's bounding rectangle (the area form, Eq. 6.3: good far away,
-    // finite in the opening's plane); a direction cosine-distributed about the receiver's normal
-    // (good near and at contact, where the opening fills the hemisphere and area samples almost
-    // never land near the receiver's foot: they gave 1e-13 of the truth 1e-9 m away); and a
-    // direction drawn in proportion to the table's intensity (IntensitySampler: a 1e9 cd spike
-    // 0.5 degrees wide covers a thousandth of the opening seen from 1 m, so the other two missed
-    // it at a few hundred samples and reported a tenth of a percent of the truth with a small
-    // error bar). The intensity strategy takes a quarter of the samples (wasted far away, where
-    // few of its directions meet the opening: at most 4/3 of the variance); cosine directions
-    // take the opening's form factor from the receiver, clamped to [0.05, 0.5], of the rest.
-    // With visibility, a shadow ray per sample.
-    Setup s = makeSetup(l, p, n, options.visibility);
-    double e;
-    if (degenerate(s, e)) return withColour(s, e);
-    if (options.spp <= 0 || !(s.light->area() > 0.0)) return withColour(s, 0.0);
+namespace {
+
+/// The reference's three strategies combined by the balance heuristic (Veach 1997), one chosen
+/// per sample: a point uniform on the opening's bounding rectangle (the area form, Eq. 6.3: good
+/// far away, finite in the opening's plane); a direction cosine-distributed about the receiver's
+/// normal (good near and at contact, where the opening fills the hemisphere and area samples
+/// almost never land near the receiver's foot: they gave 1e-13 of the truth 1e-9 m away); and a
+/// direction drawn in proportion to the table's intensity (IntensitySampler: a 1e9 cd spike 0.5
+/// degrees wide covers a thousandth of the opening seen from 1 m, so the other two missed it at a
+/// few hundred samples and reported a tenth of a percent of the truth with a small error bar).
+/// The intensity strategy takes a quarter of the samples (wasted far away, where few of its
+/// directions meet the opening: at most 4/3 of the variance); cosine directions take the
+/// opening's form factor from the receiver, clamped to [0.05, 0.5], of the rest. With
+/// visibility, a shadow ray per sample.
+struct ReferenceMixture {
+    const Setup& s;
     glm::dvec2 lo, hi;
-    bounds(*s.light, lo, hi);
-    const double rect = (hi.x - lo.x) * (hi.y - lo.y);
-    Polygon visible = spherical::clip(openingFromReceiver(s), s.n);
-    std::shared_ptr<const IntensitySampler> table = IntensitySampler::of(s.light->data);
-    const double cTable = table && table->valid() ? 0.25 : 0.0;
-    const double formFactor =
-        visible.count >= 3 ? spherical::projectedSolidAngle(visible, s.n) / kPi : 0.0;
-    const double cCosine = (1.0 - cTable) * std::clamp(formFactor, 0.05, 0.5);
-    const double cArea = 1.0 - cTable - cCosine;
-    // f / (sum of c_i pdf_i) for the direction d toward opening point q at distance r, with
-    // f = L cos_p = I cos_p / (A cos_L), pdf_area = r^2 / (rect cos_L), pdf_cosine = cos_p / pi
-    // and pdf_table(-d): multiplied through by cos_L so that it stays finite in the opening's
-    // plane (where L is infinite and the area form is not).
-    auto term = [&](const glm::dvec3& q, const glm::dvec3& d, double r) {
+    double rect;
+    std::shared_ptr<const IntensitySampler> table;
+    double cTable, cCosine, cArea;
+    glm::dvec3 t, bt;  ///< A frame about the receiver's normal (Duff et al. 2017).
+
+    explicit ReferenceMixture(const Setup& setup) : s(setup) {
+        bounds(*s.light, lo, hi);
+        rect = (hi.x - lo.x) * (hi.y - lo.y);
+        Polygon visible = spherical::clip(openingFromReceiver(s), s.n);
+        table = IntensitySampler::of(s.light->data);
+        cTable = table && table->valid() ? 0.25 : 0.0;
+        double formFactor =
+            visible.count >= 3 ? spherical::projectedSolidAngle(visible, s.n) / kPi : 0.0;
+        cCosine = (1.0 - cTable) * std::clamp(formFactor, 0.05, 0.5);
+        cArea = 1.0 - cTable - cCosine;
+        double sign = std::copysign(1.0, s.n.z), a = -1.0 / (sign + s.n.z), b = s.n.x * s.n.y * a;
+        t = glm::dvec3(1.0 + sign * s.n.x * s.n.x * a, sign * b, -sign * s.n.x);
+        bt = glm::dvec3(b, sign + s.n.y * s.n.y * a, -s.n.y);
+    }
+
+    /// f / (sum of c_i pdf_i) for the direction d toward opening point q at distance r, with
+    /// f = L cos_p = I cos_p / (A cos_L), pdf_area = r^2 / (rect cos_L), pdf_cosine = cos_p / pi
+    /// and pdf_table(-d): multiplied through by cos_L so that it stays finite in the opening's
+    /// plane (where L is infinite and the area form is not).
+    double term(const glm::dvec3& q, const glm::dvec3& d, double r) const {
         if (!s.light->contains(glm::dvec2(q))) return 0.0;
         double cosP = glm::dot(s.n, d), cosL = std::abs(d.z);
         if (!(cosP > 0.0) || !s.visible(q)) return 0.0;
@@ -441,19 +450,47 @@ Estimate photometricReference(const Luminaire& l, const glm::dvec3& p, const glm
         double v = intensity * cosP / s.light->area() /
                    (cArea * r * r / rect + cCosine * cosL * cosP / kPi + cTable * cosL * pdfTable);
         return std::isfinite(v) && v > 0.0 ? v : 0.0;
-    };
-    // A direction d from the receiver, followed to the opening's plane.
-    auto along = [&](const glm::dvec3& d) {
+    }
+
+    /// A direction d from the receiver, followed to the opening's plane.
+    double along(const glm::dvec3& d) const {
         if (!(std::abs(d.z) > 0.0)) return 0.0;
-        double t = -s.p.z / d.z;
-        glm::dvec3 hit = s.p + t * d;
-        if (!(t > 0.0) || hit.x < lo.x || hit.x > hi.x || hit.y < lo.y || hit.y > hi.y) return 0.0;
-        return term(glm::dvec3(hit.x, hit.y, 0.0), d, t);
-    };
-    // A frame about the receiver's normal (Duff et al. 2017).
-    double sign = std::copysign(1.0, s.n.z), a = -1.0 / (sign + s.n.z), b = s.n.x * s.n.y * a;
-    glm::dvec3 t(1.0 + sign * s.n.x * s.n.x * a, sign * b, -sign * s.n.x),
-        bt(b, sign + s.n.y * s.n.y * a, -s.n.y);
+        double tHit = -s.p.z / d.z;
+        glm::dvec3 hit = s.p + tHit * d;
+        if (!(tHit > 0.0) || hit.x < lo.x || hit.x > hi.x || hit.y < lo.y || hit.y > hi.y)
+            return 0.0;
+        return term(glm::dvec3(hit.x, hit.y, 0.0), d, tHit);
+    }
+
+    /// One sample: the strategy picked by `pick` in [0, 1), its point or direction by (u1, u2).
+    double sample(double pick, double u1, double u2) const {
+        if (pick < cArea) {
+            // A point on the bounding rectangle (outside the opening it counts 0).
+            glm::dvec3 q(lo + glm::dvec2(u1, u2) * (hi - lo), 0.0);
+            glm::dvec3 v = q - s.p;
+            double r = glm::length(v);
+            return r > 0.0 ? term(q, v / r, r) : 0.0;
+        }
+        if (pick < cArea + cCosine) {
+            double rad = std::sqrt(u1), phi = 2.0 * kPi * u2;
+            return along(rad * std::cos(phi) * t + rad * std::sin(phi) * bt +
+                         std::sqrt(std::max(0.0, 1.0 - u1)) * s.n);
+        }
+        // The table's direction w leaves the opening toward the receiver: look along -w.
+        double cell = (pick - cArea - cCosine) / cTable;
+        return along(-table->sample(std::min(cell, 1.0 - 1e-16), glm::dvec2(u1, u2)));
+    }
+};
+
+}  // namespace
+
+Estimate photometricReference(const Luminaire& l, const glm::dvec3& p, const glm::dvec3& n,
+                              const EstimateOptions& options) {
+    Setup s = makeSetup(l, p, n, options.visibility);
+    double e;
+    if (degenerate(s, e)) return withColour(s, e);
+    if (options.spp <= 0 || !(s.light->area() > 0.0)) return withColour(s, 0.0);
+    ReferenceMixture mixture(s);
     Random rng(options.seed);
     double mean = 0.0, m2 = 0.0;
     for (int k = 0; k < options.spp; ++k) {
@@ -463,23 +500,8 @@ Estimate photometricReference(const Luminaire& l, const glm::dvec3& p, const glm
         // miss) cut the variance by a factor of about three. The average of the strata is the
         // uniform pick, so the estimate stays unbiased; the sample variance below ignores the
         // strata and so overstates the error (a conservative error bar).
-        double value = 0.0, pick = (k + rng.uniform()) / options.spp, u1 = rng.uniform(),
-               u2 = rng.uniform();
-        if (pick < cArea) {
-            // A point on the bounding rectangle (outside the opening it counts 0).
-            glm::dvec3 q(lo + glm::dvec2(u1, u2) * (hi - lo), 0.0);
-            glm::dvec3 v = q - s.p;
-            double r = glm::length(v);
-            if (r > 0.0) value = term(q, v / r, r);
-        } else if (pick < cArea + cCosine) {
-            double rad = std::sqrt(u1), phi = 2.0 * kPi * u2;
-            value = along(rad * std::cos(phi) * t + rad * std::sin(phi) * bt +
-                          std::sqrt(std::max(0.0, 1.0 - u1)) * s.n);
-        } else {
-            // The table's direction w leaves the opening toward the receiver: look along -w.
-            double cell = (pick - cArea - cCosine) / cTable;
-            value = along(-table->sample(std::min(cell, 1.0 - 1e-16), glm::dvec2(u1, u2)));
-        }
+        double pick = (k + rng.uniform()) / options.spp, u1 = rng.uniform(), u2 = rng.uniform();
+        double value = mixture.sample(pick, u1, u2);
         double delta = value - mean;
         mean += delta / double(k + 1);
         m2 += delta * (value - mean);

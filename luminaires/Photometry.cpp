@@ -210,6 +210,45 @@ std::string formatNumber(double v) {
     return buf;
 }
 
+namespace {
+
+/// A full turn of type C planes wrapped periodically, so the piece between the last plane and 360
+/// (or between 0 and the first plane) interpolates towards the other end.
+void wrapFullTurn(std::vector<double>& g, std::vector<double>& rows, size_t nv) {
+    double first = g.front(), last = g.back();
+    std::vector<double> firstRow(rows.begin(), rows.begin() + std::ptrdiff_t(nv));
+    std::vector<double> lastRow(rows.end() - std::ptrdiff_t(nv), rows.end());
+    // C = 360 is the C = 0 plane: a file's own 360 row is replaced by its 0 row so the unfolded
+    // table is continuous (Photometry.h: first and last rows equal).
+    if (last >= 360.0 - kAngleEps && first <= kAngleEps)
+        std::copy(firstRow.begin(), firstRow.end(), rows.end() - std::ptrdiff_t(nv));
+    if (last < 360.0 - kAngleEps) {
+        g.push_back(first + 360.0);
+        rows.insert(rows.end(), firstRow.begin(), firstRow.end());
+    }
+    if (first > kAngleEps) {
+        g.insert(g.begin(), last - 360.0);
+        rows.insert(rows.begin(), lastRow.begin(), lastRow.end());
+    }
+}
+
+/// The unfolded table: one row per distinct target angle, each sampled from the given planes g
+/// (rows of nv values) at the angle that `fold` maps it to.
+void resample(PhotometricData& data, const std::vector<double>& g, const std::vector<double>& rows,
+              const std::function<double(double)>& fold, std::vector<double> targets) {
+    const size_t nv = data.vertical.size();
+    std::sort(targets.begin(), targets.end());
+    std::vector<double> unique;
+    for (double t : targets)
+        if (unique.empty() || t - unique.back() > kAngleEps) unique.push_back(t);
+    data.horizontal = unique;
+    data.candela.assign(unique.size() * nv, 0.0);
+    for (size_t h = 0; h < unique.size(); ++h)
+        sampleRow(g, rows, nv, fold(unique[h]), data.candela.data() + h * nv);
+}
+
+}  // namespace
+
 void unfold(PhotometricData& data, const std::vector<double>& given,
             const std::vector<double>& givenCandela) {
     const size_t nv = data.vertical.size();
@@ -258,42 +297,18 @@ void unfold(PhotometricData& data, const std::vector<double>& given,
                 fold = [](double t) { return t < 90.0 ? 180.0 - t : (t > 270.0 ? 540.0 - t : t); };
                 for (double a : given) addImages({a, 180.0 - a, 540.0 - a}, a);
                 break;
-            default: {
-                // Full turn: wrap periodically so the piece between the last plane and 360 (or
-                // between 0 and the first plane) interpolates towards the other end.
-                double first = g.front(), last = g.back();
-                std::vector<double> firstRow(rows.begin(), rows.begin() + std::ptrdiff_t(nv));
-                std::vector<double> lastRow(rows.end() - std::ptrdiff_t(nv), rows.end());
-                // C = 360 is the C = 0 plane: a file's own 360 row is replaced by its 0 row so the
-                // unfolded table is continuous (Photometry.h: first and last rows equal).
-                if (last >= 360.0 - kAngleEps && first <= kAngleEps)
-                    std::copy(firstRow.begin(), firstRow.end(), rows.end() - std::ptrdiff_t(nv));
-                if (last < 360.0 - kAngleEps) {
-                    g.push_back(first + 360.0);
-                    rows.insert(rows.end(), firstRow.begin(), firstRow.end());
-                }
-                if (first > kAngleEps) {
-                    g.insert(g.begin(), last - 360.0);
-                    rows.insert(rows.begin(), lastRow.begin(), lastRow.end());
-                }
+            default:
+                wrapFullTurn(g, rows, nv);
                 fold = [](double t) { return t; };
                 for (double a : given) addImages({a, a - 360.0, a + 360.0}, a);
                 break;
-            }
         }
         if (data.symmetry != Sym::Axial) {
             targets.push_back(0.0);
             targets.push_back(360.0);
         }
     }
-    std::sort(targets.begin(), targets.end());
-    std::vector<double> unique;
-    for (double t : targets)
-        if (unique.empty() || t - unique.back() > kAngleEps) unique.push_back(t);
-    data.horizontal = unique;
-    data.candela.assign(unique.size() * nv, 0.0);
-    for (size_t h = 0; h < unique.size(); ++h)
-        sampleRow(g, rows, nv, fold(unique[h]), data.candela.data() + h * nv);
+    resample(data, g, rows, fold, targets);
 }
 
 }  // namespace photometry_detail

@@ -109,10 +109,7 @@ bool Interreflection::solveChange(const std::vector<glm::dvec3>& change, const P
     return true;
 }
 
-bool Interreflection::sync(const Scene& scene, int spp, const Progress& progress) {
-    if (!mTransferBuilt && !buildTransfer(progress)) return false;
-    spp = spp > 0 ? spp : mOptions.directSpp;
-    // The sources of `scene`, each with the key of what its light depends on.
+std::vector<Interreflection::Source> Interreflection::currentSources(const Scene& scene) const {
     std::vector<Source> fresh;
     for (const auto& l : scene.luminaires) {
         // As `candela probe --technique`: the named technique where the kind has it, else the
@@ -155,6 +152,13 @@ bool Interreflection::sync(const Scene& scene, int spp, const Progress& progress
         append(s.key, &s.scale, sizeof s.scale);
         fresh.push_back(std::move(s));
     }
+    return fresh;
+}
+
+bool Interreflection::sync(const Scene& scene, int spp, const Progress& progress) {
+    if (!mTransferBuilt && !buildTransfer(progress)) return false;
+    spp = spp > 0 ? spp : mOptions.directSpp;
+    std::vector<Source> fresh = currentSources(scene);
     // Unchanged sources keep their light; the others get theirs now.
     std::vector<bool> taken(mSources.size(), false);
     for (Source& s : fresh) {

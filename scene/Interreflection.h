@@ -97,6 +97,8 @@ class Interreflection {
 
   private:
     struct Source;
+    /// The sources of `scene`, each with the key of what its light depends on (no light yet).
+    std::vector<Source> currentSources(const Scene& scene) const;
     /// Every source's direct irradiance at point x with normal n, in the scene's units.
     glm::dvec3 directAt(const glm::dvec3& x, const glm::dvec3& n, const EstimateOptions& o) const;
     /// The direct light of source s at `spp` samples into s's patch values.
