@@ -3,6 +3,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <sstream>
 
+#include "renderer/ProgramVariants.h"
 #include "renderer/passes/SourcePass.h"
 #include "scene/Occlusion.h"
 #include "util/Error.h"
@@ -138,11 +139,7 @@ FramePlan planFrame(const Scene& scene, const glm::mat4& viewProj,
         step.shadows = shadows[i];
         step.shadowMaps = step.shadows && t.shadowMaps;
         bool rays = step.shadows && !step.shadowMaps;
-        step.program.vertex = "fullscreen.vert";
-        step.program.fragment = std::string(t.shader);
-        if (step.shadowMaps) step.program.defines.push_back("SHADOW_MAPS");
-        if (rays) step.program.defines.push_back("SHADOWS");
-        if (plan.glossy) step.program.defines.push_back("GLOSSY");
+        step.program = programs::shading(t, step.shadowMaps, rays, plan.glossy);
         // A source at infinity gets no stochastic visibility ratio: only what its technique does
         // refines (Havran's lights are a fixed set, their shadow rays included).
         step.progressive = t.progressive || (!source.atInfinity() && (rays || plan.glossy));

@@ -33,7 +33,7 @@ ShaderLibrary::ShaderLibrary(std::filesystem::path shaderDir)
     : mDir(shaderDir.empty() ? defaultShaderDir() : std::move(shaderDir)) {}
 
 std::string ShaderLibrary::preprocess(const std::string& file, std::vector<std::string>& fileTable,
-                                      Entry& entry, int depth) {
+                                      Entry& entry, int depth) const {
     if (depth > 16) throw RuntimeError(file + ": #include nested too deeply (a cycle?)");
     std::filesystem::path path = mDir / file;
     std::ifstream in(path);
@@ -67,16 +67,27 @@ std::string ShaderLibrary::preprocess(const std::string& file, std::vector<std::
     return out.str();
 }
 
-GLuint ShaderLibrary::compileStage(GLenum stage, const std::string& file, const ProgramKey& key,
-                                   Entry& entry, bool& ok) {
-    std::vector<std::string> fileTable;
+std::string ShaderLibrary::stageText(const ProgramKey& key, const std::string& file,
+                                     std::vector<std::string>& fileTable, Entry& entry) const {
     std::string source = "#version 450 core\n";
     for (const std::string& d : key.defines) {
         std::string def = d;
         if (auto eq = def.find('='); eq != std::string::npos) def[eq] = ' ';
         source += "#define " + def + "\n";
     }
-    source += preprocess(file, fileTable, entry, 0);
+    return source + preprocess(file, fileTable, entry, 0);
+}
+
+std::string ShaderLibrary::source(const ProgramKey& key, const std::string& file) const {
+    std::vector<std::string> fileTable;
+    Entry entry;
+    return stageText(key, file, fileTable, entry);
+}
+
+GLuint ShaderLibrary::compileStage(GLenum stage, const std::string& file, const ProgramKey& key,
+                                   Entry& entry, bool& ok) {
+    std::vector<std::string> fileTable;
+    std::string source = stageText(key, file, fileTable, entry);
     GLuint shader = glCreateShader(stage);
     const char* src = source.c_str();
     glShaderSource(shader, 1, &src, nullptr);

@@ -35,6 +35,9 @@ class ShaderLibrary {
     bool reloadChanged();
     /// Log of the last failed compile (empty when the last reload succeeded).
     const std::string& errorLog() const { return mErrorLog; }
+    /// The preprocessed text of one stage file of key, as the driver is given it (version,
+    /// defines, includes resolved, #line markers); needs no GL context.
+    std::string source(const ProgramKey& key, const std::string& file) const;
     /// Labels of every variant compiled so far (frame statistics prove what was built).
     std::vector<std::string> compiledVariants() const;
     const std::filesystem::path& directory() const { return mDir; }
@@ -52,7 +55,9 @@ class ShaderLibrary {
     GLuint compileStage(GLenum stage, const std::string& file, const ProgramKey& key, Entry& entry,
                         bool& ok);
     std::string preprocess(const std::string& file, std::vector<std::string>& fileTable,
-                           Entry& entry, int depth);
+                           Entry& entry, int depth) const;
+    std::string stageText(const ProgramKey& key, const std::string& file,
+                          std::vector<std::string>& fileTable, Entry& entry) const;
 
     std::filesystem::path mDir;
     std::map<ProgramKey, Entry> mPrograms;

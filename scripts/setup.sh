@@ -7,6 +7,7 @@ packages=(
   libosmesa6-dev libgl-dev libgtest-dev libbenchmark-dev nlohmann-json3-dev libembree-dev
   xvfb xdotool imagemagick x11-utils mesa-utils clang-format gnuplot-nox
   fonts-dejavu-core openimageio-tools
+  glslang-tools  # glslangValidator: every shader variant checked against GLSL 4.50 core
   clang libclang-rt-14-dev  # libFuzzer and the sanitizers of scripts/fuzz.sh
 )
 missing=()

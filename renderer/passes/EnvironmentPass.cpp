@@ -6,6 +6,7 @@
 
 #include "luminaires/EnvironmentLight.h"
 #include "renderer/PassTimer.h"
+#include "renderer/ProgramVariants.h"
 #include "renderer/passes/GBufferPass.h"
 #include "renderer/passes/ShadePass.h"
 #include "shaders/shared/Constants.h"
@@ -78,12 +79,9 @@ void EnvironmentPass::bindAll() const {
     if (mExtra.id()) mExtra.bindBase(GL_SHADER_STORAGE_BUFFER, gpu::kBindingEnvExtra);
 }
 
-void EnvironmentPass::dispatch(ShaderLibrary& shaders, const char* pass, GLuint x, GLuint y,
-                               GLuint z) {
-    ProgramKey key;
-    key.compute = "environment_cdf.comp";
-    key.defines = {pass};
-    glUseProgram(shaders.program(key));
+void EnvironmentPass::dispatch(ShaderLibrary& shaders, programs::EnvironmentTables pass, GLuint x,
+                               GLuint y, GLuint z) {
+    glUseProgram(shaders.program(programs::environmentTables(pass)));
     glDispatchCompute(x, y, z);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 }
@@ -93,10 +91,10 @@ void EnvironmentPass::buildTables(ShaderLibrary& shaders) {
     mUniformBuffer.update(0, sizeof(mUniforms), &mUniforms);
     bindAll();
     GLuint n = GLuint(mN);
-    dispatch(shaders, "PASS_CUBE", (n + 7) / 8, (n + 7) / 8, 6);
-    dispatch(shaders, "PASS_ENERGY", 6, 1, 1);
-    dispatch(shaders, "PASS_ROWS", n, 6, 1);
-    dispatch(shaders, "PASS_COLUMNS", 6, 1, 1);
+    dispatch(shaders, programs::EnvironmentTables::Cube, (n + 7) / 8, (n + 7) / 8, 6);
+    dispatch(shaders, programs::EnvironmentTables::Energy, 6, 1, 1);
+    dispatch(shaders, programs::EnvironmentTables::Rows, n, 6, 1);
+    dispatch(shaders, programs::EnvironmentTables::Columns, 6, 1, 1);
     mBuilt = true;
 }
 
@@ -111,7 +109,7 @@ void EnvironmentPass::drawSamples(ShaderLibrary& shaders, uint32_t seed, int poo
     mUniforms.frame.x = int(seed);
     mUniformBuffer.update(0, sizeof(mUniforms), &mUniforms);
     bindAll();
-    dispatch(shaders, "PASS_SAMPLES", GLuint((pool + 63) / 64), 1, 6);
+    dispatch(shaders, programs::EnvironmentTables::Samples, GLuint((pool + 63) / 64), 1, 6);
 }
 
 void EnvironmentPass::prepareGlobalCdf() {

@@ -13,6 +13,7 @@
 
 #include "luminaires/EnvironmentSampling.h"
 #include "renderer/FramePlan.h"
+#include "renderer/ProgramVariants.h"
 #include "renderer/ShaderLibrary.h"
 #include "renderer/gl/GlObjects.h"
 #include "renderer/passes/ShadowMapPass.h"
@@ -72,7 +73,8 @@ class EnvironmentPass final : public SourcePass {
 
   private:
     void bindAll() const;
-    void dispatch(ShaderLibrary& shaders, const char* pass, GLuint x, GLuint y, GLuint z);
+    void dispatch(ShaderLibrary& shaders, programs::EnvironmentTables pass, GLuint x, GLuint y,
+                  GLuint z);
 
     std::shared_ptr<const EnvironmentMap> mMap;
     bool mBuilt = false;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstddef>
 
+#include "renderer/ProgramVariants.h"
 #include "shaders/shared/Constants.h"
 #include "shaders/shared/GpuTypes.h"
 
@@ -80,8 +81,7 @@ void GBufferPass::setLuminaires(const Scene& scene) {
 }
 
 void GBufferPass::execute(ShaderLibrary& shaders, Quantity quantity) {
-    ProgramKey key{"gbuffer.vert", "gbuffer.frag", "", {}};
-    GLuint program = shaders.program(key);
+    GLuint program = shaders.program(programs::gbuffer());
     glUseProgram(program);
     glProgramUniform1i(program, 0, quantity == Quantity::Illuminance ? 1 : 0);
     glBindFramebuffer(GL_FRAMEBUFFER, mFbo.id());

@@ -1,5 +1,6 @@
 #include "renderer/passes/IndirectPass.h"
 
+#include "renderer/ProgramVariants.h"
 #include "renderer/passes/GBufferPass.h"
 #include "scene/Radiosity.h"
 #include "shaders/shared/GpuTypes.h"
@@ -60,7 +61,7 @@ void IndirectPass::execute(ShaderLibrary& shaders, const GBufferPass& gbuffer) {
     const float one = 1.f;
     glClearNamedFramebufferfv(mFbo.id(), GL_DEPTH, 0, &one);
     if (!mIndexCount) return;
-    GLuint program = shaders.program(ProgramKey{"indirect.vert", "indirect.frag", "", {}});
+    GLuint program = shaders.program(programs::indirect());
     glUseProgram(program);
     glBindTextureUnit(2, gbuffer.texture(gpu::kGBufferAlbedo).id());
     glBindFramebuffer(GL_FRAMEBUFFER, mFbo.id());

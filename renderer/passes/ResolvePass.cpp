@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "renderer/ProgramVariants.h"
+
 namespace candela {
 
 void ResolvePass::resize(int width, int height) {
@@ -23,7 +25,7 @@ void ResolvePass::execute(ShaderLibrary& shaders, const std::vector<Term>& terms
     glClearNamedFramebufferfv(mSumFbo.id(), GL_COLOR, 0, zero);
     addScaled(shaders, mSumFbo, mWidth, mHeight, terms);
 
-    GLuint program = shaders.program({"fullscreen.vert", "resolve.frag", "", {}});
+    GLuint program = shaders.program(programs::resolve());
     glUseProgram(program);
     glProgramUniform1f(program, 0, 1.f);
     glBindTextureUnit(0, mSum.id());
@@ -36,7 +38,7 @@ void ResolvePass::execute(ShaderLibrary& shaders, const std::vector<Term>& terms
 
 void addScaled(ShaderLibrary& shaders, const gl::Framebuffer& target, int width, int height,
                const std::vector<ResolvePass::Term>& terms) {
-    GLuint add = shaders.program({"fullscreen.vert", "accumulate.frag", "", {}});
+    GLuint add = shaders.program(programs::accumulate());
     glUseProgram(add);
     glBindFramebuffer(GL_FRAMEBUFFER, target.id());
     glViewport(0, 0, width, height);

@@ -4,6 +4,7 @@
 #include <cstring>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "renderer/ProgramVariants.h"
 #include "shaders/shared/GpuTypes.h"
 
 namespace candela {
@@ -23,10 +24,7 @@ gl::Buffer headerAndArray(const Header& header, const std::vector<T>& array) {
 /// Binds the depth-only program, `fbo` and a res x res viewport with depth testing, no culling
 /// (triangles are two-sided); returns the program, whose location 0 takes the view-projection.
 GLuint beginDepthPass(ShaderLibrary& shaders, const gl::Framebuffer& fbo, int res) {
-    ProgramKey key;
-    key.vertex = "shadow_depth.vert";
-    key.fragment = "shadow_depth.frag";
-    GLuint program = shaders.program(key);
+    GLuint program = shaders.program(programs::shadowDepth());
     glUseProgram(program);
     glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
     glViewport(0, 0, res, res);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "renderer/ProgramVariants.h"
 #include "renderer/RenderSettings.h"
 
 namespace candela {
@@ -101,7 +102,7 @@ void TonemapPass::resize(int width, int height) {
 void TonemapPass::execute(ShaderLibrary& shaders, const gl::Texture2D& linear,
                           const gl::Texture2D& luminance, const gl::Texture2D& position,
                           const gl::Texture2D& emission, const RenderSettings& settings) {
-    GLuint program = shaders.program({"fullscreen.vert", "tonemap.frag", "", {}});
+    GLuint program = shaders.program(programs::tonemap());
     glUseProgram(program);
     glProgramUniform1i(program, 0, int(settings.toneMap));
     glProgramUniform1f(program, 1, settings.exposure);
