@@ -1,5 +1,7 @@
 #include "renderer/ProgramVariants.h"
 
+#include <set>
+
 #include "luminaires/Registry.h"
 
 namespace candela {
@@ -42,16 +44,17 @@ ProgramKey shading(const TechniqueInfo& technique, bool shadowMaps, bool shadowR
 }  // namespace programs
 
 std::vector<ProgramKey> allProgramVariants() {
-    std::vector<ProgramKey> keys;
+    std::set<ProgramKey> shading;  // techniques may share a shader (restricted-cdf, -raytraced)
     for (const TechniqueInfo& t : techniques()) {
         if (t.shader.empty()) continue;
         for (bool glossy : {false, true}) {
-            keys.push_back(programs::shading(t, false, false, glossy));
+            shading.insert(programs::shading(t, false, false, glossy));
             // A technique that reads shadow maps is planned with them wherever it needs shadows,
             // any other with shadow rays (FramePlan.cpp).
-            keys.push_back(programs::shading(t, t.shadowMaps, !t.shadowMaps, glossy));
+            shading.insert(programs::shading(t, t.shadowMaps, !t.shadowMaps, glossy));
         }
     }
+    std::vector<ProgramKey> keys(shading.begin(), shading.end());
     for (ProgramKey key : {programs::gbuffer(), programs::indirect(), programs::resolve(),
                            programs::accumulate(), programs::tonemap(), programs::shadowDepth()})
         keys.push_back(std::move(key));

@@ -61,6 +61,8 @@ TEST(ShaderVariants, EveryVariantPassesGlslang) {
             << "glslangValidator not found: install glslang-tools (scripts/setup.sh)";
         EXPECT_EQ(v.status, 0) << s.label << ":\n" << v.log;
     }
+    std::printf("%zu stages of %zu program variants validated\n", stages.size(),
+                allProgramVariants().size());
     fs::remove_all(dir);
 }
 
