@@ -4,8 +4,12 @@
 #include "luminaires/LightField.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <exception>
+#include <mutex>
+#include <thread>
 
 namespace candela {
 
@@ -72,46 +76,69 @@ int findPiece(int n, double target, const Fn& value) {
 // ---------------------------------------------------------------------------------------------
 // Precomputation (Sec. 3.1)
 
-void LightFieldData::precompute() {
-    auto start = std::chrono::steady_clock::now();
-    glm::dvec2 px = pixelSize();
+namespace {
+
+/// Image m's tables (Sec. 3.1): its summed-area table, marginal CDF and median (Sec. 6.2).
+void precomputeImage(const LightFieldData& lf, size_t m, LightFieldTables& t) {
+    glm::dvec2 px = lf.pixelSize();
     double area = px.x * px.y;
-    size_t w = size_t(width), h = size_t(height);
-    tables.assign(images.size(), {});
-    for (size_t m = 0; m < images.size(); ++m) {
-        LightFieldTables& t = tables[m];
-        const std::vector<float>& c = images[m].luminance;
-        t.sat.assign((w + 1) * (h + 1), 0.0);
-        for (size_t j = 0; j < h; ++j) {
-            double row = 0.0;
-            for (size_t i = 0; i < w; ++i) {
-                row += double(c[j * w + i]) * area;
-                t.sat[(j + 1) * (w + 1) + i + 1] = t.sat[j * (w + 1) + i + 1] + row;
-            }
-        }
-        t.total = t.sat.back();
-        t.marginalCdf.assign(w + 1, 0.0);
-        for (size_t i = 0; i <= w; ++i)
-            t.marginalCdf[i] =
-                t.total > 0.0 ? t.sat[h * (w + 1) + i] / t.total : double(i) / double(w);
-        // Sec. 6.2: s_m with cdf_m(s) = 0.5 and cdf_m(t | s) = 0.5.
-        t.median = 0.5 * (imageMin + imageMax);
-        if (t.total > 0.0) {
-            int ci = findPiece(int(w), 0.5, [&](int k) { return t.marginalCdf[size_t(k)]; });
-            if (ci >= 0) {
-                double a = t.marginalCdf[size_t(ci)], b = t.marginalCdf[size_t(ci) + 1];
-                t.median.x = imageMin.x + (double(ci) + (0.5 - a) / (b - a)) * px.x;
-                std::vector<double> col(h + 1);
-                for (size_t j = 0; j <= h; ++j) col[j] = t.conditionalCdf(size_t(ci), j, w, h);
-                int rj = findPiece(int(h), 0.5, [&](int k) { return col[size_t(k)]; });
-                if (rj >= 0)
-                    t.median.y =
-                        imageMin.y + (double(rj) + (0.5 - col[size_t(rj)]) /
-                                                       (col[size_t(rj) + 1] - col[size_t(rj)])) *
-                                         px.y;
-            }
+    size_t w = size_t(lf.width), h = size_t(lf.height);
+    const std::vector<float>& c = lf.images[m].luminance;
+    t.sat.assign((w + 1) * (h + 1), 0.0);
+    for (size_t j = 0; j < h; ++j) {
+        double row = 0.0;
+        for (size_t i = 0; i < w; ++i) {
+            row += double(c[j * w + i]) * area;
+            t.sat[(j + 1) * (w + 1) + i + 1] = t.sat[j * (w + 1) + i + 1] + row;
         }
     }
+    t.total = t.sat.back();
+    t.marginalCdf.assign(w + 1, 0.0);
+    for (size_t i = 0; i <= w; ++i)
+        t.marginalCdf[i] = t.total > 0.0 ? t.sat[h * (w + 1) + i] / t.total : double(i) / double(w);
+    // Sec. 6.2: s_m with cdf_m(s) = 0.5 and cdf_m(t | s) = 0.5.
+    t.median = 0.5 * (lf.imageMin + lf.imageMax);
+    if (!(t.total > 0.0)) return;
+    int ci = findPiece(int(w), 0.5, [&](int k) { return t.marginalCdf[size_t(k)]; });
+    if (ci < 0) return;
+    double a = t.marginalCdf[size_t(ci)], b = t.marginalCdf[size_t(ci) + 1];
+    t.median.x = lf.imageMin.x + (double(ci) + (0.5 - a) / (b - a)) * px.x;
+    std::vector<double> col(h + 1);
+    for (size_t j = 0; j <= h; ++j) col[j] = t.conditionalCdf(size_t(ci), j, w, h);
+    int rj = findPiece(int(h), 0.5, [&](int k) { return col[size_t(k)]; });
+    if (rj >= 0)
+        t.median.y =
+            lf.imageMin.y +
+            (double(rj) + (0.5 - col[size_t(rj)]) / (col[size_t(rj) + 1] - col[size_t(rj)])) * px.y;
+}
+
+}  // namespace
+
+void LightFieldData::precompute() {
+    auto start = std::chrono::steady_clock::now();
+    tables.assign(images.size(), {});
+    // The images are independent: shared among the cores, each worker taking the next image.
+    // Most of the time is the first touch of each table's memory (half a megabyte of doubles
+    // for 256^2 pixels), which the cores then share too.
+    size_t workers =
+        std::min<size_t>(std::clamp(std::thread::hardware_concurrency(), 1u, 8u), images.size());
+    std::atomic<size_t> next{0};
+    std::mutex failedMutex;
+    std::exception_ptr failed;
+    auto work = [&] {
+        try {
+            for (size_t m; (m = next++) < images.size();) precomputeImage(*this, m, tables[m]);
+        } catch (...) {  // std::bad_alloc: rethrown on the calling thread
+            std::lock_guard<std::mutex> lock(failedMutex);
+            failed = std::current_exception();
+            next = images.size();
+        }
+    };
+    std::vector<std::thread> pool;
+    for (size_t k = 1; k < workers; ++k) pool.emplace_back(work);
+    work();
+    for (std::thread& t : pool) t.join();
+    if (failed) std::rethrow_exception(failed);
     precomputeMs =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }

@@ -90,6 +90,19 @@ static const TechniqueInfo kTechniques[] = {
      {Limits::Unbiased, 1e-3, -1, 0, true,
       "unbiased; its standard error covers its error (near S it adds the distance to a "
       "restricted-cdf pilot)"}},
+    // The CPU estimator is precomputed-global's: at one receiver the shared set is distributed as
+    // a set of the receiver's own.
+    {"lightfield",
+     "precomputed-shared",
+     "one set of global-CDF samples shared by every receiver (the paper's Fig. 11 baseline)",
+     true,
+     &lightFieldPrecomputedGlobal,
+     "lightfield_precomputed_shared.frag",
+     true,
+     {},
+     {Limits::Unbiased, 1e-3, -1, 0, true,
+      "unbiased; its standard error covers its error (near S it adds the distance to a "
+      "restricted-cdf pilot); one set of samples for all receivers, so its error is structured"}},
     {"lightfield",
      "granier2003",
      "one textured spot light per basis function (Granier et al. 2003, Eq. 14); approximate",

@@ -1,5 +1,5 @@
 // The balanced sampler of Sec. 6.1 shared by the light-field techniques that sample images in
-// boxes (restricted-cdf, uniform-restricted, precomputed-global). The technique's shader defines,
+// boxes (restricted-cdf, uniform-restricted, precomputed-global, precomputed-shared). The technique's shader defines,
 // before including this file:
 //   bool lfBox(int m, vec3 q, out vec2 a, out vec2 b)   image m's box seen from q (false: empty)
 //   double lfBoxWeight(int m, vec2 a, vec2 b)          its weight A_m for the balancing (Eq. 12)

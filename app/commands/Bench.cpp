@@ -31,6 +31,9 @@ struct LightFieldOptions {
     std::vector<int> spp = {4, 8, 16, 32, 64, 128, 256, 512};
     int referenceSpp = 8192;
     int width = 256, height = 192;  ///< Image size, pixels.
+    /// The paper's Fig. 11: restricted-cdf at fig11[0] spp against the shared global set of
+    /// fig11[1] samples (and precomputed-global at as many); empty: not rendered.
+    std::vector<int> fig11 = {63, 63000};
 };
 
 LightFieldOptions parseOptions(const Args& args) {
@@ -41,11 +44,22 @@ LightFieldOptions parseOptions(const Args& args) {
         .counts("--spp", o.spp)
         .integer("--reference-spp", o.referenceSpp, 16, 1 << 22)
         .size("--size", o.width, o.height)
+        .value("--fig11",
+               [&](const std::string& v) {
+                   if (v == "none") {
+                       o.fig11.clear();
+                       return;
+                   }
+                   std::vector<int> counts = parseList(v);
+                   if (counts.size() != 2)
+                       throw InputError("--fig11: expected SPP,SAMPLES (e.g. 63,63000) or none");
+                   o.fig11 = counts;
+               })
         .parse(args, [](const std::string& a) { return "bench: unknown option " + a; });
     if (o.lightField.empty())
         throw InputError(
             "usage: candela bench --lightfield FILE.lf.json [--out DIR] [--spp 4,8,...] "
-            "[--reference-spp N] [--size WxH]");
+            "[--reference-spp N] [--size WxH] [--fig11 SPP,SAMPLES|none]");
     return o;
 }
 
@@ -126,6 +140,39 @@ void addRatios(BenchSummary& summary, const std::vector<BenchRow>& rows,
                 r.rmse, r.deltaE, r.shadeMs);
 }
 
+/// The paper's Fig. 11 (Lu et al. 2015): restricted-cdf at a few samples per pixel against one
+/// shared set of many samples from the global CDFs (`precomputed-shared`, the paper's baseline),
+/// and against as many samples drawn per pixel (`precomputed-global`): error and time, and their
+/// ratios to restricted-cdf's. Rows go to fig11.csv, images to FIG11/.
+void addFig11(BenchSummary& summary, Renderer& renderer, const Scene& scene,
+              const RenderSettings& settings, const Reference& ref, const LightFieldOptions& o,
+              const fs::path& out) {
+    if (o.fig11.empty()) return;
+    auto run = [&](const std::string& technique, int spp) {
+        Sweep sweep;
+        sweep.reference = "restricted-cdf";
+        sweep.progressive = {technique};
+        sweep.spp = {spp};
+        sweep.timedPasses = "shade:";
+        return runSweep(renderer, scene, settings, sweep, ref, out / "fig11").front();
+    };
+    fs::create_directories(out / "fig11");
+    std::vector<BenchRow> rows = {run("restricted-cdf", o.fig11[0]),
+                                  run("precomputed-shared", o.fig11[1]),
+                                  run("precomputed-global", o.fig11[1])};
+    writeBenchCsv((out / "fig11.csv").string(), rows);
+    const BenchRow& r = rows[0];
+    summary.add("Fig. 11: restricted-cdf %d spp: rel. RMSE %.4f, Delta E %.3f, %.1f ms\n",
+                r.spp, r.rmse, r.deltaE, r.shadeMs);
+    for (size_t i = 1; i < rows.size(); ++i)
+        summary.add(
+            "Fig. 11: %-18s %d samples: rel. RMSE %.4f (%.2fx restricted's), Delta E %.3f "
+            "(%.2fx), %.1f ms (%.1fx)\n",
+            rows[i].technique.c_str(), rows[i].spp, rows[i].rmse, rows[i].rmse / r.rmse,
+            rows[i].deltaE, rows[i].deltaE / r.deltaE, rows[i].shadeMs,
+            rows[i].shadeMs / r.shadeMs);
+}
+
 /// Error against GPU time, log-log: relative RMSE and Delta E side by side.
 void plotErrorAgainstTime(const fs::path& out, const Sweep& sweep) {
     std::string list;
@@ -172,6 +219,7 @@ int benchLightField(const Args& args) {
         sweep.reference.c_str(), o.referenceSpp, o.width, o.height, ref.noise,
         gpu.context->description().c_str());
     addRatios(summary, rows, o.spp);
+    addFig11(summary, gpu.renderer, scene, settings, ref, o, out);
     summary.write(out);
     plotErrorAgainstTime(out, sweep);
     std::printf("wrote %s/bench.csv and images\n", o.out.c_str());
