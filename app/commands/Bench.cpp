@@ -162,8 +162,8 @@ void addFig11(BenchSummary& summary, Renderer& renderer, const Scene& scene,
                                   run("precomputed-global", o.fig11[1])};
     writeBenchCsv((out / "fig11.csv").string(), rows);
     const BenchRow& r = rows[0];
-    summary.add("Fig. 11: restricted-cdf %d spp: rel. RMSE %.4f, Delta E %.3f, %.1f ms\n",
-                r.spp, r.rmse, r.deltaE, r.shadeMs);
+    summary.add("Fig. 11: restricted-cdf %d spp: rel. RMSE %.4f, Delta E %.3f, %.1f ms\n", r.spp,
+                r.rmse, r.deltaE, r.shadeMs);
     for (size_t i = 1; i < rows.size(); ++i)
         summary.add(
             "Fig. 11: %-18s %d samples: rel. RMSE %.4f (%.2fx restricted's), Delta E %.3f "
