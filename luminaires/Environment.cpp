@@ -18,8 +18,7 @@ namespace fs = std::filesystem;
 namespace {
 
 using gpu::kPi;
-/// Largest accepted image side, texels (a 16k lat-long map is 2 GB of float RGB already).
-constexpr int kMaxSide = 16384;
+constexpr int kMaxSide = EnvironmentMap::kMaxSide;
 /// Largest accepted intensity: keeps radiance x solid angle sums far from overflow.
 constexpr double kMaxIntensity = 1e12;
 
@@ -74,7 +73,7 @@ EnvironmentMap::EnvironmentMap(int width, int height, std::vector<glm::vec3> rgb
 }
 
 std::shared_ptr<EnvironmentMap> EnvironmentMap::load(const std::string& path, double intensity,
-                                                     double rotationDeg) {
+                                                     double rotationDeg, int maxSide) {
     std::string ext = lowerExtension(path);
     if (ext != ".hdr" && ext != ".exr")
         throw InputError(path + ": unsupported environment map type \"" + ext +
@@ -82,7 +81,8 @@ std::shared_ptr<EnvironmentMap> EnvironmentMap::load(const std::string& path, do
     std::error_code ec;
     if (!fs::exists(path, ec))
         throw InputError(path + ": cannot open environment map (No such file or directory)");
-    ImageFileReader in(path, path, kMaxSide);  // util/ImageRead.h: the .hdr or .exr reader only
+    maxSide = std::min(maxSide, kMaxSide);
+    ImageFileReader in(path, path, maxSide);  // util/ImageRead.h: the .hdr or .exr reader only
     int w = in.width(), h = in.height(), channels = in.channels();
     if (w <= 0 || h <= 0 || channels <= 0)
         throw InputError(path + ": empty image (" + std::to_string(w) + "x" + std::to_string(h) +
@@ -93,9 +93,9 @@ std::shared_ptr<EnvironmentMap> EnvironmentMap::load(const std::string& path, do
                          (int64_t(h) == 6 * int64_t(w)
                               ? "; this looks like a cube map, which is not read yet)"
                               : ")"));
-    if (w > kMaxSide)
+    if (w > maxSide)
         throw InputError(path + ": image size " + std::to_string(w) + "x" + std::to_string(h) +
-                         " too large (at most " + std::to_string(kMaxSide) + " per side)");
+                         " too large (at most " + std::to_string(maxSide) + " per side)");
     // RGB (or luminance): the channels after the third are never read, so a file declaring
     // thousands of them costs nothing (all of them were allocated before).
     channels = std::min(channels, 3);

@@ -38,10 +38,14 @@ class EnvironmentMap {
     EnvironmentMap(int width, int height, std::vector<glm::vec3> rgb, double intensity,
                    double rotationDeg, std::string source);
 
+    /// Largest accepted image side, texels (a 16k lat-long map is 2 GB of float RGB already).
+    static constexpr int kMaxSide = 16384;
+
     /// A lat-long .hdr or .exr (anything else is refused) read through OpenImageIO as RGB float
-    /// (1 channel is grey, a 4th channel is ignored). Throws InputError naming the file.
+    /// (1 channel is grey, a 4th channel is ignored), at most `maxSide` texels wide. Throws
+    /// InputError naming the file.
     static std::shared_ptr<EnvironmentMap> load(const std::string& path, double intensity = 1.0,
-                                                double rotationDeg = 0.0);
+                                                double rotationDeg = 0.0, int maxSide = kMaxSide);
 
     int width() const { return mWidth; }
     int height() const { return mHeight; }

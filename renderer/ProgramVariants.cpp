@@ -71,7 +71,9 @@ std::vector<ShaderStageSource> allShaderStages(const ShaderLibrary& shaders) {
             std::string stage = std::filesystem::path(file).extension().string().substr(1);
             std::string label = key.label();
             if (file == key.vertex) label = file + " for " + label;
-            out.push_back({label, stage, shaders.source(key, file)});
+            ShaderStageSource s{label, stage, "", {}};
+            s.text = shaders.source(key, file, &s.files);
+            out.push_back(std::move(s));
         }
     }
     return out;

@@ -42,6 +42,7 @@ struct ShaderStageSource {
     std::string label;  ///< the program's label and the stage, "photometric_mrp.frag[GLOSSY]"
     std::string stage;  ///< "vert", "frag" or "comp"
     std::string text;
+    std::vector<std::string> files;  ///< the file of each #line source-string number
 };
 
 /// The preprocessed stages of every variant of allProgramVariants() (no GL context needed).

@@ -78,10 +78,13 @@ std::string ShaderLibrary::stageText(const ProgramKey& key, const std::string& f
     return source + preprocess(file, fileTable, entry, 0);
 }
 
-std::string ShaderLibrary::source(const ProgramKey& key, const std::string& file) const {
+std::string ShaderLibrary::source(const ProgramKey& key, const std::string& file,
+                                  std::vector<std::string>* files) const {
     std::vector<std::string> fileTable;
     Entry entry;
-    return stageText(key, file, fileTable, entry);
+    std::string text = stageText(key, file, fileTable, entry);
+    if (files) *files = std::move(fileTable);
+    return text;
 }
 
 GLuint ShaderLibrary::compileStage(GLenum stage, const std::string& file, const ProgramKey& key,

@@ -37,7 +37,9 @@ class ShaderLibrary {
     const std::string& errorLog() const { return mErrorLog; }
     /// The preprocessed text of one stage file of key, as the driver is given it (version,
     /// defines, includes resolved, #line markers); needs no GL context.
-    std::string source(const ProgramKey& key, const std::string& file) const;
+    /// `files`, when given, receives the file of each #line source-string number.
+    std::string source(const ProgramKey& key, const std::string& file,
+                       std::vector<std::string>* files = nullptr) const;
     /// Labels of every variant compiled so far (frame statistics prove what was built).
     std::vector<std::string> compiledVariants() const;
     const std::filesystem::path& directory() const { return mDir; }

@@ -135,6 +135,17 @@ TEST(Environment, LoadsRealMapsAndRejectsBadFiles) {
     fs::remove_all(dir);
 }
 
+// A caller's smaller limit (the fuzzing target's 2048) refuses a wider map before its pixels are
+// read, naming the limit; the default is the product's 16384.
+TEST(Environment, LoadRefusesMapsWiderThanTheCallersLimit) {
+    std::string file = test::dataDir() + "/hdr/noon_grass_256.hdr";
+    EXPECT_EQ(EnvironmentMap::load(file, 1.0, 0.0, 256)->width(), 256);
+    std::string m = inputError([&] { EnvironmentMap::load(file, 1.0, 0.0, 128); });
+    EXPECT_CONTAINS(m, "noon_grass_256.hdr");
+    EXPECT_CONTAINS(m, "out of range (1..128 per side)");
+    EXPECT_EQ(EnvironmentMap::kMaxSide, 16384);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Exact reference and every sampler on a constant map
 

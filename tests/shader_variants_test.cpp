@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <set>
 #include <string>
 
@@ -41,6 +42,21 @@ Validation validate(const fs::path& dir, const std::string& name, const std::str
     return v;
 }
 
+/// glslang's "ERROR: 3:41: ..." with the source-string number replaced by its file name.
+std::string namedLog(const std::string& log, const std::vector<std::string>& files) {
+    static const std::regex location(R"((ERROR|WARNING): (\d+):(\d+):)");
+    std::string out;
+    size_t last = 0;
+    for (std::sregex_iterator it(log.begin(), log.end(), location), end; it != end; ++it) {
+        size_t id = std::stoul((*it)[2]);
+        out += log.substr(last, size_t(it->position()) - last);
+        out += std::string((*it)[1]) + ": " + (id < files.size() ? files[id] : "?") + ":" +
+               std::string((*it)[3]) + ":";
+        last = size_t(it->position() + it->length());
+    }
+    return out + log.substr(last);
+}
+
 fs::path freshDir(const std::string& name) {
     fs::path dir =
         fs::temp_directory_path() / ("candela_glsl_" + name + "_" + std::to_string(::getpid()));
@@ -59,7 +75,7 @@ TEST(ShaderVariants, EveryVariantPassesGlslang) {
         Validation v = validate(dir, std::to_string(index++), s.stage, s.text);
         ASSERT_TRUE(v.ran)
             << "glslangValidator not found: install glslang-tools (scripts/setup.sh)";
-        EXPECT_EQ(v.status, 0) << s.label << ":\n" << v.log;
+        EXPECT_EQ(v.status, 0) << s.label << ":\n" << namedLog(v.log, s.files);
     }
     std::printf("%zu stages of %zu program variants validated\n", stages.size(),
                 allProgramVariants().size());

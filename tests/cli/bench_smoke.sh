@@ -13,10 +13,18 @@ passed=0
 check() { if eval "$2"; then passed=$((passed + 1)); else failures=$((failures + 1)); echo "FAIL: $1"; fi; }
 
 "$binary" bench --lightfield "$data/tiny.lf.json" --out "$out" --spp 2,32 --reference-spp 256 --size 48x32 \
-  >"$out/stdout" 2>"$out/stderr"
+  --fig11 2,64 >"$out/stdout" 2>"$out/stderr"
 rc=$?
 check "bench exits 0 (rc $rc): $(tail -3 "$out/stderr")" '[ $rc -eq 0 ]'
-check "bench.csv has a header and 7 rows" '[ "$(wc -l <"$out/bench.csv")" -eq 8 ]'
+# Every technique the registry gives the bench (the progressive ones at 2 and 32 spp, the
+# deterministic one frame): no hard-coded list, so a new technique needs no edit here.
+uneven=$(tail -n +2 "$out/bench.csv" | awk -F, '{s[$1] = s[$1] " " $2} END {for (t in s) if (s[t] != " 2 32" && s[t] != " 1") print t ":" s[t]}')
+check "each technique has its rows: $uneven" '[ -z "$uneven" ]'
+techniques=$(tail -n +2 "$out/bench.csv" | cut -d, -f1 | sort -u | tr '\n' ' ')
+check "restricted-cdf, its baselines and granier2003 are benched: $techniques" \
+  '(for t in restricted-cdf uniform-restricted precomputed-global precomputed-shared granier2003; do grep -qw -- "$t" <<<"$techniques" || exit 1; done)'
+check "fig11.csv has restricted-cdf at 2 spp and both global techniques at 64" \
+  '[ "$(tail -n +2 "$out/fig11.csv" | cut -d, -f1,2 | tr "\n" " ")" = "restricted-cdf,2 precomputed-shared,64 precomputed-global,64 " ]'
 bad=$(tail -n +2 "$out/bench.csv" | awk -F, '!($3 > 0 && $4 >= 0 && $5 >= 0 && $3 == $3 && $4 == $4) {print}')
 check "finite, positive figures: $bad" '[ -z "$bad" ]'
 falls=$(awk -F, '$1 == "restricted-cdf" {e[$2] = $6} END {print (e[32] < e[2]) ? "yes" : "no"}' "$out/bench.csv")
