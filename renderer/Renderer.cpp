@@ -7,6 +7,7 @@
 
 #include "renderer/ImageFile.h"
 #include "renderer/PassTimer.h"
+#include "renderer/ProgramVariants.h"
 #include "renderer/passes/GBufferPass.h"
 #include "renderer/passes/IndirectPass.h"
 #include "renderer/passes/ResolvePass.h"
@@ -506,9 +507,7 @@ std::vector<glm::vec3> Renderer::probe(const Scene& scene, const std::vector<glm
     mPlan = planFrame(scene, viewProj(), techniqueList(mSettings), Quantity::Radiance);
     // Probes measure unshadowed irradiance on a Lambertian receiver: no shadow or glossy variant.
     for (ShadeStep& s : mPlan.shading) {
-        std::erase_if(s.program.defines, [](const std::string& d) {
-            return d == "SHADOWS" || d == "SHADOW_MAPS" || d == "GLOSSY";
-        });
+        s.program = programs::shading(*s.technique, false, false, false);
         s.shadows = false;
         s.shadowMaps = false;
         s.progressive = s.technique->progressive;
