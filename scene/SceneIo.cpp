@@ -350,7 +350,16 @@ void parseGeometryItem(const nlohmann::json& item, const json::Where& where, siz
         parseSphere(item, where, index, scene);
     else
         parseBox(item, where, index, scene);
-    for (size_t m = firstMesh; m < scene.meshes.size(); ++m) geometry.meshes.push_back(uint32_t(m));
+    for (size_t m = firstMesh; m < scene.meshes.size(); ++m) {
+        // Finite doubles can still leave float's range (a plane 6e73 m wide, found by fuzzing:
+        // its vertices were -inf): refuse what the renderer cannot hold.
+        for (const glm::vec3& v : scene.meshes[m].positions)
+            if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
+                json::fail(where,
+                           "geometry within single precision's range (about 3e38 m): "
+                           "its vertices overflow float; check its center and size");
+        geometry.meshes.push_back(uint32_t(m));
+    }
     scene.geometry.push_back(std::move(geometry));
 }
 
