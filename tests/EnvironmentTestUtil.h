@@ -13,9 +13,12 @@
 #include <vector>
 
 #include "luminaires/Environment.h"
+#include "shaders/shared/Constants.h"
 #include "util/Error.h"
 
 namespace candela::envtest {
+
+using gpu::kPi;  // the one definition, shaders/shared/Constants.h
 
 using TexelFn = std::function<glm::vec3(int x, int y)>;
 

@@ -28,7 +28,6 @@ namespace candela {
 namespace {
 
 namespace fs = std::filesystem;
-constexpr double kPi = 3.14159265358979323846;
 using namespace envtest;
 
 // ---------------------------------------------------------------------------------------------
