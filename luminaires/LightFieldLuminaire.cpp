@@ -11,6 +11,7 @@
 #include "luminaires/ShadowCells.h"
 #include "shaders/shared/GpuTypes.h"
 #include "util/Error.h"
+#include "util/FloatFloat.h"
 #include "util/JsonRead.h"
 
 namespace candela {
@@ -176,12 +177,14 @@ std::vector<std::byte> LightFieldLuminaire::gpuData() const {
                          float(lf.imageMin.y));
     glm::dvec2 px = lf.pixelSize();
     h.image = glm::vec4(float(lf.imageMax.x), float(lf.imageMax.y), float(px.x), float(px.y));
+    h.imageLow = glm::vec4(toFloatFloat(lf.imageMin.x).y, toFloatFloat(lf.imageMin.y).y,
+                           toFloatFloat(px.x).y, toFloatFloat(px.y).y);
     h.dims = glm::ivec4(lf.count.x, lf.count.y, lf.width, lf.height);
     h.options = glm::ivec4(kMaxSamplesPerImage, 0, 0, 0);
     size_t images = size_t(lf.imageCount());
     size_t satCount = size_t(lf.width + 1) * size_t(lf.height + 1);
     size_t pixels = size_t(lf.width) * size_t(lf.height);
-    size_t satOffset = sizeof(h) / sizeof(double);           // doubles
+    size_t satOffset = sizeof(h) / sizeof(glm::vec2);        // float-float pairs
     size_t lumOffset = (satOffset + images * satCount) * 2;  // floats
     size_t colourOffset = lumOffset + images * pixels;       // uints
     size_t colourCount = lf.rgb ? images * pixels * 2 : 0;
@@ -195,7 +198,7 @@ std::vector<std::byte> LightFieldLuminaire::gpuData() const {
     h.options.z = granier.size;
     std::vector<std::byte> out((granierOffset + granierCount) * 4);
     std::memcpy(out.data(), &h, sizeof(h));
-    auto* sat = reinterpret_cast<double*>(out.data()) + satOffset;
+    auto* sat = reinterpret_cast<glm::vec2*>(out.data()) + satOffset;
     auto* lum = reinterpret_cast<float*>(out.data()) + lumOffset;
     auto* colour = reinterpret_cast<uint32_t*>(out.data()) + colourOffset;
     auto* far = reinterpret_cast<float*>(out.data()) + granierOffset;
@@ -203,7 +206,8 @@ std::vector<std::byte> LightFieldLuminaire::gpuData() const {
     far[3] = float(granier.max.y);
     std::memcpy(far + 4, granier.weighted.data(), granier.weighted.size() * sizeof(float));
     for (size_t m = 0; m < images; ++m) {
-        std::memcpy(sat + m * satCount, lf.tables[m].sat.data(), satCount * sizeof(double));
+        for (size_t k = 0; k < satCount; ++k)
+            sat[m * satCount + k] = toFloatFloat(lf.tables[m].sat[k]);
         std::memcpy(lum + m * pixels, lf.images[m].luminance.data(), pixels * sizeof(float));
         if (!lf.rgb) continue;
         for (size_t k = 0; k < pixels; ++k) {

@@ -4,13 +4,15 @@
 // envmap=cube), same texel weights, same piecewise-constant CDFs, so pdfs agree.
 #include "common.glsl"
 #include "shared/CubeFaces.h"
+#include "ff.glsl"
 
 layout(std140, binding = 4) uniform EnvironmentBlock { EnvironmentGpu env; };
 layout(binding = 5) uniform sampler2D uEnvMap;  // kUnitEnvironmentMap: RGB32F, row 0 = v = 0
 
 layout(std430, binding = 8) buffer EnvCube { vec2 envCube[]; };            // [f][row][col]
-layout(std430, binding = 9) buffer EnvRowCdf { double envRowCdf[]; };      // [f][col][row + 1]
-layout(std430, binding = 10) buffer EnvColCdf { double envColCdf[]; };     // [f][col + 1], then
+// The CDFs are float-float pairs (ff.glsl): see envRand48.
+layout(std430, binding = 9) buffer EnvRowCdf { vec2 envRowCdf[]; };        // [f][col][row + 1]
+layout(std430, binding = 10) buffer EnvColCdf { vec2 envColCdf[]; };       // [f][col + 1], then
                                                                            // column totals
 layout(std430, binding = 11) buffer EnvFaces { EnvironmentFaceGpu envFaces[6]; };
 layout(std430, binding = 12) buffer EnvSamples { EnvironmentSampleGpu envSamples[]; };
@@ -75,28 +77,33 @@ float envTexelSolidAngle(int col, int row, int n) {
     return 2.0 * atan(det, d1) + 2.0 * atan(det, d2);
 }
 
-/// The CDFs are doubles, drawn with 48-bit uniforms: in float, a texel 1e8 times dimmer than a
-/// sun on the same face has a probability below the CDF's resolution near 1 (6e-8), so it would
-/// be sampled at the wrong rate (a measured +12 % bias facing away from such a sun).
-double envRand48(inout uint state) {
-    double hi = double(rand01(state)), lo = double(rand01(state));
-    return hi + lo * (1.0LF / 16777216.0LF);
+/// The CDFs hold about 48 bits (float-float pairs) and are drawn with 48-bit uniforms: in float, a
+/// texel 1e8 times dimmer than a sun on the same face has a probability below the CDF's
+/// resolution near 1 (6e-8), so it would be sampled at the wrong rate (a measured +12 % bias
+/// facing away from such a sun).
+vec2 envRand48(inout uint state) {
+    float hi = rand01(state), lo = rand01(state);
+    return ffFastTwoSum(hi, lo * (1.0 / 16777216.0));
 }
 
-double envCdfAt(bool rows, int i) { return rows ? envRowCdf[i] : envColCdf[i]; }
+vec2 envCdfAt(bool rows, int i) { return rows ? envRowCdf[i] : envColCdf[i]; }
 
 /// Index of the CDF piece holding u: cdf[i] <= u < cdf[i + 1] over cdf[base .. base + n] of the
 /// row tables (rows) or the column table (non-empty pieces only), and u's fraction inside it.
-int envSearch(bool rows, int base, int n, double u, out float fraction) {
+int envSearch(bool rows, int base, int n, vec2 u, out float fraction) {
     int lo = 0, hi = n;  // invariant: cdf[lo] <= u < cdf[hi] (cdf[n] = 1 > u)
     while (hi - lo > 1) {
         int mid = (lo + hi) >> 1;
-        if (envCdfAt(rows, base + mid) <= u) lo = mid; else hi = mid;
+        if (ffLessEqual(envCdfAt(rows, base + mid), u)) lo = mid; else hi = mid;
     }
-    double left = envCdfAt(rows, base + lo), w = envCdfAt(rows, base + lo + 1) - left;
-    fraction = w > 0.0LF ? clamp(float((u - left) / w), 0.0, 1.0) : 0.5;
+    vec2 left = envCdfAt(rows, base + lo);
+    float w = ffToFloat(ffSub(envCdfAt(rows, base + lo + 1), left));
+    fraction = w > 0.0 ? clamp(ffToFloat(ffSub(u, left)) / w, 0.0, 1.0) : 0.5;
     return lo;
 }
+
+/// Probability of piece i of a CDF (its difference, rounded once).
+float envPieceProbability(bool rows, int i) { return ffToFloat(ffSub(envCdfAt(rows, i + 1), envCdfAt(rows, i))); }
 
 /// I_f of Eq. (3).
 float envFaceImportance(int f) { return envFaces[f].totals.x; }
@@ -107,7 +114,7 @@ float envFaceImportance(int f) { return envFaces[f].totals.x; }
 float envTexelPdf(int f, int c, int r, vec2 ab) {
     int n = env.dims.z;
     int cb = f * (n + 1), rb = (f * n + c) * (n + 1);
-    float p = float((envColCdf[cb + c + 1] - envColCdf[cb + c]) * (envRowCdf[rb + r + 1] - envRowCdf[rb + r]));
+    float p = envPieceProbability(false, cb + c) * envPieceProbability(true, rb + r);
     float q = 1.0 + dot(ab, ab);
     return p * float(n) * float(n) * 0.25 * q * sqrt(q);
 }

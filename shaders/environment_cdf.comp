@@ -8,8 +8,9 @@
 //   PASS_SAMPLES  per face: a pool of light samples drawn by binary search (line 10).
 // The weights are exactly those of CubeMapDistribution (luminaires/EnvironmentSampling.cpp):
 // (mean luminance + kEnvMaxShare x the largest lat-long luminance the texel touches + a floor of
-// kEnvFaceFloor x the face's mean luminance) x the texel's solid angle. Prefix sums run in double
-// precision and the tables are stored as doubles (see envRand48 in environment.glsl).
+// kEnvFaceFloor x the face's mean luminance) x the texel's solid angle. Prefix sums run in
+// float-float (ff.glsl) and the tables are stored as float-float pairs (see envRand48 in
+// environment.glsl).
 #include "environment.glsl"
 
 #if defined(PASS_CUBE)
@@ -82,15 +83,15 @@ void main() {
 #endif
 
 #if defined(PASS_ENERGY) || defined(PASS_ROWS) || defined(PASS_COLUMNS)
-shared double partial[256];
+shared vec2 partial[256];
 
 /// Inclusive prefix sum of partial[] over the workgroup (Hillis and Steele).
 void scanPartials(uint t) {
     for (uint offset = 1u; offset < 256u; offset <<= 1u) {
         barrier();
-        double add = t >= offset ? partial[t - offset] : 0.0LF;
+        vec2 add = t >= offset ? partial[t - offset] : vec2(0.0);
         barrier();
-        partial[t] += add;
+        partial[t] = ffAdd(partial[t], add);
     }
     barrier();
 }
@@ -100,12 +101,12 @@ void scanPartials(uint t) {
 void main() {
     int n = env.dims.z, f = int(gl_WorkGroupID.x);
     uint t = gl_LocalInvocationID.x;
-    double sum = 0.0LF;
+    vec2 sum = vec2(0.0);
     for (int i = int(t); i < n * n; i += 256)
-        sum += double(envCube[f * n * n + i].x) * double(envTexelSolidAngle(i % n, i / n, n));
+        sum = ffAdd(sum, ffMulF(vec2(envCube[f * n * n + i].x, 0.0), envTexelSolidAngle(i % n, i / n, n)));
     partial[t] = sum;
     scanPartials(t);
-    if (t == 0u) envFaces[f].totals.y = float(partial[255]);
+    if (t == 0u) envFaces[f].totals.y = ffToFloat(partial[255]);
 }
 #endif
 
@@ -115,25 +116,25 @@ void main() {
     uint t = gl_LocalInvocationID.x;
     int per = (n + 255) / 256, first = int(t) * per, last = min(first + per, n);
     float floorLum = kEnvFaceFloor * envFaces[f].totals.y / (4.0 * kPi / 6.0);
-    double sum = 0.0LF;
+    vec2 sum = vec2(0.0);
     for (int r = first; r < last; ++r) {
         int idx = (f * n + r) * n + c;
         float weight = envCube[idx].y + floorLum * envTexelSolidAngle(c, r, n);
         envCube[idx].y = weight;
-        sum += double(weight);
+        sum = ffAddF(sum, weight);
     }
     partial[t] = sum;
     scanPartials(t);
-    double total = partial[255];
-    double running = t > 0u ? partial[t - 1u] : 0.0LF;
+    vec2 total = partial[255];
+    vec2 running = t > 0u ? partial[t - 1u] : vec2(0.0);
     int base = (f * n + c) * (n + 1);
     for (int r = first; r < last; ++r) {
-        running += double(envCube[(f * n + r) * n + c].y);
+        running = ffAddF(running, envCube[(f * n + r) * n + c].y);
         // The last entry is exactly 1 (or 0 for an empty column), as in Cdf1D::build.
-        envRowCdf[base + r + 1] = total > 0.0LF ? (r == n - 1 ? 1.0LF : running / total) : 0.0LF;
+        envRowCdf[base + r + 1] = total.x > 0.0 ? (r == n - 1 ? vec2(1.0, 0.0) : ffDiv(running, total)) : vec2(0.0);
     }
     if (t == 0u) {
-        envRowCdf[base] = 0.0LF;
+        envRowCdf[base] = vec2(0.0);
         envColCdf[6 * (n + 1) + f * n + c] = total;
     }
 }
@@ -145,20 +146,20 @@ void main() {
     uint t = gl_LocalInvocationID.x;
     int per = (n + 255) / 256, first = int(t) * per, last = min(first + per, n);
     int totals = 6 * (n + 1) + f * n;
-    double sum = 0.0LF;
-    for (int c = first; c < last; ++c) sum += envColCdf[totals + c];
+    vec2 sum = vec2(0.0);
+    for (int c = first; c < last; ++c) sum = ffAdd(sum, envColCdf[totals + c]);
     partial[t] = sum;
     scanPartials(t);
-    double total = partial[255];
-    double running = t > 0u ? partial[t - 1u] : 0.0LF;
+    vec2 total = partial[255];
+    vec2 running = t > 0u ? partial[t - 1u] : vec2(0.0);
     int base = f * (n + 1);
     for (int c = first; c < last; ++c) {
-        running += envColCdf[totals + c];
-        envColCdf[base + c + 1] = total > 0.0LF ? (c == n - 1 ? 1.0LF : running / total) : 0.0LF;
+        running = ffAdd(running, envColCdf[totals + c]);
+        envColCdf[base + c + 1] = total.x > 0.0 ? (c == n - 1 ? vec2(1.0, 0.0) : ffDiv(running, total)) : vec2(0.0);
     }
     if (t == 0u) {
-        envColCdf[base] = 0.0LF;
-        envFaces[f].totals.x = float(total);
+        envColCdf[base] = vec2(0.0);
+        envFaces[f].totals.x = ffToFloat(total);
     }
 }
 #endif
@@ -176,7 +177,7 @@ void main() {
     s.radiance = vec4(0.0);
     if (envFaceImportance(f) > 0.0) {
         uint rng = pcgHash(uint(env.frame.x) ^ pcgHash(uint(f * pool + i) + 0x9e3779b9u));
-        double u1 = envRand48(rng), u2 = envRand48(rng);
+        vec2 u1 = envRand48(rng), u2 = envRand48(rng);
         float fx, fy;
         int c = envSearch(false, f * (n + 1), n, u1, fx);
         int r = envSearch(true, (f * n + c) * (n + 1), n, u2, fy);

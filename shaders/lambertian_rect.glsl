@@ -11,7 +11,7 @@ vec3 lambertRectIrradiance(LambertianRectGpu L, vec3 p, vec3 n) {
     if (max(L.edgeX.w, L.edgeY.w) < 0.01 * r) {
         // A rectangle under a hundredth of its distance: L A cos cos / r^2, within ~(size / r)^2
         // ~ 1e-4 of the truth, where the corners relative to p round to more than the rectangle
-        // in float (a 1e-6 m one 2 m away gave 3800x its light; the C++ twin, in double, is exact).
+        // in float (a 1e-6 m one 2 m away gave 3800x its light; the 64-bit C++ twin is exact).
         vec3 w = toCentre / r;
         return L.radiance.rgb * (L.edgeX.w * L.edgeY.w * max(dot(n, w), 0.0) * max(-dot(L.normal.xyz, w), 0.0) / (r * r));
     }

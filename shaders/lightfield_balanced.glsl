@@ -2,8 +2,8 @@
 // boxes (restricted-cdf, uniform-restricted, precomputed-global, precomputed-shared). The technique's shader defines,
 // before including this file:
 //   bool lfBox(int m, vec3 q, out vec2 a, out vec2 b)   image m's box seen from q (false: empty)
-//   double lfBoxWeight(int m, vec2 a, vec2 b)          its weight A_m for the balancing (Eq. 12)
-//   bool lfDraw(int m, vec2 a, vec2 b, vec2 xi, double Am, out vec2 sp, out float scale)
+//   float lfBoxWeight(int m, vec2 a, vec2 b)           its weight A_m for the balancing (Eq. 12)
+//   bool lfDraw(int m, vec2 a, vec2 b, vec2 xi, float Am, out vec2 sp, out float scale)
 //        a point of the box for the Halton point xi, and f / pdf without Psi c cos Delta / r^3,
 //        over A (false: no sample).
 // K samples per pixel per pass are spread over the images in proportion to A_m(p) (Eq. 12) by
@@ -19,26 +19,24 @@ vec3 lfBalanced(Surface s, vec3 q, vec3 nl, int K, vec2 shift, float offset) {
     vec3 result = vec3(0.0);
     int M = lfImageCount();
     // Step 1 of Sec. 6.1: A_m(p) for every image and their sum A(p); kept for step 2 (up to
-    // kCached images; beyond that step 2 recomputes them).
+    // kCached images; beyond that step 2 recomputes them). Step 2 adds the same floats in the
+    // same order, so its running sum ends at exactly A and every slot goes to one image.
     const int kCached = 128;
     float cached[kCached];
-    double A = 0.0;
+    float A = 0.0;
     for (int m = 0; m < M; ++m) {
         vec2 a, b;
-        double w = lfBox(m, q, a, b) ? lfBoxWeight(m, a, b) : 0.0;
-        if (m < kCached) {
-            cached[m] = float(w);
-            w = double(cached[m]);  // step 2 reads the float: sum the same values
-        }
+        float w = lfBox(m, q, a, b) ? lfBoxWeight(m, a, b) : 0.0;
+        if (m < kCached) cached[m] = w;
         A += w;
     }
     if (A > 0.0) {
-        double cum = 0.0;
+        float cum = 0.0;
         for (int m = 0; m < M; ++m) {
             vec2 a, b;
-            double Am;
+            float Am;
             if (m < kCached) {
-                Am = double(cached[m]);
+                Am = cached[m];
                 if (!(Am > 0.0)) continue;
                 lfBox(m, q, a, b);
             } else {
@@ -46,16 +44,16 @@ vec3 lfBalanced(Surface s, vec3 q, vec3 nl, int K, vec2 shift, float offset) {
                 if (!(Am > 0.0)) continue;
             }
             // Slots k with (k + offset) / K * A in [cum, cum + A_m) go to image m.
-            int k0 = int(ceil(float(cum / A) * float(K) - offset));
+            int k0 = int(ceil(cum / A * float(K) - offset));
             cum += Am;
-            int k1 = int(ceil(float(cum / A) * float(K) - offset));
+            int k1 = int(ceil(cum / A * float(K) - offset));
             int Km = k1 - k0;
             if (Km <= 0) continue;
             int n = lf.options.x > 0 ? min(Km, lf.options.x) : Km;
             float vm = imageVisibility(s, m);
             if (!(vm > 0.0)) continue;
             // Each slot is worth A / K; n samples stand for Km slots.
-            float weight = vm * float(A) / float(K) * float(Km) / float(n);
+            float weight = vm * A / float(K) * float(Km) / float(n);
             for (int k = k0; k < k0 + n; ++k) {
                 uint index = uint(k - k0 + 1);  // the image's own points, 1..n, this frame
                 vec2 xi = fract(vec2(lfHalton2(index), lfHalton3(index)) + shift);

@@ -6,8 +6,8 @@ bool lfBox(int m, vec3 q, out vec2 a, out vec2 b) {
     b = lfImageMax();
     return true;
 }
-double lfBoxWeight(int m, vec2 a, vec2 b) { return lfSatEntry(m, lf.dims.z, lf.dims.w); }
-bool lfDraw(int m, vec2 a, vec2 b, vec2 xi, double Am, out vec2 sp, out float scale) {
+float lfBoxWeight(int m, vec2 a, vec2 b) { return lfTotal(m); }
+bool lfDraw(int m, vec2 a, vec2 b, vec2 xi, float Am, out vec2 sp, out float scale) {
     scale = 1.0;
     return lfSampleBox(m, a, b, xi, sp);
 }

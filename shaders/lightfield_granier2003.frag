@@ -19,7 +19,7 @@ vec3 shadeTechnique(Surface s, vec3 q, vec3 nl, bool onS, int K, vec2 shift, flo
             if (!lfRestrictedBox(m, q, a, b)) continue;
             // Mean over the support's whole footprint on S (C_m is 0 where it leaves the image).
             float footprint = 9.0 * lf.geometry.y * lf.geometry.z * scale * scale;
-            mean = float(lfBoxIntegral(m, a, b)) / footprint;
+            mean = lfBoxIntegral(m, a, b) / footprint;
         }
         if (!(mean > 0.0)) continue;
         vec2 node = lfNode(m);
@@ -34,7 +34,7 @@ vec3 shadeTechnique(Surface s, vec3 q, vec3 nl, bool onS, int K, vec2 shift, flo
         // The far-field correction W_m / U_m, blended in with the footprint's area (the C++ twin,
         // LightFieldEstimators.cpp, says why).
         vec2 farCentre = node + (q.xy - node) * (lfDelta() / q.z), half_ = 1.5 * lf.geometry.yz;
-        float uniform_ = float(lfBoxIntegral(m, farCentre - half_, farCentre + half_)) / 9.0;
+        float uniform_ = lfBoxIntegral(m, farCentre - half_, farCentre + half_) / 9.0;
         float weighted = lfGranierWeighted(m, farCentre), blend = scale * scale;
         float conserve = uniform_ > 0.0 && weighted >= 0.0 ? (1.0 - blend) + blend * weighted / uniform_ : 1.0;
         sum += conserve * phiIntegral * mean * model * cosR * cosL / (dist * dist) * lfColour(m, centre) * brdf(s, wi) *

@@ -25,7 +25,7 @@ void lfShadePass(uvec2 seedPixel) {
     float dz = q.z - lfDelta();
     // Closer to S than float coordinates resolve the restricted boxes, on either side (a receiver
     // on S has a rounded position): p on S (Eq. 9), the limit the irradiance tends to. The C++
-    // twin (LightFieldEstimators.cpp) does the same within its double rounding.
+    // twin (LightFieldEstimators.cpp) does the same within its 64-bit rounding.
     bool onS = abs(dz) < 1e-5 * max(q.z, 1e-3);
     // Behind S or between U and S: no light.
     vec3 result = dz < 0.0 && !onS ? vec3(0.0) : shadeTechnique(s, q, nl, onS, K, shift, offset);

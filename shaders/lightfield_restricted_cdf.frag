@@ -4,8 +4,8 @@
 #include "lightfield_shading.glsl"
 
 bool lfBox(int m, vec3 q, out vec2 a, out vec2 b) { return lfRestrictedBox(m, q, a, b); }
-double lfBoxWeight(int m, vec2 a, vec2 b) { return lfBoxIntegral(m, a, b); }
-bool lfDraw(int m, vec2 a, vec2 b, vec2 xi, double Am, out vec2 sp, out float scale) {
+float lfBoxWeight(int m, vec2 a, vec2 b) { return lfBoxIntegral(m, a, b); }
+bool lfDraw(int m, vec2 a, vec2 b, vec2 xi, float Am, out vec2 sp, out float scale) {
     scale = 1.0;
     return lfSampleBox(m, a, b, xi, sp);
 }

@@ -74,7 +74,7 @@ void stochasticExtras(Surface s, vec3 p, vec3 n, int count, inout uint rng, out 
 /// True when the irradiance at p is settled without the technique, in E: an opening under a
 /// hundredth of its distance takes the point law, within (size / r)^2 ~ 1e-4 of the truth, where
 /// the spherical polygons of 1e-4 rad and less cancel in float (a 1e-6 m opening 2 m away gave
-/// 3800x its light; the C++ twins, in double, stay exact); a receiver where the opening
+/// 3800x its light; the C++ twins, in 64-bit floats, stay exact); a receiver where the opening
 /// degenerates (phDegenerate) takes its limit.
 bool phSettled(vec3 p, vec3 n, out float E) {
     if (ph.axisX.w < 0.01 * length(p)) {

@@ -114,6 +114,48 @@ TEST(EnvironmentGl, TablesMatchTheCpuTwin) {
     }
 }
 
+TEST(EnvironmentGl, CdfsResolveTexelsFarBelowTheSun) {
+    // A one-texel sun 1e8 times the sky: on its cube face the other texels weigh about 1e-3
+    // (the face floor) / 64^2 = 2.4e-7 of the face, below a float CDF's resolution near 1
+    // (6e-8 per step), which sampled them at the wrong rate (+12 % facing away from such a sun).
+    // Each texel's probability as the sampler reads it (CDF differences) must match its weight
+    // over the face's total, summed here in 64-bit from the GPU's own weights.
+    test::glContext();
+    ShaderLibrary shaders;
+    std::vector<glm::vec3> rgb(64 * 32, glm::vec3(0.01f));
+    rgb[10 * 64 + 20] = glm::vec3(1e6f);
+    auto sun = std::make_shared<EnvironmentMap>(64, 32, rgb, 1.0, 0.0, "sun");
+    const int n = 64;
+    EnvironmentPass pass;
+    pass.setMap(sun, n);
+    pass.buildTables(shaders);
+    std::vector<glm::vec2> cube = pass.readCube();
+    std::vector<double> rows = pass.readRowCdf(), cols = pass.readColumnCdf();
+    int sunFace = -1;
+    float brightest = 0.f;
+    for (size_t t = 0; t < cube.size(); ++t)
+        if (cube[t].y > brightest) brightest = cube[t].y, sunFace = int(t / size_t(n * n));
+    ASSERT_GE(sunFace, 0);
+    double total = 0.0, smallest = 1.0, worst = 0.0;
+    for (int t = 0; t < n * n; ++t) total += cube[size_t(sunFace * n * n + t)].y;
+    for (int r = 0; r < n; ++r)
+        for (int c = 0; c < n; ++c) {
+            double expected = cube[size_t((sunFace * n + r) * n + c)].y / total;
+            const double* col = &cols[size_t(sunFace) * (n + 1)];
+            const double* row = &rows[(size_t(sunFace) * n + size_t(c)) * (n + 1)];
+            double p = (col[c + 1] - col[c]) * (row[r + 1] - row[r]);
+            smallest = std::min(smallest, expected);
+            worst = std::max(worst, std::abs(p - expected) / expected);
+        }
+    // The weights are floats summed in float-float on the GPU: 1e-5 relative leaves room for
+    // the float rounding of each prefix sum's division, and is 1e3 times below a float CDF's
+    // error on the dimmest texels.
+    EXPECT_LT(smallest, 1e-6);
+    EXPECT_LT(worst, 1e-5);
+    std::printf("[ info ] 1e8 sun: smallest texel probability %.3g, worst relative error %.3g\n",
+                smallest, worst);
+}
+
 TEST(EnvironmentGl, SamplesPassChiSquareAndReportTheCpuPdf) {
     test::glContext();
     ShaderLibrary shaders;

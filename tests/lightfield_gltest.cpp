@@ -3,7 +3,9 @@
 // production shading pass (through the GPU probe) against the CPU quadrature reference.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <random>
 
 #include "luminaires/LightField.h"
@@ -91,6 +93,92 @@ TEST(LightFieldGl, BoxIntegralAndSamplerMatchCpp) {
         }
         EXPECT_GT(out[k].sampled.w, 0.f) << "GLSL sample in a zero-energy pixel, " << k;
     }
+}
+
+/// An image of 256^2 pixels whose quadrant at the table's origin is 1e6 times brighter than the
+/// rest (slightly structured): small boxes far from the origin hold 1e-10 of the table's largest
+/// entries, so their A_m cancels catastrophically in float.
+LightFieldLuminaire farFromTheOrigin() {
+    auto lf = std::make_shared<LightFieldData>();
+    lf->count = {1, 1};
+    lf->spacing = {0.1, 0.1};
+    lf->origin = {0.0, 0.0};
+    lf->delta = 0.05;
+    lf->imageMin = {-0.128, -0.128};
+    lf->imageMax = {0.128, 0.128};
+    lf->width = lf->height = 256;
+    lf->images.resize(1);
+    std::vector<float>& c = lf->images[0].luminance;
+    c.resize(256 * 256);
+    for (int j = 0; j < 256; ++j)
+        for (int i = 0; i < 256; ++i)
+            c[size_t(j * 256 + i)] =
+                i < 128 && j < 128 ? 1e6f : 1.f + 0.5f * float((i * 7 + j * 3) % 5);
+    lf->validate("far-from-the-origin");
+    lf->precompute();
+    LightFieldLuminaire l;
+    l.data = lf;
+    return l;
+}
+
+/// Plain float summed-area table arithmetic (what the shaders would do without float-float
+/// pairs), for the test below to show that its boxes need more than float.
+double floatBoxIntegral(const LightFieldData& lf, glm::vec2 a, glm::vec2 b) {
+    auto at = [&](glm::vec2 s) {
+        glm::vec2 f = (s - glm::vec2(lf.imageMin)) / glm::vec2(lf.pixelSize());
+        int i = std::min(int(f.x), lf.width - 1), j = std::min(int(f.y), lf.height - 1);
+        float fx = f.x - float(i), fy = f.y - float(j);
+        auto S = [&](int x, int y) {
+            return float(lf.tables[0].sat[size_t(y * (lf.width + 1) + x)]);
+        };
+        float s00 = S(i, j), s10 = S(i + 1, j), s01 = S(i, j + 1), s11 = S(i + 1, j + 1);
+        return s00 + fx * (s10 - s00) + fy * (s01 - s00) + fx * fy * (s11 - s10 - s01 + s00);
+    };
+    return double(at(b) - at({a.x, b.y}) - at({b.x, a.y}) + at(a));
+}
+
+TEST(LightFieldGl, SmallBoxesFarFromTheTableOriginKeepTheirDigits) {
+    LightFieldLuminaire light = farFromTheOrigin();
+    const LightFieldData& lf = *light.data;
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> U(0.f, 1.f);
+    std::vector<ParityIn> in;
+    for (int k = 0; k < 256; ++k) {
+        // In the dim far quadrant, 5 to 12 pixels a side (the summed-area table's path, beyond
+        // the 4 pixels integrated directly); every fourth 0.3 pixels wide and 20 tall.
+        glm::vec2 a = glm::vec2(0.06f + 0.05f * U(rng), 0.06f + 0.05f * U(rng));
+        glm::vec2 size = k % 4 == 0 ? glm::vec2(0.0003f, 0.02f)
+                                    : glm::vec2(0.005f + 0.007f * U(rng), 0.005f + 0.007f * U(rng));
+        in.push_back({glm::vec4(a, a + size), glm::vec4(U(rng), U(rng), 0, 0), glm::ivec4(0)});
+    }
+    std::vector<ParityOut> out = runParity(light, in);
+    double worstFloat = 0.0;
+    for (size_t k = 0; k < in.size(); ++k) {
+        glm::dvec2 a(in[k].box.x, in[k].box.y), b(in[k].box.z, in[k].box.w);
+        double area = lf.boxIntegral(0, a, b);
+        ASSERT_GT(area, 0.0);
+        // Float's relative precision on the box's own energy (a few roundings of 6e-8), plus
+        // what float-float pairs keep of the table: each difference of entries loses about 2^-48
+        // of the largest (64-bit tables lost 2^-53). The thin boxes here hold 1e-9 of the
+        // table's largest entry, so that term reaches about 5e-6 of them (measured 1.4e-6).
+        double largest = lf.tables[0].sat.back();
+        EXPECT_NEAR(out[k].area.x, area, 1e-6 * area + 2.0 * std::ldexp(largest, -48)) << k;
+        worstFloat = std::max(
+            worstFloat,
+            std::abs(floatBoxIntegral(lf, in[k].box, {in[k].box.z, in[k].box.w}) - area) / area);
+        // The sample's place in the box's marginal CDF, as in BoxIntegralAndSamplerMatchCpp.
+        glm::dvec2 s;
+        ASSERT_TRUE(lf.sampleBox(0, a, b, glm::dvec2(in[k].xi), s));
+        ASSERT_GT(out[k].sampled.z, 0.5f) << k;
+        auto marginal = [&](double x) { return lf.boxIntegral(0, a, {x, b.y}) / area; };
+        // 1e-5, plus the float sample's own resolution: one ulp of x is 2.5e-5 of a thin box.
+        double ulp = std::nextafter(out[k].sampled.x, 1.f) - out[k].sampled.x;
+        EXPECT_NEAR(marginal(out[k].sampled.x), marginal(s.x), 1e-5 + ulp / (b.x - a.x)) << k;
+    }
+    // The case needs more than float: plain float tables miss these boxes by more than 10 %.
+    EXPECT_GT(worstFloat, 0.1);
+    std::printf("[ info ] far small boxes: plain float tables err by up to %.3g of the box\n",
+                worstFloat);
 }
 
 TEST(LightFieldGl, GlslSamplerPassesChiSquare) {

@@ -10,6 +10,7 @@
 #include "renderer/passes/GBufferPass.h"
 #include "renderer/passes/ShadePass.h"
 #include "shaders/shared/Constants.h"
+#include "util/FloatFloat.h"
 
 namespace candela {
 
@@ -20,6 +21,12 @@ std::vector<T> readBuffer(const gl::Buffer& buffer, size_t count) {
     std::vector<T> out(count);
     if (count > 0)
         glGetNamedBufferSubData(buffer.id(), 0, GLsizeiptr(count * sizeof(T)), out.data());
+    return out;
+}
+
+std::vector<double> fromFloatFloats(const std::vector<glm::vec2>& pairs) {
+    std::vector<double> out(pairs.size());
+    std::transform(pairs.begin(), pairs.end(), out.begin(), fromFloatFloat);
     return out;
 }
 
@@ -56,9 +63,10 @@ bool EnvironmentPass::setMap(std::shared_ptr<const EnvironmentMap> map, int face
         mN = n;
         size_t texels = 6 * size_t(n) * size_t(n);
         mCube = gl::Buffer(GLsizeiptr(texels * sizeof(glm::vec2)), nullptr);
-        mRowCdf = gl::Buffer(GLsizeiptr(6 * size_t(n) * size_t(n + 1) * sizeof(double)), nullptr);
-        mColCdf =
-            gl::Buffer(GLsizeiptr((6 * size_t(n + 1) + 6 * size_t(n)) * sizeof(double)), nullptr);
+        mRowCdf =
+            gl::Buffer(GLsizeiptr(6 * size_t(n) * size_t(n + 1) * sizeof(glm::vec2)), nullptr);
+        mColCdf = gl::Buffer(GLsizeiptr((6 * size_t(n + 1) + 6 * size_t(n)) * sizeof(glm::vec2)),
+                             nullptr);
         mFaces = gl::Buffer(GLsizeiptr(6 * sizeof(gpu::EnvironmentFaceGpu)), nullptr);
     }
     mUniforms.dims = glm::ivec4(mMap->width(), mMap->height(), mN, mPool);
@@ -228,10 +236,10 @@ std::vector<glm::vec2> EnvironmentPass::readCube() const {
     return readBuffer<glm::vec2>(mCube, 6 * size_t(mN) * size_t(mN));
 }
 std::vector<double> EnvironmentPass::readRowCdf() const {
-    return readBuffer<double>(mRowCdf, 6 * size_t(mN) * size_t(mN + 1));
+    return fromFloatFloats(readBuffer<glm::vec2>(mRowCdf, 6 * size_t(mN) * size_t(mN + 1)));
 }
 std::vector<double> EnvironmentPass::readColumnCdf() const {
-    return readBuffer<double>(mColCdf, 6 * size_t(mN + 1));
+    return fromFloatFloats(readBuffer<glm::vec2>(mColCdf, 6 * size_t(mN + 1)));
 }
 std::vector<gpu::EnvironmentFaceGpu> EnvironmentPass::readFaces() const {
     return readBuffer<gpu::EnvironmentFaceGpu>(mFaces, 6);

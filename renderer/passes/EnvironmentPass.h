@@ -64,7 +64,8 @@ class EnvironmentPass final : public SourcePass {
     bool tablesBuilt() const { return mBuilt; }
 
     /// Read-backs for tests: per texel (luminance, weight), [face][row][col]; the CDFs; the face
-    /// totals (I_f, energy); the last pools of samples [face][pool].
+    /// totals (I_f, energy); the last pools of samples [face][pool]. The CDFs are float-float pairs
+    /// on the GPU, returned as their 64-bit values.
     std::vector<glm::vec2> readCube() const;
     std::vector<double> readRowCdf() const;
     std::vector<double> readColumnCdf() const;

@@ -1,10 +1,11 @@
 // Mathematical constants shared by C++ and GLSL, valid as both (shaders/common.glsl includes it,
-// so every shader has them). A `real` is double in C++ (the CPU reference works in double) and
-// float in GLSL: the same literal gives each language its nearest value.
+// so every shader has them). A `real` is 64-bit in C++ (the CPU reference works in 64-bit) and
+// 32-bit in GLSL: the same literal gives each language its nearest value.
 #ifdef __cplusplus
 #pragma once
+#include <glm/fwd.hpp>
 namespace candela::gpu {
-using real = double;
+using real = glm::f64;
 #ifndef CANDELA_CONST
 #define CANDELA_CONST static constexpr
 #endif

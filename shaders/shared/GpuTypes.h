@@ -95,9 +95,10 @@ struct LambertianRectGpu {
 };
 
 /// A light-field luminaire (std430): this header, then in the same buffer the summed-area
-/// tables of all images as doubles, their luminance as floats and, for RGB data, their colour
-/// ratios as two packed halves per pixel (luminaires/LightFieldLuminaire.cpp packs it). Offsets
-/// are in elements of each array's type from the start of the buffer.
+/// tables of all images as float-float pairs (vec2, shaders/ff.glsl), their luminance as floats
+/// and, for RGB data, their colour ratios as two packed halves per pixel
+/// (luminaires/LightFieldLuminaire.cpp packs it). Offsets are in elements of each array's type
+/// from the start of the buffer.
 struct LightFieldGpu {
     vec4 position;  // xyz world position of the local origin (m)
     vec4 axisX;     // xyz world direction of local +x (c0)
@@ -106,8 +107,10 @@ struct LightFieldGpu {
     vec4 geometry;  // x = delta (m), yz = basis spacing (m), w = 1 for the goesele model
     vec4 origin;    // xy = basis node (0,0) on U (m), zw = image min on S (m)
     vec4 image;     // xy = image max on S (m), zw = pixel size (m)
+    vec4 imageLow;  // the rest of image min (xy) and pixel size (zw) beyond their floats (m):
+                    // float-float pairs with origin.zw and image.zw, for exact pixel edges
     ivec4 dims;     // x, y = basis count W, H; z, w = image width, height (pixels)
-    ivec4 offsets;  // x = SAT (doubles), y = luminance (floats), z = colour (uints), w = 1 if RGB
+    ivec4 offsets;  // x = SAT (vec2), y = luminance (floats), z = colour (uints), w = 1 if RGB
     ivec4 options;  // x = K_max samples per image per frame (0: no cap), y = granier2003's
                     // far-field table (floats: min.xy, max.xy of its centres on S, then size^2
                     // ratios per image), z = its size, w unused

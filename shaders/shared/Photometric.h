@@ -1,11 +1,11 @@
 // What the photometric techniques share between C++ (luminaires/SphericalPolygon.*,
 // luminaires/PhotometricEstimators.cpp) and GLSL (shaders/photometric*.glsl), valid as both. A
-// `real` is double in C++ and float in GLSL.
+// `real` is 64-bit in C++ and 32-bit in GLSL.
 #ifdef __cplusplus
 #pragma once
 #include <glm/glm.hpp>
 namespace candela::gpu {
-using real = double;
+using real = glm::f64;
 using glm::clamp;
 #define CANDELA_FN inline
 #ifndef CANDELA_CONST

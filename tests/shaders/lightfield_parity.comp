@@ -13,7 +13,7 @@ struct ParityIn {
 };
 struct ParityOut {
     vec4 sampled;  // xy = sample on S (m), z = 1 if a sample was produced, w = C_m there
-    vec4 area;     // x = A_m of the box (float of the double), y = C_m at the box centre
+    vec4 area;     // x = A_m of the box, y = C_m at the box centre
 };
 
 layout(std430, binding = 6) readonly buffer Inputs { ParityIn inputs[]; };
@@ -29,6 +29,6 @@ void main() {
     bool ok = lfSampleBox(m, p.box.xy, p.box.zw, p.xi.xy, s);
     ParityOut o;
     o.sampled = vec4(s, ok ? 1.0 : 0.0, ok ? lfLum(m, s) : 0.0);
-    o.area = vec4(float(lfBoxIntegral(m, p.box.xy, p.box.zw)), lfLum(m, 0.5 * (p.box.xy + p.box.zw)), 0.0, 0.0);
+    o.area = vec4(lfBoxIntegral(m, p.box.xy, p.box.zw), lfLum(m, 0.5 * (p.box.xy + p.box.zw)), 0.0, 0.0);
     outputs[i] = o;
 }
