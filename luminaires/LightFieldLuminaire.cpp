@@ -177,8 +177,10 @@ std::vector<std::byte> LightFieldLuminaire::gpuData() const {
                          float(lf.imageMin.y));
     glm::dvec2 px = lf.pixelSize();
     h.image = glm::vec4(float(lf.imageMax.x), float(lf.imageMax.y), float(px.x), float(px.y));
-    h.imageLow = glm::vec4(toFloatFloat(lf.imageMin.x).y, toFloatFloat(lf.imageMin.y).y,
-                           toFloatFloat(px.x).y, toFloatFloat(px.y).y);
+    glm::vec2 inverseX = toFloatFloat(1.0 / px.x), inverseY = toFloatFloat(1.0 / px.y);
+    h.pixelGrid = glm::vec4(toFloatFloat(lf.imageMin.x).y, toFloatFloat(lf.imageMin.y).y,
+                            inverseX.x, inverseY.x);
+    h.pixelGridLow = glm::vec4(inverseX.y, inverseY.y, 0.f, 0.f);
     h.dims = glm::ivec4(lf.count.x, lf.count.y, lf.width, lf.height);
     h.options = glm::ivec4(kMaxSamplesPerImage, 0, 0, 0);
     size_t images = size_t(lf.imageCount());

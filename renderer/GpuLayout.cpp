@@ -6,7 +6,7 @@
 namespace candela::gpu {
 static_assert(sizeof(FrameUniforms) == 2 * 64 + 4 * 16);
 static_assert(sizeof(LambertianRectGpu) == 5 * 16);
-static_assert(sizeof(LightFieldGpu) == 11 * 16);
+static_assert(sizeof(LightFieldGpu) == 12 * 16);
 static_assert(sizeof(PhotometricGpu) == 8 * 16);
 static_assert(sizeof(EnvironmentGpu) == 4 * 16);
 static_assert(sizeof(EnvironmentFaceGpu) == 16);

@@ -66,6 +66,13 @@ vec2 ffMulF(vec2 a, float b) {
     return ffFastTwoSum(p.x, lo);
 }
 
+/// a x b, to about 2^-46 relative.
+vec2 ffMul(vec2 a, vec2 b) {
+    vec2 p = ffTwoProduct(a.x, b.x);
+    precise float lo = p.y + (a.x * b.y + a.y * b.x);
+    return ffFastTwoSum(p.x, lo);
+}
+
 /// a / b, to about 2^-46 relative (one Newton correction of the float quotient).
 vec2 ffDiv(vec2 a, vec2 b) {
     float q = a.x / b.x;
@@ -75,6 +82,13 @@ vec2 ffDiv(vec2 a, vec2 b) {
 
 /// The nearest float.
 float ffToFloat(vec2 a) { return a.x + a.y; }
+
+/// a - b rounded to float once (ffToFloat(ffSub(a, b)) without renormalising the pair).
+float ffSubToFloat(vec2 a, vec2 b) {
+    vec2 s = ffTwoSum(a.x, -b.x);
+    precise float lo = s.y + (a.y - b.y);
+    return s.x + lo;
+}
 
 /// a <= b for normalised pairs (each hi the nearest float of hi + lo).
 bool ffLessEqual(vec2 a, vec2 b) { return a.x < b.x || (a.x == b.x && a.y <= b.y); }

@@ -74,56 +74,82 @@ float lfPixelLum(int m, int i, int j) {
     return lfFloats[lf.offsets.y + (m * lf.dims.w + j) * lf.dims.z + i];
 }
 
-/// Edge k of the pixels along one axis (0: s, 1: t), imageMin + k x pixel size, as a float-float
-/// position: exact to about 1e-14 of the image, so that the box integrals below resolve a box's
-/// corners against the pixel edges as finely as the corners' own floats do.
-vec2 lfEdge(int axis, int k) {
-    vec2 o = vec2(lf.origin[2 + axis], lf.imageLow[axis]);
-    vec2 px = vec2(lf.image[2 + axis], lf.imageLow[2 + axis]);
-    return ffAdd(o, ffMulF(px, float(k)));
-}
-
-/// x - edge k (m), rounded once.
-float lfFromEdge(int axis, int k, float x) { return ffToFloat(ffSub(vec2(x, 0.0), lfEdge(axis, k))); }
-
-/// The pixel of an axis that holds x, clamped to the image (the float estimate, corrected
-/// against the exact edges).
-int lfPixelOf(int axis, float x) {
+/// A coordinate on S against the pixels of one axis (0: s, 1: t): its pixel k (clamped to the
+/// image), the fraction of that pixel below it and the fraction above it, each to float's
+/// relative precision however far the pixel is from the image's origin. Computed from the
+/// float-float position in pixels, (x - imageMin) / pixel size with both held as pairs.
+struct LfCoord {
+    int k;
+    float below, above;
+};
+LfCoord lfCoord(int axis, float x) {
+    vec2 o = vec2(lf.origin[2 + axis], lf.pixelGrid[axis]);
+    vec2 inverse = vec2(lf.pixelGrid[2 + axis], lf.pixelGridLow[axis]);
+    vec2 u = ffMul(ffAddF(-o, x), inverse);
     int n = lf.dims[2 + axis];
-    int k = clamp(int(floor((x - lfImageMin()[axis]) / lfPixel()[axis])), 0, n - 1);
-    if (k > 0 && lfFromEdge(axis, k, x) < 0.0) --k;
-    else if (k < n - 1 && lfFromEdge(axis, k + 1, x) >= 0.0) ++k;
-    return k;
+    LfCoord c;
+    c.k = int(floor(u.x));
+    // u.x - k and k + 1 - u.x are exact in float; the low half then rounds once.
+    c.below = (u.x - float(c.k)) + u.y;
+    c.above = (float(c.k + 1) - u.x) - u.y;
+    // Where the low half crosses an edge, the neighbouring pixel holds x.
+    if (c.below < 0.0) {
+        --c.k;
+        c.above = -c.below;
+        c.below += 1.0;
+    } else if (c.above <= 0.0) {
+        ++c.k;
+        c.below = -c.above;
+        c.above += 1.0;
+    }
+    if (c.k < 0) {
+        c.k = 0;
+        c.below = 0.0;
+        c.above = 1.0;
+    } else if (c.k >= n) {
+        c.k = n - 1;
+        c.below = 1.0;
+        c.above = 0.0;
+    }
+    return c;
 }
 
 /// How [lo, hi] (inside the image) covers the pixels of one axis: the first and last pixel it
 /// touches and the fraction of each it covers; wMiddle is 1 when whole pixels lie between them.
-/// A fraction is measured from a coordinate to its pixel's own exact edge, so it keeps float's
-/// relative precision however far the pixel is from the image's origin.
 struct LfCover {
     int first, last;
     float wFirst, wMiddle, wLast;
 };
 LfCover lfCover(int axis, float lo, float hi) {
-    float px = lfPixel()[axis];
+    LfCoord a = lfCoord(axis, lo), b = lfCoord(axis, hi);
     LfCover c;
-    c.first = lfPixelOf(axis, lo);
-    c.last = max(lfPixelOf(axis, hi), c.first);
+    c.first = a.k;
+    c.last = max(b.k, a.k);
     if (c.last == c.first) {
-        c.wFirst = clamp((hi - lo) / px, 0.0, 1.0);
+        // hi - lo is exact for a box inside one pixel: its width keeps every digit.
+        c.wFirst = clamp((hi - lo) * lf.pixelGrid[2 + axis], 0.0, 1.0);
         c.wMiddle = c.wLast = 0.0;
     } else {
-        c.wFirst = clamp(-lfFromEdge(axis, c.first + 1, lo) / px, 0.0, 1.0);
+        c.wFirst = clamp(a.above, 0.0, 1.0);
         c.wMiddle = c.last > c.first + 1 ? 1.0 : 0.0;
-        c.wLast = clamp(lfFromEdge(axis, c.last, hi) / px, 0.0, 1.0);
+        c.wLast = clamp(b.below, 0.0, 1.0);
     }
     return c;
 }
 
+/// The fraction of pixel k that a cover covers.
+float lfCoverWeight(LfCover c, int k) {
+    if (k < c.first || k > c.last) return 0.0;
+    return k == c.first ? c.wFirst : (k == c.last ? c.wLast : 1.0);
+}
+
+/// Edge k of the pixels of one axis (m), to float rounding (sample positions).
+float lfEdge(int axis, int k) { return lfImageMin()[axis] + float(k) * lfPixel()[axis]; }
+
 /// The energy of pixels [i0, i1) x [j0, j1).
 float lfPixelsEnergy(int m, int i0, int i1, int j0, int j1) {
-    return ffToFloat(ffSub(ffSub(lfSatEntry(m, i1, j1), lfSatEntry(m, i0, j1)),
-                           ffSub(lfSatEntry(m, i1, j0), lfSatEntry(m, i0, j0))));
+    return ffSubToFloat(ffSub(lfSatEntry(m, i1, j1), lfSatEntry(m, i0, j1)),
+                        ffSub(lfSatEntry(m, i1, j0), lfSatEntry(m, i0, j0)));
 }
 
 /// The table's column (row) indices bounding a cover's first pixel, middle pixels and last pixel.
@@ -139,7 +165,7 @@ float lfBand(int m, int i0, int i1, LfCover cy) {
     vec2 below = ffSub(lfSatEntry(m, i1, y[0]), lfSatEntry(m, i0, y[0]));
     for (int k = 1; k < 4; ++k) {
         vec2 upTo = ffSub(lfSatEntry(m, i1, y[k]), lfSatEntry(m, i0, y[k]));
-        sum += wy[k - 1] * ffToFloat(ffSub(upTo, below));
+        sum += wy[k - 1] * ffSubToFloat(upTo, below);
         below = upTo;
     }
     return sum;
@@ -158,7 +184,7 @@ float lfBoxEnergy(int m, LfCover cx, LfCover cy) {
         vec2 s2 = lfSatEntry(m, x[2], y[k]), s3 = lfSatEntry(m, x[3], y[k]);
         vec2 upTo[3] = vec2[3](ffSub(s1, s0), ffSub(s2, s1), ffSub(s3, s2));
         if (k > 0)
-            for (int c = 0; c < 3; ++c) sum += wy[k - 1] * wx[c] * ffToFloat(ffSub(upTo[c], below[c]));
+            for (int c = 0; c < 3; ++c) sum += wy[k - 1] * wx[c] * ffSubToFloat(upTo[c], below[c]);
         below = upTo;
     }
     return sum;
@@ -169,19 +195,9 @@ float lfBoxEnergy(int m, LfCover cx, LfCover cy) {
 /// wide, which only direct overlaps resolve.
 const int kLfDirectPixels = 4;
 
-/// Pixels [i0, i1) x [j0, j1) that the box [a, b] covers (LightField.cpp's spanOf).
-ivec4 lfSpan(vec2 a, vec2 b) {
-    int i0 = lfPixelOf(0, a.x), j0 = lfPixelOf(1, a.y);
-    int i1 = lfPixelOf(0, b.x), j1 = lfPixelOf(1, b.y);
-    i1 = clamp(lfFromEdge(0, i1, b.x) > 0.0 ? i1 + 1 : i1, i0 + 1, lf.dims.z);
-    j1 = clamp(lfFromEdge(1, j1, b.y) > 0.0 ? j1 + 1 : j1, j0 + 1, lf.dims.w);
-    return ivec4(i0, i1, j0, j1);
-}
-bool lfDirect(ivec4 span) { return span.y - span.x <= kLfDirectPixels && span.w - span.z <= kLfDirectPixels; }
-
-/// The length of [lo, hi] inside pixel k of an axis (m).
-float lfOverlap(int axis, float lo, float hi, int k) {
-    return max(0.0, min(lfFromEdge(axis, k, hi), lfPixel()[axis]) - max(lfFromEdge(axis, k, lo), 0.0));
+/// Whether a box whose covers these are spans at most kLfDirectPixels pixels a side.
+bool lfDirect(LfCover cx, LfCover cy) {
+    return cx.last - cx.first < kLfDirectPixels && cy.last - cy.first < kLfDirectPixels;
 }
 
 /// A_m over the box [a, b] (Eq. 10), clipped to the image.
@@ -189,17 +205,17 @@ float lfBoxIntegral(int m, vec2 a, vec2 b) {
     a = max(a, lfImageMin());
     b = min(b, lfImageMax());
     if (!(b.x > a.x && b.y > a.y)) return 0.0;
-    ivec4 span = lfSpan(a, b);
-    if (lfDirect(span)) {
+    LfCover cx = lfCover(0, a.x, b.x), cy = lfCover(1, a.y, b.y);
+    if (lfDirect(cx, cy)) {
         float sum = 0.0;
-        for (int j = span.z; j < span.w; ++j) {
+        for (int j = cy.first; j <= cy.last; ++j) {
             float row = 0.0;
-            for (int i = span.x; i < span.y; ++i) row += lfPixelLum(m, i, j) * lfOverlap(0, a.x, b.x, i);
-            sum += row * lfOverlap(1, a.y, b.y, j);
+            for (int i = cx.first; i <= cx.last; ++i) row += lfPixelLum(m, i, j) * lfCoverWeight(cx, i);
+            sum += row * lfCoverWeight(cy, j);
         }
-        return sum;
+        return sum * lfPixel().x * lfPixel().y;
     }
-    float v = lfBoxEnergy(m, lfCover(0, a.x, b.x), lfCover(1, a.y, b.y));
+    float v = lfBoxEnergy(m, cx, cy);
     // Below 1e-12 of the image's energy the difference is rounding (as LightField.cpp).
     return v > 1e-12 * lfTotal(m) ? v : 0.0;
 }
@@ -233,35 +249,35 @@ bool lfRestrictedBox(int m, vec3 q, out vec2 a, out vec2 b) {
 /// Small boxes pixel by pixel (LightField.cpp's direct path): a column by its energy, x uniform
 /// within it (the density is constant along a pixel row), then a row of that column by its
 /// energy, y uniform in it.
-bool lfSampleDirect(int m, vec2 a, vec2 b, ivec4 span, vec2 xi, out vec2 s) {
+bool lfSampleDirect(int m, vec2 a, vec2 b, LfCover cx, LfCover cy, vec2 xi, out vec2 s) {
     s = a;
     float column[kLfDirectPixels];
     float total = 0.0;
-    for (int i = span.x; i < span.y; ++i) {
+    for (int i = cx.first; i <= cx.last; ++i) {
         float sum = 0.0;
-        for (int j = span.z; j < span.w; ++j) sum += lfPixelLum(m, i, j) * lfOverlap(1, a.y, b.y, j);
-        column[i - span.x] = sum * lfOverlap(0, a.x, b.x, i);
-        total += column[i - span.x];
+        for (int j = cy.first; j <= cy.last; ++j) sum += lfPixelLum(m, i, j) * lfCoverWeight(cy, j);
+        column[i - cx.first] = sum * lfCoverWeight(cx, i);
+        total += column[i - cx.first];
     }
     if (!(total > 0.0)) return false;
     float target = clamp(xi.x, 0.0, 1.0) * total;
-    int i = span.x;
-    for (; i + 1 < span.y && target > column[i - span.x]; ++i) target -= column[i - span.x];
-    float c = column[i - span.x];
+    int i = cx.first;
+    for (; i < cx.last && target > column[i - cx.first]; ++i) target -= column[i - cx.first];
+    float c = column[i - cx.first];
     if (!(c > 0.0)) return false;
-    float x0 = max(a.x, ffToFloat(lfEdge(0, i))), x1 = min(b.x, ffToFloat(lfEdge(0, i + 1)));
+    float x0 = max(a.x, lfEdge(0, i)), x1 = min(b.x, lfEdge(0, i + 1));
     s.x = clamp(x0 + clamp(target / c, 0.0, 1.0) * (x1 - x0), x0, x1);
-    float width = lfOverlap(0, a.x, b.x, i);
+    float width = lfCoverWeight(cx, i);
     float targetY = clamp(xi.y, 0.0, 1.0) * c;
-    int j = span.z;
-    for (; j + 1 < span.w; ++j) {
-        float e = lfPixelLum(m, i, j) * width * lfOverlap(1, a.y, b.y, j);
+    int j = cy.first;
+    for (; j < cy.last; ++j) {
+        float e = lfPixelLum(m, i, j) * width * lfCoverWeight(cy, j);
         if (!(targetY > e)) break;
         targetY -= e;
     }
-    float e = lfPixelLum(m, i, j) * width * lfOverlap(1, a.y, b.y, j);
+    float e = lfPixelLum(m, i, j) * width * lfCoverWeight(cy, j);
     if (!(e > 0.0)) return false;
-    float y0 = max(a.y, ffToFloat(lfEdge(1, j))), y1 = min(b.y, ffToFloat(lfEdge(1, j + 1)));
+    float y0 = max(a.y, lfEdge(1, j)), y1 = min(b.y, lfEdge(1, j + 1));
     s.y = clamp(y0 + clamp(targetY / e, 0.0, 1.0) * (y1 - y0), y0, y1);
     return true;
 }
@@ -276,12 +292,29 @@ struct LfKnots {
     int n, column;
     float first, total;
     LfCover cx, cy;
+    // The table entries every knot subtracts: S(cx.first + 1, y) at the cover's four row edges
+    // (marginal); S(column + 1, y) - S(column, y) at y = cy.first + 1 (conditional, base[0]).
+    vec2 base[4];
 };
 float lfKnot(int m, LfKnots K, int k) {
     if (k == 0) return 0.0;
     if (k == K.n) return K.total;
-    if (K.marginal) return K.first + lfBand(m, K.cx.first + 1, K.cx.first + k, K.cy);
-    return K.first + lfPixelsEnergy(m, K.column, K.column + 1, K.cy.first + 1, K.cy.first + k);
+    if (!K.marginal) {
+        int j = K.cy.first + k;
+        return K.first + ffSubToFloat(ffSub(lfSatEntry(m, K.column + 1, j), lfSatEntry(m, K.column, j)), K.base[0]);
+    }
+    // lfBand over columns [cx.first + 1, cx.first + k), its left edge's entries cached.
+    ivec4 y = lfEdges(K.cy);
+    vec3 wy = lfWeights(K.cy);
+    int i = K.cx.first + k;
+    float sum = 0.0;
+    vec2 below = ffSub(lfSatEntry(m, i, y[0]), K.base[0]);
+    for (int e = 1; e < 4; ++e) {
+        vec2 upTo = ffSub(lfSatEntry(m, i, y[e]), K.base[e]);
+        sum += wy[e - 1] * ffSubToFloat(upTo, below);
+        below = upTo;
+    }
+    return K.first + sum;
 }
 
 /// The piece [k, k + 1] that holds `target` (0 <= target <= total), by a secant-guided search
@@ -311,22 +344,24 @@ int lfFindPiece(int m, LfKnots K, float target, out float vlo, out float vhi) {
 
 /// Large boxes from the summed-area table: the restricted marginal in s, then the conditional in
 /// t within the chosen pixel column (Eq. 8).
-bool lfSampleTable(int m, vec2 a, vec2 b, vec2 xi, out vec2 s) {
+bool lfSampleTable(int m, vec2 a, vec2 b, LfCover cx, LfCover cy, float total, vec2 xi, out vec2 s) {
     s = a;
     float floorEnergy = 1e-12 * lfTotal(m);
     LfKnots K;
-    K.cx = lfCover(0, a.x, b.x);
-    K.cy = lfCover(1, a.y, b.y);
+    K.cx = cx;
+    K.cy = cy;
     K.marginal = true;
     K.n = K.cx.last - K.cx.first + 1;
-    K.total = lfBoxEnergy(m, K.cx, K.cy);
+    K.total = total;
     if (!(K.total > floorEnergy)) return false;
     K.first = K.cx.wFirst * lfBand(m, K.cx.first, K.cx.first + 1, K.cy);
+    ivec4 y = lfEdges(K.cy);
+    for (int e = 0; e < 4; ++e) K.base[e] = lfSatEntry(m, K.cx.first + 1, y[e]);
     float target = clamp(xi.x, 0.0, 1.0) * K.total, vlo, vhi;
     int k = lfFindPiece(m, K, target, vlo, vhi);
     if (!(vhi > vlo)) return false;
-    float xa = k == 0 ? a.x : ffToFloat(lfEdge(0, K.cx.first + k));
-    float xb = k + 1 == K.n ? b.x : ffToFloat(lfEdge(0, K.cx.first + k + 1));
+    float xa = k == 0 ? a.x : lfEdge(0, K.cx.first + k);
+    float xb = k + 1 == K.n ? b.x : lfEdge(0, K.cx.first + k + 1);
     s.x = clamp(xa + (target - vlo) / (vhi - vlo) * (xb - xa), xa, xb);
 
     K.marginal = false;
@@ -335,26 +370,30 @@ bool lfSampleTable(int m, vec2 a, vec2 b, vec2 xi, out vec2 s) {
     K.total = lfBand(m, K.column, K.column + 1, K.cy);
     if (!(K.total > floorEnergy)) return false;
     K.first = K.cy.wFirst * lfPixelsEnergy(m, K.column, K.column + 1, K.cy.first, K.cy.first + 1);
+    K.base[0] = ffSub(lfSatEntry(m, K.column + 1, K.cy.first + 1), lfSatEntry(m, K.column, K.cy.first + 1));
     target = clamp(xi.y, 0.0, 1.0) * K.total;
     k = lfFindPiece(m, K, target, vlo, vhi);
     if (!(vhi > vlo)) return false;
-    float ya = k == 0 ? a.y : ffToFloat(lfEdge(1, K.cy.first + k));
-    float yb = k + 1 == K.n ? b.y : ffToFloat(lfEdge(1, K.cy.first + k + 1));
+    float ya = k == 0 ? a.y : lfEdge(1, K.cy.first + k);
+    float yb = k + 1 == K.n ? b.y : lfEdge(1, K.cy.first + k + 1);
     s.y = clamp(ya + (target - vlo) / (vhi - vlo) * (yb - ya), ya, yb);
     // Keep s inside the chosen pixel column even where x fell on its edge.
-    s.x = clamp(s.x, max(ffToFloat(lfEdge(0, K.column)), a.x), min(ffToFloat(lfEdge(0, K.column + 1)), b.x));
+    s.x = clamp(s.x, max(lfEdge(0, K.column), a.x), min(lfEdge(0, K.column + 1), b.x));
     return true;
 }
 
-/// Draws s in [a, b] with density C_m / A_m (Eq. 8). False when the box holds no energy.
-bool lfSampleBox(int m, vec2 a, vec2 b, vec2 xi, out vec2 s) {
+/// Draws s in [a, b] with density C_m / A_m (Eq. 8), given A_m as lfBoxIntegral returns it for
+/// [a, b] (or any value <= 0: computed here). False when the box holds no energy.
+bool lfSampleBoxOf(int m, vec2 a, vec2 b, float Am, vec2 xi, out vec2 s) {
     a = max(a, lfImageMin());
     b = min(b, lfImageMax());
     s = a;
     if (!(b.x > a.x && b.y > a.y)) return false;
-    ivec4 span = lfSpan(a, b);
-    return lfDirect(span) ? lfSampleDirect(m, a, b, span, xi, s) : lfSampleTable(m, a, b, xi, s);
+    LfCover cx = lfCover(0, a.x, b.x), cy = lfCover(1, a.y, b.y);
+    if (lfDirect(cx, cy)) return lfSampleDirect(m, a, b, cx, cy, xi, s);
+    return lfSampleTable(m, a, b, cx, cy, Am > 0.0 ? Am : lfBoxEnergy(m, cx, cy), xi, s);
 }
+bool lfSampleBox(int m, vec2 a, vec2 b, vec2 xi, out vec2 s) { return lfSampleBoxOf(m, a, b, 0.0, xi, s); }
 
 /// Halton radical inverse in base 2 (bit reversal) and base 3.
 float lfHalton2(uint i) { return float(bitfieldReverse(i) >> 8) * (1.0 / 16777216.0); }

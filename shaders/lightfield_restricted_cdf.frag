@@ -7,7 +7,7 @@ bool lfBox(int m, vec3 q, out vec2 a, out vec2 b) { return lfRestrictedBox(m, q,
 float lfBoxWeight(int m, vec2 a, vec2 b) { return lfBoxIntegral(m, a, b); }
 bool lfDraw(int m, vec2 a, vec2 b, vec2 xi, float Am, out vec2 sp, out float scale) {
     scale = 1.0;
-    return lfSampleBox(m, a, b, xi, sp);
+    return lfSampleBoxOf(m, a, b, Am, xi, sp);  // Am is lfBoxIntegral(m, a, b)
 }
 
 #include "lightfield_balanced.glsl"
