@@ -178,9 +178,9 @@ std::vector<std::byte> LightFieldLuminaire::gpuData() const {
     glm::dvec2 px = lf.pixelSize();
     h.image = glm::vec4(float(lf.imageMax.x), float(lf.imageMax.y), float(px.x), float(px.y));
     glm::vec2 inverseX = toFloatFloat(1.0 / px.x), inverseY = toFloatFloat(1.0 / px.y);
-    h.pixelGrid = glm::vec4(toFloatFloat(lf.imageMin.x).y, toFloatFloat(lf.imageMin.y).y,
-                            inverseX.x, inverseY.x);
-    h.pixelGridLow = glm::vec4(inverseX.y, inverseY.y, 0.f, 0.f);
+    h.grid = glm::vec4(toFloatFloat(lf.imageMin.x).y, toFloatFloat(lf.imageMin.y).y, inverseX.x,
+                       inverseY.x);
+    h.gridLow = glm::vec4(inverseX.y, inverseY.y, 0.f, 0.f);
     h.dims = glm::ivec4(lf.count.x, lf.count.y, lf.width, lf.height);
     h.options = glm::ivec4(kMaxSamplesPerImage, 0, 0, 0);
     size_t images = size_t(lf.imageCount());

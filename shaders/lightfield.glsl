@@ -83,8 +83,8 @@ struct LfCoord {
     float below, above;
 };
 LfCoord lfCoord(int axis, float x) {
-    vec2 o = vec2(lf.origin[2 + axis], lf.pixelGrid[axis]);
-    vec2 inverse = vec2(lf.pixelGrid[2 + axis], lf.pixelGridLow[axis]);
+    vec2 o = vec2(lf.origin[2 + axis], lf.grid[axis]);
+    vec2 inverse = vec2(lf.grid[2 + axis], lf.gridLow[axis]);
     vec2 u = ffMul(ffAddF(-o, x), inverse);
     int n = lf.dims[2 + axis];
     LfCoord c;
@@ -127,7 +127,7 @@ LfCover lfCover(int axis, float lo, float hi) {
     c.last = max(b.k, a.k);
     if (c.last == c.first) {
         // hi - lo is exact for a box inside one pixel: its width keeps every digit.
-        c.wFirst = clamp((hi - lo) * lf.pixelGrid[2 + axis], 0.0, 1.0);
+        c.wFirst = clamp((hi - lo) * lf.grid[2 + axis], 0.0, 1.0);
         c.wMiddle = c.wLast = 0.0;
     } else {
         c.wFirst = clamp(a.above, 0.0, 1.0);

@@ -174,8 +174,7 @@ TEST(LightFieldGl, SmallBoxesFarFromTheTableOriginKeepTheirDigits) {
         // 1e-5, plus the float sample's own resolution and that of the pixel edge it is placed
         // against: an ulp of x each, 2.5e-5 of a thin box.
         double ulp = std::nextafter(out[k].sampled.x, 1.f) - out[k].sampled.x;
-        EXPECT_NEAR(marginal(out[k].sampled.x), marginal(s.x), 1e-5 + 2.0 * ulp / (b.x - a.x))
-            << k;
+        EXPECT_NEAR(marginal(out[k].sampled.x), marginal(s.x), 1e-5 + 2.0 * ulp / (b.x - a.x)) << k;
     }
     // The case needs more than float: plain float tables miss these boxes by more than 10 %.
     EXPECT_GT(worstFloat, 0.1);

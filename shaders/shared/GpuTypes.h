@@ -107,9 +107,9 @@ struct LightFieldGpu {
     vec4 geometry;  // x = delta (m), yz = basis spacing (m), w = 1 for the goesele model
     vec4 origin;    // xy = basis node (0,0) on U (m), zw = image min on S (m)
     vec4 image;     // xy = image max on S (m), zw = pixel size (m)
-    vec4 pixelGrid;  // xy = image min - origin.zw (m): with origin.zw, float-float pairs;
-                     // zw = 1 / pixel size (1/m), float: with pixelGridLow, pairs; the exact grid
-    vec4 pixelGridLow;  // xy = 1 / pixel size - pixelGrid.zw (1/m); zw unused
+    vec4 grid;      // xy = image min - origin.zw (m), zw = 1 / pixel size (1/m): with
+                    // origin.zw and gridLow.xy, float-float pairs for the exact pixel grid
+    vec4 gridLow;   // xy = 1 / pixel size - grid.zw (1/m), zw unused
     ivec4 dims;     // x, y = basis count W, H; z, w = image width, height (pixels)
     ivec4 offsets;  // x = SAT (vec2), y = luminance (floats), z = colour (uints), w = 1 if RGB
     ivec4 options;  // x = K_max samples per image per frame (0: no cap), y = granier2003's
