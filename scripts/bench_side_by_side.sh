@@ -14,7 +14,8 @@
 #             folders, machine.txt, summary.txt.
 # Environment: REPEATS (timed runs per build and case after one warm-up, default 3), SIZE
 # (default 480x270), SPP (default 16), DRAG=0 to skip the drag and release bench (about 5 min per
-# build), DRAG_ARGS (default "--reference-spp 512").
+# build), DRAG_ARGS (default "--reference-spp 512"), BASELINE_LABEL (what machine.txt calls a
+# baseline binary).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 [ $# -ge 1 ] || { echo "usage: scripts/bench_side_by_side.sh BASELINE [OUT]"; exit 2; }
@@ -26,7 +27,7 @@ current=build/candela
 
 if [ -x "$baseline" ] && [ -f "$baseline" ]; then
   base=$baseline
-  baseLabel=$baseline
+  baseLabel=${BASELINE_LABEL:-$baseline}
 else
   commit=$(git rev-parse --verify "$baseline^{commit}") || { echo "bench: $baseline is neither a binary nor a commit"; exit 1; }
   src=build-baseline/src
