@@ -343,10 +343,10 @@ std::string LambertianRect::describe() const {
 
 std::unique_ptr<Luminaire> LambertianRect::parse(const nlohmann::json& entry,
                                                  const json::Where& where) {
-    json::checkKeys(
-        entry,
-        {"type", "name", "position", "aim", "c0", "technique", "size", "radiance", "luminance"},
-        where);
+    json::checkKeys(entry,
+                    {"type", "name", "position", "aim", "c0", "technique", "maintenance_factor",
+                     "size", "radiance", "luminance"},
+                    where);
     auto light = std::make_unique<LambertianRect>();
     light->size = json::optional(entry, "size", where, light->size, readSize);
     if (entry.contains("radiance") && entry.contains("luminance"))

@@ -267,7 +267,9 @@ std::vector<std::string> LightFieldLuminaire::sourceFiles() const {
 
 std::unique_ptr<Luminaire> LightFieldLuminaire::parse(const nlohmann::json& entry,
                                                       const json::Where& where) {
-    json::checkKeys(entry, {"type", "name", "position", "aim", "c0", "technique", "file"}, where);
+    json::checkKeys(
+        entry, {"type", "name", "position", "aim", "c0", "technique", "maintenance_factor", "file"},
+        where);
     if (!entry.contains("file"))
         json::fail(where / "file", "the path of a .lf.json light-field file");
     auto light = std::make_unique<LightFieldLuminaire>();

@@ -7,6 +7,7 @@
 #include <glm/glm.hpp>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -105,6 +106,9 @@ class Luminaire {
     Pose pose;
     std::string name;
     std::string technique;  ///< A technique registered for kind() (luminaires/Registry.h).
+    /// Its own maintenance factor (EN 12464-1: maintained over initial output, in (0, 1]);
+    /// unset: the scene's (Scene::maintenanceFactor).
+    std::optional<double> maintenanceFactor;
 };
 
 }  // namespace candela

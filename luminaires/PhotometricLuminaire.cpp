@@ -343,8 +343,8 @@ std::vector<std::string> PhotometricLuminaire::sourceFiles() const {
 std::unique_ptr<Luminaire> PhotometricLuminaire::parse(const nlohmann::json& entry,
                                                        const json::Where& where) {
     json::checkKeys(entry,
-                    {"type", "name", "position", "aim", "c0", "technique", "file", "scale",
-                     "colour", "opening"},
+                    {"type", "name", "position", "aim", "c0", "technique", "maintenance_factor",
+                     "file", "scale", "colour", "opening"},
                     where);
     if (!entry.contains("file"))
         json::fail(where / "file", "the path of an .ies or .ldt photometric file");

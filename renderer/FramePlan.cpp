@@ -144,7 +144,7 @@ FramePlan planFrame(const Scene& scene, const glm::mat4& viewProj,
         // refines (Havran's lights are a fixed set, their shadow rays included).
         step.progressive = t.progressive || (!source.atInfinity() && (rays || plan.glossy));
         step.name = "shade:" + source.name + ":" + std::string(t.name);
-        step.unitScale = float(scene.unitScale(source));
+        step.unitScale = float(scene.lightScale(source));
         step.prepasses = sourcePrepasses(t);
         plan.needsBvh = plan.needsBvh || rays;
         plan.shading.push_back(std::move(step));

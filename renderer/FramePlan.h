@@ -31,7 +31,7 @@ struct ShadeStep {
     bool progressive = false;                  ///< Needs more than one frame to converge.
     std::string name;  ///< "shade:Panel:analytic", "shade:environment:balanced"
     /// Multiplies what the step writes: 683 lm/W for a radiometric source in a mixed scene
-    /// (Scene::unitScale), else 1.
+    /// and its maintenance factor (Scene::lightScale), else 1.
     float unitScale = 1.f;
     /// What its kind's GPU pass runs before shading it in a pass (the environment's "env:cdf",
     /// "env:samples"), as the frame statistics name them (renderer/passes/SourcePass.h).

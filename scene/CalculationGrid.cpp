@@ -195,8 +195,9 @@ GridResult computeGrid(const Scene& scene, const GridSpec& spec,
     GridResult r;
     r.spec = spec;
     r.units = scene.units();
+    r.maintenance = scene.maintenanceNote();
     std::vector<double> scales;  // 683 lm/W for a radiometric luminaire in a mixed scene
-    for (const auto& l : scene.luminaires) scales.push_back(scene.unitScale(*l));
+    for (const auto& l : scene.luminaires) scales.push_back(scene.lightScale(*l));
     const Luminaire* environment = envChosen ? scene.environmentLight() : nullptr;
     double envScale = scene.environmentUnitScale();
     r.u = gridCoordinates(spec.lo.x, spec.hi.x, spec.spacing);

@@ -58,6 +58,7 @@ struct GridResult {
     GridSpec spec;
     std::vector<double> u, v;      ///< Point coordinates along u (columns) and v (rows), metres.
     UnitSystem units;              ///< What E is in: lx, or W/m2 for a radiometric scene.
+    std::string maintenance;       ///< Its maintenance factors (Scene::maintenanceNote).
     std::vector<double> E;         ///< Illuminance at point (i, j) in E[j * u.size() + i], in
                                    ///< units.irradiance(), luminance-weighted: direct plus
                                    ///< interreflected when hasIndirect.

@@ -296,7 +296,14 @@ glm::vec3 GltfImport::worldPoint(const glm::dmat4& toWorld, const glm::vec3& p,
                                  const std::string& what) const {
     glm::dvec3 w = glm::dvec3(toWorld * glm::dvec4(glm::dvec3(p), 1.0));
     if (!finite(w)) fail(what + ": transformed position is not finite");
-    return glm::vec3(w);
+    // A finite double can still leave float's range (a translation of 2e97 m, found by fuzzing:
+    // the vertex became inf): refuse what the renderer cannot hold.
+    glm::vec3 out(w);
+    if (!finite(glm::dvec3(out)))
+        fail(what +
+             ": transformed position beyond single precision's range (about 3e38 m); check the "
+             "node's transform");
+    return out;
 }
 
 std::vector<uint32_t> GltfImport::primitiveIndices(const tinygltf::Primitive& primitive,

@@ -124,7 +124,7 @@ std::vector<Interreflection::Source> Interreflection::currentSources(const Scene
         Source s;
         s.origin = l.get();
         s.irradiance = t->irradiance;
-        s.scale = scene.unitScale(*l);
+        s.scale = scene.lightScale(*l);
         nlohmann::json fields;
         l->writeJson(fields);
         append(s.key, std::string(l->kind()) + ":" + name + ":" + fields.dump());

@@ -1,6 +1,7 @@
 #include "scene/Scene.h"
 
 #include <algorithm>
+#include <cstdio>
 
 #include "luminaires/Environment.h"
 #include "luminaires/EnvironmentLight.h"
@@ -41,6 +42,7 @@ Scene Scene::clone() const {
     copy.environmentSequence = environmentSequence;
     copy.mEnvironmentLight = mEnvironmentLight;  // immutable, shared: the same source
     copy.camera = camera;
+    copy.maintenanceFactor = maintenanceFactor;
     return copy;
 }
 
@@ -96,6 +98,34 @@ UnitSystem Scene::units() const {
 
 double Scene::unitScale(const Luminaire& luminaire) const {
     return units().scale(luminaire.quantities());
+}
+
+double Scene::maintenanceFactorOf(const Luminaire& source) const {
+    return source.atInfinity() ? 1.0 : source.maintenanceFactor.value_or(maintenanceFactor);
+}
+
+bool Scene::maintained() const {
+    for (const auto& l : luminaires)
+        if (maintenanceFactorOf(*l) < 1.0) return true;
+    return false;
+}
+
+std::string Scene::maintenanceNote() const {
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "%g", maintenanceFactor);
+    if (!maintained()) return std::string("maintenance factor ") + buffer + " (initial values)";
+    std::string note = std::string("maintained values: maintenance factor ") + buffer;
+    std::string own;
+    for (const auto& l : luminaires) {
+        if (!l->maintenanceFactor || *l->maintenanceFactor == maintenanceFactor) continue;
+        std::snprintf(buffer, sizeof buffer, "%g", *l->maintenanceFactor);
+        own += (own.empty() ? "" : ", ") + ("\"" + l->name + "\" ") + buffer;
+    }
+    return own.empty() ? note : note + " (own factors: " + own + ")";
+}
+
+double Scene::lightScale(const Luminaire& source) const {
+    return unitScale(source) * maintenanceFactorOf(source);
 }
 
 double Scene::environmentUnitScale() const {

@@ -77,6 +77,9 @@ struct Scene {
     /// Set only for {"sequence": ...}: the frames; environmentMap is its frame at t = 0.
     std::shared_ptr<EnvironmentSequence> environmentSequence;
     Camera camera;
+    /// The project's maintenance factor (EN 12464-1: maintained over initial output, in (0, 1]):
+    /// that of every luminaire that sets none. Daylight (the environment) takes none.
+    double maintenanceFactor = 1.0;
 
     Scene() = default;
     Scene(Scene&&) = default;
@@ -99,6 +102,16 @@ struct Scene {
     /// a radiometric source in a mixed scene, else 1.
     double unitScale(const Luminaire& luminaire) const;
     double environmentUnitScale() const;
+    /// A source's maintenance factor: its own, else the scene's; 1 for a source at infinity.
+    double maintenanceFactorOf(const Luminaire& source) const;
+    /// Whether any luminaire's maintenance factor is below 1: results are maintained values.
+    bool maintained() const;
+    /// One line for every output that reports illuminance: "maintenance factor 1 (initial
+    /// values)", or the project's factor and each luminaire's own ("maintained values: ...").
+    std::string maintenanceNote() const;
+    /// Factor on everything a source contributes: unitScale x maintenanceFactorOf. Every
+    /// estimator, pass and report scales a luminaire's light by it.
+    double lightScale(const Luminaire& source) const;
 
     /// The environment as a light source (luminaires/EnvironmentLight.h), made from
     /// environmentMap and kept while the map stays the same (a new map is a new source); null

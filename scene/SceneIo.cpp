@@ -25,6 +25,15 @@ namespace fs = std::filesystem;
 
 namespace {
 
+/// A maintenance factor (EN 12464-1): maintained over initial output, in (0, 1].
+double maintenanceFactorValue(const nlohmann::json& v, const json::Where& where) {
+    double x = json::number(v, where);
+    if (!(x > 0.0 && x <= 1.0))
+        json::fail(where, "a maintenance factor in (0, 1] (maintained over initial output), got " +
+                              v.dump());
+    return x;
+}
+
 nlohmann::json toJson(const glm::dvec3& v) {
     return nlohmann::json::array({v.x, v.y, v.z});
 }
@@ -463,9 +472,12 @@ Scene loadScene(const std::string& path) {
 
 Scene parseScene(const nlohmann::json& doc, const std::string& path) {
     const json::Where root{path, ""};
-    json::checkKeys(doc, {"geometry", "luminaires", "environment", "camera"}, root);
+    json::checkKeys(doc, {"geometry", "luminaires", "environment", "camera", "maintenance_factor"},
+                    root);
     Scene scene;
     scene.path = path;
+    scene.maintenanceFactor =
+        json::optional(doc, "maintenance_factor", root, 1.0, maintenanceFactorValue);
 
     if (doc.contains("geometry")) {
         const nlohmann::json& items = doc["geometry"];
@@ -502,6 +514,7 @@ nlohmann::json sceneToJson(const Scene& scene) {
     doc["camera"] = {{"position", toJson(scene.camera.position)},
                      {"target", toJson(scene.camera.target)},
                      {"fov_deg", scene.camera.fovDeg}};
+    if (scene.maintenanceFactor != 1.0) doc["maintenance_factor"] = scene.maintenanceFactor;
     return doc;
 }
 
@@ -540,6 +553,9 @@ std::unique_ptr<Luminaire> parseLuminaire(const nlohmann::json& entry, const jso
     pose.c0 = json::optional(entry, "c0", where, Pose{}.c0, json::direction);
     luminaire->technique = json::optional(entry, "technique", where,
                                           std::string(kind->defaultTechnique), json::string);
+    if (entry.contains("maintenance_factor"))
+        luminaire->maintenanceFactor =
+            maintenanceFactorValue(entry["maintenance_factor"], where / "maintenance_factor");
     if (!findTechnique(type, luminaire->technique)) {
         throw InputError((where / "technique").str() + ": unknown technique \"" +
                          luminaire->technique + "\" for " + type + " (expected one of " +
@@ -556,6 +572,7 @@ nlohmann::json luminaireToJson(const Luminaire& luminaire) {
     out["aim"] = toJson(luminaire.pose.aim);
     out["c0"] = toJson(luminaire.pose.c0);
     out["technique"] = luminaire.technique;
+    if (luminaire.maintenanceFactor) out["maintenance_factor"] = *luminaire.maintenanceFactor;
     luminaire.writeJson(out);
     return out;
 }

@@ -398,7 +398,7 @@ ValidationResult validateClosedRoom(const Scene& scene, int patches) {
         absorbed +=
             p.area * luminance((glm::dvec3(1.0) - p.albedo) * (ir.direct()[i] + ir.indirect()[i]));
     }
-    for (const auto& l : scene.luminaires) flux += scene.unitScale(*l) * luminance(l->power());
+    for (const auto& l : scene.luminaires) flux += scene.lightScale(*l) * luminance(l->power());
     ValidationResult r;
     r.name = "closed-room";
     r.unit = scene.units().photometric ? "lm" : "W";

@@ -23,6 +23,7 @@ SceneSnapshot snapshot(const EditorState& state, bool geometry) {
     SceneSnapshot out;
     for (const auto& lum : scene.luminaires) out.luminaires.push_back(lum->clone());
     out.camera = scene.camera;
+    out.maintenanceFactor = scene.maintenanceFactor;
     out.environment = scene.environment;
     out.environmentMap = scene.environmentMap;
     out.environmentSequence = scene.environmentSequence;
@@ -40,6 +41,7 @@ void restore(EditorState& state, SceneSnapshot& from) {
     Scene& scene = state.scene;
     scene.luminaires = std::move(from.luminaires);
     scene.camera = from.camera;
+    scene.maintenanceFactor = from.maintenanceFactor;
     scene.environment = std::move(from.environment);
     scene.environmentMap = std::move(from.environmentMap);
     scene.environmentSequence = std::move(from.environmentSequence);

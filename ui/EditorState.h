@@ -206,6 +206,7 @@ struct PlacementUi {
 struct SceneSnapshot {
     std::vector<std::unique_ptr<Luminaire>> luminaires;
     Camera camera;
+    double maintenanceFactor = 1.0;
     nlohmann::json environment;
     std::shared_ptr<const EnvironmentMap> environmentMap;
     std::shared_ptr<EnvironmentSequence> environmentSequence;

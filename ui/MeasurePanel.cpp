@@ -190,6 +190,23 @@ void computeNow(const EditorState& state, MeasureState& measure) {
 }
 
 /// The grid's plane, extent, spacing, samples and what it includes.
+/// The project's maintenance factor (EN 12464-1): every luminaire without its own takes it, and
+/// every illuminance the editor shows is maintained by it. An undoable edit.
+bool maintenanceControl(EditorState& state) {
+    double factor = state.scene.maintenanceFactor;
+    bool dragged = ImGui::DragScalar("Maintenance factor", ImGuiDataType_Double, &factor, 0.005f,
+                                     nullptr, nullptr, "%.3f");
+    itemTooltip(
+        "EN 12464-1: maintained over initial output, in (0, 1]. Every luminaire without a "
+        "maintenance_factor of its own (Inspector) takes this one; illuminance, radiance and the "
+        "grid show maintained values");
+    factor = std::clamp(factor, 0.01, 1.0);
+    if (!dragged || factor == state.scene.maintenanceFactor) return false;
+    applyEdit(state, "Maintenance factor", kChangeLuminaires,
+              [factor](Scene& scene) { scene.maintenanceFactor = factor; });
+    return true;
+}
+
 void gridSpecControls(EditorState& state, MeasureState& measure) {
     GridSpec& g = measure.grid;
     const char* axes[] = {"x (wall)", "y (horizontal)", "z (wall)"};
@@ -284,6 +301,7 @@ void gridResultTables(const GridResult& r, const GridSummary& s) {
         ImGui::EndTable();
     }
     if (r.units.converted) ImGui::TextDisabled("(%s)", r.units.note().c_str());
+    ImGui::TextDisabled("%s", r.maintenance.c_str());
 }
 
 void gridControls(EditorState& state, MeasureState& measure) {
@@ -374,6 +392,7 @@ bool measurePanel(EditorState& state, const Renderer& renderer, const PanelRect&
         changed = legendControls(state, measure, renderer) || changed;
     }
     ImGui::Separator();
+    changed = maintenanceControl(state) || changed;
     ImGui::TextDisabled("Calculation grid");
     gridControls(state, measure);
     ImGui::PopItemWidth();

@@ -56,6 +56,7 @@ void printGrid(const GridResult& r, const GridSummary& s) {
                 units.photometric ? "illuminance" : "irradiance", units.irradiance(),
                 units.converted ? ", " : "", units.note().c_str(), p.vName().c_str(),
                 p.uName().c_str());
+    std::printf("%s\n", r.maintenance.c_str());
     std::printf("%7s\\%s", p.vName().c_str(), p.uName().c_str());
     for (double u : r.u) std::printf(" %9.3f", u);
     std::printf("\n");

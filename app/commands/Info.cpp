@@ -161,6 +161,7 @@ int cmdInfo(const Args& args) {
         std::printf("units: %s (%s)%s%s\n", units.photometric ? "photometric" : "radiometric",
                     units.photometric ? "lm, cd, cd/m2, lx" : "W, W/sr, W/(m2 sr), W/m2",
                     units.converted ? "; " : "", units.note().c_str());
+        std::printf("%s\n", scene.maintenanceNote().c_str());
         const Camera& c = scene.camera;
         std::printf(
             "camera: at (%.3f, %.3f, %.3f) m looking at (%.3f, %.3f, %.3f) m, fov %.1f deg\n",

@@ -320,7 +320,7 @@ ProbeSums probeCpu(const Scene& scene, const std::vector<ProbePoint>& points, co
         for (size_t k = 0; k < scene.luminaires.size(); ++k) {
             each.seed = pointSeed + k;
             sums.add(i, chosen[k]->irradiance(*scene.luminaires[k], p, n, each),
-                     scene.unitScale(*scene.luminaires[k]));
+                     scene.lightScale(*scene.luminaires[k]));
         }
     }
     return sums;
@@ -354,6 +354,7 @@ void printProbeCsv(const Scene& scene, const std::vector<ProbePoint>& points, co
     std::fprintf(stderr, "probe: E, E_r, E_g, E_b and E_stderr in %s%s\n",
                  units.irradianceLabel().c_str(),
                  indirect ? ", direct plus interreflected light" : "");
+    std::fprintf(stderr, "probe: %s\n", scene.maintenanceNote().c_str());
     std::printf("x,y,z,nx,ny,nz,E,E_r,E_g,E_b,E_stderr\n");
     for (size_t i = 0; i < points.size(); ++i) {
         const ProbePoint& q = points[i];
