@@ -64,7 +64,8 @@ std::string inputError(F f) {
     return {};
 }
 
-/// One OSMesa context for the whole GL test binary (created on first use).
+/// One offscreen context for the whole GL test binary (created on first use; OSMesa unless
+/// CANDELA_GL=egl picks a GPU driver, see createOffscreenContext).
 GlContext& glContext();
 
 /// Runs a test compute shader (a path relative to shaders/, e.g. "../tests/shaders/x.comp") with

@@ -24,8 +24,10 @@ class GlContext {
 using GlDebugHandler = void (*)(bool error, const char* message);
 void setGlDebugHandler(GlDebugHandler handler);
 
-/// Offscreen context for tests, headless renders and benchmarks. Today OSMesa (llvmpipe); an
-/// EGL-surfaceless implementation can replace it behind this function (Mesa 25.1 drops OSMesa).
+/// Offscreen context for tests, headless renders and benchmarks, chosen by the environment's
+/// CANDELA_GL: `osmesa` (the default: Mesa's llvmpipe, what tests and CI run on) or `egl` (a
+/// surfaceless EGL context on the first EGL device, a GPU's driver where one is installed; libEGL
+/// is loaded at run time). Anything else is refused. `render --stats` prints which ran.
 std::unique_ptr<GlContext> createOffscreenContext();
 
 /// A GLFW window with a GL 4.5 core context, for the editor.
