@@ -15,14 +15,16 @@
 # Environment: REPEATS (timed runs per build and case after one warm-up, default 3), SIZE
 # (default 480x270), SPP (default 16), DRAG=0 to skip the drag and release bench (about 5 min per
 # build), DRAG_ARGS (default "--reference-spp 512"), BASELINE_LABEL (what machine.txt calls a
-# baseline binary).
+# baseline binary), CURRENT (the binary timed against it, default build/candela) and
+# CURRENT_LABEL (what machine.txt calls it, default this checkout's commit), CANDELA_GL (which
+# offscreen context both run on: osmesa or egl, see renderer/context/GlContext.h).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 [ $# -ge 1 ] || { echo "usage: scripts/bench_side_by_side.sh BASELINE [OUT]"; exit 2; }
 baseline=$1
 out=${2:-docs/bench/side-by-side}
 repeats=${REPEATS:-3} size=${SIZE:-480x270} spp=${SPP:-16}
-current=build/candela
+current=${CURRENT:-build/candela}
 [ -x "$current" ] || { echo "bench: $current is missing (scripts/build.sh builds it)"; exit 1; }
 
 if [ -x "$baseline" ] && [ -f "$baseline" ]; then
@@ -141,7 +143,7 @@ fi
 
 {
   echo "baseline: $baseLabel"
-  echo "current: $(git log -1 --format='%h %s' | cut -c1-80)$(git diff --quiet || echo ' (with uncommitted changes)')"
+  echo "current: ${CURRENT_LABEL:-$(git log -1 --format='%h %s' | cut -c1-80)$(git diff --quiet || echo ' (with uncommitted changes)')}"
   echo "cpu: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $(nproc) cores"
   "$current" render resources/scenes/demo.json --out "$tmp/frame.png" --size 64x36 --spp 1 --stats 2>&1 | grep '^context:' || true
   echo "settings: $size, $spp spp per pass, median of $repeats runs per build after one warm-up"
