@@ -28,13 +28,16 @@ bool phCell(int o, int n, float x, out int i, out float t) {
     return true;
 }
 
-/// The table's (vertical, horizontal) angles of the unit local direction d.
+/// The table's (vertical, horizontal) angles of the unit local direction d. Angles are atan of
+/// sine and cosine, never asin or acos: NVIDIA's acos is a cubic fit off by up to 7e-5 rad, which
+/// on an H200 lit an opening's edge-on plane with 0.4 lx and read a receiver 1e-6 m in front of
+/// it 15x too bright (the table's 90-degree cell read 7e-5 rad inside).
 void phAngles(vec3 d, out float vertical, out float horizontal) {
     if (ph.dims.w == 1) {  // type B: polar axis +y
-        vertical = asin(clamp(d.y, -1.0, 1.0));
+        vertical = atan(d.y, length(d.xz));
         horizontal = atan(d.x, d.z);
     } else {  // type C: gamma from +z, C counter-clockwise from +x
-        vertical = acos(clamp(d.z, -1.0, 1.0));
+        vertical = atan(length(d.xy), d.z);
         horizontal = atan(d.y, d.x);
         if (horizontal < 0.0) horizontal += 2.0 * kPi;
     }
