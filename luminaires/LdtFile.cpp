@@ -301,6 +301,7 @@ void LdtParse::header() {
     keep("conversion factor", formatNumber(conversion));
     keep("tilt", formatNumber(tilt));
     d.lightOutputRatio = lorl / 100.0;
+    d.declaresLightOutputRatio = true;
 }
 
 /// Field 26 and the lamp sets 26a-26f.

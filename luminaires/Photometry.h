@@ -106,7 +106,8 @@ struct PhotometricData {
 
     double lampFlux =
         -1.0;  ///< Rated lamp lumens in total (all lamps); -1 for absolute photometry.
-    double lightOutputRatio = 1.0;  ///< EULUMDAT LORL / 100; 1 when the file does not say.
+    double lightOutputRatio = 1.0;          ///< EULUMDAT LORL / 100; 1 when the file does not say.
+    bool declaresLightOutputRatio = false;  ///< The file states one (EULUMDAT; IES has no field).
     double inputWatts = 0.0;
 
     /// What was assumed to read the file (see "Leniency" above), one line each, valid UTF-8:

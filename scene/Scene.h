@@ -63,6 +63,9 @@ struct Camera {
     glm::dvec3 position{0.0, 1.5, 4.0};  ///< Metres.
     glm::dvec3 target{0.0, 1.0, 0.0};    ///< Metres.
     double fovDeg = 45.0;                ///< Vertical field of view, degrees.
+    /// The tone mapper's k (shaders/tonemap.frag) the scene is best seen with; 0: not given (the
+    /// renderer's default). `render --exposure` and the editor's slider override it.
+    double exposure = 0.0;
 };
 
 struct Scene {

@@ -373,7 +373,7 @@ void parseGeometryItem(const nlohmann::json& item, const json::Where& where, siz
 }
 
 Camera parseCamera(const nlohmann::json& v, const json::Where& where) {
-    json::checkKeys(v, {"position", "target", "fov_deg"}, where);
+    json::checkKeys(v, {"position", "target", "fov_deg", "exposure"}, where);
     Camera camera;
     camera.position = json::optional(v, "position", where, camera.position, json::vec3);
     camera.target = json::optional(v, "target", where, camera.target, json::vec3);
@@ -383,6 +383,13 @@ Camera parseCamera(const nlohmann::json& v, const json::Where& where) {
                    "a field of view in (0, 180) degrees, got " + v["fov_deg"].dump());
     if (glm::length(camera.target - camera.position) < 1e-9)
         json::fail(where / "target", "a target different from the camera position");
+    if (v.contains("exposure")) {
+        camera.exposure = json::number(v["exposure"], where / "exposure");
+        // The editor's slider's range, widened as RenderPanels clamps it.
+        if (!(camera.exposure >= 1e-4 && camera.exposure <= 1e4))
+            json::fail(where / "exposure",
+                       "a tone-mapping exposure k in [1e-4, 1e4], got " + v["exposure"].dump());
+    }
     return camera;
 }
 
@@ -514,6 +521,7 @@ nlohmann::json sceneToJson(const Scene& scene) {
     doc["camera"] = {{"position", toJson(scene.camera.position)},
                      {"target", toJson(scene.camera.target)},
                      {"fov_deg", scene.camera.fovDeg}};
+    if (scene.camera.exposure > 0.0) doc["camera"]["exposure"] = scene.camera.exposure;
     if (scene.maintenanceFactor != 1.0) doc["maintenance_factor"] = scene.maintenanceFactor;
     return doc;
 }

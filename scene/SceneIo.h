@@ -10,7 +10,8 @@
 //     "luminaires": [ {"type": "lambertian-rect", "name": "Panel", "position": [0,2,0],
 //                      "aim": [0,-1,0], "c0": [1,0,0], "technique": "analytic", ...} ],
 //     "environment": null,
-//     "camera": {"position": [0,1.5,4], "target": [0,1,0], "fov_deg": 45} }
+//     "camera": {"position": [0,1.5,4], "target": [0,1,0], "fov_deg": 45,
+//                "exposure": 0.6} }   (exposure optional: the tone mapper's k)
 //
 // World is Y-up, lengths in metres, angles in degrees. Relative glTF paths resolve against the
 // scene file's folder. Unknown keys, non-finite or out-of-range values are errors (InputError)

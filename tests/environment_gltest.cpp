@@ -85,12 +85,12 @@ TEST(EnvironmentGl, TablesMatchTheCpuTwin) {
                 for (int c = 0; c < n; ++c) {
                     glm::vec2 g = cube[(size_t(f) * n + r) * n + c];
                     double w = cpu.texelWeight(f, c, r), l = cpu.texelLuminance(f, c, r);
-                    // llvmpipe's float acos/atan are good to about 1e-5, so a subsample or an
-                    // edge point near a lat-long texel's border may land in the neighbour where
-                    // the CPU's doubles do not (measured: ~11 % of the texels move by 1e-4 to
-                    // 1e-2 relative). The GPU samples its own tables and reports its own pdf, so
-                    // this is no bias; here the tables must agree within 5 % on 99 % of the
-                    // texels, and exactly where nothing is ambiguous (the I_f check above).
+                    // Float atan is good to about 1e-5 (llvmpipe), so a subsample or an edge
+                    // point near a lat-long texel's border may land in the neighbour where the
+                    // CPU's doubles do not. The GPU samples its own tables and reports its own
+                    // pdf, so this is no bias; here the tables must agree within 5 % on 99.5 %
+                    // of the texels (measured: at most 5 of 6144 off by more on llvmpipe, 2 on
+                    // an NVIDIA H200; with acos, NVIDIA's cubic fit moved 112-128).
                     if (std::abs(g.y - w) > 0.05 * w || std::abs(g.x - l) > 0.05 * l + 1e-30)
                         ++mismatched;
                     worst = std::max(worst, std::abs(g.y - w) / w);
@@ -106,7 +106,7 @@ TEST(EnvironmentGl, TablesMatchTheCpuTwin) {
                 for (int r = 0; r < n; ++r) ASSERT_LE(rowCdf[r], rowCdf[r + 1]);
             }
         }
-        EXPECT_LE(mismatched, 6 * n * n / 100) << map->source();
+        EXPECT_LE(mismatched, 6 * n * n / 200) << map->source();
         std::printf(
             "[ info ] %s: %d of %d cube texels differ from the CPU by more than 5 %%, "
             "largest relative weight difference %.2e\n",

@@ -166,11 +166,26 @@ TEST(SceneIo, ValueErrorsNameTheField) {
                     "t.json: geometry[0].transform.scale: expected a positive number");
     EXPECT_CONTAINS(inputError([] { parse(R"({"camera": {"fov_deg": 0}})"); }),
                     "t.json: camera.fov_deg: expected a field of view in (0, 180)");
+    EXPECT_CONTAINS(inputError([] { parse(R"({"camera": {"exposure": 0}})"); }),
+                    "t.json: camera.exposure: expected a tone-mapping exposure k in [1e-4, 1e4], "
+                    "got 0");
+    EXPECT_CONTAINS(inputError([] { parse(R"({"camera": {"exposure": "bright"}})"); }),
+                    "t.json: camera.exposure: expected a finite number, got the string");
     EXPECT_CONTAINS(inputError([] { parse(R"({"lights": []})"); }),
                     "t.json: unknown field \"lights\"");
 }
 
 // --- Values -----------------------------------------------------------------------------------
+
+// The camera's exposure: absent is 0 (the renderer's default) and stays absent when saved; given,
+// it is read and written back.
+TEST(SceneIo, CameraExposureIsOptionalAndRoundTrips) {
+    EXPECT_EQ(parse(R"({"camera": {"fov_deg": 50}})").camera.exposure, 0.0);
+    EXPECT_FALSE(sceneToJson(parse(R"({})"))["camera"].contains("exposure"));
+    Scene scene = parse(R"({"camera": {"exposure": 0.4}})");
+    EXPECT_EQ(scene.camera.exposure, 0.4);
+    EXPECT_EQ(sceneToJson(scene)["camera"]["exposure"], 0.4);
+}
 
 TEST(SceneIo, LuminaireDefaults) {
     Scene s = parse(R"({"luminaires": [{"type": "lambertian-rect", "name": "A"},

@@ -159,6 +159,8 @@ bool openSceneFile(EditorState& state, const std::string& path) {
         Scene loaded = loadScene(path);
         state.scene = std::move(loaded);
         if (state.scene.path.empty()) state.scene.path = path;
+        if (state.scene.camera.exposure > 0.0)
+            state.settings.exposure = float(state.scene.camera.exposure);
         state.selectedLuminaire = -1;
         state.alsoSelected.clear();
         state.selectedGeometry = -1;

@@ -33,6 +33,7 @@ int renderScreenshotsOffscreen(const ui::EditorOptions& options) {
     settings.height = kHeadlessHeight;
     settings.samplesPerFrame = 8;
     settings.maxSamples = kHeadlessMaxSpp;
+    if (scene.camera.exposure > 0.0) settings.exposure = float(scene.camera.exposure);
     renderer.setSettings(settings);
     renderer.update(scene, kChangeAll);
 

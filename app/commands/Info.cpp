@@ -34,6 +34,35 @@ static const char* symmetryName(PhotometricSymmetry s) {
 
 /// `candela info FILE.ies|FILE.ldt`: what the file holds, its flux two ways and what was assumed
 /// to read it (one "warning:" line each; --strict refuses the file instead).
+/// How far a file's declared light output ratio may sit from its table's before `info` warns:
+/// EULUMDAT states LORL in whole or tenth percent, and the table's own rounding (four or five
+/// digits per intensity) moves its flux by far less than 1 %.
+constexpr double kLorTolerance = 0.01;
+
+/// The light output ratio as designers read it: the luminaire's flux (the table's) over the
+/// lamps' rated flux, with a warning where the file's own figures disagree.
+static void printLightOutputRatio(const std::string& path, const PhotometricData& d, double flux) {
+    if (!(d.lampFlux > 0.0)) return;  // absolute photometry: no lamp flux, no ratio
+    double lor = flux / d.lampFlux;
+    char said[64] = "";
+    if (d.declaresLightOutputRatio)
+        std::snprintf(said, sizeof said, "; the file declares %.4g %%", 100.0 * d.lightOutputRatio);
+    std::printf("light output ratio (luminaire flux / lamp flux): %.1f %% (%.6g lm / %.6g lm%s)\n",
+                100.0 * lor, flux, d.lampFlux, said);
+    std::string shown = toValidUtf8(path);
+    if (d.declaresLightOutputRatio && d.lightOutputRatio > 0.0 &&
+        std::abs(lor / d.lightOutputRatio - 1.0) > kLorTolerance)
+        std::printf(
+            "warning: %s: the file declares a light output ratio of %.4g %% but its table gives "
+            "%.1f %% of the lamp flux (luminaire flux / lamp flux)\n",
+            shown.c_str(), 100.0 * d.lightOutputRatio, 100.0 * lor);
+    else if (!d.declaresLightOutputRatio && lor > 1.0 + kLorTolerance)
+        std::printf(
+            "warning: %s: the table's flux is %.1f %% of the rated lamp flux: a luminaire cannot "
+            "emit more than its lamps (the lamp lumens are wrong, or the photometry is absolute)\n",
+            shown.c_str(), 100.0 * lor);
+}
+
 static void printPhotometry(const std::string& path) {
     auto light = std::make_unique<PhotometricLuminaire>();
     light->file = path;
@@ -56,8 +85,11 @@ static void printPhotometry(const std::string& path) {
         light->polygon().empty() ? " (a point source)" : "");
     double flux = d.fluxFromTable();
     std::printf("luminaire flux (exact quadrature of the table): %.6g lm\n", flux);
+    printLightOutputRatio(path, d, flux);
     double declared = d.declaredFlux();
-    if (declared > 0.0)
+    if (!d.declaresLightOutputRatio)
+        ;  // IES: the ratio above is all there is to say (no declared LOR to multiply by)
+    else if (declared > 0.0)
         std::printf(
             "lamp flux %.6g lm x light output ratio %.4g = %.6g lm (table / declared %.4f)\n",
             d.lampFlux, d.lightOutputRatio, declared, flux / declared);

@@ -142,7 +142,7 @@ struct RenderOptions {
     int spp = 64, referenceSpp = 512;
     std::vector<std::string> paneTexts;
     bool printStats = false, falseColour = false, haveLegend = false, errorMaps = false,
-         indirect = true;
+         indirect = true, haveExposure = false;
     int patches = 4000;  ///< Asked of the interreflection's mesher.
 };
 
@@ -241,9 +241,10 @@ RenderOptions parseRenderOptions(const Args& args) {
             o.printStats = true;
         else if (a == "--patches")
             o.patches = parseInt(a, flagValue(args, i), 16, 50000);
-        else if (a == "--exposure")
+        else if (a == "--exposure") {
             settings.exposure = parseNumberList(a, flagValue(args, i)).at(0);
-        else if (!a.empty() && a[0] == '-')
+            o.haveExposure = true;
+        } else if (!a.empty() && a[0] == '-')
             throw InputError("render: unknown option " + a);
         else if (o.scenePath.empty())
             o.scenePath = a;
@@ -406,6 +407,8 @@ int cmdRender(const Args& args) {
     Scene scene = loadScene(o.scenePath);
     ProtectedInputs inputs(scene.inputFiles());
     checkNotAnInput(o.out, "--out");
+    if (!o.haveExposure && scene.camera.exposure > 0.0)
+        o.settings.exposure = float(scene.camera.exposure);
     auto context = createOffscreenContext();
     ShaderLibrary shaders;
     Renderer renderer(shaders);

@@ -106,8 +106,9 @@ class EglContext final : public GlContext {
     EglContext() {
         mLibrary = dlopen("libEGL.so.1", RTLD_NOW | RTLD_LOCAL);
         if (!mLibrary)
-            throw RuntimeError("EGL: cannot open libEGL.so.1 (CANDELA_GL=egl needs libegl1 and a "
-                               "GL driver for it)");
+            throw RuntimeError(
+                "EGL: cannot open libEGL.so.1 (CANDELA_GL=egl needs libegl1 and a "
+                "GL driver for it)");
         getProc = reinterpret_cast<PFNEGLGETPROCADDRESSPROC>(dlsym(mLibrary, "eglGetProcAddress"));
         if (!getProc) fail("libEGL.so.1 has no eglGetProcAddress");
         sProc = getProc;
@@ -155,7 +156,8 @@ class EglContext final : public GlContext {
     }
 
   private:
-    template <typename Fn> void load(Fn& fn, const char* name) {
+    template <typename Fn>
+    void load(Fn& fn, const char* name) {
         fn = reinterpret_cast<Fn>(getProc(name));
         if (!fn) fail(std::string("libEGL.so.1 has no ") + name);
     }
