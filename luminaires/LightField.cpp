@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <limits>
 #include <mutex>
 #include <thread>
 
@@ -439,13 +440,14 @@ double kernelAt(const LightFieldData& lf, glm::dvec2 o) {
 }
 
 /// G tabulated over the offsets s - node that occur (n points from oMin, step st), read
-/// bilinearly.
-struct KernelTable {
-    glm::dvec2 oMin{0.0}, st{0.0};
-    glm::ivec2 n{0};
-    std::vector<double> table;
-
-    explicit KernelTable(const LightFieldData& lf) {
+/// bilinearly. Entries are computed when a lookup first needs them: the offsets of one image
+/// fill only a patch of the table's bounding range, and where the basis spacing is large next to
+/// the image (fuzzing found 1.02 m around an image of 8 cm, delta 3 cm) the patches of all images
+/// cover 1 % of it, while each entry costs a refined quadrature. Not thread-safe (power() runs
+/// once, on one thread).
+class KernelTable {
+  public:
+    explicit KernelTable(const LightFieldData& lf) : mLf(lf) {
         // Offsets s - node over all pixels and nodes.
         glm::dvec2 nodeMin = lf.origin, nodeMax = lf.origin + glm::dvec2(lf.count - 1) * lf.spacing;
         oMin = lf.imageMin - nodeMax;
@@ -454,21 +456,30 @@ struct KernelTable {
         n = glm::clamp(glm::ivec2(glm::ceil((oMax - oMin) / step)) + 1, glm::ivec2(2),
                        glm::ivec2(400));
         st = (oMax - oMin) / glm::dvec2(n - 1);
-        table.resize(size_t(n.x) * size_t(n.y));
-        for (int j = 0; j < n.y; ++j)
-            for (int i = 0; i < n.x; ++i)
-                table[size_t(j) * size_t(n.x) + size_t(i)] =
-                    kernelAt(lf, oMin + glm::dvec2(i, j) * st);
+        table.assign(size_t(n.x) * size_t(n.y), std::numeric_limits<double>::quiet_NaN());
     }
 
-    double lookup(glm::dvec2 o) const {
+    double lookup(glm::dvec2 o) {
         glm::dvec2 f = glm::clamp((o - oMin) / st, glm::dvec2(0.0), glm::dvec2(n - 1) - 1e-9);
         int i = int(f.x), j = int(f.y);
         double fx = f.x - i, fy = f.y - j;
-        const double* r0 = &table[size_t(j) * size_t(n.x) + size_t(i)];
-        const double* r1 = r0 + n.x;
-        return (1 - fy) * ((1 - fx) * r0[0] + fx * r0[1]) + fy * ((1 - fx) * r1[0] + fx * r1[1]);
+        return (1 - fy) * ((1 - fx) * entry(i, j) + fx * entry(i + 1, j)) +
+               fy * ((1 - fx) * entry(i, j + 1) + fx * entry(i + 1, j + 1));
     }
+
+  private:
+    double entry(int i, int j) {
+        double& e = table[size_t(j) * size_t(n.x) + size_t(i)];
+        if (std::isnan(e)) {  // G itself is finite: NaN marks an entry not computed yet
+            e = kernelAt(mLf, oMin + glm::dvec2(i, j) * st);
+        }
+        return e;
+    }
+
+    const LightFieldData& mLf;
+    glm::dvec2 oMin{0.0}, st{0.0};
+    glm::ivec2 n{0};
+    std::vector<double> table;
 };
 
 }  // namespace
