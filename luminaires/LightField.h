@@ -143,9 +143,14 @@ class LightFieldData {
     glm::dvec3 cachedPower() const;
     /// granier2003's far-field correction (computed once, thread-safe; GranierTable).
     const GranierTable& granierTable() const;
+    /// The GPU's tables (made once, thread-safe): per image, the summed-area table as float-float
+    /// pairs ((width + 1) x (height + 1), kUnitLightFieldSat), the luminance (kUnitLightFieldLum)
+    /// and, for RGB data, the colour ratios in half floats (kUnitLightFieldColour).
+    std::shared_ptr<const GpuTables> gpuTables() const;
 
   private:
-    mutable std::once_flag mPowerOnce, mGranierOnce;
+    mutable std::once_flag mPowerOnce, mGranierOnce, mGpuTablesOnce;
+    mutable std::shared_ptr<const GpuTables> mGpuTables;
     mutable glm::dvec3 mPower{0.0};
     mutable GranierTable mGranier;
 };
@@ -177,6 +182,7 @@ class LightFieldLuminaire final : public Luminaire {
     std::vector<glm::dvec3> outline() const override;
     void writeJson(nlohmann::json& out) const override;
     std::vector<std::byte> gpuData() const override;
+    std::shared_ptr<const GpuTables> gpuTables() const override;
     std::string describe() const override;
     /// The manifest (.lf.json) and its images.
     std::vector<std::string> sourceFiles() const override;

@@ -183,42 +183,64 @@ std::vector<std::byte> LightFieldLuminaire::gpuData() const {
     h.gridLow = glm::vec4(inverseX.y, inverseY.y, 0.f, 0.f);
     h.dims = glm::ivec4(lf.count.x, lf.count.y, lf.width, lf.height);
     h.options = glm::ivec4(kMaxSamplesPerImage, 0, 0, 0);
-    size_t images = size_t(lf.imageCount());
-    size_t satCount = size_t(lf.width + 1) * size_t(lf.height + 1);
-    size_t pixels = size_t(lf.width) * size_t(lf.height);
-    size_t satOffset = sizeof(h) / sizeof(glm::vec2);        // float-float pairs
-    size_t lumOffset = (satOffset + images * satCount) * 2;  // floats
-    size_t colourOffset = lumOffset + images * pixels;       // uints
-    size_t colourCount = lf.rgb ? images * pixels * 2 : 0;
-    h.offsets = glm::ivec4(int(satOffset), int(lumOffset), int(colourOffset), lf.rgb ? 1 : 0);
     // granier2003's far-field correction (LightFieldData::granierTable, made once per light field):
-    // the grid's first and last centres on S, then the ratios, as floats.
+    // the grid's first and last centres on S, then the ratios, as floats. The images' tables are
+    // textures (LightFieldData::gpuTables).
+    h.offsets = glm::ivec4(0, 0, 0, lf.rgb ? 1 : 0);
     const GranierTable& granier = lf.granierTable();
-    size_t granierOffset = colourOffset + colourCount;  // floats
+    size_t granierOffset = sizeof(h) / sizeof(float);
     size_t granierCount = 4 + granier.weighted.size();
     h.options.y = int(granierOffset);
     h.options.z = granier.size;
     std::vector<std::byte> out((granierOffset + granierCount) * 4);
     std::memcpy(out.data(), &h, sizeof(h));
-    auto* sat = reinterpret_cast<glm::vec2*>(out.data()) + satOffset;
-    auto* lum = reinterpret_cast<float*>(out.data()) + lumOffset;
-    auto* colour = reinterpret_cast<uint32_t*>(out.data()) + colourOffset;
     auto* far = reinterpret_cast<float*>(out.data()) + granierOffset;
     far[0] = float(granier.min.x), far[1] = float(granier.min.y), far[2] = float(granier.max.x),
     far[3] = float(granier.max.y);
     std::memcpy(far + 4, granier.weighted.data(), granier.weighted.size() * sizeof(float));
-    for (size_t m = 0; m < images; ++m) {
-        for (size_t k = 0; k < satCount; ++k)
-            sat[m * satCount + k] = toFloatFloat(lf.tables[m].sat[k]);
-        std::memcpy(lum + m * pixels, lf.images[m].luminance.data(), pixels * sizeof(float));
-        if (!lf.rgb) continue;
-        for (size_t k = 0; k < pixels; ++k) {
-            glm::vec3 c = lf.images[m].colour[k];
-            colour[(m * pixels + k) * 2] = glm::packHalf2x16(glm::vec2(c.x, c.y));
-            colour[(m * pixels + k) * 2 + 1] = glm::packHalf2x16(glm::vec2(c.z, 0.f));
-        }
-    }
     return out;
+}
+
+std::shared_ptr<const GpuTables> LightFieldLuminaire::gpuTables() const {
+    return data->gpuTables();
+}
+
+std::shared_ptr<const GpuTables> LightFieldData::gpuTables() const {
+    std::call_once(mGpuTablesOnce, [&] {
+        auto out = std::make_shared<GpuTables>();
+        int layers = imageCount();
+        size_t satCount = size_t(width + 1) * size_t(height + 1);
+        size_t pixels = size_t(width) * size_t(height);
+        GpuTable sat{gpu::kUnitLightFieldSat, 2, width + 1, height + 1, layers, false, {}};
+        sat.texels.resize(size_t(layers) * satCount * 2);
+        GpuTable lum{gpu::kUnitLightFieldLum, 1, width, height, layers, false, {}};
+        lum.texels.resize(size_t(layers) * pixels);
+        GpuTable colour{gpu::kUnitLightFieldColour, 4, width, height, layers, true, {}};
+        if (rgb) colour.texels.resize(size_t(layers) * pixels * 4);
+        for (size_t m = 0; m < size_t(layers); ++m) {
+            for (size_t k = 0; k < satCount; ++k) {
+                glm::vec2 pair = toFloatFloat(tables[m].sat[k]);
+                sat.texels[(m * satCount + k) * 2] = pair.x;
+                sat.texels[(m * satCount + k) * 2 + 1] = pair.y;
+            }
+            std::memcpy(&lum.texels[m * pixels], images[m].luminance.data(),
+                        pixels * sizeof(float));
+            if (!rgb) continue;
+            for (size_t k = 0; k < pixels; ++k) {
+                // Rounded to half here, so the texture holds exactly these values.
+                glm::vec3 c = images[m].colour[k];
+                glm::vec2 rg = glm::unpackHalf2x16(glm::packHalf2x16(glm::vec2(c.x, c.y)));
+                glm::vec2 b = glm::unpackHalf2x16(glm::packHalf2x16(glm::vec2(c.z, 0.f)));
+                float* t = &colour.texels[(m * pixels + k) * 4];
+                t[0] = rg.x, t[1] = rg.y, t[2] = b.x, t[3] = 1.f;
+            }
+        }
+        out->push_back(std::move(sat));
+        out->push_back(std::move(lum));
+        if (rgb) out->push_back(std::move(colour));
+        mGpuTables = std::move(out);
+    });
+    return mGpuTables;
 }
 
 ShadowLights LightFieldLuminaire::shadowLights(int count) const {

@@ -12,6 +12,7 @@
 #include <string_view>
 #include <vector>
 
+#include "luminaires/GpuTable.h"
 #include "luminaires/Units.h"
 
 namespace candela {
@@ -81,6 +82,9 @@ class Luminaire {
     virtual void writeJson(nlohmann::json& out) const = 0;
     /// Packed std430 record for this kind's GPU passes (layout in shaders/shared/).
     virtual std::vector<std::byte> gpuData() const = 0;
+    /// The tables its shaders read from textures (luminaires/GpuTable.h), made once per model and
+    /// shared: the same object comes back until the model changes. Null: none.
+    virtual std::shared_ptr<const GpuTables> gpuTables() const { return nullptr; }
     /// Radiance the viewport shows on the emitting surface, W/(m2 sr): by default what leaves its
     /// centre along the aim (exact for Lambertian emitters).
     virtual glm::dvec3 displayRadiance() const {

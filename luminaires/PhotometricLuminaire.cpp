@@ -271,12 +271,13 @@ std::vector<std::byte> PhotometricLuminaire::gpuData() const {
     h.axisX = glm::vec4(glm::vec3(x), float(mSize));
     h.axisY = glm::vec4(glm::vec3(y), float(0.1 * mSize));
     h.axisZ = glm::vec4(glm::vec3(z), 0.f);
-    h.colour = glm::vec4(glm::vec3(colour), 0.f);
+    h.colour = glm::vec4(glm::vec3(colour), float(scale));
     int nv = int(d.vertical.size()), nh = int(d.horizontal.size());
     int corners = int(mPolygon.size());
     h.dims = glm::ivec4(nv, nh, corners, d.goniometer == Goniometer::B ? 1 : 0);
     int base = int(sizeof(h) / sizeof(float));
-    h.offsets = glm::ivec4(base, base + nv, base + nv + nh, base + nv + nh + nv * nh);
+    // The candela table is a texture (gpuTables); offsets.z is unused.
+    h.offsets = glm::ivec4(base, base + nv, 0, base + nv + nh);
     const auto& p24 = poissonSet(24);
     const auto& p40 = poissonSet(40);
     // The reference's intensity-proportional directions: the cells' CDF (IntensitySampler.h).
@@ -291,8 +292,6 @@ std::vector<std::byte> PhotometricLuminaire::gpuData() const {
         values[size_t(h.offsets.x + i)] = float(d.vertical[size_t(i)] * kPi / 180.0);
     for (int i = 0; i < nh; ++i)
         values[size_t(h.offsets.y + i)] = float(d.horizontal[size_t(i)] * kPi / 180.0);
-    for (int i = 0; i < nv * nh; ++i)
-        values[size_t(h.offsets.z + i)] = float(scale * d.candela[size_t(i)]);
     for (int i = 0; i < corners; ++i) {
         values[size_t(h.offsets.w + 2 * i)] = float(mPolygon[size_t(i)].x);
         values[size_t(h.offsets.w + 2 * i + 1)] = float(mPolygon[size_t(i)].y);
@@ -309,6 +308,21 @@ std::vector<std::byte> PhotometricLuminaire::gpuData() const {
     std::memcpy(out.data(), values.data(), out.size());
     std::memcpy(out.data(), &h, sizeof(h));
     return out;
+}
+
+std::shared_ptr<const GpuTables> PhotometricLuminaire::gpuTables() const {
+    if (mGpuTablesFor != data.get()) {
+        // The candela table, unscaled (the shader applies `scale`): vertical angle along x,
+        // horizontal along y, as PhotometricData::candela holds it.
+        const PhotometricData& d = *data;
+        int nv = int(d.vertical.size()), nh = int(d.horizontal.size());
+        GpuTable t{gpu::kUnitPhotometricIntensity, 1, nv, nh, 1, false, {}};
+        t.texels.resize(size_t(nv) * size_t(nh));
+        for (size_t i = 0; i < t.texels.size(); ++i) t.texels[i] = float(d.candela[i]);
+        mGpuTables = std::make_shared<const GpuTables>(GpuTables{std::move(t)});
+        mGpuTablesFor = data.get();
+    }
+    return mGpuTables;
 }
 
 std::string PhotometricLuminaire::describe() const {

@@ -41,6 +41,7 @@ class PhotometricLuminaire final : public Luminaire {
     std::vector<glm::dvec3> outline() const override;
     void writeJson(nlohmann::json& out) const override;
     std::vector<std::byte> gpuData() const override;
+    std::shared_ptr<const GpuTables> gpuTables() const override;
     std::string describe() const override;
     /// The photometric file and its TILT file, if any.
     std::vector<std::string> sourceFiles() const override;
@@ -76,6 +77,9 @@ class PhotometricLuminaire final : public Luminaire {
     static std::shared_ptr<const PhotometricData> load(const std::string& path);
 
   private:
+    /// gpuTables() of `data` as last made (rebuilt when `data` is another model).
+    mutable std::shared_ptr<const GpuTables> mGpuTables;
+    mutable const PhotometricData* mGpuTablesFor = nullptr;
     std::vector<glm::dvec2> mPolygon;
     double mArea = 0.0;
     double mSize = 0.0;

@@ -17,7 +17,8 @@
 # build), DRAG_ARGS (default "--reference-spp 512"), BASELINE_LABEL (what machine.txt calls a
 # baseline binary), CURRENT (the binary timed against it, default build/candela) and
 # CURRENT_LABEL (what machine.txt calls it, default this checkout's commit), CANDELA_GL (which
-# offscreen context both run on: osmesa or egl, see renderer/context/GlContext.h).
+# offscreen context both run on: osmesa or egl, see renderer/context/GlContext.h), CASES (an
+# extended regular expression: only the cases whose label matches, e.g. '^(room|headlight)$').
 set -euo pipefail
 cd "$(dirname "$0")/.."
 [ $# -ge 1 ] || { echo "usage: scripts/bench_side_by_side.sh BASELINE [OUT]"; exit 2; }
@@ -89,6 +90,7 @@ passes() {
 printf "case\tbuild\trun\tpass\tms\n" >"$out/raw.tsv"
 for c in "${cases[@]}"; do
   IFS='|' read -r label scene extra <<<"$c"
+  [[ -n ${CASES:-} && ! $label =~ $CASES ]] && continue
   read -r -a args <<<"$extra"
   echo "bench: $label"
   passes "$base" "$scene" "${args[@]}" >/dev/null  # warm-up: compiles and caches the shaders

@@ -3,13 +3,16 @@
 // float, A_m of a small box far from the table's origin would lose most of its digits to
 // cancellation. Every difference of table entries is taken in float-float and rounded to float
 // once, when it is the energy of a block of pixels, so what is rounded is a box's own energy.
-// Needs shared/GpuTypes.h (LightFieldGpu). The including shader binds the buffer at binding 1.
+// Needs shared/GpuTypes.h (LightFieldGpu). The including shader binds the record at binding 1
+// and the images' tables (luminaires/GpuTable.h, LightFieldData::gpuTables) at their texture
+// units: 2D arrays, one layer per image, read with texelFetch.
 #include "ff.glsl"
 
 layout(std430, binding = 1) readonly buffer LightFieldHeader { LightFieldGpu lf; };
-layout(std430, binding = 1) readonly buffer LightFieldSat { vec2 lfSat[]; };  // float-float
 layout(std430, binding = 1) readonly buffer LightFieldFloats { float lfFloats[]; };
-layout(std430, binding = 1) readonly buffer LightFieldUints { uint lfUints[]; };
+layout(binding = 8) uniform sampler2DArray uLfSat;     // kUnitLightFieldSat: float-float pairs
+layout(binding = 9) uniform sampler2DArray uLfLum;     // kUnitLightFieldLum
+layout(binding = 10) uniform sampler2DArray uLfColour; // kUnitLightFieldColour (RGB data only)
 
 float lfDelta() { return lf.geometry.x; }
 int lfImageCount() { return lf.dims.x * lf.dims.y; }
@@ -46,33 +49,24 @@ float lfPsi(int m, vec2 u, vec2 s) {
 float lfLum(int m, vec2 s) {
     vec2 f = (s - lfImageMin()) / lfPixel();
     if (!(f.x >= 0.0 && f.y >= 0.0 && f.x < float(lf.dims.z) && f.y < float(lf.dims.w))) return 0.0;
-    int idx = m * lf.dims.z * lf.dims.w + int(f.y) * lf.dims.z + int(f.x);
-    return lfFloats[lf.offsets.y + idx];
+    return texelFetch(uLfLum, ivec3(int(f.x), int(f.y), m), 0).x;
 }
 
 /// Colour ratio c_m(s) (Sec. 5); white for luminance data.
 vec3 lfColour(int m, vec2 s) {
     if (lf.offsets.w == 0) return vec3(1.0);
     vec2 f = clamp((s - lfImageMin()) / lfPixel(), vec2(0.0), vec2(lf.dims.zw) - 1.0);
-    int idx = m * lf.dims.z * lf.dims.w + int(f.y) * lf.dims.z + int(f.x);
-    vec2 rg = unpackHalf2x16(lfUints[lf.offsets.z + 2 * idx]);
-    vec2 b = unpackHalf2x16(lfUints[lf.offsets.z + 2 * idx + 1]);
-    return vec3(rg, b.x);
+    return texelFetch(uLfColour, ivec3(int(f.x), int(f.y), m), 0).rgb;
 }
 
 /// Entry (i, j) of image m's summed-area table: the energy of its pixels [0, i) x [0, j).
-vec2 lfSatEntry(int m, int i, int j) {
-    int w1 = lf.dims.z + 1;
-    return lfSat[lf.offsets.x + m * w1 * (lf.dims.w + 1) + j * w1 + i];
-}
+vec2 lfSatEntry(int m, int i, int j) { return texelFetch(uLfSat, ivec3(i, j, m), 0).xy; }
 
 /// Image m's energy (the integral of C_m over the image).
 float lfTotal(int m) { return ffToFloat(lfSatEntry(m, lf.dims.z, lf.dims.w)); }
 
 /// C_m of pixel (i, j).
-float lfPixelLum(int m, int i, int j) {
-    return lfFloats[lf.offsets.y + (m * lf.dims.w + j) * lf.dims.z + i];
-}
+float lfPixelLum(int m, int i, int j) { return texelFetch(uLfLum, ivec3(i, j, m), 0).x; }
 
 /// A coordinate on S against the pixels of one axis (0: s, 1: t): its pixel k (clamped to the
 /// image), the fraction of that pixel below it and the fraction above it, each to float's

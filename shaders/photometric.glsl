@@ -6,6 +6,10 @@
 
 layout(std430, binding = 1) readonly buffer PhotometricHeader { PhotometricGpu ph; };
 layout(std430, binding = 1) readonly buffer PhotometricFloats { float phFloats[]; };
+// kUnitPhotometricIntensity: the candela table, unscaled (x = vertical index, y = horizontal).
+layout(binding = 8) uniform sampler2DArray uPhCandela;
+
+float phCandela(int iv, int ih) { return texelFetch(uPhCandela, ivec3(iv, ih, 0), 0).x; }
 
 // --- The intensity table ------------------------------------------------------------------------
 
@@ -57,10 +61,9 @@ float phIntensity(vec3 d) {
         if (nh > 1 || !phCell(ph.offsets.y, nh, horizontal - 2.0 * kPi, ih, th)) return 0.0;
     }
     int iv1 = min(iv + 1, nv - 1), ih1 = min(ih + 1, nh - 1);
-    int o = ph.offsets.z;
-    float a = mix(phFloats[o + ih * nv + iv], phFloats[o + ih * nv + iv1], tv);
-    float b = mix(phFloats[o + ih1 * nv + iv], phFloats[o + ih1 * nv + iv1], tv);
-    return max(mix(a, b, th), 0.0);
+    float a = mix(phCandela(iv, ih), phCandela(iv1, ih), tv);
+    float b = mix(phCandela(iv, ih1), phCandela(iv1, ih1), tv);
+    return max(mix(a, b, th), 0.0) * ph.colour.w;
 }
 
 /// The coordinate along which solid angle is uniform within a cell: -cos(gamma) (type C) or

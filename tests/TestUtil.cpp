@@ -8,6 +8,7 @@
 #include "renderer/ShaderLibrary.h"
 #include "renderer/context/GlContext.h"
 #include "renderer/gl/GlObjects.h"
+#include "renderer/passes/LuminairePass.h"
 
 namespace candela::test {
 
@@ -93,7 +94,8 @@ GlContext& glContext() {
 
 std::vector<std::byte> runComputeTest(const std::string& shader,
                                       const std::vector<std::byte>& record, const void* inputs,
-                                      size_t inputBytes, size_t count, size_t outputBytes) {
+                                      size_t inputBytes, size_t count, size_t outputBytes,
+                                      const GpuTables* tables) {
     glContext();
     ShaderLibrary shaders;
     ProgramKey key;
@@ -105,6 +107,12 @@ std::vector<std::byte> runComputeTest(const std::string& shader,
     lights.bindBase(GL_SHADER_STORAGE_BUFFER, 1);
     in.bindBase(GL_SHADER_STORAGE_BUFFER, 6);
     out.bindBase(GL_SHADER_STORAGE_BUFFER, 7);
+    std::vector<gl::TextureArray> textures;
+    if (tables)
+        for (const GpuTable& t : *tables) {
+            textures.push_back(uploadGpuTable(t));
+            glBindTextureUnit(GLuint(t.unit), textures.back().id());
+        }
     glUseProgram(program);
     glProgramUniform1i(program, 0, int(count));
     glDispatchCompute(GLuint((count + 63) / 64), 1, 1);

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "luminaires/EnvironmentLight.h"
+#include "luminaires/GpuTable.h"
 #include "luminaires/Registry.h"
 #include "util/Error.h"
 
@@ -71,15 +72,17 @@ GlContext& glContext();
 /// Runs a test compute shader (a path relative to shaders/, e.g. "../tests/shaders/x.comp") with
 /// 64-wide groups over `count` inputs: `record` (a luminaire's gpuData) at binding 1, the inputs
 /// at binding 6, the outputs at 7, the count in uniform location 0. Returns the output bytes.
+/// `tables` (Luminaire::gpuTables), when given, are bound at their texture units.
 std::vector<std::byte> runComputeTest(const std::string& shader,
                                       const std::vector<std::byte>& record, const void* inputs,
-                                      size_t inputBytes, size_t count, size_t outputBytes);
+                                      size_t inputBytes, size_t count, size_t outputBytes,
+                                      const GpuTables* tables = nullptr);
 
 template <class Out, class In>
 std::vector<Out> runComputeTest(const std::string& shader, const std::vector<std::byte>& record,
-                                const std::vector<In>& in) {
+                                const std::vector<In>& in, const GpuTables* tables = nullptr) {
     std::vector<std::byte> bytes = runComputeTest(shader, record, in.data(), in.size() * sizeof(In),
-                                                  in.size(), in.size() * sizeof(Out));
+                                                  in.size(), in.size() * sizeof(Out), tables);
     std::vector<Out> out(in.size());
     std::memcpy(out.data(), bytes.data(), bytes.size());
     return out;

@@ -38,7 +38,7 @@ LightFieldLuminaire tiny() {
 std::vector<ParityOut> runParity(const LightFieldLuminaire& light,
                                  const std::vector<ParityIn>& in) {
     return test::runComputeTest<ParityOut>("../tests/shaders/lightfield_parity.comp",
-                                           light.gpuData(), in);
+                                           light.gpuData(), in, light.gpuTables().get());
 }
 
 TEST(LightFieldGl, BoxIntegralAndSamplerMatchCpp) {

@@ -4,10 +4,39 @@
 #include "renderer/passes/GBufferPass.h"
 #include "renderer/passes/ShadePass.h"
 #include "shaders/shared/GpuTypes.h"
+#include "util/Error.h"
 
 namespace candela {
 
-void LuminairePass::setSource(const Luminaire&, const std::vector<std::byte>& record) {
+gl::TextureArray uploadGpuTable(const GpuTable& t) {
+    GLint maxSize = 0, maxLayers = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+    glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
+    if (t.width < 1 || t.height < 1 || t.layers < 1 || t.width > maxSize || t.height > maxSize ||
+        t.layers > maxLayers)
+        throw RuntimeError("a luminaire table of " + std::to_string(t.width) + " x " +
+                           std::to_string(t.height) + " texels x " + std::to_string(t.layers) +
+                           " layers exceeds this GL's textures (" + std::to_string(maxSize) +
+                           " texels a side, " + std::to_string(maxLayers) + " layers)");
+    static const GLenum kFloat[] = {0, GL_R32F, GL_RG32F, 0, GL_RGBA32F};
+    static const GLenum kHalf[] = {0, GL_R16F, GL_RG16F, 0, GL_RGBA16F};
+    static const GLenum kFormat[] = {0, GL_RED, GL_RG, 0, GL_RGBA};
+    gl::TextureArray texture(GL_TEXTURE_2D_ARRAY, t.width, t.height, t.layers,
+                             t.half ? kHalf[t.channels] : kFloat[t.channels]);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTextureSubImage3D(texture.id(), 0, 0, 0, 0, t.width, t.height, t.layers, kFormat[t.channels],
+                        GL_FLOAT, t.texels.data());
+    return texture;
+}
+
+void LuminairePass::setSource(const Luminaire& source, const std::vector<std::byte>& record) {
+    std::shared_ptr<const GpuTables> tables = source.gpuTables();
+    if (tables != mTables) {
+        mTextures.clear();
+        if (tables)
+            for (const GpuTable& t : *tables) mTextures.push_back(uploadGpuTable(t));
+        mTables = tables;
+    }
     if (record == mRecord && mBuffer.id()) return;
     mRecord = record;
     // GL refuses an empty buffer's storage: a kind with no record gets one zero word.
@@ -36,6 +65,8 @@ void LuminairePass::shade(const ShadeStep& step, SourceContext& context,
     // Each luminaire has its own record buffer; the shader reads element 0.
     glProgramUniform1i(program, 0, 0);
     mBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, gpu::kBindingLuminaire);
+    for (size_t i = 0; i < mTextures.size(); ++i)
+        glBindTextureUnit(GLuint((*mTables)[i].unit), mTextures[i].id());
     ShadePass::drawAdditive(context.gbuffer, target, context.gbuffer.width(),
                             context.gbuffer.height(), step.unitScale);
 }

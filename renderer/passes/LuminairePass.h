@@ -1,5 +1,6 @@
 #pragma once
 // A placed luminaire's GPU pass: its record (Luminaire::gpuData) in a buffer of its own, its
+// tables (Luminaire::gpuTables) in textures, uploaded again only when the model changes, its
 // shadow maps when its technique reads them (rendered from Luminaire::shadowLights when stale),
 // and the shading of its technique's variant (luminaires/Registry.cpp names the shader).
 
@@ -11,6 +12,10 @@
 
 namespace candela {
 
+/// One table as an immutable 2D array texture (texelFetch only: nearest, no mipmaps); throws
+/// RuntimeError where it exceeds the GL's texture limits.
+gl::TextureArray uploadGpuTable(const GpuTable& t);
+
 class LuminairePass final : public SourcePass {
   public:
     void setSource(const Luminaire& source, const std::vector<std::byte>& record) override;
@@ -21,6 +26,8 @@ class LuminairePass final : public SourcePass {
   private:
     std::vector<std::byte> mRecord;  ///< As uploaded.
     gl::Buffer mBuffer;
+    std::shared_ptr<const GpuTables> mTables;  ///< As uploaded into mTextures (same order).
+    std::vector<gl::TextureArray> mTextures;
     std::unique_ptr<ShadowMaps> mShadowMaps;
 };
 

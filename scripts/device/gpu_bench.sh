@@ -9,7 +9,8 @@
 #       "resources/luminaires/generated"], timeout_s=560)
 # Environment: SIZE, SPP, REPEATS (as scripts/bench_side_by_side.sh; defaults 1920x1080, 16, 3),
 # PASS_LIMIT, DRAG_LIMIT, TEST_LIMIT (seconds for each stage, defaults 270, 70 per build, 100),
-# STAGES (which to run, default "passes drag info tests"; the bundle may then lack the baseline).
+# STAGES (which to run, default "passes drag info tests"; the bundle may then lack the baseline),
+# CASES (bench_side_by_side.sh's filter on case labels).
 set -uo pipefail
 cd "$(dirname "$0")/../.."
 out=${OUT:-/tmp/gpu-out}
@@ -35,10 +36,11 @@ if [ "$(pwd -P)" != /work/main ]; then
   [ -e /work/main ] && { stamp "/work/main exists and is not this tree: stopping"; exit 1; }
   mkdir -p /work && ln -s "$(pwd -P)" /work/main
 fi
-if [ ! -d build-baseline/src/shaders ]; then
-  mkdir -p build-baseline/src
-  tar -xf .gpu/baseline-shaders.tar -C build-baseline/src
-  ln -sfn ../../resources build-baseline/src/resources
+baseDir=$(cat .gpu/baseline-dir 2>/dev/null || echo build-baseline/src)
+if [ ! -d "$baseDir/shaders" ]; then
+  mkdir -p "$baseDir"
+  tar -xf .gpu/baseline-shaders.tar -C "$baseDir"
+  ln -sfn "$(pwd -P)/resources" "$baseDir/resources"
 fi
 export CANDELA_GL=egl __GL_SHADER_DISK_CACHE_PATH=$work/glcache
 mkdir -p "$__GL_SHADER_DISK_CACHE_PATH"
@@ -50,7 +52,7 @@ current=$work/bundle/bin/candela base=$work/bundle/bin/candela-baseline
 stages=" ${STAGES:-passes drag info tests} "
 if [[ $stages == *" passes "* ]]; then
 stamp "shading passes, side by side"
-SIZE=${SIZE:-1920x1080} SPP=${SPP:-16} REPEATS=${REPEATS:-3} DRAG=0 CURRENT=$current \
+CASES=${CASES:-} SIZE=${SIZE:-1920x1080} SPP=${SPP:-16} REPEATS=${REPEATS:-3} DRAG=0 CURRENT=$current \
   CURRENT_LABEL="$(cat .gpu/current-label)" BASELINE_LABEL="$(cat .gpu/baseline-label)" \
   timeout "${PASS_LIMIT:-270}" bash scripts/bench_side_by_side.sh "$base" "$work/sbs"
 cp "$work/sbs/passes.csv" "$work/sbs/raw.tsv" "$work/sbs/machine.txt" "$out/" 2>/dev/null

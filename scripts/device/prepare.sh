@@ -15,6 +15,8 @@ mkdir -p .gpu .gl
 python3 scripts/device/make_bundle.py .gpu/bundle.tar.xz candela=build/candela \
   candela-baseline="$src/build/candela" gltests=build/tests/candela_gltests
 tar -cf .gpu/baseline-shaders.tar -C "$src" shaders
+# The baseline binary reads its shaders from the folder it was built in, relative to this tree.
+realpath --relative-to=. "$src" >.gpu/baseline-dir
 git log -1 --format='%h %s' | cut -c1-80 >.gpu/current-label
 echo "${BASELINE_LABEL:-$(git -C "$src" log -1 --format="%h %s" | cut -c1-80)}" >.gpu/baseline-label
 if ! ls .gl/libegl1_*.deb >/dev/null 2>&1; then

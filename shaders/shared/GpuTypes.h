@@ -46,6 +46,15 @@ CANDELA_CONST int kBindingEnvExtra = 13;    // SSBO of global-cdf tables or Havr
 /// one ShadowMapGpu per map at kBindingShadowMaps, the shares at kBindingShadowShares (vec2
 /// (map, weight) per item and share, items x dims.z), the depth cube maps (6 layers per map,
 /// samplerCubeArrayShadow) on texture unit kUnitShadowMaps.
+/// Texture units of a luminaire's tables (luminaires/GpuTable.h): 2D arrays read with texelFetch.
+/// A light field's summed-area tables (RG32F float-float pairs, one layer per image), luminance
+/// (R32F) and colour ratios (RGBA16F); a photometric file's intensity table (R32F, vertical angle
+/// along x, horizontal along y). Kinds never share a program, so their units may coincide.
+CANDELA_CONST int kUnitLightFieldSat = 8;
+CANDELA_CONST int kUnitLightFieldLum = 9;
+CANDELA_CONST int kUnitLightFieldColour = 10;
+CANDELA_CONST int kUnitPhotometricIntensity = 8;
+
 CANDELA_CONST int kBindingShadowMaps = 14;
 CANDELA_CONST int kBindingShadowShares = 15;
 CANDELA_CONST int kUnitShadowMaps = 6;
@@ -111,7 +120,7 @@ struct LightFieldGpu {
                     // origin.zw and gridLow.xy, float-float pairs for the exact pixel grid
     vec4 gridLow;   // xy = 1 / pixel size - grid.zw (1/m), zw unused
     ivec4 dims;     // x, y = basis count W, H; z, w = image width, height (pixels)
-    ivec4 offsets;  // x = SAT (vec2), y = luminance (floats), z = colour (uints), w = 1 if RGB
+    ivec4 offsets;  // x, y, z unused (the images are textures: GpuTable.h), w = 1 if RGB
     ivec4 options;  // x = K_max samples per image per frame (0: no cap), y = granier2003's
                     // far-field table (floats: min.xy, max.xy of its centres on S, then size^2
                     // ratios per image), z = its size, w unused
@@ -126,10 +135,11 @@ struct PhotometricGpu {
     vec4 axisX;     // xyz world direction of local +x (C0); w = largest opening extent (m)
     vec4 axisY;     // xyz world direction of local +y (C90); w = tilted-horizon epsilon (m)
     vec4 axisZ;     // xyz world direction of local +z (aim, gamma = 0); w unused
-    vec4 colour;    // rgb tint; w unused
+    vec4 colour;    // rgb tint; w = scale (dimming), applied to the candela texture
     ivec4 dims;     // x = vertical count, y = horizontal count, z = polygon corners (0: point,
                     // 2: segment), w = 1 for type B goniometry
-    ivec4 offsets;  // x = vertical angles, y = horizontal angles, z = candela, w = polygon
+    ivec4 offsets;  // x = vertical angles, y = horizontal angles, z unused (the candela table is
+                    // the texture at kUnitPhotometricIntensity), w = polygon
     ivec4 samples;  // x, y = offsets of the 24- and 40-point Poisson sets (x, y pairs in the
                     // unit square), z = offset of the table's cell CDF for the reference's
                     // intensity-proportional directions ((nv-1)(nh-1)+1 floats from 0 to 1;
