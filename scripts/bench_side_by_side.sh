@@ -54,7 +54,21 @@ cat >"$tmp/sky.json" <<'EOF'
  "environment": {"sky": {"sun_elevation_deg": 30, "sun_azimuth_deg": 120, "turbidity": 3,
                          "ground_albedo": 0.2, "resolution": 256}}}
 EOF
-room=resources/scenes/editor-room.json
+# The demo room as older builds read it: without the camera's exposure (newer than some
+# baselines, and no part of any pass), its files made absolute so the copy can live in $tmp.
+python3 - resources/scenes/editor-room.json "$tmp/room.json" <<'PY'
+import json, os, sys
+src, dst = sys.argv[1:3]
+scene = json.load(open(src))
+scene.get("camera", {}).pop("exposure", None)
+base = os.path.dirname(os.path.abspath(src))
+for item in scene.get("luminaires", []) + scene.get("geometry", []):
+    for key in ("file", "gltf"):
+        if isinstance(item.get(key), str):
+            item[key] = os.path.join(base, item[key])
+json.dump(scene, open(dst, "w"), indent=1)
+PY
+room=$tmp/room.json
 # case label | scene | extra render arguments
 cases=(
   "room|$room|"
