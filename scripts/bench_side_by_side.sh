@@ -159,7 +159,7 @@ fi
 
 {
   echo "baseline: $baseLabel"
-  echo "current: ${CURRENT_LABEL:-$(git log -1 --format='%h %s' | cut -c1-80)$(git diff --quiet || echo ' (with uncommitted changes)')}"
+  echo "current: ${CURRENT_LABEL:-$(git log -1 --format='%h %s' | cut -c1-80)$(git diff --quiet -- . ":(exclude)$out" || echo ' (with uncommitted changes)')}"
   echo "cpu: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $(nproc) cores"
   "$current" render resources/scenes/demo.json --out "$tmp/frame.png" --size 64x36 --spp 1 --stats 2>&1 | grep '^context:' || true
   echo "settings: $size, $spp spp per pass, median of $repeats runs per build after one warm-up"
