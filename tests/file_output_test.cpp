@@ -133,7 +133,7 @@ class SingleThreadedImageIo {
 /// three times, then -2): a thread of this process that held the allocator's lock when fork()
 /// copied it leaves the child waiting on that lock for ever (seen under AddressSanitizer, whose
 /// allocator lock a worker thread of OpenImageIO held, in 2 of 3 CI runs on 2026-11-26).
-constexpr int kChildSeconds = 60;
+constexpr int kChildSeconds = 20;  // a child ends within a second when nothing hangs
 int runOnFullDiskOnce(const std::function<void()>& write, const std::string& file);
 int runOnFullDisk(const std::function<void()>& write, const std::string& file) {
     for (int attempt = 0; attempt < 3; ++attempt) {
