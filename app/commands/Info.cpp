@@ -63,6 +63,21 @@ static void printLightOutputRatio(const std::string& path, const PhotometricData
             shown.c_str(), 100.0 * lor);
 }
 
+/// EULUMDAT's declared luminaire flux (lamp flux x LORL) against the table's.
+static void printDeclaredFlux(const PhotometricData& d, double flux) {
+    double declared = d.declaredFlux();
+    if (declared > 0.0)
+        std::printf(
+            "lamp flux %.6g lm x light output ratio %.4g = %.6g lm (table / declared %.4f)\n",
+            d.lampFlux, d.lightOutputRatio, declared, flux / declared);
+    else if (d.lampFlux > 0.0)
+        std::printf(
+            "lamp flux %.6g lm, light output ratio 0: no declared luminaire flux to compare\n",
+            d.lampFlux);
+    else
+        std::printf("absolute photometry: no lamp flux declared\n");
+}
+
 static void printPhotometry(const std::string& path) {
     auto light = std::make_unique<PhotometricLuminaire>();
     light->file = path;
@@ -86,19 +101,8 @@ static void printPhotometry(const std::string& path) {
     double flux = d.fluxFromTable();
     std::printf("luminaire flux (exact quadrature of the table): %.6g lm\n", flux);
     printLightOutputRatio(path, d, flux);
-    double declared = d.declaredFlux();
-    if (!d.declaresLightOutputRatio)
-        ;  // IES: the ratio above is all there is to say (no declared LOR to multiply by)
-    else if (declared > 0.0)
-        std::printf(
-            "lamp flux %.6g lm x light output ratio %.4g = %.6g lm (table / declared %.4f)\n",
-            d.lampFlux, d.lightOutputRatio, declared, flux / declared);
-    else if (d.lampFlux > 0.0)
-        std::printf(
-            "lamp flux %.6g lm, light output ratio 0: no declared luminaire flux to compare\n",
-            d.lampFlux);
-    else
-        std::printf("absolute photometry: no lamp flux declared\n");
+    // IES declares no LOR to multiply by: the ratio above is all there is to say.
+    if (d.declaresLightOutputRatio) printDeclaredFlux(d, flux);
     if (d.inputWatts > 0.0 && std::isfinite(flux / d.inputWatts))
         std::printf("input power: %.4g W (%.1f lm/W)\n", d.inputWatts, flux / d.inputWatts);
     for (const std::string& w : d.warnings) std::printf("warning: %s\n", w.c_str());

@@ -111,7 +111,6 @@ class EglContext final : public GlContext {
                 "GL driver for it)");
         getProc = reinterpret_cast<PFNEGLGETPROCADDRESSPROC>(dlsym(mLibrary, "eglGetProcAddress"));
         if (!getProc) fail("libEGL.so.1 has no eglGetProcAddress");
-        sProc = getProc;
         load(initialize, "eglInitialize");
         load(terminate, "eglTerminate");
         load(bindApi, "eglBindAPI");
@@ -139,7 +138,7 @@ class EglContext final : public GlContext {
         mContext = createContext(mDisplay, config, EGL_NO_CONTEXT, contextAttribs);
         if (mContext == EGL_NO_CONTEXT) fail("could not create a GL 4.5 core context");
         makeCurrent();
-        finishSetup([](const char* name) { return reinterpret_cast<void*>(sProc(name)); }, "EGL");
+        finishSetup([](const char* name) { return reinterpret_cast<void*>(getProc(name)); }, "EGL");
     }
     ~EglContext() override {
         if (mDisplay != EGL_NO_DISPLAY) {
@@ -201,7 +200,6 @@ class EglContext final : public GlContext {
     void* mLibrary = nullptr;
     EGLDisplay mDisplay = EGL_NO_DISPLAY;
     EGLContext mContext = EGL_NO_CONTEXT;
-    PFNEGLGETPROCADDRESSPROC getProc = nullptr;
     PFNEGLINITIALIZEPROC initialize = nullptr;
     PFNEGLTERMINATEPROC terminate = nullptr;
     PFNEGLBINDAPIPROC bindApi = nullptr;
@@ -211,10 +209,9 @@ class EglContext final : public GlContext {
     PFNEGLMAKECURRENTPROC makeCurrentFn = nullptr;
     PFNEGLGETERRORPROC getError = nullptr;
 
-  public:
-    /// For finishSetup's plain function pointer (one EGL context per process is all Candela
-    /// makes).
-    static inline PFNEGLGETPROCADDRESSPROC sProc = nullptr;
+    /// eglGetProcAddress, static for finishSetup's plain function pointer (libEGL's one entry
+    /// point, the same for every context).
+    static inline PFNEGLGETPROCADDRESSPROC getProc = nullptr;
 };
 
 }  // namespace

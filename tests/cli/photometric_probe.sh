@@ -47,19 +47,20 @@ trap 'rm -rf "$tmp"' EXIT
 info=$("$binary" info "$photometry/ldt/lidrs/example.ldt" 2>&1)
 check "LOR of an EULUMDAT file that agrees with itself: $info" \
   'grep -qF "light output ratio (luminaire flux / lamp flux): 100.0 % (5136.13 lm / 5134 lm; the file declares 100 %)" <<<"$info" && ! grep -q "declares a light output ratio" <<<"$info"'
-sed '23s/.*/60/' "$photometry/lenient/lorl_zero.ldt" >"$tmp/lor60.ldt"
-info=$("$binary" info "$tmp/lor60.ldt" 2>&1)
+# info on a copy of FILE edited by the sed expression EXPR, written to $tmp/NAME.
+info_of_edit() {  # NAME FILE EXPR
+  sed "$3" "$2" >"$tmp/$1"
+  "$binary" info "$tmp/$1" 2>&1
+}
+info=$(info_of_edit lor60.ldt "$photometry/lenient/lorl_zero.ldt" '23s/.*/60/')
 check "LORL 60 % against a table of 99.9 % warns: $info" \
   'grep -qF "warning: $tmp/lor60.ldt: the file declares a light output ratio of 60 % but its table gives 99.9 % of the lamp flux" <<<"$info"'
-sed '23s/.*/99.5/' "$photometry/lenient/lorl_zero.ldt" >"$tmp/lor995.ldt"
-info=$("$binary" info "$tmp/lor995.ldt" 2>&1)
+info=$(info_of_edit lor995.ldt "$photometry/lenient/lorl_zero.ldt" '23s/.*/99.5/')
 check "LORL 99.5 % against 99.9 % is within 1 %: $info" '! grep -q "declares a light output ratio" <<<"$info"'
-sed '5s/^1 -1 1 /1 4000 1 /' "$data/lambert.ies" >"$tmp/lamp4000.ies"
-info=$("$binary" info "$tmp/lamp4000.ies" 2>&1)
+info=$(info_of_edit lamp4000.ies "$data/lambert.ies" '5s/^1 -1 1 /1 4000 1 /')
 check "IES with 4000 lamp lumens: LOR 78.5 %, no warning: $info" \
   'grep -qF "light output ratio (luminaire flux / lamp flux): 78.5 % (3141.57 lm / 4000 lm)" <<<"$info" && ! grep -q "^warning" <<<"$info"'
-sed '5s/^1 -1 1 /1 2000 1 /' "$data/lambert.ies" >"$tmp/lamp2000.ies"
-info=$("$binary" info "$tmp/lamp2000.ies" 2>&1)
+info=$(info_of_edit lamp2000.ies "$data/lambert.ies" '5s/^1 -1 1 /1 2000 1 /')
 check "IES whose table outshines its lamps warns: $info" \
   'grep -qF "warning: $tmp/lamp2000.ies: the table'"'"'s flux is 157.1 % of the rated lamp flux" <<<"$info"'
 info=$("$binary" info "$data/lambert.ies" 2>&1)
