@@ -10,11 +10,22 @@ layout(std140, binding = 4) uniform EnvironmentBlock { EnvironmentGpu env; };
 layout(binding = 5) uniform sampler2D uEnvMap;  // kUnitEnvironmentMap: RGB32F, row 0 = v = 0
 
 layout(std430, binding = 8) buffer EnvCube { vec2 envCube[]; };            // [f][row][col]
-// The CDFs are float-float pairs (ff.glsl): see envRand48.
-layout(std430, binding = 9) buffer EnvRowCdf { vec2 envRowCdf[]; };        // [f][col][row + 1]
-layout(std430, binding = 10) buffer EnvColCdf { vec2 envColCdf[]; };       // [f][col + 1], then
-                                                                           // column totals
 layout(std430, binding = 11) buffer EnvFaces { EnvironmentFaceGpu envFaces[6]; };
+
+// The CDFs are textures of float-float pairs (ff.glsl, see envRand48; layout in
+// shared/GpuTypes.h, kUnitEnvRowCdf): the passes that build them (ENV_WRITES_TABLES) reach them
+// through image units, everything else reads them with texelFetch.
+#ifdef ENV_WRITES_TABLES
+layout(rg32f, binding = 0) uniform image2DArray envRowCdfImage;  // kImageEnvRowCdf
+layout(rg32f, binding = 1) uniform image2D envColumnCdfImage;    // kImageEnvColumnCdf
+vec2 envRowCdfAt(int f, int c, int i) { return imageLoad(envRowCdfImage, ivec3(i, c, f)).xy; }
+vec2 envColumnCdfAt(int row, int i) { return imageLoad(envColumnCdfImage, ivec2(i, row)).xy; }
+#else
+layout(binding = 11) uniform sampler2DArray uEnvRowCdf;  // kUnitEnvRowCdf
+layout(binding = 12) uniform sampler2D uEnvColumnCdf;    // kUnitEnvColumnCdf
+vec2 envRowCdfAt(int f, int c, int i) { return texelFetch(uEnvRowCdf, ivec3(i, c, f), 0).xy; }
+vec2 envColumnCdfAt(int row, int i) { return texelFetch(uEnvColumnCdf, ivec2(i, row), 0).xy; }
+#endif
 layout(std430, binding = 12) buffer EnvSamples { EnvironmentSampleGpu envSamples[]; };
 
 // Face frames (centre, right = +col, down = +row): shared/CubeFaces.h.
@@ -88,24 +99,29 @@ vec2 envRand48(inout uint state) {
     return ffFastTwoSum(hi, lo * (1.0 / 16777216.0));
 }
 
-vec2 envCdfAt(bool rows, int i) { return rows ? envRowCdf[i] : envColCdf[i]; }
+/// Entry i of face f's CDF(u) (column < 0) or of CDF(v | u) of a column.
+vec2 envCdfAt(int f, int column, int i) {
+    return column < 0 ? envColumnCdfAt(f, i) : envRowCdfAt(f, column, i);
+}
 
-/// Index of the CDF piece holding u: cdf[i] <= u < cdf[i + 1] over cdf[base .. base + n] of the
-/// row tables (rows) or the column table (non-empty pieces only), and u's fraction inside it.
-int envSearch(bool rows, int base, int n, vec2 u, out float fraction) {
+/// Index of the CDF piece holding u: cdf[i] <= u < cdf[i + 1] over the n + 1 entries of face
+/// f's CDF(u) (column < 0) or CDF(v | u) (non-empty pieces only), and u's fraction inside it.
+int envSearch(int f, int column, int n, vec2 u, out float fraction) {
     int lo = 0, hi = n;  // invariant: cdf[lo] <= u < cdf[hi] (cdf[n] = 1 > u)
     while (hi - lo > 1) {
         int mid = (lo + hi) >> 1;
-        if (ffLessEqual(envCdfAt(rows, base + mid), u)) lo = mid; else hi = mid;
+        if (ffLessEqual(envCdfAt(f, column, mid), u)) lo = mid; else hi = mid;
     }
-    vec2 left = envCdfAt(rows, base + lo);
-    float w = ffToFloat(ffSub(envCdfAt(rows, base + lo + 1), left));
+    vec2 left = envCdfAt(f, column, lo);
+    float w = ffToFloat(ffSub(envCdfAt(f, column, lo + 1), left));
     fraction = w > 0.0 ? clamp(ffToFloat(ffSub(u, left)) / w, 0.0, 1.0) : 0.5;
     return lo;
 }
 
 /// Probability of piece i of a CDF (its difference, rounded once).
-float envPieceProbability(bool rows, int i) { return ffToFloat(ffSub(envCdfAt(rows, i + 1), envCdfAt(rows, i))); }
+float envPieceProbability(int f, int column, int i) {
+    return ffToFloat(ffSub(envCdfAt(f, column, i + 1), envCdfAt(f, column, i)));
+}
 
 /// I_f of Eq. (3).
 float envFaceImportance(int f) { return envFaces[f].totals.x; }
@@ -115,8 +131,7 @@ float envFaceImportance(int f) { return envFaces[f].totals.x; }
 /// plane-to-sphere Jacobian (1 + a^2 + b^2)^(3/2).
 float envTexelPdf(int f, int c, int r, vec2 ab) {
     int n = env.dims.z;
-    int cb = f * (n + 1), rb = (f * n + c) * (n + 1);
-    float p = envPieceProbability(false, cb + c) * envPieceProbability(true, rb + r);
+    float p = envPieceProbability(f, -1, c) * envPieceProbability(f, c, r);
     float q = 1.0 + dot(ab, ab);
     return p * float(n) * float(n) * 0.25 * q * sqrt(q);
 }

@@ -11,6 +11,9 @@
 // kEnvFaceFloor x the face's mean luminance) x the texel's solid angle. Prefix sums run in
 // float-float (ff.glsl) and the tables are stored as float-float pairs (see envRand48 in
 // environment.glsl).
+#if defined(PASS_ROWS) || defined(PASS_COLUMNS)
+#define ENV_WRITES_TABLES
+#endif
 #include "environment.glsl"
 
 #if defined(PASS_CUBE)
@@ -127,15 +130,15 @@ void main() {
     scanPartials(t);
     vec2 total = partial[255];
     vec2 running = t > 0u ? partial[t - 1u] : vec2(0.0);
-    int base = (f * n + c) * (n + 1);
     for (int r = first; r < last; ++r) {
         running = ffAddF(running, envCube[(f * n + r) * n + c].y);
         // The last entry is exactly 1 (or 0 for an empty column), as in Cdf1D::build.
-        envRowCdf[base + r + 1] = total.x > 0.0 ? (r == n - 1 ? vec2(1.0, 0.0) : ffDiv(running, total)) : vec2(0.0);
+        vec2 cdf = total.x > 0.0 ? (r == n - 1 ? vec2(1.0, 0.0) : ffDiv(running, total)) : vec2(0.0);
+        imageStore(envRowCdfImage, ivec3(r + 1, c, f), vec4(cdf, 0.0, 0.0));
     }
     if (t == 0u) {
-        envRowCdf[base] = vec2(0.0);
-        envColCdf[6 * (n + 1) + f * n + c] = total;
+        imageStore(envRowCdfImage, ivec3(0, c, f), vec4(0.0));
+        imageStore(envColumnCdfImage, ivec2(c, 6 + f), vec4(total, 0.0, 0.0));
     }
 }
 #endif
@@ -145,20 +148,19 @@ void main() {
     int n = env.dims.z, f = int(gl_WorkGroupID.x);
     uint t = gl_LocalInvocationID.x;
     int per = (n + 255) / 256, first = int(t) * per, last = min(first + per, n);
-    int totals = 6 * (n + 1) + f * n;
     vec2 sum = vec2(0.0);
-    for (int c = first; c < last; ++c) sum = ffAdd(sum, envColCdf[totals + c]);
+    for (int c = first; c < last; ++c) sum = ffAdd(sum, envColumnCdfAt(6 + f, c));
     partial[t] = sum;
     scanPartials(t);
     vec2 total = partial[255];
     vec2 running = t > 0u ? partial[t - 1u] : vec2(0.0);
-    int base = f * (n + 1);
     for (int c = first; c < last; ++c) {
-        running = ffAdd(running, envColCdf[totals + c]);
-        envColCdf[base + c + 1] = total.x > 0.0 ? (c == n - 1 ? vec2(1.0, 0.0) : ffDiv(running, total)) : vec2(0.0);
+        running = ffAdd(running, envColumnCdfAt(6 + f, c));
+        vec2 cdf = total.x > 0.0 ? (c == n - 1 ? vec2(1.0, 0.0) : ffDiv(running, total)) : vec2(0.0);
+        imageStore(envColumnCdfImage, ivec2(c + 1, f), vec4(cdf, 0.0, 0.0));
     }
     if (t == 0u) {
-        envColCdf[base] = vec2(0.0);
+        imageStore(envColumnCdfImage, ivec2(0, f), vec4(0.0));
         envFaces[f].totals.x = ffToFloat(total);
     }
 }
@@ -179,8 +181,8 @@ void main() {
         uint rng = pcgHash(uint(env.frame.x) ^ pcgHash(uint(f * pool + i) + 0x9e3779b9u));
         vec2 u1 = envRand48(rng), u2 = envRand48(rng);
         float fx, fy;
-        int c = envSearch(false, f * (n + 1), n, u1, fx);
-        int r = envSearch(true, (f * n + c) * (n + 1), n, u2, fy);
+        int c = envSearch(f, -1, n, u1, fx);
+        int r = envSearch(f, c, n, u2, fy);
         float a = -1.0 + 2.0 * (float(c) + fx) / float(n), b = -1.0 + 2.0 * (float(r) + fy) / float(n);
         vec3 w = envFaceDirection(f, a, b);
         s.direction = vec4(w, envTexelPdf(f, c, r, vec2(a, b)));

@@ -2,8 +2,11 @@
 // as static-map renderers do), per-pixel samples.
 #include "environment_shading.glsl"
 
-// [0 .. H]: CDF over rows; then per row y, [H + 1 + y (W + 1) ..]: CDF over columns.
-layout(std430, binding = 13) readonly buffer EnvExtra { float envGlobal[]; };
+// Row 0: the CDF over rows; row 1 + y: the CDF over row y's columns; entry i at texel i - 1
+// (kUnitEnvGlobalCdf in shared/GpuTypes.h).
+layout(binding = 13) uniform sampler2D uEnvGlobalCdf;
+
+float globalCdf(int line, int i) { return i == 0 ? 0.0 : texelFetch(uEnvGlobalCdf, ivec2(i - 1, line), 0).r; }
 
 vec3 shadeTechnique(Surface s, int ns, inout uint rng) {
     vec3 result = vec3(0.0);
@@ -13,23 +16,22 @@ vec3 shadeTechnique(Surface s, int ns, inout uint rng) {
         int lo = 0, hi = H;
         while (hi - lo > 1) {
             int mid = (lo + hi) >> 1;
-            if (envGlobal[mid] <= u1) lo = mid; else hi = mid;
+            if (globalCdf(0, mid) <= u1) lo = mid; else hi = mid;
         }
         int y = lo;
-        float py = envGlobal[y + 1] - envGlobal[y];
+        float py = globalCdf(0, y + 1) - globalCdf(0, y);
         if (!(py > 0.0)) continue;
-        float fy = clamp((u1 - envGlobal[y]) / py, 0.0, 1.0);
-        int base = H + 1 + y * (W + 1);
+        float fy = clamp((u1 - globalCdf(0, y)) / py, 0.0, 1.0);
         lo = 0;
         hi = W;
         while (hi - lo > 1) {
             int mid = (lo + hi) >> 1;
-            if (envGlobal[base + mid] <= u2) lo = mid; else hi = mid;
+            if (globalCdf(1 + y, mid) <= u2) lo = mid; else hi = mid;
         }
         int x = lo;
-        float px_ = envGlobal[base + x + 1] - envGlobal[base + x];
+        float px_ = globalCdf(1 + y, x + 1) - globalCdf(1 + y, x);
         if (!(px_ > 0.0)) continue;
-        float fx = clamp((u2 - envGlobal[base + x]) / px_, 0.0, 1.0);
+        float fx = clamp((u2 - globalCdf(1 + y, x)) / px_, 0.0, 1.0);
         // Uniform in solid angle inside the texel: phi linear, cos(theta) linear.
         float c0 = cos(kPi * float(y) / float(H)), c1 = cos(kPi * float(y + 1) / float(H));
         float cosT = clamp(c0 - fy * (c0 - c1), -1.0, 1.0);

@@ -47,6 +47,7 @@ bool EnvironmentPass::setMap(std::shared_ptr<const EnvironmentMap> map, int face
     mMap = std::move(map);
     mBuilt = false;
     mExtraFor.reset();
+    mGlobalCdfFor.reset();
     if (!mMap) return true;
     if (resized || !mTexture.id())
         mTexture = gl::Texture2D(mMap->width(), mMap->height(), GL_RGB32F);
@@ -63,10 +64,8 @@ bool EnvironmentPass::setMap(std::shared_ptr<const EnvironmentMap> map, int face
         mN = n;
         size_t texels = 6 * size_t(n) * size_t(n);
         mCube = gl::Buffer(GLsizeiptr(texels * sizeof(glm::vec2)), nullptr);
-        mRowCdf =
-            gl::Buffer(GLsizeiptr(6 * size_t(n) * size_t(n + 1) * sizeof(glm::vec2)), nullptr);
-        mColCdf = gl::Buffer(GLsizeiptr((6 * size_t(n + 1) + 6 * size_t(n)) * sizeof(glm::vec2)),
-                             nullptr);
+        mRowCdf = gl::TextureArray(GL_TEXTURE_2D_ARRAY, n + 1, n, 6, GL_RG32F);
+        mColumnCdf = gl::Texture2D(n + 1, 12, GL_RG32F);  // rows 6-11: the columns' totals
         mFaces = gl::Buffer(GLsizeiptr(6 * sizeof(gpu::EnvironmentFaceGpu)), nullptr);
     }
     mUniforms.dims = glm::ivec4(mMap->width(), mMap->height(), mN, mPool);
@@ -80,8 +79,13 @@ void EnvironmentPass::bindAll() const {
     mUniformBuffer.bindBase(GL_UNIFORM_BUFFER, gpu::kBindingEnvironment);
     glBindTextureUnit(GLuint(gpu::kUnitEnvironmentMap), mTexture.id());
     mCube.bindBase(GL_SHADER_STORAGE_BUFFER, gpu::kBindingEnvCube);
-    mRowCdf.bindBase(GL_SHADER_STORAGE_BUFFER, gpu::kBindingEnvRowCdf);
-    mColCdf.bindBase(GL_SHADER_STORAGE_BUFFER, gpu::kBindingEnvColCdf);
+    glBindImageTexture(GLuint(gpu::kImageEnvRowCdf), mRowCdf.id(), 0, GL_TRUE, 0, GL_READ_WRITE,
+                       GL_RG32F);
+    glBindImageTexture(GLuint(gpu::kImageEnvColumnCdf), mColumnCdf.id(), 0, GL_FALSE, 0,
+                       GL_READ_WRITE, GL_RG32F);
+    glBindTextureUnit(GLuint(gpu::kUnitEnvRowCdf), mRowCdf.id());
+    glBindTextureUnit(GLuint(gpu::kUnitEnvColumnCdf), mColumnCdf.id());
+    if (mGlobalCdf.id()) glBindTextureUnit(GLuint(gpu::kUnitEnvGlobalCdf), mGlobalCdf.id());
     mFaces.bindBase(GL_SHADER_STORAGE_BUFFER, gpu::kBindingEnvFaces);
     if (mSamples.id()) mSamples.bindBase(GL_SHADER_STORAGE_BUFFER, gpu::kBindingEnvSamples);
     if (mExtra.id()) mExtra.bindBase(GL_SHADER_STORAGE_BUFFER, gpu::kBindingEnvExtra);
@@ -91,7 +95,9 @@ void EnvironmentPass::dispatch(ShaderLibrary& shaders, programs::EnvironmentTabl
                                GLuint y, GLuint z) {
     glUseProgram(shaders.program(programs::environmentTables(pass)));
     glDispatchCompute(x, y, z);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT |
+                    GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
+                    GL_TEXTURE_UPDATE_BARRIER_BIT);
 }
 
 void EnvironmentPass::buildTables(ShaderLibrary& shaders) {
@@ -121,20 +127,22 @@ void EnvironmentPass::drawSamples(ShaderLibrary& shaders, uint32_t seed, int poo
 }
 
 void EnvironmentPass::prepareGlobalCdf() {
-    if (!mMap || (mExtraFor.lock() == mMap && mUniforms.extra.y == 1)) return;
+    if (!mMap || mGlobalCdfFor.lock() == mMap) return;
     LatLongDistribution global(*mMap);
-    int w = mMap->width(), h = mMap->height();
-    std::vector<float> tables(size_t(h + 1) + size_t(h) * size_t(w + 1), 0.f);
+    int w = mMap->width(), h = mMap->height(), width = std::max(w, h);
+    // Entry i of a CDF at texel i - 1: entry 0 is 0 (kUnitEnvGlobalCdf in GpuTypes.h).
+    std::vector<float> table(size_t(width) * size_t(h + 1), 0.f);
     if (!global.empty()) {
-        for (int y = 0; y <= h; ++y) tables[size_t(y)] = float(global.rows().cdf[size_t(y)]);
+        for (int y = 1; y <= h; ++y) table[size_t(y - 1)] = float(global.rows().cdf[size_t(y)]);
         for (int y = 0; y < h; ++y)
-            for (int x = 0; x <= w; ++x)
-                tables[size_t(h + 1) + size_t(y) * size_t(w + 1) + size_t(x)] =
+            for (int x = 1; x <= w; ++x)
+                table[size_t(y + 1) * size_t(width) + size_t(x - 1)] =
                     float(global.columns(y).cdf[size_t(x)]);
     }
-    mExtra = gl::Buffer(GLsizeiptr(tables.size() * sizeof(float)), tables.data());
-    mUniforms.extra = glm::ivec4(0, 1, 0, 0);
-    mExtraFor = mMap;
+    mGlobalCdf = gl::Texture2D(width, h + 1, GL_R32F);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTextureSubImage2D(mGlobalCdf.id(), 0, 0, 0, width, h + 1, GL_RED, GL_FLOAT, table.data());
+    mGlobalCdfFor = mMap;
 }
 
 void EnvironmentPass::prepareHavran() {
@@ -236,10 +244,16 @@ std::vector<glm::vec2> EnvironmentPass::readCube() const {
     return readBuffer<glm::vec2>(mCube, 6 * size_t(mN) * size_t(mN));
 }
 std::vector<double> EnvironmentPass::readRowCdf() const {
-    return fromFloatFloats(readBuffer<glm::vec2>(mRowCdf, 6 * size_t(mN) * size_t(mN + 1)));
+    std::vector<glm::vec2> pairs(6 * size_t(mN) * size_t(mN + 1));
+    glGetTextureImage(mRowCdf.id(), 0, GL_RG, GL_FLOAT, GLsizei(pairs.size() * sizeof(glm::vec2)),
+                      pairs.data());
+    return fromFloatFloats(pairs);
 }
 std::vector<double> EnvironmentPass::readColumnCdf() const {
-    return fromFloatFloats(readBuffer<glm::vec2>(mColCdf, 6 * size_t(mN + 1)));
+    std::vector<glm::vec2> pairs(6 * size_t(mN + 1));
+    glGetTextureSubImage(mColumnCdf.id(), 0, 0, 0, 0, mN + 1, 6, 1, GL_RG, GL_FLOAT,
+                         GLsizei(pairs.size() * sizeof(glm::vec2)), pairs.data());
+    return fromFloatFloats(pairs);
 }
 std::vector<gpu::EnvironmentFaceGpu> EnvironmentPass::readFaces() const {
     return readBuffer<gpu::EnvironmentFaceGpu>(mFaces, 6);

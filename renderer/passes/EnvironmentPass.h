@@ -82,9 +82,12 @@ class EnvironmentPass final : public SourcePass {
     int mN = 0, mPool = 0;
     gpu::EnvironmentGpu mUniforms{};
     gl::Texture2D mTexture;
-    gl::Buffer mUniformBuffer, mCube, mRowCdf, mColCdf, mFaces, mSamples, mExtra;
-    std::weak_ptr<const EnvironmentMap>
-        mExtraFor;  ///< Map whose global CDF or lights mExtra holds.
+    gl::Buffer mUniformBuffer, mCube, mFaces, mSamples, mExtra;
+    gl::TextureArray mRowCdf;  ///< CDF(v | u) per face and column (kUnitEnvRowCdf).
+    gl::Texture2D mColumnCdf;  ///< CDF(u) per face, then the columns' totals.
+    gl::Texture2D mGlobalCdf;  ///< The global-cdf technique's lat-long CDF.
+    std::weak_ptr<const EnvironmentMap> mExtraFor;      ///< Map whose Havran lights mExtra holds.
+    std::weak_ptr<const EnvironmentMap> mGlobalCdfFor;  ///< Map mGlobalCdf was built for.
     std::unique_ptr<HavranLights> mHavran;
     std::weak_ptr<const EnvironmentMap> mHavranFor;    ///< Newest map the filter has seen.
     std::shared_ptr<const EnvironmentMap> mSourceMap;  ///< The source's, made current in prepare().

@@ -35,12 +35,21 @@ CANDELA_CONST int kBindingBvhTris = 3;    // SSBO BvhTriangle[]
 CANDELA_CONST int kBindingTestIn = 6;     // SSBOs of parity and chi-square compute tests
 CANDELA_CONST int kBindingTestOut = 7;
 CANDELA_CONST int kBindingEnvCube = 8;  // SSBO vec2 per cube texel: luminance x solid angle, weight
-CANDELA_CONST int kBindingEnvRowCdf = 9;    // SSBO float [face][column][row + 1]: CDF(v | u)
-CANDELA_CONST int kBindingEnvColCdf = 10;   // SSBO float [face][column + 1]: CDF(u), then the
-                                            // column totals [face][column] after 6 (N + 1) floats
 CANDELA_CONST int kBindingEnvFaces = 11;    // SSBO EnvironmentFaceGpu[6]
 CANDELA_CONST int kBindingEnvSamples = 12;  // SSBO EnvironmentSampleGpu[6][pool]
-CANDELA_CONST int kBindingEnvExtra = 13;    // SSBO of global-cdf tables or Havran lights
+CANDELA_CONST int kBindingEnvExtra = 13;    // SSBO of Havran lights
+
+/// The environment's CDFs as textures (float-float pairs, RG32F; environment_cdf.comp writes
+/// them through image units, shading reads them with texelFetch): CDF(v | u) of face f, column c
+/// in row c of layer f, N + 1 entries; CDF(u) of face f in row f of the column table, N + 1
+/// entries, and the columns' totals in row 6 + f. The global-cdf technique's lat-long CDF (R32F,
+/// built on the CPU): row 0 the CDF over rows, row 1 + y the CDF over row y's columns, entry i at
+/// texel i - 1 (entry 0 is 0, so a map 16384 texels wide fits GL's 16384).
+CANDELA_CONST int kUnitEnvRowCdf = 11;
+CANDELA_CONST int kUnitEnvColumnCdf = 12;
+CANDELA_CONST int kUnitEnvGlobalCdf = 13;
+CANDELA_CONST int kImageEnvRowCdf = 0;
+CANDELA_CONST int kImageEnvColumnCdf = 1;
 
 /// Shadow maps of the luminaire being shaded (renderer/passes/ShadowMapPass.h): the header and
 /// one ShadowMapGpu per map at kBindingShadowMaps, the shares at kBindingShadowShares (vec2
@@ -153,7 +162,7 @@ struct EnvironmentGpu {
                   // in the pool
     vec4 params;  // x = rotation about +Y (rad); y = 1 to show the map behind the scene; zw unused
     ivec4 frame;  // x = seed of this frame's light samples; y = supersampling k; zw unused
-    ivec4 extra;  // x = count of Havran lights or 0; y = global-cdf tables present; zw unused
+    ivec4 extra;  // x = count of Havran lights or 0; yzw unused
 };
 
 /// One cube face's totals (std430).
