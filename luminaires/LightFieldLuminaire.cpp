@@ -184,20 +184,18 @@ std::vector<std::byte> LightFieldLuminaire::gpuData() const {
     h.dims = glm::ivec4(lf.count.x, lf.count.y, lf.width, lf.height);
     h.options = glm::ivec4(kMaxSamplesPerImage, 0, 0, 0);
     // granier2003's far-field correction (LightFieldData::granierTable, made once per light field):
-    // the grid's first and last centres on S, then the ratios, as floats. The images' tables are
+    // the grid's first and last centres on S here; its ratios, like the images' tables, are
     // textures (LightFieldData::gpuTables).
     h.offsets = glm::ivec4(0, 0, 0, lf.rgb ? 1 : 0);
     const GranierTable& granier = lf.granierTable();
     size_t granierOffset = sizeof(h) / sizeof(float);
-    size_t granierCount = 4 + granier.weighted.size();
     h.options.y = int(granierOffset);
     h.options.z = granier.size;
-    std::vector<std::byte> out((granierOffset + granierCount) * 4);
+    std::vector<std::byte> out((granierOffset + 4) * 4);
     std::memcpy(out.data(), &h, sizeof(h));
     auto* far = reinterpret_cast<float*>(out.data()) + granierOffset;
     far[0] = float(granier.min.x), far[1] = float(granier.min.y), far[2] = float(granier.max.x),
     far[3] = float(granier.max.y);
-    std::memcpy(far + 4, granier.weighted.data(), granier.weighted.size() * sizeof(float));
     return out;
 }
 
@@ -238,6 +236,9 @@ std::shared_ptr<const GpuTables> LightFieldData::gpuTables() const {
         out->push_back(std::move(sat));
         out->push_back(std::move(lum));
         if (rgb) out->push_back(std::move(colour));
+        if (const GranierTable& granier = granierTable(); granier.size >= 2)
+            out->push_back(GpuTable{gpu::kUnitLightFieldGranier, 1, granier.size, granier.size,
+                                    layers, false, granier.weighted});
         mGpuTables = std::move(out);
     });
     return mGpuTables;

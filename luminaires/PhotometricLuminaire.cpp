@@ -280,14 +280,10 @@ std::vector<std::byte> PhotometricLuminaire::gpuData() const {
     h.offsets = glm::ivec4(base, base + nv, 0, base + nv + nh);
     const auto& p24 = poissonSet(24);
     const auto& p40 = poissonSet(40);
-    // The reference's intensity-proportional directions: the cells' CDF (IntensitySampler.h).
-    std::vector<double> cdf;
-    if (auto sampler = IntensitySampler::of(data); sampler && sampler->valid())
-        cdf = sampler->normalisedCdf();
     h.samples = glm::ivec4(h.offsets.w + 2 * corners, h.offsets.w + 2 * corners + 48, 0, 0);
-    if (!cdf.empty()) h.samples.z = h.samples.y + 80;
-    std::vector<float> values(size_t(h.samples.y + 80) + cdf.size(), 0.f);
-    for (size_t i = 0; i < cdf.size(); ++i) values[size_t(h.samples.z) + i] = float(cdf[i]);
+    // The reference's intensity-proportional directions: the cells' CDF (gpuTables).
+    if (auto sampler = IntensitySampler::of(data); sampler && sampler->valid()) h.samples.z = 1;
+    std::vector<float> values(size_t(h.samples.y + 80), 0.f);
     for (int i = 0; i < nv; ++i)
         values[size_t(h.offsets.x + i)] = float(d.vertical[size_t(i)] * kPi / 180.0);
     for (int i = 0; i < nh; ++i)
@@ -319,7 +315,19 @@ std::shared_ptr<const GpuTables> PhotometricLuminaire::gpuTables() const {
         GpuTable t{gpu::kUnitPhotometricIntensity, 1, nv, nh, 1, false, {}};
         t.texels.resize(size_t(nv) * size_t(nh));
         for (size_t i = 0; i < t.texels.size(); ++i) t.texels[i] = float(d.candela[i]);
-        mGpuTables = std::make_shared<const GpuTables>(GpuTables{std::move(t)});
+        GpuTables tables{std::move(t)};
+        // The cells' CDF for the reference's intensity-proportional directions
+        // (IntensitySampler.h): (nv - 1)(nh - 1) + 1 entries, nv - 1 to a row.
+        if (auto sampler = IntensitySampler::of(data); sampler && sampler->valid()) {
+            std::vector<double> cdf = sampler->normalisedCdf();
+            int width = std::max(nv - 1, 1),
+                height = int((cdf.size() + size_t(width) - 1) / size_t(width));
+            GpuTable cells{gpu::kUnitPhotometricCellCdf, 1, width, height, 1, false, {}};
+            cells.texels.assign(size_t(width) * size_t(height), 1.f);
+            for (size_t i = 0; i < cdf.size(); ++i) cells.texels[i] = float(cdf[i]);
+            tables.push_back(std::move(cells));
+        }
+        mGpuTables = std::make_shared<const GpuTables>(std::move(tables));
         mGpuTablesFor = data.get();
     }
     return mGpuTables;

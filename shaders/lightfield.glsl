@@ -13,6 +13,7 @@ layout(std430, binding = 1) readonly buffer LightFieldFloats { float lfFloats[];
 layout(binding = 8) uniform sampler2DArray uLfSat;     // kUnitLightFieldSat: float-float pairs
 layout(binding = 9) uniform sampler2DArray uLfLum;     // kUnitLightFieldLum
 layout(binding = 10) uniform sampler2DArray uLfColour; // kUnitLightFieldColour (RGB data only)
+layout(binding = 11) uniform sampler2DArray uLfGranier; // kUnitLightFieldGranier
 
 float lfDelta() { return lf.geometry.x; }
 int lfImageCount() { return lf.dims.x * lf.dims.y; }
@@ -239,8 +240,8 @@ float lfGranierWeighted(int m, vec2 centre) {
     f = min(f, vec2(float(n - 1) - 1e-3));
     ivec2 i = ivec2(f);
     vec2 t = f - vec2(i);
-    int base = o + 4 + (m * n + i.y) * n + i.x;
-    float r0 = mix(lfFloats[base], lfFloats[base + 1], t.x), r1 = mix(lfFloats[base + n], lfFloats[base + n + 1], t.x);
+    float r0 = mix(texelFetch(uLfGranier, ivec3(i, m), 0).x, texelFetch(uLfGranier, ivec3(i.x + 1, i.y, m), 0).x, t.x);
+    float r1 = mix(texelFetch(uLfGranier, ivec3(i.x, i.y + 1, m), 0).x, texelFetch(uLfGranier, ivec3(i + 1, m), 0).x, t.x);
     return mix(r0, r1, t.y);
 }
 

@@ -8,8 +8,14 @@ layout(std430, binding = 1) readonly buffer PhotometricHeader { PhotometricGpu p
 layout(std430, binding = 1) readonly buffer PhotometricFloats { float phFloats[]; };
 // kUnitPhotometricIntensity: the candela table, unscaled (x = vertical index, y = horizontal).
 layout(binding = 8) uniform sampler2DArray uPhCandela;
+// kUnitPhotometricCellCdf: the cells' CDF, entry k at (k mod (nv - 1), k div (nv - 1)).
+layout(binding = 9) uniform sampler2DArray uPhCellCdf;
 
 float phCandela(int iv, int ih) { return texelFetch(uPhCandela, ivec3(iv, ih, 0), 0).x; }
+float phCellCdf(int k) {
+    int w = max(ph.dims.x - 1, 1);
+    return texelFetch(uPhCellCdf, ivec3(k % w, k / w, 0), 0).x;
+}
 
 // --- The intensity table ------------------------------------------------------------------------
 
@@ -83,7 +89,7 @@ float phTablePdf(vec3 d) {
     iv = min(iv, nv - 2);
     ih = min(ih, nh - 2);
     int cell = ih * (nv - 1) + iv;
-    float share = phFloats[ph.samples.z + cell + 1] - phFloats[ph.samples.z + cell];
+    float share = phCellCdf(cell + 1) - phCellCdf(cell);
     float omega = (phAreaCoordinate(phFloats[ph.offsets.x + iv + 1]) - phAreaCoordinate(phFloats[ph.offsets.x + iv])) *
                   (phFloats[ph.offsets.y + ih + 1] - phFloats[ph.offsets.y + ih]);
     return omega > 0.0 ? share / omega : 0.0;
@@ -92,11 +98,11 @@ float phTablePdf(vec3 d) {
 /// A unit local direction drawn in proportion to the table's intensity (IntensitySampler):
 /// the cell by its CDF, then uniform in solid angle within it.
 vec3 phTableSample(float pick, vec2 u) {
-    int nv = ph.dims.x, nh = ph.dims.y, o = ph.samples.z;
+    int nv = ph.dims.x, nh = ph.dims.y;
     int lo = 0, hi = (nv - 1) * (nh - 1) - 1;
     while (lo < hi) {  // the first cell whose upper CDF exceeds pick
         int mid = (lo + hi) / 2;
-        if (phFloats[o + mid + 1] > pick) hi = mid;
+        if (phCellCdf(mid + 1) > pick) hi = mid;
         else lo = mid + 1;
     }
     int ih = lo / (nv - 1), iv = lo - ih * (nv - 1);

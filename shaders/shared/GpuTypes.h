@@ -57,12 +57,16 @@ CANDELA_CONST int kImageEnvColumnCdf = 1;
 /// samplerCubeArrayShadow) on texture unit kUnitShadowMaps.
 /// Texture units of a luminaire's tables (luminaires/GpuTable.h): 2D arrays read with texelFetch.
 /// A light field's summed-area tables (RG32F float-float pairs, one layer per image), luminance
-/// (R32F) and colour ratios (RGBA16F); a photometric file's intensity table (R32F, vertical angle
-/// along x, horizontal along y). Kinds never share a program, so their units may coincide.
+/// (R32F), colour ratios (RGBA16F) and granier2003's far-field ratios (R32F, size x size per
+/// image); a photometric file's intensity table (R32F, vertical angle along x, horizontal along y)
+/// and its cells' CDF (R32F, entry k at (k mod (nv - 1), k div (nv - 1)); (nv-1)(nh-1)+1 entries
+/// from 0 to 1). Kinds never share a program, so their units may coincide.
 CANDELA_CONST int kUnitLightFieldSat = 8;
 CANDELA_CONST int kUnitLightFieldLum = 9;
 CANDELA_CONST int kUnitLightFieldColour = 10;
+CANDELA_CONST int kUnitLightFieldGranier = 11;
 CANDELA_CONST int kUnitPhotometricIntensity = 8;
+CANDELA_CONST int kUnitPhotometricCellCdf = 9;
 
 CANDELA_CONST int kBindingShadowMaps = 14;
 CANDELA_CONST int kBindingShadowShares = 15;
@@ -130,9 +134,9 @@ struct LightFieldGpu {
     vec4 gridLow;   // xy = 1 / pixel size - grid.zw (1/m), zw unused
     ivec4 dims;     // x, y = basis count W, H; z, w = image width, height (pixels)
     ivec4 offsets;  // x, y, z unused (the images are textures: GpuTable.h), w = 1 if RGB
-    ivec4 options;  // x = K_max samples per image per frame (0: no cap), y = granier2003's
-                    // far-field table (floats: min.xy, max.xy of its centres on S, then size^2
-                    // ratios per image), z = its size, w unused
+    ivec4 options;  // x = K_max samples per image per frame (0: no cap), y = offset of
+                    // granier2003's grid (floats: min.xy, max.xy of its centres on S; its ratios
+                    // at kUnitLightFieldGranier), z = its size, w unused
 };
 
 /// A photometric area light (std430): this header, then in the same buffer as floats the
@@ -150,8 +154,8 @@ struct PhotometricGpu {
     ivec4 offsets;  // x = vertical angles, y = horizontal angles, z unused (the candela table is
                     // the texture at kUnitPhotometricIntensity), w = polygon
     ivec4 samples;  // x, y = offsets of the 24- and 40-point Poisson sets (x, y pairs in the
-                    // unit square), z = offset of the table's cell CDF for the reference's
-                    // intensity-proportional directions ((nv-1)(nh-1)+1 floats from 0 to 1;
+                    // unit square), z = 1 when the table's cell CDF for the reference's
+                    // intensity-proportional directions is bound (kUnitPhotometricCellCdf;
                     // 0: none, a table of zeros), w unused
 };
 
