@@ -151,33 +151,19 @@ float lfPixelsEnergy(int m, int i0, int i1, int j0, int j1) {
 ivec4 lfEdges(LfCover c) { return ivec4(c.first, c.first + 1, c.last, c.last + 1); }
 vec3 lfWeights(LfCover c) { return vec3(c.wFirst, c.wMiddle, c.wLast); }
 
-/// Image m's table entries in column i at the four row edges of cy.
-void lfColumnEntries(int m, int i, LfCover cy, out vec2 entries[4]) {
-    ivec4 y = lfEdges(cy);
-    for (int k = 0; k < 4; ++k) entries[k] = lfSatEntry(m, i, y[k]);
-}
-
-/// lfBand over [i0, i1) given column i0's entries (lfColumnEntries), which a search over i1
-/// reads once.
-float lfBandFrom(int m, vec2 left[4], int i1, LfCover cy) {
+/// The energy of the rows that `cy` covers (weighted by how much of each it covers) within the
+/// pixel columns [i0, i1).
+float lfBand(int m, int i0, int i1, LfCover cy) {
     ivec4 y = lfEdges(cy);
     vec3 wy = lfWeights(cy);
     float sum = 0.0;
-    vec2 below = ffSub(lfSatEntry(m, i1, y[0]), left[0]);
+    vec2 below = ffSub(lfSatEntry(m, i1, y[0]), lfSatEntry(m, i0, y[0]));
     for (int k = 1; k < 4; ++k) {
-        vec2 upTo = ffSub(lfSatEntry(m, i1, y[k]), left[k]);
+        vec2 upTo = ffSub(lfSatEntry(m, i1, y[k]), lfSatEntry(m, i0, y[k]));
         sum += wy[k - 1] * ffSubToFloat(upTo, below);
         below = upTo;
     }
     return sum;
-}
-
-/// The energy of the rows that `cy` covers (weighted by how much of each it covers) within the
-/// pixel columns [i0, i1).
-float lfBand(int m, int i0, int i1, LfCover cy) {
-    vec2 left[4];
-    lfColumnEntries(m, i0, cy, left);
-    return lfBandFrom(m, left, i1, cy);
 }
 
 /// The energy of the box that cx and cy cover: its pixels split into first, middle and last
@@ -312,7 +298,18 @@ float lfKnot(int m, LfKnots K, int k) {
         int j = K.cy.first + k;
         return K.first + ffSubToFloat(ffSub(lfSatEntry(m, K.column + 1, j), lfSatEntry(m, K.column, j)), K.base[0]);
     }
-    return K.first + lfBandFrom(m, K.base, K.cx.first + k, K.cy);  // columns [first + 1, first + k)
+    // lfBand over columns [cx.first + 1, cx.first + k), its left edge's entries cached.
+    ivec4 y = lfEdges(K.cy);
+    vec3 wy = lfWeights(K.cy);
+    int i = K.cx.first + k;
+    float sum = 0.0;
+    vec2 below = ffSub(lfSatEntry(m, i, y[0]), K.base[0]);
+    for (int e = 1; e < 4; ++e) {
+        vec2 upTo = ffSub(lfSatEntry(m, i, y[e]), K.base[e]);
+        sum += wy[e - 1] * ffSubToFloat(upTo, below);
+        below = upTo;
+    }
+    return K.first + sum;
 }
 
 /// The piece [k, k + 1] that holds `target` (0 <= target <= total), by a secant-guided search
@@ -353,7 +350,8 @@ bool lfSampleTable(int m, vec2 a, vec2 b, LfCover cx, LfCover cy, float total, v
     K.total = total;
     if (!(K.total > floorEnergy)) return false;
     K.first = K.cx.wFirst * lfBand(m, K.cx.first, K.cx.first + 1, K.cy);
-    lfColumnEntries(m, K.cx.first + 1, K.cy, K.base);
+    ivec4 y = lfEdges(K.cy);
+    for (int e = 0; e < 4; ++e) K.base[e] = lfSatEntry(m, K.cx.first + 1, y[e]);
     float target = clamp(xi.x, 0.0, 1.0) * K.total, vlo, vhi;
     int k = lfFindPiece(m, K, target, vlo, vhi);
     if (!(vhi > vlo)) return false;
