@@ -35,7 +35,8 @@ const char* kUsage =
     "                                    or photometry (.ies/.ldt: flux from the table, lamps x "
     "LOR,\n"
     "                                    warnings for what was assumed to read the file)\n"
-    "  --strict (info, render, probe, grid, polar): refuse photometry files that need a leniency\n"
+    "  --strict (info, render, probe, grid, surfaces, polar): refuse photometry files that need a "
+    "leniency\n"
     "                                    (empty EULUMDAT fields, Latin-1 or UTF-16 text, mixed "
     "line\n"
     "                                    endings, ...) instead of loading them with a warning\n"
@@ -61,6 +62,11 @@ const char* kUsage =
     "                                    [--visibility] [--indirect]\n"
     "                                    illuminance on a calculation grid; Emin, Eavg, Emax, U0\n"
     "                                    (direct, interreflected and total with --indirect)\n"
+    "  surfaces scene.json [--spp N] [--visibility] [--indirect] [--csv F]\n"
+    "                                    EN 12464-1 task areas, their immediate surroundings and\n"
+    "                                    backgrounds (Em, U0, Emin, Emax against requirements) "
+    "and\n"
+    "                                    planar and cylindrical illuminance at points\n"
     "  polar FILE.ies|FILE.ldt [--out polar.png] [--step DEG]\n"
     "                                    polar candela diagram (C0-C180, C90-C270) and its table\n"
     "  validate [--case NAME]... [--list]\n"
@@ -77,7 +83,7 @@ int main(int argc, char** argv) {
     std::string command = argv[1];
     candela::Args args(argv + 2, argv + argc);
     // --strict: every photometry file these commands load is read strictly (Photometry.h).
-    for (const char* c : {"info", "render", "probe", "grid", "polar"}) {
+    for (const char* c : {"info", "render", "probe", "grid", "surfaces", "polar"}) {
         if (command != c) continue;
         auto strict = std::find(args.begin(), args.end(), "--strict");
         if (strict == args.end()) break;
@@ -92,6 +98,7 @@ int main(int argc, char** argv) {
         if (command == "convert") return candela::cmdConvert(args);
         if (command == "bench") return candela::cmdBench(args);
         if (command == "grid") return candela::cmdGrid(args);
+        if (command == "surfaces") return candela::cmdSurfaces(args);
         if (command == "polar") return candela::cmdPolar(args);
         if (command == "validate") return candela::cmdValidate(args);
         std::fprintf(stderr, "candela: unknown command \"%s\"\n%s", command.c_str(), kUsage);

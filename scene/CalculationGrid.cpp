@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdio>
 #include <memory>
+#include <stdexcept>
 #include <thread>
 
 #include "luminaires/EnvironmentSampling.h"
@@ -57,6 +59,42 @@ std::string CalcPlane::vName() const {
     return kAxisNames[vAxis(axis)];
 }
 
+CalcPlane parsePlane(const std::string& text, const std::string& what) {
+    CalcPlane plane;
+    std::string t = text;
+    if (!t.empty() && (t[0] == '+' || t[0] == '-')) {
+        plane.sign = t[0] == '-' ? -1.0 : 1.0;
+        t = t.substr(1);
+    }
+    size_t eq = t.find('=');
+    std::string axis = t.substr(0, eq);
+    auto bad = [&] {
+        return InputError(what + ": expected [+|-]x|y|z=VALUE in metres (e.g. y=0.8), got \"" +
+                          text + "\"");
+    };
+    if (eq == std::string::npos || (axis != "x" && axis != "y" && axis != "z")) throw bad();
+    plane.axis = axis[0] - 'x';
+    std::string value = t.substr(eq + 1);
+    auto notFinite = [&] {
+        return InputError(what + ": expected a finite number, got \"" + value + "\"");
+    };
+    try {
+        size_t used = 0;
+        plane.offset = std::stod(value, &used);
+        if (used != value.size() || !std::isfinite(plane.offset)) throw notFinite();
+    } catch (const std::logic_error&) {
+        throw notFinite();
+    }
+    return plane;
+}
+
+std::string planeText(const CalcPlane& plane) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%s%s=%.17g", plane.sign < 0 ? "-" : "", kAxisNames[plane.axis],
+                  plane.offset);
+    return buf;
+}
+
 std::vector<double> gridCoordinates(double lo, double hi, double spacing) {
     double n = std::max(1.0, std::floor((hi - lo) / spacing + 1e-9));
     double first = 0.5 * (lo + hi) - 0.5 * (n - 1.0) * spacing;
@@ -67,10 +105,10 @@ std::vector<double> gridCoordinates(double lo, double hi, double spacing) {
 
 namespace {
 
-/// The interreflected part of every point: the radiosity solution, then a final gather of spp
-/// rays per point (over the hardware's threads), added to E with its standard error.
-void addIndirect(const Scene& scene, const GridSpec& spec, GridResult& r,
-                 const std::function<void(const std::string&)>& status) {
+/// The interreflected part of every receiver: the radiosity solution, then a final gather of spp
+/// rays per receiver (over the hardware's threads), added to E with its standard error.
+void addIndirect(const Scene& scene, const GridSpec& spec, const std::vector<Receiver>& receivers,
+                 ReceiverResult& r, const std::function<void(const std::string&)>& status) {
     if (scene.meshes.empty())
         throw InputError(
             (scene.path.empty() ? std::string("the scene") : scene.path) +
@@ -88,18 +126,17 @@ void addIndirect(const Scene& scene, const GridSpec& spec, GridResult& r,
     Progress progress;
     if (!ir.compute(progress)) throw InputError("interreflection: cancelled");
     say("interreflection: solved in " + std::to_string(ir.lastIterations()) +
-        " iterations; final gather at " + std::to_string(r.u.size() * r.v.size()) + " points");
-    size_t count = r.u.size() * r.v.size();
+        " iterations; final gather at " + std::to_string(receivers.size()) + " points");
+    size_t count = receivers.size();
     r.indirect.assign(count, 0.0);
     r.indirectStdError.assign(count, 0.0);
     std::atomic<size_t> next{0};
     auto work = [&] {
         for (size_t index; (index = next.fetch_add(1)) < count;) {
-            size_t i = index % r.u.size(), j = index / r.u.size();
             EstimateOptions g;
             g.spp = std::max(1, spec.spp);
             g.seed = 7777ull * index + 13;
-            glm::dvec3 p = spec.plane.point(r.u[i], r.v[j]), n = spec.plane.normal();
+            glm::dvec3 p = receivers[index].position, n = receivers[index].normal;
             Estimate e;
             if (spec.indirectMethod == GridSpec::Indirect::Patches)
                 e.irradiance = ir.fromPatches(p, n);
@@ -158,6 +195,35 @@ GridResult computeGrid(const Scene& scene, const GridSpec& spec,
     double nv = std::floor((spec.hi.y - spec.lo.y) / spec.spacing) + 1.0;
     if (nu * nv > kMaxGridPoints)
         throw InputError("--spacing: " + std::to_string(spec.spacing) + " m gives over 1e6 points");
+    GridResult r;
+    r.spec = spec;
+    r.u = gridCoordinates(spec.lo.x, spec.hi.x, spec.spacing);
+    r.v = gridCoordinates(spec.lo.y, spec.hi.y, spec.spacing);
+    std::vector<Receiver> receivers;
+    for (double v : r.v)
+        for (double u : r.u) receivers.push_back({spec.plane.point(u, v), spec.plane.normal()});
+    ReceiverResult e = computeReceivers(scene, spec, receivers, status);
+    r.units = e.units;
+    r.maintenance = std::move(e.maintenance);
+    r.E = std::move(e.E);
+    r.stdError = std::move(e.stdError);
+    r.hasIndirect = e.hasIndirect;
+    r.direct = std::move(e.direct);
+    r.directStdError = std::move(e.directStdError);
+    r.indirect = std::move(e.indirect);
+    r.indirectStdError = std::move(e.indirectStdError);
+    return r;
+}
+
+ReceiverResult computeReceivers(const Scene& scene, const GridSpec& spec,
+                                const std::vector<Receiver>& receivers,
+                                const std::function<void(const std::string& status)>& status) {
+    if (double(receivers.size()) > kMaxGridPoints)
+        throw InputError("over 1e6 calculation points (" + std::to_string(receivers.size()) + ")");
+    for (const Receiver& q : receivers)
+        if (!std::isfinite(q.position.x + q.position.y + q.position.z) ||
+            !(std::abs(glm::length(q.normal) - 1.0) < 1e-9))
+            throw InputError("a calculation point needs a finite position and a unit normal");
     // The environment's technique, as `candela probe` chooses it.
     const TechniqueInfo* envChosen = nullptr;
     if (scene.environmentMap) {
@@ -192,42 +258,36 @@ GridResult computeGrid(const Scene& scene, const GridSpec& spec,
         options.visibility = vis.get();
     }
 
-    GridResult r;
-    r.spec = spec;
+    ReceiverResult r;
     r.units = scene.units();
     r.maintenance = scene.maintenanceNote();
     std::vector<double> scales;  // 683 lm/W for a radiometric luminaire in a mixed scene
     for (const auto& l : scene.luminaires) scales.push_back(scene.lightScale(*l));
     const Luminaire* environment = envChosen ? scene.environmentLight() : nullptr;
     double envScale = scene.environmentUnitScale();
-    r.u = gridCoordinates(spec.lo.x, spec.hi.x, spec.spacing);
-    r.v = gridCoordinates(spec.lo.y, spec.hi.y, spec.spacing);
-    glm::dvec3 n = spec.plane.normal();
-    for (size_t j = 0; j < r.v.size(); ++j)
-        for (size_t i = 0; i < r.u.size(); ++i) {
-            glm::dvec3 p = spec.plane.point(r.u[i], r.v[j]);
-            glm::dvec3 e(0.0), var(0.0);
-            size_t index = j * r.u.size() + i;
-            if (environment) {
-                EstimateOptions o = options;
-                o.seed = 1000003ull * index + 999983ull;
-                Estimate est = envChosen->irradiance(*environment, p, n, o);
-                e += envScale * est.irradiance;
-                var += envScale * envScale * est.stdError * est.stdError;
-            }
-            for (size_t k = 0; k < scene.luminaires.size(); ++k) {
-                EstimateOptions o = options;
-                o.seed = 1000003ull * index + k + 1;
-                Estimate est = chosen[k]->irradiance(*scene.luminaires[k], p, n, o);
-                e += scales[k] * est.irradiance;
-                var += scales[k] * scales[k] * est.stdError * est.stdError;
-            }
-            r.direct.push_back(luminanceOf(e));
-            r.directStdError.push_back(luminanceOf(glm::sqrt(var)));
+    for (size_t index = 0; index < receivers.size(); ++index) {
+        glm::dvec3 p = receivers[index].position, n = receivers[index].normal;
+        glm::dvec3 e(0.0), var(0.0);
+        if (environment) {
+            EstimateOptions o = options;
+            o.seed = 1000003ull * index + 999983ull;
+            Estimate est = envChosen->irradiance(*environment, p, n, o);
+            e += envScale * est.irradiance;
+            var += envScale * envScale * est.stdError * est.stdError;
         }
+        for (size_t k = 0; k < scene.luminaires.size(); ++k) {
+            EstimateOptions o = options;
+            o.seed = 1000003ull * index + k + 1;
+            Estimate est = chosen[k]->irradiance(*scene.luminaires[k], p, n, o);
+            e += scales[k] * est.irradiance;
+            var += scales[k] * scales[k] * est.stdError * est.stdError;
+        }
+        r.direct.push_back(luminanceOf(e));
+        r.directStdError.push_back(luminanceOf(glm::sqrt(var)));
+    }
     r.E = r.direct;
     r.stdError = r.directStdError;
-    if (spec.indirect) addIndirect(scene, spec, r, status);
+    if (spec.indirect) addIndirect(scene, spec, receivers, r, status);
     return r;
 }
 

@@ -18,7 +18,7 @@ struct Scene;
 /// An axis-aligned calculation plane: points with coordinate `offset` (m) along `axis`
 /// (0 x, 1 y, 2 z), receiving light on the side of the normal `sign` * axis. Its in-plane axes
 /// (u, v) are the two others in x, y, z order: y plane (x, z), x plane (y, z), z plane (x, y).
-/// `candela grid` reads one from text with parsePlane (app/commands/Commands.h).
+/// `candela grid` and scene files write one as text (parsePlane).
 struct CalcPlane {
     int axis = 1;
     double offset = 0.0;  ///< Metres.
@@ -29,6 +29,11 @@ struct CalcPlane {
     std::string uName() const;                   ///< "x", "y" or "z".
     std::string vName() const;
 };
+
+/// "[+|-]x|y|z=VALUE" (metres): "y=0.8" faces up, "-x=2.5" faces -x. Errors name `what`.
+CalcPlane parsePlane(const std::string& text, const std::string& what = "--plane");
+/// The text parsePlane reads ("y=0.8", "-x=2.5").
+std::string planeText(const CalcPlane& plane);
 
 struct GridSpec {
     CalcPlane plane;
@@ -83,5 +88,27 @@ void defaultGridExtent(const Scene& scene, GridSpec& spec);
 /// `status` (optional) hears what it is doing, for progress on long grids.
 GridResult computeGrid(const Scene& scene, const GridSpec& spec,
                        const std::function<void(const std::string& status)>& status = {});
+
+/// A receiving surface element: a point (m) and its unit normal.
+struct Receiver {
+    glm::dvec3 position{0.0}, normal{0.0, 1.0, 0.0};
+};
+
+/// Illuminance at arbitrary receivers, as computeGrid evaluates its points.
+struct ReceiverResult {
+    UnitSystem units;
+    std::string maintenance;
+    std::vector<double> E, stdError;  ///< In units.irradiance(), per receiver: direct (+ indirect).
+    bool hasIndirect = false;
+    std::vector<double> direct, directStdError, indirect, indirectStdError;
+};
+
+/// Evaluates the receivers with the estimators, visibility and interreflection that `how`
+/// asks for (its technique, environmentTechnique, spp, visibility, indirect, patches and
+/// indirectMethod; its plane, extent and spacing are not read). One interreflection solution
+/// serves every receiver.
+ReceiverResult computeReceivers(const Scene& scene, const GridSpec& how,
+                                const std::vector<Receiver>& receivers,
+                                const std::function<void(const std::string& status)>& status = {});
 
 }  // namespace candela

@@ -43,6 +43,8 @@ Scene Scene::clone() const {
     copy.mEnvironmentLight = mEnvironmentLight;  // immutable, shared: the same source
     copy.camera = camera;
     copy.maintenanceFactor = maintenanceFactor;
+    copy.taskAreas = taskAreas;
+    copy.calcPoints = calcPoints;
     return copy;
 }
 

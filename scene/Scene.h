@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "luminaires/Luminaire.h"
+#include "scene/CalculationSurfaces.h"
 
 namespace candela {
 class EnvironmentMap;
@@ -83,6 +84,10 @@ struct Scene {
     /// The project's maintenance factor (EN 12464-1: maintained over initial output, in (0, 1]):
     /// that of every luminaire that sets none. Daylight (the environment) takes none.
     double maintenanceFactor = 1.0;
+    /// EN 12464-1 calculation surfaces and points (scene/CalculationSurfaces.h), evaluated by
+    /// `candela surfaces`.
+    std::vector<TaskArea> taskAreas;
+    std::vector<CalcPoint> calcPoints;
 
     Scene() = default;
     Scene(Scene&&) = default;

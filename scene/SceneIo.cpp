@@ -479,7 +479,9 @@ Scene loadScene(const std::string& path) {
 
 Scene parseScene(const nlohmann::json& doc, const std::string& path) {
     const json::Where root{path, ""};
-    json::checkKeys(doc, {"geometry", "luminaires", "environment", "camera", "maintenance_factor"},
+    json::checkKeys(doc,
+                    {"geometry", "luminaires", "environment", "camera", "maintenance_factor",
+                     "task_areas", "calculation_points"},
                     root);
     Scene scene;
     scene.path = path;
@@ -507,6 +509,18 @@ Scene parseScene(const nlohmann::json& doc, const std::string& path) {
         scene.environmentSequence = std::move(env.sequence);
     }
     if (doc.contains("camera")) scene.camera = parseCamera(doc["camera"], root / "camera");
+    if (doc.contains("task_areas")) {
+        const nlohmann::json& items = doc["task_areas"];
+        if (!items.is_array()) json::fail(root / "task_areas", "an array of task areas");
+        for (size_t i = 0; i < items.size(); ++i)
+            scene.taskAreas.push_back(parseTaskArea(items[i], (root / "task_areas")[i]));
+    }
+    if (doc.contains("calculation_points")) {
+        const nlohmann::json& items = doc["calculation_points"];
+        if (!items.is_array()) json::fail(root / "calculation_points", "an array of points");
+        for (size_t i = 0; i < items.size(); ++i)
+            scene.calcPoints.push_back(parseCalcPoint(items[i], (root / "calculation_points")[i]));
+    }
     return scene;
 }
 
@@ -523,6 +537,8 @@ nlohmann::json sceneToJson(const Scene& scene) {
                      {"fov_deg", scene.camera.fovDeg}};
     if (scene.camera.exposure > 0.0) doc["camera"]["exposure"] = scene.camera.exposure;
     if (scene.maintenanceFactor != 1.0) doc["maintenance_factor"] = scene.maintenanceFactor;
+    for (const TaskArea& a : scene.taskAreas) doc["task_areas"].push_back(toJson(a));
+    for (const CalcPoint& p : scene.calcPoints) doc["calculation_points"].push_back(toJson(p));
     return doc;
 }
 

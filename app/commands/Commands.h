@@ -19,6 +19,7 @@ int cmdEdit(const Args& args);
 int cmdConvert(const Args& args);
 int cmdBench(const Args& args);
 int cmdGrid(const Args& args);
+int cmdSurfaces(const Args& args);
 int cmdPolar(const Args& args);
 int cmdValidate(const Args& args);
 
@@ -30,10 +31,6 @@ std::vector<float> parseNumberList(const std::string& flag, const std::string& t
 const std::string& flagValue(const Args& args, size_t& i);
 int parseInt(const std::string& flag, const std::string& text, int min, int max);
 
-/// Parses "[+|-]x|y|z=VALUE" (VALUE in metres, finite) for --plane (app/commands/Grid.cpp):
-/// "y=0.8" is a working plane facing up, "-y=2.4" a ceiling facing down. Throws InputError
-/// naming --plane.
-CalcPlane parsePlane(const std::string& text);
 /// `grid --csv`: x,y,z,E_lx,E_stderr_lx (_W_m2 for a radiometric scene) through a temporary file
 /// and a rename (util/FileOutput.h); throws InputError naming the file.
 void writeGridCsv(const std::string& path, const GridResult& result);

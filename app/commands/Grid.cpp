@@ -117,23 +117,6 @@ void writeGridCsv(const std::string& path, const GridResult& r) {
     writeFileAtomically(path, gridCsv(r), "cannot write the CSV file");
 }
 
-CalcPlane parsePlane(const std::string& text) {
-    CalcPlane plane;
-    std::string t = text;
-    if (!t.empty() && (t[0] == '+' || t[0] == '-')) {
-        plane.sign = t[0] == '-' ? -1.0 : 1.0;
-        t = t.substr(1);
-    }
-    size_t eq = t.find('=');
-    std::string axis = t.substr(0, eq);
-    if (eq == std::string::npos || (axis != "x" && axis != "y" && axis != "z"))
-        throw InputError("--plane: expected [+|-]x|y|z=VALUE in metres (e.g. y=0.8), got \"" +
-                         text + "\"");
-    plane.axis = axis[0] - 'x';
-    plane.offset = parseFinite("--plane", t.substr(eq + 1));
-    return plane;
-}
-
 int cmdGrid(const Args& args) {
     std::string scenePath, csvPath;
     GridSpec spec;

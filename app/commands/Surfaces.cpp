@@ -1,0 +1,151 @@
+// `candela surfaces`: the scene's EN 12464-1 calculation surfaces (task areas, their immediate
+// surroundings and backgrounds) and calculation points, computed by scene/CalculationSurfaces.h:
+// a summary per surface checked against its requirement, and optionally every point as CSV.
+#include <cstdio>
+
+#include "app/commands/Commands.h"
+#include "scene/CalculationSurfaces.h"
+#include "scene/SceneIo.h"
+#include "util/Error.h"
+#include "util/FileOutput.h"
+
+namespace candela {
+
+namespace {
+
+std::string requirementText(const Requirement& r, const char* unit) {
+    if (!r.any()) return "-";
+    char buf[96];
+    if (r.em > 0.0 && r.u0 > 0.0)
+        std::snprintf(buf, sizeof buf, "Em >= %g %s, U0 >= %.2f", r.em, unit, r.u0);
+    else if (r.em > 0.0)
+        std::snprintf(buf, sizeof buf, "Em >= %g %s", r.em, unit);
+    else
+        std::snprintf(buf, sizeof buf, "U0 >= %.2f", r.u0);
+    return buf;
+}
+
+void printReport(const SurfaceReport& r) {
+    const char* unit = r.units.irradiance();
+    std::printf("maintained illuminance E [%s]%s%s\n", unit, r.units.converted ? ", " : "",
+                r.units.note().c_str());
+    std::printf("%s\n", r.maintenance.c_str());
+    std::printf("light: %s\n", r.hasIndirect ? "direct and interreflected"
+                                             : "direct only (interreflected light: --indirect)");
+    int failed = 0;
+    for (const SurfaceResult& s : r.surfaces) {
+        std::printf("\n%s (%s), plane %s (normal %s%s)\n", s.name.c_str(), s.role.c_str(),
+                    planeText(s.plane).c_str(), s.plane.sign > 0 ? "+" : "-",
+                    s.plane.axisName().c_str());
+        std::printf("  area %s %.3f..%.3f m, %s %.3f..%.3f m", s.plane.uName().c_str(), s.lo.x,
+                    s.hi.x, s.plane.vName().c_str(), s.lo.y, s.hi.y);
+        if (s.holeHi.x > s.holeLo.x)
+            std::printf(" less %s %.3f..%.3f m, %s %.3f..%.3f m", s.plane.uName().c_str(),
+                        s.holeLo.x, s.holeHi.x, s.plane.vName().c_str(), s.holeLo.y, s.holeHi.y);
+        std::printf("\n  grid %d x %d cells of %.3f x %.3f m, %zu points\n", s.cells.x, s.cells.y,
+                    s.spacing.x, s.spacing.y, s.points.size());
+        if (s.points.empty()) {
+            std::printf("  no points (the room leaves no %s)\n", s.role.c_str());
+            continue;
+        }
+        const GridSummary& g = s.summary;
+        std::printf("  Em %.4g %s, U0 %.3f, Emin %.4g %s, Emax %.4g %s\n", g.eAvg, unit, g.u0,
+                    g.eMin, unit, g.eMax, unit);
+        std::string need = requirementText(s.required, unit);
+        std::printf("  required: %s: %s\n", need.c_str(),
+                    !s.required.any() ? "no requirement" : (s.passes ? "PASS" : "FAIL"));
+        if (s.required.any() && !s.passes) ++failed;
+    }
+    if (!r.points.empty()) std::printf("\ncalculation points\n");
+    for (const PointResult& p : r.points) {
+        const CalcPoint& c = p.point;
+        std::printf("  %s at (%.3f, %.3f, %.3f) m: ", c.name.c_str(), c.position.x, c.position.y,
+                    c.position.z);
+        if (c.cylindrical)
+            std::printf("cylindrical Ez %.4g %s", p.E, unit);
+        else
+            std::printf("E %.4g %s (normal %.3f, %.3f, %.3f)", p.E, unit, c.normal.x, c.normal.y,
+                        c.normal.z);
+        if (p.stdError > 0.0) std::printf(", standard error %.2g %s", p.stdError, unit);
+        if (c.requiredLux > 0.0) {
+            std::printf(", required %g %s: %s", c.requiredLux, unit, p.passes ? "PASS" : "FAIL");
+            if (!p.passes) ++failed;
+        }
+        std::printf("\n");
+    }
+    std::printf("\n%d requirement%s not met\n", failed, failed == 1 ? "" : "s");
+}
+
+std::string reportCsv(const SurfaceReport& r) {
+    std::string unit = r.units.photometric ? "_lx" : "_W_m2";
+    std::string out = "surface,role,x,y,z,E" + unit + ",E_stderr" + unit + "\n";
+    auto quoted = [](const std::string& s) {
+        std::string q = "\"";
+        for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+        return q + "\"";
+    };
+    char line[160];
+    for (const SurfaceResult& s : r.surfaces)
+        for (size_t k = 0; k < s.points.size(); ++k) {
+            glm::dvec3 q = s.plane.point(s.points[k].x, s.points[k].y);
+            std::snprintf(line, sizeof line, ",%.9g,%.9g,%.9g,%.10g,%.4g\n", q.x, q.y, q.z, s.E[k],
+                          s.stdError[k]);
+            out += quoted(s.name) + "," + quoted(s.role) + line;
+        }
+    for (const PointResult& p : r.points) {
+        glm::dvec3 q = p.point.position;
+        std::snprintf(line, sizeof line, ",%.9g,%.9g,%.9g,%.10g,%.4g\n", q.x, q.y, q.z, p.E,
+                      p.stdError);
+        out += quoted(p.point.name) + "," +
+               quoted(p.point.cylindrical ? "cylindrical point" : "point") + line;
+    }
+    return out;
+}
+
+}  // namespace
+
+int cmdSurfaces(const Args& args) {
+    std::string scenePath, csvPath;
+    GridSpec how;
+    for (size_t i = 0; i < args.size(); ++i) {
+        const std::string& a = args[i];
+        if (a == "--spp")
+            how.spp = parseInt(a, flagValue(args, i), 1, 1 << 24);
+        else if (a == "--technique")
+            how.technique = flagValue(args, i);
+        else if (a == "--env-technique")
+            how.environmentTechnique = flagValue(args, i);
+        else if (a == "--visibility")
+            how.visibility = true;
+        else if (a == "--indirect")
+            how.indirect = true;
+        else if (a == "--patches")
+            how.patches = parseInt(a, flagValue(args, i), 16, 50000);
+        else if (a == "--csv")
+            csvPath = flagValue(args, i);
+        else if (!a.empty() && a[0] == '-')
+            throw InputError("surfaces: unknown option " + a);
+        else if (scenePath.empty())
+            scenePath = a;
+        else
+            throw InputError("surfaces: unexpected argument " + a);
+    }
+    if (scenePath.empty())
+        throw InputError(
+            "usage: candela surfaces scene.json [--spp N] [--technique T] [--env-technique T] "
+            "[--visibility] [--indirect [--patches N]] [--csv out.csv]");
+    Scene scene = loadScene(scenePath);
+    ProtectedInputs inputs(scene.inputFiles());
+    checkNotAnInput(csvPath, "--csv");
+    SurfaceReport report = computeSurfaces(scene, how, [](const std::string& s) {
+        std::fprintf(stderr, "surfaces: %s\n", s.c_str());
+    });
+    printReport(report);
+    if (!csvPath.empty()) {
+        writeFileAtomically(csvPath, reportCsv(report), "cannot write the CSV file");
+        std::printf("wrote %s\n", csvPath.c_str());
+    }
+    return 0;
+}
+
+}  // namespace candela
