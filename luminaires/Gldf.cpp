@@ -25,9 +25,18 @@ const char* const kContentTypes[] = {
     "geo/l3d",        "geo/r3d",        "geo/m3d",       "document/pdf", "symbol/dxf", "symbol/svg",
     "sensor/sensxml", "sensor/sensldt", "spectrum/text", "other"};
 
-/// Throws the one-line message, made valid UTF-8 (container paths and names may not be).
+/// `s` as valid UTF-8 on one line: control characters (line breaks, tabs) become spaces.
+std::string oneLine(std::string_view s) {
+    std::string out = toValidUtf8(s);
+    for (char& c : out)
+        if (static_cast<unsigned char>(c) < 0x20) c = ' ';
+    return out;
+}
+
+/// Throws the message as one line of valid UTF-8 (container paths, member names and values
+/// quoted from product.xml may hold anything).
 [[noreturn]] void fail(const std::string& message) {
-    throw InputError(toValidUtf8(message));
+    throw InputError(oneLine(message));
 }
 
 std::string inQuotes(const std::string& s) {
@@ -127,17 +136,18 @@ class ProductReader {
         fail(mProduct.path + ": product.xml: " + what);
     }
 
-    /// Text content, whitespace trimmed, valid UTF-8.
+    /// Text content, whitespace trimmed, one line of valid UTF-8 (a name wrapped over lines in
+    /// the file is shown on one).
     static std::string text(const pugi::xml_node& node) {
-        std::string s = toValidUtf8(node.text().get());
-        size_t begin = s.find_first_not_of(" \t\r\n");
-        if (begin == std::string::npos) return "";
-        size_t end = s.find_last_not_of(" \t\r\n");
-        return s.substr(begin, end - begin + 1);
+        std::string s = oneLine(node.text().get());
+        std::string_view v = s;
+        size_t begin = v.find_first_not_of(' ');
+        if (begin == std::string_view::npos) return "";
+        return std::string(v.substr(begin, v.find_last_not_of(' ') - begin + 1));
     }
 
     static std::string attribute(const pugi::xml_node& node, const char* name) {
-        return toValidUtf8(node.attribute(name).value());
+        return oneLine(node.attribute(name).value());
     }
 
     /// A Locale-typed element: the English text where there is one, else the first.
@@ -385,10 +395,11 @@ class ProductReader {
         for (const char* group : {"CieLuminaireMaintenanceFactors", "IesLuminaireLightLossFactors",
                                   "JiegMaintenanceFactors"})
             for (pugi::xml_node f : maintenance.child(group).children()) {
-                std::string what = std::string(f.name()) + " after " + attribute(f, "years") +
-                                   " years (" + attribute(f, "roomCondition") + ")";
+                std::string name = f.name();
+                std::string what = name + " after " + attribute(f, "years") + " years (" +
+                                   attribute(f, "roomCondition") + ")";
                 mProduct.luminaireMaintenance.push_back(
-                    {what, numberOf(text(f), "<" + std::string(f.name()) + ">", 0.0, 1.0)});
+                    {what, numberOf(text(f), name + " of the product", 0.0, 1.0)});
             }
         for (pugi::xml_node v : definitions.child("Variants").children("Variant")) {
             GldfVariant variant;
