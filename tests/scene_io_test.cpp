@@ -125,7 +125,7 @@ TEST(SceneIo, EnvironmentMapFileMustExist) {
 TEST(SceneIo, ValueErrorsNameTheField) {
     EXPECT_CONTAINS(inputError([] { parse(R"({"luminaires": [{"type": "spot"}]})"); }),
                     "t.json: luminaires[0].type: unknown luminaire type \"spot\" (expected one "
-                    "of lambertian-rect, lightfield, photometric)");
+                    "of lambertian-rect, lightfield, photometric, gldf)");
     EXPECT_CONTAINS(inputError([] { parse(R"({"luminaires": [{"position": [0,1,0]}]})"); }),
                     "t.json: luminaires[0].type: expected a luminaire type");
     EXPECT_CONTAINS(
