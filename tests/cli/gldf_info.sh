@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # `candela info` on GLDF containers: the complete gldf.net container's product, variants, emitter
 # ratings and maintenance, and its photometry's flux equal to `info` on the same .ldt extracted
-# alone (Python's zipfile, not Candela's reader) within 0.1 %; a container without product.xml and
-# a scene placing a variant; `grid` refuses to write onto the container.
+# alone (Python's zipfile, not Candela's reader) within 0.1 %, and probed illuminance equal to the
+# ldt's on CPU and GPU; a container without product.xml and a scene placing a variant; `grid` refuses to write onto the container.
 set -uo pipefail
 binary=$1
 data="$2/data/gldf"
@@ -39,7 +39,24 @@ expect "GldfWithMissingProduct.gldf: product.xml: missing" -- info "$data/GldfWi
 info=$("$binary" info "$data/GldfWithMissingFiles.gldf" 2>&1)
 check "a missing member is reported per variant: $info" 'grep -qF "cannot be placed: $data/GldfWithMissingFiles.gldf: ldc/file.ldt (file \"eulumdat\", referenced by emitter \"emitter\"): not in the container" <<<"$info"'
 
+# The same light from the container and from its ldt extracted alone: every technique probes the
+# same illuminance, on the CPU and on the GPU (the same table through the same photometric code,
+# so the printed figures are identical; the reference's fixed seed makes it repeatable too).
+cat > "$tmp/ldt_scene.json" <<'JSON'
+{"luminaires": [{"type": "photometric", "file": "photometry.ldt", "position": [0, 3, 0], "aim": [0, -1, 0]}]}
+JSON
 cp "$complete" "$tmp/lamp.gldf"
+cat > "$tmp/gldf_scene.json" <<'JSON'
+{"luminaires": [{"type": "gldf", "file": "lamp.gldf", "position": [0, 3, 0], "aim": [0, -1, 0]}]}
+JSON
+for device in cpu gpu; do
+  for t in hybrid point reference; do
+    a=$("$binary" probe "$tmp/ldt_scene.json" --points "$2/data/photometric/far_points.csv" --technique $t --spp 256 --device $device 2>/dev/null)
+    b=$("$binary" probe "$tmp/gldf_scene.json" --points "$2/data/photometric/far_points.csv" --technique $t --spp 256 --device $device 2>/dev/null)
+    check "probe $t on $device: the GLDF variant lights like its ldt ($b vs $a)" '[ "$a" = "$b" ] && [ $(wc -l <<<"$b") -eq 5 ]'
+  done
+done
+
 cat > "$tmp/scene.json" <<'JSON'
 {"luminaires": [{"type": "gldf", "file": "lamp.gldf", "variant": "variant-2", "position": [0, 3, 0]}]}
 JSON
