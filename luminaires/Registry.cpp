@@ -23,10 +23,9 @@ static const LuminaireKindInfo kKinds[] = {
     {"environment", "environment map at infinity (lat-long image, sky, sequence; Lu et al. 2013)",
      nullptr, nullptr, "balanced", "balanced"},
 };
+// Scene types that are file formats: a GLDF variant is its emitter's photometry.
 static const LuminaireFormatInfo kFormats[] = {
-    {"gldf", "photometric",
-     "a variant of a GLDF container (its emitter's IES or EULUMDAT photometry)",
-     &PhotometricLuminaire::parseGldf},
+    {"gldf", "photometric", &PhotometricLuminaire::parseGldf},
 };
 
 /// The kinds a scene places: all of kKinds but the last.

@@ -87,7 +87,6 @@ struct LuminaireKindInfo {
 struct LuminaireFormatInfo {
     std::string_view type;  ///< The entry's "type".
     std::string_view kind;  ///< The kind of luminaire it builds.
-    std::string_view description;
     LuminaireParser parse;
 };
 
