@@ -25,6 +25,9 @@ const char* const kContentTypes[] = {
     "geo/l3d",        "geo/r3d",        "geo/m3d",       "document/pdf", "symbol/dxf", "symbol/svg",
     "sensor/sensxml", "sensor/sensldt", "spectrum/text", "other"};
 
+/// How many of a folder's members a "not in the container" message names (one line stays short).
+constexpr int kMembersNamed = 5;
+
 /// `s` as valid UTF-8 on one line: control characters (line breaks, tabs) become spaces.
 std::string oneLine(std::string_view s) {
     std::string out = toValidUtf8(s);
@@ -525,6 +528,10 @@ GldfPhotometry gldfVariantPhotometry(const std::string& bytes, const GldfProduct
              "positions come from its L3D geometry, which is not read yet)");
     GldfPhotometry out;
     out.emitter = product.emitter(variant.emitters.front());
+    // parseGldf resolves every reference; a product assembled otherwise is checked here too.
+    if (!out.emitter)
+        fail(path + ": " + variantName + " refers to emitter " +
+             inQuotes(variant.emitters.front()) + ", which the product does not define");
     std::string emitterName = "emitter " + inQuotes(out.emitter->id);
     if (out.emitter->lights.empty())
         fail(path + ": " + emitterName + " (" + variantName +
@@ -534,6 +541,9 @@ GldfPhotometry gldfVariantPhotometry(const std::string& bytes, const GldfProduct
         fail(path + ": photometry " + inQuotes(light.photometryId) + " (" + emitterName +
              ") has no <PhotometryFileReference>");
     out.file = product.file(light.fileId);
+    if (!out.file)
+        fail(path + ": photometry " + inQuotes(light.photometryId) + " refers to file " +
+             inQuotes(light.fileId) + ", which the product does not list");
     const GldfFile& file = *out.file;
     if (file.url)
         fail(path + ": photometry file " + inQuotes(file.id) + " is only a URL (" + file.name +
@@ -550,9 +560,13 @@ GldfPhotometry gldfVariantPhotometry(const std::string& bytes, const GldfProduct
     if (index < 0) {
         // Name what the folder does hold: a name written in another encoding shows up here.
         std::string folder = member.substr(0, member.find('/') + 1), held;
+        int count = 0;
         for (const std::string& name : archive.names())
-            if (name.size() > folder.size() && name.compare(0, folder.size(), folder) == 0)
+            if (name.size() > folder.size() && name.compare(0, folder.size(), folder) == 0 &&
+                ++count <= kMembersNamed)
                 held += (held.empty() ? "" : ", ") + name;
+        if (count > kMembersNamed)
+            held += " and " + std::to_string(count - kMembersNamed) + " more";
         fail(path + ": " + label + ": not in the container" +
              (held.empty() ? "" : " (it holds " + held + ")"));
     }

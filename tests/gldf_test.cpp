@@ -506,6 +506,19 @@ TEST(Gldf, CodePage850MemberNameMatchesAndMessagesAreUtf8) {
     EXPECT_NE(m.find("l\u00e4mp.gldf: ldc/\u00c4.ldt"), std::string::npos) << m;
 }
 
+TEST(Gldf, MissingMemberNamesAtMostFiveOfItsFolder) {
+    TempDir tmp;
+    std::string path = tmp.file("lamp.gldf");
+    std::vector<Member> members = {{"product.xml", productXml()}};
+    for (int i = 0; i < 7; ++i) members.push_back({"ldc/other" + std::to_string(i) + ".ldt", "x"});
+    writeZip(path, members);
+    EXPECT_EQ(refusal([&] { photometryOf(path); }),
+              path +
+                  ": ldc/lamp.ldt (file \"f1\", referenced by emitter \"e1\"): not in the "
+                  "container (it holds ldc/other0.ldt, ldc/other1.ldt, ldc/other2.ldt, "
+                  "ldc/other3.ldt, ldc/other4.ldt and 2 more)");
+}
+
 TEST(Gldf, ValueWithLineBreaksGivesOneLineMessage) {
     // Found by fuzzing: a value quoted from product.xml broke the message over two lines.
     TempDir tmp;
