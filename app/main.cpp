@@ -35,6 +35,8 @@ const char* kUsage =
     "                                    or photometry (.ies/.ldt: flux from the table, lamps x "
     "LOR,\n"
     "                                    warnings for what was assumed to read the file)\n"
+    "                                    or a GLDF container (.gldf: product, variants, rated\n"
+    "                                    flux and power, each variant's photometry)\n"
     "  --strict (info, render, probe, grid, surfaces, polar): refuse photometry files that need a "
     "leniency\n"
     "                                    (empty EULUMDAT fields, Latin-1 or UTF-16 text, mixed "

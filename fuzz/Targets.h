@@ -10,6 +10,7 @@
 #include "fuzz/FuzzSupport.h"
 #include "fuzz/PhotometryChecks.h"
 #include "luminaires/Environment.h"
+#include "luminaires/Gldf.h"
 #include "luminaires/LightField.h"
 #include "luminaires/Tm25RayFile.h"
 #include "scene/GltfLoader.h"
@@ -165,13 +166,55 @@ inline void image(const uint8_t* data, size_t size) {
     }
 }
 
+/// What the GLDF reader returns: every string shown is valid UTF-8 and every reference resolves.
+inline void checkGldf(const GldfProduct& p) {
+    for (const std::string* s : {&p.manufacturer, &p.author, &p.productName, &p.productNumber,
+                                 &p.description, &p.formatVersion, &p.creationTime})
+        if (!isValidUtf8(*s)) violated("product text is not valid UTF-8: " + toValidUtf8(*s));
+    for (const std::string& m : p.members)
+        if (!isValidUtf8(m)) violated("member name is not valid UTF-8");
+    for (const GldfEmitter& e : p.emitters)
+        for (const GldfLightEmitter& l : e.lights)
+            if (!l.fileId.empty() && !p.file(l.fileId)) violated("dangling file id " + l.fileId);
+    for (const GldfVariant& v : p.variants)
+        for (const std::string& id : v.emitters)
+            if (!p.emitter(id)) violated("dangling emitter id " + id);
+}
+
+/// The GLDF reader (luminaires/Gldf.cpp): a ZIP container ("PK" first) through parseGldf and
+/// each variant's photometry; any other input as product.xml alone (so mutations reach the XML
+/// reader without breaking a ZIP checksum).
+inline void gldf(const uint8_t* data, size_t size) {
+    const std::string path = "/nonexistent-candela-fuzz/fuzz.gldf";
+    const std::string bytes(reinterpret_cast<const char*>(data), size);
+    try {
+        GldfProduct product;
+        product.path = path;
+        if (bytes.compare(0, 2, "PK") == 0)
+            product = parseGldf(bytes, path);
+        else
+            gldf_detail::readProductXml(bytes, product);
+        checkGldf(product);
+        for (const GldfVariant& v : product.variants) {
+            try {
+                GldfPhotometry p = gldfVariantPhotometry(bytes, product, v);
+                checkTable(p.data);
+            } catch (const InputError& e) {
+                checkMessage(e.what(), path);
+            }
+        }
+    } catch (const InputError& e) {
+        checkMessage(e.what(), path);
+    }
+}
+
 /// Every target by name.
 struct Target {
     const char* name;
     void (*run)(const uint8_t* data, size_t size);
 };
 inline constexpr Target kTargets[] = {
-    {"ies", ies},     {"ldt", ldt},   {"tm25", tm25},  {"lightfield", lightfield},
-    {"scene", scene}, {"gltf", gltf}, {"image", image}};
+    {"ies", ies},     {"ldt", ldt},   {"tm25", tm25},   {"lightfield", lightfield},
+    {"scene", scene}, {"gltf", gltf}, {"image", image}, {"gldf", gldf}};
 
 }  // namespace candela::fuzz

@@ -1,7 +1,7 @@
 # The fuzz targets' inputs, sourced by fuzz/replay.sh and scripts/fuzz.sh from the repository root.
 # Each function prints NUL-separated paths relative to the root.
 
-FUZZ_TARGETS=(ies ldt tm25 lightfield scene gltf image)
+FUZZ_TARGETS=(ies ldt tm25 lightfield scene gltf image gldf)
 
 # Seeds: small files of the repository's test data (and fuzz/seeds/TARGET/ for what the test data
 # lacks), so the fuzzer starts from inputs that load.
@@ -14,6 +14,8 @@ fuzz_seeds() {
     scene) find fuzz/seeds/scene tests/data/scenes tests/data/environment tests/data/photometric \
                 tests/data/lightfield -name '*.json' ! -name '*.lf.json' -size -20k -print0 ;;
     gltf) find tests/data/gltf -name '*.gltf' -print0 ;;
+    gldf) find tests/data/gldf fuzz/seeds/gldf -name '*.gldf' -size -30k -print0
+          find fuzz/seeds/gldf -name '*.xml' -print0 ;;
     image) find tests/data/environment tests/data/lightfield fuzz/seeds/image -name '*.exr' -size -20k -print0
            find fuzz/seeds/image -name '*.hdr' -print0 ;;
   esac
@@ -32,6 +34,7 @@ fuzz_max_len() {
     tm25) echo 40000 ;;
     ies|ldt|scene|lightfield|gltf) echo 20000 ;;
     image) echo 8192 ;;
+    gldf) echo 30000 ;;  # the complete container is 20 838 bytes
   esac
 }
 
@@ -40,7 +43,7 @@ fuzz_dict() {
   case $1 in
     ies) echo fuzz/dict/ies.dict ;;
     ldt) echo fuzz/dict/ldt.dict ;;
-    lightfield|scene|gltf) echo "fuzz/dict/$1.dict" ;;
+    lightfield|scene|gltf|gldf) echo "fuzz/dict/$1.dict" ;;
     *) echo "" ;;
   esac
 }

@@ -9,11 +9,13 @@
 #include <map>
 #include <mutex>
 
+#include "luminaires/Gldf.h"
 #include "luminaires/IntensitySampler.h"
 #include "shaders/shared/Constants.h"
 #include "shaders/shared/GpuTypes.h"
 #include "util/Error.h"
 #include "util/JsonRead.h"
+#include "util/TextEncoding.h"
 
 namespace candela {
 
@@ -70,6 +72,49 @@ std::shared_ptr<const PhotometricData> PhotometricLuminaire::load(const std::str
     }
     cache[key] = {stamp, data};
     return data;
+}
+
+void PhotometricLuminaire::loadGldf(const std::string& path, const std::string& variant) {
+    // Like load(): one copy per container, variant and modification time.
+    struct Entry {
+        fs::file_time_type stamp;
+        std::weak_ptr<const GldfProduct> product;
+        std::weak_ptr<const PhotometricData> data;
+    };
+    static std::mutex mutex;
+    static std::map<std::pair<std::string, std::string>, Entry> cache;
+    std::error_code ec;
+    fs::path canonical = fs::weakly_canonical(path, ec);
+    std::pair<std::string, std::string> key{ec ? path : canonical.string(), variant};
+    fs::file_time_type stamp = fs::last_write_time(path, ec);
+    std::lock_guard<std::mutex> lock(mutex);
+    auto it = cache.find(key);
+    if (it != cache.end() && it->second.stamp == stamp) {
+        auto product = it->second.product.lock();
+        auto photometry = it->second.data.lock();
+        if (product && photometry) {
+            gldf = product;
+            data = photometry;
+            gldfVariant = variant.empty() ? product->variants.front().id : variant;
+            return;
+        }
+    }
+    std::string bytes = readGldfBytes(path);
+    auto product = std::make_shared<const GldfProduct>(candela::parseGldf(bytes, path));
+    const GldfVariant* chosen =
+        variant.empty() ? &product->variants.front() : product->variant(variant);
+    if (!chosen) {
+        std::string ids;
+        for (const GldfVariant& v : product->variants) ids += (ids.empty() ? "" : ", ") + v.id;
+        throw InputError(
+            toValidUtf8(path + ": no variant \"" + variant + "\" (it has " + ids + ")"));
+    }
+    auto photometry = std::make_shared<const PhotometricData>(
+        gldfVariantPhotometry(bytes, *product, *chosen).data);
+    cache[key] = {stamp, product, photometry};
+    gldf = product;
+    data = photometry;
+    gldfVariant = chosen->id;
 }
 
 void PhotometricLuminaire::updateOpening() {
@@ -255,6 +300,10 @@ glm::dvec3 PhotometricLuminaire::displayRadiance() const {
 }
 
 void PhotometricLuminaire::writeJson(nlohmann::json& out) const {
+    if (gldf) {
+        out["type"] = "gldf";
+        out["variant"] = gldfVariant;
+    }
     out["file"] = file;
     out["scale"] = scale;  // always present, so the inspector offers it
     if (colour != glm::dvec3(1.0)) out["colour"] = {colour.x, colour.y, colour.z};
@@ -337,15 +386,14 @@ std::string PhotometricLuminaire::describe() const {
     const PhotometricData& d = *data;
     const char* shape = mPolygon.empty() ? "point" : (mPolygon.size() == 2 ? "segment" : "polygon");
     char buf[768];
-    std::snprintf(
-        buf, sizeof buf,
-        "photometric %s: %s, type %s, %zu x %zu angles, opening %.4g x %.4g m (%s, %.4g m2), "
-        "flux %.5g lm from the table%s",
-        file.c_str(), d.format.c_str(), d.goniometer == Goniometer::B ? "B" : "C",
-        d.vertical.size(), d.horizontal.size(),
-        openingOverride.x > 0.0 ? openingOverride.x : d.opening.length,
-        openingOverride.x > 0.0 ? openingOverride.y : d.opening.width, shape, mArea,
-        scale * d.fluxFromTable(), scale != 1.0 ? " (scaled)" : "");
+    std::snprintf(buf, sizeof buf,
+                  "%s: %s, type %s, %zu x %zu angles, opening %.4g x %.4g m (%s, %.4g m2), "
+                  "flux %.5g lm from the table%s",
+                  source().c_str(), d.format.c_str(), d.goniometer == Goniometer::B ? "B" : "C",
+                  d.vertical.size(), d.horizontal.size(),
+                  openingOverride.x > 0.0 ? openingOverride.x : d.opening.length,
+                  openingOverride.x > 0.0 ? openingOverride.y : d.opening.width, shape, mArea,
+                  scale * d.fluxFromTable(), scale != 1.0 ? " (scaled)" : "");
     std::string out = buf;
     if (d.lampFlux > 0.0) {
         std::snprintf(buf, sizeof buf, ", lamps %.5g lm x LOR %.3g = %.5g lm", d.lampFlux,
@@ -355,25 +403,37 @@ std::string PhotometricLuminaire::describe() const {
     return out;
 }
 
+std::string PhotometricLuminaire::source() const {
+    if (!gldf) return "photometric " + file;
+    std::string out = "GLDF " + file + " variant \"" + gldfVariant + "\"";
+    if (!gldf->manufacturer.empty() || !gldf->productName.empty())
+        out += " (" + gldf->manufacturer + (gldf->manufacturer.empty() ? "" : " ") +
+               gldf->productName + ")";
+    return out;
+}
+
 std::vector<std::string> PhotometricLuminaire::sourceFiles() const {
+    if (gldf) return {gldf->path};
     std::vector<std::string> files;
     if (data && !data->path.empty()) files.push_back(data->path);
     if (data && !data->tiltPath.empty()) files.push_back(data->tiltPath);
     return files;
 }
 
-std::unique_ptr<Luminaire> PhotometricLuminaire::parse(const nlohmann::json& entry,
-                                                       const json::Where& where) {
-    json::checkKeys(entry,
-                    {"type", "name", "position", "aim", "c0", "technique", "maintenance_factor",
-                     "file", "scale", "colour", "opening"},
-                    where);
-    if (!entry.contains("file"))
-        json::fail(where / "file", "the path of an .ies or .ldt photometric file");
+namespace {
+
+/// The fields a photometric and a GLDF entry share: scale, colour, opening; `file` resolved
+/// against the scene's folder.
+std::unique_ptr<PhotometricLuminaire> parseCommon(const nlohmann::json& entry,
+                                                  const json::Where& where,
+                                                  const std::string& fileWanted,
+                                                  std::string& resolvedFile) {
+    if (!entry.contains("file")) json::fail(where / "file", fileWanted);
     auto light = std::make_unique<PhotometricLuminaire>();
     light->file = json::string(entry["file"], where / "file");
     fs::path resolved(light->file);
     if (resolved.is_relative()) resolved = fs::path(where.file).parent_path() / resolved;
+    resolvedFile = resolved.string();
     light->scale = json::optional(entry, "scale", where, 1.0, json::positive);
     light->colour = json::optional(entry, "colour", where, glm::dvec3(1.0),
                                    [](const nlohmann::json& v, const json::Where& w) {
@@ -390,7 +450,35 @@ std::unique_ptr<Luminaire> PhotometricLuminaire::parse(const nlohmann::json& ent
                                json::fail(w, "[length, width] in metres, not negative, not both 0");
                            return s;
                        });
-    light->data = load(resolved.string());
+    return light;
+}
+
+}  // namespace
+
+std::unique_ptr<Luminaire> PhotometricLuminaire::parse(const nlohmann::json& entry,
+                                                       const json::Where& where) {
+    json::checkKeys(entry,
+                    {"type", "name", "position", "aim", "c0", "technique", "maintenance_factor",
+                     "file", "scale", "colour", "opening"},
+                    where);
+    std::string resolved;
+    auto light =
+        parseCommon(entry, where, "the path of an .ies or .ldt photometric file", resolved);
+    light->data = load(resolved);
+    light->updateOpening();
+    return light;
+}
+
+std::unique_ptr<Luminaire> PhotometricLuminaire::parseGldf(const nlohmann::json& entry,
+                                                           const json::Where& where) {
+    json::checkKeys(entry,
+                    {"type", "name", "position", "aim", "c0", "technique", "maintenance_factor",
+                     "file", "variant", "scale", "colour", "opening"},
+                    where);
+    std::string resolved;
+    auto light = parseCommon(entry, where, "the path of a .gldf container", resolved);
+    std::string variant = json::optional(entry, "variant", where, std::string(), json::string);
+    light->loadGldf(resolved, variant);
     light->updateOpening();
     return light;
 }

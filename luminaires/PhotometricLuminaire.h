@@ -19,6 +19,8 @@
 
 namespace candela {
 
+struct GldfProduct;
+
 class PhotometricLuminaire final : public Luminaire {
   public:
     std::shared_ptr<const PhotometricData> data;
@@ -27,6 +29,12 @@ class PhotometricLuminaire final : public Luminaire {
     glm::dvec3 colour{1.0};  ///< RGB tint of the luminous quantities (white: lux in all three).
     glm::dvec2 openingOverride{
         0.0};  ///< > 0: a length x width rectangle instead of the file's opening.
+
+    /// Set when it is a GLDF variant (scene type "gldf"): the container's product data (for
+    /// describe(), `candela info` and the editor). `file` is then the .gldf container and
+    /// `data` its variant's photometry.
+    std::shared_ptr<const GldfProduct> gldf;
+    std::string gldfVariant;  ///< The variant's id (set with gldf).
 
     std::string_view kind() const override { return "photometric"; }
     std::unique_ptr<Luminaire> clone() const override;
@@ -43,7 +51,7 @@ class PhotometricLuminaire final : public Luminaire {
     std::vector<std::byte> gpuData() const override;
     std::shared_ptr<const GpuTables> gpuTables() const override;
     std::string describe() const override;
-    /// The photometric file and its TILT file, if any.
+    /// The photometric file and its TILT file, if any; the .gldf container for a GLDF variant.
     std::vector<std::string> sourceFiles() const override;
     glm::dvec3 displayRadiance() const override;
     /// Maps at the opening's centre and near its four corners (the polygon vertex closest to
@@ -72,11 +80,20 @@ class PhotometricLuminaire final : public Luminaire {
     void updateOpening();
 
     static std::unique_ptr<Luminaire> parse(const nlohmann::json& entry, const json::Where& where);
+    /// A scene's "gldf" entry: {"type": "gldf", "file": "lamp.gldf", "variant": "id"} (variant
+    /// optional: the first), with the photometric entry's scale, colour and opening.
+    static std::unique_ptr<Luminaire> parseGldf(const nlohmann::json& entry,
+                                                const json::Where& where);
     static std::unique_ptr<Luminaire> create();
     /// Loads (shared between instances) a photometric file; throws InputError naming it.
     static std::shared_ptr<const PhotometricData> load(const std::string& path);
+    /// Sets gldf, gldfVariant and data from a GLDF container's variant ("" for the first),
+    /// shared between instances like load(); throws InputError naming the container.
+    void loadGldf(const std::string& path, const std::string& variant);
 
   private:
+    /// "photometric FILE", or "GLDF FILE variant "ID" (MANUFACTURER PRODUCT)", for describe().
+    std::string source() const;
     /// gpuTables() of `data` as last made (rebuilt when `data` is another model).
     mutable std::shared_ptr<const GpuTables> mGpuTables;
     mutable const PhotometricData* mGpuTablesFor = nullptr;

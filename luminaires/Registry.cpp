@@ -23,6 +23,11 @@ static const LuminaireKindInfo kKinds[] = {
     {"environment", "environment map at infinity (lat-long image, sky, sequence; Lu et al. 2013)",
      nullptr, nullptr, "balanced", "balanced"},
 };
+// Scene types that are file formats: a GLDF variant is its emitter's photometry.
+static const LuminaireFormatInfo kFormats[] = {
+    {"gldf", "photometric", &PhotometricLuminaire::parseGldf},
+};
+
 /// The kinds a scene places: all of kKinds but the last.
 constexpr size_t kPlacedKinds = std::size(kKinds) - 1;
 
@@ -319,6 +324,16 @@ std::vector<TechniqueInfo> techniquesOf(std::string_view kind) {
 const LuminaireKindInfo* findKind(std::string_view kind) {
     for (const auto& k : kKinds)
         if (k.kind == kind) return &k;
+    return nullptr;
+}
+
+std::span<const LuminaireFormatInfo> luminaireFormats() {
+    return kFormats;
+}
+
+const LuminaireFormatInfo* findFormat(std::string_view type) {
+    for (const auto& f : kFormats)
+        if (f.type == type) return &f;
     return nullptr;
 }
 

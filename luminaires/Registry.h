@@ -81,6 +81,15 @@ struct LuminaireKindInfo {
     std::string_view previewTechnique;
 };
 
+/// A scene-file luminaire type that is a file format rather than a kind of its own: its entries
+/// build a luminaire of an existing kind, rendered by that kind's techniques (a GLDF variant is a
+/// photometric luminaire).
+struct LuminaireFormatInfo {
+    std::string_view type;  ///< The entry's "type".
+    std::string_view kind;  ///< The kind of luminaire it builds.
+    LuminaireParser parse;
+};
+
 /// The kinds of luminaires a scene places (its "luminaires" list; the editor's Add).
 std::span<const LuminaireKindInfo> luminaireKinds();
 /// Every kind of light source: the luminaire kinds, then the environment.
@@ -89,6 +98,9 @@ std::span<const TechniqueInfo> techniques();
 /// The techniques of one kind, in the table's order.
 std::vector<TechniqueInfo> techniquesOf(std::string_view kind);
 const LuminaireKindInfo* findKind(std::string_view kind);
+/// The formats a scene's luminaire entries may name besides the kinds ("gldf").
+std::span<const LuminaireFormatInfo> luminaireFormats();
+const LuminaireFormatInfo* findFormat(std::string_view type);
 const TechniqueInfo* findTechnique(std::string_view kind, std::string_view name);
 /// Comma-separated technique names of a kind, for error messages and help.
 std::string techniqueNames(std::string_view kind);

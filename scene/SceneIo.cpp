@@ -397,6 +397,8 @@ std::string kindNames() {
     std::string names;
     for (const LuminaireKindInfo& kind : luminaireKinds())
         names += (names.empty() ? "" : ", ") + std::string(kind.kind);
+    for (const LuminaireFormatInfo& format : luminaireFormats())
+        names += ", " + std::string(format.type);
     return names;
 }
 
@@ -561,12 +563,18 @@ std::unique_ptr<Luminaire> parseLuminaire(const nlohmann::json& entry, const jso
     if (!entry.contains("type"))
         json::fail(where / "type", "a luminaire type (one of " + kindNames() + "); it is missing");
     std::string type = json::string(entry["type"], where / "type");
+    // A kind, or a format that builds a luminaire of a kind (a GLDF variant: photometric).
     const LuminaireKindInfo* kind = findKind(type);
-    if (!kind) {
+    LuminaireParser parse = kind ? kind->parse : nullptr;
+    if (const LuminaireFormatInfo* format = findFormat(type)) {
+        kind = findKind(format->kind);
+        parse = format->parse;
+    }
+    if (!kind || !parse) {
         throw InputError((where / "type").str() + ": unknown luminaire type \"" + type +
                          "\" (expected one of " + kindNames() + ")");
     }
-    std::unique_ptr<Luminaire> luminaire = kind->parse(entry, where);
+    std::unique_ptr<Luminaire> luminaire = parse(entry, where);
     if (!luminaire) throw InputError(where.str() + ": luminaire could not be built");
 
     luminaire->name =
@@ -580,10 +588,10 @@ std::unique_ptr<Luminaire> parseLuminaire(const nlohmann::json& entry, const jso
     if (entry.contains("maintenance_factor"))
         luminaire->maintenanceFactor =
             maintenanceFactorValue(entry["maintenance_factor"], where / "maintenance_factor");
-    if (!findTechnique(type, luminaire->technique)) {
+    if (!findTechnique(kind->kind, luminaire->technique)) {
         throw InputError((where / "technique").str() + ": unknown technique \"" +
                          luminaire->technique + "\" for " + type + " (expected one of " +
-                         techniqueNames(type) + ")");
+                         techniqueNames(kind->kind) + ")");
     }
     return luminaire;
 }

@@ -9,7 +9,7 @@
 #
 # Usage: scripts/fuzz.sh [SECONDS_PER_TARGET] [TARGET...]
 #   SECONDS_PER_TARGET: default $FUZZ_SECONDS or 60; 0 only builds and replays.
-#   TARGET: ies ldt tm25 lightfield scene gltf image (default: all).
+#   TARGET: ies ldt tm25 lightfield scene gltf image gldf (default: all).
 # Environment: FUZZ_RUNS (stop a target after this many executions as well), FUZZ_SUMMARY (a file
 # to append the table to), FUZZ_NO_BUILD=1 (skip the build and the replay: for several runs side by
 # side on a build made before).

@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <set>
 
+#include "luminaires/Gldf.h"
+#include "luminaires/PhotometricLuminaire.h"
 #include "renderer/FramePlan.h"
 #include "ui/EditorState.h"
 #include "ui/ViewportMath.h"
@@ -159,6 +161,29 @@ TEST(EditorPlacement, DroppedFilesBecomeLuminairesEnvironmentOrGeometry) {
     for (int i = 0; i < 3; ++i) ASSERT_TRUE(undo(state));
     EXPECT_EQ(state.scene.meshes.size(), meshes);
     EXPECT_FALSE(state.scene.environmentMap);
+}
+
+TEST(EditorPlacement, DroppedGldfBecomesItsFirstVariant) {
+    setenv("CANDELA_STATE_DIR",
+           (std::filesystem::temp_directory_path() / "candela-placement-test").c_str(), 1);
+    EditorState state;
+    ASSERT_TRUE(openSceneFile(state, CANDELA_SOURCE_DIR "/resources/scenes/demo.json"));
+    size_t count = state.scene.luminaires.size();
+    EXPECT_EQ(fileKind("LAMP.GLDF"), FileKind::Gldf);
+    ASSERT_TRUE(dropFile(state, CANDELA_SOURCE_DIR "/tests/data/gldf/GldfWithFilesComplete.gldf"));
+    ASSERT_EQ(state.scene.luminaires.size(), count + 1);
+    auto* light = dynamic_cast<const PhotometricLuminaire*>(state.scene.luminaires.back().get());
+    ASSERT_NE(light, nullptr);
+    ASSERT_NE(light->gldf, nullptr);
+    EXPECT_EQ(light->gldf->manufacturer, "DIAL");
+    EXPECT_EQ(light->gldfVariant, "variant-1");
+    EXPECT_EQ(light->technique, "hybrid");  // the photometric kind's default
+    EXPECT_TRUE(state.placement.armed);
+    // A container that cannot be placed is reported, naming the member, and changes nothing.
+    size_t steps = state.history.undo.size();
+    EXPECT_FALSE(dropFile(state, CANDELA_SOURCE_DIR "/tests/data/gldf/GldfWithMissingFiles.gldf"));
+    EXPECT_NE(state.modalError.find("ldc/file.ldt"), std::string::npos) << state.modalError;
+    EXPECT_EQ(state.history.undo.size(), steps);
 }
 
 }  // namespace

@@ -478,6 +478,14 @@ TEST(PhotometryLeniency, MessagesAreValidUtf8) {
 // ---------------------------------------------------------------------------------------------
 // util/TextEncoding
 
+TEST(TextEncoding, CodePage850) {
+    // The DOS code page of unflagged ZIP member names (GLDF containers): Ä ö ü ° § and a box
+    // drawing character, none of them where Windows-1252 or Latin-1 has it.
+    EXPECT_EQ(fromCodePage850("ldc/\x8e\x94\x81\xf8\xf5\xc9.ldt"),
+              "ldc/\u00c4\u00f6\u00fc\u00b0\u00a7\u2554.ldt");
+    EXPECT_EQ(fromCodePage850("plain"), "plain");
+}
+
 TEST(TextEncoding, Utf8ValidationFollowsRfc3629) {
     EXPECT_TRUE(isValidUtf8("plain ASCII"));
     EXPECT_TRUE(isValidUtf8("\xC3\xA9 \xE2\x82\xAC \xF0\x9F\x92\xA1"));  // e acute, euro, U+1F4A1

@@ -123,9 +123,13 @@ TEST(SceneIo, EnvironmentMapFileMustExist) {
 }
 
 TEST(SceneIo, ValueErrorsNameTheField) {
+    // The environment is a kind without a parser (a scene's "environment" field makes it): as a
+    // luminaire type it is refused, where the loader used to call its null parser.
+    EXPECT_CONTAINS(inputError([] { parse(R"({"luminaires": [{"type": "environment"}]})"); }),
+                    "t.json: luminaires[0].type: unknown luminaire type \"environment\"");
     EXPECT_CONTAINS(inputError([] { parse(R"({"luminaires": [{"type": "spot"}]})"); }),
                     "t.json: luminaires[0].type: unknown luminaire type \"spot\" (expected one "
-                    "of lambertian-rect, lightfield, photometric)");
+                    "of lambertian-rect, lightfield, photometric, gldf)");
     EXPECT_CONTAINS(inputError([] { parse(R"({"luminaires": [{"position": [0,1,0]}]})"); }),
                     "t.json: luminaires[0].type: expected a luminaire type");
     EXPECT_CONTAINS(

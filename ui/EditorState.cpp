@@ -273,6 +273,7 @@ FileKind fileKind(const std::string& path) {
                lower.compare(lower.size() - suffix.size(), suffix.size(), suffix) == 0;
     };
     if (endsWith(".ies") || endsWith(".ldt")) return FileKind::Photometric;
+    if (endsWith(".gldf")) return FileKind::Gldf;
     if (endsWith(".lf.json")) return FileKind::LightField;
     if (endsWith(".hdr") || endsWith(".exr")) return FileKind::Environment;
     if (endsWith(".gltf") || endsWith(".glb")) return FileKind::Geometry;
@@ -282,20 +283,25 @@ FileKind fileKind(const std::string& path) {
 const char* luminaireKindOf(FileKind kind) {
     return kind == FileKind::Photometric  ? "photometric"
            : kind == FileKind::LightField ? "lightfield"
+           : kind == FileKind::Gldf       ? "gldf"
                                           : nullptr;
 }
 
 std::unique_ptr<Luminaire> luminaireFromFile(const std::string& path) {
-    const char* kind = luminaireKindOf(fileKind(path));
-    if (!kind)
-        throw InputError(
-            path + ": cannot make a luminaire from this file (expected .ies, .ldt or .lf.json)");
-    // Through the scene-file parser, so the file gets the same checks as a loaded scene's.
-    nlohmann::json entry = {{"type", kind}, {"file", path}};
-    std::unique_ptr<Luminaire> lum = findKind(kind)->parse(entry, json::Where{path, "file"});
+    const char* type = luminaireKindOf(fileKind(path));
+    if (!type)
+        throw InputError(path +
+                         ": cannot make a luminaire from this file (expected .ies, .ldt, .gldf or "
+                         ".lf.json)");
+    // Through the scene-file parser, so the file gets the same checks as a loaded scene's (a
+    // .gldf: its first variant).
+    nlohmann::json entry = {{"type", type}, {"file", path}};
+    const LuminaireFormatInfo* format = findFormat(type);
+    LuminaireParser parse = format ? format->parse : findKind(type)->parse;
+    std::unique_ptr<Luminaire> lum = parse(entry, json::Where{path, "file"});
     std::string stem = std::filesystem::path(path).filename().string();
     lum->name = stem.substr(0, stem.find('.'));
-    lum->technique = std::string(findKind(kind)->defaultTechnique);
+    lum->technique = std::string(findKind(lum->kind())->defaultTechnique);
     return lum;
 }
 
@@ -361,8 +367,8 @@ bool dropFile(EditorState& state, const std::string& path) {
         reportError(
             state,
             path +
-                ": cannot open a dropped file of this type (expected .ies, .ldt, .lf.json, .hdr, "
-                ".exr, .gltf or .glb)");
+                ": cannot open a dropped file of this type (expected .ies, .ldt, .gldf, .lf.json, "
+                ".hdr, .exr, .gltf or .glb)");
         return false;
     } catch (const std::exception& e) {
         reportError(state, e.what());

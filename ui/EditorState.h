@@ -315,10 +315,11 @@ int addLuminaire(EditorState& state, const LuminaireKindInfo& kind);
 /// nothing changes. Returns the new index or -1.
 int addLuminaireFromFile(EditorState& state, const std::string& path);
 /// What a file holds, by its extension (case-insensitive): FileKind::Photometric (.ies, .ldt),
-/// LightField (.lf.json), Environment (.hdr, .exr), Geometry (.gltf, .glb), else Unknown.
-enum class FileKind { Unknown, Photometric, LightField, Environment, Geometry };
+/// Gldf (.gldf), LightField (.lf.json), Environment (.hdr, .exr), Geometry (.gltf, .glb), else
+/// Unknown.
+enum class FileKind { Unknown, Photometric, Gldf, LightField, Environment, Geometry };
 FileKind fileKind(const std::string& path);
-/// The luminaire kind a file makes ("photometric", "lightfield"), or null.
+/// The scene-file luminaire type a file makes ("photometric", "gldf", "lightfield"), or null.
 const char* luminaireKindOf(FileKind kind);
 
 /// A file dropped onto the window: .ies / .ldt / .lf.json become a luminaire (then a click on a

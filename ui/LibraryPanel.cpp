@@ -1,8 +1,9 @@
-// The Library panel: the luminaire files under resources/luminaires and in folders the user adds,
-// each with a thumbnail of the light it casts on a floor 1 m below (luminaires/FarField.h:
-// footprintImage; a light field through its far field). Add puts one in the scene and arms
-// placement; Swap replaces the selected luminaire's file keeping its pose. Thumbnails are made
-// one per frame, only while the panel shows them.
+// The Library panel: the luminaire files (.ies, .ldt, .gldf, .lf.json) under resources/luminaires
+// and in folders the user adds, each with a thumbnail of the light it casts on a floor 1 m below
+// (luminaires/FarField.h: footprintImage; a light field through its far field; a GLDF container
+// through its first variant, listed with its manufacturer, product and variants). Add puts one in
+// the scene and arms placement; Swap replaces the selected luminaire's file keeping its pose.
+// Thumbnails are made one per frame, only while the panel shows them.
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
@@ -11,6 +12,7 @@
 #include <filesystem>
 
 #include "luminaires/FarField.h"
+#include "luminaires/Gldf.h"
 #include "luminaires/LightField.h"
 #include "luminaires/PhotometricLuminaire.h"
 #include "scene/SceneIo.h"
@@ -68,6 +70,25 @@ void makeThumbnail(LibraryUi& lib, ImageTextures& images, const LibraryEntry& en
     try {
         std::shared_ptr<const PhotometricData> table;
         char info[160];
+        if (entry.kind == "gldf") {
+            // The product line first, so a container whose first variant cannot be placed still
+            // says what it is.
+            GldfProduct product = loadGldf(entry.path);
+            t.info = product.manufacturer + " " + product.productName + ", " +
+                     std::to_string(product.variants.size()) + " variant(s):";
+            for (const GldfVariant& v : product.variants)
+                t.info += " " + (v.name.empty() ? v.id : v.name) + ";";
+            PhotometricLuminaire light;
+            light.loadGldf(entry.path, "");
+            table = light.data;
+            std::snprintf(info, sizeof info, " first: %s, %.0f lm", table->format.c_str(),
+                          table->fluxFromTable());
+            t.info += info;
+            std::vector<unsigned char> rgb = footprintImage(*table, kThumbnailPixels);
+            images.upload(thumbnailImage(entry), kThumbnailPixels, kThumbnailPixels, rgb);
+            t.hasImage = true;
+            return;
+        }
         if (entry.kind == "lightfield") {
             LightFieldLuminaire light;
             light.data = LightFieldData::load(entry.path);
@@ -86,7 +107,7 @@ void makeThumbnail(LibraryUi& lib, ImageTextures& images, const LibraryEntry& en
         t.info = info;
     } catch (const std::exception& e) {
         t.failed = true;
-        t.info = e.what();
+        t.info += (t.info.empty() ? "" : " ") + std::string(e.what());
     }
 }
 
@@ -154,7 +175,8 @@ bool libraryRow(EditorState& state, const LibraryEntry& entry, bool& madeOne) {
 void libraryFolders(EditorState& state) {
     LibraryUi& lib = state.library;
     ImGui::SetNextItemWidth(-70.f);
-    ImGui::InputTextWithHint("##folder", "folder with .ies / .ldt / .lf.json", &lib.folderText);
+    ImGui::InputTextWithHint("##folder", "folder with .ies / .ldt / .gldf / .lf.json",
+                             &lib.folderText);
     ImGui::SameLine();
     if (ImGui::Button("Add folder")) {
         std::error_code ec;

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "luminaires/Gldf.h"
 #include "luminaires/PhotometricLuminaire.h"
 #include "ui/Panels.h"
 #include "ui/PolarDiagram.h"
@@ -28,6 +29,26 @@ void photometryWarnings(const PhotometricData& d) {
     ImGui::TreePop();
 }
 
+/// A GLDF variant's product data: manufacturer, product, variant and its emitter's ratings.
+void gldfDetails(const GldfProduct& product, const std::string& variantId) {
+    const GldfVariant* variant = product.variant(variantId);
+    ImGui::TextWrapped(
+        "GLDF: %s %s, variant %s", product.manufacturer.c_str(), product.productName.c_str(),
+        variant && !variant->name.empty() ? variant->name.c_str() : variantId.c_str());
+    const GldfEmitter* emitter =
+        variant && !variant->emitters.empty() ? product.emitter(variant->emitters[0]) : nullptr;
+    if (!emitter || emitter->lights.empty()) return;
+    const GldfLightEmitter& light = emitter->lights[0];
+    if (light.ratedFlux >= 0.0) ImGui::TextWrapped("Rated flux: %.5g lm", light.ratedFlux);
+    if (light.ratedPower > 0.0)
+        ImGui::TextWrapped("Rated power: %.4g W%s", light.ratedPower,
+                           light.ratedFlux >= 0.0 ? "" : " (no rated flux)");
+    if (light.ratedFlux >= 0.0 && light.ratedPower > 0.0)
+        ImGui::TextWrapped("Rated efficacy: %.4g lm/W", light.ratedFlux / light.ratedPower);
+    for (const GldfMaintenance& m : light.maintenance)
+        ImGui::TextWrapped("%s: %.3g", m.what.c_str(), m.factor);
+}
+
 }  // namespace
 
 void photometricDetails(const PhotometricLuminaire& light) {
@@ -36,6 +57,7 @@ void photometricDetails(const PhotometricLuminaire& light) {
                        toValidUtf8(std::filesystem::path(light.file).filename().string()).c_str(),
                        d.format.c_str(), d.goniometer == Goniometer::B ? "B" : "C");
     if (!d.name.empty()) ImGui::TextWrapped("%s", d.name.c_str());
+    if (light.gldf) gldfDetails(*light.gldf, light.gldfVariant);
     double flux = light.scale * d.fluxFromTable();
     ImGui::TextWrapped("Flux: %.5g lm (exact quadrature of the table%s)", flux,
                        light.scale != 1.0 ? ", scaled" : "");

@@ -158,6 +158,14 @@ std::string toValidUtf8(std::string_view s) {
     return out;
 }
 
+std::string fromCodePage850(std::string_view s) {
+    // Every byte is defined in code page 850, so iconv converts all of them.
+    Iconv cd("UTF-8", "CP850");
+    std::string out;
+    cd.convert(s, out);
+    return out;
+}
+
 DecodedText decodeText(std::string_view bytes, const std::string& path) {
     using E = DecodedText::Encoding;
     DecodedText d;

@@ -43,4 +43,8 @@ inline bool isValidUtf8(std::string_view s) {
 /// Windows-1252 leaves a byte undefined), so any file name or field can go into a message.
 std::string toValidUtf8(std::string_view s);
 
+/// `s` read as IBM code page 850 (DOS Latin-1), transcoded to UTF-8: what ZIP archives made on
+/// Windows hold as member names when they do not flag them UTF-8.
+std::string fromCodePage850(std::string_view s);
+
 }  // namespace candela

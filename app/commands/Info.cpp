@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cctype>
 #include <chrono>
 #include <cmath>
@@ -6,6 +7,7 @@
 #include <memory>
 
 #include "app/commands/Commands.h"
+#include "luminaires/Gldf.h"
 #include "luminaires/LightField.h"
 #include "luminaires/PhotometricLuminaire.h"
 #include "luminaires/Registry.h"
@@ -78,10 +80,11 @@ static void printDeclaredFlux(const PhotometricData& d, double flux) {
         std::printf("absolute photometry: no lamp flux declared\n");
 }
 
-static void printPhotometry(const std::string& path) {
+/// The photometry's description; `path` names it ("lamp.ldt", "lamp.gldf:ldc/lamp.ldt").
+static void printPhotometry(const std::string& path, std::shared_ptr<const PhotometricData> data) {
     auto light = std::make_unique<PhotometricLuminaire>();
     light->file = path;
-    light->data = PhotometricLuminaire::load(path);
+    light->data = std::move(data);
     light->updateOpening();
     const PhotometricData& d = *light->data;
     std::printf("photometry: %s\n", toValidUtf8(path).c_str());
@@ -106,6 +109,75 @@ static void printPhotometry(const std::string& path) {
     if (d.inputWatts > 0.0 && std::isfinite(flux / d.inputWatts))
         std::printf("input power: %.4g W (%.1f lm/W)\n", d.inputWatts, flux / d.inputWatts);
     for (const std::string& w : d.warnings) std::printf("warning: %s\n", w.c_str());
+}
+
+static void printMaintenance(const char* indent, const std::vector<GldfMaintenance>& factors) {
+    for (const GldfMaintenance& m : factors)
+        std::printf("%s%s: %.4g (%.1f %%)\n", indent, m.what.c_str(), m.factor, 100.0 * m.factor);
+}
+
+/// One emitter of a variant: each interchangeable light emitter's photometry and ratings.
+static void printGldfEmitter(const GldfProduct& product, const GldfEmitter& emitter) {
+    std::printf("  emitter \"%s\": %zu light emitter(s)%s%s\n", emitter.id.c_str(),
+                emitter.lights.size(),
+                emitter.lights.size() > 1 ? " (interchangeable; the first is placed)" : "",
+                emitter.sensors > 0 ? ", sensors not shown" : "");
+    for (const GldfLightEmitter& light : emitter.lights) {
+        const GldfFile* file = product.file(light.fileId);
+        std::string where = !file ? "no file" : file->url ? "URL " + file->name : file->member();
+        std::printf("    %s light emitter, photometry \"%s\": %s\n",
+                    light.fixed ? "fixed" : "changeable", light.photometryId.c_str(),
+                    where.c_str());
+        if (light.ratedFlux >= 0.0)
+            std::printf("      rated luminous flux: %.6g lm%s\n", light.ratedFlux,
+                        light.lightSourceCount > 1 ? " (all its light sources)" : "");
+        if (light.ratedPower >= 0.0)
+            std::printf("      rated input power: %.6g W\n", light.ratedPower);
+        if (light.ratedFlux >= 0.0 && light.ratedPower > 0.0)
+            std::printf("      luminous efficacy (rated flux / rated power): %.4g lm/W\n",
+                        light.ratedFlux / light.ratedPower);
+        if (!light.maintenance.empty())
+            std::printf("      light source maintenance (light source \"%s\"):\n",
+                        light.lightSourceId.c_str());
+        printMaintenance("        ", light.maintenance);
+    }
+}
+
+/// `candela info LAMP.gldf`: the product, each variant with its emitters, and the photometry of
+/// each variant that can be placed (or why it cannot).
+static void printGldf(const std::string& path) {
+    std::string bytes = readGldfBytes(path);
+    GldfProduct product = parseGldf(bytes, path);
+    std::printf("GLDF container: %s\n", toValidUtf8(path).c_str());
+    std::printf("manufacturer: %s\n", product.manufacturer.c_str());
+    if (!product.author.empty()) std::printf("author: %s\n", product.author.c_str());
+    std::printf("format version: %s, created %s with %s\n", product.formatVersion.c_str(),
+                product.creationTime.c_str(), product.createdWithApplication.c_str());
+    std::printf("product: %s (product number %s, unique id %s)\n", product.productName.c_str(),
+                product.productNumber.c_str(), product.uniqueProductId.c_str());
+    if (!product.description.empty()) std::printf("description: %s\n", product.description.c_str());
+    if (!product.luminaireMaintenance.empty()) std::printf("luminaire maintenance:\n");
+    printMaintenance("  ", product.luminaireMaintenance);
+    std::printf("files: %zu listed, %zu members in the container\n", product.files.size(),
+                product.members.size());
+    std::printf("variants: %zu\n", product.variants.size());
+    for (const GldfVariant& variant : product.variants) {
+        std::printf("variant \"%s\": %s\n", variant.id.c_str(), variant.name.c_str());
+        std::vector<std::string> shown;
+        for (const std::string& id : variant.emitters) {
+            if (std::find(shown.begin(), shown.end(), id) != shown.end()) continue;
+            shown.push_back(id);
+            printGldfEmitter(product, *product.emitter(id));
+        }
+        try {
+            GldfPhotometry photometry = gldfVariantPhotometry(bytes, product, variant);
+            std::string name = photometry.data.path;
+            printPhotometry(name,
+                            std::make_shared<const PhotometricData>(std::move(photometry.data)));
+        } catch (const InputError& e) {
+            std::printf("  cannot be placed: %s\n", e.what());
+        }
+    }
 }
 
 /// `candela info NAME.lf.json`: the light field's model, basis, images, flux and table cost.
@@ -160,12 +232,17 @@ static void printMeshes(const Scene& scene) {
 int cmdInfo(const Args& args) {
     if (args.size() != 1)
         throw InputError(
-            "usage: candela info FILE (.json scene, .lf.json, .gltf, .glb, .ies, .ldt) [--strict]");
+            "usage: candela info FILE (.json scene, .lf.json, .gltf, .glb, .ies, .ldt, .gldf) "
+            "[--strict]");
     const std::string& path = args[0];
     std::string ext = std::filesystem::path(path).extension().string();
     for (char& c : ext) c = char(std::tolower((unsigned char)c));
     if (ext == ".ies" || ext == ".ldt") {
-        printPhotometry(path);
+        printPhotometry(path, PhotometricLuminaire::load(path));
+        return 0;
+    }
+    if (ext == ".gldf") {
+        printGldf(path);
         return 0;
     }
     std::string name = std::filesystem::path(path).filename().string();
@@ -212,7 +289,7 @@ int cmdInfo(const Args& args) {
         return 0;
     }
     throw InputError(path + ": unsupported file type \"" + ext +
-                     "\" (expected .json, .lf.json, .gltf, .glb, .ies or .ldt)");
+                     "\" (expected .json, .lf.json, .gltf, .glb, .ies, .ldt or .gldf)");
 }
 
 }  // namespace candela

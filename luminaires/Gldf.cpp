@@ -1,0 +1,584 @@
+#include "luminaires/Gldf.h"
+
+#include <zip.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <pugixml.hpp>
+#include <set>
+
+#include "util/Error.h"
+#include "util/TextEncoding.h"
+
+namespace candela {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+/// The content types the schema allows (GeneralDefinitions/Files/File/@contentType).
+const char* const kContentTypes[] = {
+    "ldc/eulumdat",   "ldc/ies",        "ldc/iesxml",    "image/png",    "image/svg",  "image/jpg",
+    "geo/l3d",        "geo/r3d",        "geo/m3d",       "document/pdf", "symbol/dxf", "symbol/svg",
+    "sensor/sensxml", "sensor/sensldt", "spectrum/text", "other"};
+
+/// How many of a folder's members a "not in the container" message names (one line stays short).
+constexpr int kMembersNamed = 5;
+
+/// `s` as valid UTF-8 on one line: control characters (line breaks, tabs) become spaces.
+std::string oneLine(std::string_view s) {
+    std::string out = toValidUtf8(s);
+    for (char& c : out)
+        if (static_cast<unsigned char>(c) < 0x20) c = ' ';
+    return out;
+}
+
+/// Throws the message as one line of valid UTF-8 (container paths, member names and values
+/// quoted from product.xml may hold anything).
+[[noreturn]] void fail(const std::string& message) {
+    throw InputError(oneLine(message));
+}
+
+std::string inQuotes(const std::string& s) {
+    return "\"" + s + "\"";
+}
+
+std::string megabytes(uint64_t bytes) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.1f MB", double(bytes) / double(1 << 20));
+    return buf;
+}
+
+/// An open container over bytes the caller keeps alive; member names decoded to UTF-8.
+class Archive {
+  public:
+    Archive(const std::string& bytes, const std::string& path) : mPath(path) {
+        zip_error_t error;
+        zip_error_init(&error);
+        zip_source_t* source = zip_source_buffer_create(bytes.data(), bytes.size(), 0, &error);
+        if (source) mZip = zip_open_from_source(source, ZIP_RDONLY, &error);
+        if (!mZip) {
+            std::string why = zip_error_strerror(&error);
+            zip_error_fini(&error);
+            if (source) zip_source_free(source);
+            fail(path + ": not a GLDF container (a ZIP archive): " + why);
+        }
+        zip_error_fini(&error);
+        zip_int64_t count = zip_get_num_entries(mZip, 0);
+        for (zip_int64_t i = 0; i < count; ++i) {
+            const char* raw = zip_get_name(mZip, zip_uint64_t(i), ZIP_FL_ENC_RAW);
+            std::string name = raw ? raw : "";
+            // Unflagged names are in the writer's DOS code page; GLDF tools on Windows write 850.
+            mNames.push_back(isValidUtf8(name) ? name : fromCodePage850(name));
+        }
+    }
+    ~Archive() { zip_discard(mZip); }
+    Archive(const Archive&) = delete;
+    Archive& operator=(const Archive&) = delete;
+
+    const std::vector<std::string>& names() const { return mNames; }
+
+    /// Index of the member named `name` (UTF-8), or -1.
+    int64_t find(const std::string& name) const {
+        auto it = std::find(mNames.begin(), mNames.end(), name);
+        return it == mNames.end() ? -1 : int64_t(it - mNames.begin());
+    }
+
+    /// The member's bytes; `label` names it in messages ("ldc/a.ldt (file "f", ...)").
+    std::string read(int64_t index, const std::string& label) const {
+        zip_stat_t st;
+        zip_stat_init(&st);
+        if (zip_stat_index(mZip, zip_uint64_t(index), 0, &st) != 0)
+            fail(mPath + ": " + label + ": cannot be read (" + zip_strerror(mZip) + ")");
+        if ((st.valid & ZIP_STAT_SIZE) && st.size > kMaxGldfMember)
+            fail(mPath + ": " + label + ": " + megabytes(st.size) +
+                 " uncompressed, more than the " + megabytes(kMaxGldfMember) +
+                 " a member may hold");
+        zip_file_t* file = zip_fopen_index(mZip, zip_uint64_t(index), 0);
+        if (!file) fail(mPath + ": " + label + ": cannot be read (" + zip_strerror(mZip) + ")");
+        std::string out;
+        char buffer[65536];
+        while (true) {
+            zip_int64_t n = zip_fread(file, buffer, sizeof buffer);
+            if (n < 0) {
+                std::string why = zip_file_strerror(file);
+                zip_fclose(file);
+                fail(mPath + ": " + label + ": damaged (" + why + ")");
+            }
+            if (n == 0) break;
+            out.append(buffer, size_t(n));
+            // A size field can lie; what is inflated is bounded all the same.
+            if (out.size() > kMaxGldfMember) {
+                zip_fclose(file);
+                fail(mPath + ": " + label + ": more than the " + megabytes(kMaxGldfMember) +
+                     " a member may hold");
+            }
+        }
+        zip_fclose(file);
+        if ((st.valid & ZIP_STAT_SIZE) && out.size() != st.size)
+            fail(mPath + ": " + label + ": truncated (" + std::to_string(out.size()) +
+                 " bytes of the " + std::to_string(st.size) + " its entry declares)");
+        return out;
+    }
+
+  private:
+    std::string mPath;
+    zip_t* mZip = nullptr;
+    std::vector<std::string> mNames;
+};
+
+/// Reads product.xml's elements; every message names the container and product.xml.
+class ProductReader {
+  public:
+    explicit ProductReader(GldfProduct& product) : mProduct(product) {}
+
+    [[noreturn]] void defect(const std::string& what) const {
+        fail(mProduct.path + ": product.xml: " + what);
+    }
+
+    /// Text content, whitespace trimmed, one line of valid UTF-8 (a name wrapped over lines in
+    /// the file is shown on one).
+    static std::string text(const pugi::xml_node& node) {
+        std::string s = oneLine(node.text().get());
+        std::string_view v = s;
+        size_t begin = v.find_first_not_of(' ');
+        if (begin == std::string_view::npos) return "";
+        return std::string(v.substr(begin, v.find_last_not_of(' ') - begin + 1));
+    }
+
+    static std::string attribute(const pugi::xml_node& node, const char* name) {
+        return oneLine(node.attribute(name).value());
+    }
+
+    /// A Locale-typed element: the English text where there is one, else the first.
+    static std::string locale(const pugi::xml_node& node) {
+        pugi::xml_node first = node.child("Locale");
+        for (pugi::xml_node l : node.children("Locale"))
+            if (std::string(l.attribute("language").value()) == "en") return text(l);
+        return first ? text(first) : "";
+    }
+
+    /// An optional number in [lo, hi]; `fallback` when the element is absent.
+    double number(const pugi::xml_node& parent, const char* name, const std::string& owner,
+                  double lo, double hi, double fallback = -1.0) const {
+        pugi::xml_node node = parent.child(name);
+        if (!node) return fallback;
+        return numberOf(text(node), std::string("<") + name + "> of " + owner, lo, hi);
+    }
+
+    double numberOf(const std::string& s, const std::string& what, double lo, double hi) const {
+        double v = 0.0;
+        if (!photometry_detail::parseNumber(s, v))
+            defect(what + ": expected a number, found " + inQuotes(s));
+        if (!(v >= lo && v <= hi))
+            defect(what + ": " + s + " is outside [" + photometry_detail::formatNumber(lo) + ", " +
+                   photometry_detail::formatNumber(hi) + "]");
+        return v;
+    }
+
+    std::string id(const pugi::xml_node& node, const char* attributeName = "id") const {
+        std::string value = attribute(node, attributeName);
+        if (value.empty())
+            defect(std::string("a <") + node.name() + "> without its " + attributeName +
+                   " attribute");
+        return value;
+    }
+
+    void header(const pugi::xml_node& header) {
+        if (!header) defect("no <Header> (the schema requires one)");
+        mProduct.manufacturer = text(header.child("Manufacturer"));
+        mProduct.author = text(header.child("Author"));
+        mProduct.createdWithApplication = text(header.child("CreatedWithApplication"));
+        mProduct.creationTime = text(header.child("GldfCreationTimeCode"));
+        if (pugi::xml_node v = header.child("FormatVersion")) {
+            mProduct.formatVersion = attribute(v, "major") + "." + attribute(v, "minor");
+            if (std::string pre = attribute(v, "pre-release"); !pre.empty())
+                mProduct.formatVersion += " (pre-release " + pre + ")";
+        }
+    }
+
+    void files(const pugi::xml_node& files) {
+        for (pugi::xml_node f : files.children("File")) {
+            GldfFile file;
+            file.id = id(f);
+            if (mProduct.file(file.id))
+                defect("two <File> elements with the id " + inQuotes(file.id));
+            file.contentType = attribute(f, "contentType");
+            if (std::find(std::begin(kContentTypes), std::end(kContentTypes), file.contentType) ==
+                std::end(kContentTypes))
+                defect("file " + inQuotes(file.id) + ": unknown contentType " +
+                       inQuotes(file.contentType) + " (the schema's: ldc/eulumdat, ldc/ies, " +
+                       "ldc/iesxml, image/*, geo/*, document/pdf, symbol/*, sensor/*, " +
+                       "spectrum/text, other)");
+            std::string type = attribute(f, "type");
+            if (type != "localFileName" && type != "url")
+                defect("file " + inQuotes(file.id) + ": type " + inQuotes(type) +
+                       ", expected \"localFileName\" or \"url\"");
+            file.url = type == "url";
+            file.name = text(f);
+            if (file.name.empty()) defect("file " + inQuotes(file.id) + ": no file name or URL");
+            mProduct.files.push_back(std::move(file));
+        }
+    }
+
+    void photometries(const pugi::xml_node& photometries) {
+        for (pugi::xml_node p : photometries.children("Photometry")) {
+            std::string pid = id(p);
+            std::string fileId;
+            if (pugi::xml_node ref = p.child("PhotometryFileReference")) {
+                fileId = id(ref, "fileId");
+                if (!mProduct.file(fileId))
+                    defect("photometry " + inQuotes(pid) + " refers to file " + inQuotes(fileId) +
+                           ", which <Files> does not list");
+            }
+            mPhotometryFile[pid] = fileId;
+        }
+    }
+
+    /// LightSourceMaintenance of a light source (CIE lamp factors or LED factors).
+    std::vector<GldfMaintenance> lampMaintenance(const pugi::xml_node& m,
+                                                 const std::string& owner) const {
+        std::vector<GldfMaintenance> out;
+        for (pugi::xml_node f :
+             m.child("CieLampMaintenanceFactors").children("CieLampMaintenanceFactor")) {
+            std::string hours = attribute(f, "burningTime");
+            out.push_back({"LLMF after " + hours + " h",
+                           number(f, "LampLumenMaintenanceFactor", owner, 0.0, 1.0)});
+            out.push_back(
+                {"LSF after " + hours + " h", number(f, "LampSurvivalFactor", owner, 0.0, 1.0)});
+        }
+        for (pugi::xml_node f : m.children("LedMaintenanceFactor"))
+            out.push_back({"LED maintenance after " + attribute(f, "hours") + " h",
+                           numberOf(text(f), "<LedMaintenanceFactor> of " + owner, 0.0, 1.0)});
+        std::erase_if(out, [](const GldfMaintenance& m) { return m.factor < 0.0; });
+        return out;
+    }
+
+    void lightSources(const pugi::xml_node& sources) {
+        for (pugi::xml_node s : sources.children()) {
+            std::string name = s.name();
+            if (name != "ChangeableLightSource" && name != "FixedLightSource") continue;
+            std::string sid = id(s);
+            std::string owner = "light source " + inQuotes(sid);
+            LightSource& source = mLightSources[sid];
+            source.flux = number(s, "RatedLuminousFlux", owner, 0.0, kMaxLumens);
+            source.power = number(s, "RatedInputPower", owner, 0.0, 1e9);
+            source.maintenance = lampMaintenance(s.child("LightSourceMaintenance"), owner);
+        }
+    }
+
+    void equipments(const pugi::xml_node& equipments) {
+        for (pugi::xml_node e : equipments.children("Equipment")) {
+            std::string eid = id(e);
+            Equipment& equipment = mEquipments[eid];
+            if (pugi::xml_node ref = e.child("LightSourceReference")) {
+                equipment.lightSource = id(ref, "changeableLightSourceId");
+                if (!mLightSources.count(equipment.lightSource))
+                    defect("equipment " + inQuotes(eid) + " refers to light source " +
+                           inQuotes(equipment.lightSource) +
+                           ", which <LightSources> does not define");
+                if (ref.attribute("lightSourceCount"))
+                    equipment.count =
+                        int(numberOf(attribute(ref, "lightSourceCount"),
+                                     "lightSourceCount of equipment " + inQuotes(eid), 1.0, 1e6));
+            }
+            equipment.power = number(e, "RatedInputPower", "equipment " + inQuotes(eid), 0.0, 1e9);
+        }
+    }
+
+    GldfLightEmitter lightEmitter(const pugi::xml_node& l, const std::string& emitterId) {
+        GldfLightEmitter out;
+        out.fixed = std::string(l.name()) == "FixedLightEmitter";
+        std::string owner = "emitter " + inQuotes(emitterId);
+        pugi::xml_node reference = l.child("PhotometryReference");
+        if (!reference) defect(owner + ": a <" + l.name() + "> without <PhotometryReference>");
+        out.photometryId = id(reference, "photometryId");
+        auto photometry = mPhotometryFile.find(out.photometryId);
+        if (photometry == mPhotometryFile.end())
+            defect(owner + " refers to photometry " + inQuotes(out.photometryId) +
+                   ", which <Photometries> does not define");
+        out.fileId = photometry->second;
+        const LightSource* source = nullptr;
+        double equipmentPower = -1.0;
+        if (out.fixed) {
+            if (pugi::xml_node ref = l.child("LightSourceReference"))
+                out.lightSourceId = id(ref, "fixedLightSourceId");
+            out.ratedFlux = number(l, "RatedLuminousFlux", owner, 0.0, kMaxLumens);
+        } else if (pugi::xml_node ref = l.child("EquipmentReference")) {
+            std::string equipmentId = id(ref, "equipmentId");
+            auto equipment = mEquipments.find(equipmentId);
+            if (equipment == mEquipments.end())
+                defect(owner + " refers to equipment " + inQuotes(equipmentId) +
+                       ", which <Equipments> does not define");
+            out.lightSourceId = equipment->second.lightSource;
+            out.lightSourceCount = equipment->second.count;
+            equipmentPower = equipment->second.power;
+        }
+        if (!out.lightSourceId.empty()) {
+            auto it = mLightSources.find(out.lightSourceId);
+            if (it == mLightSources.end())
+                defect(owner + " refers to light source " + inQuotes(out.lightSourceId) +
+                       ", which <LightSources> does not define");
+            source = &it->second;
+            out.maintenance = source->maintenance;
+        }
+        if (!out.fixed && source && source->flux >= 0.0)
+            out.ratedFlux = source->flux * out.lightSourceCount;
+        out.ratedPower = equipmentPower;
+        if (out.ratedPower < 0.0 && source && source->power >= 0.0)
+            out.ratedPower = source->power * out.lightSourceCount;
+        return out;
+    }
+
+    void emitters(const pugi::xml_node& emitters) {
+        for (pugi::xml_node e : emitters.children("Emitter")) {
+            GldfEmitter emitter;
+            emitter.id = id(e);
+            if (mProduct.emitter(emitter.id))
+                defect("two <Emitter> elements with the id " + inQuotes(emitter.id));
+            for (pugi::xml_node l : e.children()) {
+                std::string name = l.name();
+                if (name == "ChangeableLightEmitter" || name == "FixedLightEmitter")
+                    emitter.lights.push_back(lightEmitter(l, emitter.id));
+                else if (name == "SensorEmitter")
+                    ++emitter.sensors;
+            }
+            mProduct.emitters.push_back(std::move(emitter));
+        }
+    }
+
+    std::string emitterReference(const pugi::xml_node& ref, const std::string& variantId) const {
+        std::string emitterId = id(ref, "emitterId");
+        if (!mProduct.emitter(emitterId))
+            defect("variant " + inQuotes(variantId) + " refers to emitter " + inQuotes(emitterId) +
+                   ", which <Emitters> does not define");
+        return emitterId;
+    }
+
+    /// Appends the placements of a ModelGeometryReference (one per EmitterReference).
+    void modelGeometry(const pugi::xml_node& model, GldfVariant& variant) const {
+        variant.geometryIds.push_back(id(model, "geometryId"));
+        for (pugi::xml_node ref : model.children("EmitterReference"))
+            variant.emitters.push_back(emitterReference(ref, variant.id));
+    }
+
+    void variantGeometry(const pugi::xml_node& geometry, GldfVariant& variant) const {
+        if (pugi::xml_node ref = geometry.child("EmitterReference")) {
+            variant.emitters.push_back(emitterReference(ref, variant.id));
+        } else if (pugi::xml_node simple = geometry.child("SimpleGeometryReference")) {
+            variant.geometryIds.push_back(id(simple, "geometryId"));
+            variant.emitters.push_back(emitterReference(simple, variant.id));
+        } else if (pugi::xml_node model = geometry.child("ModelGeometryReference")) {
+            modelGeometry(model, variant);
+        } else if (pugi::xml_node both = geometry.child("GeometryReferences")) {
+            // Levels of detail of one luminaire: the model's placements, else the simple one's.
+            pugi::xml_node simple = both.child("SimpleGeometryReference");
+            pugi::xml_node model = both.child("ModelGeometryReference");
+            if (model) modelGeometry(model, variant);
+            if (simple) {
+                variant.geometryIds.push_back(id(simple, "geometryId"));
+                std::string emitterId = emitterReference(simple, variant.id);
+                if (!model) variant.emitters.push_back(emitterId);
+            }
+        }
+    }
+
+    void productDefinitions(const pugi::xml_node& definitions) {
+        if (!definitions) defect("no <ProductDefinitions> (the schema requires one)");
+        pugi::xml_node meta = definitions.child("ProductMetaData");
+        if (!meta) defect("no <ProductMetaData> in <ProductDefinitions>");
+        mProduct.uniqueProductId = text(meta.child("UniqueProductId"));
+        mProduct.productNumber = locale(meta.child("ProductNumber"));
+        mProduct.productName = locale(meta.child("Name"));
+        mProduct.description = locale(meta.child("Description"));
+        pugi::xml_node maintenance = meta.child("LuminaireMaintenance");
+        for (const char* group : {"CieLuminaireMaintenanceFactors", "IesLuminaireLightLossFactors",
+                                  "JiegMaintenanceFactors"})
+            for (pugi::xml_node f : maintenance.child(group).children()) {
+                std::string name = f.name();
+                std::string what = name + " after " + attribute(f, "years") + " years (" +
+                                   attribute(f, "roomCondition") + ")";
+                mProduct.luminaireMaintenance.push_back(
+                    {what, numberOf(text(f), name + " of the product", 0.0, 1.0)});
+            }
+        for (pugi::xml_node v : definitions.child("Variants").children("Variant")) {
+            GldfVariant variant;
+            variant.id = id(v);
+            if (mProduct.variant(variant.id))
+                defect("two <Variant> elements with the id " + inQuotes(variant.id));
+            variant.name = locale(v.child("Name"));
+            variant.description = locale(v.child("Description"));
+            variantGeometry(v.child("Geometry"), variant);
+            mProduct.variants.push_back(std::move(variant));
+        }
+        if (mProduct.variants.empty()) defect("no <Variant> in <ProductDefinitions>/<Variants>");
+    }
+
+    void read(const pugi::xml_node& root) {
+        if (std::string(root.name()) != "Root")
+            defect("the root element is <" + toValidUtf8(root.name()) + ">, expected <Root>");
+        header(root.child("Header"));
+        pugi::xml_node general = root.child("GeneralDefinitions");
+        files(general.child("Files"));
+        photometries(general.child("Photometries"));
+        lightSources(general.child("LightSources"));
+        equipments(general.child("Equipments"));
+        emitters(general.child("Emitters"));
+        productDefinitions(root.child("ProductDefinitions"));
+    }
+
+  private:
+    struct LightSource {
+        double flux = -1.0, power = -1.0;
+        std::vector<GldfMaintenance> maintenance;
+    };
+    struct Equipment {
+        std::string lightSource;
+        int count = 1;
+        double power = -1.0;
+    };
+    GldfProduct& mProduct;
+    std::map<std::string, std::string> mPhotometryFile;  ///< photometry id -> file id
+    std::map<std::string, LightSource> mLightSources;
+    std::map<std::string, Equipment> mEquipments;
+};
+
+/// "a, b, c" for messages.
+std::string emitterList(const std::vector<std::string>& ids) {
+    std::string out;
+    for (const std::string& id : ids) out += (out.empty() ? "" : ", ") + id;
+    return out;
+}
+
+}  // namespace
+
+std::string GldfFile::member() const {
+    if (url) return "";
+    return contentType.substr(0, contentType.find('/')) + "/" + name;
+}
+
+const GldfFile* GldfProduct::file(const std::string& id) const {
+    for (const GldfFile& f : files)
+        if (f.id == id) return &f;
+    return nullptr;
+}
+
+const GldfEmitter* GldfProduct::emitter(const std::string& id) const {
+    for (const GldfEmitter& e : emitters)
+        if (e.id == id) return &e;
+    return nullptr;
+}
+
+const GldfVariant* GldfProduct::variant(const std::string& id) const {
+    for (const GldfVariant& v : variants)
+        if (v.id == id) return &v;
+    return nullptr;
+}
+
+std::string readGldfBytes(const std::string& path) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) fail(path + ": no such file");
+    uintmax_t size = fs::file_size(path, ec);
+    if (ec) fail(path + ": cannot be read (" + ec.message() + ")");
+    if (size > kMaxGldfContainer)
+        fail(path + ": " + megabytes(size) + ", more than the " + megabytes(kMaxGldfContainer) +
+             " a GLDF container may hold here");
+    std::ifstream in(path, std::ios::binary);
+    std::string bytes(size_t(size), '\0');
+    if (!in.read(bytes.data(), std::streamsize(size))) fail(path + ": cannot be read");
+    return bytes;
+}
+
+GldfProduct parseGldf(const std::string& bytes, const std::string& path) {
+    Archive archive(bytes, path);
+    GldfProduct product;
+    product.path = path;
+    for (const std::string& name : archive.names())
+        if (!name.empty() && name.back() != '/') product.members.push_back(name);
+    int64_t index = archive.find("product.xml");
+    if (index < 0) fail(path + ": product.xml: missing");
+    gldf_detail::readProductXml(archive.read(index, "product.xml"), product);
+    return product;
+}
+
+void gldf_detail::readProductXml(const std::string& xml, GldfProduct& product) {
+    pugi::xml_document doc;
+    // encoding_auto: UTF-8 or UTF-16 by byte-order mark or declaration, as writers produce.
+    pugi::xml_parse_result parsed =
+        doc.load_buffer(xml.data(), xml.size(), pugi::parse_default, pugi::encoding_auto);
+    if (!parsed)
+        fail(product.path + ": product.xml: not well-formed XML (" + parsed.description() +
+             " at byte " + std::to_string(parsed.offset) + ")");
+    ProductReader(product).read(doc.document_element());
+}
+
+GldfPhotometry gldfVariantPhotometry(const std::string& bytes, const GldfProduct& product,
+                                     const GldfVariant& variant, const PhotometryOptions& options) {
+    const std::string& path = product.path;
+    std::string variantName = "variant " + inQuotes(variant.id);
+    if (variant.emitters.empty())
+        fail(path + ": " + variantName + " places no emitter (its <Geometry> names none)");
+    if (variant.emitters.size() > 1)
+        fail(path + ": " + variantName + " places " + std::to_string(variant.emitters.size()) +
+             " emitters (" + emitterList(variant.emitters) +
+             "): a variant with more than one emitter cannot be placed yet (the emitters' "
+             "positions come from its L3D geometry, which is not read yet)");
+    GldfPhotometry out;
+    out.emitter = product.emitter(variant.emitters.front());
+    // parseGldf resolves every reference; a product assembled otherwise is checked here too.
+    if (!out.emitter)
+        fail(path + ": " + variantName + " refers to emitter " +
+             inQuotes(variant.emitters.front()) + ", which the product does not define");
+    std::string emitterName = "emitter " + inQuotes(out.emitter->id);
+    if (out.emitter->lights.empty())
+        fail(path + ": " + emitterName + " (" + variantName +
+             ") has no light emitter (ChangeableLightEmitter or FixedLightEmitter)");
+    const GldfLightEmitter& light = out.emitter->lights.front();
+    if (light.fileId.empty())
+        fail(path + ": photometry " + inQuotes(light.photometryId) + " (" + emitterName +
+             ") has no <PhotometryFileReference>");
+    out.file = product.file(light.fileId);
+    if (!out.file)
+        fail(path + ": photometry " + inQuotes(light.photometryId) + " refers to file " +
+             inQuotes(light.fileId) + ", which the product does not list");
+    const GldfFile& file = *out.file;
+    if (file.url)
+        fail(path + ": photometry file " + inQuotes(file.id) + " is only a URL (" + file.name +
+             "), not in the container");
+    std::string member = file.member();
+    std::string label =
+        member + " (file " + inQuotes(file.id) + ", referenced by " + emitterName + ")";
+    bool eulumdat = file.contentType == "ldc/eulumdat";
+    if (!eulumdat && file.contentType != "ldc/ies")
+        fail(path + ": " + label + ": content type " + inQuotes(file.contentType) +
+             " is not a photometry read here (ldc/eulumdat or ldc/ies)");
+    Archive archive(bytes, path);
+    int64_t index = archive.find(member);
+    if (index < 0) {
+        // Name what the folder does hold: a name written in another encoding shows up here.
+        std::string folder = member.substr(0, member.find('/') + 1), held;
+        int count = 0;
+        for (const std::string& name : archive.names())
+            if (name.size() > folder.size() && name.compare(0, folder.size(), folder) == 0 &&
+                ++count <= kMembersNamed)
+                held += (held.empty() ? "" : ", ") + name;
+        if (count > kMembersNamed)
+            held += " and " + std::to_string(count - kMembersNamed) + " more";
+        fail(path + ": " + label + ": not in the container" +
+             (held.empty() ? "" : " (it holds " + held + ")"));
+    }
+    std::string text = archive.read(index, label);
+    try {
+        std::string name = path + ":" + member;
+        out.data = eulumdat ? parseEulumdat(text, name, options) : parseIes(text, name, options);
+    } catch (const std::exception& e) {
+        fail(path + ": " + label + ": " + std::to_string(text.size()) + " bytes, not " +
+             (eulumdat ? "a EULUMDAT" : "an IES") + " file: " + e.what());
+    }
+    return out;
+}
+
+}  // namespace candela

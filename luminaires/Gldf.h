@@ -1,0 +1,130 @@
+#pragma once
+// GLDF (Global Lighting Data Format, DIAL and Relux): a ZIP container holding product.xml (the
+// product, its variants, emitters, light sources and a list of files) and members such as
+// ldc/*.ldt or ldc/*.ies photometry and geo/*.l3d geometry. The container is read with libzip and
+// product.xml with pugixml; element names follow the format's schema (gldf.xsd, 1.0.0-rc.3).
+//
+// What is read: the header, the product's metadata and maintenance, the Files list, the
+// photometries, light sources, equipments and emitters, and the variants with the emitters their
+// geometry places. A variant is placed as one photometric luminaire: its emitter's photometry
+// (the first of interchangeable light emitters) read from the container by the IES or EULUMDAT
+// parser. Not yet: variants that place several emitters (their positions come from the L3D
+// geometry), the geometry itself, sensors, spectra.
+//
+// Every defect is an InputError of one line in valid UTF-8 that names the container, the member
+// and what is wrong ("lamp.gldf: product.xml: missing"); member names in code page 850 or UTF-8.
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "luminaires/Photometry.h"
+
+namespace candela {
+
+/// Largest container read, bytes: the container is read into memory whole.
+constexpr uint64_t kMaxGldfContainer = uint64_t(256) << 20;
+/// Largest member read from a container (uncompressed), bytes: photometry and product.xml are
+/// kilobytes; 64 MB bounds what a corrupt or hostile size field can make us allocate.
+constexpr uint64_t kMaxGldfMember = uint64_t(64) << 20;
+
+/// One entry of GeneralDefinitions/Files.
+struct GldfFile {
+    std::string id;
+    std::string contentType;  ///< "ldc/eulumdat", "ldc/ies", "geo/l3d", "image/png", "other", ...
+    bool url = false;         ///< type="url": `name` is a web address, not a member.
+    std::string name;         ///< The local file name (type="localFileName") or the URL.
+    /// The member it is stored as: the content type's folder and the name ("ldc/lamp.ldt");
+    /// empty for a URL.
+    std::string member() const;
+};
+
+/// One maintenance figure, as the file states it.
+struct GldfMaintenance {
+    std::string what;  ///< "LLMF after 125 h", "LSF after 125 h", "LMF after 3 years (clean)", ...
+    double factor = 0.0;  ///< Dimensionless, 0..1.
+};
+
+/// One light emitter of an Emitter (ChangeableLightEmitter or FixedLightEmitter) with what its
+/// photometry, equipment and light source say.
+struct GldfLightEmitter {
+    bool fixed = false;  ///< FixedLightEmitter (flux stated on the emitter) or Changeable.
+    std::string photometryId;
+    std::string fileId;         ///< The photometry's file; empty when it gives none.
+    std::string lightSourceId;  ///< Empty when none is referenced.
+    int lightSourceCount = 1;
+    /// Rated luminous flux, lm (the light source's times its count, or the fixed emitter's);
+    /// < 0 when not stated.
+    double ratedFlux = -1.0;
+    /// Rated input power, W (the equipment's, else the light source's times its count); < 0 when
+    /// not stated.
+    double ratedPower = -1.0;
+    std::vector<GldfMaintenance> maintenance;  ///< The light source's LightSourceMaintenance.
+};
+
+/// GeneralDefinitions/Emitters/Emitter.
+struct GldfEmitter {
+    std::string id;
+    /// Interchangeable light emitters (the schema's reading of several); the first is placed.
+    std::vector<GldfLightEmitter> lights;
+    int sensors = 0;  ///< SensorEmitter children (not placed).
+};
+
+/// ProductDefinitions/Variants/Variant.
+struct GldfVariant {
+    std::string id;
+    std::string name;         ///< First Locale of Name (may be empty).
+    std::string description;  ///< First Locale of Description (may be empty).
+    /// Emitter ids as the variant's geometry places them, one per placement (a model geometry can
+    /// place an emitter at several named objects); the simple and model levels of detail of a
+    /// GeometryReferences element are the same placements, so the model's are taken.
+    std::vector<std::string> emitters;
+    std::vector<std::string> geometryIds;  ///< Simple and model geometries referenced.
+};
+
+struct GldfProduct {
+    std::string path;  ///< The container, for messages (may not be valid UTF-8).
+    // Header.
+    std::string manufacturer, author, formatVersion, createdWithApplication, creationTime;
+    // ProductMetaData: first Locale of each translatable field.
+    std::string uniqueProductId, productName, productNumber, description;
+    std::vector<GldfMaintenance> luminaireMaintenance;  ///< LuminaireMaintenance factors.
+    std::vector<GldfFile> files;
+    std::vector<GldfEmitter> emitters;
+    std::vector<GldfVariant> variants;
+    std::vector<std::string> members;  ///< Every member of the container, UTF-8.
+
+    const GldfFile* file(const std::string& id) const;
+    const GldfEmitter* emitter(const std::string& id) const;
+    const GldfVariant* variant(const std::string& id) const;
+};
+
+/// A variant's photometry as a placed luminaire needs it.
+struct GldfPhotometry {
+    const GldfEmitter* emitter = nullptr;  ///< Points into the product it was read from.
+    const GldfFile* file = nullptr;
+    PhotometricData data;  ///< data.path is "CONTAINER:MEMBER" for messages.
+};
+
+/// The container's bytes; refuses a missing or unreadable file and one above kMaxGldfContainer.
+std::string readGldfBytes(const std::string& path);
+/// Reads the container (its bytes) and its product.xml; `path` names it in messages.
+GldfProduct parseGldf(const std::string& bytes, const std::string& path);
+inline GldfProduct loadGldf(const std::string& path) {
+    return parseGldf(readGldfBytes(path), path);
+}
+/// The photometry of one variant of `product` (read from `bytes`, the same container): refuses a
+/// variant with no emitter or with several ("cannot be placed yet"), an emitter without
+/// photometry, a URL, a missing, oversized or unparsable member, naming it.
+GldfPhotometry gldfVariantPhotometry(const std::string& bytes, const GldfProduct& product,
+                                     const GldfVariant& variant,
+                                     const PhotometryOptions& options = defaultPhotometryOptions());
+
+namespace gldf_detail {
+/// Reads product.xml's text into `product` (product.path names the container in messages); for
+/// parseGldf and the fuzz target, which feeds it XML without a container around it.
+void readProductXml(const std::string& xml, GldfProduct& product);
+}  // namespace gldf_detail
+
+}  // namespace candela
