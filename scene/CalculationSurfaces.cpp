@@ -88,8 +88,9 @@ SurfaceResult gridded(std::string name, std::string role, const CalcPlane& plane
 }  // namespace
 
 TaskArea parseTaskArea(const nlohmann::json& entry, const json::Where& where) {
-    json::checkKeys(entry, {"name", "plane", "extent", "required", "spacing", "surroundings"},
-                    where);
+    json::checkKeys(
+        entry, {"name", "plane", "extent", "required", "spacing", "surroundings", "illuminance"},
+        where);
     TaskArea a;
     a.name = json::optional(entry, "name", where, std::string("task area"), json::string);
     if (!entry.contains("plane"))
@@ -107,7 +108,18 @@ TaskArea parseTaskArea(const nlohmann::json& entry, const json::Where& where) {
     if (entry.contains("required"))
         a.required = parseRequirement(entry["required"], where / "required");
     a.spacing = json::optional(entry, "spacing", where, 0.0, json::positive);
-    a.surroundings = json::optional(entry, "surroundings", where, true, json::boolean);
+    std::string quantity =
+        json::optional(entry, "illuminance", where, std::string("planar"), json::string);
+    if (quantity != "planar" && quantity != "cylindrical")
+        json::fail(where / "illuminance",
+                   "\"planar\" (on the plane) or \"cylindrical\", got \"" + quantity + "\"");
+    a.cylindrical = quantity == "cylindrical";
+    if (a.cylindrical && a.plane.axis != 1)
+        json::fail(where / "plane", "a horizontal plane (y=...) for cylindrical illuminance");
+    if (a.cylindrical && json::optional(entry, "surroundings", where, false, json::boolean))
+        json::fail(where / "surroundings",
+                   "none for cylindrical illuminance (Table 1 is for a task's own illuminance)");
+    a.surroundings = json::optional(entry, "surroundings", where, !a.cylindrical, json::boolean);
     return a;
 }
 
@@ -140,7 +152,10 @@ nlohmann::json toJson(const TaskArea& a) {
         if (a.required.u0 > 0.0) out["required"]["u0"] = a.required.u0;
     }
     if (a.spacing > 0.0) out["spacing"] = a.spacing;
-    if (!a.surroundings) out["surroundings"] = false;
+    if (a.cylindrical)
+        out["illuminance"] = "cylindrical";
+    else if (!a.surroundings)
+        out["surroundings"] = false;
     return out;
 }
 
@@ -160,6 +175,8 @@ std::vector<SurfaceResult> layoutSurfaces(const Scene& scene) {
     for (const TaskArea& a : scene.taskAreas) {
         SurfaceResult task = gridded(a.name, "task area", a.plane, a.lo, a.hi, {}, {}, a.spacing);
         task.required = a.required;
+        task.cylindrical = a.cylindrical;
+        if (a.cylindrical) task.role = "cylindrical task area";
         out.push_back(std::move(task));
         if (!a.surroundings) continue;
         glm::dvec2 roomLo, roomHi;
@@ -194,30 +211,41 @@ SurfaceReport computeSurfaces(const Scene& scene, const GridSpec& how,
         throw InputError((scene.path.empty() ? std::string("the scene") : scene.path) +
                          ": no task_areas or calculation_points to evaluate");
     std::vector<Receiver> receivers;
-    for (const SurfaceResult& s : report.surfaces)
-        for (const glm::dvec2& q : s.points)
-            receivers.push_back({s.plane.point(q.x, q.y), s.plane.normal()});
-    for (const CalcPoint& p : scene.calcPoints) {
-        if (!p.cylindrical) {
-            receivers.push_back({p.position, p.normal});
-            continue;
+    auto add = [&](const glm::dvec3& position, const glm::dvec3& normal, bool cylindrical) {
+        if (!cylindrical) {
+            receivers.push_back({position, normal});
+            return;
         }
         for (int k = 0; k < kCylinderAzimuths; ++k) {
             double phi = 2.0 * gpu::kPi * (k + 0.5) / kCylinderAzimuths;
-            receivers.push_back({p.position, {std::cos(phi), 0.0, std::sin(phi)}});
+            receivers.push_back({position, {std::cos(phi), 0.0, std::sin(phi)}});
         }
-    }
+    };
+    for (const SurfaceResult& s : report.surfaces)
+        for (const glm::dvec2& q : s.points)
+            add(s.plane.point(q.x, q.y), s.plane.normal(), s.cylindrical);
+    for (const CalcPoint& p : scene.calcPoints) add(p.position, p.normal, p.cylindrical);
     ReceiverResult e = computeReceivers(scene, how, receivers, status);
     report.units = e.units;
     report.maintenance = e.maintenance;
     report.hasIndirect = e.hasIndirect;
     bool anyLux = false;
     size_t next = 0;
+    // A point's value and standard error: one receiver's, or the mean of its azimuths'.
+    auto take = [&](bool cylindrical, double& value, double& stdError) {
+        int n = cylindrical ? kCylinderAzimuths : 1;
+        double variance = 0.0;
+        value = 0.0;
+        for (int k = 0; k < n; ++k, ++next) {
+            value += e.E[next] / n;
+            variance += e.stdError[next] * e.stdError[next] / (double(n) * n);
+        }
+        stdError = std::sqrt(variance);
+    };
     for (SurfaceResult& s : report.surfaces) {
-        s.E.assign(e.E.begin() + long(next), e.E.begin() + long(next + s.points.size()));
-        s.stdError.assign(e.stdError.begin() + long(next),
-                          e.stdError.begin() + long(next + s.points.size()));
-        next += s.points.size();
+        s.E.resize(s.points.size());
+        s.stdError.resize(s.points.size());
+        for (size_t k = 0; k < s.points.size(); ++k) take(s.cylindrical, s.E[k], s.stdError[k]);
         s.summary = summariseGrid(s.E);
         s.passes =
             s.summary.count > 0 && s.summary.eAvg >= s.required.em && s.summary.u0 >= s.required.u0;
@@ -226,13 +254,7 @@ SurfaceReport computeSurfaces(const Scene& scene, const GridSpec& how,
     for (const CalcPoint& p : scene.calcPoints) {
         PointResult r;
         r.point = p;
-        int n = p.cylindrical ? kCylinderAzimuths : 1;
-        double variance = 0.0;
-        for (int k = 0; k < n; ++k, ++next) {
-            r.E += e.E[next] / n;
-            variance += e.stdError[next] * e.stdError[next] / (double(n) * n);
-        }
-        r.stdError = std::sqrt(variance);
+        take(p.cylindrical, r.E, r.stdError);
         r.passes = r.E >= p.requiredLux;
         anyLux = anyLux || p.requiredLux > 0.0;
         report.points.push_back(r);

@@ -54,6 +54,9 @@ struct TaskArea {
     Requirement required;
     double spacing = 0.0;      ///< Grid spacing, m; 0: the standard's rule.
     bool surroundings = true;  ///< Also evaluate its immediate surrounding and background.
+    /// Cylindrical illuminance Ez at each point (a horizontal plane only, no surroundings: Table
+    /// 1 is for the task's own illuminance) instead of the illuminance on the plane.
+    bool cylindrical = false;
 };
 
 /// Illuminance at a point on a surface element with a normal, or cylindrical illuminance (the
@@ -76,12 +79,14 @@ nlohmann::json toJson(const CalcPoint& point);
 /// verdict.
 struct SurfaceResult {
     std::string name;  ///< "Desk", "Desk: immediate surrounding", "Desk: background".
-    std::string role;  ///< "task area", "immediate surrounding" or "background".
+    std::string role;  ///< "task area", "cylindrical task area", "immediate surrounding" or
+                       ///< "background".
     CalcPlane plane;
     glm::dvec2 lo{0.0}, hi{0.0};          ///< The gridded rectangle, m.
     glm::dvec2 holeLo{0.0}, holeHi{0.0};  ///< Points inside are not part of it (empty: none).
     glm::dvec2 spacing{0.0};              ///< Along u and v, m.
     glm::ivec2 cells{0};                  ///< Grid columns and rows before the hole.
+    bool cylindrical = false;             ///< E is cylindrical illuminance Ez.
     std::vector<glm::dvec2> points;       ///< In-plane (u, v) of each point, m.
     std::vector<double> E, stdError;      ///< Maintained illuminance per point, lx (or W/m2).
     GridSummary summary;

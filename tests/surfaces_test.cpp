@@ -156,6 +156,34 @@ TEST(CalculationSurfaces, VerticalAndCylindricalPoints) {
     EXPECT_EQ(r.points[2].E, 0.0);  // facing away
 }
 
+TEST(CalculationSurfaces, CylindricalGridIsEachPointsClosedForm) {
+    Scene scene = deskScene(R"([{"name": "Seats", "plane": "y=1.2", "extent": [1, -1, 2, 1],
+        "spacing": 0.5, "illuminance": "cylindrical", "required": {"em_lx": 50}}])");
+    SurfaceReport r = computeSurfaces(scene, GridSpec{});
+    ASSERT_EQ(r.surfaces.size(), 1u);  // no surroundings: Table 1 is for planar task areas
+    const SurfaceResult& s = r.surfaces[0];
+    EXPECT_TRUE(s.cylindrical);
+    ASSERT_EQ(s.points.size(), 8u);  // 2 x 4 cells of 0.5 m
+    for (size_t k = 0; k < s.points.size(); ++k) {
+        glm::dvec3 p = s.plane.point(s.points[k].x, s.points[k].y);
+        glm::dvec3 w = glm::dvec3(0, kLightY, 0) - p;
+        double r2 = glm::dot(w, w), rr = std::sqrt(r2);
+        double ez = kL * kSide * kSide * (w.y / rr) * (std::hypot(w.x, w.z) / rr) / (kPi * r2);
+        // 32 azimuths: within 0.33 % of the exact weight 1/pi for one direction.
+        EXPECT_NEAR(s.E[k], ez, 0.0034 * ez) << k;
+    }
+    // Cylindrical illuminance needs a horizontal plane and takes no surroundings.
+    EXPECT_THROW(deskScene(R"([{"plane": "x=1", "extent": [0, 0, 1, 1],
+                                "illuminance": "cylindrical"}])"),
+                 InputError);
+    EXPECT_THROW(deskScene(R"([{"plane": "y=1.2", "extent": [0, 0, 1, 1],
+                                "illuminance": "cylindrical", "surroundings": true}])"),
+                 InputError);
+    Scene again = parseScene(sceneToJson(scene), "again.json");
+    EXPECT_TRUE(again.taskAreas.at(0).cylindrical);
+    EXPECT_FALSE(again.taskAreas.at(0).surroundings);
+}
+
 TEST(CalculationSurfaces, SceneFileEntriesRoundTripAndRefuseBadValues) {
     Scene scene = deskScene(kDesk, R"([{"name": "Face", "position": [1, 1.2, 0],
                                          "type": "cylindrical", "required_lx": 150}])");

@@ -13,13 +13,13 @@ namespace candela {
 
 namespace {
 
-std::string requirementText(const Requirement& r, const char* unit) {
+std::string requirementText(const Requirement& r, const char* mean, const char* unit) {
     if (!r.any()) return "-";
     char buf[96];
     if (r.em > 0.0 && r.u0 > 0.0)
-        std::snprintf(buf, sizeof buf, "Em >= %g %s, U0 >= %.2f", r.em, unit, r.u0);
+        std::snprintf(buf, sizeof buf, "%s >= %g %s, U0 >= %.2f", mean, r.em, unit, r.u0);
     else if (r.em > 0.0)
-        std::snprintf(buf, sizeof buf, "Em >= %g %s", r.em, unit);
+        std::snprintf(buf, sizeof buf, "%s >= %g %s", mean, r.em, unit);
     else
         std::snprintf(buf, sizeof buf, "U0 >= %.2f", r.u0);
     return buf;
@@ -34,9 +34,13 @@ void printReport(const SurfaceReport& r) {
                                              : "direct only (interreflected light: --indirect)");
     int failed = 0;
     for (const SurfaceResult& s : r.surfaces) {
-        std::printf("\n%s (%s), plane %s (normal %s%s)\n", s.name.c_str(), s.role.c_str(),
-                    planeText(s.plane).c_str(), s.plane.sign > 0 ? "+" : "-",
-                    s.plane.axisName().c_str());
+        if (s.cylindrical)
+            std::printf("\n%s (%s), cylindrical illuminance at %s m\n", s.name.c_str(),
+                        s.role.c_str(), planeText(s.plane).c_str());
+        else
+            std::printf("\n%s (%s), plane %s (normal %s%s)\n", s.name.c_str(), s.role.c_str(),
+                        planeText(s.plane).c_str(), s.plane.sign > 0 ? "+" : "-",
+                        s.plane.axisName().c_str());
         std::printf("  area %s %.3f..%.3f m, %s %.3f..%.3f m", s.plane.uName().c_str(), s.lo.x,
                     s.hi.x, s.plane.vName().c_str(), s.lo.y, s.hi.y);
         if (s.holeHi.x > s.holeLo.x)
@@ -49,9 +53,11 @@ void printReport(const SurfaceReport& r) {
             continue;
         }
         const GridSummary& g = s.summary;
-        std::printf("  Em %.4g %s, U0 %.3f, Emin %.4g %s, Emax %.4g %s\n", g.eAvg, unit, g.u0,
-                    g.eMin, unit, g.eMax, unit);
-        std::string need = requirementText(s.required, unit);
+        // Cylindrical illuminance is named Ez: Ez,m its mean, as the standard writes it.
+        const char* e = s.cylindrical ? "Ez" : "E";
+        std::printf("  %sm %.4g %s, U0 %.3f, %smin %.4g %s, %smax %.4g %s\n", e, g.eAvg, unit, g.u0,
+                    e, g.eMin, unit, e, g.eMax, unit);
+        std::string need = requirementText(s.required, s.cylindrical ? "Ezm" : "Em", unit);
         std::printf("  required: %s: %s\n", need.c_str(),
                     !s.required.any() ? "no requirement" : (s.passes ? "PASS" : "FAIL"));
         if (s.required.any() && !s.passes) ++failed;
