@@ -56,6 +56,42 @@ TEST(EditorUndo, ADragIsOneStepAndUndoRedoRestoreExactly) {
     EXPECT_FALSE(redo(state));
 }
 
+TEST(EditorUndo, TaskAreasFromTheGridAreStepsAndSaveWithTheScene) {
+    EditorState state = demo();
+    std::string original = text(state);
+    size_t before = state.scene.taskAreas.size();
+    // No extent yet: refused, nothing recorded.
+    EXPECT_FALSE(addTaskAreaFromGrid(state));
+    EXPECT_EQ(text(state), original);
+    state.measure.grid.plane = parsePlane("y=0.75");
+    state.measure.grid.lo = {-0.8, -0.4};
+    state.measure.grid.hi = {0.8, 0.4};
+    state.measure.extentSet = true;
+    state.measure.taskName = "Table";
+    state.measure.taskRequired = {300.0, 0.4};
+    ASSERT_TRUE(addTaskAreaFromGrid(state));
+    ASSERT_EQ(state.scene.taskAreas.size(), before + 1);
+    const TaskArea& a = state.scene.taskAreas.back();
+    EXPECT_EQ(a.name, "Table");
+    EXPECT_EQ(a.plane.offset, 0.75);
+    EXPECT_EQ(a.lo, glm::dvec2(-0.8, -0.4));
+    EXPECT_EQ(a.hi, glm::dvec2(0.8, 0.4));
+    EXPECT_EQ(a.required, (Requirement{300.0, 0.4}));
+    // It is in the scene file, and it evaluates: the table, its surrounding and background.
+    Scene saved = parseScene(sceneToJson(state.scene), state.scene.path);
+    ASSERT_EQ(saved.taskAreas.size(), before + 1);
+    EXPECT_EQ(saved.taskAreas.back().name, "Table");
+    EXPECT_EQ(layoutSurfaces(saved).size(), 3 * (before + 1));
+    std::string added = text(state);
+    ASSERT_TRUE(undo(state));
+    EXPECT_EQ(text(state), original);
+    ASSERT_TRUE(redo(state));
+    EXPECT_EQ(text(state), added);
+    removeTaskArea(state, state.scene.taskAreas.size() - 1);
+    EXPECT_EQ(state.scene.taskAreas.size(), before);
+    EXPECT_EQ(state.history.undo.back().label, "Remove task area Table");
+}
+
 TEST(EditorUndo, StepsUndoInReverseOrderAndANewEditClearsRedo) {
     EditorState state = demo();
     std::vector<std::string> versions = {text(state)};

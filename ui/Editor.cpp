@@ -749,6 +749,20 @@ void Editor::writeLayout() {
         {"compare", compareState(state, mComparison.get())},
         {"passes", passTimes(stats)},
     };
+    // The Measure panel's last computed calculation surfaces and points (null before).
+    j["surfaces"] = nullptr;
+    if (state.measure.surfaces) {
+        j["surfaces"] = nlohmann::json::array();
+        for (const SurfaceResult& s : state.measure.surfaces->surfaces)
+            j["surfaces"].push_back({{"name", s.name},
+                                     {"points", s.points.size()},
+                                     {"em", s.summary.eAvg},
+                                     {"u0", s.summary.u0},
+                                     {"passes", s.passes}});
+        for (const PointResult& p : state.measure.surfaces->points)
+            j["surfaces"].push_back(
+                {{"name", p.point.name}, {"points", 1}, {"em", p.E}, {"passes", p.passes}});
+    }
     // Written every frame (an idle editor draws ten a second), so a test waiting for "N more
     // frames" after its input always sees them come.
     j["frame"] = mFrame;

@@ -24,6 +24,8 @@ SceneSnapshot snapshot(const EditorState& state, bool geometry) {
     for (const auto& lum : scene.luminaires) out.luminaires.push_back(lum->clone());
     out.camera = scene.camera;
     out.maintenanceFactor = scene.maintenanceFactor;
+    out.taskAreas = scene.taskAreas;
+    out.calcPoints = scene.calcPoints;
     out.environment = scene.environment;
     out.environmentMap = scene.environmentMap;
     out.environmentSequence = scene.environmentSequence;
@@ -42,6 +44,9 @@ void restore(EditorState& state, SceneSnapshot& from) {
     scene.luminaires = std::move(from.luminaires);
     scene.camera = from.camera;
     scene.maintenanceFactor = from.maintenanceFactor;
+    scene.taskAreas = std::move(from.taskAreas);
+    scene.calcPoints = std::move(from.calcPoints);
+    state.measure.surfaces.reset();  // computed for the surfaces being replaced
     scene.environment = std::move(from.environment);
     scene.environmentMap = std::move(from.environmentMap);
     scene.environmentSequence = std::move(from.environmentSequence);
@@ -136,6 +141,34 @@ bool redo(EditorState& state) {
 void setStatus(EditorState& state, std::string message, bool error) {
     state.status = std::move(message);
     state.statusIsError = error;
+}
+
+bool addTaskAreaFromGrid(EditorState& state) {
+    const GridSpec& g = state.measure.grid;
+    if (!state.measure.extentSet || !(g.hi.x > g.lo.x) || !(g.hi.y > g.lo.y)) {
+        setStatus(state, "Task area: give the grid an extent first (Scene bounds, Selected plane)",
+                  true);
+        return false;
+    }
+    TaskArea area;
+    area.name = state.measure.taskName.empty() ? "Task area" : state.measure.taskName;
+    area.plane = g.plane;
+    area.lo = g.lo;
+    area.hi = g.hi;
+    area.required = state.measure.taskRequired;
+    // The surfaces change no image: kChangeSettings records the step (and restarts the frame).
+    applyEdit(state, "Add task area " + area.name, kChangeSettings,
+              [&area](Scene& scene) { scene.taskAreas.push_back(area); });
+    state.measure.surfaces.reset();
+    return true;
+}
+
+void removeTaskArea(EditorState& state, size_t index) {
+    if (index >= state.scene.taskAreas.size()) return;
+    applyEdit(
+        state, "Remove task area " + state.scene.taskAreas[index].name, kChangeSettings,
+        [index](Scene& scene) { scene.taskAreas.erase(scene.taskAreas.begin() + long(index)); });
+    state.measure.surfaces.reset();
 }
 
 void setFalseColour(EditorState& state, bool on) {

@@ -68,6 +68,11 @@ struct MeasureState {
     std::string error;       ///< Why the last computation failed.
     /// The operator false colour replaced, restored when it is turned off (setFalseColour).
     ToneMapOperator previousOperator = ToneMapOperator::Exponential;
+    // EN 12464-1 calculation surfaces (scene/CalculationSurfaces.h).
+    std::string taskName = "Task area";     ///< Name of the next task area added.
+    Requirement taskRequired{500.0, 0.6};   ///< Its requirement (lx, U0).
+    std::optional<SurfaceReport> surfaces;  ///< Last computed surfaces and points.
+    std::string surfacesError;              ///< Why the last computation failed.
 };
 
 /// The Environment section's controls that are not part of the scene file.
@@ -207,6 +212,8 @@ struct SceneSnapshot {
     std::vector<std::unique_ptr<Luminaire>> luminaires;
     Camera camera;
     double maintenanceFactor = 1.0;
+    std::vector<TaskArea> taskAreas;  ///< Small: kept by every step.
+    std::vector<CalcPoint> calcPoints;
     nlohmann::json environment;
     std::shared_ptr<const EnvironmentMap> environmentMap;
     std::shared_ptr<EnvironmentSequence> environmentSequence;
@@ -299,6 +306,12 @@ void setStatus(EditorState& state, std::string message, bool error = false);
 /// state.measure.previousOperator) or off (restoring that operator). The Measure panel's toggle
 /// and the Render panel's operator combo both go through here.
 void setFalseColour(EditorState& state, bool on);
+/// Adds the Measure panel's grid (its plane and extent) to the scene as an EN 12464-1 task area
+/// named measure.taskName with measure.taskRequired, as one undo step. False, with a status,
+/// when the grid has no area.
+bool addTaskAreaFromGrid(EditorState& state);
+/// Removes task area `index` as one undo step.
+void removeTaskArea(EditorState& state, size_t index);
 /// Shows message in the status bar and in the error modal.
 void reportError(EditorState& state, const std::string& message);
 

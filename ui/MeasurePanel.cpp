@@ -313,42 +313,164 @@ void gridControls(EditorState& state, MeasureState& measure) {
     ImGui::Checkbox("Values in the viewport", &measure.showValues);
 }
 
-/// Each grid point as a dot with its illuminance over the viewport image.
-void drawGridValues(const EditorState& state, const MeasureState& measure,
-                    const Renderer& renderer) {
-    if (!measure.result || !measure.showValues) return;
-    const GridResult& r = *measure.result;
+/// The scene's task areas (add the grid as one, remove), and the surfaces' and points' results
+/// against their requirements (scene/CalculationSurfaces.h), computed on demand.
+void surfaceControls(EditorState& state, MeasureState& measure) {
+    ImGui::InputText("Task name", &measure.taskName);
+    ImGui::DragScalar("Required Em [lx]", ImGuiDataType_Double, &measure.taskRequired.em, 5.0f,
+                      nullptr, nullptr, "%.0f");
+    const double zero = 0.0, one = 1.0;
+    ImGui::SliderScalar("Required U0", ImGuiDataType_Double, &measure.taskRequired.u0, &zero, &one,
+                        "%.2f");
+    measure.taskRequired.em = std::max(0.0, measure.taskRequired.em);
+    if (ImGui::Button("Add the grid as a task area", ImVec2(-1.f, 0.f))) addTaskAreaFromGrid(state);
+    recordRect(state, "measure.add_task");
+    itemTooltip(
+        "The grid's plane and extent become a task area of the scene (saved with it); its "
+        "immediate surrounding (0.5 m) and background (3 m) are evaluated with it, on the "
+        "standard's grid (p = 0.2 x 5^log10(d))");
+    for (size_t i = 0; i < state.scene.taskAreas.size(); ++i) {
+        const TaskArea& a = state.scene.taskAreas[i];
+        ImGui::PushID(int(i));
+        if (ImGui::SmallButton("x")) {
+            removeTaskArea(state, i);
+            ImGui::PopID();
+            break;
+        }
+        itemTooltip("Remove this task area");
+        ImGui::SameLine();
+        ImGui::Text("%s: %s, %.2f x %.2f m", a.name.c_str(), planeText(a.plane).c_str(),
+                    a.hi.x - a.lo.x, a.hi.y - a.lo.y);
+        ImGui::PopID();
+    }
+    if (state.scene.taskAreas.empty() && state.scene.calcPoints.empty()) return;
+    if (ImGui::Button("Compute surfaces", ImVec2(-1.f, 0.f))) {
+        try {
+            GridSpec how = measure.grid;
+            how.indirectMethod = GridSpec::Indirect::Patches;  // interactive, as the grid
+            how.patches = 2500;
+            measure.surfaces = computeSurfaces(state.scene, how);
+            measure.surfacesError.clear();
+        } catch (const std::exception& e) {
+            measure.surfacesError = e.what();
+        }
+    }
+    recordRect(state, "measure.compute_surfaces");
+    if (!measure.surfacesError.empty()) errorText(measure.surfacesError);
+    if (!measure.surfaces) return;
+    const SurfaceReport& r = *measure.surfaces;
+    const char* unit = r.units.irradiance();
+    if (ImGui::BeginTable("surfaces", 5, ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingFixedFit)) {
+        ImGui::TableSetupColumn("Surface");
+        ImGui::TableSetupColumn((std::string("Em [") + unit + "]").c_str());
+        ImGui::TableSetupColumn("U0");
+        ImGui::TableSetupColumn("Required");
+        ImGui::TableSetupColumn("");
+        ImGui::TableHeadersRow();
+        auto verdict = [](bool any, bool passes) {
+            if (!any)
+                ImGui::TextDisabled("-");
+            else if (passes)
+                ImGui::TextColored(ImVec4(0.4f, 0.9f, 0.4f, 1.f), "pass");
+            else
+                ImGui::TextColored(ImVec4(1.f, 0.4f, 0.4f, 1.f), "FAIL");
+        };
+        for (const SurfaceResult& s : r.surfaces) {
+            ImGui::TableNextRow();
+            ImGui::TableNextColumn();
+            ImGui::TextUnformatted(s.name.c_str());
+            itemTooltip(s.role + (s.cylindrical ? " (cylindrical illuminance)" : "") + ", " +
+                        std::to_string(s.points.size()) + " points; Emin " +
+                        std::to_string(s.summary.eMin) + " " + unit + ", Emax " +
+                        std::to_string(s.summary.eMax) + " " + unit);
+            ImGui::TableNextColumn();
+            ImGui::Text("%.4g", s.summary.eAvg);
+            ImGui::TableNextColumn();
+            ImGui::Text("%.2f", s.summary.u0);
+            ImGui::TableNextColumn();
+            if (s.required.any())
+                ImGui::Text("%.0f / %.2f", s.required.em, s.required.u0);
+            else
+                ImGui::TextDisabled("-");
+            ImGui::TableNextColumn();
+            verdict(s.required.any(), s.passes);
+        }
+        for (const PointResult& p : r.points) {
+            ImGui::TableNextRow();
+            ImGui::TableNextColumn();
+            ImGui::Text("%s (%s)", p.point.name.c_str(), p.point.cylindrical ? "Ez" : "point");
+            ImGui::TableNextColumn();
+            ImGui::Text("%.4g", p.E);
+            ImGui::TableNextColumn();
+            ImGui::TextDisabled("-");
+            ImGui::TableNextColumn();
+            if (p.point.requiredLux > 0.0)
+                ImGui::Text("%.0f", p.point.requiredLux);
+            else
+                ImGui::TextDisabled("-");
+            ImGui::TableNextColumn();
+            verdict(p.point.requiredLux > 0.0, p.passes);
+        }
+        ImGui::EndTable();
+    }
+    ImGui::TextDisabled("%s", r.maintenance.c_str());
+}
+
+/// Dots with their illuminance at world points over the viewport image.
+void drawValues(const EditorState& state, const Renderer& renderer,
+                const std::vector<glm::dvec3>& points, const std::vector<double>& values) {
     const glm::vec4& v = state.layout.viewport;
     int width = renderer.settings().width, height = renderer.settings().height;
     ImDrawList* draw = ImGui::GetForegroundDrawList();
     draw->PushClipRect(ImVec2(v.x, v.y), ImVec2(v.x + v.z, v.y + v.w), true);
-    bool labels = r.E.size() <= kMaxLabelledPoints;
+    bool labels = values.size() <= kMaxLabelledPoints;
     char text[32];
     std::vector<ImVec4> drawn;  ///< Label boxes drawn so far: x0, y0, x1, y1 in window pixels.
     glm::mat4 viewProj = renderer.viewProj();
-    for (size_t j = 0; j < r.v.size(); ++j)
-        for (size_t i = 0; i < r.u.size(); ++i) {
-            auto px = projectToPixels(viewProj, r.spec.plane.point(r.u[i], r.v[j]), width, height);
-            if (!px) continue;
-            ImVec2 at(v.x + float(px->x) * v.z / float(width),
-                      v.y + float(px->y) * v.w / float(height));
-            draw->AddCircleFilled(at, 2.f, IM_COL32(255, 255, 255, 230));
-            if (!labels) continue;
-            std::snprintf(text, sizeof text, "%.3g", r.E[j * r.u.size() + i]);
-            ImVec2 size = ImGui::CalcTextSize(text);
-            ImVec2 lo(at.x - 0.5f * size.x - 1.f, at.y + 3.f);
-            ImVec4 box(lo.x, lo.y, lo.x + size.x + 2.f, lo.y + size.y);
-            // Far from the camera the labels crowd: keep the first of any that overlap.
-            bool overlaps = std::any_of(drawn.begin(), drawn.end(), [&](const ImVec4& o) {
-                return box.x < o.z && o.x < box.z && box.y < o.w && o.y < box.w;
-            });
-            if (overlaps) continue;
-            drawn.push_back(box);
-            draw->AddRectFilled(lo, ImVec2(lo.x + size.x + 2.f, lo.y + size.y),
-                                IM_COL32(0, 0, 0, 150));
-            draw->AddText(ImVec2(lo.x + 1.f, lo.y), IM_COL32(255, 255, 255, 255), text);
-        }
+    for (size_t k = 0; k < points.size(); ++k) {
+        auto px = projectToPixels(viewProj, points[k], width, height);
+        if (!px) continue;
+        ImVec2 at(v.x + float(px->x) * v.z / float(width),
+                  v.y + float(px->y) * v.w / float(height));
+        draw->AddCircleFilled(at, 2.f, IM_COL32(255, 255, 255, 230));
+        if (!labels) continue;
+        std::snprintf(text, sizeof text, "%.3g", values[k]);
+        ImVec2 size = ImGui::CalcTextSize(text);
+        ImVec2 lo(at.x - 0.5f * size.x - 1.f, at.y + 3.f);
+        ImVec4 box(lo.x, lo.y, lo.x + size.x + 2.f, lo.y + size.y);
+        // Far from the camera the labels crowd: keep the first of any that overlap.
+        bool overlaps = std::any_of(drawn.begin(), drawn.end(), [&](const ImVec4& o) {
+            return box.x < o.z && o.x < box.z && box.y < o.w && o.y < box.w;
+        });
+        if (overlaps) continue;
+        drawn.push_back(box);
+        draw->AddRectFilled(lo, ImVec2(lo.x + size.x + 2.f, lo.y + size.y), IM_COL32(0, 0, 0, 150));
+        draw->AddText(ImVec2(lo.x + 1.f, lo.y), IM_COL32(255, 255, 255, 255), text);
+    }
     draw->PopClipRect();
+}
+
+/// The grid's points, and the computed surfaces' points, with their values in the viewport.
+void drawMeasuredValues(const EditorState& state, const MeasureState& measure,
+                        const Renderer& renderer) {
+    if (!measure.showValues) return;
+    std::vector<glm::dvec3> points;
+    std::vector<double> values;
+    if (measure.result) {
+        const GridResult& r = *measure.result;
+        for (size_t j = 0; j < r.v.size(); ++j)
+            for (size_t i = 0; i < r.u.size(); ++i) {
+                points.push_back(r.spec.plane.point(r.u[i], r.v[j]));
+                values.push_back(r.E[j * r.u.size() + i]);
+            }
+    }
+    if (measure.surfaces)
+        for (const SurfaceResult& s : measure.surfaces->surfaces)
+            for (size_t k = 0; k < s.points.size(); ++k) {
+                points.push_back(s.plane.point(s.points[k].x, s.points[k].y));
+                values.push_back(s.E[k]);
+            }
+    if (!points.empty()) drawValues(state, renderer, points, values);
 }
 
 }  // namespace
@@ -395,9 +517,12 @@ bool measurePanel(EditorState& state, const Renderer& renderer, const PanelRect&
     changed = maintenanceControl(state) || changed;
     ImGui::TextDisabled("Calculation grid");
     gridControls(state, measure);
+    ImGui::Separator();
+    ImGui::TextDisabled("Calculation surfaces (EN 12464-1)");
+    surfaceControls(state, measure);
     ImGui::PopItemWidth();
     ImGui::End();
-    drawGridValues(state, measure, renderer);
+    drawMeasuredValues(state, measure, renderer);
     return changed;
 }
 

@@ -143,7 +143,7 @@ point_to() {
     # Widgets of the inspector and the library may lie below their panel's fold (the left column
     # holds three panels): scroll them in first.
     case "$1" in
-        inspector.* | library.*) wait_until "the widget $1" "w('$1') is not None"; scroll_into_view "$1" "${1%%.*}" ;;
+        inspector.* | library.* | measure.*) wait_until "the widget $1" "w('$1') is not None"; scroll_into_view "$1" "${1%%.*}" ;;
     esac
     for attempt in 1 2 3 4 5; do
         read -r x y < <(widget_point "$1" "${2:-12}")

@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# End-to-end test of the editor's EN 12464-1 calculation surfaces (issue 21, part 5), with real X
+# input under Xvfb, on the shipped office (a desk task area, a cylindrical and a vertical point):
+#   1. scroll the Measure panel to "Compute surfaces" and click it;
+#   2. the panel's results (the layout file's "surfaces") list the desk, its immediate
+#      surrounding and background and the two points, each Em equal to `candela surfaces`'s
+#      (direct light in both, printed there to 4 significant digits), and the desk fails its
+#      500 lx as the CLI says;
+#   3. save the window image (F12) for a person to look at (CANDELA_E2E_KEEP=1 keeps it).
+# Usage: bash tests/e2e/editor_surfaces.sh /path/to/candela /path/to/tests
+set -euo pipefail
+
+CANDELA=${1:?usage: editor_surfaces.sh /path/to/candela /path/to/tests}
+TESTS=${2:?usage: editor_surfaces.sh /path/to/candela /path/to/tests}
+SOURCE=$(cd "$TESTS/.." && pwd)
+TIMEOUT_S=120
+
+E2E_NAME=editor_surfaces
+source "$(dirname "$0")/lib/harness.sh"
+e2e_setup
+e2e_start_xvfb 1280x800
+
+python3 - "$SOURCE/resources/scenes/office.json" "$TMP/office.json" <<'PY'
+import json, os, sys
+scene = json.load(open(sys.argv[1]))
+base = os.path.dirname(os.path.abspath(sys.argv[1]))
+for l in scene["luminaires"]:
+    l["file"] = os.path.normpath(os.path.join(base, l["file"]))
+json.dump(scene, open(sys.argv[2], "w"), indent=1)
+PY
+"$CANDELA" surfaces "$TMP/office.json" >"$TMP/cli.txt" 2>&1 || fail "candela surfaces: $(cat "$TMP/cli.txt")"
+
+e2e_start_editor "$TMP/office.json" 1280x800 "len(d['luminaires']) == 6 and d['frame'] >= 2"
+click_widget measure.compute_surfaces
+wait_until "the surfaces' results" "d['surfaces'] is not None and len(d['surfaces']) == 5"
+log "surfaces: $(layout "d['surfaces']")"
+
+python3 - "$LAYOUT" "$TMP/cli.txt" <<'PY' || fail "the editor's surfaces differ from candela surfaces (above)"
+import json, re, sys
+d = json.load(open(sys.argv[1]))["surfaces"]
+cli = open(sys.argv[2]).read()
+ems = [float(x) for x in re.findall(r"  Em ([\d.e+]+) lx", cli)]
+points = [float(x) for x in re.findall(r"(?:cylindrical Ez|: E) ([\d.e+]+) lx", cli)]
+want = ems + points
+fail = []
+if len(want) != 5: fail.append("the CLI printed %d values, want 5" % len(want))
+for s, w in zip(d, want):
+    # The CLI prints 4 significant digits: within 5e-4 relative.
+    if abs(s["em"] - w) > 6e-4 * w: fail.append("%s: editor %.6g, CLI %g" % (s["name"], s["em"], w))
+if d[0]["name"] != "Desk" or d[0]["passes"] or d[0]["points"] != 50:
+    fail.append("desk: %s (want 50 points, failing 500 lx as the CLI says)" % d[0])
+for f in fail: print("FAIL:", f)
+sys.exit(1 if fail else 0)
+PY
+
+xdotool key F12
+wait_until "the window image" "d['window_images'] >= 1"
+log "window image: $(ls "$SHOTS" | tr '\n' ' ')"
+PASSED=1
+log "passed"
