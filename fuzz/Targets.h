@@ -11,6 +11,7 @@
 #include "fuzz/PhotometryChecks.h"
 #include "luminaires/Environment.h"
 #include "luminaires/Gldf.h"
+#include "luminaires/L3d.h"
 #include "luminaires/LightField.h"
 #include "luminaires/Tm25RayFile.h"
 #include "scene/GltfLoader.h"
@@ -208,6 +209,62 @@ inline void gldf(const uint8_t* data, size_t size) {
     }
 }
 
+/// What joins structure.xml and the OBJ text in the l3d target's text inputs.
+inline constexpr std::string_view kL3dObjMark = "\n#candela-fuzz-obj\n";
+
+/// The invariants L3d.h promises of a loaded geometry.
+inline void checkL3d(const L3dLuminaire& l) {
+    for (const L3dPart& p : l.parts) {
+        size_t n = p.triangleCount();
+        if (p.indices.size() != 3 * n || p.triangleFace.size() != n ||
+            p.triangleGroup.size() != n || p.triangleFileFace.size() != n)
+            violated("triangle arrays of different sizes");
+        for (uint32_t i : p.indices)
+            if (i >= p.positions.size()) violated("a triangle names a vertex it does not have");
+        for (const glm::dvec3& v : p.positions)
+            checkFinite(std::vector<double>{v.x, v.y, v.z}, "vertex");
+    }
+    for (const L3dEmitter& e : l.emitters) {
+        checkFinite(std::vector<double>{e.sizeX, e.sizeY, e.area()}, "opening size", 0.0);
+        checkFinite(std::vector<double>{e.centre.x, e.centre.y, e.centre.z}, "opening centre");
+        for (const glm::dvec3& axis : {e.x, e.y, e.normal})
+            if (!(std::abs(glm::length(axis) - 1.0) < 1e-9)) violated("opening axis not unit");
+        for (auto [part, triangle] : e.triangles)
+            if (part >= l.parts.size() || triangle >= l.parts[part].triangleCount())
+                violated("a light-emitting surface names a triangle that is not there");
+    }
+}
+
+/// The L3D reader (luminaires/L3d.cpp): an .l3d archive ("PK..."), or, so that mutations reach
+/// the XML and OBJ parsers past the archive's checksums, structure.xml and one OBJ text joined by
+/// kL3dObjMark (every geometry definition reads that text; without the mark, none has one).
+inline void l3d(const uint8_t* data, size_t size) {
+    const std::string path = "/nonexistent-candela-fuzz/fuzz.l3d";
+    const std::string bytes(reinterpret_cast<const char*>(data), size);
+    try {
+        L3dLuminaire l;
+        if (bytes.compare(0, 2, "PK") == 0) {
+            l = parseL3d(bytes, path);
+        } else {
+            size_t cut = bytes.find(kL3dObjMark);
+            std::string xml = bytes.substr(0, cut);
+            std::string obj =
+                cut == std::string::npos ? "" : bytes.substr(cut + kL3dObjMark.size());
+            l = l3d_detail::readMembers(
+                path, [&](const std::string& member) -> std::optional<std::string> {
+                    if (member == "structure.xml") return xml;
+                    if (cut != std::string::npos && member.size() > 4 &&
+                        member.compare(member.size() - 4, 4, ".obj") == 0)
+                        return obj;
+                    return std::nullopt;
+                });
+        }
+        checkL3d(l);
+    } catch (const InputError& e) {
+        checkMessage(e.what(), path);
+    }
+}
+
 /// Every target by name.
 struct Target {
     const char* name;
@@ -215,6 +272,7 @@ struct Target {
 };
 inline constexpr Target kTargets[] = {
     {"ies", ies},     {"ldt", ldt},   {"tm25", tm25},   {"lightfield", lightfield},
-    {"scene", scene}, {"gltf", gltf}, {"image", image}, {"gldf", gldf}};
+    {"scene", scene}, {"gltf", gltf}, {"image", image}, {"gldf", gldf},
+    {"l3d", l3d}};
 
 }  // namespace candela::fuzz

@@ -1,7 +1,7 @@
 # The fuzz targets' inputs, sourced by fuzz/replay.sh and scripts/fuzz.sh from the repository root.
 # Each function prints NUL-separated paths relative to the root.
 
-FUZZ_TARGETS=(ies ldt tm25 lightfield scene gltf image gldf)
+FUZZ_TARGETS=(ies ldt tm25 lightfield scene gltf image gldf l3d)
 
 # Seeds: small files of the repository's test data (and fuzz/seeds/TARGET/ for what the test data
 # lacks), so the fuzzer starts from inputs that load.
@@ -16,6 +16,7 @@ fuzz_seeds() {
     gltf) find tests/data/gltf -name '*.gltf' -print0 ;;
     gldf) find tests/data/gldf fuzz/seeds/gldf -name '*.gldf' -size -30k -print0
           find fuzz/seeds/gldf -name '*.xml' -print0 ;;
+    l3d) find fuzz/seeds/l3d -type f -print0 ;;
     image) find tests/data/environment tests/data/lightfield fuzz/seeds/image -name '*.exr' -size -20k -print0
            find fuzz/seeds/image -name '*.hdr' -print0 ;;
   esac
@@ -35,6 +36,7 @@ fuzz_max_len() {
     ies|ldt|scene|lightfield|gltf) echo 20000 ;;
     image) echo 8192 ;;
     gldf) echo 30000 ;;  # the complete container is 20 838 bytes
+    l3d) echo 30000 ;;   # the largest seed (example_004's structure.xml and OBJ) is 24 kB
   esac
 }
 
@@ -43,7 +45,7 @@ fuzz_dict() {
   case $1 in
     ies) echo fuzz/dict/ies.dict ;;
     ldt) echo fuzz/dict/ldt.dict ;;
-    lightfield|scene|gltf|gldf) echo "fuzz/dict/$1.dict" ;;
+    lightfield|scene|gltf|gldf|l3d) echo "fuzz/dict/$1.dict" ;;
     *) echo "" ;;
   esac
 }

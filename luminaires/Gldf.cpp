@@ -1,17 +1,17 @@
 #include "luminaires/Gldf.h"
 
-#include <zip.h>
-
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <pugixml.hpp>
 #include <set>
 
 #include "util/Error.h"
 #include "util/TextEncoding.h"
+#include "util/ZipArchive.h"
 
 namespace candela {
 
@@ -28,14 +28,6 @@ const char* const kContentTypes[] = {
 /// How many of a folder's members a "not in the container" message names (one line stays short).
 constexpr int kMembersNamed = 5;
 
-/// `s` as valid UTF-8 on one line: control characters (line breaks, tabs) become spaces.
-std::string oneLine(std::string_view s) {
-    std::string out = toValidUtf8(s);
-    for (char& c : out)
-        if (static_cast<unsigned char>(c) < 0x20) c = ' ';
-    return out;
-}
-
 /// Throws the message as one line of valid UTF-8 (container paths, member names and values
 /// quoted from product.xml may hold anything).
 [[noreturn]] void fail(const std::string& message) {
@@ -51,84 +43,6 @@ std::string megabytes(uint64_t bytes) {
     std::snprintf(buf, sizeof buf, "%.1f MB", double(bytes) / double(1 << 20));
     return buf;
 }
-
-/// An open container over bytes the caller keeps alive; member names decoded to UTF-8.
-class Archive {
-  public:
-    Archive(const std::string& bytes, const std::string& path) : mPath(path) {
-        zip_error_t error;
-        zip_error_init(&error);
-        zip_source_t* source = zip_source_buffer_create(bytes.data(), bytes.size(), 0, &error);
-        if (source) mZip = zip_open_from_source(source, ZIP_RDONLY, &error);
-        if (!mZip) {
-            std::string why = zip_error_strerror(&error);
-            zip_error_fini(&error);
-            if (source) zip_source_free(source);
-            fail(path + ": not a GLDF container (a ZIP archive): " + why);
-        }
-        zip_error_fini(&error);
-        zip_int64_t count = zip_get_num_entries(mZip, 0);
-        for (zip_int64_t i = 0; i < count; ++i) {
-            const char* raw = zip_get_name(mZip, zip_uint64_t(i), ZIP_FL_ENC_RAW);
-            std::string name = raw ? raw : "";
-            // Unflagged names are in the writer's DOS code page; GLDF tools on Windows write 850.
-            mNames.push_back(isValidUtf8(name) ? name : fromCodePage850(name));
-        }
-    }
-    ~Archive() { zip_discard(mZip); }
-    Archive(const Archive&) = delete;
-    Archive& operator=(const Archive&) = delete;
-
-    const std::vector<std::string>& names() const { return mNames; }
-
-    /// Index of the member named `name` (UTF-8), or -1.
-    int64_t find(const std::string& name) const {
-        auto it = std::find(mNames.begin(), mNames.end(), name);
-        return it == mNames.end() ? -1 : int64_t(it - mNames.begin());
-    }
-
-    /// The member's bytes; `label` names it in messages ("ldc/a.ldt (file "f", ...)").
-    std::string read(int64_t index, const std::string& label) const {
-        zip_stat_t st;
-        zip_stat_init(&st);
-        if (zip_stat_index(mZip, zip_uint64_t(index), 0, &st) != 0)
-            fail(mPath + ": " + label + ": cannot be read (" + zip_strerror(mZip) + ")");
-        if ((st.valid & ZIP_STAT_SIZE) && st.size > kMaxGldfMember)
-            fail(mPath + ": " + label + ": " + megabytes(st.size) +
-                 " uncompressed, more than the " + megabytes(kMaxGldfMember) +
-                 " a member may hold");
-        zip_file_t* file = zip_fopen_index(mZip, zip_uint64_t(index), 0);
-        if (!file) fail(mPath + ": " + label + ": cannot be read (" + zip_strerror(mZip) + ")");
-        std::string out;
-        char buffer[65536];
-        while (true) {
-            zip_int64_t n = zip_fread(file, buffer, sizeof buffer);
-            if (n < 0) {
-                std::string why = zip_file_strerror(file);
-                zip_fclose(file);
-                fail(mPath + ": " + label + ": damaged (" + why + ")");
-            }
-            if (n == 0) break;
-            out.append(buffer, size_t(n));
-            // A size field can lie; what is inflated is bounded all the same.
-            if (out.size() > kMaxGldfMember) {
-                zip_fclose(file);
-                fail(mPath + ": " + label + ": more than the " + megabytes(kMaxGldfMember) +
-                     " a member may hold");
-            }
-        }
-        zip_fclose(file);
-        if ((st.valid & ZIP_STAT_SIZE) && out.size() != st.size)
-            fail(mPath + ": " + label + ": truncated (" + std::to_string(out.size()) +
-                 " bytes of the " + std::to_string(st.size) + " its entry declares)");
-        return out;
-    }
-
-  private:
-    std::string mPath;
-    zip_t* mZip = nullptr;
-    std::vector<std::string> mNames;
-};
 
 /// Reads product.xml's elements; every message names the container and product.xml.
 class ProductReader {
@@ -360,17 +274,43 @@ class ProductReader {
 
     /// Appends the placements of a ModelGeometryReference (one per EmitterReference).
     void modelGeometry(const pugi::xml_node& model, GldfVariant& variant) const {
-        variant.geometryIds.push_back(id(model, "geometryId"));
-        for (pugi::xml_node ref : model.children("EmitterReference"))
+        std::string gid = id(model, "geometryId");
+        variant.geometryIds.push_back(gid);
+        if (!mProduct.modelGeometry(gid))
+            defect("variant " + inQuotes(variant.id) + " refers to model geometry " +
+                   inQuotes(gid) + ", which <Geometries> does not define");
+        if (variant.modelGeometryId.empty()) variant.modelGeometryId = gid;
+        for (pugi::xml_node ref : model.children("EmitterReference")) {
             variant.emitters.push_back(emitterReference(ref, variant.id));
+            variant.emitterObjects.push_back(text(ref.child("EmitterObjectExternalName")));
+        }
+    }
+
+    void geometries(const pugi::xml_node& geometries) {
+        for (pugi::xml_node g : geometries.children("ModelGeometry")) {
+            GldfModelGeometry model;
+            model.id = id(g);
+            if (mProduct.modelGeometry(model.id))
+                defect("two <ModelGeometry> elements with the id " + inQuotes(model.id));
+            for (pugi::xml_node ref : g.children("GeometryFileReference")) {
+                std::string fileId = id(ref, "fileId");
+                if (!mProduct.file(fileId))
+                    defect("model geometry " + inQuotes(model.id) + " refers to file " +
+                           inQuotes(fileId) + ", which <Files> does not list");
+                model.fileIds.push_back(fileId);
+            }
+            mProduct.modelGeometries.push_back(std::move(model));
+        }
     }
 
     void variantGeometry(const pugi::xml_node& geometry, GldfVariant& variant) const {
         if (pugi::xml_node ref = geometry.child("EmitterReference")) {
             variant.emitters.push_back(emitterReference(ref, variant.id));
+            variant.emitterObjects.emplace_back();
         } else if (pugi::xml_node simple = geometry.child("SimpleGeometryReference")) {
             variant.geometryIds.push_back(id(simple, "geometryId"));
             variant.emitters.push_back(emitterReference(simple, variant.id));
+            variant.emitterObjects.emplace_back();
         } else if (pugi::xml_node model = geometry.child("ModelGeometryReference")) {
             modelGeometry(model, variant);
         } else if (pugi::xml_node both = geometry.child("GeometryReferences")) {
@@ -381,7 +321,10 @@ class ProductReader {
             if (simple) {
                 variant.geometryIds.push_back(id(simple, "geometryId"));
                 std::string emitterId = emitterReference(simple, variant.id);
-                if (!model) variant.emitters.push_back(emitterId);
+                if (!model) {
+                    variant.emitters.push_back(emitterId);
+                    variant.emitterObjects.emplace_back();
+                }
             }
         }
     }
@@ -427,6 +370,7 @@ class ProductReader {
         lightSources(general.child("LightSources"));
         equipments(general.child("Equipments"));
         emitters(general.child("Emitters"));
+        geometries(general.child("Geometries"));
         productDefinitions(root.child("ProductDefinitions"));
     }
 
@@ -447,6 +391,26 @@ class ProductReader {
 };
 
 /// "a, b, c" for messages.
+/// A member's bytes; refuses a missing one naming what its folder does hold (a name written in
+/// another encoding shows up there).
+std::string readMember(const ZipArchive& archive, const std::string& path,
+                       const std::string& member, const std::string& label) {
+    int64_t index = archive.find(member);
+    if (index < 0) {
+        std::string folder = member.substr(0, member.find('/') + 1), held;
+        int count = 0;
+        for (const std::string& name : archive.names())
+            if (name.size() > folder.size() && name.compare(0, folder.size(), folder) == 0 &&
+                ++count <= kMembersNamed)
+                held += (held.empty() ? "" : ", ") + name;
+        if (count > kMembersNamed)
+            held += " and " + std::to_string(count - kMembersNamed) + " more";
+        fail(path + ": " + label + ": not in the container" +
+             (held.empty() ? "" : " (it holds " + held + ")"));
+    }
+    return archive.read(index, label);
+}
+
 std::string emitterList(const std::vector<std::string>& ids) {
     std::string out;
     for (const std::string& id : ids) out += (out.empty() ? "" : ", ") + id;
@@ -472,6 +436,12 @@ const GldfEmitter* GldfProduct::emitter(const std::string& id) const {
     return nullptr;
 }
 
+const GldfModelGeometry* GldfProduct::modelGeometry(const std::string& id) const {
+    for (const GldfModelGeometry& g : modelGeometries)
+        if (g.id == id) return &g;
+    return nullptr;
+}
+
 const GldfVariant* GldfProduct::variant(const std::string& id) const {
     for (const GldfVariant& v : variants)
         if (v.id == id) return &v;
@@ -493,7 +463,7 @@ std::string readGldfBytes(const std::string& path) {
 }
 
 GldfProduct parseGldf(const std::string& bytes, const std::string& path) {
-    Archive archive(bytes, path);
+    ZipArchive archive(bytes, path, "a GLDF container");
     GldfProduct product;
     product.path = path;
     for (const std::string& name : archive.names())
@@ -516,22 +486,30 @@ void gldf_detail::readProductXml(const std::string& xml, GldfProduct& product) {
 }
 
 GldfPhotometry gldfVariantPhotometry(const std::string& bytes, const GldfProduct& product,
-                                     const GldfVariant& variant, const PhotometryOptions& options) {
+                                     const GldfVariant& variant, const PhotometryOptions& options,
+                                     size_t placement) {
     const std::string& path = product.path;
     std::string variantName = "variant " + inQuotes(variant.id);
-    if (variant.emitters.empty())
+    size_t count = variant.emitters.size();
+    if (count == 0)
         fail(path + ": " + variantName + " places no emitter (its <Geometry> names none)");
-    if (variant.emitters.size() > 1)
-        fail(path + ": " + variantName + " places " + std::to_string(variant.emitters.size()) +
-             " emitters (" + emitterList(variant.emitters) +
-             "): a variant with more than one emitter cannot be placed yet (the emitters' "
-             "positions come from its L3D geometry, which is not read yet)");
+    if (placement >= count)
+        fail(path + ": " + variantName + " places " + std::to_string(count) +
+             " emitter(s); there is no emitter " + std::to_string(placement) + " (from 0)");
+    // Several emitters need the geometry's objects to say where each one is.
+    const std::string& object =
+        placement < variant.emitterObjects.size() ? variant.emitterObjects[placement] : "";
+    if (count > 1 && object.empty())
+        fail(path + ": " + variantName + " places " + std::to_string(count) + " emitters (" +
+             emitterList(variant.emitters) + ") but does not say where emitter " +
+             std::to_string(placement) +
+             " is (no <EmitterObjectExternalName> in a model geometry): it cannot be placed");
     GldfPhotometry out;
-    out.emitter = product.emitter(variant.emitters.front());
+    out.emitter = product.emitter(variant.emitters[placement]);
     // parseGldf resolves every reference; a product assembled otherwise is checked here too.
     if (!out.emitter)
         fail(path + ": " + variantName + " refers to emitter " +
-             inQuotes(variant.emitters.front()) + ", which the product does not define");
+             inQuotes(variant.emitters[placement]) + ", which the product does not define");
     std::string emitterName = "emitter " + inQuotes(out.emitter->id);
     if (out.emitter->lights.empty())
         fail(path + ": " + emitterName + " (" + variantName +
@@ -555,22 +533,8 @@ GldfPhotometry gldfVariantPhotometry(const std::string& bytes, const GldfProduct
     if (!eulumdat && file.contentType != "ldc/ies")
         fail(path + ": " + label + ": content type " + inQuotes(file.contentType) +
              " is not a photometry read here (ldc/eulumdat or ldc/ies)");
-    Archive archive(bytes, path);
-    int64_t index = archive.find(member);
-    if (index < 0) {
-        // Name what the folder does hold: a name written in another encoding shows up here.
-        std::string folder = member.substr(0, member.find('/') + 1), held;
-        int count = 0;
-        for (const std::string& name : archive.names())
-            if (name.size() > folder.size() && name.compare(0, folder.size(), folder) == 0 &&
-                ++count <= kMembersNamed)
-                held += (held.empty() ? "" : ", ") + name;
-        if (count > kMembersNamed)
-            held += " and " + std::to_string(count - kMembersNamed) + " more";
-        fail(path + ": " + label + ": not in the container" +
-             (held.empty() ? "" : " (it holds " + held + ")"));
-    }
-    std::string text = archive.read(index, label);
+    ZipArchive archive(bytes, path, "a GLDF container");
+    std::string text = readMember(archive, path, member, label);
     try {
         std::string name = path + ":" + member;
         out.data = eulumdat ? parseEulumdat(text, name, options) : parseIes(text, name, options);
@@ -578,7 +542,48 @@ GldfPhotometry gldfVariantPhotometry(const std::string& bytes, const GldfProduct
         fail(path + ": " + label + ": " + std::to_string(text.size()) + " bytes, not " +
              (eulumdat ? "a EULUMDAT" : "an IES") + " file: " + e.what());
     }
+    out.geometry = gldfVariantGeometry(bytes, product, variant);
+    if (out.geometry && !object.empty()) {
+        out.opening = out.geometry->emitter(object);
+        if (!out.opening) {
+            std::string names;
+            for (const L3dEmitter& e : out.geometry->emitters)
+                names += (names.empty() ? "" : ", ") + e.name;
+            fail(path + ": " + variantName + " places " + emitterName + " at object " +
+                 inQuotes(object) + ", which its geometry " + out.geometry->path +
+                 " does not hold (it has " + (names.empty() ? "none" : names) + ")");
+        }
+    }
     return out;
+}
+
+std::shared_ptr<const L3dLuminaire> gldfVariantGeometry(const std::string& bytes,
+                                                        const GldfProduct& product,
+                                                        const GldfVariant& variant) {
+    const std::string& path = product.path;
+    if (variant.modelGeometryId.empty()) return nullptr;
+    const GldfModelGeometry* model = product.modelGeometry(variant.modelGeometryId);
+    if (!model)
+        fail(path + ": variant " + inQuotes(variant.id) + " refers to model geometry " +
+             inQuotes(variant.modelGeometryId) + ", which the product does not define");
+    const GldfFile* file = nullptr;
+    for (const std::string& id : model->fileIds)
+        if (const GldfFile* f = product.file(id); f && f->contentType == "geo/l3d") {
+            file = f;
+            break;
+        }
+    if (!file)
+        fail(path + ": model geometry " + inQuotes(model->id) +
+             " has no geo/l3d file (its r3d and m3d formats are not read)");
+    if (file->url)
+        fail(path + ": geometry file " + inQuotes(file->id) + " is only a URL (" + file->name +
+             "), not in the container");
+    std::string member = file->member();
+    std::string label =
+        member + " (file " + inQuotes(file->id) + ", model geometry " + inQuotes(model->id) + ")";
+    ZipArchive archive(bytes, path, "a GLDF container");
+    std::string l3d = readMember(archive, path, member, label);
+    return std::make_shared<const L3dLuminaire>(parseL3d(l3d, path + ":" + member));
 }
 
 }  // namespace candela

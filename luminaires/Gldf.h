@@ -8,8 +8,10 @@
 // photometries, light sources, equipments and emitters, and the variants with the emitters their
 // geometry places. A variant is placed as one photometric luminaire: its emitter's photometry
 // (the first of interchangeable light emitters) read from the container by the IES or EULUMDAT
-// parser. Not yet: variants that place several emitters (their positions come from the L3D
-// geometry), the geometry itself, sensors, spectra.
+// parser. A variant whose model geometry (an L3D member, luminaires/L3d.h) names the emitter's
+// light-emitting object takes its opening and its position and rotation in the luminaire from
+// it; a variant that places several emitters at such objects is several photometric
+// luminaires, one per placement. Not yet: the emitter's own <Rotation>, sensors, spectra.
 //
 // Every defect is an InputError of one line in valid UTF-8 that names the container, the member
 // and what is wrong ("lamp.gldf: product.xml: missing"); member names in code page 850 or UTF-8.
@@ -19,15 +21,16 @@
 #include <string>
 #include <vector>
 
+#include "luminaires/L3d.h"
 #include "luminaires/Photometry.h"
+#include "util/ZipArchive.h"
 
 namespace candela {
 
 /// Largest container read, bytes: the container is read into memory whole.
 constexpr uint64_t kMaxGldfContainer = uint64_t(256) << 20;
-/// Largest member read from a container (uncompressed), bytes: photometry and product.xml are
-/// kilobytes; 64 MB bounds what a corrupt or hostile size field can make us allocate.
-constexpr uint64_t kMaxGldfMember = uint64_t(64) << 20;
+/// Largest member read from a container (uncompressed), bytes (util/ZipArchive.h).
+constexpr uint64_t kMaxGldfMember = kMaxZipMember;
 
 /// One entry of GeneralDefinitions/Files.
 struct GldfFile {
@@ -80,7 +83,18 @@ struct GldfVariant {
     /// place an emitter at several named objects); the simple and model levels of detail of a
     /// GeometryReferences element are the same placements, so the model's are taken.
     std::vector<std::string> emitters;
+    /// Parallel to emitters: the L3D light-emitting object each placement names
+    /// (EmitterObjectExternalName; "" when it names none).
+    std::vector<std::string> emitterObjects;
     std::vector<std::string> geometryIds;  ///< Simple and model geometries referenced.
+    std::string modelGeometryId;  ///< The ModelGeometry that places the emitters ("" for none).
+};
+
+/// GeneralDefinitions/Geometries/ModelGeometry: a 3D model (its files: levels of detail and
+/// formats).
+struct GldfModelGeometry {
+    std::string id;
+    std::vector<std::string> fileIds;
 };
 
 struct GldfProduct {
@@ -93,11 +107,13 @@ struct GldfProduct {
     std::vector<GldfFile> files;
     std::vector<GldfEmitter> emitters;
     std::vector<GldfVariant> variants;
+    std::vector<GldfModelGeometry> modelGeometries;
     std::vector<std::string> members;  ///< Every member of the container, UTF-8.
 
     const GldfFile* file(const std::string& id) const;
     const GldfEmitter* emitter(const std::string& id) const;
     const GldfVariant* variant(const std::string& id) const;
+    const GldfModelGeometry* modelGeometry(const std::string& id) const;
 };
 
 /// A variant's photometry as a placed luminaire needs it.
@@ -105,6 +121,10 @@ struct GldfPhotometry {
     const GldfEmitter* emitter = nullptr;  ///< Points into the product it was read from.
     const GldfFile* file = nullptr;
     PhotometricData data;  ///< data.path is "CONTAINER:MEMBER" for messages.
+    /// The variant's L3D geometry (null when it references no model geometry) and the luminous
+    /// opening the placement names in it (null when it names none).
+    std::shared_ptr<const L3dLuminaire> geometry;
+    const L3dEmitter* opening = nullptr;  ///< Points into *geometry.
 };
 
 /// The container's bytes; refuses a missing or unreadable file and one above kMaxGldfContainer.
@@ -114,12 +134,22 @@ GldfProduct parseGldf(const std::string& bytes, const std::string& path);
 inline GldfProduct loadGldf(const std::string& path) {
     return parseGldf(readGldfBytes(path), path);
 }
-/// The photometry of one variant of `product` (read from `bytes`, the same container): refuses a
-/// variant with no emitter or with several ("cannot be placed yet"), an emitter without
+/// The photometry of one placement (0 for the first) of a variant of `product` (read from
+/// `bytes`, the same container), with the variant's geometry and the object the placement names:
+/// refuses a variant with no emitter, a placement it does not have, one of several placements
+/// that names no object of a model geometry (where it is is then unknown), an emitter without
 /// photometry, a URL, a missing, oversized or unparsable member, naming it.
 GldfPhotometry gldfVariantPhotometry(const std::string& bytes, const GldfProduct& product,
                                      const GldfVariant& variant,
-                                     const PhotometryOptions& options = defaultPhotometryOptions());
+                                     const PhotometryOptions& options = defaultPhotometryOptions(),
+                                     size_t placement = 0);
+
+/// The L3D geometry of a variant's model geometry (its first geo/l3d file, read from `bytes`);
+/// null when the variant references no model geometry. Refuses a missing, URL-only or broken
+/// geometry file, naming the container and the member.
+std::shared_ptr<const L3dLuminaire> gldfVariantGeometry(const std::string& bytes,
+                                                        const GldfProduct& product,
+                                                        const GldfVariant& variant);
 
 namespace gldf_detail {
 /// Reads product.xml's text into `product` (product.path names the container in messages); for

@@ -106,8 +106,15 @@ class Luminaire {
     /// A source at infinity (the environment): light arrives from directions, not from points;
     /// it has no outline, no pose and no finite flux.
     virtual bool atInfinity() const { return false; }
+    /// Where its emitting surface is: the pose, except for a luminaire whose geometry places the
+    /// opening away from its insertion point (a GLDF variant's L3D light-emitting object).
+    virtual Pose emitterPose() const { return pose; }
+    /// The other luminaires its scene entry makes (a GLDF variant placing several emitters: one
+    /// luminaire per emitter, this one the first); the loader gives them this one's name, pose,
+    /// technique and maintenance factor.
+    virtual std::vector<std::unique_ptr<Luminaire>> companions() const { return {}; }
 
-    Pose pose;
+    Pose pose;  ///< Where it is placed (the insertion point, for a luminaire with geometry).
     std::string name;
     std::string technique;  ///< A technique registered for kind() (luminaires/Registry.h).
     /// Its own maintenance factor (EN 12464-1: maintained over initial output, in (0, 1]);

@@ -38,12 +38,12 @@ struct Setup {
     glm::dvec3 n;        ///< Receiver's unit normal, local frame.
     glm::dvec3 x, y, z;  ///< The photometric frame (world directions of local axes).
     glm::dvec3 pWorld;   ///< Receiver, world, metres.
+    glm::dvec3 centre;   ///< The opening's centre (the emitter pose's position), world, metres.
     const Visibility* visibility = nullptr;  ///< null: no shadowing.
 
     /// Whether the opening's local point q is free of occluders from the receiver.
     bool visible(const glm::dvec3& q) const {
-        return !visibility ||
-               visibility->visible(pWorld, light->pose.position + q.x * x + q.y * y + q.z * z);
+        return !visibility || visibility->visible(pWorld, centre + q.x * x + q.y * y + q.z * z);
     }
 };
 
@@ -54,7 +54,8 @@ Setup makeSetup(const Luminaire& l, const glm::dvec3& pWorld, const glm::dvec3& 
     s.pWorld = pWorld;
     s.visibility = visibility;
     s.light->photometricFrame(s.x, s.y, s.z);
-    glm::dvec3 d = pWorld - l.pose.position;
+    s.centre = l.emitterPose().position;
+    glm::dvec3 d = pWorld - s.centre;
     s.p = {glm::dot(d, s.x), glm::dot(d, s.y), glm::dot(d, s.z)};
     glm::dvec3 n = {glm::dot(nWorld, s.x), glm::dot(nWorld, s.y), glm::dot(nWorld, s.z)};
     double ln = glm::length(n);

@@ -11,6 +11,7 @@
 
 #include "luminaires/Gldf.h"
 #include "luminaires/IntensitySampler.h"
+#include "luminaires/L3d.h"
 #include "shaders/shared/Constants.h"
 #include "shaders/shared/GpuTypes.h"
 #include "util/Error.h"
@@ -74,18 +75,23 @@ std::shared_ptr<const PhotometricData> PhotometricLuminaire::load(const std::str
     return data;
 }
 
-void PhotometricLuminaire::loadGldf(const std::string& path, const std::string& variant) {
+void PhotometricLuminaire::loadGldf(const std::string& path, const std::string& variant,
+                                    int emitter) {
     // Like load(): one copy per container, variant and modification time.
     struct Entry {
         fs::file_time_type stamp;
         std::weak_ptr<const GldfProduct> product;
         std::weak_ptr<const PhotometricData> data;
+        std::shared_ptr<const L3dLuminaire> geometry;
+        std::optional<Placement> placement;
+        int emitterCount = 1;
     };
     static std::mutex mutex;
     static std::map<std::pair<std::string, std::string>, Entry> cache;
     std::error_code ec;
     fs::path canonical = fs::weakly_canonical(path, ec);
-    std::pair<std::string, std::string> key{ec ? path : canonical.string(), variant};
+    std::pair<std::string, std::string> key{ec ? path : canonical.string(),
+                                            variant + "\n" + std::to_string(emitter)};
     fs::file_time_type stamp = fs::last_write_time(path, ec);
     std::lock_guard<std::mutex> lock(mutex);
     auto it = cache.find(key);
@@ -96,6 +102,10 @@ void PhotometricLuminaire::loadGldf(const std::string& path, const std::string& 
             gldf = product;
             data = photometry;
             gldfVariant = variant.empty() ? product->variants.front().id : variant;
+            geometry = it->second.geometry;
+            placement = it->second.placement;
+            gldfEmitter = emitter;
+            gldfEmitterCount = it->second.emitterCount;
             return;
         }
     }
@@ -109,23 +119,47 @@ void PhotometricLuminaire::loadGldf(const std::string& path, const std::string& 
         throw InputError(
             toValidUtf8(path + ": no variant \"" + variant + "\" (it has " + ids + ")"));
     }
-    auto photometry = std::make_shared<const PhotometricData>(
-        gldfVariantPhotometry(bytes, *product, *chosen).data);
-    cache[key] = {stamp, product, photometry};
+    if (emitter < 0) throw InputError(toValidUtf8(path + ": emitter " + std::to_string(emitter)));
+    GldfPhotometry read = gldfVariantPhotometry(bytes, *product, *chosen,
+                                                defaultPhotometryOptions(), size_t(emitter));
+    auto photometry = std::make_shared<const PhotometricData>(std::move(read.data));
     gldf = product;
     data = photometry;
     gldfVariant = chosen->id;
+    geometry = read.geometry;
+    gldfEmitter = emitter;
+    gldfEmitterCount = int(chosen->emitters.size());
+    placement.reset();
+    if (const L3dEmitter* leo = read.opening) {
+        Placement p;
+        p.object = leo->name;
+        p.centre = leo->centre;
+        p.c0 = leo->x;
+        p.aim = leo->normal;
+        p.opening.shape = leo->shape == L3dEmitter::Shape::Circle
+                              ? LuminousOpening::Shape::Ellipse
+                              : LuminousOpening::Shape::Rectangle;
+        p.opening.length = leo->sizeX;
+        p.opening.width = leo->sizeY;
+        placement = p;
+    }
+    cache[key] = {stamp, product, photometry, geometry, placement, gldfEmitterCount};
 }
 
-void PhotometricLuminaire::updateOpening() {
+LuminousOpening PhotometricLuminaire::opening() const {
     LuminousOpening opening = data ? data->opening : LuminousOpening{};
+    if (placement) opening = placement->opening;
     if (openingOverride.x > 0.0 || openingOverride.y > 0.0) {
         opening.shape = LuminousOpening::Shape::Rectangle;
         opening.length = openingOverride.x;
         opening.width = openingOverride.y;
         opening.height = 0.0;
     }
-    mPolygon = opening.polygon();
+    return opening;
+}
+
+void PhotometricLuminaire::updateOpening() {
+    mPolygon = opening().polygon();
     if (signedArea(mPolygon) < 0.0) std::reverse(mPolygon.begin(), mPolygon.end());
     mSize = 0.0;
     for (const auto& a : mPolygon)
@@ -154,8 +188,22 @@ bool PhotometricLuminaire::contains(const glm::dvec2& q, double slack) const {
 }
 
 void PhotometricLuminaire::photometricFrame(glm::dvec3& x, glm::dvec3& y, glm::dvec3& z) const {
-    pose.frame(x, y, z);
+    emitterPose().frame(x, y, z);
     y = -y;  // c0 x aim
+}
+
+Pose PhotometricLuminaire::emitterPose() const {
+    if (!placement) return pose;
+    // The luminaire's L3D frame placed at the pose: x along C0, y along C90 (c0 x aim, the
+    // negative of Pose::frame's y), z up, against the aim (a proper rotation: x cross y = z).
+    glm::dvec3 x, y, z;
+    pose.frame(x, y, z);
+    auto place = [&](const glm::dvec3& v) { return v.x * x - v.y * y - v.z * z; };
+    Pose e;
+    e.position = pose.position + place(placement->centre);
+    e.aim = place(placement->aim);
+    e.c0 = place(placement->c0);
+    return e;
 }
 
 std::unique_ptr<Luminaire> PhotometricLuminaire::clone() const {
@@ -170,7 +218,7 @@ double PhotometricLuminaire::intensity(const glm::dvec3& w) const {
 
 glm::dvec3 PhotometricLuminaire::radiance(const glm::dvec3& xWorld, const glm::dvec3& w) const {
     if (mArea <= 0.0) return glm::dvec3(0.0);
-    glm::dvec3 x = toLocalDir(*this, xWorld - pose.position);
+    glm::dvec3 x = toLocalDir(*this, xWorld - emitterPose().position);
     double size = std::max(mSize, 1e-9);
     if (std::abs(x.z) > 1e-6 * size || !contains(glm::dvec2(x), 1e-9 * size))
         return glm::dvec3(0.0);
@@ -215,7 +263,7 @@ LightSample PhotometricLuminaire::sample(const glm::dvec3& p, const glm::dvec2& 
     } else if (mPolygon.size() == 2) {
         local = mPolygon[0] + std::clamp(u.x, 0.0, 1.0) * (mPolygon[1] - mPolygon[0]);
     }
-    s.position = pose.position + local.x * ex + local.y * ey;
+    s.position = emitterPose().position + local.x * ex + local.y * ey;
     glm::dvec3 d = s.position - p;
     s.distance = glm::length(d);
     if (!(s.distance > 0.0) || mArea <= 0.0) return s;
@@ -233,9 +281,10 @@ double PhotometricLuminaire::pdf(const glm::dvec3& p, const glm::dvec3& wi) cons
     photometricFrame(ex, ey, ez);
     double denom = glm::dot(wi, ez);
     if (std::abs(denom) < 1e-12) return 0.0;
-    double t = glm::dot(pose.position - p, ez) / denom;
+    glm::dvec3 centre = emitterPose().position;
+    double t = glm::dot(centre - p, ez) / denom;
     if (!(t > 0.0)) return 0.0;
-    glm::dvec3 x = p + t * wi - pose.position;
+    glm::dvec3 x = p + t * wi - centre;
     if (!contains({glm::dot(x, ex), glm::dot(x, ey)})) return 0.0;
     return t * t / (mArea * std::abs(denom));
 }
@@ -243,9 +292,10 @@ double PhotometricLuminaire::pdf(const glm::dvec3& p, const glm::dvec3& wi) cons
 std::vector<glm::dvec3> PhotometricLuminaire::outline() const {
     glm::dvec3 ex, ey, ez;
     photometricFrame(ex, ey, ez);
+    glm::dvec3 centre = emitterPose().position;
     std::vector<glm::dvec3> out;
     if (mPolygon.size() >= 3) {
-        for (const auto& q : mPolygon) out.push_back(pose.position + q.x * ex + q.y * ey);
+        for (const auto& q : mPolygon) out.push_back(centre + q.x * ex + q.y * ey);
         return out;
     }
     // A point or a segment still needs something to draw and to click: a thin quad around it.
@@ -254,7 +304,7 @@ std::vector<glm::dvec3> PhotometricLuminaire::outline() const {
     const double r = 0.01;
     glm::dvec2 lo = glm::min(a, b) - r, hi = glm::max(a, b) + r;
     for (glm::dvec2 q : {lo, glm::dvec2(hi.x, lo.y), hi, glm::dvec2(lo.x, hi.y)})
-        out.push_back(pose.position + q.x * ex + q.y * ey);
+        out.push_back(centre + q.x * ex + q.y * ey);
     return out;
 }
 
@@ -280,7 +330,8 @@ ShadowLights PhotometricLuminaire::shadowLights(int count) const {
     out.sharesPerItem = n;
     out.shares.assign(size_t(2 * n), {});
     for (int k = 0; k < n; ++k) {
-        out.lights.push_back(pose.position + points[size_t(k)].x * ex + points[size_t(k)].y * ey);
+        out.lights.push_back(emitterPose().position + points[size_t(k)].x * ex +
+                             points[size_t(k)].y * ey);
         out.lit.push_back(1);
         out.shares[size_t(k)] = {k, 1.f / float(n)};
     }
@@ -303,6 +354,7 @@ void PhotometricLuminaire::writeJson(nlohmann::json& out) const {
     if (gldf) {
         out["type"] = "gldf";
         out["variant"] = gldfVariant;
+        if (gldfEmitterCount > 1) out["emitter"] = gldfEmitter;
     }
     out["file"] = file;
     out["scale"] = scale;  // always present, so the inspector offers it
@@ -316,7 +368,7 @@ std::vector<std::byte> PhotometricLuminaire::gpuData() const {
     gpu::PhotometricGpu h{};
     glm::dvec3 x, y, z;
     photometricFrame(x, y, z);
-    h.position = glm::vec4(glm::vec3(pose.position), float(mArea));
+    h.position = glm::vec4(glm::vec3(emitterPose().position), float(mArea));
     h.axisX = glm::vec4(glm::vec3(x), float(mSize));
     h.axisY = glm::vec4(glm::vec3(y), float(0.1 * mSize));
     h.axisZ = glm::vec4(glm::vec3(z), 0.f);
@@ -390,11 +442,17 @@ std::string PhotometricLuminaire::describe() const {
                   "%s: %s, type %s, %zu x %zu angles, opening %.4g x %.4g m (%s, %.4g m2), "
                   "flux %.5g lm from the table%s",
                   source().c_str(), d.format.c_str(), d.goniometer == Goniometer::B ? "B" : "C",
-                  d.vertical.size(), d.horizontal.size(),
-                  openingOverride.x > 0.0 ? openingOverride.x : d.opening.length,
-                  openingOverride.x > 0.0 ? openingOverride.y : d.opening.width, shape, mArea,
-                  scale * d.fluxFromTable(), scale != 1.0 ? " (scaled)" : "");
+                  d.vertical.size(), d.horizontal.size(), opening().length, opening().width, shape,
+                  mArea, scale * d.fluxFromTable(), scale != 1.0 ? " (scaled)" : "");
     std::string out = buf;
+    if (placement && !(openingOverride.x > 0.0 || openingOverride.y > 0.0)) {
+        glm::dvec3 c = placement->centre;
+        std::snprintf(buf, sizeof buf,
+                      ", opening from its L3D object \"%s\" at (%.4g, %.4g, %.4g) m from the "
+                      "insertion point",
+                      placement->object.c_str(), c.x, c.y, c.z);
+        out += buf;
+    }
     if (d.lampFlux > 0.0) {
         std::snprintf(buf, sizeof buf, ", lamps %.5g lm x LOR %.3g = %.5g lm", d.lampFlux,
                       d.lightOutputRatio, d.lampFlux * d.lightOutputRatio);
@@ -403,9 +461,25 @@ std::string PhotometricLuminaire::describe() const {
     return out;
 }
 
+std::vector<std::unique_ptr<Luminaire>> PhotometricLuminaire::companions() const {
+    std::vector<std::unique_ptr<Luminaire>> out;
+    if (!gldf || !mAllEmitters || gldfEmitter != 0) return out;
+    for (int k = 1; k < gldfEmitterCount; ++k) {
+        auto other = std::make_unique<PhotometricLuminaire>(*this);
+        other->loadGldf(gldf->path, gldfVariant, k);
+        other->mAllEmitters = false;
+        other->updateOpening();
+        out.push_back(std::move(other));
+    }
+    return out;
+}
+
 std::string PhotometricLuminaire::source() const {
     if (!gldf) return "photometric " + file;
     std::string out = "GLDF " + file + " variant \"" + gldfVariant + "\"";
+    if (gldfEmitterCount > 1)
+        out +=
+            " emitter " + std::to_string(gldfEmitter) + " of " + std::to_string(gldfEmitterCount);
     if (!gldf->manufacturer.empty() || !gldf->productName.empty())
         out += " (" + gldf->manufacturer + (gldf->manufacturer.empty() ? "" : " ") +
                gldf->productName + ")";
@@ -473,13 +547,21 @@ std::unique_ptr<Luminaire> PhotometricLuminaire::parseGldf(const nlohmann::json&
                                                            const json::Where& where) {
     json::checkKeys(entry,
                     {"type", "name", "position", "aim", "c0", "technique", "maintenance_factor",
-                     "file", "variant", "scale", "colour", "opening"},
+                     "file", "variant", "emitter", "scale", "colour", "opening"},
                     where);
     std::string resolved;
     auto light = parseCommon(entry, where, "the path of a .gldf container", resolved);
     std::string variant = json::optional(entry, "variant", where, std::string(), json::string);
-    light->loadGldf(resolved, variant);
+    int emitter = json::optional(
+        entry, "emitter", where, 0, [](const nlohmann::json& v, const json::Where& w) {
+            if (!v.is_number_integer() || v.get<int64_t>() < 0 || v.get<int64_t>() > 1000000)
+                json::fail(w, "an emitter index from 0");
+            return int(v.get<int64_t>());
+        });
+    light->loadGldf(resolved, variant, emitter);
     light->updateOpening();
+    // Without "emitter", an entry is every emitter its variant places (companions()).
+    light->mAllEmitters = !entry.contains("emitter");
     return light;
 }
 

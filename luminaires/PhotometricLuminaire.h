@@ -9,6 +9,7 @@
 // zero width) are treated as that point or segment. Units: the file's candela give lux and cd/m2.
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,7 @@
 namespace candela {
 
 struct GldfProduct;
+struct L3dLuminaire;
 
 class PhotometricLuminaire final : public Luminaire {
   public:
@@ -35,8 +37,24 @@ class PhotometricLuminaire final : public Luminaire {
     /// `data` its variant's photometry.
     std::shared_ptr<const GldfProduct> gldf;
     std::string gldfVariant;  ///< The variant's id (set with gldf).
+    /// Which of the variant's placements this is (from 0), of how many: a variant placing several
+    /// emitters (at its L3D geometry's objects) is one luminaire per placement.
+    int gldfEmitter = 0, gldfEmitterCount = 1;
+    /// The GLDF variant's L3D geometry (null when it has none) and the light-emitting object its
+    /// emitter is placed at: the opening and its frame in the luminaire's L3D frame (+z up,
+    /// metres; luminaires/L3d.h), which replace the photometry file's rough opening and put the
+    /// emitter where the product has it relative to the pose (the insertion point).
+    std::shared_ptr<const L3dLuminaire> geometry;
+    struct Placement {
+        std::string object;  ///< The L3D light-emitting object's name.
+        glm::dvec3 centre{0.0}, c0{1, 0, 0}, aim{0, 0, -1};
+        LuminousOpening opening;
+    };
+    std::optional<Placement> placement;
 
     std::string_view kind() const override { return "photometric"; }
+    /// The pose moved to the placement's object (the pose itself without one).
+    Pose emitterPose() const override;
     std::unique_ptr<Luminaire> clone() const override;
     glm::dvec3 radiance(const glm::dvec3& x, const glm::dvec3& w) const override;
     /// Flux from the table (exact quadrature of the interpolant) times scale, lm per channel.
@@ -76,22 +94,29 @@ class PhotometricLuminaire final : public Luminaire {
     /// photometric convention; Pose::frame's y is aim x c0, the other way), z = the aim
     /// (gamma = 0). The opening, the table and the GPU record all use this frame.
     void photometricFrame(glm::dvec3& x, glm::dvec3& y, glm::dvec3& z) const;
+    /// The opening used: openingOverride, else the placement's, else the file's.
+    LuminousOpening opening() const;
     /// Recomputes the polygon after data or openingOverride changed.
     void updateOpening();
 
     static std::unique_ptr<Luminaire> parse(const nlohmann::json& entry, const json::Where& where);
-    /// A scene's "gldf" entry: {"type": "gldf", "file": "lamp.gldf", "variant": "id"} (variant
-    /// optional: the first), with the photometric entry's scale, colour and opening.
+    /// A scene's "gldf" entry: {"type": "gldf", "file": "lamp.gldf", "variant": "id", "emitter": k}
+    /// (variant optional: the first; emitter optional: every placement of the variant, the
+    /// others as companions()), with the photometric entry's scale, colour and opening.
     static std::unique_ptr<Luminaire> parseGldf(const nlohmann::json& entry,
                                                 const json::Where& where);
     static std::unique_ptr<Luminaire> create();
     /// Loads (shared between instances) a photometric file; throws InputError naming it.
     static std::shared_ptr<const PhotometricData> load(const std::string& path);
+    /// The variant's other placements, when this luminaire is the first of an entry that names
+    /// no "emitter" (each with this one's fields; the scene loader copies name, pose, technique).
+    std::vector<std::unique_ptr<Luminaire>> companions() const override;
     /// Sets gldf, gldfVariant and data from a GLDF container's variant ("" for the first),
     /// shared between instances like load(); throws InputError naming the container.
-    void loadGldf(const std::string& path, const std::string& variant);
+    void loadGldf(const std::string& path, const std::string& variant, int emitter = 0);
 
   private:
+    bool mAllEmitters = false;  ///< Parsed from an entry without "emitter" (see companions()).
     /// "photometric FILE", or "GLDF FILE variant "ID" (MANUFACTURER PRODUCT)", for describe().
     std::string source() const;
     /// gpuTables() of `data` as last made (rebuilt when `data` is another model).

@@ -26,11 +26,12 @@ Estimate photometricUniformArea(const Luminaire& luminaire, const glm::dvec3& p,
     Random rng(options.seed);
     double mean = 0.0, m2 = 0.0;
     int spp = std::max(1, options.spp);
+    const glm::dvec3 centre = light.emitterPose().position;
     for (int k = 0; k < spp; ++k) {
         glm::dvec2 u = lo + glm::dvec2(rng.uniform(), rng.uniform()) * (hi - lo);
         double value = 0.0;
         if (light.contains(u)) {
-            glm::dvec3 q = light.pose.position + u.x * x + u.y * y;
+            glm::dvec3 q = centre + u.x * x + u.y * y;
             glm::dvec3 v = q - p;
             double r = glm::length(v), cosP = r > 0.0 ? glm::dot(normal, v) / r : 0.0;
             if (cosP > 0.0 && (!options.visibility || options.visibility->visible(p, q)))

@@ -239,14 +239,15 @@ std::string Interreflection::orientationWarning(const Scene& scene) const {
     const int kRays = 1024;
     for (const auto& l : scene.luminaires) {
         glm::dvec3 x, y, z;
-        l->pose.frame(x, y, z);
+        Pose emitter = l->emitterPose();
+        emitter.frame(x, y, z);
         int hits = 0, backs = 0;
         for (int i = 0; i < kRays; ++i) {
             double cz = 1.0 - (2.0 * i + 1.0) / kRays, r = std::sqrt(std::max(0.0, 1.0 - cz * cz));
             double phi = i * 2.39996322972865332;  // a Fibonacci sphere
             glm::dvec3 d(r * std::cos(phi), cz, r * std::sin(phi));
             EmbreeVisibility::Hit hit;
-            if (!mVisibility->intersect(l->pose.position + 1e-3 * z, d, hit)) continue;
+            if (!mVisibility->intersect(emitter.position + 1e-3 * z, d, hit)) continue;
             glm::dvec3 w;
             uint32_t p = mMesh.patchAt(hit.mesh, hit.triangle, hit.u, hit.v, w);
             if (p == UINT32_MAX) continue;

@@ -60,7 +60,7 @@ Emitter describe(const Luminaire& luminaire) {
     Emitter e;
     e.outline = luminaire.outline();
     glm::dvec3 x, y;
-    luminaire.pose.frame(x, y, e.aim);
+    luminaire.emitterPose().frame(x, y, e.aim);
     glm::dvec3 centroid(0.0);
     e.bounds.lo = e.bounds.hi = e.outline[0];
     e.lowestAlongAim = glm::dot(e.outline[0], e.aim);

@@ -499,8 +499,21 @@ Scene parseScene(const nlohmann::json& doc, const std::string& path) {
     if (doc.contains("luminaires")) {
         const nlohmann::json& items = doc["luminaires"];
         if (!items.is_array()) json::fail(root / "luminaires", "an array of luminaires");
-        for (size_t i = 0; i < items.size(); ++i)
-            scene.luminaires.push_back(parseLuminaire(items[i], (root / "luminaires")[i], i));
+        for (size_t i = 0; i < items.size(); ++i) {
+            std::unique_ptr<Luminaire> first =
+                parseLuminaire(items[i], (root / "luminaires")[i], i);
+            std::vector<std::unique_ptr<Luminaire>> more = first->companions();
+            std::string name = first->name;
+            for (size_t k = 0; k < more.size(); ++k) {
+                if (k == 0) first->name = name + " #0";
+                more[k]->name = name + " #" + std::to_string(k + 1);
+                more[k]->pose = first->pose;
+                more[k]->technique = first->technique;
+                more[k]->maintenanceFactor = first->maintenanceFactor;
+            }
+            scene.luminaires.push_back(std::move(first));
+            for (auto& m : more) scene.luminaires.push_back(std::move(m));
+        }
     }
     scene.environment = nullptr;
     if (doc.contains("environment") && !doc["environment"].is_null()) {

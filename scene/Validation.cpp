@@ -351,8 +351,9 @@ ValidationResult validateClosedRoom(const Scene& scene, int patches) {
     const int kRays = 4096;
     for (const auto& l : scene.luminaires) {
         glm::dvec3 x, y, z;
-        l->pose.frame(x, y, z);
-        glm::dvec3 origin = l->pose.position + 1e-3 * z;  // just in front of the opening
+        Pose emitter = l->emitterPose();
+        emitter.frame(x, y, z);
+        glm::dvec3 origin = emitter.position + 1e-3 * z;  // just in front of the opening
         int escaped = 0, backs = 0;
         glm::dvec3 firstEscape(0.0), firstBack(0.0);
         for (int i = 0; i < kRays; ++i) {

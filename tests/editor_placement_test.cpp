@@ -186,5 +186,27 @@ TEST(EditorPlacement, DroppedGldfBecomesItsFirstVariant) {
     EXPECT_EQ(state.history.undo.size(), steps);
 }
 
+TEST(EditorPlacement, DroppedGldfWithTwoEmittersAddsBothInOneStepSelectedTogether) {
+    setenv("CANDELA_STATE_DIR",
+           (std::filesystem::temp_directory_path() / "candela-placement-test").c_str(), 1);
+    EditorState state;
+    ASSERT_TRUE(openSceneFile(state, CANDELA_SOURCE_DIR "/resources/scenes/demo.json"));
+    size_t count = state.scene.luminaires.size(), steps = state.history.undo.size();
+    ASSERT_TRUE(dropFile(state, CANDELA_SOURCE_DIR "/tests/data/gldf/PendantTwoEmitters.gldf"));
+    ASSERT_EQ(state.scene.luminaires.size(), count + 2);
+    EXPECT_EQ(state.history.undo.size(), steps + 1);  // one undo step
+    auto* down = dynamic_cast<const PhotometricLuminaire*>(state.scene.luminaires[count].get());
+    auto* up = dynamic_cast<const PhotometricLuminaire*>(state.scene.luminaires[count + 1].get());
+    ASSERT_TRUE(down && up);
+    EXPECT_EQ(down->placement->object, "leo_bottom");
+    EXPECT_EQ(up->placement->object, "leo_top");
+    EXPECT_EQ(down->pose.position, up->pose.position);
+    // Both selected, so a move or a delete takes both.
+    EXPECT_EQ(state.selectedLuminaire, int(count));
+    EXPECT_EQ(state.alsoSelected, std::vector<int>{int(count) + 1});
+    ASSERT_TRUE(undo(state));
+    EXPECT_EQ(state.scene.luminaires.size(), count);
+}
+
 }  // namespace
 }  // namespace candela::ui

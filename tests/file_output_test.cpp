@@ -23,6 +23,7 @@
 #include "renderer/ImageFile.h"
 #include "scene/CalculationGrid.h"
 #include "scene/SceneIo.h"
+#include "tests/TempDir.h"
 #include "tests/TestUtil.h"
 #include "ui/ComparisonSheet.h"
 #include "ui/EditorState.h"
@@ -54,33 +55,7 @@ void writeBytes(const fs::path& path, const std::string& bytes) {
     std::ofstream(path, std::ios::binary) << bytes;
 }
 
-/// A fresh empty folder under the system temp folder, removed at the end of the test.
-class TempDir {
-  public:
-    TempDir() {
-        std::string pattern = (fs::temp_directory_path() / "candela-output-XXXXXX").string();
-        std::vector<char> name(pattern.begin(), pattern.end());
-        name.push_back('\0');
-        if (!mkdtemp(name.data())) throw std::runtime_error("mkdtemp failed");
-        mPath = name.data();
-    }
-    ~TempDir() {
-        std::error_code ignored;
-        fs::remove_all(mPath, ignored);
-    }
-    const fs::path& path() const { return mPath; }
-    fs::path operator/(const std::string& name) const { return mPath / name; }
-    /// The names in the folder, sorted (hidden temporary files included).
-    std::vector<std::string> entries() const {
-        std::vector<std::string> names;
-        for (const auto& e : fs::directory_iterator(mPath)) names.push_back(e.path().filename());
-        std::sort(names.begin(), names.end());
-        return names;
-    }
-
-  private:
-    fs::path mPath;
-};
+using test::TempDir;
 
 /// The old content of a file a writer replaces: larger than kSizeLimit, so a truncation by the
 /// failed write would show, and recognisable byte for byte.

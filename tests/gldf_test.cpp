@@ -17,7 +17,9 @@
 #include <vector>
 
 #include "luminaires/PhotometricLuminaire.h"
+#include "scene/CalculationGrid.h"
 #include "scene/SceneIo.h"
+#include "tests/TempDir.h"
 #include "util/Error.h"
 #include "util/TextEncoding.h"
 
@@ -32,25 +34,7 @@ std::string container(const std::string& name) {
     return kData + "/gldf/" + name + ".gldf";
 }
 
-/// A fresh folder under the system temp folder, removed at the end of the test.
-class TempDir {
-  public:
-    TempDir() {
-        std::string pattern = (fs::temp_directory_path() / "candela-gldf-XXXXXX").string();
-        std::vector<char> name(pattern.begin(), pattern.end());
-        name.push_back('\0');
-        if (!mkdtemp(name.data())) throw std::runtime_error("mkdtemp failed");
-        mPath = name.data();
-    }
-    ~TempDir() {
-        std::error_code ignored;
-        fs::remove_all(mPath, ignored);
-    }
-    std::string file(const std::string& name) const { return (mPath / name).string(); }
-
-  private:
-    fs::path mPath;
-};
+using test::TempDir;
 
 std::string readBytes(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
@@ -463,7 +447,7 @@ TEST(Gldf, IesBytesLabelledEulumdatAreRefusedWithTheParsersMessage) {
     EXPECT_EQ(m.rfind(head, 0), 0u) << m;
 }
 
-TEST(Gldf, TwoEmitterVariantIsRefused) {
+TEST(Gldf, TwoEmitterVariantNeedsItsGeometry) {
     TempDir tmp;
     std::string path = tmp.file("lamp.gldf");
     std::string xml = replaced(productXml(), R"(<EmitterReference emitterId="e1"/>)",
@@ -471,18 +455,33 @@ TEST(Gldf, TwoEmitterVariantIsRefused) {
           <EmitterReference emitterId="e1"><EmitterObjectExternalName>a</EmitterObjectExternalName></EmitterReference>
           <EmitterReference emitterId="e1"><EmitterObjectExternalName>b</EmitterObjectExternalName></EmitterReference>
         </ModelGeometryReference>)");
+    // Without the model geometry it names, the product is refused as it is read.
     writeZip(path, {{"product.xml", xml}, {"ldc/lamp.ldt", realLdt()}});
-    EXPECT_EQ(loadGldf(path).variants[0].emitters.size(), 2u);
-    EXPECT_EQ(refusal([&] { photometryOf(path); }),
+    EXPECT_EQ(refusal([&] { loadGldf(path); }),
               path +
-                  ": variant \"v1\" places 2 emitters (e1, e1): a variant with more than one "
-                  "emitter cannot be placed yet (the emitters' positions come from its L3D "
-                  "geometry, which is not read yet)");
-    // And from a scene entry, naming the container and the variant.
+                  ": product.xml: variant \"v1\" refers to model geometry \"g1\", which "
+                  "<Geometries> does not define");
+    xml = replaced(xml, "</Emitters>", R"(</Emitters>
+    <Geometries><ModelGeometry id="g1"><GeometryFileReference fileId="geo"/></ModelGeometry></Geometries>)");
+    xml = replaced(
+        xml, "</Files>",
+        R"(<File id="geo" contentType="geo/l3d" type="localFileName">lamp.l3d</File></Files>)");
+    writeZip(path, {{"product.xml", xml}, {"ldc/lamp.ldt", realLdt()}});
+    GldfProduct product = loadGldf(path);
+    EXPECT_EQ(product.variants[0].emitters.size(), 2u);
+    EXPECT_EQ(product.variants[0].emitterObjects, (std::vector<std::string>{"a", "b"}));
+    EXPECT_EQ(product.variants[0].modelGeometryId, "g1");
+    // Its placements name objects of an L3D member the container lacks.
+    EXPECT_EQ(refusal([&] { photometryOf(path); }),
+              path + ": geo/lamp.l3d (file \"geo\", model geometry \"g1\"): not in the container");
+    // And from a scene entry, naming the container and the member.
     std::string scene = tmp.file("scene.json");
     std::ofstream(scene) << R"({"luminaires": [{"type": "gldf", "file": "lamp.gldf"}]})";
     std::string m = refusal([&] { loadScene(scene); });
-    EXPECT_NE(m.find("lamp.gldf: variant \"v1\" places 2 emitters"), std::string::npos) << m;
+    EXPECT_NE(m.find("lamp.gldf: geo/lamp.l3d (file \"geo\", model geometry \"g1\"): not in the "
+                     "container"),
+              std::string::npos)
+        << m;
 }
 
 TEST(Gldf, CodePage850MemberNameMatchesAndMessagesAreUtf8) {
@@ -619,6 +618,208 @@ TEST(Gldf, SceneEntryErrorsNameTheEntry) {
         << R"({"luminaires": [{"type": "gldf", "file": "lamp.gldf", "bogus": 1}]})";
     m = refusal([&] { loadScene(scenePath); });
     EXPECT_NE(m.find("bogus"), std::string::npos) << m;
+}
+
+// The complete container's variant-2 places emitter-1 at its L3D geometry's object "LEO":
+// structure.xml puts the part at (-0.006, 0.003, -0.041) m turned 90 degrees about z, and the
+// object 0.003 m above the part's origin turned back -90 degrees: a 0.17 x 1.17 m rectangle, its x
+// (sizeX) along the luminaire's x, at (-0.006, 0.003, -0.038) m, facing down (-z).
+TEST(GldfGeometry, CompleteContainerVariantTakesItsOpeningFromTheL3dObject) {
+    GldfPhotometry p = photometryOf(container("GldfWithFilesComplete"), "variant-2");
+    ASSERT_NE(p.geometry, nullptr);
+    EXPECT_EQ(p.geometry->path, container("GldfWithFilesComplete") + ":geo/geometry.l3d");
+    ASSERT_EQ(p.geometry->parts.size(), 1u);
+    EXPECT_EQ(p.geometry->parts[0].name, "Floodlight");
+    EXPECT_EQ(p.geometry->triangleCount(), 92u);  // Floodlight.obj's 92 triangles ("f" lines)
+    ASSERT_NE(p.opening, nullptr);
+    EXPECT_EQ(p.opening->name, "LEO");
+    const double eps = 1e-12;  // Sums and products of the file's decimals and of cos/sin 90.
+    EXPECT_NEAR(p.opening->sizeX, 0.17, eps);
+    EXPECT_NEAR(p.opening->sizeY, 1.17, eps);
+    EXPECT_NEAR(glm::distance(p.opening->centre, glm::dvec3(-0.006, 0.003, -0.038)), 0.0, eps);
+    EXPECT_NEAR(glm::distance(p.opening->x, glm::dvec3(1, 0, 0)), 0.0, eps);
+    EXPECT_NEAR(glm::distance(p.opening->normal, glm::dvec3(0, 0, -1)), 0.0, eps);
+    // variant-1 places the emitter with no geometry: the photometry's own opening.
+    GldfPhotometry plain = photometryOf(container("GldfWithFilesComplete"), "variant-1");
+    EXPECT_EQ(plain.geometry, nullptr);
+    EXPECT_EQ(plain.opening, nullptr);
+}
+
+TEST(GldfGeometry, PlacedVariantEmitsFromTheObjectWhereTheProductHasIt) {
+    TempDir tmp;
+    std::string scenePath = tmp.file("scene.json");
+    std::ofstream(scenePath) << R"({"luminaires": [{"type": "gldf", "file": ")" +
+                                    container("GldfWithFilesComplete") +
+                                    R"(", "variant": "variant-2", "position": [0, 3, 0],
+        "aim": [0, -1, 0], "c0": [1, 0, 0]}]})";
+    Scene scene = loadScene(scenePath);
+    auto* l = dynamic_cast<const PhotometricLuminaire*>(scene.luminaires.at(0).get());
+    ASSERT_NE(l, nullptr);
+    ASSERT_TRUE(l->placement.has_value());
+    // By hand: the L3D frame at this pose has x = c0 = (1, 0, 0), y = C90 = c0 x aim = (0, 0, -1)
+    // and z = -aim = (0, 1, 0), so the object's (-0.006, 0.003, -0.038) m is world
+    // (0, 3, 0) + (-0.006, -0.038, -0.003) m.
+    Pose e = l->emitterPose();
+    EXPECT_NEAR(glm::distance(e.position, glm::dvec3(-0.006, 2.962, -0.003)), 0.0, 1e-12);
+    EXPECT_NEAR(glm::distance(glm::normalize(e.aim), glm::dvec3(0, -1, 0)), 0.0, 1e-12);
+    EXPECT_NEAR(glm::distance(glm::normalize(e.c0), glm::dvec3(1, 0, 0)), 0.0, 1e-12);
+    EXPECT_EQ(l->pose.position, glm::dvec3(0, 3, 0));  // the insertion point stays the pose
+    // The opening is the object's rectangle, not the EULUMDAT's.
+    EXPECT_NEAR(l->area(), 0.17 * 1.17, 1e-12);
+    std::vector<glm::dvec3> outline = l->outline();
+    ASSERT_EQ(outline.size(), 4u);
+    glm::dvec3 lo(1e9), hi(-1e9);
+    for (const glm::dvec3& q : outline) lo = glm::min(lo, q), hi = glm::max(hi, q);
+    EXPECT_NEAR(hi.x - lo.x, 0.17, 1e-12);  // sizeX along C0 = world x
+    EXPECT_NEAR(hi.z - lo.z, 1.17, 1e-12);  // sizeY along C90 = world -z
+    EXPECT_NEAR(lo.y, 2.962, 1e-12);
+    EXPECT_NEAR(hi.y, 2.962, 1e-12);
+    // Its flux is the photometry's: the geometry moves the light, it does not change it.
+    std::string ldt = tmp.file("photometry.ldt");
+    std::ofstream(ldt, std::ios::binary) << realLdt();
+    PhotometricData alone = loadPhotometry(ldt);
+    EXPECT_NEAR(l->power().x, alone.fluxFromTable(), 1e-9 * alone.fluxFromTable());
+    EXPECT_NE(l->describe().find("opening from its L3D object \"LEO\""), std::string::npos)
+        << l->describe();
+}
+
+TEST(GldfGeometry, PlacementNamingAnObjectTheGeometryLacksIsRefused) {
+    TempDir tmp;
+    std::string xml = memberOf(container("GldfWithFilesComplete"), "product.xml");
+    std::string wrong =
+        replaced(xml, "<EmitterObjectExternalName>LEO<", "<EmitterObjectExternalName>Nowhere<");
+    std::string lamp = tmp.file("lamp.gldf");
+    writeZip(lamp, {{"product.xml", wrong},
+                    {"ldc/photometry.ldt", realLdt()},
+                    {"geo/geometry.l3d",
+                     memberOf(container("GldfWithFilesComplete"), "geo/geometry.l3d")}});
+    std::string m = refusal([&] { photometryOf(lamp, "variant-2"); });
+    EXPECT_NE(m.find("at object \"Nowhere\", which its geometry"), std::string::npos) << m;
+    EXPECT_NE(m.find("geo/geometry.l3d does not hold (it has LEO)"), std::string::npos) << m;
+    // A geometry member that is not an L3D archive names the member.
+    writeZip(lamp, {{"product.xml", xml},
+                    {"ldc/photometry.ldt", realLdt()},
+                    {"geo/geometry.l3d", "not a zip"}});
+    m = refusal([&] { photometryOf(lamp, "variant-2"); });
+    EXPECT_NE(m.find("lamp.gldf:geo/geometry.l3d: not an L3D archive"), std::string::npos) << m;
+}
+
+/// example_004's L3D (two objects: leo_bottom emitting down, leo_top up) packed with libzip.
+std::string pendantL3d() {
+    TempDir tmp;
+    std::string dir = kData + "/l3d/examples/example_004/";
+    std::string path = tmp.file("pendant.l3d");
+    writeZip(path, {{"structure.xml", readBytes(dir + "structure.xml")},
+                    {"luminaire/luminaire.obj", readBytes(dir + "luminaire/luminaire.obj")}});
+    return readBytes(path);
+}
+
+/// A product whose variant v1 places emitter e1 at leo_bottom and e2 at leo_top of the pendant.
+std::string pendantProductXml() {
+    std::string xml = replaced(productXml(), R"(<EmitterReference emitterId="e1"/>)",
+                               R"(<ModelGeometryReference geometryId="g1">
+          <EmitterReference emitterId="e1"><EmitterObjectExternalName>leo_bottom</EmitterObjectExternalName></EmitterReference>
+          <EmitterReference emitterId="e2"><EmitterObjectExternalName>leo_top</EmitterObjectExternalName></EmitterReference>
+        </ModelGeometryReference>)");
+    xml = replaced(
+        xml, "</Emitters>",
+        R"(<Emitter id="e2"><FixedLightEmitter><PhotometryReference photometryId="p1"/></FixedLightEmitter></Emitter></Emitters>
+    <Geometries><ModelGeometry id="g1"><GeometryFileReference fileId="geo"/></ModelGeometry></Geometries>)");
+    return replaced(
+        xml, "</Files>",
+        R"(<File id="geo" contentType="geo/l3d" type="localFileName">pendant.l3d</File></Files>)");
+}
+
+TEST(GldfGeometry, TwoObjectsEmitEachThroughItsOwnOpening) {
+    TempDir tmp;
+    writeZip(tmp.file("lamp.gldf"), {{"product.xml", pendantProductXml()},
+                                     {"ldc/lamp.ldt", realLdt()},
+                                     {"geo/pendant.l3d", pendantL3d()}});
+    std::ofstream(tmp.file("lamp.ldt"), std::ios::binary) << realLdt();
+    std::ofstream(tmp.file("pair.json"))
+        << R"({"luminaires": [{"type": "gldf", "file": "lamp.gldf", "name": "pendant",
+              "position": [0, 3, 0], "aim": [0, -1, 0], "c0": [1, 0, 0], "technique": "scattered"}]})";
+    Scene pair = loadScene(tmp.file("pair.json"));
+    ASSERT_EQ(pair.luminaires.size(), 2u);  // one per emitter the variant places
+    auto* bottom = dynamic_cast<const PhotometricLuminaire*>(pair.luminaires[0].get());
+    auto* top = dynamic_cast<const PhotometricLuminaire*>(pair.luminaires[1].get());
+    ASSERT_TRUE(bottom && top);
+    EXPECT_EQ(bottom->name, "pendant #0");
+    EXPECT_EQ(top->name, "pendant #1");
+    EXPECT_EQ(top->pose.position, bottom->pose.position);
+    EXPECT_EQ(top->technique, "scattered");
+    ASSERT_TRUE(bottom->placement && top->placement);
+    EXPECT_EQ(bottom->placement->object, "leo_bottom");
+    EXPECT_EQ(top->placement->object, "leo_top");
+
+    // The same two openings placed by hand, each as a plain photometric luminaire. From
+    // structure.xml: the part sits at z = -0.5 m; leo_bottom 0.0025 m above it turned -90 degrees
+    // about z (its x along the luminaire's -y), 0.17 x 1.175 m, facing down; leo_top 0.0375 m
+    // above it turned 180 degrees about x then 90 about z (its x along +y), 0.15 x 1 m, facing
+    // up. At this pose the luminaire's x is world x, its y world -z (C90 = c0 x aim) and its z
+    // world y, so: bottom centre (0, 2.5025, 0), aim down, C0 world +z; top centre
+    // (0, 2.5375, 0), aim up, C0 world -z.
+    std::ofstream(tmp.file("alone.json")) << R"({"luminaires": [
+        {"type": "photometric", "file": "lamp.ldt", "position": [0, 2.5025, 0], "aim": [0, -1, 0],
+         "c0": [0, 0, 1], "opening": [0.17, 1.175], "technique": "scattered"},
+        {"type": "photometric", "file": "lamp.ldt", "position": [0, 2.5375, 0], "aim": [0, 1, 0],
+         "c0": [0, 0, -1], "opening": [0.15, 1.0], "technique": "scattered"}]})";
+    Scene alone = loadScene(tmp.file("alone.json"));
+    const double eps = 1e-12;  // Sums and products of the file's decimals and cos/sin 90, 180.
+    for (size_t k = 0; k < 2; ++k) {
+        Pose want = alone.luminaires[k]->pose, got = pair.luminaires[k]->emitterPose();
+        EXPECT_NEAR(glm::distance(got.position, want.position), 0.0, eps) << k;
+        EXPECT_NEAR(glm::distance(glm::normalize(got.aim), want.aim), 0.0, eps) << k;
+        EXPECT_NEAR(glm::distance(glm::normalize(got.c0), want.c0), 0.0, eps) << k;
+    }
+    EXPECT_NEAR(bottom->area(), 0.17 * 1.175, eps);
+    EXPECT_NEAR(top->area(), 0.15 * 1.0, eps);
+
+    // Light from both: below, the downward opening lights a floor; above, the upward one a
+    // ceiling; at each receiver the pair gives what the two hand-placed openings give.
+    std::vector<Receiver> receivers = {{{0.0, 0.8, 0.0}, {0, 1, 0}},
+                                       {{0.7, 0.8, -0.3}, {0, 1, 0}},
+                                       {{0.0, 4.2, 0.0}, {0, -1, 0}},
+                                       {{-0.5, 4.2, 0.4}, {0, -1, 0}}};
+    GridSpec how;
+    ReceiverResult fromPair = computeReceivers(pair, how, receivers);
+    ReceiverResult fromHand = computeReceivers(alone, how, receivers);
+    for (size_t i = 0; i < receivers.size(); ++i) {
+        EXPECT_GT(fromPair.E[i], 1.0) << i;  // lux: well lit
+        // The same estimator on the same openings: equal to rounding of the poses (1e-15 m).
+        EXPECT_NEAR(fromPair.E[i], fromHand.E[i], 1e-9 * fromHand.E[i]) << i;
+    }
+    // Each side is lit by its own opening: with only the top one, the floor gets nothing.
+    alone.luminaires.erase(alone.luminaires.begin());
+    ReceiverResult topAlone = computeReceivers(alone, how, receivers);
+    EXPECT_EQ(topAlone.E[0], 0.0);
+    EXPECT_NEAR(topAlone.E[2], fromPair.E[2], 1e-9 * fromPair.E[2]);
+
+    // Saved, the pair is two entries naming their emitter; loaded again, still two.
+    saveScene(pair, tmp.file("saved.json"));
+    nlohmann::json doc = nlohmann::json::parse(readBytes(tmp.file("saved.json")));
+    ASSERT_EQ(doc["luminaires"].size(), 2u);
+    EXPECT_EQ(doc["luminaires"][0]["emitter"], 0);
+    EXPECT_EQ(doc["luminaires"][1]["emitter"], 1);
+    EXPECT_EQ(loadScene(tmp.file("saved.json")).luminaires.size(), 2u);
+}
+
+TEST(GldfGeometry, SeveralEmittersWithoutObjectsAreRefused) {
+    TempDir tmp;
+    std::string xml = replaced(
+        pendantProductXml(), "<EmitterObjectExternalName>leo_top</EmitterObjectExternalName>", "");
+    writeZip(
+        tmp.file("lamp.gldf"),
+        {{"product.xml", xml}, {"ldc/lamp.ldt", realLdt()}, {"geo/pendant.l3d", pendantL3d()}});
+    EXPECT_NE(photometryOf(tmp.file("lamp.gldf")).opening, nullptr);  // emitter 0 is placed
+    std::string m = refusal([&] {
+        std::string bytes = readGldfBytes(tmp.file("lamp.gldf"));
+        GldfProduct product = parseGldf(bytes, tmp.file("lamp.gldf"));
+        gldfVariantPhotometry(bytes, product, product.variants[0], defaultPhotometryOptions(), 1);
+    });
+    EXPECT_NE(m.find("places 2 emitters (e1, e2) but does not say where emitter 1 is"),
+              std::string::npos)
+        << m;
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "scene/SceneIo.h"
+#include "tests/TempDir.h"
 #include "tests/TestUtil.h"
 #include "util/Error.h"
 
@@ -39,32 +40,7 @@ std::string readText(const fs::path& path) {
     return s.str();
 }
 
-/// A fresh empty folder under the system temp folder, removed at the end of the test.
-class TempDir {
-  public:
-    TempDir() {
-        std::string pattern = (fs::temp_directory_path() / "candela-test-XXXXXX").string();
-        std::vector<char> name(pattern.begin(), pattern.end());
-        name.push_back('\0');
-        if (!mkdtemp(name.data())) throw std::runtime_error("mkdtemp failed");
-        mPath = name.data();
-    }
-    ~TempDir() {
-        std::error_code ignored;
-        fs::permissions(mPath, fs::perms::owner_all, fs::perm_options::add, ignored);
-        fs::remove_all(mPath, ignored);
-    }
-    const fs::path& path() const { return mPath; }
-    std::vector<std::string> entries() const {
-        std::vector<std::string> names;
-        for (const auto& e : fs::directory_iterator(mPath)) names.push_back(e.path().filename());
-        std::sort(names.begin(), names.end());
-        return names;
-    }
-
-  private:
-    fs::path mPath;
-};
+using test::TempDir;
 
 // --- Errors: each names the file and the problem -------------------------------------------
 

@@ -278,10 +278,24 @@ int insertLuminaire(EditorState& state, const LuminaireKindInfo& kind,
     lum->name = uniqueLuminaireName(scene, lum->name.empty() ? std::string(kind.kind) : lum->name);
     if (lum->technique.empty()) lum->technique = std::string(kind.defaultTechnique);
     std::string label = "Add " + lum->name;
-    applyEdit(state, label, kChangeLuminaires,
-              [&](Scene& s) { s.luminaires.push_back(std::move(lum)); });
-    state.selectedLuminaire = int(state.scene.luminaires.size()) - 1;
+    // A GLDF variant placing several emitters comes with the others: added in the same step and
+    // selected with it, so they move together.
+    std::vector<std::unique_ptr<Luminaire>> more = lum->companions();
+    for (size_t k = 0; k < more.size(); ++k) {
+        more[k]->name = lum->name + " #" + std::to_string(k + 1);
+        more[k]->pose = lum->pose;
+        more[k]->technique = lum->technique;
+    }
+    if (!more.empty()) lum->name += " #0";
+    int first = int(scene.luminaires.size());
+    applyEdit(state, label, kChangeLuminaires, [&](Scene& s) {
+        s.luminaires.push_back(std::move(lum));
+        for (auto& m : more) s.luminaires.push_back(std::move(m));
+    });
+    state.selectedLuminaire = first;
     state.alsoSelected.clear();
+    for (int i = first + 1; i < int(state.scene.luminaires.size()); ++i)
+        state.alsoSelected.push_back(i);
     state.selectedGeometry = -1;
     state.inspectorError.clear();
     return state.selectedLuminaire;

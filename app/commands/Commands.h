@@ -9,6 +9,7 @@ namespace candela {
 
 struct CalcPlane;
 struct GridResult;
+struct GridSpec;
 
 using Args = std::vector<std::string>;
 
@@ -30,6 +31,11 @@ std::vector<float> parseNumberList(const std::string& flag, const std::string& t
 /// Value following a flag, or throws InputError naming the flag.
 const std::string& flagValue(const Args& args, size_t& i);
 int parseInt(const std::string& flag, const std::string& text, int min, int max);
+
+/// The flags `grid` and `surfaces` share (how illuminance is evaluated): --spp N, --technique T,
+/// --env-technique T, --visibility, --indirect, --patches N. When args[i] is one of them, reads
+/// it (and its value, advancing i) into `how` and returns true.
+bool parseEvaluationFlag(const Args& args, size_t& i, GridSpec& how);
 
 /// `grid --csv`: x,y,z,E_lx,E_stderr_lx (_W_m2 for a radiometric scene) through a temporary file
 /// and a rename (util/FileOutput.h); throws InputError naming the file.

@@ -117,6 +117,25 @@ void writeGridCsv(const std::string& path, const GridResult& r) {
     writeFileAtomically(path, gridCsv(r), "cannot write the CSV file");
 }
 
+bool parseEvaluationFlag(const Args& args, size_t& i, GridSpec& how) {
+    const std::string& a = args[i];
+    if (a == "--spp")
+        how.spp = parseInt(a, flagValue(args, i), 1, 1 << 24);
+    else if (a == "--technique")
+        how.technique = flagValue(args, i);
+    else if (a == "--env-technique")
+        how.environmentTechnique = flagValue(args, i);
+    else if (a == "--visibility")
+        how.visibility = true;
+    else if (a == "--indirect")
+        how.indirect = true;
+    else if (a == "--patches")
+        how.patches = parseInt(a, flagValue(args, i), 16, 50000);
+    else
+        return false;
+    return true;
+}
+
 int cmdGrid(const Args& args) {
     std::string scenePath, csvPath;
     GridSpec spec;
@@ -131,18 +150,8 @@ int cmdGrid(const Args& args) {
             haveExtent = true;
         } else if (a == "--spacing")
             spec.spacing = parseFinite(a, flagValue(args, i));
-        else if (a == "--spp")
-            spec.spp = parseInt(a, flagValue(args, i), 1, 1 << 24);
-        else if (a == "--technique")
-            spec.technique = flagValue(args, i);
-        else if (a == "--env-technique")
-            spec.environmentTechnique = flagValue(args, i);
-        else if (a == "--visibility")
-            spec.visibility = true;
-        else if (a == "--indirect")
-            spec.indirect = true;
-        else if (a == "--patches")
-            spec.patches = parseInt(a, flagValue(args, i), 16, 50000);
+        else if (parseEvaluationFlag(args, i, spec))
+            continue;
         else if (a == "--csv")
             csvPath = flagValue(args, i);
         else if (!a.empty() && a[0] == '-')

@@ -8,6 +8,7 @@
 
 #include "app/commands/Commands.h"
 #include "luminaires/Gldf.h"
+#include "luminaires/L3d.h"
 #include "luminaires/LightField.h"
 #include "luminaires/PhotometricLuminaire.h"
 #include "luminaires/Registry.h"
@@ -143,6 +144,39 @@ static void printGldfEmitter(const GldfProduct& product, const GldfEmitter& emit
     }
 }
 
+/// `v` rounded to 6 decimals without a sign on zero (so a direction prints as (0.000, 0.000,
+/// -1.000)).
+static double tidy(double v) {
+    return std::round(v * 1e6) / 1e6 + 0.0;
+}
+
+/// An L3D geometry: its parts, size and luminous openings (luminaire frame: +z up, metres).
+static void printL3d(const L3dLuminaire& l, const char* indent) {
+    glm::dvec3 lo, hi;
+    l.bounds(lo, hi);
+    std::printf("%sgeometry: %s%s%s\n", indent, toValidUtf8(l.path).c_str(),
+                l.name.empty() ? "" : ", ", l.name.c_str());
+    std::printf("%s  %zu part(s), %d joint(s) (shown at their default rotation), %zu triangles\n",
+                indent, l.parts.size(), l.joints, l.triangleCount());
+    std::printf(
+        "%s  size %.4g x %.4g x %.4g m (x, y, z up), from (%.4g, %.4g, %.4g) m to "
+        "(%.4g, %.4g, %.4g) m of the insertion point\n",
+        indent, hi.x - lo.x, hi.y - lo.y, hi.z - lo.z, lo.x, lo.y, lo.z, hi.x, hi.y, hi.z);
+    for (const L3dEmitter& e : l.emitters) {
+        char shape[96];
+        if (e.shape == L3dEmitter::Shape::Circle)
+            std::snprintf(shape, sizeof shape, "circle %.4g m across", e.sizeX);
+        else
+            std::snprintf(shape, sizeof shape, "rectangle %.4g x %.4g m", e.sizeX, e.sizeY);
+        std::printf(
+            "%s  light-emitting object \"%s\" (part \"%s\"): %s, %.4g m2, centre "
+            "(%.4g, %.4g, %.4g) m, emitting towards (%.3f, %.3f, %.3f), %zu triangles "
+            "assigned\n",
+            indent, e.name.c_str(), e.part.c_str(), shape, e.area(), e.centre.x, e.centre.y,
+            e.centre.z, tidy(e.normal.x), tidy(e.normal.y), tidy(e.normal.z), e.triangles.size());
+    }
+}
+
 /// `candela info LAMP.gldf`: the product, each variant with its emitters, and the photometry of
 /// each variant that can be placed (or why it cannot).
 static void printGldf(const std::string& path) {
@@ -169,13 +203,32 @@ static void printGldf(const std::string& path) {
             shown.push_back(id);
             printGldfEmitter(product, *product.emitter(id));
         }
-        try {
-            GldfPhotometry photometry = gldfVariantPhotometry(bytes, product, variant);
-            std::string name = photometry.data.path;
-            printPhotometry(name,
-                            std::make_shared<const PhotometricData>(std::move(photometry.data)));
-        } catch (const InputError& e) {
-            std::printf("  cannot be placed: %s\n", e.what());
+        std::vector<std::string> printed;  // photometry members already described
+        for (size_t k = 0; k < std::max<size_t>(variant.emitters.size(), 1); ++k) {
+            try {
+                GldfPhotometry photometry =
+                    gldfVariantPhotometry(bytes, product, variant, defaultPhotometryOptions(), k);
+                if (photometry.geometry && k == 0) printL3d(*photometry.geometry, "  ");
+                if (variant.emitters.size() > 1)
+                    std::printf("  placement %zu of %zu: emitter \"%s\"\n", k,
+                                variant.emitters.size(), photometry.emitter->id.c_str());
+                if (photometry.opening)
+                    std::printf(
+                        "  the emitter is placed at light-emitting object \"%s\": its "
+                        "opening replaces the photometry's\n",
+                        photometry.opening->name.c_str());
+                std::string name = photometry.data.path;
+                if (std::find(printed.begin(), printed.end(), name) != printed.end()) {
+                    std::printf("  photometry: %s, as above\n", toValidUtf8(name).c_str());
+                    continue;
+                }
+                printed.push_back(name);
+                printPhotometry(
+                    name, std::make_shared<const PhotometricData>(std::move(photometry.data)));
+            } catch (const InputError& e) {
+                std::printf("  cannot be placed: %s\n", e.what());
+                break;
+            }
         }
     }
 }
@@ -232,7 +285,8 @@ static void printMeshes(const Scene& scene) {
 int cmdInfo(const Args& args) {
     if (args.size() != 1)
         throw InputError(
-            "usage: candela info FILE (.json scene, .lf.json, .gltf, .glb, .ies, .ldt, .gldf) "
+            "usage: candela info FILE (.json scene, .lf.json, .gltf, .glb, .ies, .ldt, .gldf, .l3d "
+            "or an L3D folder) "
             "[--strict]");
     const std::string& path = args[0];
     std::string ext = std::filesystem::path(path).extension().string();
@@ -243,6 +297,10 @@ int cmdInfo(const Args& args) {
     }
     if (ext == ".gldf") {
         printGldf(path);
+        return 0;
+    }
+    if (ext == ".l3d" || std::filesystem::is_directory(path)) {
+        printL3d(loadL3d(path), "");
         return 0;
     }
     std::string name = std::filesystem::path(path).filename().string();
@@ -288,8 +346,10 @@ int cmdInfo(const Args& args) {
         printMeshes(scene);
         return 0;
     }
-    throw InputError(path + ": unsupported file type \"" + ext +
-                     "\" (expected .json, .lf.json, .gltf, .glb, .ies, .ldt or .gldf)");
+    throw InputError(
+        path + ": unsupported file type \"" + ext +
+        "\" (expected .json, .lf.json, .gltf, .glb, .ies, .ldt, .gldf, .l3d or a folder "
+        "holding structure.xml)");
 }
 
 }  // namespace candela

@@ -115,18 +115,8 @@ int cmdSurfaces(const Args& args) {
     GridSpec how;
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
-        if (a == "--spp")
-            how.spp = parseInt(a, flagValue(args, i), 1, 1 << 24);
-        else if (a == "--technique")
-            how.technique = flagValue(args, i);
-        else if (a == "--env-technique")
-            how.environmentTechnique = flagValue(args, i);
-        else if (a == "--visibility")
-            how.visibility = true;
-        else if (a == "--indirect")
-            how.indirect = true;
-        else if (a == "--patches")
-            how.patches = parseInt(a, flagValue(args, i), 16, 50000);
+        if (parseEvaluationFlag(args, i, how))
+            continue;
         else if (a == "--csv")
             csvPath = flagValue(args, i);
         else if (!a.empty() && a[0] == '-')

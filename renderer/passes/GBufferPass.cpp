@@ -66,7 +66,7 @@ void GBufferPass::setLuminaires(const Scene& scene) {
         std::vector<glm::dvec3> outline = lum->outline();
         if (outline.size() < 3) continue;
         glm::dvec3 x, y, z;
-        lum->pose.frame(x, y, z);
+        lum->emitterPose().frame(x, y, z);
         // Emitters show the radiance they send along their axis (exact for Lambertian ones).
         glm::vec3 emission = glm::vec3(lum->displayRadiance() * scene.lightScale(*lum));
         uint32_t base = uint32_t(vertices.size());
