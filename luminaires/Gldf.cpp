@@ -1,6 +1,7 @@
 #include "luminaires/Gldf.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -61,6 +62,12 @@ class ProductReader {
         size_t begin = v.find_first_not_of(' ');
         if (begin == std::string_view::npos) return "";
         return std::string(v.substr(begin, v.find_last_not_of(' ') - begin + 1));
+    }
+
+    /// `s` as a number, or `fallback` when it is not one (a label, not a value that must be).
+    static double numberOr(const std::string& s, double fallback) {
+        double v = 0.0;
+        return photometry_detail::parseNumber(s, v) && std::isfinite(v) ? v : fallback;
     }
 
     static std::string attribute(const pugi::xml_node& node, const char* name) {
@@ -159,14 +166,27 @@ class ProductReader {
         for (pugi::xml_node f :
              m.child("CieLampMaintenanceFactors").children("CieLampMaintenanceFactor")) {
             std::string hours = attribute(f, "burningTime");
-            out.push_back({"LLMF after " + hours + " h",
-                           number(f, "LampLumenMaintenanceFactor", owner, 0.0, 1.0)});
-            out.push_back(
-                {"LSF after " + hours + " h", number(f, "LampSurvivalFactor", owner, 0.0, 1.0)});
+            GldfMaintenance llmf;
+            llmf.what = "LLMF after " + hours + " h";
+            llmf.factor = number(f, "LampLumenMaintenanceFactor", owner, 0.0, 1.0);
+            llmf.kind = GldfMaintenance::Kind::Llmf;
+            llmf.hours = numberOr(hours, -1.0);
+            GldfMaintenance lsf = llmf;
+            lsf.what = "LSF after " + hours + " h";
+            lsf.factor = number(f, "LampSurvivalFactor", owner, 0.0, 1.0);
+            lsf.kind = GldfMaintenance::Kind::Lsf;
+            out.push_back(llmf);
+            out.push_back(lsf);
         }
-        for (pugi::xml_node f : m.children("LedMaintenanceFactor"))
-            out.push_back({"LED maintenance after " + attribute(f, "hours") + " h",
-                           numberOf(text(f), "<LedMaintenanceFactor> of " + owner, 0.0, 1.0)});
+        for (pugi::xml_node f : m.children("LedMaintenanceFactor")) {
+            std::string hours = attribute(f, "hours");
+            GldfMaintenance led;
+            led.what = "LED maintenance after " + hours + " h";
+            led.factor = numberOf(text(f), "<LedMaintenanceFactor> of " + owner, 0.0, 1.0);
+            led.kind = GldfMaintenance::Kind::Led;
+            led.hours = numberOr(hours, -1.0);
+            out.push_back(led);
+        }
         std::erase_if(out, [](const GldfMaintenance& m) { return m.factor < 0.0; });
         return out;
     }
@@ -342,10 +362,17 @@ class ProductReader {
                                   "JiegMaintenanceFactors"})
             for (pugi::xml_node f : maintenance.child(group).children()) {
                 std::string name = f.name();
-                std::string what = name + " after " + attribute(f, "years") + " years (" +
-                                   attribute(f, "roomCondition") + ")";
-                mProduct.luminaireMaintenance.push_back(
-                    {what, numberOf(text(f), name + " of the product", 0.0, 1.0)});
+                std::string years = attribute(f, "years"), room = attribute(f, "roomCondition");
+                std::string what = name + " after " + years + " years (" + room + ")";
+                GldfMaintenance m;
+                m.what = what;
+                m.factor = numberOf(text(f), name + " of the product", 0.0, 1.0);
+                if (std::string(group) == "CieLuminaireMaintenanceFactors") {
+                    m.kind = GldfMaintenance::Kind::Lmf;
+                    m.years = numberOr(years, -1.0);
+                    m.room = room;
+                }
+                mProduct.luminaireMaintenance.push_back(m);
             }
         for (pugi::xml_node v : definitions.child("Variants").children("Variant")) {
             GldfVariant variant;
@@ -554,6 +581,79 @@ GldfPhotometry gldfVariantPhotometry(const std::string& bytes, const GldfProduct
                  " does not hold (it has " + (names.empty() ? "none" : names) + ")");
         }
     }
+    return out;
+}
+
+std::string GldfMaintenanceFactors::text(double hours) const {
+    char buf[192];
+    std::snprintf(buf, sizeof buf, "%.4g = %s %.4g x LSF %.4g (%g h) x LMF %.4g x RSMF %.4g",
+                  factor(), led ? "LED factor" : "LLMF", llmf, lsf, hours, lmf, rsmf);
+    return buf;
+}
+
+GldfMaintenanceFactors gldfMaintenanceFactors(const GldfProduct& product,
+                                              const GldfLightEmitter& light,
+                                              const GldfMaintenanceChoice& choice) {
+    const std::string& path = product.path;
+    GldfMaintenanceFactors out;
+    // Lamp factors at the burning time asked.
+    bool llmf = false, lsf = false;
+    std::string stated;
+    for (const GldfMaintenance& m : light.maintenance) {
+        if (m.kind != GldfMaintenance::Kind::Llmf && m.kind != GldfMaintenance::Kind::Lsf &&
+            m.kind != GldfMaintenance::Kind::Led)
+            continue;
+        char h[32];
+        std::snprintf(h, sizeof h, "%g", m.hours);
+        if (stated.find(std::string(h) + " h") == std::string::npos)
+            stated += (stated.empty() ? "" : ", ") + std::string(h) + " h";
+        if (m.hours != choice.hours) continue;
+        if (m.kind == GldfMaintenance::Kind::Lsf) {
+            out.lsf = m.factor;
+            lsf = true;
+        } else {
+            out.llmf = m.factor;
+            out.led = m.kind == GldfMaintenance::Kind::Led;
+            llmf = true;
+        }
+    }
+    char hours[32];
+    std::snprintf(hours, sizeof hours, "%g h", choice.hours);
+    std::string source =
+        "the light source of photometry " + inQuotes(light.photometryId) +
+        (light.lightSourceId.empty() ? ""
+                                     : " (light source " + inQuotes(light.lightSourceId) + ")");
+    if (!llmf)
+        fail(path + ": " + source + " states no lumen maintenance factor at " + hours +
+             (stated.empty() ? " (it states none)" : " (it states them at " + stated + ")"));
+    if (!lsf && !out.led)
+        fail(path + ": " + source + " states no lamp survival factor at " + hours);
+    // The luminaire maintenance factor: given, or the product's for the years and room.
+    if (choice.lmf >= 0.0) {
+        out.lmf = choice.lmf;
+    } else {
+        std::string listed;
+        bool found = false;
+        for (const GldfMaintenance& m : product.luminaireMaintenance) {
+            if (m.kind != GldfMaintenance::Kind::Lmf) continue;
+            char y[32];
+            std::snprintf(y, sizeof y, "%g years (%s)", m.years, m.room.c_str());
+            listed += (listed.empty() ? "" : ", ") + std::string(y);
+            if (m.years == choice.years && m.room == choice.room) {
+                out.lmf = m.factor;
+                found = true;
+            }
+        }
+        if (!found) {
+            char y[96];
+            std::snprintf(y, sizeof y, "%g years in a \"%s\" room", choice.years,
+                          choice.room.c_str());
+            fail(path + ": the product states no CIE luminaire maintenance factor for " + y +
+                 (listed.empty() ? " (it states none: give \"lmf\")"
+                                 : " (it states " + listed + "; or give \"lmf\")"));
+        }
+    }
+    out.rsmf = choice.rsmf;
     return out;
 }
 

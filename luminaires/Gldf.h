@@ -47,6 +47,35 @@ struct GldfFile {
 struct GldfMaintenance {
     std::string what;  ///< "LLMF after 125 h", "LSF after 125 h", "LMF after 3 years (clean)", ...
     double factor = 0.0;  ///< Dimensionless, 0..1.
+    /// What it is: a lamp lumen maintenance or survival factor, an LED maintenance factor (at a
+    /// burning time), a CIE luminaire maintenance factor (after years in a room condition), or
+    /// another system's (IES, JIEG: shown, not used).
+    enum class Kind { Llmf, Lsf, Led, Lmf, Other } kind = Kind::Other;
+    double hours = -1.0;  ///< Burning time, h (Llmf, Lsf, Led); < 0 when not a number.
+    double years = -1.0;  ///< Years (Lmf); < 0 when not a number.
+    std::string room;     ///< roomCondition (Lmf): "Very Clean", "Clean", "Normal", "Dirty".
+};
+
+/// What a designer chooses to derive a GLDF luminaire's maintenance factor from its data
+/// (EN 12464-1, CIE 97: MF = LLMF x LSF x LMF x RSMF): the burning time whose lamp factors
+/// (LLMF and LSF, or an LED factor as LLMF with LSF 1) apply, the luminaire maintenance factor
+/// (given, or the product's CIE factor for `years` in `room`) and the room surface maintenance
+/// factor (given, or 1: no interreflection loss).
+struct GldfMaintenanceChoice {
+    double hours = -1.0;  ///< Burning time, h (required).
+    double lmf = -1.0;    ///< < 0: from the product's data for years and room.
+    double years = -1.0;
+    std::string room;
+    double rsmf = 1.0;
+};
+
+/// The four factors and where they came from.
+struct GldfMaintenanceFactors {
+    double llmf = 1.0, lsf = 1.0, lmf = 1.0, rsmf = 1.0;
+    bool led = false;  ///< LLMF is an LED maintenance factor (LSF 1).
+    double factor() const { return llmf * lsf * lmf * rsmf; }
+    /// "0.5609 = LLMF 0.8 x LSF 0.82 (150 h) x LMF 0.9 x RSMF 0.95".
+    std::string text(double hours) const;
 };
 
 /// One light emitter of an Emitter (ChangeableLightEmitter or FixedLightEmitter) with what its
@@ -150,6 +179,14 @@ GldfPhotometry gldfVariantPhotometry(const std::string& bytes, const GldfProduct
 std::shared_ptr<const L3dLuminaire> gldfVariantGeometry(const std::string& bytes,
                                                         const GldfProduct& product,
                                                         const GldfVariant& variant);
+
+/// The maintenance factors of a placed light emitter of `product` for `choice`: refuses a burning
+/// time the emitter's light source states no factors for, and a luminaire maintenance factor
+/// neither given nor stated for the years and room asked, naming the container and listing what
+/// it does state.
+GldfMaintenanceFactors gldfMaintenanceFactors(const GldfProduct& product,
+                                              const GldfLightEmitter& light,
+                                              const GldfMaintenanceChoice& choice);
 
 namespace gldf_detail {
 /// Reads product.xml's text into `product` (product.path names the container in messages); for

@@ -355,6 +355,16 @@ void PhotometricLuminaire::writeJson(nlohmann::json& out) const {
         out["type"] = "gldf";
         out["variant"] = gldfVariant;
         if (gldfEmitterCount > 1) out["emitter"] = gldfEmitter;
+        if (gldfMaintenance) {
+            const GldfMaintenanceChoice& c = *gldfMaintenance;
+            nlohmann::json m = {{"hours", c.hours}};
+            if (c.lmf >= 0.0)
+                m["lmf"] = c.lmf;
+            else
+                m["years"] = c.years, m["room"] = c.room;
+            if (c.rsmf != 1.0) m["rsmf"] = c.rsmf;
+            out["maintenance"] = m;
+        }
     }
     out["file"] = file;
     out["scale"] = scale;  // always present, so the inspector offers it
@@ -445,6 +455,9 @@ std::string PhotometricLuminaire::describe() const {
                   d.vertical.size(), d.horizontal.size(), opening().length, opening().width, shape,
                   mArea, scale * d.fluxFromTable(), scale != 1.0 ? " (scaled)" : "");
     std::string out = buf;
+    if (gldfMaintenance)
+        out += ", maintenance factor " + gldfFactors.text(gldfMaintenance->hours) +
+               " (from the GLDF data)";
     if (placement && !(openingOverride.x > 0.0 || openingOverride.y > 0.0)) {
         glm::dvec3 c = placement->centre;
         std::snprintf(buf, sizeof buf,
@@ -459,6 +472,14 @@ std::string PhotometricLuminaire::describe() const {
         out += buf;
     }
     return out;
+}
+
+const GldfLightEmitter* PhotometricLuminaire::gldfLightEmitter() const {
+    if (!gldf) return nullptr;
+    const GldfVariant* v = gldf->variant(gldfVariant);
+    if (!v || size_t(gldfEmitter) >= v->emitters.size()) return nullptr;
+    const GldfEmitter* e = gldf->emitter(v->emitters[size_t(gldfEmitter)]);
+    return e && !e->lights.empty() ? &e->lights.front() : nullptr;
 }
 
 std::vector<std::unique_ptr<Luminaire>> PhotometricLuminaire::companions() const {
@@ -547,7 +568,7 @@ std::unique_ptr<Luminaire> PhotometricLuminaire::parseGldf(const nlohmann::json&
                                                            const json::Where& where) {
     json::checkKeys(entry,
                     {"type", "name", "position", "aim", "c0", "technique", "maintenance_factor",
-                     "file", "variant", "emitter", "scale", "colour", "opening"},
+                     "file", "variant", "emitter", "maintenance", "scale", "colour", "opening"},
                     where);
     std::string resolved;
     auto light = parseCommon(entry, where, "the path of a .gldf container", resolved);
@@ -560,6 +581,47 @@ std::unique_ptr<Luminaire> PhotometricLuminaire::parseGldf(const nlohmann::json&
         });
     light->loadGldf(resolved, variant, emitter);
     light->updateOpening();
+    if (entry.contains("maintenance")) {
+        // EN 12464-1's MF from the product's data: {"hours": h, "lmf": x | "years": y, "room":
+        // r, "rsmf": x}.
+        const nlohmann::json& m = entry["maintenance"];
+        json::Where at = where / "maintenance";
+        if (!m.is_object())
+            json::fail(at,
+                       "{\"hours\": h, \"lmf\": x or \"years\": y and \"room\": r, "
+                       "\"rsmf\": x}");
+        json::checkKeys(m, {"hours", "lmf", "years", "room", "rsmf"}, at);
+        GldfMaintenanceChoice c;
+        if (!m.contains("hours")) json::fail(at / "hours", "the burning time in hours");
+        c.hours = json::number(m["hours"], at / "hours");
+        auto unit = [](const nlohmann::json& v, const json::Where& w) {
+            double x = json::number(v, w);
+            if (!(x > 0.0 && x <= 1.0)) json::fail(w, "a factor in (0, 1]");
+            return x;
+        };
+        c.lmf = json::optional(m, "lmf", at, -1.0, unit);
+        c.rsmf = json::optional(m, "rsmf", at, 1.0, unit);
+        if (c.lmf < 0.0) {
+            if (!m.contains("years") || !m.contains("room"))
+                json::fail(at,
+                           "\"lmf\", or \"years\" and \"room\" to take the product's "
+                           "luminaire maintenance factor");
+            c.years = json::number(m["years"], at / "years");
+            c.room = json::string(m["room"], at / "room");
+        }
+        const GldfLightEmitter* placed = light->gldfLightEmitter();
+        if (!placed) json::fail(at, "a GLDF variant whose emitter has a light emitter");
+        light->gldfMaintenance = c;
+        light->gldfFactors = candela::gldfMaintenanceFactors(*light->gldf, *placed, c);
+        double mf = light->gldfFactors.factor();
+        // A saved scene states both; any other maintenance_factor contradicts the data.
+        if (entry.contains("maintenance_factor") &&
+            json::number(entry["maintenance_factor"], where / "maintenance_factor") != mf)
+            json::fail(where / "maintenance_factor",
+                       "no maintenance_factor beside \"maintenance\", which makes it " +
+                           std::to_string(mf));
+        light->maintenanceFactor = mf;
+    }
     // Without "emitter", an entry is every emitter its variant places (companions()).
     light->mAllEmitters = !entry.contains("emitter");
     return light;

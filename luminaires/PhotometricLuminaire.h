@@ -14,14 +14,12 @@
 #include <vector>
 
 #include "luminaires/Estimate.h"
+#include "luminaires/Gldf.h"
 #include "luminaires/Luminaire.h"
 #include "luminaires/Photometry.h"
 #include "util/JsonRead.h"
 
 namespace candela {
-
-struct GldfProduct;
-struct L3dLuminaire;
 
 class PhotometricLuminaire final : public Luminaire {
   public:
@@ -40,6 +38,12 @@ class PhotometricLuminaire final : public Luminaire {
     /// Which of the variant's placements this is (from 0), of how many: a variant placing several
     /// emitters (at its L3D geometry's objects) is one luminaire per placement.
     int gldfEmitter = 0, gldfEmitterCount = 1;
+    /// Set when the entry derives its maintenance factor from the product's data ("maintenance":
+    /// luminaires/Gldf.h), with the factors found; maintenanceFactor is then their product.
+    std::optional<GldfMaintenanceChoice> gldfMaintenance;
+    GldfMaintenanceFactors gldfFactors;
+    /// The light emitter this luminaire places (null when not a GLDF variant).
+    const GldfLightEmitter* gldfLightEmitter() const;
     /// The GLDF variant's L3D geometry (null when it has none) and the light-emitting object its
     /// emitter is placed at: the opening and its frame in the luminaire's L3D frame (+z up,
     /// metres; luminaires/L3d.h), which replace the photometry file's rough opening and put the

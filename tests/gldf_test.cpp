@@ -822,5 +822,88 @@ TEST(GldfGeometry, SeveralEmittersWithoutObjectsAreRefused) {
         << m;
 }
 
+// EN 12464-1's maintenance factor from the product's data, MF = LLMF x LSF x LMF x RSMF: the
+// complete container's light source states LLMF 0.9 and LSF 0.91 at 125 h, 0.8 and 0.82 at 150 h.
+TEST(GldfMaintenance, FactorFromTheLightSourceDataScalesEveryIlluminance) {
+    TempDir tmp;
+    auto scene = [&](const std::string& extra) {
+        std::ofstream(tmp.file("scene.json"))
+            << R"({"luminaires": [{"type": "gldf", "file": ")" +
+                   container("GldfWithFilesComplete") +
+                   R"(", "variant": "variant-1", "position": [0, 3, 0], "technique": "scattered")" +
+                   extra + "}]}";
+        return loadScene(tmp.file("scene.json"));
+    };
+    Scene initial = scene("");
+    Scene maintained = scene(R"(, "maintenance": {"hours": 150, "lmf": 0.9, "rsmf": 0.95})");
+    const double mf = 0.8 * 0.82 * 0.9 * 0.95;  // by hand from product.xml
+    ASSERT_TRUE(maintained.luminaires[0]->maintenanceFactor.has_value());
+    EXPECT_NEAR(*maintained.luminaires[0]->maintenanceFactor, mf, 1e-15);
+    std::string d = maintained.luminaires[0]->describe();
+    EXPECT_NE(d.find("maintenance factor 0.5609 = LLMF 0.8 x LSF 0.82 (150 h) x LMF 0.9 x RSMF "
+                     "0.95 (from the GLDF data)"),
+              std::string::npos)
+        << d;
+    std::vector<Receiver> receivers = {{{0, 0, 0}, {0, 1, 0}}, {{1, 0, 0.5}, {0, 1, 0}}};
+    GridSpec how;
+    ReceiverResult a = computeReceivers(initial, how, receivers);
+    ReceiverResult b = computeReceivers(maintained, how, receivers);
+    for (size_t i = 0; i < receivers.size(); ++i) {
+        ASSERT_GT(a.E[i], 0.0);
+        EXPECT_NEAR(b.E[i], mf * a.E[i], 1e-12 * a.E[i]) << i;  // a product of doubles
+    }
+    EXPECT_NE(b.maintenance.find("maintained values"), std::string::npos) << b.maintenance;
+
+    // Saved and loaded again: the same entry, the factor stated beside it.
+    saveScene(maintained, tmp.file("saved.json"));
+    nlohmann::json doc = nlohmann::json::parse(readBytes(tmp.file("saved.json")));
+    EXPECT_EQ(doc["luminaires"][0]["maintenance"],
+              nlohmann::json::parse(R"({"hours": 150, "lmf": 0.9, "rsmf": 0.95})"));
+    EXPECT_EQ(*loadScene(tmp.file("saved.json")).luminaires[0]->maintenanceFactor,
+              *maintained.luminaires[0]->maintenanceFactor);
+
+    // What the data does not hold is refused, saying what it holds.
+    std::string m = refusal([&] { scene(R"(, "maintenance": {"hours": 200, "lmf": 0.9})"); });
+    EXPECT_NE(m.find("states no lumen maintenance factor at 200 h (it states them at 125 h, "
+                     "150 h)"),
+              std::string::npos)
+        << m;
+    m = refusal([&] { scene(R"(, "maintenance": {"hours": 150})"); });
+    EXPECT_NE(m.find("\"lmf\", or \"years\" and \"room\""), std::string::npos) << m;
+    m = refusal([&] { scene(R"(, "maintenance": {"hours": 150, "years": 3, "room": "Clean"})"); });
+    EXPECT_NE(m.find("states no CIE luminaire maintenance factor for 3 years in a \"Clean\" room "
+                     "(it states none: give \"lmf\")"),
+              std::string::npos)
+        << m;
+    m = refusal([&] {
+        scene(R"(, "maintenance": {"hours": 150, "lmf": 0.9}, "maintenance_factor": 0.5)");
+    });
+    EXPECT_NE(m.find("no maintenance_factor beside \"maintenance\""), std::string::npos) << m;
+}
+
+TEST(GldfMaintenance, LedFactorAndTheProductsLuminaireFactor) {
+    TempDir tmp;
+    // productXml's light source states an LED factor of 0.8 at 50000 h; the product here adds a
+    // CIE luminaire maintenance factor of 0.85 after 3 years in a clean room.
+    std::string xml = replaced(productXml(), "</ProductMetaData>",
+                               R"(<LuminaireMaintenance><CieLuminaireMaintenanceFactors>
+        <LuminaireMaintenanceFactor years="3" roomCondition="Clean">0.85</LuminaireMaintenanceFactor>
+      </CieLuminaireMaintenanceFactors></LuminaireMaintenance></ProductMetaData>)");
+    writeZip(tmp.file("lamp.gldf"), {{"product.xml", xml}, {"ldc/lamp.ldt", realLdt()}});
+    auto load = [&](const std::string& maintenance) {
+        std::ofstream(tmp.file("scene.json"))
+            << R"({"luminaires": [{"type": "gldf", "file": "lamp.gldf", "maintenance": )" +
+                   maintenance + "}]}";
+        return loadScene(tmp.file("scene.json"));
+    };
+    Scene s = load(R"({"hours": 50000, "years": 3, "room": "Clean"})");
+    EXPECT_NEAR(*s.luminaires[0]->maintenanceFactor, 0.8 * 0.85, 1e-15);
+    std::string m = refusal([&] { load(R"({"hours": 50000, "years": 2, "room": "Clean"})"); });
+    EXPECT_NE(m.find("for 2 years in a \"Clean\" room (it states 3 years (Clean); or give "
+                     "\"lmf\")"),
+              std::string::npos)
+        << m;
+}
+
 }  // namespace
 }  // namespace candela
