@@ -388,7 +388,14 @@ L3dLuminaire loadL3d(const std::string& path) {
     if (fs::is_directory(path, ec)) {
         return l3d_detail::readMembers(
             path, [&](const std::string& member) -> std::optional<std::string> {
-                fs::path file = fs::path(path) / member;
+                // Members are inside the folder, as inside an archive: a file name that climbs
+                // out of it ("../x.obj", "/etc/x") names no member.
+                fs::path relative(member);
+                if (relative.is_absolute() ||
+                    std::any_of(relative.begin(), relative.end(),
+                                [](const fs::path& part) { return part == ".."; }))
+                    return std::nullopt;
+                fs::path file = fs::path(path) / relative;
                 if (!fs::is_regular_file(file, ec)) return std::nullopt;
                 if (fs::file_size(file, ec) > kMaxZipMember)
                     fail(path + ": " + member + ": more than the 64 MB a member may hold");

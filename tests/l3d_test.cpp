@@ -176,6 +176,9 @@ TEST(L3d, DefectsAreOneLineErrorsNamingTheMember) {
          "</Geometry>",
          "two parts named \"luminaire\""},
         {"<Luminaire", "<Lamp", "not well-formed XML"},
+        // A folder's members stay inside it, as an archive's do.
+        {"filename=\"cube.obj\"", "filename=\"../cube/cube.obj\"",
+         "cube/../cube/cube.obj: missing (geometry \"cube\")"},
     };
     for (const Case& c : cases) {
         test::TempDir dir;
