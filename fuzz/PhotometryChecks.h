@@ -1,5 +1,5 @@
 #pragma once
-// What the IES and EULUMDAT targets check of every input: the parser loads a valid table or
+// What the IES, EULUMDAT and TM-33 targets check of every input: the parser loads a valid table or
 // throws InputError with a one-line UTF-8 message naming the file; strict mode loads exactly the
 // files that load without warnings, with the same table.
 
@@ -35,13 +35,23 @@ inline void checkTable(const PhotometricData& d) {
     if (!isValidUtf8(d.name)) violated("luminaire name is not valid UTF-8");
 }
 
-inline void checkPhotometry(const uint8_t* data, size_t size, bool ldt) {
-    const std::string path =
-        ldt ? "/nonexistent-candela-fuzz/fuzz.ldt" : "/nonexistent-candela-fuzz/fuzz.ies";
+/// The photometry formats a target reads.
+enum class PhotometryFormat { Ies, Ldt, Tm33 };
+
+inline void checkPhotometry(const uint8_t* data, size_t size, PhotometryFormat format) {
+    const std::string path = format == PhotometryFormat::Ldt ? "/nonexistent-candela-fuzz/fuzz.ldt"
+                             : format == PhotometryFormat::Ies
+                                 ? "/nonexistent-candela-fuzz/fuzz.ies"
+                                 : "/nonexistent-candela-fuzz/fuzz.xml";
     const std::string text(reinterpret_cast<const char*>(data), size);
     auto parse = [&](bool strict) {
         PhotometryOptions options{.strict = strict};
-        return ldt ? parseEulumdat(text, path, options) : parseIes(text, path, options);
+        switch (format) {
+            case PhotometryFormat::Ldt: return parseEulumdat(text, path, options);
+            case PhotometryFormat::Ies: return parseIes(text, path, options);
+            case PhotometryFormat::Tm33: break;
+        }
+        return parseTm33(text, path, options);
     };
     std::optional<PhotometricData> lenient;
     try {

@@ -23,12 +23,17 @@ namespace candela::fuzz {
 
 /// The IES LM-63 parser (luminaires/IesFile.cpp), lenient and strict.
 inline void ies(const uint8_t* data, size_t size) {
-    checkPhotometry(data, size, false);
+    checkPhotometry(data, size, PhotometryFormat::Ies);
 }
 
 /// The EULUMDAT parser (luminaires/LdtFile.cpp), lenient and strict.
 inline void ldt(const uint8_t* data, size_t size) {
-    checkPhotometry(data, size, true);
+    checkPhotometry(data, size, PhotometryFormat::Ldt);
+}
+
+/// The IES TM-33 parser (luminaires/Tm33File.cpp), lenient and strict.
+inline void tm33(const uint8_t* data, size_t size) {
+    checkPhotometry(data, size, PhotometryFormat::Tm33);
 }
 
 /// The IES TM-25 ray file reader (luminaires/Tm25RayFile.cpp). It reads files, so
@@ -294,6 +299,6 @@ struct Target {
 inline constexpr Target kTargets[] = {
     {"ies", ies},     {"ldt", ldt},   {"tm25", tm25},   {"lightfield", lightfield},
     {"scene", scene}, {"gltf", gltf}, {"image", image}, {"gldf", gldf},
-    {"l3d", l3d}};
+    {"l3d", l3d},     {"tm33", tm33}};
 
 }  // namespace candela::fuzz

@@ -1,7 +1,7 @@
 # The fuzz targets' inputs, sourced by fuzz/replay.sh and scripts/fuzz.sh from the repository root.
 # Each function prints NUL-separated paths relative to the root.
 
-FUZZ_TARGETS=(ies ldt tm25 lightfield scene gltf image gldf l3d)
+FUZZ_TARGETS=(ies ldt tm25 lightfield scene gltf image gldf l3d tm33)
 
 # Seeds: small files of the repository's test data (and fuzz/seeds/TARGET/ for what the test data
 # lacks), so the fuzzer starts from inputs that load.
@@ -17,6 +17,7 @@ fuzz_seeds() {
     gldf) find tests/data/gldf fuzz/seeds/gldf -name '*.gldf' -size -30k -print0
           find fuzz/seeds/gldf -name '*.xml' -print0 ;;
     l3d) find fuzz/seeds/l3d -type f -print0 ;;
+    tm33) find tests/data/tm33 fuzz/seeds/tm33 -name '*.xml' -print0 ;;
     image) find tests/data/environment tests/data/lightfield fuzz/seeds/image -name '*.exr' -size -20k -print0
            find fuzz/seeds/image -name '*.hdr' -print0 ;;
   esac
@@ -37,6 +38,7 @@ fuzz_max_len() {
     image) echo 8192 ;;
     gldf) echo 30000 ;;  # the complete container is 20 838 bytes
     l3d) echo 30000 ;;   # the largest seed (example_004's structure.xml and OBJ) is 24 kB
+    tm33) echo 60000 ;;  # the largest seed (example.ldt converted, 777 intensities) is 46 kB
   esac
 }
 
@@ -45,7 +47,7 @@ fuzz_dict() {
   case $1 in
     ies) echo fuzz/dict/ies.dict ;;
     ldt) echo fuzz/dict/ldt.dict ;;
-    lightfield|scene|gltf|gldf|l3d) echo "fuzz/dict/$1.dict" ;;
+    lightfield|scene|gltf|gldf|l3d|tm33) echo "fuzz/dict/$1.dict" ;;
     *) echo "" ;;
   esac
 }

@@ -556,18 +556,23 @@ GldfPhotometry gldfVariantPhotometry(const std::string& bytes, const GldfProduct
     std::string member = file.member();
     std::string label =
         member + " (file " + inQuotes(file.id) + ", referenced by " + emitterName + ")";
-    bool eulumdat = file.contentType == "ldc/eulumdat";
-    if (!eulumdat && file.contentType != "ldc/ies")
-        fail(path + ": " + label + ": content type " + inQuotes(file.contentType) +
-             " is not a photometry read here (ldc/eulumdat or ldc/ies)");
+    const std::string& type = file.contentType;
+    if (type != "ldc/eulumdat" && type != "ldc/ies" && type != "ldc/iesxml")
+        fail(path + ": " + label + ": content type " + inQuotes(type) +
+             " is not a photometry read here (ldc/eulumdat, ldc/ies or ldc/iesxml)");
     ZipArchive archive(bytes, path, "a GLDF container");
     std::string text = readMember(archive, path, member, label);
     try {
         std::string name = path + ":" + member;
-        out.data = eulumdat ? parseEulumdat(text, name, options) : parseIes(text, name, options);
+        out.data = type == "ldc/eulumdat" ? parseEulumdat(text, name, options)
+                   : type == "ldc/ies"    ? parseIes(text, name, options)
+                                          : parseTm33(text, name, options);
     } catch (const std::exception& e) {
         fail(path + ": " + label + ": " + std::to_string(text.size()) + " bytes, not " +
-             (eulumdat ? "a EULUMDAT" : "an IES") + " file: " + e.what());
+             (type == "ldc/eulumdat" ? "a EULUMDAT"
+              : type == "ldc/ies"    ? "an IES"
+                                     : "an IES TM-33") +
+             " file: " + e.what());
     }
     out.geometry = gldfVariantGeometry(bytes, product, variant);
     if (out.geometry && !object.empty()) {

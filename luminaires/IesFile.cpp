@@ -31,6 +31,7 @@ using photometry_detail::formatNumber;
 using photometry_detail::kMaxCount;
 using photometry_detail::parseNumber;
 using photometry_detail::splitLines;
+using photometry_detail::tiltFactorAtZero;
 
 namespace {
 
@@ -169,18 +170,6 @@ void readTilt(TokenStream& in, PhotometricData& d) {
             fail(in.path(), line, "non-negative tilt multiplying factors", formatNumber(f));
 }
 
-/// Tilt factor at angle 0 (the standard orientation), linear between table entries and held at
-/// the end values outside the table.
-double tiltFactorAtZero(const PhotometricData& d) {
-    const auto& a = d.tiltAngles;
-    const auto& f = d.tiltFactors;
-    if (a.empty()) return 1.0;
-    if (0.0 <= a.front()) return f.front();
-    if (0.0 >= a.back()) return f.back();
-    size_t k = size_t(std::upper_bound(a.begin(), a.end(), 0.0) - a.begin()) - 1;
-    double t = (0.0 - a[k]) / (a[k + 1] - a[k]);
-    return f[k] + t * (f[k + 1] - f[k]);
-}
 
 /// LM-63-2002 Table 1 / LM-63-2019 Annex D luminous opening from signed width, length, height
 /// (metres). Negative values mark curved shapes; a zero horizontal size next to a negative one
@@ -390,39 +379,11 @@ std::vector<double> readHorizontalAngles(TokenStream& in, PhotometricData& d,
                                          const std::string& path, int nh) {
     int hLine = in.line();
     std::vector<double> given = in.numbers(size_t(nh), "horizontal angles");
-    using Sym = PhotometricSymmetry;
-    auto near = [](double a, double b) { return std::abs(a - b) < 1e-6; };
-    if (d.goniometer == Goniometer::C) {
+    if (d.goniometer == Goniometer::C)
         checkAscending(given, 0.0, 360.0, path, hLine, "horizontal angles");
-        double f = given.front(), last = given.back();
-        if (nh == 1)
-            d.symmetry = Sym::Axial;
-        else if (near(f, 0.0) && near(last, 90.0))
-            d.symmetry = Sym::Quadrant;
-        else if (near(f, 0.0) && near(last, 180.0))
-            d.symmetry = Sym::PlaneC0C180;
-        else if (near(f, 90.0) && near(last, 270.0))
-            d.symmetry = Sym::PlaneC90C270;
-        else if (near(f, 0.0) && last > 180.0)
-            d.symmetry = Sym::None;
-        else
-            fail(path, hLine,
-                 "type C horizontal angles 0 (axial), 0..90, 0..180, 90..270 or 0..(more than 180, "
-                 "up to 360)",
-                 formatNumber(f) + ".." + formatNumber(last));
-    } else {
+    else
         checkAscending(given, -180.0, 180.0, path, hLine, "horizontal angles");
-        double f = given.front();
-        if (nh == 1)
-            d.symmetry = Sym::Axial;
-        else if (near(f, 0.0))
-            d.symmetry = Sym::PlaneC90C270;  // mirrored about H = 0
-        else if (f < 0.0)
-            d.symmetry = Sym::None;
-        else
-            fail(path, hLine, "type B horizontal angles starting at 0 (symmetric) or below 0",
-                 formatNumber(f) + ".." + formatNumber(given.back()));
-    }
+    d.symmetry = photometry_detail::symmetryOfRange(d.goniometer, given, path, hLine);
     return given;
 }
 

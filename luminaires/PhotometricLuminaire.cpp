@@ -558,7 +558,7 @@ std::unique_ptr<Luminaire> PhotometricLuminaire::parse(const nlohmann::json& ent
                     where);
     std::string resolved;
     auto light =
-        parseCommon(entry, where, "the path of an .ies or .ldt photometric file", resolved);
+        parseCommon(entry, where, "the path of an .ies, .ldt or TM-33 .xml photometric file", resolved);
     light->data = load(resolved);
     light->updateOpening();
     return light;

@@ -249,6 +249,39 @@ void resample(PhotometricData& data, const std::vector<double>& g, const std::ve
 
 }  // namespace
 
+PhotometricSymmetry symmetryOfRange(Goniometer goniometer, const std::vector<double>& given,
+                                    const std::string& path, int line) {
+    using Sym = PhotometricSymmetry;
+    auto near = [](double a, double b) { return std::abs(a - b) < 1e-6; };
+    double f = given.front(), last = given.back();
+    if (given.size() == 1) return Sym::Axial;
+    if (goniometer == Goniometer::C) {
+        if (near(f, 0.0) && near(last, 90.0)) return Sym::Quadrant;
+        if (near(f, 0.0) && near(last, 180.0)) return Sym::PlaneC0C180;
+        if (near(f, 90.0) && near(last, 270.0)) return Sym::PlaneC90C270;
+        if (near(f, 0.0) && last > 180.0) return Sym::None;
+        fail(path, line,
+             "type C horizontal angles 0 (axial), 0..90, 0..180, 90..270 or 0..(more than 180, up "
+             "to 360)",
+             formatNumber(f) + ".." + formatNumber(last));
+    }
+    if (near(f, 0.0)) return Sym::PlaneC90C270;  // type B mirrored about H = 0
+    if (f < 0.0) return Sym::None;
+    fail(path, line, "type B horizontal angles starting at 0 (symmetric) or below 0",
+         formatNumber(f) + ".." + formatNumber(last));
+}
+
+double tiltFactorAtZero(const PhotometricData& d) {
+    const auto& a = d.tiltAngles;
+    const auto& f = d.tiltFactors;
+    if (a.empty()) return 1.0;
+    if (0.0 <= a.front()) return f.front();
+    if (0.0 >= a.back()) return f.back();
+    size_t k = size_t(std::upper_bound(a.begin(), a.end(), 0.0) - a.begin()) - 1;
+    double t = (0.0 - a[k]) / (a[k + 1] - a[k]);
+    return f[k] + t * (f[k + 1] - f[k]);
+}
+
 void unfold(PhotometricData& data, const std::vector<double>& given,
             const std::vector<double>& givenCandela) {
     const size_t nv = data.vertical.size();
@@ -419,6 +452,11 @@ PhotometryOptions& defaults() {
 }
 }  // namespace
 
+bool isPhotometryExtension(const std::string& lowerExtension) {
+    return lowerExtension == ".ies" || lowerExtension == ".ldt" || lowerExtension == ".xml" ||
+           lowerExtension == ".iesxml";
+}
+
 const PhotometryOptions& defaultPhotometryOptions() {
     return defaults();
 }
@@ -429,8 +467,10 @@ void setDefaultPhotometryOptions(const PhotometryOptions& options) {
 PhotometricData loadPhotometry(const std::string& path, const PhotometryOptions& options) {
     std::string ext = lowerExtension(path);
     std::string shown = toValidUtf8(path);
-    if (ext != ".ies" && ext != ".ldt")
-        throw InputError(shown + ": expected a photometry file ending in .ies or .ldt, found '" +
+    if (!isPhotometryExtension(ext))
+        throw InputError(shown +
+                         ": expected a photometry file ending in .ies, .ldt, .xml or .iesxml "
+                         "(TM-33), found '" +
                          toValidUtf8(ext) + "'");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(shown + ": cannot open photometry file");
@@ -442,8 +482,9 @@ PhotometricData loadPhotometry(const std::string& path, const PhotometryOptions&
     in.seekg(0, std::ios::beg);
     std::stringstream text;
     text << in.rdbuf();
-    return ext == ".ies" ? parseIes(text.str(), path, options)
-                         : parseEulumdat(text.str(), path, options);
+    if (ext == ".ies") return parseIes(text.str(), path, options);
+    if (ext == ".ldt") return parseEulumdat(text.str(), path, options);
+    return parseTm33(text.str(), path, options);
 }
 
 }  // namespace candela

@@ -86,7 +86,8 @@ constexpr double kMaxOpening = 1e3;
 struct PhotometricData {
     std::string path;  ///< File it came from (for messages).
     std::string
-        format;  ///< "IES LM-63-1986", "IES LM-63-1991", "-1995", "-2002", "-2019", "EULUMDAT".
+        format;  ///< "IES LM-63-1986", "IES LM-63-1991", "-1995", "-2002", "-2019", "EULUMDAT",
+                 ///< "IES TM-33-18", "IES TM-33-23".
     std::vector<std::pair<std::string, std::string>> keywords;  ///< IES [KEY] value / LDT fields.
     std::string name;  ///< Luminaire name (IES [LUMINAIRE] or LDT luminaire name), may be empty.
 
@@ -109,6 +110,10 @@ struct PhotometricData {
     double lightOutputRatio = 1.0;          ///< EULUMDAT LORL / 100; 1 when the file does not say.
     bool declaresLightOutputRatio = false;  ///< The file states one (EULUMDAT; IES has no field).
     double inputWatts = 0.0;
+    /// The luminaire's luminous flux as the file states it beside its table (TM-33's
+    /// LuminousFlux), lm; 0 when it states none. Only compared with fluxFromTable(), never used
+    /// in place of it.
+    double statedFlux = 0.0;
 
     /// What was assumed to read the file (see "Leniency" above), one line each, valid UTF-8:
     /// "PATH:LINE: what; what was assumed". Empty for a file that follows its format.
@@ -134,13 +139,18 @@ struct PhotometricData {
     double declaredFlux() const;
 };
 
+/// Whether loadPhotometry() reads files with this extension (lower case, with its dot): .ies,
+/// .ldt, and .xml or .iesxml for TM-33.
+bool isPhotometryExtension(const std::string& lowerExtension);
+
 /// The options loadPhotometry() and the parsers use when given none: every luminaire a scene or
 /// the editor loads. The command line's --strict sets them once, before anything is loaded
 /// (PhotometricLuminaire::load caches files by path, not by options).
 const PhotometryOptions& defaultPhotometryOptions();
 void setDefaultPhotometryOptions(const PhotometryOptions& options);
 
-/// Reads an IES LM-63 (.ies) or EULUMDAT (.ldt) file, chosen by extension (case-insensitive).
+/// Reads an IES LM-63 (.ies), EULUMDAT (.ldt) or IES TM-33 (.xml, .iesxml) file, chosen by
+/// extension (case-insensitive).
 /// Throws InputError "PATH:LINE: what was expected, what was found" on any defect (one line,
 /// valid UTF-8); `text` is the file's bytes in any encoding the leniency above allows.
 PhotometricData loadPhotometry(const std::string& path,
@@ -149,6 +159,17 @@ PhotometricData parseIes(const std::string& text, const std::string& pathForMess
                          const PhotometryOptions& options = defaultPhotometryOptions());
 PhotometricData parseEulumdat(const std::string& text, const std::string& pathForMessages,
                               const PhotometryOptions& options = defaultPhotometryOptions());
+/// IES TM-33-18 (root <IESTM33>) and TM-33-23 (root <IESTM33-22>) XML: see Tm33File.cpp.
+PhotometricData parseTm33(const std::string& text, const std::string& pathForMessages,
+                          const PhotometryOptions& options = defaultPhotometryOptions());
+
+/// A table written as an IES TM-33-18 document (root <IESTM33>, version 1.0): the horizontal
+/// angles its symmetry needs, the opening as emission areas, the header from the source's
+/// keywords. `date` (YYYY-MM-DD) stands for the report date when the source states none (a
+/// comment says so). What the format cannot hold (a spherical or lying cylindrical opening,
+/// written as its bounding box) is appended to `notes`, one line each.
+std::string writeTm33(const PhotometricData& data, const std::string& date,
+                      std::vector<std::string>& notes);
 
 /// Helpers shared by the two parsers (Photometry.cpp); not part of the public interface.
 namespace photometry_detail {
@@ -175,8 +196,17 @@ void checkCandela(const std::string& path, int line, double candela, const std::
 bool parseNumber(const std::string& token, double& value);
 /// Splits text into lines on LF, CRLF or a lone CR (a final line without a newline included).
 std::vector<std::string> splitLines(const std::string& text);
-/// Shortest round-trip text of a number, for messages.
+/// A number's text to 9 significant digits, for messages.
 std::string formatNumber(double v);
+/// The symmetry that the range of a file's horizontal angles implies (LM-63's rule, which
+/// TM-33-18 keeps): one angle axial; type C 0..90 quadrants, 0..180 and 90..270 mirrors, 0..(more
+/// than 180) none; type B 0..H mirrored about H = 0, from below 0 none. `given` is ascending and
+/// within the goniometer's range; fails naming `line` for any other range.
+PhotometricSymmetry symmetryOfRange(Goniometer goniometer, const std::vector<double>& given,
+                                    const std::string& path, int line);
+/// The tilt table's factor at angle 0 (the standard orientation), linear between entries and
+/// held at the end values outside the table; 1 without a table.
+double tiltFactorAtZero(const PhotometricData& d);
 /// Unfolds rows of candela given at the file's horizontal angles `given` (row h holds
 /// data.vertical.size() values) into data.horizontal / data.candela over the full range, using
 /// data.goniometer and data.symmetry. Type C: 0..360 inclusive; type B: -180..180 or the mirrored

@@ -319,7 +319,8 @@ FileKind fileKind(const std::string& path) {
         return lower.size() >= suffix.size() &&
                lower.compare(lower.size() - suffix.size(), suffix.size(), suffix) == 0;
     };
-    if (endsWith(".ies") || endsWith(".ldt")) return FileKind::Photometric;
+    if (endsWith(".ies") || endsWith(".ldt") || endsWith(".xml") || endsWith(".iesxml"))
+        return FileKind::Photometric;  // .xml and .iesxml: IES TM-33
     if (endsWith(".gldf")) return FileKind::Gldf;
     if (endsWith(".lf.json")) return FileKind::LightField;
     if (endsWith(".hdr") || endsWith(".exr")) return FileKind::Environment;
@@ -338,8 +339,8 @@ std::unique_ptr<Luminaire> luminaireFromFile(const std::string& path) {
     const char* type = luminaireKindOf(fileKind(path));
     if (!type)
         throw InputError(path +
-                         ": cannot make a luminaire from this file (expected .ies, .ldt, .gldf or "
-                         ".lf.json)");
+                         ": cannot make a luminaire from this file (expected .ies, .ldt, .xml or "
+                         ".iesxml (TM-33), .gldf or .lf.json)");
     // Through the scene-file parser, so the file gets the same checks as a loaded scene's (a
     // .gldf: its first variant).
     nlohmann::json entry = {{"type", type}, {"file", path}};
@@ -414,7 +415,7 @@ bool dropFile(EditorState& state, const std::string& path) {
         reportError(
             state,
             path +
-                ": cannot open a dropped file of this type (expected .ies, .ldt, .gldf, .lf.json, "
+                ": cannot open a dropped file of this type (expected .ies, .ldt, .xml, .gldf, .lf.json, "
                 ".hdr, .exr, .gltf or .glb)");
         return false;
     } catch (const std::exception& e) {

@@ -327,7 +327,8 @@ int addLuminaire(EditorState& state, const LuminaireKindInfo& kind);
 /// .lf.json light field, placed like Add and selected. A file that fails to load is reported and
 /// nothing changes. Returns the new index or -1.
 int addLuminaireFromFile(EditorState& state, const std::string& path);
-/// What a file holds, by its extension (case-insensitive): FileKind::Photometric (.ies, .ldt),
+/// What a file holds, by its extension (case-insensitive): FileKind::Photometric (.ies, .ldt,
+/// and .xml or .iesxml for TM-33),
 /// Gldf (.gldf), LightField (.lf.json), Environment (.hdr, .exr), Geometry (.gltf, .glb), else
 /// Unknown.
 enum class FileKind { Unknown, Photometric, Gldf, LightField, Environment, Geometry };

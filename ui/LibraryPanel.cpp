@@ -1,4 +1,4 @@
-// The Library panel: the luminaire files (.ies, .ldt, .gldf, .lf.json) under resources/luminaires
+// The Library panel: the luminaire files (.ies, .ldt, TM-33 .xml/.iesxml, .gldf, .lf.json) under resources/luminaires
 // and in folders the user adds, each with a thumbnail of the light it casts on a floor 1 m below
 // (luminaires/FarField.h: footprintImage; a light field through its far field; a GLDF container
 // through its first variant, listed with its manufacturer, product and variants). Add puts one in
@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 
 #include "luminaires/FarField.h"
 #include "luminaires/Gldf.h"
@@ -38,6 +39,15 @@ void saveFolders(EditorState& state) {
     }
 }
 
+/// Whether an .xml file's first kilobytes name a TM-33 root element.
+bool looksLikeTm33(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::string head(4096, '\0');
+    in.read(head.data(), std::streamsize(head.size()));
+    head.resize(size_t(in.gcount()));
+    return head.find("<IESTM33") != std::string::npos;
+}
+
 void scan(LibraryUi& lib) {
     lib.entries.clear();
     std::vector<std::string> roots = {std::string(CANDELA_SOURCE_DIR) + "/resources/luminaires"};
@@ -49,6 +59,8 @@ void scan(LibraryUi& lib) {
              !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
             if (!it->is_regular_file(ec)) continue;
             const char* kind = luminaireKindOf(fileKind(it->path().string()));
+            // Every .xml is not TM-33 (an unpacked L3D's structure.xml): list those that say so.
+            if (kind && it->path().extension() == ".xml" && !looksLikeTm33(it->path())) continue;
             if (kind)
                 lib.entries.push_back({fs::absolute(it->path()).lexically_normal().string(),
                                        it->path().filename().string(), kind});
@@ -175,7 +187,7 @@ bool libraryRow(EditorState& state, const LibraryEntry& entry, bool& madeOne) {
 void libraryFolders(EditorState& state) {
     LibraryUi& lib = state.library;
     ImGui::SetNextItemWidth(-70.f);
-    ImGui::InputTextWithHint("##folder", "folder with .ies / .ldt / .gldf / .lf.json",
+    ImGui::InputTextWithHint("##folder", "folder with .ies / .ldt / .xml / .gldf / .lf.json",
                              &lib.folderText);
     ImGui::SameLine();
     if (ImGui::Button("Add folder")) {

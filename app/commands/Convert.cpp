@@ -1,11 +1,14 @@
-// candela convert: a TM-25 ray file or a procedural luminaire to a light-field file.
+// candela convert: a TM-25 ray file or a procedural luminaire to a light-field file, or an IES
+// or EULUMDAT file to IES TM-33.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
 
 #include "app/commands/Commands.h"
 #include "luminaires/LightFieldRays.h"
+#include "luminaires/Photometry.h"
 #include "luminaires/ProceduralLuminaire.h"
 #include "luminaires/Tm25RayFile.h"
 #include "util/Error.h"
@@ -98,19 +101,42 @@ bool parseLayoutFlag(const Args& args, size_t& i, LayoutOptions& layout) {
     return true;
 }
 
+std::string lowerExtension(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return ext;
+}
+
+/// An IES or EULUMDAT file's conversion to TM-33.
+bool isPhotometryInput(const ConvertOptions& o) {
+    std::string ext = lowerExtension(o.input);
+    return ext == ".ies" || ext == ".ldt";
+}
+
 void checkOptions(const ConvertOptions& o) {
     if (o.out.empty() || o.input.empty() == o.procedural.empty())
         throw InputError(
             "usage: candela convert INPUT.TM25RAY --out NAME.lf.json [--grid WxH] [--res N] "
             "[--delta D] | candela convert --procedural bike-headlight|car-headlight "
-            "--out NAME.lf.json [--rays N]");
+            "--out NAME.lf.json [--rays N] | candela convert FILE.ies|FILE.ldt --out NAME.xml");
+    std::filesystem::path dir = std::filesystem::path(o.out).parent_path();
+    if (!dir.empty() && !std::filesystem::is_directory(dir))
+        throw InputError(o.out + ": the output folder " + dir.string() + " does not exist");
+    if (isPhotometryInput(o)) {
+        std::string ext = lowerExtension(o.out);
+        if (ext != ".xml" && ext != ".iesxml")
+            throw InputError(o.out + ": the output of a photometry conversion is IES TM-33, named "
+                                     "NAME.xml or NAME.iesxml");
+        if (o.layoutFlagGiven || o.rawFlux || o.rays > 0)
+            throw InputError(
+                "convert: --grid, --res, --delta, --axis, --coverage, --raw-flux and --rays "
+                "apply to ray files and procedural luminaires, not to photometry");
+        return;
+    }
     const std::string suffix = ".lf.json";
     if (o.out.size() <= suffix.size() ||
         o.out.compare(o.out.size() - suffix.size(), suffix.size(), suffix) != 0)
         throw InputError(o.out + ": the output must be named NAME.lf.json");
-    std::filesystem::path dir = std::filesystem::path(o.out).parent_path();
-    if (!dir.empty() && !std::filesystem::is_directory(dir))
-        throw InputError(o.out + ": the output folder " + dir.string() + " does not exist");
     if (!o.procedural.empty() && (o.layoutFlagGiven || o.rawFlux))
         throw InputError(
             "convert: --grid, --res, --delta, --axis, --coverage and --raw-flux apply to "
@@ -256,10 +282,47 @@ int convertProcedural(const ConvertOptions& o) {
     return 0;
 }
 
+/// Today's date, YYYY-MM-DD (UTC).
+std::string today() {
+    std::time_t now = std::time(nullptr);
+    std::tm utc{};
+    gmtime_r(&now, &utc);
+    char buf[16];
+    std::strftime(buf, sizeof buf, "%Y-%m-%d", &utc);
+    return buf;
+}
+
+int convertPhotometry(const ConvertOptions& o) {
+    ProtectedInputs inputs({o.input});
+    checkNotAnInput(o.out, "--out");
+    PhotometricData d = loadPhotometry(o.input);
+    inputs.add(d.tiltPath);
+    for (const std::string& w : d.warnings)
+        std::fprintf(stderr, "candela convert: warning: %s\n", w.c_str());
+    std::vector<std::string> notes;
+    std::string xml = writeTm33(d, today(), notes);
+    // Read back before anything is written: what lands on disk is a file Candela loads, with the
+    // same table.
+    PhotometricData back = parseTm33(xml, o.out);
+    double flux = d.fluxFromTable(), backFlux = back.fluxFromTable();
+    if (back.candela.size() != d.candela.size() || !(std::abs(backFlux - flux) <= 1e-9 * flux))
+        throw InputError(o.out + ": the TM-33 document does not read back as " + o.input +
+                         "'s table (an internal error; nothing was written)");
+    writeFileAtomically(o.out, xml);
+    std::printf("converted: %s (%s) -> %s (IES TM-33-18)\n", o.input.c_str(), d.format.c_str(),
+                o.out.c_str());
+    std::printf("table: %zu vertical x %zu horizontal angles (unfolded), luminaire flux %.6g lm "
+                "(exact quadrature; the TM-33 document's: %.6g lm)\n",
+                d.vertical.size(), d.horizontal.size(), flux, backFlux);
+    for (const std::string& n : notes) std::printf("note: %s\n", n.c_str());
+    return 0;
+}
+
 }  // namespace
 
 int cmdConvert(const Args& args) {
     ConvertOptions o = parseArgs(args);
+    if (!o.input.empty() && isPhotometryInput(o)) return convertPhotometry(o);
     return o.procedural.empty() ? convertRayFile(o) : convertProcedural(o);
 }
 

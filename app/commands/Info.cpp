@@ -35,7 +35,7 @@ static const char* symmetryName(PhotometricSymmetry s) {
     return "?";
 }
 
-/// `candela info FILE.ies|FILE.ldt`: what the file holds, its flux two ways and what was assumed
+/// `candela info FILE.ies|FILE.ldt|FILE.xml`: what the file holds, its flux two ways and what was assumed
 /// to read it (one "warning:" line each; --strict refuses the file instead).
 /// How far a file's declared light output ratio may sit from its table's before `info` warns:
 /// EULUMDAT states LORL in whole or tenth percent, and the table's own rounding (four or five
@@ -107,6 +107,9 @@ static void printPhotometry(const std::string& path, std::shared_ptr<const Photo
     printLightOutputRatio(path, d, flux);
     // IES declares no LOR to multiply by: the ratio above is all there is to say.
     if (d.declaresLightOutputRatio) printDeclaredFlux(d, flux);
+    if (d.statedFlux > 0.0)
+        std::printf("luminous flux the file states: %.6g lm (table / stated %.4f)\n",
+                    d.statedFlux, flux / d.statedFlux);
     if (d.inputWatts > 0.0 && std::isfinite(flux / d.inputWatts))
         std::printf("input power: %.4g W (%.1f lm/W)\n", d.inputWatts, flux / d.inputWatts);
     for (const std::string& w : d.warnings) std::printf("warning: %s\n", w.c_str());
@@ -285,13 +288,13 @@ static void printMeshes(const Scene& scene) {
 int cmdInfo(const Args& args) {
     if (args.size() != 1)
         throw InputError(
-            "usage: candela info FILE (.json scene, .lf.json, .gltf, .glb, .ies, .ldt, .gldf, .l3d "
-            "or an L3D folder) "
+            "usage: candela info FILE (.json scene, .lf.json, .gltf, .glb, .ies, .ldt, .xml or "
+            ".iesxml (TM-33), .gldf, .l3d or an L3D folder) "
             "[--strict]");
     const std::string& path = args[0];
     std::string ext = std::filesystem::path(path).extension().string();
     for (char& c : ext) c = char(std::tolower((unsigned char)c));
-    if (ext == ".ies" || ext == ".ldt") {
+    if (isPhotometryExtension(ext)) {
         printPhotometry(path, PhotometricLuminaire::load(path));
         return 0;
     }
@@ -348,7 +351,8 @@ int cmdInfo(const Args& args) {
     }
     throw InputError(
         path + ": unsupported file type \"" + ext +
-        "\" (expected .json, .lf.json, .gltf, .glb, .ies, .ldt, .gldf, .l3d or a folder "
+        "\" (expected .json, .lf.json, .gltf, .glb, .ies, .ldt, .xml, .iesxml, .gldf, .l3d or a "
+        "folder "
         "holding structure.xml)");
 }
 
