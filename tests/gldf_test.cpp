@@ -435,6 +435,34 @@ TEST(Gldf, IesPhotometryInside) {
     EXPECT_EQ(inside.data.fluxFromTable(), alone.fluxFromTable());
 }
 
+// GLDF's content type ldc/iesxml is IES TM-33: read by the TM-33 reader, and a member that is not
+// TM-33 is refused naming the container, the member and what the reader expected.
+TEST(Gldf, Tm33PhotometryInside) {
+    TempDir tmp;
+    std::string path = tmp.file("lamp.gldf");
+    std::string tm33Path = kData + "/tm33/cosine_downlight_tm33-18.xml";
+    std::string xml =
+        replaced(productXml(), R"(contentType="ldc/eulumdat" type="localFileName">lamp.ldt)",
+                 R"(contentType="ldc/iesxml" type="localFileName">lamp.xml)");
+    writeZip(path, {{"product.xml", xml}, {"ldc/lamp.xml", readBytes(tm33Path)}});
+    GldfPhotometry inside = photometryOf(path);
+    PhotometricData alone = loadPhotometry(tm33Path);
+    EXPECT_EQ(inside.data.format, "IES TM-33-18");
+    EXPECT_EQ(inside.data.candela, alone.candela);  // the same bytes through the same parser
+    EXPECT_EQ(inside.data.fluxFromTable(), alone.fluxFromTable());
+
+    writeZip(path, {{"product.xml", xml}, {"ldc/lamp.xml", "<Root/>"}});
+    std::string m = refusal([&] { photometryOf(path); });
+    EXPECT_NE(m.find(": ldc/lamp.xml (file \"f1\", referenced by emitter \"e1\"): 7 bytes, not "
+                     "an IES TM-33 file: "),
+              std::string::npos)
+        << m;
+    EXPECT_NE(m.find("expected a TM-33 document (root element <IESTM33> or <IESTM33-22>), found "
+                     "<Root>"),
+              std::string::npos)
+        << m;
+}
+
 TEST(Gldf, IesBytesLabelledEulumdatAreRefusedWithTheParsersMessage) {
     TempDir tmp;
     std::string path = tmp.file("lamp.gldf");
