@@ -72,6 +72,11 @@ const char* kUsage =
     "                                    backgrounds (Em, U0, Emin, Emax against requirements) "
     "and\n"
     "                                    planar and cylindrical illuminance at points\n"
+    "  glare scene.json [--observer X,Y,Z --view X,Y,Z [--limit UGR_L] [--background CD_M2]]\n"
+    "                                    [--spp N] [--patches N] [--csv F]\n"
+    "                                    Unified Glare Rating (CIE 117) at the scene's\n"
+    "                                    \"glare_observers\" or the one given, background from\n"
+    "                                    the interreflected light\n"
     "  polar FILE.ies|FILE.ldt|FILE.xml [--out polar.png] [--step DEG]\n"
     "                                    polar candela diagram (C0-C180, C90-C270) and its table\n"
     "  validate [--case NAME]... [--list]\n"
@@ -104,6 +109,7 @@ int main(int argc, char** argv) {
         if (command == "bench") return candela::cmdBench(args);
         if (command == "grid") return candela::cmdGrid(args);
         if (command == "surfaces") return candela::cmdSurfaces(args);
+        if (command == "glare") return candela::cmdGlare(args);
         if (command == "polar") return candela::cmdPolar(args);
         if (command == "validate") return candela::cmdValidate(args);
         std::fprintf(stderr, "candela: unknown command \"%s\"\n%s", command.c_str(), kUsage);

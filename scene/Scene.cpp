@@ -45,6 +45,7 @@ Scene Scene::clone() const {
     copy.maintenanceFactor = maintenanceFactor;
     copy.taskAreas = taskAreas;
     copy.calcPoints = calcPoints;
+    copy.glareObservers = glareObservers;
     return copy;
 }
 

@@ -10,6 +10,7 @@
 
 #include "luminaires/Luminaire.h"
 #include "scene/CalculationSurfaces.h"
+#include "scene/Glare.h"
 
 namespace candela {
 class EnvironmentMap;
@@ -88,6 +89,8 @@ struct Scene {
     /// `candela surfaces`.
     std::vector<TaskArea> taskAreas;
     std::vector<CalcPoint> calcPoints;
+    /// Where UGR is rated (scene/Glare.h), by `candela glare`.
+    std::vector<GlareObserver> glareObservers;
 
     Scene() = default;
     Scene(Scene&&) = default;

@@ -483,7 +483,7 @@ Scene parseScene(const nlohmann::json& doc, const std::string& path) {
     const json::Where root{path, ""};
     json::checkKeys(doc,
                     {"geometry", "luminaires", "environment", "camera", "maintenance_factor",
-                     "task_areas", "calculation_points"},
+                     "task_areas", "calculation_points", "glare_observers"},
                     root);
     Scene scene;
     scene.path = path;
@@ -536,6 +536,13 @@ Scene parseScene(const nlohmann::json& doc, const std::string& path) {
         for (size_t i = 0; i < items.size(); ++i)
             scene.calcPoints.push_back(parseCalcPoint(items[i], (root / "calculation_points")[i]));
     }
+    if (doc.contains("glare_observers")) {
+        const nlohmann::json& items = doc["glare_observers"];
+        if (!items.is_array()) json::fail(root / "glare_observers", "an array of observers");
+        for (size_t i = 0; i < items.size(); ++i)
+            scene.glareObservers.push_back(
+                parseGlareObserver(items[i], (root / "glare_observers")[i]));
+    }
     return scene;
 }
 
@@ -554,6 +561,8 @@ nlohmann::json sceneToJson(const Scene& scene) {
     if (scene.maintenanceFactor != 1.0) doc["maintenance_factor"] = scene.maintenanceFactor;
     for (const TaskArea& a : scene.taskAreas) doc["task_areas"].push_back(toJson(a));
     for (const CalcPoint& p : scene.calcPoints) doc["calculation_points"].push_back(toJson(p));
+    for (const GlareObserver& o : scene.glareObservers)
+        doc["glare_observers"].push_back(toJson(o));
     return doc;
 }
 

@@ -26,6 +26,7 @@ SceneSnapshot snapshot(const EditorState& state, bool geometry) {
     out.maintenanceFactor = scene.maintenanceFactor;
     out.taskAreas = scene.taskAreas;
     out.calcPoints = scene.calcPoints;
+    out.glareObservers = scene.glareObservers;
     out.environment = scene.environment;
     out.environmentMap = scene.environmentMap;
     out.environmentSequence = scene.environmentSequence;
@@ -46,6 +47,7 @@ void restore(EditorState& state, SceneSnapshot& from) {
     scene.maintenanceFactor = from.maintenanceFactor;
     scene.taskAreas = std::move(from.taskAreas);
     scene.calcPoints = std::move(from.calcPoints);
+    scene.glareObservers = std::move(from.glareObservers);
     state.measure.surfaces.reset();  // computed for the surfaces being replaced
     scene.environment = std::move(from.environment);
     scene.environmentMap = std::move(from.environmentMap);

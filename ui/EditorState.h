@@ -214,6 +214,7 @@ struct SceneSnapshot {
     double maintenanceFactor = 1.0;
     std::vector<TaskArea> taskAreas;  ///< Small: kept by every step.
     std::vector<CalcPoint> calcPoints;
+    std::vector<GlareObserver> glareObservers;
     nlohmann::json environment;
     std::shared_ptr<const EnvironmentMap> environmentMap;
     std::shared_ptr<EnvironmentSequence> environmentSequence;

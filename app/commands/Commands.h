@@ -21,6 +21,7 @@ int cmdConvert(const Args& args);
 int cmdBench(const Args& args);
 int cmdGrid(const Args& args);
 int cmdSurfaces(const Args& args);
+int cmdGlare(const Args& args);
 int cmdPolar(const Args& args);
 int cmdValidate(const Args& args);
 
@@ -31,6 +32,8 @@ std::vector<float> parseNumberList(const std::string& flag, const std::string& t
 /// Value following a flag, or throws InputError naming the flag.
 const std::string& flagValue(const Args& args, size_t& i);
 int parseInt(const std::string& flag, const std::string& text, int min, int max);
+/// A finite number in min..max; throws InputError "FLAG: expected a number in MIN..MAX, got ...".
+double parseDouble(const std::string& flag, const std::string& text, double min, double max);
 
 /// The flags `grid` and `surfaces` share (how illuminance is evaluated): --spp N, --technique T,
 /// --env-technique T, --visibility, --indirect, --patches N. When args[i] is one of them, reads

@@ -34,18 +34,6 @@ double seconds(Clock::time_point a, Clock::time_point b) {
     return std::chrono::duration<double>(b - a).count();
 }
 
-double parseNumber(const std::string& flag, const std::string& text, double min, double max) {
-    try {
-        size_t used = 0;
-        double v = std::stod(text, &used);
-        if (used == text.size() && std::isfinite(v) && v >= min && v <= max) return v;
-    } catch (const std::exception&) {
-    }
-    char range[96];
-    std::snprintf(range, sizeof range, "a number in %g..%g", min, max);
-    throw InputError(flag + ": expected " + range + ", got \"" + text + "\"");
-}
-
 /// Percentages on stderr, at most one line a second, so short conversions stay quiet.
 class Progress {
   public:
@@ -90,9 +78,9 @@ bool parseLayoutFlag(const Args& args, size_t& i, LayoutOptions& layout) {
         int n = parseInt(a, flagValue(args, i), 4, 4096);
         layout.resolution = {n, n};
     } else if (a == "--delta") {
-        layout.delta = parseNumber(a, flagValue(args, i), 1e-6, 100.0);  // metres
+        layout.delta = parseDouble(a, flagValue(args, i), 1e-6, 100.0);  // metres
     } else if (a == "--coverage") {
-        layout.coverage = parseNumber(a, flagValue(args, i), 0.9, 0.99999);
+        layout.coverage = parseDouble(a, flagValue(args, i), 0.9, 0.99999);
     } else if (a == "--axis") {
         layout.axis = parseAxis(flagValue(args, i));
     } else {
@@ -155,7 +143,7 @@ ConvertOptions parseArgs(const Args& args) {
         } else if (a == "--procedural") {
             o.procedural = flagValue(args, i);
         } else if (a == "--rays") {
-            o.rays = uint64_t(parseNumber(a, flagValue(args, i), 1000, 1e9));
+            o.rays = uint64_t(parseDouble(a, flagValue(args, i), 1000, 1e9));
         } else if (a == "--raw-flux") {
             o.rawFlux = true;
         } else if (parseLayoutFlag(args, i, o.layout)) {

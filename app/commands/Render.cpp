@@ -80,6 +80,18 @@ int parseInt(const std::string& flag, const std::string& text, int min, int max)
                      std::to_string(max) + ", got \"" + text + "\"");
 }
 
+double parseDouble(const std::string& flag, const std::string& text, double min, double max) {
+    try {
+        size_t used = 0;
+        double v = std::stod(text, &used);
+        if (used == text.size() && std::isfinite(v) && v >= min && v <= max) return v;
+    } catch (const std::exception&) {
+    }
+    char range[96];
+    std::snprintf(range, sizeof range, "a number in %g..%g", min, max);
+    throw InputError(flag + ": expected " + range + ", got \"" + text + "\"");
+}
+
 namespace {
 
 /// "--pane LIST[:SPP]": a pane's technique list and its sample budget (default spp).
