@@ -77,6 +77,10 @@ const char* kUsage =
     "                                    Unified Glare Rating (CIE 117) at the scene's\n"
     "                                    \"glare_observers\" or the one given, background from\n"
     "                                    the interreflected light\n"
+    "  report scene.json --out report.pdf [--title T] [--spp N] [--visibility] [--indirect]\n"
+    "                                    [--view-size WxH] [--view-spp N] [--no-view]\n"
+    "                                    a PDF report: luminaire schedule, polar diagrams,\n"
+    "                                    surfaces with false colour and values, UGR, a view\n"
     "  polar FILE.ies|FILE.ldt|FILE.xml [--out polar.png] [--step DEG]\n"
     "                                    polar candela diagram (C0-C180, C90-C270) and its table\n"
     "  validate [--case NAME]... [--list]\n"
@@ -110,6 +114,7 @@ int main(int argc, char** argv) {
         if (command == "grid") return candela::cmdGrid(args);
         if (command == "surfaces") return candela::cmdSurfaces(args);
         if (command == "glare") return candela::cmdGlare(args);
+        if (command == "report") return candela::cmdReport(args);
         if (command == "polar") return candela::cmdPolar(args);
         if (command == "validate") return candela::cmdValidate(args);
         std::fprintf(stderr, "candela: unknown command \"%s\"\n%s", command.c_str(), kUsage);

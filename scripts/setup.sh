@@ -7,6 +7,8 @@ packages=(
   libosmesa6-dev libgl-dev libegl-dev libgtest-dev libbenchmark-dev nlohmann-json3-dev libembree-dev
   libzip-dev libpugixml-dev  # GLDF containers (luminaires/Gldf.h)
   libtinyobjloader-dev  # L3D geometry's OBJ parts (luminaires/L3d.h)
+  libcairo2-dev  # the PDF report (report/Report.h)
+  poppler-utils  # pdftotext and pdftoppm: the report's test reads its pages
   xvfb xdotool imagemagick x11-utils mesa-utils clang-format gnuplot-nox
   fonts-dejavu-core openimageio-tools
   glslang-tools  # glslangValidator: every shader variant checked against GLSL 4.50 core

@@ -8,6 +8,7 @@
 namespace candela {
 
 struct CalcPlane;
+struct Scene;
 struct GridResult;
 struct GridSpec;
 
@@ -22,6 +23,7 @@ int cmdBench(const Args& args);
 int cmdGrid(const Args& args);
 int cmdSurfaces(const Args& args);
 int cmdGlare(const Args& args);
+int cmdReport(const Args& args);
 int cmdPolar(const Args& args);
 int cmdValidate(const Args& args);
 
@@ -39,6 +41,11 @@ double parseDouble(const std::string& flag, const std::string& text, double min,
 /// --env-technique T, --visibility, --indirect, --patches N. When args[i] is one of them, reads
 /// it (and its value, advancing i) into `how` and returns true.
 bool parseEvaluationFlag(const Args& args, size_t& i, GridSpec& how);
+
+/// The scene from its camera, offscreen (OSMesa): `spp` samples per pixel with the interreflected
+/// light, tone-mapped as `render` draws it; 8-bit RGB rows top to bottom. `note` says how.
+std::vector<unsigned char> renderSceneView(const Scene& scene, int width, int height, int spp,
+                                           std::string& note);
 
 /// `grid --csv`: x,y,z,E_lx,E_stderr_lx (_W_m2 for a radiometric scene) through a temporary file
 /// and a rename (util/FileOutput.h); throws InputError naming the file.

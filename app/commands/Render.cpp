@@ -412,6 +412,32 @@ void writeRender(const Renderer& renderer, const Scene& scene, const RenderOptio
 
 }  // namespace
 
+std::vector<unsigned char> renderSceneView(const Scene& scene, int width, int height, int spp,
+                                           std::string& note) {
+    RenderOptions o;
+    o.settings.width = width;
+    o.settings.height = height;
+    if (scene.camera.exposure > 0.0) o.settings.exposure = float(scene.camera.exposure);
+    o.spp = spp;
+    o.settings.samplesPerFrame = std::min(spp, 16);
+    o.settings.maxSamples = spp;
+    auto context = createOffscreenContext();
+    ShaderLibrary shaders;
+    Renderer renderer(shaders);
+    renderer.setSettings(o.settings);
+    renderer.update(scene, kChangeAll);
+    auto start = Clock::now();
+    std::string indirect = addInterreflection(renderer, scene, o, start);
+    int frames = 0;
+    refine(renderer, spp, frames);
+    char text[256];
+    std::snprintf(text, sizeof text, "%dx%d pixels, %d samples per pixel, each luminaire's own "
+                  "technique; %s; %.1f s", width, height, spp, indirect.c_str(),
+                  std::chrono::duration<double>(Clock::now() - start).count());
+    note = text;
+    return renderer.readDisplay();
+}
+
 int cmdRender(const Args& args) {
     RenderOptions o = parseRenderOptions(args);
     if (!o.paneTexts.empty() || !o.sheetDir.empty()) return renderSheet(o);

@@ -1,0 +1,121 @@
+// `candela report`: the PDF report of a scene (report/Report.h): its calculation surfaces and
+// points as `candela surfaces` computes them, the UGR at its observers as `candela glare` does, a
+// luminaire schedule with polar diagrams and a view rendered from its camera.
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+
+#include "app/commands/Commands.h"
+#include "report/Report.h"
+#include "scene/SceneIo.h"
+#include "util/Error.h"
+#include "util/FileOutput.h"
+
+namespace candela {
+
+namespace {
+
+std::string today() {
+    std::time_t now = std::time(nullptr);
+    std::tm utc{};
+    gmtime_r(&now, &utc);
+    char buf[16];
+    std::strftime(buf, sizeof buf, "%Y-%m-%d", &utc);
+    return buf;
+}
+
+/// What `how` asks of the estimators, as the report states it.
+std::string evaluationText(const GridSpec& how) {
+    std::string out = how.technique.empty() ? "each luminaire's own technique"
+                                            : "technique " + how.technique;
+    out += ", " + std::to_string(how.spp) + " samples per point and luminaire for Monte Carlo "
+           "techniques";
+    out += how.visibility || how.indirect ? ", shadows" : ", no shadows (--visibility adds them)";
+    out += how.indirect ? ", interreflected light from " + std::to_string(how.patches) +
+                              " radiosity patches and a final gather"
+                        : ", direct light only (--indirect adds the interreflected light)";
+    return out;
+}
+
+}  // namespace
+
+int cmdReport(const Args& args) {
+    std::string scenePath, out, title;
+    GridSpec how;
+    int viewWidth = 960, viewHeight = 540, viewSpp = 64;
+    bool view = true;
+    for (size_t i = 0; i < args.size(); ++i) {
+        const std::string& a = args[i];
+        if (parseEvaluationFlag(args, i, how))
+            continue;
+        else if (a == "--out")
+            out = flagValue(args, i);
+        else if (a == "--title")
+            title = flagValue(args, i);
+        else if (a == "--view-size")
+            parseSize(flagValue(args, i), viewWidth, viewHeight);
+        else if (a == "--view-spp")
+            viewSpp = parseInt(a, flagValue(args, i), 1, 65536);
+        else if (a == "--no-view")
+            view = false;
+        else if (!a.empty() && a[0] == '-')
+            throw InputError("report: unknown option " + a);
+        else if (scenePath.empty())
+            scenePath = a;
+        else
+            throw InputError("report: unexpected argument " + a);
+    }
+    if (scenePath.empty() || out.empty())
+        throw InputError(
+            "usage: candela report scene.json --out report.pdf [--title T] [--spp N] "
+            "[--technique T] [--visibility] [--indirect [--patches N]] [--view-size WxH] "
+            "[--view-spp N] [--no-view]");
+    if (std::filesystem::path(out).extension() != ".pdf")
+        throw InputError(out + ": the report is a PDF: name it NAME.pdf");
+    Scene scene = loadScene(scenePath);
+    ProtectedInputs inputs(scene.inputFiles());
+    checkNotAnInput(out, "--out");
+    auto status = [](const std::string& s) { std::fprintf(stderr, "report: %s\n", s.c_str()); };
+
+    ReportInput in;
+    in.scene = &scene;
+    in.title = title.empty() ? std::filesystem::path(scenePath).stem().string() : title;
+    in.date = today();
+    in.evaluation = evaluationText(how);
+    if (!scene.taskAreas.empty() || !scene.calcPoints.empty())
+        in.surfaces = computeSurfaces(scene, how, status);
+    else
+        in.surfaces.units = scene.units(), in.surfaces.maintenance = scene.maintenanceNote();
+    if (!scene.glareObservers.empty())
+        in.glare = computeGlare(scene, how, {}, status);
+    else
+        in.glareNote = "The scene places no glare observers (\"glare_observers\"): no UGR.";
+    if (view) {
+        try {
+            status("rendering the view");
+            in.view = renderSceneView(scene, viewWidth, viewHeight, viewSpp, in.viewNote);
+            in.viewWidth = viewWidth;
+            in.viewHeight = viewHeight;
+        } catch (const std::exception& e) {
+            in.view.clear();
+            in.viewNote = e.what();
+            std::fprintf(stderr, "report: warning: the view was not rendered: %s\n", e.what());
+        }
+    } else {
+        in.viewNote = "--no-view";
+    }
+    std::string pdf = reportPdf(in);
+    writeFileAtomically(out, pdf, "cannot write the report");
+    int failed = 0;
+    for (const SurfaceResult& s : in.surfaces.surfaces) failed += !s.passes;
+    for (const PointResult& p : in.surfaces.points) failed += !p.passes;
+    if (in.glare)
+        for (const GlareResult& g : in.glare->observers) failed += !g.passes;
+    std::printf("wrote %s (%zu bytes): %zu surfaces, %zu points, %zu observers, %d requirement%s "
+                "not met\n",
+                out.c_str(), pdf.size(), in.surfaces.surfaces.size(), in.surfaces.points.size(),
+                in.glare ? in.glare->observers.size() : size_t(0), failed, failed == 1 ? "" : "s");
+    return 0;
+}
+
+}  // namespace candela

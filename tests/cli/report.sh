@@ -1,0 +1,71 @@
+#!/usr/bin/env bash
+# `candela report`: the office scene's PDF report has every section issue 21 part 7 asks for
+# (project, luminaire schedule, polar diagrams, each calculation surface with its summary, value
+# table, false-colour picture, legend and isolux lines, the points, the UGR values, a rendered
+# view, the method), read back by poppler's pdftotext; its numbers are `candela surfaces`',
+# `candela glare`'s and `candela grid`'s (the desk's Em, U0, Emin and Emax and its 50 values);
+# poppler's pdftoppm turns every page into a picture that is not blank, and the first page shows
+# the rendered view in colour. Refusals write nothing.
+set -uo pipefail
+binary=$1
+root="$2/.."
+failures=0
+passed=0
+check() { if eval "$2"; then passed=$((passed + 1)); else failures=$((failures + 1)); echo "FAIL: $1"; fi; }
+source "$2/cli/lib/expect.sh"
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+scene="$root/resources/scenes/office.json"
+
+out=$("$binary" report "$scene" --out "$tmp/office.pdf" --view-size 480x270 --view-spp 8 2>"$tmp/err")
+check "report exits 0: $out $(tail -3 "$tmp/err")" '[ -s "$tmp/office.pdf" ] && grep -q "wrote .*office.pdf" <<<"$out"'
+pages=$(pdfinfo "$tmp/office.pdf" 2>/dev/null | sed -n 's/^Pages: *//p')
+check "the PDF opens in poppler with several pages ($pages)" '[ "${pages:-0}" -ge 4 ]'
+pdftotext -layout "$tmp/office.pdf" "$tmp/office.txt"
+text=$(cat "$tmp/office.txt")
+for section in "Lighting report" "Project" "Summary" "Rendered view" "Luminaire schedule" \
+               "Polar diagrams" "Calculation surfaces (EN 12464-1)" "Desk (task area)" \
+               "Desk: immediate surrounding" "Desk: background" "Calculation points" \
+               "Glare: UGR (CIE 117)" "How this was computed" "isolux lines at" "Values in lx"; do
+  check "section \"$section\"" 'grep -qF "$section" <<<"$text"'
+done
+check "the schedule: six Halo downlights of 796.54 lm and 75 W" 'grep -E "^ *6 +Downlight 1 .. Downlight 6 +Halo" <<<"$text" | grep -q "796.54 *75 *10.6"'
+
+surfaces=$("$binary" surfaces "$scene" 2>/dev/null)
+while IFS= read -r line; do
+  summary=$(sed 's/^ *//' <<<"$line")
+  check "the report states \"$summary\" as candela surfaces does" 'grep -qF "$summary" <<<"$text"'
+done < <(grep -E "^  E(z)?m " <<<"$surfaces")
+glare=$("$binary" glare "$scene" 2>/dev/null)
+for ugr in $(sed -n 's/^  UGR \([0-9.]*\),.*/\1/p' <<<"$glare"); do
+  check "the report's UGR table has candela glare's $ugr" 'grep -E "(PASS|FAIL)" <<<"$text" | grep -qE " $ugr +19 +(PASS|FAIL)"'
+done
+grid=$("$binary" grid "$scene" --plane y=0.75 --extent -0.4,-0.7,1.2,0.1 --spacing 0.16 2>/dev/null)
+eavg=$(sed -n 's/^Eavg: \([0-9.]*\) lx/\1/p' <<<"$grid")
+check "the desk's Em is candela grid's Eavg ($eavg lx) to the 4 digits printed" 'grep -qF "Em $(printf "%.4g" "$eavg") lx" <<<"$text"'
+# The desk's value table: every one of the grid's 50 values (from its CSV's full digits), rounded
+# as the table prints them.
+"$binary" grid "$scene" --plane y=0.75 --extent -0.4,-0.7,1.2,0.1 --spacing 0.16 --csv "$tmp/desk.csv" >/dev/null 2>&1
+want=$(awk -F, 'NR > 1 { printf "%.0f\n", $4 }' "$tmp/desk.csv" | sort -n | tr '\n' ' ')
+table=$(awk '/z \\ x \[m\]/ { n++ } n == 1 && /^ *-?[0-9]\.[0-9][0-9] +[0-9]/ && NF == 11 { for (i = 2; i <= 11; ++i) print $i }' "$tmp/office.txt" | sort -n | tr '\n' ' ')
+check "the desk's value table holds the grid's 50 values: [$table] vs [$want]" '[ -n "$want" ] && [ "$table" = "$want" ]'
+
+pdftoppm -r 40 -png "$tmp/office.pdf" "$tmp/page"
+blank=0
+for p in "$tmp"/page-*.png; do
+  sd=$(convert "$p" -colorspace Gray -format "%[fx:standard_deviation]" info:)
+  awk -v s="$sd" 'BEGIN { exit !(s > 0.01) }' || blank=$((blank + 1))
+done
+check "every page renders with something on it ($blank blank)" '[ "$blank" -eq 0 ] && [ $(ls "$tmp"/page-*.png | wc -l) -eq "$pages" ]'
+first=$(ls "$tmp"/page-*.png | head -1)
+saturation=$(convert "$first" -colorspace HSL -channel G -separate -format "%[fx:maxima]" info:)
+check "the first page shows the rendered view in colour (max saturation $saturation)" 'awk -v s="$saturation" "BEGIN { exit !(s > 0.1) }"'
+
+expect "the report is a PDF: name it NAME.pdf" -- report "$scene" --out "$tmp/report.png"
+cp "$scene" "$tmp/office.json"
+ln -s "$(cd "$(dirname "$scene")" && pwd)/office.json" "$tmp/link.pdf"
+expect "would overwrite this input" -- report "$scene" --out "$tmp/link.pdf" --no-view
+check "nothing written on a refusal" '[ ! -e "$tmp/report.png" ] && cmp -s "$scene" "$tmp/office.json"'
+
+echo "report: $passed passed, $failures failed"
+[ "$failures" -eq 0 ]
