@@ -47,9 +47,12 @@ inline void checkPhotometry(const uint8_t* data, size_t size, PhotometryFormat f
     auto parse = [&](bool strict) {
         PhotometryOptions options{.strict = strict};
         switch (format) {
-            case PhotometryFormat::Ldt: return parseEulumdat(text, path, options);
-            case PhotometryFormat::Ies: return parseIes(text, path, options);
-            case PhotometryFormat::Tm33: break;
+            case PhotometryFormat::Ldt:
+                return parseEulumdat(text, path, options);
+            case PhotometryFormat::Ies:
+                return parseIes(text, path, options);
+            case PhotometryFormat::Tm33:
+                break;
         }
         return parseTm33(text, path, options);
     };

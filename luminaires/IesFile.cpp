@@ -170,7 +170,6 @@ void readTilt(TokenStream& in, PhotometricData& d) {
             fail(in.path(), line, "non-negative tilt multiplying factors", formatNumber(f));
 }
 
-
 /// LM-63-2002 Table 1 / LM-63-2019 Annex D luminous opening from signed width, length, height
 /// (metres). Negative values mark curved shapes; a zero horizontal size next to a negative one
 /// takes the other's magnitude (older files give a circle's diameter once).

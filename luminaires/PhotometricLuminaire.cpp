@@ -557,8 +557,8 @@ std::unique_ptr<Luminaire> PhotometricLuminaire::parse(const nlohmann::json& ent
                      "file", "scale", "colour", "opening"},
                     where);
     std::string resolved;
-    auto light =
-        parseCommon(entry, where, "the path of an .ies, .ldt or TM-33 .xml photometric file", resolved);
+    auto light = parseCommon(entry, where,
+                             "the path of an .ies, .ldt or TM-33 .xml photometric file", resolved);
     light->data = load(resolved);
     light->updateOpening();
     return light;

@@ -84,10 +84,9 @@ constexpr double kMaxLumens = 1e16;
 constexpr double kMaxOpening = 1e3;
 
 struct PhotometricData {
-    std::string path;  ///< File it came from (for messages).
-    std::string
-        format;  ///< "IES LM-63-1986", "IES LM-63-1991", "-1995", "-2002", "-2019", "EULUMDAT",
-                 ///< "IES TM-33-18", "IES TM-33-23".
+    std::string path;    ///< File it came from (for messages).
+    std::string format;  ///< "IES LM-63-1986", "IES LM-63-1991", "-1995", "-2002", "-2019",
+                         ///< "EULUMDAT", "IES TM-33-18", "IES TM-33-23".
     std::vector<std::pair<std::string, std::string>> keywords;  ///< IES [KEY] value / LDT fields.
     std::string name;  ///< Luminaire name (IES [LUMINAIRE] or LDT luminaire name), may be empty.
 

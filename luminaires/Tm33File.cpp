@@ -94,8 +94,7 @@ struct Tm33Reader {
     /// The child element `name` of `parent`, which must be there.
     pugi::xml_node child(const pugi::xml_node& parent, const char* name) const {
         pugi::xml_node c = parent.child(name);
-        if (!c)
-            failAt(parent, std::string("a <") + name + "> in <" + parent.name() + ">", "none");
+        if (!c) failAt(parent, std::string("a <") + name + "> in <" + parent.name() + ">", "none");
         return c;
     }
 
@@ -117,12 +116,14 @@ struct Tm33Reader {
         return v;
     }
 
-    int count(const pugi::xml_node& parent, const char* name, int lo, const std::string& what) const {
+    int count(const pugi::xml_node& parent, const char* name, int lo,
+              const std::string& what) const {
         pugi::xml_node c = child(parent, name);
         double v = number(c, what);
         if (!(v >= lo && v <= kMaxCount) || v != std::floor(v))
-            failAt(c, what + " (a whole number from " + std::to_string(lo) + " to " +
-                          std::to_string(kMaxCount) + ")",
+            failAt(c,
+                   what + " (a whole number from " + std::to_string(lo) + " to " +
+                       std::to_string(kMaxCount) + ")",
                    formatNumber(v));
         return int(v);
     }
@@ -240,7 +241,8 @@ void readTilt(Tm33Reader& r, const pugi::xml_node& emitter) {
         double factor = r.number(t, "tilt multiplying factor");
         if (!(angle >= -360.0 && angle <= 360.0))
             r.failAt(t, "a tilt angle between -360 and 360 degrees", formatNumber(angle));
-        if (factor < 0.0) r.failAt(t, "a non-negative tilt multiplying factor", formatNumber(factor));
+        if (factor < 0.0)
+            r.failAt(t, "a non-negative tilt multiplying factor", formatNumber(factor));
         table.emplace_back(angle, factor);
     }
     if (int(table.size()) != n)
@@ -285,12 +287,12 @@ bool readIntensities(Tm33Reader& r, const pugi::xml_node& intensity) {
     std::vector<Entry> entries;
     for (pugi::xml_node e : intensity.children("IntData")) {
         if (entries.size() >= size_t(measured))
-            r.failAt(e, std::to_string(measured) + " <IntData> elements (NumberMeasured)",
-                     "more");
+            r.failAt(e, std::to_string(measured) + " <IntData> elements (NumberMeasured)", "more");
         Entry x{r.attribute(e, "h"), r.attribute(e, "v"), r.number(e, "an intensity in cd"), e};
         if (x.cd < 0.0)
-            r.failAt(e, "a non-negative intensity (h " + formatNumber(x.h) + ", v " +
-                            formatNumber(x.v) + ")",
+            r.failAt(e,
+                     "a non-negative intensity (h " + formatNumber(x.h) + ", v " +
+                         formatNumber(x.v) + ")",
                      formatNumber(x.cd));
         entries.push_back(x);
     }
@@ -307,7 +309,8 @@ bool readIntensities(Tm33Reader& r, const pugi::xml_node& intensity) {
                  std::to_string(nh) + " horizontal angles (NumberHorz)",
                  std::to_string(given.size()) + " in the <IntData> elements");
     if (d.vertical.size() != size_t(nv))
-        r.failAt(intensity.child("NumberVert"), std::to_string(nv) + " vertical angles (NumberVert)",
+        r.failAt(intensity.child("NumberVert"),
+                 std::to_string(nv) + " vertical angles (NumberVert)",
                  std::to_string(d.vertical.size()) + " in the <IntData> elements");
 
     bool typeC = d.goniometer == Goniometer::C;
@@ -315,12 +318,14 @@ bool readIntensities(Tm33Reader& r, const pugi::xml_node& intensity) {
     double hLo = typeC ? 0.0 : -180.0, hHi = typeC ? 360.0 : 180.0;
     for (const Entry& e : entries) {
         if (!(e.v >= vLo && e.v <= vHi))
-            r.failAt(e.node, "a vertical angle v between " + formatNumber(vLo) + " and " +
-                                 formatNumber(vHi) + " degrees",
+            r.failAt(e.node,
+                     "a vertical angle v between " + formatNumber(vLo) + " and " +
+                         formatNumber(vHi) + " degrees",
                      formatNumber(e.v));
         if (!(e.h >= hLo && e.h <= hHi))
-            r.failAt(e.node, "a horizontal angle h between " + formatNumber(hLo) + " and " +
-                                 formatNumber(hHi) + " degrees",
+            r.failAt(e.node,
+                     "a horizontal angle h between " + formatNumber(hLo) + " and " +
+                         formatNumber(hHi) + " degrees",
                      formatNumber(e.h));
     }
     d.symmetry = photometry_detail::symmetryOfRange(d.goniometer, given, r.path,
@@ -330,8 +335,7 @@ bool readIntensities(Tm33Reader& r, const pugi::xml_node& intensity) {
         if (s != "SYMM_ARBITRARY" && s != normalised(symmetryWord(d.symmetry)))
             r.failAt(symm,
                      std::string(symmetryWord(d.symmetry)) + " (what horizontal angles " +
-                         formatNumber(given.front()) + ".." + formatNumber(given.back()) +
-                         " give)",
+                         formatNumber(given.front()) + ".." + formatNumber(given.back()) + " give)",
                      "\"" + toValidUtf8(trimmed(symm.child_value()).substr(0, 40)) + "\"");
         d.keywords.emplace_back("Symm", toValidUtf8(trimmed(symm.child_value())));
     }
@@ -368,8 +372,7 @@ struct FaceAreas {
 };
 
 FaceAreas readFace(const Tm33Reader& r, const pugi::xml_node& face, const char* areaName,
-                   const char* sizeA, const char* sizeB, const char* offsetA,
-                   const char* offsetB) {
+                   const char* sizeA, const char* sizeB, const char* offsetA, const char* offsetB) {
     FaceAreas f;
     double loA = 0, hiA = 0, loB = 0, hiB = 0;
     for (pugi::xml_node area : face.children(areaName)) {
@@ -384,8 +387,8 @@ FaceAreas readFace(const Tm33Reader& r, const pugi::xml_node& face, const char* 
                          formatNumber(s));
         for (double o : {oa, ob})
             if (!(std::abs(o) <= kMaxOpening))
-                r.failAt(area, "emission area offsets of at most " + formatNumber(kMaxOpening) +
-                                   " m",
+                r.failAt(area,
+                         "emission area offsets of at most " + formatNumber(kMaxOpening) + " m",
                          formatNumber(o));
         if (f.count == 0) {
             loA = oa - a / 2, hiA = oa + a / 2, loB = ob - b / 2, hiB = ob + b / 2;
@@ -442,15 +445,17 @@ void readOpening(Tm33Reader& r, const pugi::xml_node& root, const pugi::xml_node
                    Side{"C90Face", "C90Area", "Width", "WidthOffset"},
                    Side{"C180Face", "C180Area", "Length", "LengthOffset"},
                    Side{"C270Face", "C270Area", "Width", "WidthOffset"}}) {
-        FaceAreas f = readFace(r, areas.child(s.face), s.area, s.size, "Height", s.offset,
-                               "HeightOffset");
+        FaceAreas f =
+            readFace(r, areas.child(s.face), s.area, s.size, "Height", s.offset, "HeightOffset");
         if (f.count == 0) continue;
         height = std::max(height, f.b);
         sideCount += f.count;
         sideOffset = sideOffset || f.offset;
         if (bottom.count == 0) {  // sides only: the box they bound
-            if (s.size[0] == 'W') o.width = std::max(o.width, f.a);
-            else o.length = std::max(o.length, f.a);
+            if (s.size[0] == 'W')
+                o.width = std::max(o.width, f.a);
+            else
+                o.length = std::max(o.length, f.a);
         }
     }
     if (bottom.count > 0) {
@@ -465,13 +470,12 @@ void readOpening(Tm33Reader& r, const pugi::xml_node& root, const pugi::xml_node
         o.shape = LuminousOpening::Shape::Rectangle;  // a box when height > 0
     int line = r.line(areas);
     if (bottom.count > 1)
-        photometry_detail::allow(d, r.options, line,
-                                 std::to_string(bottom.count) + " " + horizontalFace +
-                                     " emission areas",
-                                 "the opening is the rectangle bounding them");
+        photometry_detail::allow(
+            d, r.options, line,
+            std::to_string(bottom.count) + " " + horizontalFace + " emission areas",
+            "the opening is the rectangle bounding them");
     else if (bottom.offset || sideOffset)
-        photometry_detail::allow(d, r.options, line,
-                                 "an emission area off the photometric centre",
+        photometry_detail::allow(d, r.options, line, "an emission area off the photometric centre",
                                  "the opening is centred on it");
     if (sideCount > 0 && bottom.count == 0 && o.length * o.width == 0.0)
         photometry_detail::allow(d, r.options, line, "side emission areas only",
@@ -498,10 +502,10 @@ void readEmitter(Tm33Reader& r, const pugi::xml_node& root, const pugi::xml_node
     bool relative = readIntensities(r, intensity);
     double lampFlux = double(quantity) * rated;
     if (!(lampFlux <= kMaxLumens))
-        r.failAt(emitter.child("RatedLumens"),
-                 "a rated flux (Quantity x RatedLumens) of at most " + formatNumber(kMaxLumens) +
-                     " lm",
-                 formatNumber(lampFlux) + " lm");
+        r.failAt(
+            emitter.child("RatedLumens"),
+            "a rated flux (Quantity x RatedLumens) of at most " + formatNumber(kMaxLumens) + " lm",
+            formatNumber(lampFlux) + " lm");
     d.lampFlux = relative && lampFlux > 0.0 ? lampFlux : -1.0;
     if (!relative && rated > 0.0) d.keywords.emplace_back("RatedLumens", formatNumber(rated));
     d.statedFlux = r.optionalNumber(luminous, "LuminousFlux", 0.0, "luminous flux in lm");
@@ -525,8 +529,8 @@ PhotometricData parseTm33(const std::string& bytes, const std::string& path,
                                  "text in Windows-1252, not UTF-8 or UTF-16",
                                  "transcoded to UTF-8");
     pugi::xml_document doc;
-    pugi::xml_parse_result parsed = doc.load_buffer(r.text.data(), r.text.size(),
-                                                    pugi::parse_default, pugi::encoding_utf8);
+    pugi::xml_parse_result parsed =
+        doc.load_buffer(r.text.data(), r.text.size(), pugi::parse_default, pugi::encoding_utf8);
     if (!parsed) {
         size_t end = std::min(size_t(std::max<ptrdiff_t>(parsed.offset, 0)), r.text.size());
         int line = 1 + int(std::count(r.text.begin(), r.text.begin() + ptrdiff_t(end), '\n'));
@@ -567,11 +571,21 @@ std::string escaped(const std::string& s) {
     std::string out;
     for (char c : toValidUtf8(s)) {
         switch (c) {
-            case '&': out += "&amp;"; break;
-            case '<': out += "&lt;"; break;
-            case '>': out += "&gt;"; break;
-            case '"': out += "&quot;"; break;
-            case '\'': out += "&apos;"; break;
+            case '&':
+                out += "&amp;";
+                break;
+            case '<':
+                out += "&lt;";
+                break;
+            case '>':
+                out += "&gt;";
+                break;
+            case '"':
+                out += "&quot;";
+                break;
+            case '\'':
+                out += "&apos;";
+                break;
             default:
                 if (static_cast<unsigned char>(c) >= 0x20 || c == '\t' || c == '\n') out += c;
         }
@@ -600,11 +614,16 @@ bool keeps(const PhotometricData& d, double h) {
         return true;
     }
     switch (d.symmetry) {
-        case Sym::Axial: return h == d.horizontal.front();
-        case Sym::Quadrant: return h <= 90.0 + e;
-        case Sym::PlaneC0C180: return h <= 180.0 + e;
-        case Sym::PlaneC90C270: return h >= 90.0 - e && h <= 270.0 + e;
-        case Sym::None: return true;
+        case Sym::Axial:
+            return h == d.horizontal.front();
+        case Sym::Quadrant:
+            return h <= 90.0 + e;
+        case Sym::PlaneC0C180:
+            return h <= 180.0 + e;
+        case Sym::PlaneC90C270:
+            return h >= 90.0 - e && h <= 270.0 + e;
+        case Sym::None:
+            return true;
     }
     return true;
 }
@@ -638,8 +657,9 @@ std::string writeTm33(const PhotometricData& d, const std::string& date,
     element(2, "DocumentCreationDate", date);
     element(2, "Comment", "Converted from " + source + " (" + d.format + ").");
     if (!dated)
-        element(2, "Comment", "ReportDate is the date of this conversion: " + source +
-                                  " states no report date in this form.");
+        element(2, "Comment",
+                "ReportDate is the date of this conversion: " + source +
+                    " states no report date in this form.");
     x << "  </Header>\n  <Luminaire>\n    <Dimensions>\n";
     element(3, "Length", num(d.opening.length));
     element(3, "Width", num(d.opening.width));
@@ -686,12 +706,14 @@ std::string writeTm33(const PhotometricData& d, const std::string& date,
                         (o.shape == Shape::Cylinder && o.axis == LuminousOpening::Axis::Z);
         if (o.shape == Shape::Sphere) {
             circular = true;
-            notes.push_back("the spherical opening is written as the vertical cylinder around it "
-                            "(TM-33 gives emission areas on a box's faces)");
+            notes.push_back(
+                "the spherical opening is written as the vertical cylinder around it "
+                "(TM-33 gives emission areas on a box's faces)");
         } else if (o.shape == Shape::Cylinder && o.axis != LuminousOpening::Axis::Z) {
             circular = false;
-            notes.push_back("the lying cylindrical opening is written as the box around it "
-                            "(TM-33 gives emission areas on a box's faces)");
+            notes.push_back(
+                "the lying cylindrical opening is written as the box around it "
+                "(TM-33 gives emission areas on a box's faces)");
         }
         x << "    <EmissionAreas>\n";
         if (length > 0.0 && width > 0.0) {

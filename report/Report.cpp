@@ -127,7 +127,8 @@ class Pdf {
                 word += s[i];
                 continue;
             }
-            while (word.size() > 1 && textWidth(word) > width) word = word.substr(0, word.size() - 2) + "~";
+            while (word.size() > 1 && textWidth(word) > width)
+                word = word.substr(0, word.size() - 2) + "~";
             std::string next = line.empty() ? word : line + " " + word;
             if (!line.empty() && textWidth(next) > width) {
                 lines.push_back(line);
@@ -143,9 +144,9 @@ class Pdf {
     /// A table: a bold header row, then rows; columns at the given widths (points), numbers
     /// (align 1) right-aligned, text wrapped within its column. Rows break across pages with the
     /// header repeated.
-    void table(const std::vector<std::string>& header, const std::vector<std::vector<std::string>>& rows,
-               const std::vector<double>& widths, const std::vector<double>& align,
-               double size = 8.0) {
+    void table(const std::vector<std::string>& header,
+               const std::vector<std::vector<std::string>>& rows, const std::vector<double>& widths,
+               const std::vector<double>& align, double size = 8.0) {
         double lineH = size * 1.3, pad = size * 0.3;
         auto layout = [&](const std::vector<std::string>& cells, bool bold) {
             font(size, bold);
@@ -297,20 +298,18 @@ void titlePage(Pdf& pdf, const ReportInput& in) {
     const char* unit = in.surfaces.units.irradiance();
     for (const SurfaceResult& s : in.surfaces.surfaces) {
         if (s.points.empty()) continue;
-        std::string verdict =
-            !s.required.any() ? "no requirement" : (s.passes ? "PASS" : "FAIL");
-        summary.push_back({s.name, fmt("%.4g ", s.summary.eAvg) + unit, fmt("%.3f", s.summary.u0),
-                           verdict});
+        std::string verdict = !s.required.any() ? "no requirement" : (s.passes ? "PASS" : "FAIL");
+        summary.push_back(
+            {s.name, fmt("%.4g ", s.summary.eAvg) + unit, fmt("%.3f", s.summary.u0), verdict});
     }
     for (const PointResult& p : in.surfaces.points)
-        summary.push_back({p.point.name + " (point)", fmt("%.4g ", p.E) + unit, "",
-                           p.point.requiredLux > 0.0 ? (p.passes ? "PASS" : "FAIL")
-                                                     : "no requirement"});
+        summary.push_back(
+            {p.point.name + " (point)", fmt("%.4g ", p.E) + unit, "",
+             p.point.requiredLux > 0.0 ? (p.passes ? "PASS" : "FAIL") : "no requirement"});
     if (in.glare)
         for (const GlareResult& g : in.glare->observers)
             summary.push_back({g.observer.name + " (UGR)", fmt("UGR %.1f", g.ugr), "",
-                               g.observer.limit > 0.0 ? (g.passes ? "PASS" : "FAIL")
-                                                      : "no limit"});
+                               g.observer.limit > 0.0 ? (g.passes ? "PASS" : "FAIL") : "no limit"});
     if (summary.empty())
         pdf.paragraph("The scene has no calculation surfaces, points or glare observers.");
     else
@@ -396,17 +395,18 @@ void scheduleSection(Pdf& pdf, const ReportInput& in) {
     double totalFlux = 0.0, totalPower = 0.0;
     int count = 0;
     for (const ScheduleRow& r : schedule) {
-        rows.push_back({std::to_string(r.count), r.names, r.manufacturer.empty() ? "-" : r.manufacturer,
-                        r.product.empty() ? shortPath(r.file) : r.product,
-                        fmt("%.5g", r.flux), r.power > 0.0 ? fmt("%.4g", r.power) : "-",
+        rows.push_back({std::to_string(r.count), r.names,
+                        r.manufacturer.empty() ? "-" : r.manufacturer,
+                        r.product.empty() ? shortPath(r.file) : r.product, fmt("%.5g", r.flux),
+                        r.power > 0.0 ? fmt("%.4g", r.power) : "-",
                         r.power > 0.0 ? fmt("%.1f", r.flux / r.power) : "-",
                         fmt("%.3g", r.maintenanceFactor)});
         totalFlux += r.flux * r.count;
         totalPower += r.power * r.count;
         count += r.count;
     }
-    pdf.table({"Count", "Luminaires", "Manufacturer", "Product", std::string("Flux [") + fluxUnit + "]",
-               "Power [W]", "lm/W", "MF"},
+    pdf.table({"Count", "Luminaires", "Manufacturer", "Product",
+               std::string("Flux [") + fluxUnit + "]", "Power [W]", "lm/W", "MF"},
               rows, {32, 104, 78, 116, 50, 48, 36, 31}, {1, 0, 0, 0, 1, 1, 1, 1}, 7.5);
     char total[200];
     std::snprintf(total, sizeof total,
@@ -433,9 +433,10 @@ void scheduleSection(Pdf& pdf, const ReportInput& in) {
     }
     if (distinct.empty()) return;
     pdf.heading("Polar diagrams", 12);
-    pdf.paragraph("Luminous intensity in cd, gamma 0 (the aim) at the bottom: C0-C180 solid "
-                  "(orange), C90-C270 dashed (blue).",
-                  8);
+    pdf.paragraph(
+        "Luminous intensity in cd, gamma 0 (the aim) at the bottom: C0-C180 solid "
+        "(orange), C90-C270 dashed (blue).",
+        8);
     const double size = 230.0, gap = kWidth - 2 * size;
     for (size_t k = 0; k < distinct.size(); ++k) {
         const PhotometricLuminaire& p = *distinct[k];
@@ -469,7 +470,8 @@ CellGrid cells(const SurfaceResult& s) {
     for (size_t k = 0; k < s.points.size(); ++k) {
         int i = int(std::floor((s.points[k].x - s.lo.x) / s.spacing.x));
         int j = int(std::floor((s.points[k].y - s.lo.y) / s.spacing.y));
-        if (i >= 0 && i < g.nx && j >= 0 && j < g.ny) g.v[size_t(j) * size_t(g.nx) + size_t(i)] = s.E[k];
+        if (i >= 0 && i < g.nx && j >= 0 && j < g.ny)
+            g.v[size_t(j) * size_t(g.nx) + size_t(i)] = s.E[k];
     }
     return g;
 }
@@ -492,7 +494,8 @@ double sampleCells(const CellGrid& g, double fx, double fy) {
         }
     // Inside the cell of a point the picture keeps its colour even where neighbours are missing.
     if (weight <= 1e-9) {
-        int i = std::clamp(int(std::floor(fx)), 0, g.nx - 1), j = std::clamp(int(std::floor(fy)), 0, g.ny - 1);
+        int i = std::clamp(int(std::floor(fx)), 0, g.nx - 1),
+            j = std::clamp(int(std::floor(fy)), 0, g.ny - 1);
         return g.at(i, j);
     }
     return sum / weight;
@@ -524,9 +527,10 @@ void surfacePicture(Pdf& pdf, const SurfaceResult& s, const char* unit) {
             double fx = (c + 0.5) / px * g.nx, fy = (1.0 - (r + 0.5) / py) * g.ny;
             double v = sampleCells(g, fx, fy);
             field[size_t(r) * size_t(px) + size_t(c)] = v;
-            glm::vec3 col = std::isnan(v) ? glm::vec3(1.0f)
-                                          : gpu::falseColour(gpu::legendPosition(
-                                                float(v), legend.min, legend.max, 0));
+            glm::vec3 col =
+                std::isnan(v)
+                    ? glm::vec3(1.0f)
+                    : gpu::falseColour(gpu::legendPosition(float(v), legend.min, legend.max, 0));
             unsigned char* p = &rgb[(size_t(r) * size_t(px) + size_t(c)) * 3];
             for (int k = 0; k < 3; ++k) p[k] = (unsigned char)std::lround(255.0f * col[k]);
         }
@@ -553,7 +557,8 @@ void surfacePicture(Pdf& pdf, const SurfaceResult& s, const char* unit) {
                     double t = a / (a - b);
                     const int* p0 = corner[e];
                     const int* p1 = corner[(e + 1) % 4];
-                    cross.push_back(pos(c + p0[0] + t * (p1[0] - p0[0]), r + p0[1] + t * (p1[1] - p0[1])));
+                    cross.push_back(
+                        pos(c + p0[0] + t * (p1[0] - p0[0]), r + p0[1] + t * (p1[1] - p0[1])));
                 }
                 for (size_t k = 0; k + 1 < cross.size(); k += 2) {
                     cairo_move_to(cr, cross[k].x, cross[k].y);
@@ -646,12 +651,13 @@ void surfacesSection(Pdf& pdf, const ReportInput& in) {
     const char* unit = r.units.irradiance();
     pdf.newPage();
     pdf.heading("Calculation surfaces (EN 12464-1)");
-    pdf.paragraph("Maintained illuminance on each task area, its immediate surrounding and its "
-                  "background, on the standard's grids; " +
-                      r.maintenance + "; light: " +
-                      (r.hasIndirect ? "direct and interreflected." : "direct only.") + " " +
-                      in.evaluation + ".",
-                  8);
+    pdf.paragraph(
+        "Maintained illuminance on each task area, its immediate surrounding and its "
+        "background, on the standard's grids; " +
+            r.maintenance +
+            "; light: " + (r.hasIndirect ? "direct and interreflected." : "direct only.") + " " +
+            in.evaluation + ".",
+        8);
     if (r.surfaces.empty()) pdf.paragraph("The scene has no task areas.");
     for (const SurfaceResult& s : r.surfaces) {
         // The heading, its summary and the picture on one page.
@@ -694,8 +700,8 @@ void surfacesSection(Pdf& pdf, const ReportInput& in) {
         if (c.cylindrical)
             std::snprintf(kind, sizeof kind, "cylindrical Ez");
         else
-            std::snprintf(kind, sizeof kind, "E, normal (%.2f, %.2f, %.2f)", c.normal.x,
-                          c.normal.y, c.normal.z);
+            std::snprintf(kind, sizeof kind, "E, normal (%.2f, %.2f, %.2f)", c.normal.x, c.normal.y,
+                          c.normal.z);
         rows.push_back({c.name, where, kind, fmt("%.4g ", p.E) + unit,
                         c.requiredLux > 0.0 ? fmt("%g ", c.requiredLux) + unit : "-",
                         c.requiredLux > 0.0 ? (p.passes ? "PASS" : "FAIL") : "-"});
@@ -711,13 +717,14 @@ void glareSection(Pdf& pdf, const ReportInput& in) {
         pdf.paragraph(in.glareNote, 8);
         return;
     }
-    pdf.paragraph("UGR = 8 log10(0.25 / Lb x sum L2 omega / p2) at each observer: L the "
-                  "luminance of each luminaire's opening towards the eye, omega its solid angle, "
-                  "p Guth's position index, Lb the background luminance (the interreflected "
-                  "illuminance at the eye over pi, unless given). Openings under 0.005 m2 take "
-                  "CIE 147's 200 I2 / r2. " +
-                      in.glare->maintenance + ".",
-                  8);
+    pdf.paragraph(
+        "UGR = 8 log10(0.25 / Lb x sum L2 omega / p2) at each observer: L the "
+        "luminance of each luminaire's opening towards the eye, omega its solid angle, "
+        "p Guth's position index, Lb the background luminance (the interreflected "
+        "illuminance at the eye over pi, unless given). Openings under 0.005 m2 take "
+        "CIE 147's 200 I2 / r2. " +
+            in.glare->maintenance + ".",
+        8);
     std::vector<std::vector<std::string>> rows;
     for (const GlareResult& g : in.glare->observers) {
         const GlareObserver& o = g.observer;
@@ -739,14 +746,17 @@ void glareSection(Pdf& pdf, const ReportInput& in) {
 void methodSection(Pdf& pdf, const ReportInput& in) {
     pdf.need(160);
     pdf.heading("How this was computed", 12);
-    pdf.paragraph("Illuminance: " + in.evaluation + ". Each luminaire's light comes from its "
-                  "measured photometry through its own estimator (Candela's README, \"What is "
-                  "computed\"); the grids follow EN 12464-1's rule p = 0.2 x 5^log10(d) unless a "
-                  "spacing is given; U0 = Emin / Em. The same numbers are printed by `candela "
-                  "surfaces` and `candela glare` on the same scene.",
-                  8);
-    pdf.paragraph("Rendered view: " + (in.view.empty() ? "none (" + in.viewNote + ")" : in.viewNote) + ".",
-                  8);
+    pdf.paragraph(
+        "Illuminance: " + in.evaluation +
+            ". Each luminaire's light comes from its "
+            "measured photometry through its own estimator (Candela's README, \"What is "
+            "computed\"); the grids follow EN 12464-1's rule p = 0.2 x 5^log10(d) unless a "
+            "spacing is given; U0 = Emin / Em. The same numbers are printed by `candela "
+            "surfaces` and `candela glare` on the same scene.",
+        8);
+    pdf.paragraph(
+        "Rendered view: " + (in.view.empty() ? "none (" + in.viewNote + ")" : in.viewNote) + ".",
+        8);
 }
 
 }  // namespace

@@ -38,7 +38,7 @@ std::string reportPdf(const ReportInput& input);
 /// One row of the luminaire schedule: identical luminaires (same file, variant, emitter, dimming
 /// and maintenance factor) counted together.
 struct ScheduleRow {
-    std::string names;         ///< "Downlight 1 .. Downlight 6" or the one name.
+    std::string names;  ///< "Downlight 1 .. Downlight 6" or the one name.
     int count = 0;
     std::string kind;          ///< "photometric", "GLDF", "light field", ...
     std::string manufacturer;  ///< From the file (IES [MANUFAC], EULUMDAT company, GLDF, TM-33).

@@ -19,8 +19,9 @@ glm::dvec3 horizontalView(const glm::dvec3& v, const json::Where& where) {
     glm::dvec3 h(v.x, 0.0, v.z);
     double l = glm::length(h);
     if (!(l > 1e-9 * glm::length(v)))
-        json::fail(where, "a line of sight with a horizontal part (UGR's observer looks ahead, "
-                          "not straight up or down)");
+        json::fail(where,
+                   "a line of sight with a horizontal part (UGR's observer looks ahead, "
+                   "not straight up or down)");
     return h / l;
 }
 
@@ -30,7 +31,8 @@ GlareObserver parseGlareObserver(const nlohmann::json& entry, const json::Where&
     json::checkKeys(entry, {"name", "position", "view", "limit", "background_cd_m2"}, where);
     GlareObserver o;
     o.name = json::optional(entry, "name", where, std::string("observer"), json::string);
-    if (!entry.contains("position")) json::fail(where / "position", "the eye's [x, y, z] in metres");
+    if (!entry.contains("position"))
+        json::fail(where / "position", "the eye's [x, y, z] in metres");
     o.position = json::vec3(entry["position"], where / "position");
     if (!entry.contains("view"))
         json::fail(where / "view", "the line of sight [x, y, z] (horizontal)");
@@ -131,8 +133,7 @@ GlareReport computeGlare(const Scene& scene, const GridSpec& how,
     ReceiverResult indirect;
     if (!eyes.empty()) {
         if (scene.meshes.empty())
-            throw InputError(scene.path + ": observer \"" +
-                             observers[0].name +
+            throw InputError(scene.path + ": observer \"" + observers[0].name +
                              "\" needs the background luminance, from light the room reflects, "
                              "and the scene has no surfaces: give \"background_cd_m2\" (or "
                              "--background)");

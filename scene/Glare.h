@@ -19,9 +19,10 @@
 //
 // Small sources (a projected area below 0.005 m2, point sources included) take CIE 147's form,
 // 200 I^2 / r^2 in place of L^2 omega = I^2 / (A r^2): the same at 0.005 m2 (1 / 0.005 = 200), and
-// bounded as A shrinks. Luminaires subtending more than 0.1 sr are marked outside CIE 117's range. Intensities are the scene's luminaire output as the illuminance uses it (maintenance
-// factor and dimming applied). Only photometric luminaires (IES, EULUMDAT, TM-33, GLDF) have the
-// intensity the formula needs; other kinds are listed as not evaluated.
+// bounded as A shrinks. Luminaires subtending more than 0.1 sr are marked outside CIE 117's range.
+// Intensities are the scene's luminaire output as the illuminance uses it (maintenance factor and
+// dimming applied). Only photometric luminaires (IES, EULUMDAT, TM-33, GLDF) have the intensity the
+// formula needs; other kinds are listed as not evaluated.
 
 #include <functional>
 #include <glm/glm.hpp>

@@ -561,8 +561,7 @@ nlohmann::json sceneToJson(const Scene& scene) {
     if (scene.maintenanceFactor != 1.0) doc["maintenance_factor"] = scene.maintenanceFactor;
     for (const TaskArea& a : scene.taskAreas) doc["task_areas"].push_back(toJson(a));
     for (const CalcPoint& p : scene.calcPoints) doc["calculation_points"].push_back(toJson(p));
-    for (const GlareObserver& o : scene.glareObservers)
-        doc["glare_observers"].push_back(toJson(o));
+    for (const GlareObserver& o : scene.glareObservers) doc["glare_observers"].push_back(toJson(o));
     return doc;
 }
 

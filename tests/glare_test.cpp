@@ -4,6 +4,8 @@
 // maintenance factor (L^2 scales, a given Lb does not); CIE 147's small-source form; what is left
 // out; the background from the interreflected light; the scene file's observers.
 
+#include "scene/Glare.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,7 +14,6 @@
 
 #include "TestUtil.h"
 #include "scene/CalculationGrid.h"
-#include "scene/Glare.h"
 #include "scene/Scene.h"
 #include "scene/SceneIo.h"
 #include "tests/TempDir.h"
@@ -32,9 +33,8 @@ Scene lambertScene(TempDir& tmp, const std::vector<std::string>& positions,
                    const std::string& extra = "", const std::string& luminaireExtra = "") {
     std::string lum;
     for (const std::string& p : positions)
-        lum += std::string(lum.empty() ? "" : ",") +
-               R"({"type": "photometric", "file": ")" + test::dataDir() +
-               R"(/photometric/lambert.ies", "position": )" + p +
+        lum += std::string(lum.empty() ? "" : ",") + R"({"type": "photometric", "file": ")" +
+               test::dataDir() + R"(/photometric/lambert.ies", "position": )" + p +
                R"(, "aim": [0, -1, 0], "c0": [1, 0, 0])" + luminaireExtra + "}";
     std::ofstream(tmp.file("scene.json")) << R"({"luminaires": [)" + lum + "]" + extra + "}";
     return loadScene(tmp.file("scene.json"));
@@ -64,11 +64,11 @@ TEST(Glare, PositionIndexIsLevinsFitOfGuthsTable) {
     const glm::dvec3 up(0, 1, 0), view(0, 0, -1);
     EXPECT_DOUBLE_EQ(guthPositionIndex(view, view, up), 1.0);  // straight ahead
     double s = std::sqrt(0.5);
-    EXPECT_NEAR(guthPositionIndex({0, s, -s}, view, up), 7.0598, 5e-4);  // 45 degrees above
-    EXPECT_NEAR(guthPositionIndex({s, 0, -s}, view, up), 2.0498, 5e-4);  // 45 degrees aside
+    EXPECT_NEAR(guthPositionIndex({0, s, -s}, view, up), 7.0598, 5e-4);   // 45 degrees above
+    EXPECT_NEAR(guthPositionIndex({s, 0, -s}, view, up), 2.0498, 5e-4);   // 45 degrees aside
     EXPECT_NEAR(guthPositionIndex({0, -s, -s}, view, up), 7.0598, 5e-4);  // below: mirrored
-    EXPECT_EQ(guthPositionIndex({0, 1, 0}, view, up), 0.0);              // in the frontal plane
-    EXPECT_EQ(guthPositionIndex({0, 0.3, 0.95}, view, up), 0.0);         // behind
+    EXPECT_EQ(guthPositionIndex({0, 1, 0}, view, up), 0.0);               // in the frontal plane
+    EXPECT_EQ(guthPositionIndex({0, 0.3, 0.95}, view, up), 0.0);          // behind
     // Off-axis in both: sigma and tau from the direction.
     glm::dvec3 d = glm::normalize(glm::dvec3(0.4, 0.7, -1.0));
     double sigma = std::acos(-d.z) / kDegToRad;
@@ -113,9 +113,8 @@ TEST(Glare, TwoMirroredLuminairesAddEightLogTwo) {
     TempDir tmp;
     GlareObserver o = observer({0, 1.2, 3}, {0, 0, -1}, 15.0);
     double one = computeGlare(lambertScene(tmp, {"[1, 2.8, 0]"}), {}, {o}).observers[0].ugr;
-    double two = computeGlare(lambertScene(tmp, {"[1, 2.8, 0]", "[-1, 2.8, 0]"}), {}, {o})
-                     .observers[0]
-                     .ugr;
+    double two =
+        computeGlare(lambertScene(tmp, {"[1, 2.8, 0]", "[-1, 2.8, 0]"}), {}, {o}).observers[0].ugr;
     EXPECT_NEAR(two - one, 8.0 * std::log10(2.0), 1e-9);
 }
 

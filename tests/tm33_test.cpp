@@ -180,7 +180,8 @@ TEST(Tm33, TwinCastsTheSameIlluminanceAsItsIesOriginal) {
                 std::ofstream(tmp.file("scene.json"))
                     << R"({"luminaires": [{"type": "photometric", "file": ")" + file +
                            R"(", "position": [0, 3, 0], "aim": [0, -1, 0], "c0": [1, 0, 0],
-                           "technique": ")" + technique + R"("}]})";
+                           "technique": ")" +
+                           technique + R"("}]})";
                 return loadScene(tmp.file("scene.json"));
             };
             std::vector<Receiver> receivers = {{{0.0, 0.0, 0.0}, {0, 1, 0}},
@@ -214,8 +215,8 @@ TEST(Tm33, DefectsAreRefusedWithTheirLine) {
         {"a missing direction", replaced(good, one, ""), "15 <IntData> elements (NumberMeasured)"},
         {"a direction twice", replaced(good, one, R"(<IntData h="90" v="0">900</IntData>)"),
          "expected each direction once, found h 90, v 0 again"},
-        {"a count that disagrees", replaced(good, "<NumberVert>5</NumberVert>",
-                                            "<NumberVert>4</NumberVert>"),
+        {"a count that disagrees",
+         replaced(good, "<NumberVert>5</NumberVert>", "<NumberVert>4</NumberVert>"),
          "NumberMeasured = NumberHorz x NumberVert = 12"},
         {"a negative value", replaced(good, one, R"(<IntData h="90" v="45">-900</IntData>)"),
          "a non-negative intensity (h 90, v 45), found -900"},
@@ -232,17 +233,19 @@ TEST(Tm33, DefectsAreRefusedWithTheirLine) {
          "expected Symm_Bi_0 (what horizontal angles 0..180 give), found \"Symm_Quad\""},
         {"type A", replaced(good, "<Type>CIE_C</Type>", "<Type>CIE_A</Type>"),
          "(type A photometry is not supported)"},
-        {"no luminous data", replaced(replaced(good, "<LuminousData>", "<RadiantData>"),
-                                      "</LuminousData>", "</RadiantData>"),
+        {"no luminous data",
+         replaced(replaced(good, "<LuminousData>", "<RadiantData>"), "</LuminousData>",
+                  "</RadiantData>"),
          "an <Emitter> with <LuminousData> (luminous intensities), found only radiant or photon "
          "data"},
-        {"two channels", replaced(good, "</IESTM33-22>",
-                                  good.substr(good.find("  <Emitter>"),
-                                              good.find("</IESTM33-22>") - good.find("  <Emitter>")) +
-                                      "</IESTM33-22>"),
+        {"two channels",
+         replaced(good, "</IESTM33-22>",
+                  good.substr(good.find("  <Emitter>"),
+                              good.find("</IESTM33-22>") - good.find("  <Emitter>")) +
+                      "</IESTM33-22>"),
          "found 2 (separately controlled channels)"},
-        {"a zero multiplier", replaced(good, "<Multiplier>0.5</Multiplier>",
-                                       "<Multiplier>0</Multiplier>"),
+        {"a zero multiplier",
+         replaced(good, "<Multiplier>0.5</Multiplier>", "<Multiplier>0</Multiplier>"),
          "expected a positive <Multiplier>, found 0"},
         {"a huge value", replaced(good, one, R"(<IntData h="90" v="45">1e300</IntData>)"),
          "cd (no luminaire is that bright)"},

@@ -414,11 +414,10 @@ bool dropFile(EditorState& state, const std::string& path) {
             if (index >= 0) state.placement.armed = true;
             return index >= 0;
         }
-        reportError(
-            state,
-            path +
-                ": cannot open a dropped file of this type (expected .ies, .ldt, .xml, .gldf, .lf.json, "
-                ".hdr, .exr, .gltf or .glb)");
+        reportError(state, path +
+                               ": cannot open a dropped file of this type (expected .ies, .ldt, "
+                               ".xml, .gldf, .lf.json, "
+                               ".hdr, .exr, .gltf or .glb)");
         return false;
     } catch (const std::exception& e) {
         reportError(state, e.what());

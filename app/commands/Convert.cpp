@@ -113,8 +113,9 @@ void checkOptions(const ConvertOptions& o) {
     if (isPhotometryInput(o)) {
         std::string ext = lowerExtension(o.out);
         if (ext != ".xml" && ext != ".iesxml")
-            throw InputError(o.out + ": the output of a photometry conversion is IES TM-33, named "
-                                     "NAME.xml or NAME.iesxml");
+            throw InputError(o.out +
+                             ": the output of a photometry conversion is IES TM-33, named "
+                             "NAME.xml or NAME.iesxml");
         if (o.layoutFlagGiven || o.rawFlux || o.rays > 0)
             throw InputError(
                 "convert: --grid, --res, --delta, --axis, --coverage, --raw-flux and --rays "
@@ -299,9 +300,10 @@ int convertPhotometry(const ConvertOptions& o) {
     writeFileAtomically(o.out, xml);
     std::printf("converted: %s (%s) -> %s (IES TM-33-18)\n", o.input.c_str(), d.format.c_str(),
                 o.out.c_str());
-    std::printf("table: %zu vertical x %zu horizontal angles (unfolded), luminaire flux %.6g lm "
-                "(exact quadrature; the TM-33 document's: %.6g lm)\n",
-                d.vertical.size(), d.horizontal.size(), flux, backFlux);
+    std::printf(
+        "table: %zu vertical x %zu horizontal angles (unfolded), luminaire flux %.6g lm "
+        "(exact quadrature; the TM-33 document's: %.6g lm)\n",
+        d.vertical.size(), d.horizontal.size(), flux, backFlux);
     for (const std::string& n : notes) std::printf("note: %s\n", n.c_str());
     return 0;
 }

@@ -1,11 +1,12 @@
 // `candela glare`: the Unified Glare Rating (CIE 117) at the scene's observers, or at one given
 // on the command line, computed by scene/Glare.h: UGR with its limit, the background luminance and
 // where it came from, and what each luminaire contributes.
+#include "scene/Glare.h"
+
 #include <cmath>
 #include <cstdio>
 
 #include "app/commands/Commands.h"
-#include "scene/Glare.h"
 #include "scene/SceneIo.h"
 #include "util/Error.h"
 #include "util/FileOutput.h"
@@ -28,9 +29,10 @@ void printResult(const GlareResult& r) {
     std::printf("\n%s: eye at (%.3f, %.3f, %.3f) m, looking (%.3f, %.3f, %.3f)\n", o.name.c_str(),
                 o.position.x, o.position.y, o.position.z, o.view.x, o.view.y, o.view.z);
     if (r.backgroundFromIndirect)
-        std::printf("  background luminance Lb %.4g cd/m2 = Eind %.4g lx / pi (interreflected light "
-                    "at the eye, standard error %.2g lx)\n",
-                    r.background, r.background * 3.14159265358979323846, r.indirectStdError);
+        std::printf(
+            "  background luminance Lb %.4g cd/m2 = Eind %.4g lx / pi (interreflected light "
+            "at the eye, standard error %.2g lx)\n",
+            r.background, r.background * 3.14159265358979323846, r.indirectStdError);
     else
         std::printf("  background luminance Lb %.4g cd/m2 (given)\n", r.background);
     std::printf("  %-24s %10s %8s %10s %12s %10s %7s %12s\n", "luminaire", "I [cd]", "r [m]",
@@ -47,8 +49,7 @@ void printResult(const GlareResult& r) {
                     s.large ? "  larger than CIE 117's 0.1 sr" : "");
     }
     std::printf("  UGR %.1f", r.ugr);
-    if (o.limit > 0.0)
-        std::printf(", limit UGR_L %g: %s", o.limit, r.passes ? "PASS" : "FAIL");
+    if (o.limit > 0.0) std::printf(", limit UGR_L %g: %s", o.limit, r.passes ? "PASS" : "FAIL");
     std::printf("\n");
 }
 

@@ -35,11 +35,11 @@ static const char* symmetryName(PhotometricSymmetry s) {
     return "?";
 }
 
-/// `candela info FILE.ies|FILE.ldt|FILE.xml`: what the file holds, its flux two ways and what was assumed
-/// to read it (one "warning:" line each; --strict refuses the file instead).
-/// How far a file's declared light output ratio may sit from its table's before `info` warns:
-/// EULUMDAT states LORL in whole or tenth percent, and the table's own rounding (four or five
-/// digits per intensity) moves its flux by far less than 1 %.
+/// `candela info FILE.ies|FILE.ldt|FILE.xml`: what the file holds, its flux two ways and what was
+/// assumed to read it (one "warning:" line each; --strict refuses the file instead). How far a
+/// file's declared light output ratio may sit from its table's before `info` warns: EULUMDAT states
+/// LORL in whole or tenth percent, and the table's own rounding (four or five digits per intensity)
+/// moves its flux by far less than 1 %.
 constexpr double kLorTolerance = 0.01;
 
 /// The light output ratio as designers read it: the luminaire's flux (the table's) over the
@@ -108,8 +108,8 @@ static void printPhotometry(const std::string& path, std::shared_ptr<const Photo
     // IES declares no LOR to multiply by: the ratio above is all there is to say.
     if (d.declaresLightOutputRatio) printDeclaredFlux(d, flux);
     if (d.statedFlux > 0.0)
-        std::printf("luminous flux the file states: %.6g lm (table / stated %.4f)\n",
-                    d.statedFlux, flux / d.statedFlux);
+        std::printf("luminous flux the file states: %.6g lm (table / stated %.4f)\n", d.statedFlux,
+                    flux / d.statedFlux);
     if (d.inputWatts > 0.0 && std::isfinite(flux / d.inputWatts))
         std::printf("input power: %.4g W (%.1f lm/W)\n", d.inputWatts, flux / d.inputWatts);
     for (const std::string& w : d.warnings) std::printf("warning: %s\n", w.c_str());

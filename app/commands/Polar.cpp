@@ -96,7 +96,8 @@ int cmdPolar(const Args& args) {
             throw InputError("polar: unexpected argument " + a);
     }
     if (path.empty())
-        throw InputError("usage: candela polar FILE.ies|FILE.ldt|FILE.xml [--out polar.png] [--step DEG]");
+        throw InputError(
+            "usage: candela polar FILE.ies|FILE.ldt|FILE.xml [--out polar.png] [--step DEG]");
     if (!out.empty() && fs::path(out).extension() != ".png")
         throw InputError(out + ": unsupported output extension \"" +
                          fs::path(out).extension().string() + "\" (use .png)");

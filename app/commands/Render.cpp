@@ -431,8 +431,10 @@ std::vector<unsigned char> renderSceneView(const Scene& scene, int width, int he
     int frames = 0;
     refine(renderer, spp, frames);
     char text[256];
-    std::snprintf(text, sizeof text, "%dx%d pixels, %d samples per pixel, each luminaire's own "
-                  "technique; %s; %.1f s", width, height, spp, indirect.c_str(),
+    std::snprintf(text, sizeof text,
+                  "%dx%d pixels, %d samples per pixel, each luminaire's own "
+                  "technique; %s; %.1f s",
+                  width, height, spp, indirect.c_str(),
                   std::chrono::duration<double>(Clock::now() - start).count());
     note = text;
     return renderer.readDisplay();

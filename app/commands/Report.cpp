@@ -1,12 +1,13 @@
 // `candela report`: the PDF report of a scene (report/Report.h): its calculation surfaces and
 // points as `candela surfaces` computes them, the UGR at its observers as `candela glare` does, a
 // luminaire schedule with polar diagrams and a view rendered from its camera.
+#include "report/Report.h"
+
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
 
 #include "app/commands/Commands.h"
-#include "report/Report.h"
 #include "scene/SceneIo.h"
 #include "util/Error.h"
 #include "util/FileOutput.h"
@@ -26,9 +27,10 @@ std::string today() {
 
 /// What `how` asks of the estimators, as the report states it.
 std::string evaluationText(const GridSpec& how) {
-    std::string out = how.technique.empty() ? "each luminaire's own technique"
-                                            : "technique " + how.technique;
-    out += ", " + std::to_string(how.spp) + " samples per point and luminaire for Monte Carlo "
+    std::string out =
+        how.technique.empty() ? "each luminaire's own technique" : "technique " + how.technique;
+    out += ", " + std::to_string(how.spp) +
+           " samples per point and luminaire for Monte Carlo "
            "techniques";
     out += how.visibility || how.indirect ? ", shadows" : ", no shadows (--visibility adds them)";
     out += how.indirect ? ", interreflected light from " + std::to_string(how.patches) +
@@ -111,10 +113,11 @@ int cmdReport(const Args& args) {
     for (const PointResult& p : in.surfaces.points) failed += !p.passes;
     if (in.glare)
         for (const GlareResult& g : in.glare->observers) failed += !g.passes;
-    std::printf("wrote %s (%zu bytes): %zu surfaces, %zu points, %zu observers, %d requirement%s "
-                "not met\n",
-                out.c_str(), pdf.size(), in.surfaces.surfaces.size(), in.surfaces.points.size(),
-                in.glare ? in.glare->observers.size() : size_t(0), failed, failed == 1 ? "" : "s");
+    std::printf(
+        "wrote %s (%zu bytes): %zu surfaces, %zu points, %zu observers, %d requirement%s "
+        "not met\n",
+        out.c_str(), pdf.size(), in.surfaces.surfaces.size(), in.surfaces.points.size(),
+        in.glare ? in.glare->observers.size() : size_t(0), failed, failed == 1 ? "" : "s");
     return 0;
 }
 
