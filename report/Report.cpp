@@ -805,6 +805,20 @@ std::vector<ScheduleRow> luminaireSchedule(const Scene& scene) {
     return rows;
 }
 
+/// What `how` asks of the estimators, as the report states it.
+std::string reportEvaluationText(const GridSpec& how) {
+    std::string out =
+        how.technique.empty() ? "each luminaire's own technique" : "technique " + how.technique;
+    out += ", " + std::to_string(how.spp) +
+           " samples per point and luminaire for Monte Carlo "
+           "techniques";
+    out += how.visibility || how.indirect ? ", shadows" : ", no shadows (--visibility adds them)";
+    out += how.indirect ? ", interreflected light from " + std::to_string(how.patches) +
+                              " radiosity patches and a final gather"
+                        : ", direct light only (--indirect adds the interreflected light)";
+    return out;
+}
+
 std::string reportPdf(const ReportInput& in) {
     Pdf pdf(in.title);
     titlePage(pdf, in);

@@ -32,6 +32,10 @@ struct ReportInput {
     std::string viewNote;
 };
 
+/// What `how` asks of the estimators, in the report's words ("each luminaire's own technique,
+/// 1024 samples per point ..., direct light only ...").
+std::string reportEvaluationText(const GridSpec& how);
+
 /// The report's PDF bytes (A4 pages). Throws InputError when cairo cannot draw it.
 std::string reportPdf(const ReportInput& input);
 

@@ -12,9 +12,12 @@
 #include <algorithm>
 #include <array>
 #include <cfloat>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <exception>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -24,6 +27,7 @@
 #include "renderer/Renderer.h"
 #include "renderer/ShaderLibrary.h"
 #include "renderer/context/GlContext.h"
+#include "report/Report.h"
 #include "scene/InterreflectionWorker.h"
 #include "scene/SceneIo.h"
 #include "ui/ComparisonExport.h"
@@ -317,6 +321,7 @@ void Editor::frame() {
     // Requested last frame; taken now that the image shows the scene as it is.
     if (state.screenshotRequested) takeScreenshot();
     if (state.compare.sheetRequested) exportSheet();
+    updateReport();
     drawUi();
     if (state.quitRequested) glfwSetWindowShouldClose(mContext->window(), GLFW_TRUE);
     mIdleFrames = hadInput() ? 0 : mIdleFrames + 1;
@@ -561,6 +566,79 @@ void Editor::takeScreenshot() {
     }
 }
 
+void Editor::updateReport() {
+    EditorState& state = *mState;
+    ReportExport& r = state.report;
+    if (r.running && mReportJob.valid() &&
+        mReportJob.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+        r.running = false;
+        std::string error = mReportJob.get();
+        if (error.empty()) {
+            ++r.written;
+            std::printf("report: %s\n", r.lastPath.c_str());
+            std::fflush(stdout);
+            setStatus(state, "Report written: " + r.lastPath);
+        } else {
+            reportError(state, "Export report: " + error);
+        }
+    }
+    if (r.requested.empty() || r.running) return;
+    std::string path = r.requested;
+    r.requested.clear();
+    if (std::filesystem::path(path).extension() != ".pdf") {
+        reportError(state, "Export report: " + path + ": the report is a PDF: name it NAME.pdf");
+        return;
+    }
+    // The view as the viewport shows it now; the scene as it is now (the export works on a copy,
+    // so editing goes on meanwhile).
+    ReportInput in;
+    in.view = mRenderer->readDisplay();
+    in.viewWidth = mRenderer->settings().width;
+    in.viewHeight = mRenderer->settings().height;
+    in.viewNote = "the editor's viewport as shown when the report was exported (" +
+                  std::to_string(mRenderer->stats().samplesPerPixel) + " samples per pixel)";
+    auto scene = std::make_shared<Scene>(state.scene.clone());
+    GridSpec how;
+    how.spp = state.measure.grid.spp;
+    how.indirect = state.measure.grid.indirect;
+    how.visibility = state.measure.grid.visibility;
+    std::string title = state.scene.path.empty()
+                            ? std::string("untitled")
+                            : std::filesystem::path(state.scene.path).stem().string();
+    r.running = true;
+    r.lastPath = path;
+    setStatus(state, "Exporting report to " + path + " ...");
+    mReportJob = std::async(
+        std::launch::async, [scene, how, title, path, in = std::move(in)]() mutable -> std::string {
+            try {
+                std::vector<std::string> inputs = scene->inputFiles();
+                ProtectedInputs protect(inputs);
+                checkNotAnInput(path, "Export report");
+                in.scene = scene.get();
+                in.title = title;
+                std::time_t now = std::time(nullptr);
+                char date[16];
+                std::strftime(date, sizeof date, "%Y-%m-%d", std::gmtime(&now));
+                in.date = date;
+                in.evaluation = reportEvaluationText(how);
+                if (!scene->taskAreas.empty() || !scene->calcPoints.empty())
+                    in.surfaces = computeSurfaces(*scene, how);
+                else
+                    in.surfaces.units = scene->units(),
+                    in.surfaces.maintenance = scene->maintenanceNote();
+                if (!scene->glareObservers.empty())
+                    in.glare = computeGlare(*scene, how);
+                else
+                    in.glareNote =
+                        "The scene places no glare observers (\"glare_observers\"): no UGR.";
+                writeFileAtomically(path, reportPdf(in), "cannot write the report");
+                return "";
+            } catch (const std::exception& e) {
+                return e.what();
+            }
+        });
+}
+
 void Editor::takeWindowShot(int width, int height) {
     EditorState& state = *mState;
     state.windowShotRequested = false;
@@ -728,6 +806,8 @@ void Editor::writeLayout() {
         {"converged", stats.converged},
         {"screenshots", state.screenshotsTaken},
         {"window_images", state.windowShotsTaken},
+        {"reports", state.report.written},
+        {"report_running", state.report.running},
         {"mouse_down", io.MouseDown[ImGuiMouseButton_Left]},  // as this frame's widgets saw it
         {"typing", io.WantTextInput},                         // a text field has the keyboard
         {"dirty", state.dirty},

@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <future>
 #include <memory>
 #include <string>
 
@@ -84,6 +85,9 @@ class Editor {
     void takeWindowShot(int width, int height);
     void updateTitle();
     void writeLayout();
+    /// File > Export report: starts the export asked for (the view is this frame's image; the
+    /// surfaces, the UGR and the PDF on a thread) and reports it when it is done.
+    void updateReport();
     /// Hands the interreflection worker this frame's scene changes, and its newest solution to
     /// the renderers; mirrors its state into EditorState::interreflection for the panels.
     void updateInterreflection();
@@ -102,6 +106,8 @@ class Editor {
     std::unique_ptr<ImageTextures> mImages;   ///< The panels' pictures (EditorState::images).
     /// Interreflected light, computed on its own thread (scene/InterreflectionWorker.h).
     std::unique_ptr<InterreflectionWorker> mInterreflection;
+    /// The report being written: "" when it was, else why it was not.
+    std::future<std::string> mReportJob;
     uint64_t mIndirectVersion = 0;  ///< The solution the renderers were handed (0: none yet).
     bool mInterreflectionStarted = false;  ///< The worker was handed a scene.
     bool mIndirectEnabled = true;          ///< The worker's switch as last set.

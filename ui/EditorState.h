@@ -52,8 +52,19 @@ struct ScreenLayout {
 struct FileDialogs {
     bool openRequested = false;    ///< Open the "Open scene" modal next frame.
     bool saveAsRequested = false;  ///< Open the "Save scene as" modal next frame.
+    bool reportRequested = false;  ///< Open the "Export report" modal next frame.
     std::string openPath;
     std::string saveAsPath;
+    std::string reportPath;
+};
+
+/// File > Export report (report/Report.h, as `candela report` writes it): the editor renders the
+/// view from the viewport's image and computes the rest on a thread of its own.
+struct ReportExport {
+    std::string requested;  ///< Set by the dialog: the PDF to write, started next frame.
+    bool running = false;
+    int written = 0;       ///< Reports written this session (the layout file's "reports").
+    std::string lastPath;  ///< The last report written.
 };
 
 /// What the Measure panel keeps between frames: the calculation grid's settings and result, and
@@ -265,6 +276,7 @@ struct EditorState {
         false;  ///< F12 or View > Save window image: the whole editor window.
     int windowShotsTaken = 0;
     int screenshotsTaken = 0;
+    ReportExport report;
 
     std::string status;  ///< One line in the status bar.
     bool statusIsError = false;

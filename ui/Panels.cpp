@@ -84,6 +84,8 @@ bool mainMenuBar(EditorState& state, float& barHeight) {
             if (ImGui::MenuItem("Open...", "Ctrl+O")) state.files.openRequested = true;
             if (ImGui::MenuItem("Save", "Ctrl+S")) requestSave(state);
             if (ImGui::MenuItem("Save As...")) state.files.saveAsRequested = true;
+            if (ImGui::MenuItem("Export report...", "Ctrl+E", false, !state.report.running))
+                state.files.reportRequested = true;
             if (ImGui::BeginMenu("Open Recent")) {
                 std::vector<std::string> recent = recentFiles();
                 if (recent.empty()) ImGui::TextDisabled("(none yet)");
@@ -124,6 +126,8 @@ bool mainMenuBar(EditorState& state, float& barHeight) {
         // GLFW key codes equal ASCII for letters (the 1.86 backend indexes KeysDown by them).
         if (io.KeyCtrl && ImGui::IsKeyPressed('S', false)) requestSave(state);
         if (io.KeyCtrl && ImGui::IsKeyPressed('O', false)) state.files.openRequested = true;
+        if (io.KeyCtrl && ImGui::IsKeyPressed('E', false) && !state.report.running)
+            state.files.reportRequested = true;
         if (io.KeyCtrl && !io.KeyShift && ImGui::IsKeyPressed('Z', false))
             changed = undo(state) || changed;
         if (ImGui::IsKeyPressed(GLFW_KEY_F12, false)) state.windowShotRequested = true;
@@ -151,10 +155,22 @@ bool fileDialogs(EditorState& state) {
         ImGui::OpenPopup("Save scene as");
         state.files.saveAsRequested = false;
     }
+    if (state.files.reportRequested) {
+        if (state.files.reportPath.empty()) {
+            std::filesystem::path scene =
+                state.scene.path.empty() ? "untitled.json" : state.scene.path;
+            state.files.reportPath =
+                (scene.parent_path() / (scene.stem().string() + "-report.pdf")).string();
+        }
+        ImGui::OpenPopup("Export report");
+        state.files.reportRequested = false;
+    }
     auto pathDialog = [&](const char* title, const char* action, std::string& path,
-                          bool (*run)(EditorState&, const std::string&)) {
+                          bool (*run)(EditorState&, const std::string&),
+                          const char* prompt =
+                              "Scene file (.json), absolute or relative to the working folder:") {
         if (!ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return;
-        ImGui::TextUnformatted("Scene file (.json), absolute or relative to the working folder:");
+        ImGui::TextUnformatted(prompt);
         ImGui::SetNextItemWidth(520.f);
         if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
         bool enter = ImGui::InputText("##path", &path, ImGuiInputTextFlags_EnterReturnsTrue);
@@ -168,6 +184,14 @@ bool fileDialogs(EditorState& state) {
     };
     pathDialog("Open scene", "Open", state.files.openPath, &openSceneFile);
     pathDialog("Save scene as", "Save", state.files.saveAsPath, &saveSceneFile);
+    pathDialog(
+        "Export report", "Export", state.files.reportPath,
+        [](EditorState& s, const std::string& path) {
+            s.report.requested = path;
+            return false;
+        },
+        "Report (.pdf): luminaire schedule, polar diagrams, the calculation surfaces, UGR and "
+        "this view:");
 
     if (!state.modalError.empty() && !ImGui::IsPopupOpen("Error")) ImGui::OpenPopup("Error");
     if (ImGui::BeginPopupModal("Error", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {

@@ -25,20 +25,6 @@ std::string today() {
     return buf;
 }
 
-/// What `how` asks of the estimators, as the report states it.
-std::string evaluationText(const GridSpec& how) {
-    std::string out =
-        how.technique.empty() ? "each luminaire's own technique" : "technique " + how.technique;
-    out += ", " + std::to_string(how.spp) +
-           " samples per point and luminaire for Monte Carlo "
-           "techniques";
-    out += how.visibility || how.indirect ? ", shadows" : ", no shadows (--visibility adds them)";
-    out += how.indirect ? ", interreflected light from " + std::to_string(how.patches) +
-                              " radiosity patches and a final gather"
-                        : ", direct light only (--indirect adds the interreflected light)";
-    return out;
-}
-
 }  // namespace
 
 int cmdReport(const Args& args) {
@@ -83,7 +69,7 @@ int cmdReport(const Args& args) {
     in.scene = &scene;
     in.title = title.empty() ? std::filesystem::path(scenePath).stem().string() : title;
     in.date = today();
-    in.evaluation = evaluationText(how);
+    in.evaluation = reportEvaluationText(how);
     if (!scene.taskAreas.empty() || !scene.calcPoints.empty())
         in.surfaces = computeSurfaces(scene, how, status);
     else
