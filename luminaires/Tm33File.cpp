@@ -72,6 +72,22 @@ std::string normalised(const std::string& s) {
     return out;
 }
 
+/// A value as a message shows it: at most 40 bytes (then "..."), control characters as '?', valid
+/// UTF-8, so the message stays one line.
+std::string printable(const std::string& value) {
+    std::string s = value.size() > 40 ? value.substr(0, 40) + "..." : value;
+    for (char& c : s)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F) c = '?';
+    return toValidUtf8(s);
+}
+
+std::string quoted(const std::string& value) {
+    std::string out = "\"";  // appended piecewise: GCC 12 warns wrongly about "\"" + temporary
+    out += printable(value);
+    out += '"';
+    return out;
+}
+
 /// One document being read: the text (for line numbers) and the file's name.
 struct Tm33Reader {
     std::string path;
@@ -102,7 +118,7 @@ struct Tm33Reader {
         std::string t = trimmed(node.child_value());
         double v = 0.0;
         if (!photometry_detail::parseNumber(t, v))
-            failAt(node, what + " (a number)", "\"" + toValidUtf8(t.substr(0, 40)) + "\"");
+            failAt(node, what + " (a number)", quoted(t));
         return v;
     }
 
@@ -132,7 +148,7 @@ struct Tm33Reader {
         std::string t = trimmed(node.child_value());
         if (t == "true" || t == "1") return true;
         if (t == "false" || t == "0") return false;
-        failAt(node, what + " (true or false)", "\"" + toValidUtf8(t.substr(0, 40)) + "\"");
+        failAt(node, what + " (true or false)", quoted(t));
     }
 
     double attribute(const pugi::xml_node& node, const char* name) const {
@@ -140,7 +156,7 @@ struct Tm33Reader {
         double v = 0.0;
         if (!a || !photometry_detail::parseNumber(trimmed(a.value()), v))
             failAt(node, std::string("an angle in attribute ") + name + " of <IntData>",
-                   a ? "\"" + toValidUtf8(std::string(a.value()).substr(0, 40)) + "\""
+                   a ? quoted(a.value())
                      : std::string("none"));
         return v;
     }
@@ -207,7 +223,7 @@ Goniometer readGoniometer(const Tm33Reader& r, const pugi::xml_node& root) {
     if (t == "CIE_C" || t == "IES_C") return Goniometer::C;
     if (t == "CIE_B" || t == "IES_B") return Goniometer::B;
     r.failAt(type, "gonioradiometer type CIE_C, IES_C, CIE_B or IES_B",
-             "\"" + toValidUtf8(trimmed(type.child_value()).substr(0, 40)) + "\"" +
+             quoted(trimmed(type.child_value())) +
                  (t == "CIE_A" || t == "IES_A" ? " (type A photometry is not supported)" : ""));
 }
 
@@ -336,7 +352,7 @@ bool readIntensities(Tm33Reader& r, const pugi::xml_node& intensity) {
             r.failAt(symm,
                      std::string(symmetryWord(d.symmetry)) + " (what horizontal angles " +
                          formatNumber(given.front()) + ".." + formatNumber(given.back()) + " give)",
-                     "\"" + toValidUtf8(trimmed(symm.child_value()).substr(0, 40)) + "\"");
+                     quoted(trimmed(symm.child_value())));
         d.keywords.emplace_back("Symm", toValidUtf8(trimmed(symm.child_value())));
     }
 
@@ -348,8 +364,9 @@ bool readIntensities(Tm33Reader& r, const pugi::xml_node& intensity) {
             r.failAt(e.node, "each direction once",
                      "h " + formatNumber(e.h) + ", v " + formatNumber(e.v) + " again");
         cd[k] = e.cd * scale;
-        photometry_detail::checkCandela(r.path, r.line(e.node), cd[k],
-                                        "intensities (after the multiplier)");
+        if (!(cd[k] <= kMaxCandela))  // the line is counted only for the message
+            photometry_detail::checkCandela(r.path, r.line(e.node), cd[k],
+                                            "intensities (after the multiplier)");
     }
     // With the counts checked, no direction can be missing; this keeps the message exact if a
     // duplicate slipped past the tolerance.
@@ -544,7 +561,7 @@ PhotometricData parseTm33(const std::string& bytes, const std::string& path,
         d.format = "IES TM-33-23";
     else
         r.failAt(root, "a TM-33 document (root element <IESTM33> or <IESTM33-22>)",
-                 "<" + toValidUtf8(rootName.substr(0, 40)) + ">");
+                 "<" + printable(rootName) + ">");
     if (pugi::xml_node version = root.child("Version"))
         d.keywords.emplace_back("Version", toValidUtf8(trimmed(version.child_value())));
     readHeader(r, root);
