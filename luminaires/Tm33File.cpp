@@ -117,8 +117,7 @@ struct Tm33Reader {
     double number(const pugi::xml_node& node, const std::string& what) const {
         std::string t = trimmed(node.child_value());
         double v = 0.0;
-        if (!photometry_detail::parseNumber(t, v))
-            failAt(node, what + " (a number)", quoted(t));
+        if (!photometry_detail::parseNumber(t, v)) failAt(node, what + " (a number)", quoted(t));
         return v;
     }
 
@@ -156,8 +155,7 @@ struct Tm33Reader {
         double v = 0.0;
         if (!a || !photometry_detail::parseNumber(trimmed(a.value()), v))
             failAt(node, std::string("an angle in attribute ") + name + " of <IntData>",
-                   a ? quoted(a.value())
-                     : std::string("none"));
+                   a ? quoted(a.value()) : std::string("none"));
         return v;
     }
 

@@ -761,6 +761,79 @@ void methodSection(Pdf& pdf, const ReportInput& in) {
 
 }  // namespace
 
+std::vector<unsigned char> withFalseColourLegend(const std::vector<unsigned char>& rgb, int& width,
+                                                 int height, const FalseColourLegend& given,
+                                                 const std::string& unit) {
+    FalseColourLegend legend = sanitizedLegend(given);
+    double fontSize = std::clamp(height / 24.0, 8.0, 14.0);
+    int strip = int(std::lround(fontSize * 9.0));
+    int total = width + strip;
+    cairo_surface_t* img = cairo_image_surface_create(CAIRO_FORMAT_RGB24, total, height);
+    unsigned char* data = cairo_image_surface_get_data(img);
+    int stride = cairo_image_surface_get_stride(img);
+    cairo_surface_flush(img);
+    for (int r = 0; r < height; ++r)
+        for (int c = 0; c < total; ++c) {
+            uint32_t v = 0xFFFFFF;  // the strip's white background
+            if (c < width) {
+                const unsigned char* p = &rgb[(size_t(r) * size_t(width) + size_t(c)) * 3];
+                v = (uint32_t(p[0]) << 16) | (uint32_t(p[1]) << 8) | uint32_t(p[2]);
+            }
+            std::memcpy(data + size_t(r) * size_t(stride) + size_t(c) * 4, &v, 4);
+        }
+    cairo_surface_mark_dirty(img);
+    cairo_t* cr = cairo_create(img);
+    double top = height * 0.08, bottom = height * 0.92, barX = width + fontSize,
+           barW = fontSize * 1.2;
+    auto yOf = [&](float v) {
+        double t = gpu::legendPosition(v, legend.min, legend.max, legend.logScale ? 1 : 0);
+        return bottom - (bottom - top) * std::clamp(t, 0.0, 1.0);
+    };
+    int steps = std::max(2, int(bottom - top));
+    for (int k = 0; k < steps; ++k) {
+        glm::vec3 col = gpu::falseColour((k + 0.5f) / steps);
+        cairo_set_source_rgb(cr, col.x, col.y, col.z);
+        double y0 = bottom - (k + 1) * (bottom - top) / steps;
+        cairo_rectangle(cr, barX, y0, barW, (bottom - top) / steps + 0.5);
+        cairo_fill(cr);
+    }
+    cairo_set_source_rgb(cr, 0, 0, 0);
+    cairo_set_line_width(cr, 1.0);
+    cairo_rectangle(cr, barX, top, barW, bottom - top);
+    cairo_stroke(cr);
+    cairo_select_font_face(cr, kFont, CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+    cairo_set_font_size(cr, fontSize);
+    for (float t : legendTicks(legend)) {
+        double y = yOf(t);
+        cairo_move_to(cr, barX + barW, y);
+        cairo_line_to(cr, barX + barW + 3, y);
+        cairo_stroke(cr);
+        std::string label = toValidUtf8(fmt("%g", t) + " " + unit);
+        cairo_move_to(cr, barX + barW + 5, y + fontSize * 0.35);
+        cairo_show_text(cr, label.c_str());
+    }
+    for (float level : contourLevels(legend)) {  // isolux levels: a line across the bar
+        double y = yOf(level);
+        cairo_move_to(cr, barX - 3, y);
+        cairo_line_to(cr, barX + barW, y);
+        cairo_stroke(cr);
+    }
+    cairo_destroy(cr);
+    cairo_surface_flush(img);
+    std::vector<unsigned char> out(size_t(total) * size_t(height) * 3);
+    for (int r = 0; r < height; ++r)
+        for (int c = 0; c < total; ++c) {
+            uint32_t v;
+            std::memcpy(&v, data + size_t(r) * size_t(stride) + size_t(c) * 4, 4);
+            unsigned char* p = &out[(size_t(r) * size_t(total) + size_t(c)) * 3];
+            p[0] = (unsigned char)(v >> 16), p[1] = (unsigned char)(v >> 8),
+            p[2] = (unsigned char)v;
+        }
+    cairo_surface_destroy(img);
+    width = total;
+    return out;
+}
+
 std::vector<ScheduleRow> luminaireSchedule(const Scene& scene) {
     std::vector<ScheduleRow> rows;
     std::map<std::string, size_t> index;

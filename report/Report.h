@@ -17,6 +17,7 @@
 namespace candela {
 
 struct Scene;
+struct FalseColourLegend;
 
 struct ReportInput {
     const Scene* scene = nullptr;
@@ -38,6 +39,13 @@ std::string reportEvaluationText(const GridSpec& how);
 
 /// The report's PDF bytes (A4 pages). Throws InputError when cairo cannot draw it.
 std::string reportPdf(const ReportInput& input);
+
+/// A false-colour picture (8-bit RGB rows top to bottom, `width` x `height`) with its legend in a
+/// strip on its right: the colour scale, its ticks labelled in `unit`, the isolux levels marked.
+/// Returns the wider picture and sets `width` to its width.
+std::vector<unsigned char> withFalseColourLegend(const std::vector<unsigned char>& rgb, int& width,
+                                                 int height, const FalseColourLegend& legend,
+                                                 const std::string& unit);
 
 /// One row of the luminaire schedule: identical luminaires (same file, variant, emitter, dimming
 /// and maintenance factor) counted together.

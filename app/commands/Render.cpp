@@ -9,6 +9,7 @@
 #include "renderer/ImageFile.h"
 #include "renderer/Renderer.h"
 #include "renderer/context/GlContext.h"
+#include "report/Report.h"
 #include "scene/Interreflection.h"
 #include "scene/InterreflectionWorker.h"
 #include "scene/SceneIo.h"
@@ -395,12 +396,21 @@ void printStats(const GlContext& context, const ShaderLibrary& shaders,
 void writeRender(const Renderer& renderer, const Scene& scene, const RenderOptions& o,
                  const std::string& ext, int frames, double seconds) {
     const RenderSettings& settings = o.settings;
-    if (ext == ".png")
+    if (ext == ".png" && o.falseColour) {
+        // The legend beside the picture: the scale, its ticks in the scene's unit, the isolux
+        // levels (report/Report.h).
+        int width = settings.width;
+        std::vector<unsigned char> withLegend =
+            withFalseColourLegend(renderer.readDisplay(), width, settings.height, settings.legend,
+                                  scene.units().irradiance());
+        writeImage8(o.out, width, settings.height, withLegend);
+    } else if (ext == ".png") {
         writeImage8(o.out, settings.width, settings.height, renderer.readDisplay());
-    else
+    } else
         writeImageFloat(o.out, settings.width, settings.height, renderer.readLinear());
-    std::printf("wrote %s (%dx%d, %d frames, %.3f s)\n", o.out.c_str(), settings.width,
-                settings.height, frames, seconds);
+    std::printf(
+        "wrote %s (%dx%d%s, %d frames, %.3f s)\n", o.out.c_str(), settings.width, settings.height,
+        ext == ".png" && o.falseColour ? " and the legend on its right" : "", frames, seconds);
     if (ext != ".png") {
         UnitSystem units = scene.units();
         bool illuminance = settings.quantity == Quantity::Illuminance;

@@ -156,6 +156,19 @@ else
   echo "FAIL: render --false-colour: $(cat "$out/fc.txt")"
   failures=$((failures + 1))
 fi
+# The PNG carries its legend in a strip on the right (72 px at this height): 136 x 48 pixels, and
+# the bar's middle (column 76, row 24: t = 0.488 of the scale) holds the scale's colour there,
+# mix(stop 3, stop 4, 0.90) = (19, 154, 152) in 8 bits (shaders/shared/FalseColour.h), within 12
+# for the bar's anti-aliased drawing.
+size=$(identify -format "%wx%h" "$out/fc.png" 2>/dev/null)
+mid=$(convert "$out/fc.png" -crop 1x1+76+24 -depth 8 txt:- 2>/dev/null | sed -n 's/.*: (\([0-9]*\),\([0-9]*\),\([0-9]*\)).*/\1 \2 \3/p')
+if [ "$size" = "136x48" ] && awk -v c="$mid" 'BEGIN { split(c, v, " "); w[1] = 19; w[2] = 154; w[3] = 152;
+     for (i = 1; i <= 3; ++i) { d = v[i] - w[i]; if (d < 0) d = -d; if (d > 12 || v[i] == "") exit 1 } }'; then
+  passed=$((passed + 1))
+else
+  echo "FAIL: render --false-colour's PNG has no legend strip: size $size, bar colour ($mid)"
+  failures=$((failures + 1))
+fi
 expect "--legend" "MAX > MIN" -- render "$data/plane.json" --out "$out/b.png" --false-colour --legend 5,1
 expect "--legend" "finite numbers" -- render "$data/plane.json" --out "$out/b.png" --false-colour --legend 0,nan
 expect "--legend" "MIN > 0" -- render "$data/plane.json" --out "$out/b.png" --false-colour --legend 0,10 --log
