@@ -92,6 +92,38 @@ TEST(EditorUndo, TaskAreasFromTheGridAreStepsAndSaveWithTheScene) {
     EXPECT_EQ(state.history.undo.back().label, "Remove task area Table");
 }
 
+// A glare observer at the camera: its eye where the camera is, its line of sight the camera's
+// made horizontal; one step, saved with the scene, refused when the camera looks straight down.
+TEST(EditorUndo, GlareObserversAtTheCameraAreStepsAndSaveWithTheScene) {
+    EditorState state = demo();
+    std::string original = text(state);
+    state.scene.camera.position = {1.0, 1.2, 3.0};
+    state.scene.camera.target = {1.0, 0.2, 0.0};  // looking forward and down
+    state.measure.observerName = "Desk";
+    state.measure.observerLimit = 19.0;
+    original = text(state);
+    ASSERT_TRUE(addGlareObserverAtCamera(state));
+    ASSERT_EQ(state.scene.glareObservers.size(), 1u);
+    const GlareObserver& o = state.scene.glareObservers[0];
+    EXPECT_EQ(o.name, "Desk");
+    EXPECT_EQ(o.position, glm::dvec3(1.0, 1.2, 3.0));
+    EXPECT_EQ(o.view, glm::dvec3(0.0, 0.0, -1.0));
+    EXPECT_EQ(o.limit, 19.0);
+    EXPECT_EQ(parseScene(sceneToJson(state.scene), state.scene.path).glareObservers,
+              state.scene.glareObservers);
+    ASSERT_TRUE(undo(state));
+    EXPECT_EQ(text(state), original);
+    ASSERT_TRUE(redo(state));
+    removeGlareObserver(state, 0);
+    EXPECT_TRUE(state.scene.glareObservers.empty());
+    EXPECT_EQ(state.history.undo.back().label, "Remove glare observer Desk");
+    state.scene.camera.target = {1.0, -1.0, 3.0};  // straight down
+    std::string before = text(state);
+    EXPECT_FALSE(addGlareObserverAtCamera(state));
+    EXPECT_TRUE(state.statusIsError);
+    EXPECT_EQ(text(state), before);
+}
+
 TEST(EditorUndo, StepsUndoInReverseOrderAndANewEditClearsRedo) {
     EditorState state = demo();
     std::vector<std::string> versions = {text(state)};

@@ -843,6 +843,15 @@ void Editor::writeLayout() {
             j["surfaces"].push_back(
                 {{"name", p.point.name}, {"points", 1}, {"em", p.E}, {"passes", p.passes}});
     }
+    j["glare"] = nullptr;
+    if (state.measure.glare) {
+        j["glare"] = nlohmann::json::array();
+        for (const GlareResult& g : state.measure.glare->observers)
+            j["glare"].push_back({{"name", g.observer.name},
+                                  {"ugr", g.ugr},
+                                  {"lb", g.background},
+                                  {"passes", g.passes}});
+    }
     // Written every frame (an idle editor draws ten a second), so a test waiting for "N more
     // frames" after its input always sees them come.
     j["frame"] = mFrame;

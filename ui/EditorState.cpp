@@ -173,6 +173,39 @@ void removeTaskArea(EditorState& state, size_t index) {
     state.measure.surfaces.reset();
 }
 
+bool addGlareObserverAtCamera(EditorState& state) {
+    const Camera& c = state.scene.camera;
+    glm::dvec3 view = c.target - c.position;
+    GlareObserver o;
+    o.name = state.measure.observerName.empty() ? "Observer" : state.measure.observerName;
+    o.position = c.position;
+    o.limit = state.measure.observerLimit;
+    try {
+        // Through the scene file's parser: the same checks, the view made horizontal.
+        nlohmann::json entry = {{"name", o.name},
+                                {"position", {o.position.x, o.position.y, o.position.z}},
+                                {"view", {view.x, view.y, view.z}}};
+        if (o.limit > 0.0) entry["limit"] = o.limit;
+        o = parseGlareObserver(entry, json::Where{"the camera", ""});
+    } catch (const std::exception& e) {
+        setStatus(state, std::string("Glare observer: ") + e.what(), true);
+        return false;
+    }
+    applyEdit(state, "Add glare observer " + o.name, kChangeSettings,
+              [&o](Scene& scene) { scene.glareObservers.push_back(o); });
+    state.measure.glare.reset();
+    return true;
+}
+
+void removeGlareObserver(EditorState& state, size_t index) {
+    if (index >= state.scene.glareObservers.size()) return;
+    applyEdit(state, "Remove glare observer " + state.scene.glareObservers[index].name,
+              kChangeSettings, [index](Scene& scene) {
+                  scene.glareObservers.erase(scene.glareObservers.begin() + long(index));
+              });
+    state.measure.glare.reset();
+}
+
 void setFalseColour(EditorState& state, bool on) {
     ToneMapOperator& op = state.settings.toneMap;
     if (on == (op == ToneMapOperator::FalseColour)) return;  // already so: keep what it replaced

@@ -84,6 +84,11 @@ struct MeasureState {
     Requirement taskRequired{500.0, 0.6};   ///< Its requirement (lx, U0).
     std::optional<SurfaceReport> surfaces;  ///< Last computed surfaces and points.
     std::string surfacesError;              ///< Why the last computation failed.
+    // Glare (scene/Glare.h): the next observer's name and limit, the last UGR computed.
+    std::string observerName = "Observer";
+    double observerLimit = 19.0;  ///< UGR_L; EN 12464-1's for offices.
+    std::optional<GlareReport> glare;
+    std::string glareError;
 };
 
 /// The Environment section's controls that are not part of the scene file.
@@ -325,6 +330,12 @@ void setFalseColour(EditorState& state, bool on);
 bool addTaskAreaFromGrid(EditorState& state);
 /// Removes task area `index` as one undo step.
 void removeTaskArea(EditorState& state, size_t index);
+/// Adds a UGR observer where the camera is, looking where it looks (made horizontal), named
+/// measure.observerName with measure.observerLimit, as one undo step. False, with a status, when
+/// the camera looks straight up or down.
+bool addGlareObserverAtCamera(EditorState& state);
+/// Removes glare observer `index` as one undo step.
+void removeGlareObserver(EditorState& state, size_t index);
 /// Shows message in the status bar and in the error modal.
 void reportError(EditorState& state, const std::string& message);
 

@@ -416,6 +416,80 @@ void surfaceControls(EditorState& state, MeasureState& measure) {
     ImGui::TextDisabled("%s", r.maintenance.c_str());
 }
 
+/// The scene's glare observers (add one at the camera, remove), and the UGR at each against its
+/// limit (scene/Glare.h), computed on demand with the background from the interreflected light.
+void glareControls(EditorState& state, MeasureState& measure) {
+    ImGui::InputText("Observer name", &measure.observerName);
+    ImGui::DragScalar("Limit UGR_L", ImGuiDataType_Double, &measure.observerLimit, 0.1f, nullptr,
+                      nullptr, "%.0f");
+    measure.observerLimit = std::clamp(measure.observerLimit, 0.0, 40.0);
+    if (ImGui::Button("Add an observer at the camera", ImVec2(-1.f, 0.f)))
+        addGlareObserverAtCamera(state);
+    recordRect(state, "measure.add_observer");
+    itemTooltip(
+        "An eye where the camera is, looking where it looks (made horizontal): place the camera "
+        "at a seat's eye height (1.2 m seated) and look along the task");
+    for (size_t i = 0; i < state.scene.glareObservers.size(); ++i) {
+        const GlareObserver& o = state.scene.glareObservers[i];
+        ImGui::PushID(1000 + int(i));
+        if (ImGui::SmallButton("x")) {
+            removeGlareObserver(state, i);
+            ImGui::PopID();
+            break;
+        }
+        itemTooltip("Remove this observer");
+        ImGui::SameLine();
+        ImGui::Text("%s: eye (%.2f, %.2f, %.2f) m", o.name.c_str(), o.position.x, o.position.y,
+                    o.position.z);
+        ImGui::PopID();
+    }
+    if (state.scene.glareObservers.empty()) return;
+    if (ImGui::Button("Compute UGR", ImVec2(-1.f, 0.f))) {
+        try {
+            GridSpec how = measure.grid;
+            how.indirectMethod = GridSpec::Indirect::Patches;  // interactive, as the grid
+            how.patches = 2500;
+            measure.glare = computeGlare(state.scene, how);
+            measure.glareError.clear();
+        } catch (const std::exception& e) {
+            measure.glareError = e.what();
+        }
+    }
+    recordRect(state, "measure.compute_glare");
+    if (!measure.glareError.empty()) errorText(measure.glareError);
+    if (!measure.glare) return;
+    if (ImGui::BeginTable("glare", 4, ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingFixedFit)) {
+        ImGui::TableSetupColumn("Observer");
+        ImGui::TableSetupColumn("Lb [cd/m2]");
+        ImGui::TableSetupColumn("UGR");
+        ImGui::TableSetupColumn("Limit");
+        ImGui::TableHeadersRow();
+        for (const GlareResult& g : measure.glare->observers) {
+            ImGui::TableNextRow();
+            ImGui::TableNextColumn();
+            ImGui::TextUnformatted(g.observer.name.c_str());
+            int counted = 0;
+            for (const GlareSource& s : g.sources) counted += s.excluded.empty();
+            itemTooltip(std::to_string(counted) + " of " + std::to_string(g.sources.size()) +
+                        " luminaires in view; background " +
+                        (g.backgroundFromIndirect ? "from the interreflected light" : "given"));
+            ImGui::TableNextColumn();
+            ImGui::Text("%.3g", g.background);
+            ImGui::TableNextColumn();
+            ImGui::Text("%.1f", g.ugr);
+            ImGui::TableNextColumn();
+            if (g.observer.limit <= 0.0)
+                ImGui::TextDisabled("-");
+            else if (g.passes)
+                ImGui::TextColored(ImVec4(0.4f, 0.9f, 0.4f, 1.f), "%.0f pass", g.observer.limit);
+            else
+                ImGui::TextColored(ImVec4(1.f, 0.4f, 0.4f, 1.f), "%.0f FAIL", g.observer.limit);
+        }
+        ImGui::EndTable();
+    }
+    ImGui::TextDisabled("%s", measure.glare->maintenance.c_str());
+}
+
 /// Dots with their illuminance at world points over the viewport image.
 void drawValues(const EditorState& state, const Renderer& renderer,
                 const std::vector<glm::dvec3>& points, const std::vector<double>& values) {
@@ -520,6 +594,9 @@ bool measurePanel(EditorState& state, const Renderer& renderer, const PanelRect&
     ImGui::Separator();
     ImGui::TextDisabled("Calculation surfaces (EN 12464-1)");
     surfaceControls(state, measure);
+    ImGui::Separator();
+    ImGui::TextDisabled("Glare: UGR (CIE 117)");
+    glareControls(state, measure);
     ImGui::PopItemWidth();
     ImGui::End();
     drawMeasuredValues(state, measure, renderer);

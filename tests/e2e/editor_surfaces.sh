@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# End-to-end test of the editor's EN 12464-1 calculation surfaces (issue 21, part 5), with real X
+# End-to-end test of the editor's EN 12464-1 calculation surfaces (issue 21, part 5) and its UGR
+# (part 6), with real X
 # input under Xvfb, on the shipped office (a desk task area, a cylindrical and a vertical point):
 #   1. scroll the Measure panel to "Compute surfaces" and click it;
 #   2. the panel's results (the layout file's "surfaces") list the desk, its immediate
@@ -49,6 +50,24 @@ for s, w in zip(d, want):
     if abs(s["em"] - w) > 6e-4 * w: fail.append("%s: editor %.6g, CLI %g" % (s["name"], s["em"], w))
 if d[0]["name"] != "Desk" or d[0]["passes"] or d[0]["points"] != 50:
     fail.append("desk: %s (want 50 points, failing 500 lx as the CLI says)" % d[0])
+for f in fail: print("FAIL:", f)
+sys.exit(1 if fail else 0)
+PY
+
+# The UGR at the office's two observers: the editor's background comes from the radiosity patches
+# (interactive, deterministic), the CLI's from a final gather over them; their Lb agree within a
+# few percent, which moves UGR by 8 log10(1.05) = 0.17 at 5 %: within 0.3.
+"$CANDELA" glare "$TMP/office.json" >"$TMP/glare.txt" 2>&1 || fail "candela glare: $(cat "$TMP/glare.txt")"
+click_widget measure.compute_glare
+wait_until "the UGR results" "d['glare'] is not None and len(d['glare']) == 2"
+log "glare: $(layout "d['glare']")"
+python3 - "$LAYOUT" "$TMP/glare.txt" <<'PY' || fail "the editor's UGR differs from candela glare's (above)"
+import json, re, sys
+d = json.load(open(sys.argv[1]))["glare"]
+cli = [float(x) for x in re.findall(r"^  UGR ([\d.]+)", open(sys.argv[2]).read(), re.M)]
+fail = [] if len(cli) == 2 else ["the CLI printed %d UGR values, want 2" % len(cli)]
+for g, want in zip(d, cli):
+    if abs(g["ugr"] - want) > 0.3: fail.append("%s: editor %.2f, CLI %.1f" % (g["name"], g["ugr"], want))
 for f in fail: print("FAIL:", f)
 sys.exit(1 if fail else 0)
 PY
