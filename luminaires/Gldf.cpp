@@ -444,6 +444,35 @@ std::string emitterList(const std::vector<std::string>& ids) {
     return out;
 }
 
+/// gldfVariantGeometry on an archive already open.
+std::shared_ptr<const L3dLuminaire> readVariantGeometry(const ZipArchive& archive,
+                                                        const GldfProduct& product,
+                                                        const GldfVariant& variant) {
+    const std::string& path = product.path;
+    if (variant.modelGeometryId.empty()) return nullptr;
+    const GldfModelGeometry* model = product.modelGeometry(variant.modelGeometryId);
+    if (!model)
+        fail(path + ": variant " + inQuotes(variant.id) + " refers to model geometry " +
+             inQuotes(variant.modelGeometryId) + ", which the product does not define");
+    const GldfFile* file = nullptr;
+    for (const std::string& id : model->fileIds)
+        if (const GldfFile* f = product.file(id); f && f->contentType == "geo/l3d") {
+            file = f;
+            break;
+        }
+    if (!file)
+        fail(path + ": model geometry " + inQuotes(model->id) +
+             " has no geo/l3d file (its r3d and m3d formats are not read)");
+    if (file->url)
+        fail(path + ": geometry file " + inQuotes(file->id) + " is only a URL (" + file->name +
+             "), not in the container");
+    std::string member = file->member();
+    std::string label =
+        member + " (file " + inQuotes(file->id) + ", model geometry " + inQuotes(model->id) + ")";
+    std::string l3d = readMember(archive, path, member, label);
+    return std::make_shared<const L3dLuminaire>(parseL3d(l3d, path + ":" + member));
+}
+
 }  // namespace
 
 std::string GldfFile::member() const {
@@ -514,7 +543,8 @@ void gldf_detail::readProductXml(const std::string& xml, GldfProduct& product) {
 
 GldfPhotometry gldfVariantPhotometry(const std::string& bytes, const GldfProduct& product,
                                      const GldfVariant& variant, const PhotometryOptions& options,
-                                     size_t placement) {
+                                     size_t placement,
+                                     std::shared_ptr<const L3dLuminaire> geometry) {
     const std::string& path = product.path;
     std::string variantName = "variant " + inQuotes(variant.id);
     size_t count = variant.emitters.size();
@@ -574,7 +604,7 @@ GldfPhotometry gldfVariantPhotometry(const std::string& bytes, const GldfProduct
                                      : "an IES TM-33") +
              " file: " + e.what());
     }
-    out.geometry = gldfVariantGeometry(bytes, product, variant);
+    out.geometry = geometry ? std::move(geometry) : readVariantGeometry(archive, product, variant);
     if (out.geometry && !object.empty()) {
         out.opening = out.geometry->emitter(object);
         if (!out.opening) {
@@ -665,30 +695,9 @@ GldfMaintenanceFactors gldfMaintenanceFactors(const GldfProduct& product,
 std::shared_ptr<const L3dLuminaire> gldfVariantGeometry(const std::string& bytes,
                                                         const GldfProduct& product,
                                                         const GldfVariant& variant) {
-    const std::string& path = product.path;
     if (variant.modelGeometryId.empty()) return nullptr;
-    const GldfModelGeometry* model = product.modelGeometry(variant.modelGeometryId);
-    if (!model)
-        fail(path + ": variant " + inQuotes(variant.id) + " refers to model geometry " +
-             inQuotes(variant.modelGeometryId) + ", which the product does not define");
-    const GldfFile* file = nullptr;
-    for (const std::string& id : model->fileIds)
-        if (const GldfFile* f = product.file(id); f && f->contentType == "geo/l3d") {
-            file = f;
-            break;
-        }
-    if (!file)
-        fail(path + ": model geometry " + inQuotes(model->id) +
-             " has no geo/l3d file (its r3d and m3d formats are not read)");
-    if (file->url)
-        fail(path + ": geometry file " + inQuotes(file->id) + " is only a URL (" + file->name +
-             "), not in the container");
-    std::string member = file->member();
-    std::string label =
-        member + " (file " + inQuotes(file->id) + ", model geometry " + inQuotes(model->id) + ")";
-    ZipArchive archive(bytes, path, "a GLDF container");
-    std::string l3d = readMember(archive, path, member, label);
-    return std::make_shared<const L3dLuminaire>(parseL3d(l3d, path + ":" + member));
+    ZipArchive archive(bytes, product.path, "a GLDF container");
+    return readVariantGeometry(archive, product, variant);
 }
 
 }  // namespace candela

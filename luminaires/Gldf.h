@@ -168,10 +168,13 @@ inline GldfProduct loadGldf(const std::string& path) {
 /// refuses a variant with no emitter, a placement it does not have, one of several placements
 /// that names no object of a model geometry (where it is is then unknown), an emitter without
 /// photometry, a URL, a missing, oversized or unparsable member, naming it.
+/// `geometry`, when given, is the variant's geometry as gldfVariantGeometry read it before (for
+/// a variant's other placements: the L3D is read once).
 GldfPhotometry gldfVariantPhotometry(const std::string& bytes, const GldfProduct& product,
                                      const GldfVariant& variant,
                                      const PhotometryOptions& options = defaultPhotometryOptions(),
-                                     size_t placement = 0);
+                                     size_t placement = 0,
+                                     std::shared_ptr<const L3dLuminaire> geometry = nullptr);
 
 /// The L3D geometry of a variant's model geometry (its first geo/l3d file, read from `bytes`);
 /// null when the variant references no model geometry. Refuses a missing, URL-only or broken

@@ -88,6 +88,14 @@ void PhotometricLuminaire::loadGldf(const std::string& path, const std::string& 
     };
     static std::mutex mutex;
     static std::map<std::pair<std::string, std::string>, Entry> cache;
+    // A variant's product and geometry, shared by its placements: the container's product.xml
+    // and L3D are parsed once for all the emitters it places.
+    struct VariantEntry {
+        fs::file_time_type stamp;
+        std::weak_ptr<const GldfProduct> product;
+        std::weak_ptr<const L3dLuminaire> geometry;
+    };
+    static std::map<std::pair<std::string, std::string>, VariantEntry> variants;
     std::error_code ec;
     fs::path canonical = fs::weakly_canonical(path, ec);
     std::pair<std::string, std::string> key{ec ? path : canonical.string(),
@@ -110,7 +118,17 @@ void PhotometricLuminaire::loadGldf(const std::string& path, const std::string& 
         }
     }
     std::string bytes = readGldfBytes(path);
-    auto product = std::make_shared<const GldfProduct>(candela::parseGldf(bytes, path));
+    std::pair<std::string, std::string> variantKey{key.first, variant};
+    std::shared_ptr<const GldfProduct> product;
+    std::shared_ptr<const L3dLuminaire> knownGeometry;
+    if (auto v = variants.find(variantKey); v != variants.end() && v->second.stamp == stamp) {
+        product = v->second.product.lock();
+        knownGeometry = v->second.geometry.lock();
+    }
+    if (!product || !knownGeometry) {
+        product = std::make_shared<const GldfProduct>(candela::parseGldf(bytes, path));
+        knownGeometry = nullptr;
+    }
     const GldfVariant* chosen =
         variant.empty() ? &product->variants.front() : product->variant(variant);
     if (!chosen) {
@@ -120,8 +138,14 @@ void PhotometricLuminaire::loadGldf(const std::string& path, const std::string& 
             toValidUtf8(path + ": no variant \"" + variant + "\" (it has " + ids + ")"));
     }
     if (emitter < 0) throw InputError(toValidUtf8(path + ": emitter " + std::to_string(emitter)));
-    GldfPhotometry read = gldfVariantPhotometry(bytes, *product, *chosen,
-                                                defaultPhotometryOptions(), size_t(emitter));
+    GldfPhotometry read = gldfVariantPhotometry(
+        bytes, *product, *chosen, defaultPhotometryOptions(), size_t(emitter), knownGeometry);
+    if (read.geometry) {
+        // Under the name asked for ("" for the first variant) and the variant's own id, which
+        // the other placements are loaded with.
+        variants[variantKey] = {stamp, product, read.geometry};
+        variants[{key.first, chosen->id}] = {stamp, product, read.geometry};
+    }
     auto photometry = std::make_shared<const PhotometricData>(std::move(read.data));
     gldf = product;
     data = photometry;

@@ -72,13 +72,10 @@ std::string normalised(const std::string& s) {
     return out;
 }
 
-/// A value as a message shows it: at most 40 bytes (then "..."), control characters as '?', valid
-/// UTF-8, so the message stays one line.
+/// A value as a message shows it: at most 40 bytes (then "..."), on one line in valid UTF-8
+/// (util/TextEncoding.h's oneLine).
 std::string printable(const std::string& value) {
-    std::string s = value.size() > 40 ? value.substr(0, 40) + "..." : value;
-    for (char& c : s)
-        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F) c = '?';
-    return toValidUtf8(s);
+    return oneLine(value.size() > 40 ? value.substr(0, 40) + "..." : value);
 }
 
 std::string quoted(const std::string& value) {

@@ -204,6 +204,25 @@ TEST(EditorPlacement, DroppedGldfWithTwoEmittersAddsBothInOneStepSelectedTogethe
     // Both selected, so a move or a delete takes both.
     EXPECT_EQ(state.selectedLuminaire, int(count));
     EXPECT_EQ(state.alsoSelected, std::vector<int>{int(count) + 1});
+    // Turning or moving one placement, however it is done (here as the inspector and the
+    // gizmo do: an edit of that luminaire's pose alone), turns and moves the other with it.
+    Pose other = state.scene.luminaires[0]->pose;
+    Pose turned = down->pose;
+    turned.aim = glm::dvec3(0.3, -1.0, 0.2);
+    turned.position += glm::dvec3(0.5, 0.0, -0.25);
+    applyEdit(state, "Rotate", kChangeLuminaires,
+              [&](Scene& s) { s.luminaires[count]->pose = turned; });
+    EXPECT_EQ(up->pose.position, turned.position);
+    EXPECT_EQ(up->pose.aim, turned.aim);
+    EXPECT_EQ(up->pose.c0, turned.c0);
+    // A luminaire that is not one of its placements keeps its pose.
+    EXPECT_EQ(state.scene.luminaires[0]->pose.position, other.position);
+    EXPECT_EQ(state.scene.luminaires[0]->pose.aim, other.aim);
+    ASSERT_TRUE(undo(state));  // the rotation, for both (undo restores copies: look them up again)
+    const Pose& downNow = state.scene.luminaires[count]->pose;
+    const Pose& upNow = state.scene.luminaires[count + 1]->pose;
+    EXPECT_EQ(upNow.position, downNow.position);
+    EXPECT_NE(upNow.position, turned.position);
     ASSERT_TRUE(undo(state));
     EXPECT_EQ(state.scene.luminaires.size(), count);
 }

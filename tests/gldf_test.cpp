@@ -779,6 +779,9 @@ TEST(GldfGeometry, TwoObjectsEmitEachThroughItsOwnOpening) {
     ASSERT_TRUE(bottom->placement && top->placement);
     EXPECT_EQ(bottom->placement->object, "leo_bottom");
     EXPECT_EQ(top->placement->object, "leo_top");
+    // The container's product and L3D geometry are read once for the pair.
+    EXPECT_EQ(bottom->gldf, top->gldf);
+    EXPECT_EQ(bottom->geometry, top->geometry);
 
     // The same two openings placed by hand, each as a plain photometric luminaire. From
     // structure.xml: the part sits at z = -0.5 m; leo_bottom 0.0025 m above it turned -90 degrees

@@ -224,7 +224,7 @@ TEST(Tm33, DefectsAreRefusedWithTheirLine) {
          "an intensity in cd (a number), found \"lots\""},
         {"a value over two lines (found by fuzzing)",
          replaced(good, one, "<IntData h=\"90\" v=\"45\">9\n00</IntData>"),
-         "an intensity in cd (a number), found \"9?00\""},
+         "an intensity in cd (a number), found \"9 00\""},
         {"NaN", replaced(good, one, R"(<IntData h="90" v="45">nan</IntData>)"),
          "(a number), found \"nan\""},
         {"an angle missing", replaced(good, one, R"(<IntData v="45">900</IntData>)"),

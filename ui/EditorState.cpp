@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "luminaires/Environment.h"
+#include "luminaires/PhotometricLuminaire.h"
 #include "luminaires/Registry.h"
 #include "scene/SceneIo.h"
 #include "ui/Project.h"
@@ -84,6 +85,36 @@ bool step(EditorState& state, std::vector<UndoStep>& from, std::vector<UndoStep>
 
 }  // namespace
 
+namespace {
+
+bool samePose(const Pose& a, const Pose& b) {
+    return a.position == b.position && a.aim == b.aim && a.c0 == b.c0;
+}
+
+/// The placements of one GLDF variant (one luminaire per emitter, sharing the insertion point)
+/// move as one: a pose edit to one of them, whatever made it, is given to those that shared its
+/// pose and were not edited themselves.
+void keepGldfPlacementsTogether(Scene& scene, const std::vector<Pose>& before) {
+    auto& lums = scene.luminaires;
+    if (lums.size() != before.size()) return;  // added or removed: nothing was only moved
+    for (size_t i = 0; i < lums.size(); ++i) {
+        auto* moved = dynamic_cast<const PhotometricLuminaire*>(lums[i].get());
+        if (!moved || !moved->gldf || moved->gldfEmitterCount < 2 ||
+            samePose(lums[i]->pose, before[i]))
+            continue;
+        for (size_t j = 0; j < lums.size(); ++j) {
+            auto* sibling = dynamic_cast<const PhotometricLuminaire*>(lums[j].get());
+            if (j == i || !sibling || !sibling->gldf || sibling->file != moved->file ||
+                sibling->gldfVariant != moved->gldfVariant || !samePose(before[j], before[i]) ||
+                !samePose(lums[j]->pose, before[j]))
+                continue;
+            lums[j]->pose = lums[i]->pose;
+        }
+    }
+}
+
+}  // namespace
+
 void applyEdit(EditorState& state, std::string_view label, unsigned changes,
                const std::function<void(Scene&)>& edit) {
     UndoHistory& h = state.history;
@@ -99,7 +130,11 @@ void applyEdit(EditorState& state, std::string_view label, unsigned changes,
         h.undo.back().changes |= changes;
         h.redo.clear();
     }
+    std::vector<Pose> before;
+    if (changes & kChangeLuminaires)
+        for (const auto& l : state.scene.luminaires) before.push_back(l->pose);
     edit(state.scene);
+    if (changes & kChangeLuminaires) keepGldfPlacementsTogether(state.scene, before);
     state.pendingChanges |= changes;
     state.dirty = true;
     ++state.edits;

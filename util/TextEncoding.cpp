@@ -206,4 +206,11 @@ DecodedText decodeText(std::string_view bytes, const std::string& path) {
     return d;
 }
 
+std::string oneLine(std::string_view s) {
+    std::string out = toValidUtf8(s);
+    for (char& c : out)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F) c = ' ';
+    return out;
+}
+
 }  // namespace candela

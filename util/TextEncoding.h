@@ -43,6 +43,10 @@ inline bool isValidUtf8(std::string_view s) {
 /// Windows-1252 leaves a byte undefined), so any file name or field can go into a message.
 std::string toValidUtf8(std::string_view s);
 
+/// `s` as valid UTF-8 on one line (toValidUtf8, then control characters, line breaks and tabs
+/// among them, as spaces): a file's text quoted in a one-line message.
+std::string oneLine(std::string_view s);
+
 /// `s` read as IBM code page 850 (DOS Latin-1), transcoded to UTF-8: what ZIP archives made on
 /// Windows hold as member names when they do not flag them UTF-8.
 std::string fromCodePage850(std::string_view s);

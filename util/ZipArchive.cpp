@@ -24,13 +24,6 @@ std::string megabytes(uint64_t bytes) {
 
 }  // namespace
 
-std::string oneLine(std::string_view s) {
-    std::string out = toValidUtf8(s);
-    for (char& c : out)
-        if (static_cast<unsigned char>(c) < 0x20) c = ' ';
-    return out;
-}
-
 ZipArchive::ZipArchive(const std::string& bytes, const std::string& path, const std::string& kind)
     : mPath(path) {
     zip_error_t error;

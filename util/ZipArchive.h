@@ -16,9 +16,6 @@ namespace candela {
 /// allocate.
 constexpr uint64_t kMaxZipMember = uint64_t(64) << 20;
 
-/// `s` as valid UTF-8 on one line: control characters (line breaks, tabs) become spaces.
-std::string oneLine(std::string_view s);
-
 class ZipArchive {
   public:
     /// Opens `bytes` (kept alive by the caller while the archive is used); `path` names the
