@@ -674,7 +674,7 @@ void surfacesSection(Pdf& pdf, const ReportInput& in) {
                       s.plane.vName().c_str(), s.lo.y, s.hi.y, s.cells.x, s.cells.y, s.spacing.x,
                       s.spacing.y, s.points.size());
         pdf.paragraph(line, 8);
-        if (s.points.empty()) {
+        if (s.points.empty() || !(s.spacing.x > 0.0) || !(s.spacing.y > 0.0)) {
             pdf.paragraph("No points: the room leaves no " + s.role + ".", 8);
             continue;
         }

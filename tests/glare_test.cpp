@@ -140,14 +140,14 @@ TEST(Glare, SmallSourcesTakeCie147sForm) {
     TempDir tmp;
     GlareObserver o = observer({0, 1.2, 3}, {0, 0, -1}, 15.0);
     Scene small = lambertScene(tmp, {"[0, 2.8, 0]"}, "", R"(, "opening": [0.05, 0.05])");
-    const GlareSource& s = computeGlare(small, {}, {o}).observers[0].sources[0];
+    const GlareSource s = computeGlare(small, {}, {o}).observers[0].sources[0];
     EXPECT_TRUE(s.small);
     EXPECT_NEAR(s.projectedArea, 0.0025 * 1.6 / 3.4, 1e-12);
     double p = levin(std::acos(3.0 / 3.4) / kDegToRad, 0.0);
     EXPECT_NEAR(s.term, 200.0 * s.intensity * s.intensity / (3.4 * 3.4 * p * p), 1e-8 * s.term);
     // An opening whose projection is just above 0.005 m2 gives nearly the same term.
     Scene edge = lambertScene(tmp, {"[0, 2.8, 0]"}, "", R"(, "opening": [0.1031, 0.1031])");
-    const GlareSource& e = computeGlare(edge, {}, {o}).observers[0].sources[0];
+    const GlareSource e = computeGlare(edge, {}, {o}).observers[0].sources[0];
     EXPECT_FALSE(e.small);
     EXPECT_NEAR(e.term, s.term, 0.01 * s.term);  // the intensities differ by the table's rounding
 }

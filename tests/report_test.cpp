@@ -3,6 +3,8 @@
 // holds the scale's colours; a scene with nothing to report still makes a PDF. The pages
 // themselves are read back by poppler in tests/cli/report.sh.
 
+#include "report/Report.h"
+
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -10,7 +12,6 @@
 
 #include "TestUtil.h"
 #include "renderer/passes/TonemapPass.h"
-#include "report/Report.h"
 #include "scene/Scene.h"
 #include "scene/SceneIo.h"
 #include "shaders/shared/FalseColour.h"
