@@ -617,8 +617,10 @@ void Editor::updateReport() {
                 in.scene = scene.get();
                 in.title = title;
                 std::time_t now = std::time(nullptr);
+                std::tm utc{};
+                gmtime_r(&now, &utc);  // the thread-safe form: this runs beside the editor
                 char date[16];
-                std::strftime(date, sizeof date, "%Y-%m-%d", std::gmtime(&now));
+                std::strftime(date, sizeof date, "%Y-%m-%d", &utc);
                 in.date = date;
                 in.evaluation = reportEvaluationText(how);
                 if (!scene->taskAreas.empty() || !scene->calcPoints.empty())
