@@ -453,8 +453,10 @@ class KernelTable {
         oMin = lf.imageMin - nodeMax;
         glm::dvec2 oMax = lf.imageMax - nodeMin;
         double step = std::min({lf.delta, lf.spacing.x, lf.spacing.y}) / 6.0;
-        n = glm::clamp(glm::ivec2(glm::ceil((oMax - oMin) / step)) + 1, glm::ivec2(2),
-                       glm::ivec2(400));
+        // Clamped as doubles: an image 3e7 m across (fuzzing) needs 9e9 points, beyond int.
+        glm::dvec2 points = glm::ceil((oMax - oMin) / step) + 1.0;
+        n = glm::ivec2(std::isfinite(points.x) ? std::clamp(points.x, 2.0, 400.0) : 400.0,
+                       std::isfinite(points.y) ? std::clamp(points.y, 2.0, 400.0) : 400.0);
         st = (oMax - oMin) / glm::dvec2(n - 1);
         table.assign(size_t(n.x) * size_t(n.y), std::numeric_limits<double>::quiet_NaN());
     }

@@ -48,8 +48,12 @@ class KernelTable {
         glm::dvec2 reach = glm::max(glm::abs(l.imageMax - nodeMin), glm::abs(l.imageMin - nodeMax));
         double width = std::min({l.delta, l.spacing.x, l.spacing.y});
         constexpr int kMaxSide = 1024;
-        mN = glm::clamp(glm::ivec2(glm::ceil(reach / (width / 16.0))) + 2, glm::ivec2(3),
-                        glm::ivec2(kMaxSide));
+        // Clamped as doubles, so a huge reach cannot overflow the conversion to int.
+        glm::dvec2 points = glm::ceil(reach / (width / 16.0)) + 2.0;
+        auto side = [&](double v) {
+            return std::isfinite(v) ? int(std::clamp(v, 3.0, double(kMaxSide))) : kMaxSide;
+        };
+        mN = glm::ivec2(side(points.x), side(points.y));
         mStep = reach / glm::dvec2(mN - 2);
         auto pieces = [&](double h) { return std::clamp(int(std::ceil(2.0 * h / l.delta)), 1, 8); };
         AxisRule rx(l.spacing.x, pieces(l.spacing.x)), ry(l.spacing.y, pieces(l.spacing.y));
