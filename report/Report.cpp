@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
 #include <map>
 
 #include "luminaires/Gldf.h"
@@ -890,6 +891,34 @@ std::string reportEvaluationText(const GridSpec& how) {
                               " radiosity patches and a final gather"
                         : ", direct light only (--indirect adds the interreflected light)";
     return out;
+}
+
+std::string todayUtc() {
+    std::time_t now = std::time(nullptr);
+    std::tm utc{};
+    gmtime_r(&now, &utc);
+    char buf[16];
+    std::strftime(buf, sizeof buf, "%Y-%m-%d", &utc);
+    return buf;
+}
+
+void computeReportContents(ReportInput& in, const Scene& scene, const std::string& title,
+                           const GridSpec& how,
+                           const std::function<void(const std::string&)>& status) {
+    in.scene = &scene;
+    in.title = title;
+    in.date = todayUtc();
+    in.evaluation = reportEvaluationText(how);
+    if (!scene.taskAreas.empty() || !scene.calcPoints.empty()) {
+        in.surfaces = computeSurfaces(scene, how, status);
+    } else {
+        in.surfaces.units = scene.units();
+        in.surfaces.maintenance = scene.maintenanceNote();
+    }
+    if (!scene.glareObservers.empty())
+        in.glare = computeGlare(scene, how, {}, status);
+    else
+        in.glareNote = "The scene places no glare observers (\"glare_observers\"): no UGR.";
 }
 
 std::string reportPdf(const ReportInput& in) {

@@ -7,6 +7,7 @@
 // `candela report` and the editor's File > Export report make one; the numbers are those of
 // `candela surfaces` and `candela glare` (the same computations, passed in).
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -36,6 +37,16 @@ struct ReportInput {
 /// What `how` asks of the estimators, in the report's words ("each luminaire's own technique,
 /// 1024 samples per point ..., direct light only ...").
 std::string reportEvaluationText(const GridSpec& how);
+
+/// Today's date, YYYY-MM-DD in UTC (thread-safe): a report's date and a converted file's.
+std::string todayUtc();
+
+/// Fills what the report computes: scene, title, today's date, the evaluation text, the surfaces
+/// (computeSurfaces, when the scene has any) and the UGR (computeGlare, when it has observers),
+/// or the notes saying there are none. The view is the caller's. `status` hears progress.
+void computeReportContents(ReportInput& in, const Scene& scene, const std::string& title,
+                           const GridSpec& how,
+                           const std::function<void(const std::string&)>& status = {});
 
 /// The report's PDF bytes (A4 pages). Throws InputError when cairo cannot draw it.
 std::string reportPdf(const ReportInput& input);

@@ -614,25 +614,7 @@ void Editor::updateReport() {
                 std::vector<std::string> inputs = scene->inputFiles();
                 ProtectedInputs protect(inputs);
                 checkNotAnInput(path, "Export report");
-                in.scene = scene.get();
-                in.title = title;
-                std::time_t now = std::time(nullptr);
-                std::tm utc{};
-                gmtime_r(&now, &utc);  // the thread-safe form: this runs beside the editor
-                char date[16];
-                std::strftime(date, sizeof date, "%Y-%m-%d", &utc);
-                in.date = date;
-                in.evaluation = reportEvaluationText(how);
-                if (!scene->taskAreas.empty() || !scene->calcPoints.empty())
-                    in.surfaces = computeSurfaces(*scene, how);
-                else
-                    in.surfaces.units = scene->units(),
-                    in.surfaces.maintenance = scene->maintenanceNote();
-                if (!scene->glareObservers.empty())
-                    in.glare = computeGlare(*scene, how);
-                else
-                    in.glareNote =
-                        "The scene places no glare observers (\"glare_observers\"): no UGR.";
+                computeReportContents(in, *scene, title, how);
                 writeFileAtomically(path, reportPdf(in), "cannot write the report");
                 return "";
             } catch (const std::exception& e) {

@@ -11,6 +11,7 @@
 #include "luminaires/Photometry.h"
 #include "luminaires/ProceduralLuminaire.h"
 #include "luminaires/Tm25RayFile.h"
+#include "report/Report.h"
 #include "util/Error.h"
 #include "util/FileOutput.h"
 
@@ -271,16 +272,6 @@ int convertProcedural(const ConvertOptions& o) {
     return 0;
 }
 
-/// Today's date, YYYY-MM-DD (UTC).
-std::string today() {
-    std::time_t now = std::time(nullptr);
-    std::tm utc{};
-    gmtime_r(&now, &utc);
-    char buf[16];
-    std::strftime(buf, sizeof buf, "%Y-%m-%d", &utc);
-    return buf;
-}
-
 int convertPhotometry(const ConvertOptions& o) {
     ProtectedInputs inputs({o.input});
     checkNotAnInput(o.out, "--out");
@@ -289,7 +280,7 @@ int convertPhotometry(const ConvertOptions& o) {
     for (const std::string& w : d.warnings)
         std::fprintf(stderr, "candela convert: warning: %s\n", w.c_str());
     std::vector<std::string> notes;
-    std::string xml = writeTm33(d, today(), notes);
+    std::string xml = writeTm33(d, todayUtc(), notes);
     // Read back before anything is written: what lands on disk is a file Candela loads, with the
     // same table.
     PhotometricData back = parseTm33(xml, o.out);

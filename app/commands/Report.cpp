@@ -14,18 +14,7 @@
 
 namespace candela {
 
-namespace {
-
-std::string today() {
-    std::time_t now = std::time(nullptr);
-    std::tm utc{};
-    gmtime_r(&now, &utc);
-    char buf[16];
-    std::strftime(buf, sizeof buf, "%Y-%m-%d", &utc);
-    return buf;
-}
-
-}  // namespace
+namespace {}  // namespace
 
 int cmdReport(const Args& args) {
     std::string scenePath, out, title;
@@ -66,18 +55,9 @@ int cmdReport(const Args& args) {
     auto status = [](const std::string& s) { std::fprintf(stderr, "report: %s\n", s.c_str()); };
 
     ReportInput in;
-    in.scene = &scene;
-    in.title = title.empty() ? std::filesystem::path(scenePath).stem().string() : title;
-    in.date = today();
-    in.evaluation = reportEvaluationText(how);
-    if (!scene.taskAreas.empty() || !scene.calcPoints.empty())
-        in.surfaces = computeSurfaces(scene, how, status);
-    else
-        in.surfaces.units = scene.units(), in.surfaces.maintenance = scene.maintenanceNote();
-    if (!scene.glareObservers.empty())
-        in.glare = computeGlare(scene, how, {}, status);
-    else
-        in.glareNote = "The scene places no glare observers (\"glare_observers\"): no UGR.";
+    computeReportContents(in, scene,
+                          title.empty() ? std::filesystem::path(scenePath).stem().string() : title,
+                          how, status);
     if (view) {
         try {
             status("rendering the view");
