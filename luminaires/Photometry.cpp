@@ -436,6 +436,13 @@ double PhotometricData::declaredFlux() const {
     return lampFlux > 0.0 && lightOutputRatio > 0.0 ? lampFlux * lightOutputRatio : 0.0;
 }
 
+std::string PhotometricData::keyword(std::initializer_list<const char*> keys) const {
+    for (const char* k : keys)
+        for (const auto& [key, value] : keywords)
+            if (key == k && !value.empty()) return value;
+    return {};
+}
+
 double PhotometricData::maxIntensity() const {
     double m = 0.0;
     for (double c : candela) m = std::max(m, c);

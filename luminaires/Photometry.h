@@ -26,6 +26,7 @@
 // intensities, intensities above kMaxCandela, openings above kMaxOpening) are always errors.
 
 #include <glm/glm.hpp>
+#include <initializer_list>
 #include <string>
 #include <utility>
 #include <vector>
@@ -131,6 +132,9 @@ struct PhotometricData {
     /// that intensity() evaluates (per cell, linear in angle times sin/cos integrated in closed
     /// form).
     double fluxFromTable() const;
+    /// The first non-empty value among `keys` (IES [KEY]s, EULUMDAT fields, TM-33 elements), in
+    /// the order given; "" when none is there.
+    std::string keyword(std::initializer_list<const char*> keys) const;
     /// The largest intensity in the table, cd.
     double maxIntensity() const;
     /// The flux the file declares for the luminaire, lamp flux x light output ratio, lm; 0 when

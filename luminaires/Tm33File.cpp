@@ -570,13 +570,6 @@ PhotometricData parseTm33(const std::string& bytes, const std::string& path,
 
 namespace {
 
-std::string keyword(const PhotometricData& d, std::initializer_list<const char*> keys) {
-    for (const char* k : keys)
-        for (const auto& [key, value] : d.keywords)
-            if (key == k && !value.empty()) return value;
-    return {};
-}
-
 /// Text for an XML element's content: the five special characters escaped, and characters XML
 /// 1.0 forbids (C0 controls other than tab and newline) dropped.
 std::string escaped(const std::string& s) {
@@ -653,16 +646,16 @@ std::string writeTm33(const PhotometricData& d, const std::string& date,
     x << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<IESTM33>\n";
     element(1, "Version", "1.0");
     x << "  <Header>\n";
-    std::string manufacturer = keyword(d, {"MANUFAC", "Manufacturer", "company"});
+    std::string manufacturer = d.keyword({"MANUFAC", "Manufacturer", "company"});
     if (!manufacturer.empty()) element(2, "Manufacturer", manufacturer);
-    std::string catalog = keyword(d, {"LUMCAT", "CatalogNumber", "luminaire number"});
+    std::string catalog = d.keyword({"LUMCAT", "CatalogNumber", "luminaire number"});
     if (!catalog.empty()) element(2, "CatalogNumber", catalog);
     element(2, "Description", d.name.empty() ? source : d.name);
-    std::string lab = keyword(d, {"TESTLAB", "Laboratory"});
+    std::string lab = d.keyword({"TESTLAB", "Laboratory"});
     element(2, "Laboratory", lab.empty() ? "not stated in " + source : lab);
-    std::string report = keyword(d, {"TEST", "ReportNumber", "measurement report"});
+    std::string report = d.keyword({"TEST", "ReportNumber", "measurement report"});
     element(2, "ReportNumber", report.empty() ? "not stated in " + source : report);
-    std::string reportDate = keyword(d, {"ReportDate"});
+    std::string reportDate = d.keyword({"ReportDate"});
     bool dated = reportDate.size() == 10 && reportDate[4] == '-' && reportDate[7] == '-';
     element(2, "ReportDate", dated ? reportDate : date);
     element(2, "DocumentCreator", "Candela (candela convert)");

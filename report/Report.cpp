@@ -248,13 +248,6 @@ class Pdf {
     int mPage = 1;
 };
 
-std::string keyword(const PhotometricData& d, std::initializer_list<const char*> keys) {
-    for (const char* k : keys)
-        for (const auto& [key, value] : d.keywords)
-            if (key == k && !value.empty()) return value;
-    return {};
-}
-
 std::string shortPath(const std::string& path) {
     size_t slash = path.find_last_of("/\\");
     return slash == std::string::npos ? path : path.substr(slash + 1);
@@ -849,7 +842,7 @@ std::vector<ScheduleRow> luminaireSchedule(const Scene& scene) {
             r.file = p->file;
             r.flux = d.fluxFromTable() * p->scale;
             r.power = d.inputWatts;
-            r.manufacturer = keyword(d, {"MANUFAC", "company", "Manufacturer"});
+            r.manufacturer = d.keyword({"MANUFAC", "company", "Manufacturer"});
             r.product = d.name;
             if (p->gldf) {
                 r.kind = "GLDF";
