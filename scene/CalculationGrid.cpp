@@ -158,6 +158,35 @@ void addIndirect(const Scene& scene, const GridSpec& spec, const std::vector<Rec
     }
 }
 
+/// Adds the interreflected light to r.E and to r.initial (which holds the direct light before
+/// maintenance). The reflected light is linear in the sources: where every source has one
+/// factor, it is the maintained light over that factor; where they differ, a second solution
+/// with every factor at 1 gives it.
+void addIndirectBeforeMaintenance(const Scene& scene, const GridSpec& spec,
+                                  const std::vector<Receiver>& receivers, ReceiverResult& r,
+                                  const std::function<void(const std::string&)>& status) {
+    addIndirect(scene, spec, receivers, r, status);
+    std::vector<double> factors;
+    if (scene.environmentMap) factors.push_back(1.0);
+    for (const auto& l : scene.luminaires) factors.push_back(scene.maintenanceFactorOf(*l));
+    bool common =
+        std::all_of(factors.begin(), factors.end(), [&](double f) { return f == factors.front(); });
+    if (common) {
+        double f = factors.empty() ? 1.0 : factors.front();
+        for (size_t k = 0; k < r.initial.size(); ++k) r.initial[k] += r.indirect[k] / f;
+        return;
+    }
+    Scene initial = scene.clone();
+    initial.maintenanceFactor = 1.0;
+    for (auto& l : initial.luminaires) l->maintenanceFactor.reset();
+    ReceiverResult again = r;  // addIndirect fills its E and indirect; only `indirect` is read
+    auto say = [&](const std::string& s) {
+        if (status) status("before maintenance (luminaires with their own factors): " + s);
+    };
+    addIndirect(initial, spec, receivers, again, say);
+    for (size_t k = 0; k < r.initial.size(); ++k) r.initial[k] += again.indirect[k];
+}
+
 }  // namespace
 
 GridSummary summariseGrid(const std::vector<double>& E) {
@@ -205,6 +234,7 @@ GridResult computeGrid(const Scene& scene, const GridSpec& spec,
     ReceiverResult e = computeReceivers(scene, spec, receivers, status);
     r.units = e.units;
     r.maintenance = std::move(e.maintenance);
+    r.projectFactor = e.projectFactor;
     r.E = std::move(e.E);
     r.stdError = std::move(e.stdError);
     r.hasIndirect = e.hasIndirect;
@@ -212,7 +242,12 @@ GridResult computeGrid(const Scene& scene, const GridSpec& spec,
     r.directStdError = std::move(e.directStdError);
     r.indirect = std::move(e.indirect);
     r.indirectStdError = std::move(e.indirectStdError);
+    r.initial = std::move(e.initial);
     return r;
+}
+
+double effectiveMaintenanceFactor(double E, double initial, double fallback) {
+    return initial > 0.0 ? E / initial : fallback;
 }
 
 ReceiverResult computeReceivers(const Scene& scene, const GridSpec& spec,
@@ -261,18 +296,20 @@ ReceiverResult computeReceivers(const Scene& scene, const GridSpec& spec,
     ReceiverResult r;
     r.units = scene.units();
     r.maintenance = scene.maintenanceNote();
+    r.projectFactor = scene.maintenanceFactor;
     std::vector<double> scales;  // 683 lm/W for a radiometric luminaire in a mixed scene
     for (const auto& l : scene.luminaires) scales.push_back(scene.lightScale(*l));
     const Luminaire* environment = envChosen ? scene.environmentLight() : nullptr;
     double envScale = scene.environmentUnitScale();
     for (size_t index = 0; index < receivers.size(); ++index) {
         glm::dvec3 p = receivers[index].position, n = receivers[index].normal;
-        glm::dvec3 e(0.0), var(0.0);
+        glm::dvec3 e(0.0), var(0.0), before(0.0);  // before: without maintenance
         if (environment) {
             EstimateOptions o = options;
             o.seed = 1000003ull * index + 999983ull;
             Estimate est = envChosen->irradiance(*environment, p, n, o);
             e += envScale * est.irradiance;
+            before += envScale * est.irradiance;  // daylight takes no maintenance factor
             var += envScale * envScale * est.stdError * est.stdError;
         }
         for (size_t k = 0; k < scene.luminaires.size(); ++k) {
@@ -280,14 +317,16 @@ ReceiverResult computeReceivers(const Scene& scene, const GridSpec& spec,
             o.seed = 1000003ull * index + k + 1;
             Estimate est = chosen[k]->irradiance(*scene.luminaires[k], p, n, o);
             e += scales[k] * est.irradiance;
+            before += scene.unitScale(*scene.luminaires[k]) * est.irradiance;
             var += scales[k] * scales[k] * est.stdError * est.stdError;
         }
         r.direct.push_back(luminanceOf(e));
+        r.initial.push_back(luminanceOf(before));
         r.directStdError.push_back(luminanceOf(glm::sqrt(var)));
     }
     r.E = r.direct;
     r.stdError = r.directStdError;
-    if (spec.indirect) addIndirect(scene, spec, receivers, r, status);
+    if (spec.indirect) addIndirectBeforeMaintenance(scene, spec, receivers, r, status);
     return r;
 }
 

@@ -64,6 +64,7 @@ struct GridResult {
     std::vector<double> u, v;      ///< Point coordinates along u (columns) and v (rows), metres.
     UnitSystem units;              ///< What E is in: lx, or W/m2 for a radiometric scene.
     std::string maintenance;       ///< Its maintenance factors (Scene::maintenanceNote).
+    double projectFactor = 1.0;    ///< Scene::maintenanceFactor.
     std::vector<double> E;         ///< Illuminance at point (i, j) in E[j * u.size() + i], in
                                    ///< units.irradiance(), luminance-weighted: direct plus
                                    ///< interreflected when hasIndirect.
@@ -71,6 +72,9 @@ struct GridResult {
     bool hasIndirect = false;      ///< Interreflected light was computed (GridSpec::indirect).
     std::vector<double> direct, directStdError;      ///< The direct part alone (always filled).
     std::vector<double> indirect, indirectStdError;  ///< The interreflected part (hasIndirect).
+    /// E before maintenance (every maintenance factor 1): E / initial is the factor in effect at
+    /// the point, which varies where luminaires with their own factors mix.
+    std::vector<double> initial;
 };
 
 struct GridSummary {
@@ -98,10 +102,16 @@ struct Receiver {
 struct ReceiverResult {
     UnitSystem units;
     std::string maintenance;
+    double projectFactor = 1.0;       ///< Scene::maintenanceFactor.
     std::vector<double> E, stdError;  ///< In units.irradiance(), per receiver: direct (+ indirect).
     bool hasIndirect = false;
     std::vector<double> direct, directStdError, indirect, indirectStdError;
+    std::vector<double> initial;  ///< E before maintenance (GridResult::initial).
 };
+
+/// The maintenance factor in effect where maintained illuminance `E` was `initial` before
+/// maintenance: E / initial, or `fallback` (the project's factor) where no light arrives.
+double effectiveMaintenanceFactor(double E, double initial, double fallback);
 
 /// Evaluates the receivers with the estimators, visibility and interreflection that `how`
 /// asks for (its technique, environmentTechnique, spp, visibility, indirect, patches and

@@ -228,16 +228,18 @@ SurfaceReport computeSurfaces(const Scene& scene, const GridSpec& how,
     ReceiverResult e = computeReceivers(scene, how, receivers, status);
     report.units = e.units;
     report.maintenance = e.maintenance;
+    report.projectFactor = e.projectFactor;
     report.hasIndirect = e.hasIndirect;
     bool anyLux = false;
     size_t next = 0;
     // A point's value and standard error: one receiver's, or the mean of its azimuths'.
-    auto take = [&](bool cylindrical, double& value, double& stdError) {
+    auto take = [&](bool cylindrical, double& value, double& stdError, double& initial) {
         int n = cylindrical ? kCylinderAzimuths : 1;
         double variance = 0.0;
-        value = 0.0;
+        value = initial = 0.0;
         for (int k = 0; k < n; ++k, ++next) {
             value += e.E[next] / n;
+            initial += e.initial[next] / n;
             variance += e.stdError[next] * e.stdError[next] / (double(n) * n);
         }
         stdError = std::sqrt(variance);
@@ -245,7 +247,9 @@ SurfaceReport computeSurfaces(const Scene& scene, const GridSpec& how,
     for (SurfaceResult& s : report.surfaces) {
         s.E.resize(s.points.size());
         s.stdError.resize(s.points.size());
-        for (size_t k = 0; k < s.points.size(); ++k) take(s.cylindrical, s.E[k], s.stdError[k]);
+        s.initial.resize(s.points.size());
+        for (size_t k = 0; k < s.points.size(); ++k)
+            take(s.cylindrical, s.E[k], s.stdError[k], s.initial[k]);
         s.summary = summariseGrid(s.E);
         s.passes =
             s.summary.count > 0 && s.summary.eAvg >= s.required.em && s.summary.u0 >= s.required.u0;
@@ -254,7 +258,7 @@ SurfaceReport computeSurfaces(const Scene& scene, const GridSpec& how,
     for (const CalcPoint& p : scene.calcPoints) {
         PointResult r;
         r.point = p;
-        take(p.cylindrical, r.E, r.stdError);
+        take(p.cylindrical, r.E, r.stdError, r.initial);
         r.passes = r.E >= p.requiredLux;
         anyLux = anyLux || p.requiredLux > 0.0;
         report.points.push_back(r);

@@ -89,6 +89,7 @@ struct SurfaceResult {
     bool cylindrical = false;             ///< E is cylindrical illuminance Ez.
     std::vector<glm::dvec2> points;       ///< In-plane (u, v) of each point, m.
     std::vector<double> E, stdError;      ///< Maintained illuminance per point, lx (or W/m2).
+    std::vector<double> initial;          ///< The same before maintenance (GridResult::initial).
     GridSummary summary;
     Requirement required;
     bool passes = true;  ///< Every requirement met (true when there is none).
@@ -97,12 +98,14 @@ struct SurfaceResult {
 struct PointResult {
     CalcPoint point;
     double E = 0.0, stdError = 0.0;
+    double initial = 0.0;  ///< E before maintenance.
     bool passes = true;
 };
 
 struct SurfaceReport {
     UnitSystem units;
-    std::string maintenance;  ///< Scene::maintenanceNote().
+    std::string maintenance;     ///< Scene::maintenanceNote().
+    double projectFactor = 1.0;  ///< Scene::maintenanceFactor.
     bool hasIndirect = false;
     std::vector<SurfaceResult> surfaces;
     std::vector<PointResult> points;

@@ -246,7 +246,8 @@ TEST(FileOutput, GridCsvKeepsTheOldFileOnAFullDisk) {
     GridResult grid;
     for (int i = 0; i < 10; ++i) grid.u.push_back(0.1 * i), grid.v.push_back(0.2 * i);
     grid.E.assign(100, 123.456);
-    grid.stdError.assign(100, 0.5);  // 100 rows of about 40 bytes: some 4 kB of CSV
+    grid.stdError.assign(100, 0.5);  // 100 rows of about 60 bytes: some 6 kB of CSV
+    grid.initial.assign(100, 154.32);
     fs::path target = dir / "grid.csv";
     expectFullDiskKeepsOldFile(dir, target, [&] { writeGridCsv(target.string(), grid); });
 

@@ -4,6 +4,7 @@
 // interreflected, while the environment (daylight) takes none.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -123,6 +124,40 @@ TEST(Maintenance, InterreflectedLightIsMaintainedToo) {
         EXPECT_NEAR(maintained.indirect[k], 0.7 * initial.indirect[k],
                     1e-9 * initial.indirect[k] + 1e-15);
     }
+}
+
+// What the CSVs' E_initial and maintenance_factor columns hold: the values before maintenance,
+// checked against the same scene with no factor at all (an independent run). With one factor
+// for every luminaire the reflected light's initial value is the maintained one over it; with
+// factors that differ it comes from a second solution, and the factor in effect lies between
+// them and varies from point to point.
+TEST(Maintenance, InitialValuesEqualTheSceneWithoutFactors) {
+    const std::string two =
+        panel("A", 0.3) + "," + panel("B", -0.3, R"(, "maintenance_factor": 0.5)");
+    GridResult none = floorGrid(sceneWith(panel("A", 0.3) + "," + panel("B", -0.3)), true);
+    GridResult same = floorGrid(
+        sceneWith(panel("A", 0.3) + "," + panel("B", -0.3), R"(, "maintenance_factor": 0.8)"),
+        true);
+    GridResult mixed = floorGrid(sceneWith(two, R"(, "maintenance_factor": 0.8)"), true);
+    ASSERT_EQ(none.initial.size(), none.E.size());
+    double lowest = 1.0, highest = 0.0;
+    for (size_t k = 0; k < none.E.size(); ++k) {
+        // Without factors the initial values are the values (the same sums, to rounding).
+        EXPECT_NEAR(none.initial[k], none.E[k], 1e-12 * none.E[k]) << k;
+        // 1e-9: the radiosity iteration's stopping rule sees scaled residuals (above).
+        EXPECT_NEAR(same.initial[k], none.E[k], 1e-9 * none.E[k]) << k;
+        EXPECT_NEAR(mixed.initial[k], none.E[k], 1e-9 * none.E[k]) << k;
+        double f = effectiveMaintenanceFactor(same.E[k], same.initial[k], same.projectFactor);
+        EXPECT_NEAR(f, 0.8, 1e-9) << k;
+        double g = effectiveMaintenanceFactor(mixed.E[k], mixed.initial[k], mixed.projectFactor);
+        EXPECT_GT(g, 0.5) << k;
+        EXPECT_LT(g, 0.8) << k;
+        lowest = std::min(lowest, g);
+        highest = std::max(highest, g);
+    }
+    // Points nearer panel A (x > 0, factor 0.8) keep more of their light than those near B.
+    EXPECT_GT(highest - lowest, 0.01);
+    EXPECT_EQ(effectiveMaintenanceFactor(0.0, 0.0, 0.8), 0.8);  // no light: the project's factor
 }
 
 }  // namespace

@@ -88,7 +88,10 @@ void printGrid(const GridResult& r, const GridSummary& s) {
 std::string gridCsv(const GridResult& r) {
     // The unit is in the column names: _lx, or _W_m2 for a radiometric scene.
     std::string unit = r.units.photometric ? "_lx" : "_W_m2";
-    std::string out = "x,y,z,E" + unit + ",E_stderr" + unit;
+    // E is maintained: maintenance_factor is the factor in effect at the point (E over
+    // E_initial, which differ between points only where luminaires have their own factors).
+    std::string out =
+        "x,y,z,E" + unit + ",E_stderr" + unit + ",maintenance_factor,E_initial" + unit;
     if (r.hasIndirect)
         out += ",E_direct" + unit + ",E_direct_stderr" + unit + ",E_indirect" + unit +
                ",E_indirect_stderr" + unit;
@@ -98,8 +101,10 @@ std::string gridCsv(const GridResult& r) {
         for (size_t i = 0; i < r.u.size(); ++i) {
             glm::dvec3 q = r.spec.plane.point(r.u[i], r.v[j]);
             size_t k = j * r.u.size() + i;
-            std::snprintf(line, sizeof line, "%.9g,%.9g,%.9g,%.10g,%.4g", q.x, q.y, q.z, r.E[k],
-                          r.stdError[k]);
+            std::snprintf(line, sizeof line, "%.9g,%.9g,%.9g,%.10g,%.4g,%.6g,%.10g", q.x, q.y, q.z,
+                          r.E[k], r.stdError[k],
+                          effectiveMaintenanceFactor(r.E[k], r.initial[k], r.projectFactor),
+                          r.initial[k]);
             out += line;
             if (r.hasIndirect) {
                 std::snprintf(line, sizeof line, ",%.10g,%.4g,%.10g,%.4g", r.direct[k],

@@ -84,7 +84,9 @@ void printReport(const SurfaceReport& r) {
 
 std::string reportCsv(const SurfaceReport& r) {
     std::string unit = r.units.photometric ? "_lx" : "_W_m2";
-    std::string out = "surface,role,x,y,z,E" + unit + ",E_stderr" + unit + "\n";
+    // E is maintained; maintenance_factor = E / E_initial, the factor in effect at the point.
+    std::string out = "surface,role,x,y,z,E" + unit + ",E_stderr" + unit +
+                      ",maintenance_factor,E_initial" + unit + "\n";
     auto quoted = [](const std::string& s) {
         std::string q = "\"";
         for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
@@ -94,14 +96,17 @@ std::string reportCsv(const SurfaceReport& r) {
     for (const SurfaceResult& s : r.surfaces)
         for (size_t k = 0; k < s.points.size(); ++k) {
             glm::dvec3 q = s.plane.point(s.points[k].x, s.points[k].y);
-            std::snprintf(line, sizeof line, ",%.9g,%.9g,%.9g,%.10g,%.4g\n", q.x, q.y, q.z, s.E[k],
-                          s.stdError[k]);
+            std::snprintf(line, sizeof line, ",%.9g,%.9g,%.9g,%.10g,%.4g,%.6g,%.10g\n", q.x, q.y,
+                          q.z, s.E[k], s.stdError[k],
+                          effectiveMaintenanceFactor(s.E[k], s.initial[k], r.projectFactor),
+                          s.initial[k]);
             out += quoted(s.name) + "," + quoted(s.role) + line;
         }
     for (const PointResult& p : r.points) {
         glm::dvec3 q = p.point.position;
-        std::snprintf(line, sizeof line, ",%.9g,%.9g,%.9g,%.10g,%.4g\n", q.x, q.y, q.z, p.E,
-                      p.stdError);
+        std::snprintf(line, sizeof line, ",%.9g,%.9g,%.9g,%.10g,%.4g,%.6g,%.10g\n", q.x, q.y, q.z,
+                      p.E, p.stdError, effectiveMaintenanceFactor(p.E, p.initial, r.projectFactor),
+                      p.initial);
         out += quoted(p.point.name) + "," +
                quoted(p.point.cylindrical ? "cylindrical point" : "point") + line;
     }

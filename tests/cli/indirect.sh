@@ -48,11 +48,13 @@ if not 5.0 < i["Em"] < 60.0: sys.exit("interreflected Em %g lx outside the energ
 # Interreflected light is far more uniform than the downlights' pools.
 if not i["U0"] > d["U0"]: sys.exit("interreflected U0 not above direct U0")
 rows = [l.split(",") for l in open(sys.argv[2]).read().split()]
-want = "x,y,z,E_lx,E_stderr_lx,E_direct_lx,E_direct_stderr_lx,E_indirect_lx,E_indirect_stderr_lx".split(",")
+want = "x,y,z,E_lx,E_stderr_lx,maintenance_factor,E_initial_lx,E_direct_lx,E_direct_stderr_lx,E_indirect_lx,E_indirect_stderr_lx".split(",")
 if rows[0] != want: sys.exit("CSV header %s" % rows[0])
 for r in rows[1:]:
-    e, direct, indirect = float(r[3]), float(r[5]), float(r[7])
-    if abs(direct + indirect - e) > 1e-8 * e or indirect <= 0.0 or float(r[8]) <= 0.0:
+    e, direct, indirect = float(r[3]), float(r[7]), float(r[9])
+    # The office has no maintenance factor: the factor column is 1 and E_initial is E.
+    if abs(direct + indirect - e) > 1e-8 * e or indirect <= 0.0 or float(r[10]) <= 0.0 \
+            or float(r[5]) != 1.0 or abs(float(r[6]) - e) > 1e-9 * e:
         sys.exit("CSV row %s" % r)
 PY
 
