@@ -259,6 +259,14 @@ class ProductReader {
             source = &it->second;
             out.maintenance = source->maintenance;
         }
+        if (pugi::xml_node r = l.child("Rotation")) {
+            std::string what = owner + "'s <Rotation>";
+            // The schema's range: whole degrees in [0, 360] (non-integers are read too).
+            out.rotationXyz = {number(r, "X", what, 0.0, 360.0, 0.0),
+                               number(r, "Y", what, 0.0, 360.0, 0.0),
+                               number(r, "Z", what, 0.0, 360.0, 0.0)};
+            out.rotationG0 = number(r, "G0", what, 0.0, 360.0, 0.0);
+        }
         if (!out.fixed && source && source->flux >= 0.0)
             out.ratedFlux = source->flux * out.lightSourceCount;
         out.ratedPower = equipmentPower;
@@ -698,6 +706,25 @@ std::shared_ptr<const L3dLuminaire> gldfVariantGeometry(const std::string& bytes
     if (variant.modelGeometryId.empty()) return nullptr;
     ZipArchive archive(bytes, product.path, "a GLDF container");
     return readVariantGeometry(archive, product, variant);
+}
+
+void gldfRotateEmitter(const GldfLightEmitter& light, glm::dvec3& c0, glm::dvec3& aim) {
+    constexpr double kDegree = 3.14159265358979323846 / 180.0;
+    double g = light.rotationG0 * kDegree;
+    glm::dvec3 c90 = glm::cross(c0, aim);
+    c0 = std::cos(g) * c0 + std::sin(g) * c90;
+    // Right-handed rotation of v about the unit axis a by t radians (Rodrigues).
+    auto turn = [](const glm::dvec3& v, const glm::dvec3& a, double t) {
+        return std::cos(t) * v + std::sin(t) * glm::cross(a, v) +
+               (1.0 - std::cos(t)) * glm::dot(a, v) * a;
+    };
+    glm::dvec3 r = light.rotationXyz * kDegree;
+    for (glm::dvec3* v : {&c0, &aim}) {  // R = Rz Rx Ry: Ry first
+        *v = turn(*v, {0, 1, 0}, r.y);
+        *v = turn(*v, {1, 0, 0}, r.x);
+        *v = turn(*v, {0, 0, 1}, r.z);
+        *v = glm::normalize(*v);
+    }
 }
 
 }  // namespace candela

@@ -17,6 +17,7 @@
 // and what is wrong ("lamp.gldf: product.xml: missing"); member names in code page 850 or UTF-8.
 
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <memory>
 #include <string>
 #include <vector>
@@ -93,7 +94,22 @@ struct GldfLightEmitter {
     /// not stated.
     double ratedPower = -1.0;
     std::vector<GldfMaintenance> maintenance;  ///< The light source's LightSourceMaintenance.
+    /// <Rotation>, degrees ("for wall or floor luminaires, if not measured in position of use";
+    /// the guide's example turns a street luminaire's IES data 90 degrees about G0): about the
+    /// luminaire's x, y and z axes, and about the photometric solid's own gamma = 0 axis. All 0
+    /// when not given. gldfRotateEmitter applies it.
+    glm::dvec3 rotationXyz{0.0};
+    double rotationG0 = 0.0;
+    bool rotated() const { return rotationXyz != glm::dvec3(0.0) || rotationG0 != 0.0; }
 };
+
+/// Turns an emitter's photometric frame (its C0 direction and aim, unit vectors in the L3D
+/// luminaire frame) by its <Rotation>. The schema names the axes but not the senses and order;
+/// Candela reads them as L3D reads its own rotations, right-handed (counter-clockwise seen from
+/// the axis' tip): first G0 about the photometric solid's vertical axis, in the sense of
+/// increasing C (C0 goes where C = G0 was: C0 + G0 x C90), then R = Rz Rx Ry about the luminaire's
+/// axes. The opening stays where it is and turns with the aim.
+void gldfRotateEmitter(const GldfLightEmitter& light, glm::dvec3& c0, glm::dvec3& aim);
 
 /// GeneralDefinitions/Emitters/Emitter.
 struct GldfEmitter {

@@ -167,6 +167,16 @@ void PhotometricLuminaire::loadGldf(const std::string& path, const std::string& 
         p.opening.width = leo->sizeY;
         placement = p;
     }
+    // The emitter's <Rotation> turns its photometric solid; without a placement, from the
+    // luminaire frame's own (C0 along x, aiming down -z, the opening at the insertion point).
+    if (read.emitter && !read.emitter->lights.empty() && read.emitter->lights.front().rotated()) {
+        if (!placement) {
+            Placement p;
+            p.opening = photometry->opening;
+            placement = p;
+        }
+        gldfRotateEmitter(read.emitter->lights.front(), placement->c0, placement->aim);
+    }
     cache[key] = {stamp, product, photometry, geometry, placement, gldfEmitterCount};
 }
 
@@ -482,7 +492,16 @@ std::string PhotometricLuminaire::describe() const {
     if (gldfMaintenance)
         out += ", maintenance factor " + gldfFactors.text(gldfMaintenance->hours) +
                " (from the GLDF data)";
-    if (placement && !(openingOverride.x > 0.0 || openingOverride.y > 0.0)) {
+    if (gldf && placement) {
+        glm::dvec3 c0 = placement->c0, aim = placement->aim;
+        std::snprintf(buf, sizeof buf,
+                      ", C0 along (%.4g, %.4g, %.4g) and aim (%.4g, %.4g, %.4g) in the luminaire "
+                      "frame",
+                      c0.x, c0.y, c0.z, aim.x, aim.y, aim.z);
+        out += buf;
+    }
+    if (placement && !placement->object.empty() &&
+        !(openingOverride.x > 0.0 || openingOverride.y > 0.0)) {
         glm::dvec3 c = placement->centre;
         std::snprintf(buf, sizeof buf,
                       ", opening from its L3D object \"%s\" at (%.4g, %.4g, %.4g) m from the "

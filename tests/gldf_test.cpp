@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <glm/gtc/matrix_transform.hpp>
 #include <string>
 #include <utility>
 #include <vector>
@@ -151,6 +152,81 @@ GldfPhotometry photometryOf(const std::string& path, const std::string& variant 
 
 std::string realLdt() {
     return memberOf(container("GldfWithFilesComplete"), "ldc/photometry.ldt");
+}
+
+// --- Emitter rotation
+// -----------------------------------------------------------------------------
+
+TEST(Gldf, EmitterRotationIsRead) {
+    GldfProduct p = loadGldf(container("GldfWithFilesComplete"));
+    const GldfEmitter* e = p.emitter("emitter-1");
+    ASSERT_TRUE(e && e->lights.size() == 2);
+    EXPECT_EQ(e->lights[0].rotationXyz, glm::dvec3(1, 2, 3));
+    EXPECT_EQ(e->lights[0].rotationG0, 4.0);
+    EXPECT_EQ(e->lights[1].rotationXyz, glm::dvec3(5, 6, 7));
+    EXPECT_EQ(e->lights[1].rotationG0, 8.0);
+    EXPECT_TRUE(e->lights[0].rotated());
+}
+
+TEST(Gldf, EmitterRotationTurnsTheFrameRightHanded) {
+    // Worked by hand in the luminaire frame (C0 along +x, aiming down -z, C90 = c0 x aim = +y).
+    struct Case {
+        glm::dvec3 xyz;
+        double g0;
+        glm::dvec3 c0, aim;
+    };
+    for (const Case& c : {
+             Case{{0, 0, 0}, 90, {0, 1, 0}, {0, 0, -1}},    // G0: C0 to where C90 was
+             Case{{0, 0, 0}, 180, {-1, 0, 0}, {0, 0, -1}},  // C0 to C180
+             Case{{90, 0, 0}, 0, {1, 0, 0}, {0, 1, 0}},     // about x: -z to +y
+             Case{{0, 90, 0}, 0, {0, 0, -1}, {-1, 0, 0}},   // about y: x to -z, -z to -x
+             Case{{0, 0, 90}, 0, {0, 1, 0}, {0, 0, -1}},    // about z: x to y
+             // Rz Rx Ry: Ry first (x to -z, -z to -x), then Rx (-z to +y; -x stays), then Rz
+             // (+y to -x; -x to -y).
+             Case{{90, 90, 90}, 0, {-1, 0, 0}, {0, -1, 0}},
+         }) {
+        GldfLightEmitter light;
+        light.rotationXyz = c.xyz;
+        light.rotationG0 = c.g0;
+        glm::dvec3 c0{1, 0, 0}, aim{0, 0, -1};
+        gldfRotateEmitter(light, c0, aim);
+        for (int i = 0; i < 3; ++i) {
+            EXPECT_NEAR(c0[i], c.c0[i], 1e-12) << c.xyz.x << c.xyz.y << c.xyz.z << " G0 " << c.g0;
+            EXPECT_NEAR(aim[i], c.aim[i], 1e-12) << c.xyz.x << c.xyz.y << c.xyz.z << " G0 " << c.g0;
+        }
+    }
+}
+
+TEST(Gldf, EmitterRotationAboutG0TurnsTheLight) {
+    // cplanes.ies has 100, 200, 300, 400 cd at C 0, 90, 180, 270. Placed in a scene as GLDF
+    // luminaires, one with <G0>90</G0>: the rotated one sends C0's 100 cd where C90 was, C90's
+    // 200 cd to C180, and so on, read against the unrotated luminaire's own frame.
+    TempDir tmp;
+    std::string ies = readBytes(kData + "/photometric/cplanes.ies");
+    std::string xml =
+        replaced(productXml(), R"(contentType="ldc/eulumdat" type="localFileName">lamp.ldt)",
+                 R"(contentType="ldc/ies" type="localFileName">lamp.ies)");
+    writeZip(tmp.file("plain.gldf"), {{"product.xml", xml}, {"ldc/lamp.ies", ies}});
+    xml = replaced(xml, "<FixedLightEmitter>",
+                   "<FixedLightEmitter><Rotation><X>0</X><Y>0</Y><Z>0</Z><G0>90</G0></Rotation>");
+    writeZip(tmp.file("turned.gldf"), {{"product.xml", xml}, {"ldc/lamp.ies", ies}});
+    std::string scene = tmp.file("scene.json");
+    std::ofstream(scene) << R"({"luminaires": [
+        {"type": "gldf", "file": "plain.gldf", "position": [0, 3, 0]},
+        {"type": "gldf", "file": "turned.gldf", "position": [0, 3, 0]}]})";
+    Scene s = loadScene(scene);
+    auto& plain = dynamic_cast<const PhotometricLuminaire&>(*s.luminaires.at(0));
+    auto& turned = dynamic_cast<const PhotometricLuminaire&>(*s.luminaires.at(1));
+    glm::dvec3 c0, c90, aim;
+    plain.photometricFrame(c0, c90, aim);
+    const double h = std::sqrt(0.5);  // gamma 45 degrees
+    const double cd[4] = {100, 200, 300, 400};
+    for (int k = 0; k < 4; ++k) {
+        double c = k * 0.5 * 3.14159265358979;
+        glm::dvec3 w = h * (std::cos(c) * c0 + std::sin(c) * c90) + h * aim;
+        EXPECT_NEAR(plain.intensity(w), cd[k], 1e-9) << "C " << 90 * k;
+        EXPECT_NEAR(turned.intensity(w), cd[(k + 3) % 4], 1e-9) << "C " << 90 * k;
+    }
 }
 
 // --- The gldf.net containers -------------------------------------------------------------------
@@ -687,21 +763,34 @@ TEST(GldfGeometry, PlacedVariantEmitsFromTheObjectWhereTheProductHasIt) {
     // By hand: the L3D frame at this pose has x = c0 = (1, 0, 0), y = C90 = c0 x aim = (0, 0, -1)
     // and z = -aim = (0, 1, 0), so the object's (-0.006, 0.003, -0.038) m is world
     // (0, 3, 0) + (-0.006, -0.038, -0.003) m.
+    auto world = [](const glm::dvec3& v) { return glm::dvec3(v.x, v.z, -v.y); };
     Pose e = l->emitterPose();
     EXPECT_NEAR(glm::distance(e.position, glm::dvec3(-0.006, 2.962, -0.003)), 0.0, 1e-12);
-    EXPECT_NEAR(glm::distance(glm::normalize(e.aim), glm::dvec3(0, -1, 0)), 0.0, 1e-12);
-    EXPECT_NEAR(glm::distance(glm::normalize(e.c0), glm::dvec3(1, 0, 0)), 0.0, 1e-12);
+    // The emitter's <Rotation> (X 1, Y 2, Z 3, G0 4 degrees) turns the object's frame (C0 +x,
+    // aim -z): G0 about the aim, then Rz Rx Ry, here with glm's rotation matrices.
+    const double deg = 3.14159265358979323846 / 180.0;
+    glm::dmat4 r = glm::rotate(glm::dmat4(1.0), 3 * deg, glm::dvec3(0, 0, 1)) *
+                   glm::rotate(glm::dmat4(1.0), 1 * deg, glm::dvec3(1, 0, 0)) *
+                   glm::rotate(glm::dmat4(1.0), 2 * deg, glm::dvec3(0, 1, 0));
+    glm::dvec3 aim = world(glm::dvec3(r * glm::dvec4(0, 0, -1, 0)));
+    glm::dvec3 c0 = world(glm::dvec3(r * glm::dvec4(std::cos(4 * deg), std::sin(4 * deg), 0, 0)));
+    EXPECT_NEAR(glm::distance(glm::normalize(e.aim), aim), 0.0, 1e-12);
+    EXPECT_NEAR(glm::distance(glm::normalize(e.c0), c0), 0.0, 1e-12);
     EXPECT_EQ(l->pose.position, glm::dvec3(0, 3, 0));  // the insertion point stays the pose
-    // The opening is the object's rectangle, not the EULUMDAT's.
+    // The opening is the object's rectangle, not the EULUMDAT's, turned with the aim: its
+    // sides are sizeX along C0 and sizeY along C90, in the plane across the aim.
     EXPECT_NEAR(l->area(), 0.17 * 1.17, 1e-12);
     std::vector<glm::dvec3> outline = l->outline();
     ASSERT_EQ(outline.size(), 4u);
-    glm::dvec3 lo(1e9), hi(-1e9);
-    for (const glm::dvec3& q : outline) lo = glm::min(lo, q), hi = glm::max(hi, q);
-    EXPECT_NEAR(hi.x - lo.x, 0.17, 1e-12);  // sizeX along C0 = world x
-    EXPECT_NEAR(hi.z - lo.z, 1.17, 1e-12);  // sizeY along C90 = world -z
-    EXPECT_NEAR(lo.y, 2.962, 1e-12);
-    EXPECT_NEAR(hi.y, 2.962, 1e-12);
+    for (size_t k = 0; k < 4; ++k) {
+        EXPECT_NEAR(glm::dot(outline[k] - e.position, aim), 0.0, 1e-12) << k;
+        glm::dvec3 side = outline[(k + 1) % 4] - outline[k];
+        double along = std::abs(glm::dot(side, c0));
+        double across = std::abs(glm::dot(side, glm::cross(c0, aim)));
+        bool lengthwise = std::abs(along - 0.17) < 1e-12 && across < 1e-12;
+        bool crosswise = along < 1e-12 && std::abs(across - 1.17) < 1e-12;
+        EXPECT_TRUE(lengthwise || crosswise) << k << ": " << along << " m, " << across << " m";
+    }
     // Its flux is the photometry's: the geometry moves the light, it does not change it.
     std::string ldt = tmp.file("photometry.ldt");
     std::ofstream(ldt, std::ios::binary) << realLdt();

@@ -132,6 +132,15 @@ static void printGldfEmitter(const GldfProduct& product, const GldfEmitter& emit
         std::printf("    %s light emitter, photometry \"%s\": %s\n",
                     light.fixed ? "fixed" : "changeable", light.photometryId.c_str(),
                     where.c_str());
+        if (light.rotated())
+            std::printf("      rotation: X %g deg, Y %g deg, Z %g deg, G0 %g deg %s\n",
+                        light.rotationXyz.x, light.rotationXyz.y, light.rotationXyz.z,
+                        light.rotationG0,
+                        &light != &emitter.lights.front()
+                            ? "(not placed)"
+                            : "(applied: G0 about the photometric axis, C0 towards C90, then "
+                              "Rz Rx Ry about the luminaire's axes, right-handed; the schema "
+                              "does not state the senses)");
         if (light.ratedFlux >= 0.0)
             std::printf("      rated luminous flux: %.6g lm%s\n", light.ratedFlux,
                         light.lightSourceCount > 1 ? " (all its light sources)" : "");

@@ -40,22 +40,54 @@ info=$("$binary" info "$data/GldfWithMissingFiles.gldf" 2>&1)
 check "a missing member is reported per variant: $info" 'grep -qF "cannot be placed: $data/GldfWithMissingFiles.gldf: ldc/file.ldt (file \"eulumdat\", referenced by emitter \"emitter\"): not in the container" <<<"$info"'
 
 # The same light from the container and from its ldt extracted alone: every technique probes the
-# same illuminance, on the CPU and on the GPU (the same table through the same photometric code,
-# so the printed figures are identical; the reference's fixed seed makes it repeatable too).
-cat > "$tmp/ldt_scene.json" <<'JSON'
-{"luminaires": [{"type": "photometric", "file": "photometry.ldt", "position": [0, 3, 0], "aim": [0, -1, 0]}]}
-JSON
+# same illuminance, on the CPU and on the GPU (the same table through the same photometric code;
+# the reference's fixed seed makes it repeatable too). The container's emitter has a <Rotation>
+# of X 1, Y 2, Z 3, G0 4 degrees: the ldt is aimed as Candela reads it (README, "GLDF"), worked
+# out here with rotation matrices: G0 about the aim, then Rz Rx Ry in the luminaire frame (z up;
+# at this pose its x is world x, y world -z, z world y).
+python3 - "$tmp/ldt_scene.json" <<'PY'
+import json, math, sys
+d = math.radians
+def rx(a): c, s = math.cos(d(a)), math.sin(d(a)); return [[1, 0, 0], [0, c, -s], [0, s, c]]
+def ry(a): c, s = math.cos(d(a)), math.sin(d(a)); return [[c, 0, s], [0, 1, 0], [-s, 0, c]]
+def rz(a): c, s = math.cos(d(a)), math.sin(d(a)); return [[c, -s, 0], [s, c, 0], [0, 0, 1]]
+def mul(a, b): return [[sum(a[i][k] * b[k][j] for k in range(3)) for j in range(3)] for i in range(3)]
+def apply(m, v): return [sum(m[i][k] * v[k] for k in range(3)) for i in range(3)]
+r = mul(rz(3), mul(rx(1), ry(2)))
+aim = apply(r, [0, 0, -1])
+c0 = apply(r, [math.cos(d(4)), math.sin(d(4)), 0])  # G0 4: C0 towards C90 (+y)
+world = lambda v: [v[0], v[2], -v[1]]
+json.dump({"luminaires": [{"type": "photometric", "file": "photometry.ldt", "position": [0, 3, 0],
+                           "aim": world(aim), "c0": world(c0)}]}, open(sys.argv[1], "w"))
+PY
 cp "$complete" "$tmp/lamp.gldf"
 cat > "$tmp/gldf_scene.json" <<'JSON'
 {"luminaires": [{"type": "gldf", "file": "lamp.gldf", "position": [0, 3, 0], "aim": [0, -1, 0]}]}
 JSON
+same() {  # same A B: the probes' E columns agree within 1e-9 (the two frames differ by rounding)
+  python3 - "$1" "$2" <<'PY'
+import sys
+a, b = [l.split(",") for l in sys.argv[1].split()], [l.split(",") for l in sys.argv[2].split()]
+sys.exit(0 if len(a) == len(b) == 5 and a[0] == b[0] and
+         all(abs(float(x[6]) - float(y[6])) <= 1e-9 * abs(float(x[6])) + 1e-12 for x, y in zip(a[1:], b[1:])) else 1)
+PY
+}
 for device in cpu gpu; do
   for t in hybrid point reference; do
     a=$("$binary" probe "$tmp/ldt_scene.json" --points "$2/data/photometric/far_points.csv" --technique $t --spp 256 --device $device 2>/dev/null)
     b=$("$binary" probe "$tmp/gldf_scene.json" --points "$2/data/photometric/far_points.csv" --technique $t --spp 256 --device $device 2>/dev/null)
-    check "probe $t on $device: the GLDF variant lights like its ldt ($b vs $a)" '[ "$a" = "$b" ] && [ $(wc -l <<<"$b") -eq 5 ]'
+    check "probe $t on $device: the GLDF variant lights like its ldt ($b vs $a)" 'same "$a" "$b"'
   done
 done
+# And the rotation matters: the ldt aimed straight down lights the points otherwise.
+straight=$("$binary" probe "$tmp/gldf_scene.json" --points "$2/data/photometric/far_points.csv" --technique point 2>/dev/null)
+cat > "$tmp/down.json" <<'JSON'
+{"luminaires": [{"type": "photometric", "file": "photometry.ldt", "position": [0, 3, 0], "aim": [0, -1, 0]}]}
+JSON
+down=$("$binary" probe "$tmp/down.json" --points "$2/data/photometric/far_points.csv" --technique point 2>/dev/null)
+check "the emitter's rotation changes the light ($straight vs $down)" '! same "$straight" "$down"'
+info=$("$binary" info "$complete" 2>&1)
+check "info states the rotation and how it is read: $info" 'grep -q "rotation: X 1 deg, Y 2 deg, Z 3 deg, G0 4 deg (applied" <<<"$info" && grep -q "rotation: X 5 deg, Y 6 deg, Z 7 deg, G0 8 deg (not placed)" <<<"$info"'
 
 cat > "$tmp/scene.json" <<'JSON'
 {"luminaires": [{"type": "gldf", "file": "lamp.gldf", "variant": "variant-2", "position": [0, 3, 0]}]}
