@@ -33,6 +33,25 @@ TEST(EditorPlacement, OnAWallAlongItsNormalOrDownWithClearanceAndSnap) {
     EXPECT_NEAR(c.position.z, 0.5, 1e-12);
 }
 
+// The ray-plane intersection a drawn task area's corners come from, against the closed form
+// t = (offset - o[axis]) / d[axis], with the plane's coordinate exact.
+TEST(EditorPlacement, RaysMeetCalculationPlanesWhereTheClosedFormSays) {
+    Ray ray{{0.5, 2.0, 3.0}, glm::normalize(glm::dvec3(0.2, -0.6, -0.7))};
+    auto p = intersectPlane(ray, parsePlane("y=0.75"));
+    ASSERT_TRUE(p);
+    double t = (0.75 - 2.0) / ray.dir.y;
+    EXPECT_EQ(p->y, 0.75);
+    EXPECT_NEAR(p->x, 0.5 + t * ray.dir.x, 1e-12);
+    EXPECT_NEAR(p->z, 3.0 + t * ray.dir.z, 1e-12);
+    // Either facing: a wall plane facing -x is met the same way.
+    auto w = intersectPlane(Ray{{0, 1, 0}, {1, 0, 0}}, parsePlane("-x=2.5"));
+    ASSERT_TRUE(w);
+    EXPECT_EQ(*w, glm::dvec3(2.5, 1.0, 0.0));
+    // Behind the ray, and parallel to the plane: no point.
+    EXPECT_FALSE(intersectPlane(ray, parsePlane("y=2.5")));
+    EXPECT_FALSE(intersectPlane(Ray{{0, 1, 0}, {1, 0, 0}}, parsePlane("y=0.75")));
+}
+
 TEST(EditorPlacement, PickingTheDemoRoomsCeilingAimsDownAndTheBvhFollowsTheGeometry) {
     setenv("CANDELA_STATE_DIR",
            (std::filesystem::temp_directory_path() / "candela-placement-test").c_str(), 1);

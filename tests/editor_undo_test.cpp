@@ -92,6 +92,46 @@ TEST(EditorUndo, TaskAreasFromTheGridAreStepsAndSaveWithTheScene) {
     EXPECT_EQ(state.history.undo.back().label, "Remove task area Table");
 }
 
+// A task area drawn with the mouse: the rectangle between the drag's two points on the grid's
+// plane, corners rounded to 1 cm, whichever way the drag went; one step that also sets the grid's
+// extent; a drag under 5 cm on a side is refused with no step.
+TEST(EditorUndo, DrawnTaskAreasAreStepsOnTheGridsPlane) {
+    EditorState state = demo();
+    std::string original = text(state);
+    size_t before = state.scene.taskAreas.size(), steps = state.history.undo.size();
+    state.measure.grid.plane = parsePlane("y=0.8");
+    state.measure.taskName = "Bench";
+    state.measure.taskRequired = {750.0, 0.7};
+    // Too thin along z: refused, and the status says why.
+    EXPECT_FALSE(addTaskAreaFromDrag(state, {0.2, 0.8, 1.0}, {1.4, 0.8, 1.03}));
+    EXPECT_TRUE(state.statusIsError);
+    EXPECT_NE(state.status.find("too small"), std::string::npos) << state.status;
+    EXPECT_EQ(text(state), original);
+    EXPECT_EQ(state.history.undo.size(), steps);
+    // Dragged from the far corner back to the near one.
+    ASSERT_TRUE(addTaskAreaFromDrag(state, {1.4037, 0.8, 1.2449}, {-0.3012, 0.8, 0.4951}));
+    ASSERT_EQ(state.scene.taskAreas.size(), before + 1);
+    const TaskArea& a = state.scene.taskAreas.back();
+    EXPECT_EQ(a.name, "Bench");
+    EXPECT_EQ(a.plane.axis, 1);
+    EXPECT_EQ(a.plane.offset, 0.8);
+    EXPECT_EQ(a.lo, glm::dvec2(-0.30, 0.50));  // (x, z), rounded to 1 cm
+    EXPECT_EQ(a.hi, glm::dvec2(1.40, 1.24));
+    EXPECT_EQ(a.required, (Requirement{750.0, 0.7}));
+    EXPECT_EQ(state.measure.grid.lo, a.lo);  // the grid takes it as its extent
+    EXPECT_EQ(state.measure.grid.hi, a.hi);
+    EXPECT_TRUE(state.measure.extentSet);
+    EXPECT_EQ(state.history.undo.size(), steps + 1);
+    EXPECT_EQ(state.history.undo.back().label, "Draw task area Bench");
+    ASSERT_TRUE(undo(state));
+    EXPECT_EQ(text(state), original);
+    // On a wall (x = 2.5 facing -x) the rectangle spans (y, z).
+    state.measure.grid.plane = parsePlane("-x=2.5");
+    ASSERT_TRUE(addTaskAreaFromDrag(state, {2.5, 0.5, -1.0}, {2.5, 2.0, 1.0}));
+    EXPECT_EQ(state.scene.taskAreas.back().lo, glm::dvec2(0.5, -1.0));
+    EXPECT_EQ(state.scene.taskAreas.back().hi, glm::dvec2(2.0, 1.0));
+}
+
 // A glare observer at the camera: its eye where the camera is, its line of sight the camera's
 // made horizontal; one step, saved with the scene, refused when the camera looks straight down.
 TEST(EditorUndo, GlareObserversAtTheCameraAreStepsAndSaveWithTheScene) {

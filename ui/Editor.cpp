@@ -782,8 +782,9 @@ void Editor::writeLayout() {
                          ? nlohmann::json(state.scene.luminaires[size_t(selected)]->name)
                          : nlohmann::json(nullptr)},
         {"dragging", state.drag.mode == DragMode::Luminaire},
-        {"drag_mode", std::array<const char*, 6>{"none", "orbit", "pan", "luminaire", "aim",
-                                                 "spin"}[size_t(state.drag.mode)]},
+        {"drag_mode",
+         std::array<const char*, size_t(DragMode::Area) + 1>{
+             "none", "orbit", "pan", "luminaire", "aim", "spin", "area"}[size_t(state.drag.mode)]},
         {"mouse", io.MousePos.x > -FLT_MAX / 2 ? vec2Json(io.MousePos.x, io.MousePos.y)
                                                : nlohmann::json(nullptr)},
         {"samples_per_pixel", stats.samplesPerPixel},
@@ -827,6 +828,19 @@ void Editor::writeLayout() {
             j["surfaces"].push_back(
                 {{"name", p.point.name}, {"points", 1}, {"em", p.E}, {"passes", p.passes}});
     }
+    // The scene's task areas (metres on their planes) and the camera, for tests that draw one.
+    j["task_areas"] = nlohmann::json::array();
+    for (const TaskArea& a : state.scene.taskAreas)
+        j["task_areas"].push_back({{"name", a.name},
+                                   {"plane", planeText(a.plane)},
+                                   {"lo", {a.lo.x, a.lo.y}},
+                                   {"hi", {a.hi.x, a.hi.y}}});
+    j["drawing_area"] = state.measure.drawingArea;
+    j["grid_plane"] = planeText(state.measure.grid.plane);
+    const Camera& camera = state.scene.camera;
+    j["camera"] = {{"position", {camera.position.x, camera.position.y, camera.position.z}},
+                   {"target", {camera.target.x, camera.target.y, camera.target.z}},
+                   {"fov_deg", camera.fovDeg}};
     j["glare"] = nullptr;
     if (state.measure.glare) {
         j["glare"] = nlohmann::json::array();

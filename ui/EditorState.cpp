@@ -200,6 +200,42 @@ bool addTaskAreaFromGrid(EditorState& state) {
     return true;
 }
 
+bool addTaskAreaFromDrag(EditorState& state, const glm::dvec3& a, const glm::dvec3& b) {
+    GridSpec& g = state.measure.grid;
+    // The plane's in-plane axes, as CalcPlane orders them: (x, z) for y, (y, z) for x, (x, y)
+    // for z; coordinates rounded to 1 cm, as a designer types them.
+    int u = g.plane.axis == 0 ? 1 : 0, v = g.plane.axis == 2 ? 1 : 2;
+    auto cm = [](double x) { return std::round(x * 100.0) / 100.0; };
+    glm::dvec2 lo(cm(std::min(a[u], b[u])), cm(std::min(a[v], b[v])));
+    glm::dvec2 hi(cm(std::max(a[u], b[u])), cm(std::max(a[v], b[v])));
+    if (!(hi.x - lo.x >= kMinDrawnSide) || !(hi.y - lo.y >= kMinDrawnSide)) {
+        char text[160];
+        std::snprintf(text, sizeof text,
+                      "Task area: %.2f x %.2f m is too small (drag at least %.2f m on each side)",
+                      hi.x - lo.x, hi.y - lo.y, kMinDrawnSide);
+        setStatus(state, text, true);
+        return false;
+    }
+    TaskArea area;
+    area.name = state.measure.taskName.empty() ? "Task area" : state.measure.taskName;
+    area.plane = g.plane;
+    area.lo = lo;
+    area.hi = hi;
+    area.required = state.measure.taskRequired;
+    applyEdit(state, "Draw task area " + area.name, kChangeSettings,
+              [&area](Scene& scene) { scene.taskAreas.push_back(area); });
+    g.lo = lo;
+    g.hi = hi;
+    state.measure.extentSet = true;
+    state.measure.surfaces.reset();
+    char text[200];
+    std::snprintf(text, sizeof text, "Drew task area %s on %s: %s %.2f..%.2f m, %s %.2f..%.2f m",
+                  area.name.c_str(), planeText(area.plane).c_str(), g.plane.uName().c_str(), lo.x,
+                  hi.x, g.plane.vName().c_str(), lo.y, hi.y);
+    setStatus(state, text);
+    return true;
+}
+
 void removeTaskArea(EditorState& state, size_t index) {
     if (index >= state.scene.taskAreas.size()) return;
     applyEdit(

@@ -28,7 +28,8 @@
 namespace candela::ui {
 
 /// Aim and Spin: the rotation gizmo's handles of the selected luminaire (ui/Viewport.cpp).
-enum class DragMode { None, Orbit, Pan, Luminaire, Aim, Spin };
+/// The layout file names each (ui/Editor.cpp); Area is the last.
+enum class DragMode { None, Orbit, Pan, Luminaire, Aim, Spin, Area };
 
 /// A mouse interaction in the viewport that spans several frames.
 struct ViewportDrag {
@@ -37,6 +38,9 @@ struct ViewportDrag {
     double height = 0.0;         ///< Height of the horizontal drag plane, metres.
     glm::dvec3 grabOffset{0.0};  ///< Luminaire position minus the grabbed plane point, metres.
     bool onSurfaces = false;     ///< The luminaire follows the surface under the mouse.
+    /// DragMode::Area: the corners of the task area being drawn on the Measure grid's plane
+    /// (world, metres): where the press met the plane and where the mouse meets it now.
+    glm::dvec3 areaStart{0.0}, areaEnd{0.0};
 };
 
 /// Where things are on screen this frame, in window pixels (x right, y down).
@@ -80,8 +84,10 @@ struct MeasureState {
     /// The operator false colour replaced, restored when it is turned off (setFalseColour).
     ToneMapOperator previousOperator = ToneMapOperator::Exponential;
     // EN 12464-1 calculation surfaces (scene/CalculationSurfaces.h).
-    std::string taskName = "Task area";     ///< Name of the next task area added.
-    Requirement taskRequired{500.0, 0.6};   ///< Its requirement (lx, U0).
+    std::string taskName = "Task area";    ///< Name of the next task area added.
+    Requirement taskRequired{500.0, 0.6};  ///< Its requirement (lx, U0).
+    /// "Draw a task area": the next left drag in the viewport draws one on the grid's plane.
+    bool drawingArea = false;
     std::optional<SurfaceReport> surfaces;  ///< Last computed surfaces and points.
     std::string surfacesError;              ///< Why the last computation failed.
     // Glare (scene/Glare.h): the next observer's name and limit, the last UGR computed.
@@ -328,6 +334,13 @@ void setFalseColour(EditorState& state, bool on);
 /// named measure.taskName with measure.taskRequired, as one undo step. False, with a status,
 /// when the grid has no area.
 bool addTaskAreaFromGrid(EditorState& state);
+/// Smallest side of a task area drawn with the mouse, metres; shorter drags are refused.
+constexpr double kMinDrawnSide = 0.05;
+/// A task area drawn in the viewport: the rectangle on the Measure grid's plane with opposite
+/// corners `a` and `b` (world, metres; their in-plane coordinates rounded to 1 cm) becomes a task
+/// area named and required as the panel says, and the grid's extent, in one undo step. Refused,
+/// with the status saying why, when a side is under kMinDrawnSide.
+bool addTaskAreaFromDrag(EditorState& state, const glm::dvec3& a, const glm::dvec3& b);
 /// Removes task area `index` as one undo step.
 void removeTaskArea(EditorState& state, size_t index);
 /// Adds a UGR observer where the camera is, looking where it looks (made horizontal), named

@@ -325,6 +325,16 @@ void surfaceControls(EditorState& state, MeasureState& measure) {
     measure.taskRequired.em = std::max(0.0, measure.taskRequired.em);
     if (ImGui::Button("Add the grid as a task area", ImVec2(-1.f, 0.f))) addTaskAreaFromGrid(state);
     recordRect(state, "measure.add_task");
+    std::string drawLabel = measure.drawingArea
+                                ? "Drag across the viewport (click here to cancel)"
+                                : "Draw a task area on " + planeText(measure.grid.plane);
+    if (ImGui::Button(drawLabel.c_str(), ImVec2(-1.f, 0.f)))
+        measure.drawingArea = !measure.drawingArea;
+    recordRect(state, "measure.draw_task");
+    itemTooltip(
+        "Then drag a rectangle in the viewport: it is drawn on the grid's plane (set it above) "
+        "and becomes a task area with this name and requirement, and the grid's extent "
+        "(corners rounded to 1 cm; one undo step)");
     itemTooltip(
         "The grid's plane and extent become a task area of the scene (saved with it); its "
         "immediate surrounding (0.5 m) and background (3 m) are evaluated with it, on the "

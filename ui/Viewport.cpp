@@ -118,6 +118,62 @@ void drawOutlines(const EditorState& state, const Renderer& renderer, const Imag
     }
 }
 
+/// Every task area's outline on its plane, named, and the one being drawn (DragMode::Area).
+void drawTaskAreas(const EditorState& state, const Renderer& renderer, const ImageMapping& map) {
+    ImDrawList* draw = ImGui::GetWindowDrawList();
+    glm::mat4 viewProj = renderer.viewProj();
+    auto rectangle = [&](const CalcPlane& plane, glm::dvec2 lo, glm::dvec2 hi, ImU32 colour,
+                         const std::string& label) {
+        ImVec2 corners[4];
+        glm::dvec2 uv[4] = {lo, {hi.x, lo.y}, hi, {lo.x, hi.y}};
+        for (int k = 0; k < 4; ++k) {
+            auto px = projectToPixels(viewProj, plane.point(uv[k].x, uv[k].y), map.renderWidth,
+                                      map.renderHeight);
+            if (!px) return;  // behind the camera
+            corners[k] = map.toWindow(*px);
+        }
+        draw->AddPolyline(corners, 4, colour, ImDrawFlags_Closed, 2.f);
+        if (!label.empty()) draw->AddText(corners[3], colour, label.c_str());
+    };
+    for (const TaskArea& a : state.scene.taskAreas)
+        rectangle(a.plane, a.lo, a.hi, IM_COL32(80, 220, 255, 220), a.name);
+    if (state.drag.mode != DragMode::Area) return;
+    const CalcPlane& plane = state.measure.grid.plane;
+    int u = plane.axis == 0 ? 1 : 0, v = plane.axis == 2 ? 1 : 2;
+    glm::dvec3 a = state.drag.areaStart, b = state.drag.areaEnd;
+    glm::dvec2 lo(std::min(a[u], b[u]), std::min(a[v], b[v]));
+    glm::dvec2 hi(std::max(a[u], b[u]), std::max(a[v], b[v]));
+    char label[96];
+    std::snprintf(label, sizeof label, "%.2f x %.2f m", hi.x - lo.x, hi.y - lo.y);
+    rectangle(plane, lo, hi, IM_COL32(255, 210, 40, 255), label);
+}
+
+/// Where the mouse ray meets the Measure grid's plane, within kMaxDragDistance of the camera.
+std::optional<glm::dvec3> onGridPlane(const EditorState& state, const Renderer& renderer,
+                                      const ImageMapping& map, const ImVec2& mouse) {
+    glm::dvec2 px = map.toRender(mouse);
+    Ray ray = pixelRay(renderer.viewProj(), px.x, px.y, map.renderWidth, map.renderHeight);
+    auto hit = intersectPlane(ray, state.measure.grid.plane);
+    if (!hit || glm::length(*hit - ray.origin) > kMaxDragDistance) return std::nullopt;
+    return hit;
+}
+
+/// Left press while "Draw a task area" is armed: the drag's first corner, on the grid's plane.
+void beginAreaDrag(EditorState& state, const Renderer& renderer, const ImageMapping& map,
+                   const ImVec2& mouse) {
+    auto hit = onGridPlane(state, renderer, map, mouse);
+    if (!hit) {
+        setStatus(state,
+                  "That pixel does not see the plane " + planeText(state.measure.grid.plane) +
+                      ": press where the work plane is",
+                  true);
+        return;
+    }
+    state.drag = {};
+    state.drag.mode = DragMode::Area;
+    state.drag.areaStart = state.drag.areaEnd = *hit;
+}
+
 /// Left press: picks a luminaire (select it and start moving it) or starts an orbit.
 void beginLeftDrag(EditorState& state, const Renderer& renderer, const ImageMapping& map,
                    const Gizmo& g, const ImVec2& mouse) {
@@ -355,6 +411,9 @@ bool beginGesture(EditorState& state, const Renderer& renderer, const ImageMappi
     } else if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left) &&
                state.environment.pickingPixel && state.environment.chartOpen) {
         pickChartPixel(state, renderer, map, io.MouseClickedPos[ImGuiMouseButton_Left]);
+    } else if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left) &&
+               state.measure.drawingArea) {
+        beginAreaDrag(state, renderer, map, io.MouseClickedPos[ImGuiMouseButton_Left]);
     } else if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && state.placement.armed) {
         placeAtPixel(state, renderer, map, io.MouseClickedPos[ImGuiMouseButton_Left]);
         changed = true;
@@ -390,6 +449,15 @@ bool continueDrag(EditorState& state, const Renderer& renderer, const ImageMappi
                 changed = state.drag.mode == DragMode::Aim
                               ? continueAimDrag(state, renderer, map, io.MousePos)
                               : continueSpinDrag(state, renderer, map, io.MousePos);
+            break;
+        case DragMode::Area:
+            if (auto hit = onGridPlane(state, renderer, map, io.MousePos))
+                state.drag.areaEnd = *hit;
+            if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
+                changed = addTaskAreaFromDrag(state, state.drag.areaStart, state.drag.areaEnd);
+                state.measure.drawingArea = false;
+                state.drag = {};
+            }
             break;
         case DragMode::Orbit:
             if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
@@ -427,6 +495,8 @@ void setCursor(const EditorState& state, const Renderer& renderer, const ImageMa
     } else if (hovered && ((state.environment.pickingPixel && state.environment.chartOpen) ||
                            state.placement.armed)) {
         ImGui::SetMouseCursor(ImGuiMouseCursor_Hand);
+    } else if (hovered && (state.measure.drawingArea || state.drag.mode == DragMode::Area)) {
+        ImGui::SetMouseCursor(ImGuiMouseCursor_ResizeNWSE);
     } else if (hovered && state.drag.mode == DragMode::None) {
         glm::dvec2 px = map.toRender(io.MousePos);
         if (grabbed(g, io.MousePos) != DragMode::None ||
@@ -500,6 +570,7 @@ bool viewportPanel(EditorState& state, const Renderer& renderer, const PanelRect
 
     ImageMapping map{origin, size, renderer.settings().width, renderer.settings().height};
     drawOutlines(state, renderer, map);
+    drawTaskAreas(state, renderer, map);
     Gizmo handles = gizmo(state, renderer, map);
     drawGizmo(handles);
     state.layout.gizmo = handles.valid;

@@ -46,6 +46,16 @@ std::optional<glm::dvec3> intersectHorizontal(const Ray& ray, double height) {
     return p;
 }
 
+std::optional<glm::dvec3> intersectPlane(const Ray& ray, const CalcPlane& plane) {
+    int a = plane.axis;
+    if (std::abs(ray.dir[a]) < 1e-9) return std::nullopt;
+    double t = (plane.offset - ray.origin[a]) / ray.dir[a];
+    if (!(t > 0.0) || !std::isfinite(t)) return std::nullopt;
+    glm::dvec3 p = ray.origin + t * ray.dir;
+    p[a] = plane.offset;
+    return p;
+}
+
 std::optional<glm::dvec2> projectToPixels(const glm::mat4& viewProj, const glm::dvec3& point,
                                           int width, int height) {
     glm::dvec4 clip = glm::dmat4(viewProj) * glm::dvec4(point, 1.0);

@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "scene/Bvh.h"
+#include "scene/CalculationGrid.h"
 #include "scene/Scene.h"
 
 namespace candela::ui {
@@ -29,6 +30,10 @@ std::optional<BvhHit> pickSurface(const Bvh& bvh, const glm::mat4& viewProj, dou
 /// Where the ray meets the horizontal plane y = height (metres); empty when the ray is parallel
 /// to it or points away from it.
 std::optional<glm::dvec3> intersectHorizontal(const Ray& ray, double height);
+
+/// Where the ray meets a calculation plane (its axis coordinate = offset, either side facing),
+/// with that coordinate exact; empty when the ray is parallel to it or points away from it.
+std::optional<glm::dvec3> intersectPlane(const Ray& ray, const CalcPlane& plane);
 
 /// Projects a world point (metres) to render pixels (x right, y down). Empty when the point is
 /// behind the camera.

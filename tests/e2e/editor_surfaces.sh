@@ -72,6 +72,41 @@ for f in fail: print("FAIL:", f)
 sys.exit(1 if fail else 0)
 PY
 
+# Drawing a task area with the mouse (part 5): arm "Draw a task area", then drag in the viewport
+# from where one world point on the grid's plane shows to where another does (projected through
+# the camera by tests/e2e/lib/camera.py, not by the editor). The new task area's corners are those
+# points within 3 cm (the 1 cm rounding, and a pixel of rounding at about 4 m).
+plane=$(layout "d['grid_plane']")
+[[ "$plane" =~ ^y=([-0-9.e]+)$ ]] || fail "the grid's plane is $plane, expected a horizontal one"
+height=${BASH_REMATCH[1]}
+areas=$(layout "len(d['task_areas'])")
+click_widget measure.draw_task
+wait_until "drawing armed" "d['drawing_area']"
+read -r x0 y0 <<<"$(window_point "[-0.9, $height, -0.6]" "$TMP/office.json")"
+read -r x1 y1 <<<"$(window_point "[0.7, $height, 0.5]" "$TMP/office.json")"
+log "drawing from ($x0, $y0) to ($x1, $y1) on $plane"
+xdotool mousemove "$x0" "$y0"
+wait_frames 2
+xdotool mousedown 1
+wait_until "the press in the viewport" "d['mouse_down']"
+for k in 1 2 3 4; do
+  xdotool mousemove $((x0 + (x1 - x0) * k / 4)) $((y0 + (y1 - y0) * k / 4))
+  wait_frames 1
+done
+xdotool mouseup 1
+wait_until "the drawn task area" "len(d['task_areas']) == $areas + 1 and not d['drawing_area']"
+log "drawn: $(layout "d['task_areas'][-1]") ($(layout "d['status']"))"
+layout "d['undo'] == 'Draw task area Task area'" || fail "the drawing is not one undo step: $(layout "d['undo']")"
+python3 - "$LAYOUT" "$plane" <<'PY' || fail "the drawn task area is not where the drag was (above)"
+import json, sys
+a = json.load(open(sys.argv[1]))["task_areas"][-1]
+fail = [] if a["plane"] == sys.argv[2] else ["plane %s, want %s" % (a["plane"], sys.argv[2])]
+for got, want in zip(a["lo"] + a["hi"], [-0.9, -0.6, 0.7, 0.5]):
+    if abs(got - want) > 0.03: fail.append("corner coordinate %.3f m, want %.3f m" % (got, want))
+for f in fail: print("FAIL:", f)
+sys.exit(1 if fail else 0)
+PY
+
 xdotool key F12
 wait_until "the window image" "d['window_images'] >= 1"
 log "window image: $(ls "$SHOTS" | tr '\n' ' ')"
