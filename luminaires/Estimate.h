@@ -12,7 +12,13 @@ namespace candela {
 class Visibility {
   public:
     virtual ~Visibility() = default;
+    /// From a receiver `from` to a point `to` on a light: a luminaire's body casts no shadow on
+    /// the light of its own openings (scene/Scene.h: insideBody).
     virtual bool visible(const glm::dvec3& from, const glm::dvec3& to) const = 0;
+    /// Between two surface points (interreflection): every surface occludes, bodies included.
+    virtual bool visibleBetweenSurfaces(const glm::dvec3& from, const glm::dvec3& to) const {
+        return visible(from, to);
+    }
     /// Is the ray from `from` along the unit `dir` free of occluders out to infinity (a distant
     /// light)? Implementations bias only its start.
     virtual bool visibleToward(const glm::dvec3& from, const glm::dvec3& dir) const = 0;

@@ -240,6 +240,19 @@ Pose PhotometricLuminaire::emitterPose() const {
     return e;
 }
 
+std::vector<glm::dvec3> PhotometricLuminaire::bodyTriangles() const {
+    std::vector<glm::dvec3> out;
+    if (!geometry || !showBody || gldfEmitter != 0) return out;
+    // The L3D frame at the pose, as emitterPose() places it.
+    glm::dvec3 x, y, z;
+    pose.frame(x, y, z);
+    auto place = [&](const glm::dvec3& v) { return pose.position + v.x * x - v.y * y - v.z * z; };
+    out.reserve(3 * geometry->triangleCount());
+    for (const L3dPart& part : geometry->parts)
+        for (uint32_t i : part.indices) out.push_back(place(part.positions[i]));
+    return out;
+}
+
 std::unique_ptr<Luminaire> PhotometricLuminaire::clone() const {
     return std::make_unique<PhotometricLuminaire>(*this);
 }
@@ -389,6 +402,7 @@ void PhotometricLuminaire::writeJson(nlohmann::json& out) const {
         out["type"] = "gldf";
         out["variant"] = gldfVariant;
         if (gldfEmitterCount > 1) out["emitter"] = gldfEmitter;
+        if (!showBody) out["body"] = false;
         if (gldfMaintenance) {
             const GldfMaintenanceChoice& c = *gldfMaintenance;
             nlohmann::json m = {{"hours", c.hours}};
@@ -493,7 +507,12 @@ std::string PhotometricLuminaire::describe() const {
         out += ", maintenance factor " + gldfFactors.text(gldfMaintenance->hours) +
                " (from the GLDF data)";
     if (gldf && placement) {
-        glm::dvec3 c0 = placement->c0, aim = placement->aim;
+        // Unit vectors to 4 decimals, without rounding noise (6e-17) or signed zeros.
+        auto tidy = [](glm::dvec3 v) {
+            for (int i = 0; i < 3; ++i) v[i] = std::round(v[i] * 1e4) / 1e4 + 0.0;
+            return v;
+        };
+        glm::dvec3 c0 = tidy(placement->c0), aim = tidy(placement->aim);
         std::snprintf(buf, sizeof buf,
                       ", C0 along (%.4g, %.4g, %.4g) and aim (%.4g, %.4g, %.4g) in the luminaire "
                       "frame",
@@ -609,10 +628,11 @@ std::unique_ptr<Luminaire> PhotometricLuminaire::parse(const nlohmann::json& ent
 
 std::unique_ptr<Luminaire> PhotometricLuminaire::parseGldf(const nlohmann::json& entry,
                                                            const json::Where& where) {
-    json::checkKeys(entry,
-                    {"type", "name", "position", "aim", "c0", "technique", "maintenance_factor",
-                     "file", "variant", "emitter", "maintenance", "scale", "colour", "opening"},
-                    where);
+    json::checkKeys(
+        entry,
+        {"type", "name", "position", "aim", "c0", "technique", "maintenance_factor", "file",
+         "variant", "emitter", "maintenance", "scale", "colour", "opening", "body"},
+        where);
     std::string resolved;
     auto light = parseCommon(entry, where, "the path of a .gldf container", resolved);
     std::string variant = json::optional(entry, "variant", where, std::string(), json::string);
@@ -624,6 +644,7 @@ std::unique_ptr<Luminaire> PhotometricLuminaire::parseGldf(const nlohmann::json&
         });
     light->loadGldf(resolved, variant, emitter);
     light->updateOpening();
+    light->showBody = json::optional(entry, "body", where, true, json::boolean);
     if (entry.contains("maintenance")) {
         // EN 12464-1's MF from the product's data: {"hours": h, "lmf": x | "years": y, "room":
         // r, "rsmf": x}.

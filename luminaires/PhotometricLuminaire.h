@@ -55,10 +55,14 @@ class PhotometricLuminaire final : public Luminaire {
         LuminousOpening opening;
     };
     std::optional<Placement> placement;
+    /// The L3D body is drawn and casts shadows (scene entry "body": false turns it off). A
+    /// variant's placements share one body: its first placement (gldfEmitter 0) gives it.
+    bool showBody = true;
 
     std::string_view kind() const override { return "photometric"; }
     /// The pose moved to the placement's object (the pose itself without one).
     Pose emitterPose() const override;
+    std::vector<glm::dvec3> bodyTriangles() const override;
     std::unique_ptr<Luminaire> clone() const override;
     glm::dvec3 radiance(const glm::dvec3& x, const glm::dvec3& w) const override;
     /// Flux from the table (exact quadrature of the interpolant) times scale, lm per channel.

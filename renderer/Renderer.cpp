@@ -290,7 +290,8 @@ void Renderer::applyChanges() {
     if (mPlan.needsBvh && !mBvh) {
         mBvh = std::make_unique<Bvh>(Bvh::build(*mScene));
         auto bytes = [](const auto& v) { return GLsizeiptr(v.size() * sizeof(v[0])); };
-        mBvhNodes = gl::Buffer(bytes(mBvh->nodes), mBvh->nodes.data(), 0);
+        std::vector<gpu::BvhNode> nodes = mBvh->gpuNodes();  // then the bodies' boxes
+        mBvhNodes = gl::Buffer(bytes(nodes), nodes.data(), 0);
         mBvhTris = gl::Buffer(bytes(mBvh->triangles), mBvh->triangles.data(), 0);
     }
     mPending = kChangeNone;

@@ -199,14 +199,20 @@ bool hitsBox(const gpu::BvhNode& node, const glm::dvec3& origin, const glm::dvec
 
 Bvh Bvh::build(const Scene& scene) {
     std::vector<gpu::BvhTriangle> input;
+    std::vector<gpu::BvhNode> bodies;
     for (const Mesh& mesh : scene.meshes) {
+        float body = 0.f;  // see the layout in Bvh.h: the body's number from 1 until built
+        if (mesh.luminaireBody) {
+            bodies.push_back({glm::vec4(mesh.boundsMin, 0.f), glm::vec4(mesh.boundsMax, 0.f)});
+            body = float(bodies.size());
+        }
         for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
             uint32_t a = mesh.indices[t], b = mesh.indices[t + 1], c = mesh.indices[t + 2];
             size_t n = mesh.positions.size();
             if (a >= n || b >= n || c >= n) continue;  // Malformed mesh: nothing to trace.
             glm::vec3 v0 = mesh.positions[a];
             gpu::BvhTriangle tri;
-            tri.v0 = glm::vec4(v0, 0.f);
+            tri.v0 = glm::vec4(v0, body);
             tri.e1 = glm::vec4(mesh.positions[b] - v0, 0.f);
             tri.e2 = glm::vec4(mesh.positions[c] - v0, 0.f);
             input.push_back(tri);
@@ -218,7 +224,19 @@ Bvh Bvh::build(const Scene& scene) {
 
     Bvh bvh;
     Builder(std::move(input), bvh).run();
+    // Body triangles point at their box in nodes-then-bodies order (exact in a float below 2^24).
+    if (bvh.nodes.size() + bodies.size() >= (size_t(1) << 24))
+        throw RuntimeError("BVH: too many nodes for the luminaire bodies' indices");
+    for (gpu::BvhTriangle& t : bvh.triangles)
+        if (t.v0.w > 0.f) t.v0.w = float(bvh.nodes.size()) + t.v0.w;
+    bvh.bodies = std::move(bodies);
     return bvh;
+}
+
+std::vector<gpu::BvhNode> Bvh::gpuNodes() const {
+    std::vector<gpu::BvhNode> out = nodes;
+    out.insert(out.end(), bodies.begin(), bodies.end());
+    return out;
 }
 
 double Bvh::hitDistance(const gpu::BvhTriangle& triangle, const glm::dvec3& origin,
@@ -292,15 +310,28 @@ bool Bvh::occluded(const glm::dvec3& from, const glm::dvec3& to) const {
     glm::dvec3 dir;
     double tMin, tMax;
     if (nodes.empty() || !segmentRay(from, to, dir, tMin, tMax)) return false;
-    return occludedAlong(from, dir, tMin, tMax);
+    return occludedAlong(from, dir, tMin, tMax, &to);
+}
+
+bool Bvh::occludedBetweenSurfaces(const glm::dvec3& from, const glm::dvec3& to) const {
+    glm::dvec3 dir;
+    double tMin, tMax;
+    if (nodes.empty() || !segmentRay(from, to, dir, tMin, tMax)) return false;
+    return occludedAlong(from, dir, tMin, tMax, nullptr);
 }
 
 bool Bvh::occludedToward(const glm::dvec3& from, const glm::dvec3& dir) const {
-    return occludedAlong(from, dir, kRayEpsilon, std::numeric_limits<double>::infinity());
+    return occludedAlong(from, dir, kRayEpsilon, std::numeric_limits<double>::infinity(), nullptr);
 }
 
-bool Bvh::occludedAlong(const glm::dvec3& from, const glm::dvec3& dir, double tMin,
-                        double tMax) const {
+bool Bvh::occludedAlong(const glm::dvec3& from, const glm::dvec3& dir, double tMin, double tMax,
+                        const glm::dvec3* light) const {
+    // A body's triangles cast no shadow on the light of a point inside its box.
+    auto ownBody = [&](const gpu::BvhTriangle& t) {
+        if (!light || !(t.v0.w > 0.f)) return false;
+        const gpu::BvhNode& box = bodies[size_t(t.v0.w) - 1 - nodes.size()];
+        return insideBody(*light, glm::dvec3(box.lo), glm::dvec3(box.hi));
+    };
     if (nodes.empty()) return false;
     int stack[kMaxDepth + 1];
     int top = 0;
@@ -312,7 +343,9 @@ bool Bvh::occludedAlong(const glm::dvec3& from, const glm::dvec3& dir, double tM
             int count = std::bit_cast<int32_t>(n.hi.w);
             if (count > 0) {
                 for (int i = first; i < first + count; ++i)
-                    if (intersects(triangles[size_t(i)], from, dir, tMin, tMax)) return true;
+                    if (intersects(triangles[size_t(i)], from, dir, tMin, tMax) &&
+                        !ownBody(triangles[size_t(i)]))
+                        return true;
             } else {
                 if (top == kMaxDepth + 1) return true;  // Never happens for trees from build().
                 stack[top++] = first + 1;

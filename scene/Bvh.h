@@ -10,6 +10,12 @@
 // kMaxDepth + 1 entries never overflows. An empty scene gets one degenerate (never hit) triangle
 // in a root leaf, so both buffers are non-empty and the root is always valid.
 //
+// Luminaire bodies (Scene::updateBodies): each body's bounds is a box in `bodies`, and each of its
+// triangles holds in v0.w the float nodes.size() + body + 1 (0 for other triangles), so that
+// the GPU, given nodes followed by bodies in one buffer, finds the box at int(v0.w) - 1. A body
+// casts no shadow on a segment whose light end `to` is inside its box (insideBody): the light
+// of its own openings.
+//
 // Shadow-ray bias: occluded(from, to) tests the open segment shrunk by
 // eps = 1e-4 m * max(1, |to - from|) at both ends, so the surfaces the segment starts and ends
 // on (receiver and emitter) do not shadow themselves through rounding; occluders closer than eps
@@ -39,6 +45,9 @@ struct BvhHit {
 struct Bvh {
     std::vector<gpu::BvhNode> nodes;          ///< Node 0 is the root; see the layout above.
     std::vector<gpu::BvhTriangle> triangles;  ///< World space (metres), in leaf order.
+    std::vector<gpu::BvhNode> bodies;         ///< Each luminaire body's bounds (w unused).
+    /// What the GPU's node buffer holds: nodes, then bodies.
+    std::vector<gpu::BvhNode> gpuNodes() const;
 
     static constexpr int kMaxLeafTriangles = 4;
     /// Most inner levels on any root-to-leaf path (shared with the GLSL traversal's stack).
@@ -49,8 +58,10 @@ struct Bvh {
     static Bvh build(const Scene& scene);
 
     /// True when a triangle (either side) cuts the segment between from and to (metres), with
-    /// the end bias described above.
+    /// the end bias described above, leaving out the bodies whose box holds `to`.
     bool occluded(const glm::dvec3& from, const glm::dvec3& to) const;
+    /// The same with every triangle, bodies included: between two surface points.
+    bool occludedBetweenSurfaces(const glm::dvec3& from, const glm::dvec3& to) const;
     /// True when a triangle cuts the ray from `from` along the unit `dir`, beyond kRayEpsilon.
     bool occludedToward(const glm::dvec3& from, const glm::dvec3& dir) const;
 
@@ -83,8 +94,9 @@ struct Bvh {
     int depth() const;
 
   private:
-    bool occludedAlong(const glm::dvec3& from, const glm::dvec3& dir, double tMin,
-                       double tMax) const;
+    /// `light`: the light end of a segment (bodies whose box holds it cast no shadow), or null.
+    bool occludedAlong(const glm::dvec3& from, const glm::dvec3& dir, double tMin, double tMax,
+                       const glm::dvec3* light) const;
 };
 
 /// Visibility through a BVH, for the CPU estimators' EstimateOptions::visibility. Holds a
@@ -95,6 +107,9 @@ class BvhVisibility : public Visibility {
     explicit BvhVisibility(Bvh&&) = delete;
     bool visible(const glm::dvec3& from, const glm::dvec3& to) const override {
         return !mBvh.occluded(from, to);
+    }
+    bool visibleBetweenSurfaces(const glm::dvec3& from, const glm::dvec3& to) const override {
+        return !mBvh.occludedBetweenSurfaces(from, to);
     }
     bool visibleToward(const glm::dvec3& from, const glm::dvec3& dir) const override {
         return !mBvh.occludedToward(from, dir);

@@ -11,9 +11,34 @@
 
 namespace candela {
 
+namespace {
+
+/// A luminaire body's bounds (Scene::updateBodies), the user data of its Embree geometry.
+struct BodyBox {
+    glm::dvec3 lo, hi;
+};
+
+/// What occluded() hands Embree: its context, then the light end of the segment (null for
+/// rays that are not towards a light). Embree passes the filter a pointer to the first member.
+struct LightContext {
+    RTCIntersectContext context;
+    const glm::dvec3* light = nullptr;
+};
+
+/// A body's triangle casts no shadow on light leaving a point inside its box (insideBody).
+void bodyFilter(const RTCFilterFunctionNArguments* args) {
+    const auto* c = reinterpret_cast<const LightContext*>(args->context);
+    const auto* box = static_cast<const BodyBox*>(args->geometryUserPtr);
+    if (!c->light || !insideBody(*c->light, box->lo, box->hi)) return;
+    for (unsigned i = 0; i < args->N; ++i) args->valid[i] = 0;
+}
+
+}  // namespace
+
 struct EmbreeVisibility::Handles {
     RTCDevice device = nullptr;
     RTCScene scene = nullptr;
+    std::vector<std::unique_ptr<BodyBox>> bodies;  ///< Stable addresses for the filter.
     ~Handles() {
         if (scene) rtcReleaseScene(scene);
         if (device) rtcReleaseDevice(device);
@@ -44,6 +69,12 @@ EmbreeVisibility::EmbreeVisibility(const Scene& scene) : mHandles(std::make_uniq
         for (size_t i = 0; i < mesh.positions.size(); ++i)
             for (int k = 0; k < 3; ++k) vertices[3 * i + size_t(k)] = mesh.positions[i][k];
         for (size_t i = 0; i < mesh.indices.size(); ++i) indices[i] = mesh.indices[i];
+        if (mesh.luminaireBody) {
+            mHandles->bodies.push_back(std::make_unique<BodyBox>(
+                BodyBox{glm::dvec3(mesh.boundsMin), glm::dvec3(mesh.boundsMax)}));
+            rtcSetGeometryUserData(geometry, mHandles->bodies.back().get());
+            rtcSetGeometryOccludedFilterFunction(geometry, bodyFilter);
+        }
         rtcCommitGeometry(geometry);
         unsigned id = rtcAttachGeometry(mHandles->scene, geometry);
         if (id >= mMeshOfGeometry.size()) mMeshOfGeometry.resize(id + 1, 0);
@@ -61,9 +92,10 @@ EmbreeVisibility::EmbreeVisibility(const Scene& scene) : mHandles(std::make_uniq
 EmbreeVisibility::~EmbreeVisibility() = default;
 
 bool EmbreeVisibility::occluded(const glm::dvec3& origin, const glm::dvec3& dir, double tNear,
-                                double tFar) const {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
+                                double tFar, const glm::dvec3* light) const {
+    LightContext c;
+    rtcInitIntersectContext(&c.context);
+    c.light = light;
     RTCRay ray{};
     ray.org_x = float(origin.x), ray.org_y = float(origin.y), ray.org_z = float(origin.z);
     ray.dir_x = float(dir.x), ray.dir_y = float(dir.y), ray.dir_z = float(dir.z);
@@ -72,7 +104,7 @@ bool EmbreeVisibility::occluded(const glm::dvec3& origin, const glm::dvec3& dir,
     ray.mask = 0xffffffffu;
     ray.time = 0.f;
     ray.flags = 0;
-    rtcOccluded1(mHandles->scene, &context, &ray);
+    rtcOccluded1(mHandles->scene, &c.context, &ray);
     return ray.tfar == -std::numeric_limits<float>::infinity();  // Embree's mark of a hit
 }
 
@@ -101,11 +133,17 @@ bool EmbreeVisibility::intersect(const glm::dvec3& origin, const glm::dvec3& dir
 bool EmbreeVisibility::visible(const glm::dvec3& from, const glm::dvec3& to) const {
     glm::dvec3 dir;
     double tMin, tMax;
-    return !Bvh::segmentRay(from, to, dir, tMin, tMax) || !occluded(from, dir, tMin, tMax);
+    return !Bvh::segmentRay(from, to, dir, tMin, tMax) || !occluded(from, dir, tMin, tMax, &to);
+}
+
+bool EmbreeVisibility::visibleBetweenSurfaces(const glm::dvec3& from, const glm::dvec3& to) const {
+    glm::dvec3 dir;
+    double tMin, tMax;
+    return !Bvh::segmentRay(from, to, dir, tMin, tMax) || !occluded(from, dir, tMin, tMax, nullptr);
 }
 
 bool EmbreeVisibility::visibleToward(const glm::dvec3& from, const glm::dvec3& dir) const {
-    return !occluded(from, dir, Bvh::kRayEpsilon, std::numeric_limits<double>::infinity());
+    return !occluded(from, dir, Bvh::kRayEpsilon, std::numeric_limits<double>::infinity(), nullptr);
 }
 
 }  // namespace candela

@@ -30,7 +30,9 @@ class EmbreeVisibility : public Visibility {
     EmbreeVisibility(const EmbreeVisibility&) = delete;
     EmbreeVisibility& operator=(const EmbreeVisibility&) = delete;
 
+    /// `to` is on a light: a luminaire body whose bounds hold it casts no shadow (Bvh.h).
     bool visible(const glm::dvec3& from, const glm::dvec3& to) const override;
+    bool visibleBetweenSurfaces(const glm::dvec3& from, const glm::dvec3& to) const override;
     bool visibleToward(const glm::dvec3& from, const glm::dvec3& dir) const override;
 
     /// The first surface along a ray from `origin` (biased by Bvh::kRayEpsilon) in the unit
@@ -47,7 +49,8 @@ class EmbreeVisibility : public Visibility {
     size_t triangleCount() const { return mTriangles; }
 
   private:
-    bool occluded(const glm::dvec3& origin, const glm::dvec3& dir, double tNear, double tFar) const;
+    bool occluded(const glm::dvec3& origin, const glm::dvec3& dir, double tNear, double tFar,
+                  const glm::dvec3* light) const;
 
     struct Handles;
     std::unique_ptr<Handles> mHandles;

@@ -275,7 +275,7 @@ glm::dvec3 Interreflection::fromPatches(const glm::dvec3& p, const glm::dvec3& n
         double f =
             pointTriangleFormFactor(p, n, mMesh.vertices[q.vertex[0]], mMesh.vertices[q.vertex[1]],
                                     mMesh.vertices[q.vertex[2]]);
-        if (!(f > 0.0) || !mVisibility->visible(p, q.centroid)) continue;
+        if (!(f > 0.0) || !mVisibility->visibleBetweenSurfaces(p, q.centroid)) continue;
         sum += f * q.albedo * (mDirectTotal[j] + mIndirect[j]);
     }
     return sum;

@@ -142,8 +142,16 @@ std::vector<bool> luminairesNeedingShadows(const Scene& scene, const glm::mat4& 
             continue;
         }
         Emitter e = describe(luminaire);
+        // Its own body casts no shadow on its light (insideBody, at every outline point).
+        auto own = [&](const Mesh& m) {
+            return m.luminaireBody &&
+                   std::all_of(e.outline.begin(), e.outline.end(), [&](const glm::dvec3& p) {
+                       return insideBody(p, glm::dvec3(m.boundsMin), glm::dvec3(m.boundsMax));
+                   });
+        };
         for (size_t r : receivers) {
             for (size_t o : solid) {
+                if (own(scene.meshes[o])) continue;
                 if (canBlock(scene.meshes[o], o, scene.meshes[r], r, e)) {
                     needs[l] = true;
                     break;

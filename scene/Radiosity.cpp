@@ -307,7 +307,8 @@ bool TransferMatrix::build(const RadiosityMesh& mesh, const EmbreeVisibility& vi
                 // From the shooter's centroid: over a closed room the row sums to exactly one.
                 double f = pointTriangleFormFactor(shooter.centroid, shooter.normal, a, b, c);
                 if (!(f > 0.0)) continue;
-                if (!mesh.convexRoom && !visibility.visible(shooter.centroid, receiver.centroid))
+                if (!mesh.convexRoom &&
+                    !visibility.visibleBetweenSurfaces(shooter.centroid, receiver.centroid))
                     continue;
                 t[k * size + j] = float(shooter.area * f / receiver.area);
             }

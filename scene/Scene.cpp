@@ -67,6 +67,69 @@ std::vector<std::string> Scene::inputFiles() const {
     return files;
 }
 
+bool Scene::updateBodies() {
+    size_t before = bodyCount();
+    // Out with the old bodies, keeping the geometry entries' mesh indices right (an entry added
+    // after a body came in after it).
+    std::vector<uint32_t> newIndex(meshes.size(), 0);
+    std::vector<Mesh> kept;
+    kept.reserve(meshes.size());
+    for (size_t m = 0; m < meshes.size(); ++m) {
+        newIndex[m] = uint32_t(kept.size());
+        if (!meshes[m].luminaireBody) kept.push_back(std::move(meshes[m]));
+    }
+    meshes = std::move(kept);
+    if (before > 0)
+        for (GeometryItem& item : geometry)
+            for (uint32_t& m : item.meshes) m = newIndex[m];
+    // L3D carries no materials: a neutral housing, about a powder-coated grey's reflectance.
+    constexpr const char* kHousing = "luminaire housing";
+    uint32_t material = 0;
+    bool haveMaterial = false;
+    for (const auto& l : luminaires) {
+        std::vector<glm::dvec3> triangles = l->bodyTriangles();
+        if (triangles.empty()) continue;
+        if (!haveMaterial) {
+            auto it = std::find_if(materials.begin(), materials.end(),
+                                   [&](const Material& m) { return m.name == kHousing; });
+            if (it == materials.end()) {
+                Material housing;
+                housing.name = kHousing;
+                housing.albedo = glm::vec3(0.6f);
+                materials.push_back(housing);
+                it = materials.end() - 1;
+            }
+            material = uint32_t(it - materials.begin());
+            haveMaterial = true;
+        }
+        Mesh body;
+        body.name = l->name + " (body)";
+        body.material = material;
+        body.luminaireBody = true;
+        for (size_t t = 0; t + 2 < triangles.size(); t += 3) {
+            glm::dvec3 a = triangles[t], b = triangles[t + 1], c = triangles[t + 2];
+            glm::dvec3 n = glm::cross(b - a, c - a);
+            double length = glm::length(n);
+            if (!(length > 0.0)) continue;  // degenerate: nothing to draw or hit
+            auto base = uint32_t(body.positions.size());
+            for (const glm::dvec3& p : {a, b, c}) {
+                body.positions.push_back(glm::vec3(p));
+                body.normals.push_back(glm::vec3(n / length));
+                body.indices.push_back(base++);
+            }
+        }
+        if (body.indices.empty()) continue;
+        body.computeBounds();
+        meshes.push_back(std::move(body));
+    }
+    return before > 0 || bodyCount() > 0;
+}
+
+size_t Scene::bodyCount() const {
+    return size_t(
+        std::count_if(meshes.begin(), meshes.end(), [](const Mesh& m) { return m.luminaireBody; }));
+}
+
 glm::vec3 Scene::boundsMin() const {
     bool any = false;
     glm::vec3 lo(0.f);

@@ -11,6 +11,7 @@
 #include "luminaires/Luminaire.h"
 #include "scene/CalculationSurfaces.h"
 #include "scene/Glare.h"
+#include "shaders/shared/Constants.h"
 
 namespace candela {
 class EnvironmentMap;
@@ -47,10 +48,25 @@ struct Mesh {
     uint32_t material = 0;             ///< Index into Scene::materials.
     MeshShape shape = MeshShape::General;
     glm::vec3 boundsMin{0.f}, boundsMax{0.f};  ///< Axis-aligned bounds, metres.
+    /// A luminaire's body (Scene::updateBodies): not part of any geometry entry, not saved, and
+    /// no shadow on light leaving a point within kBodyMargin of its bounds.
+    bool luminaireBody = false;
 
     size_t triangleCount() const { return indices.size() / 3; }
     void computeBounds();
 };
+
+/// How far outside a body's bounds a light's emission point may be and still be the body's own
+/// (metres): an opening lies on its body's surface, and shadow-map centres and rounding move it
+/// by less than this. Shared with the shaders (shaders/shared/Constants.h).
+constexpr double kBodyMargin = gpu::kBodyMargin;
+/// Whether `point` (metres) is within kBodyMargin of a body's bounds: light leaving it is the
+/// body's own and the body does not shadow it. The one rule every visibility path applies.
+inline bool insideBody(const glm::dvec3& point, const glm::dvec3& lo, const glm::dvec3& hi) {
+    return point.x >= lo.x - kBodyMargin && point.y >= lo.y - kBodyMargin &&
+           point.z >= lo.z - kBodyMargin && point.x <= hi.x + kBodyMargin &&
+           point.y <= hi.y + kBodyMargin && point.z <= hi.z + kBodyMargin;
+}
 
 /// One entry of the scene file's "geometry" list, kept as written so saving loses nothing.
 struct GeometryItem {
@@ -101,6 +117,12 @@ struct Scene {
     /// luminaire's sourceFiles() and the environment's map or sequence frames. Commands protect
     /// them (util/FileOutput.h) so no output is written onto one.
     std::vector<std::string> inputFiles() const;
+
+    /// Replaces the luminaires' body meshes (Luminaire::bodyTriangles: flat-shaded, the
+    /// "luminaire housing" material, after every geometry entry's meshes) with their current
+    /// shape and pose. Returns whether any body was there before or is now: the geometry changed.
+    bool updateBodies();
+    size_t bodyCount() const;
 
     glm::vec3 boundsMin() const;
     glm::vec3 boundsMax() const;

@@ -543,6 +543,7 @@ Scene parseScene(const nlohmann::json& doc, const std::string& path) {
             scene.glareObservers.push_back(
                 parseGlareObserver(items[i], (root / "glare_observers")[i]));
     }
+    scene.updateBodies();
     return scene;
 }
 

@@ -50,8 +50,18 @@ bool bvhHitsTriangle(BvhTriangle tri, vec3 origin, vec3 dir, float tMin, float t
     return t > tMin && t < tMax;
 }
 
-/// True when a triangle cuts origin + t * dir (unit dir) for tMin < t < tMax.
-bool bvhOccludedAlong(vec3 from, vec3 dir, float tMin, float tMax) {
+/// A luminaire body's triangle (v0.w > 0: its box is bvhNodes[int(v0.w) - 1], scene/Bvh.h)
+/// casts no shadow on light leaving a point inside that box, widened by kBodyMargin.
+bool bvhOwnBody(BvhTriangle tri, vec3 light) {
+    if (!(tri.v0.w > 0.0)) return false;
+    BvhNode box = bvhNodes[int(tri.v0.w) - 1];
+    return all(greaterThanEqual(light, box.lo.xyz - kBodyMargin)) &&
+           all(lessThanEqual(light, box.hi.xyz + kBodyMargin));
+}
+
+/// True when a triangle cuts origin + t * dir (unit dir) for tMin < t < tMax, bodies whose box
+/// holds `light` (the segment's light end) left out.
+bool bvhOccludedAlong(vec3 from, vec3 dir, float tMin, float tMax, vec3 light) {
     int stack[kBvhStackSize];
     int top = 0;
     int node = 0;
@@ -62,7 +72,9 @@ bool bvhOccludedAlong(vec3 from, vec3 dir, float tMin, float tMax) {
             int count = floatBitsToInt(n.hi.w);
             if (count > 0) {
                 for (int i = first; i < first + count; ++i)
-                    if (bvhHitsTriangle(bvhTris[i], from, dir, tMin, tMax)) return true;
+                    if (bvhHitsTriangle(bvhTris[i], from, dir, tMin, tMax) &&
+                        !bvhOwnBody(bvhTris[i], light))
+                        return true;
             } else {
                 if (top == kBvhStackSize) return true;  // Cannot happen for Bvh::build() trees.
                 stack[top++] = first + 1;
@@ -85,12 +97,12 @@ bool bvhOccluded(vec3 from, vec3 to) {
     float tMin = eps;
     float tMax = dist - eps;
     if (!(tMax > tMin)) return false;
-    return bvhOccludedAlong(from, d / dist, tMin, tMax);
+    return bvhOccludedAlong(from, d / dist, tMin, tMax, to);
 }
 
 /// True when scene geometry cuts the ray from `from` along the unit `dir` to infinity (distant
 /// light), ignoring its first 1e-4 m (Bvh::kRayEpsilon). A long segment would not do: its end
 /// bias grows with its length.
 bool bvhOccludedToward(vec3 from, vec3 dir) {
-    return bvhOccludedAlong(from, dir, 1e-4, 1e30);
+    return bvhOccludedAlong(from, dir, 1e-4, 1e30, vec3(1e30));  // no body holds infinity
 }

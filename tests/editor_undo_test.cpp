@@ -132,6 +132,44 @@ TEST(EditorUndo, DrawnTaskAreasAreStepsOnTheGridsPlane) {
     EXPECT_EQ(state.scene.taskAreas.back().hi, glm::dvec2(2.0, 1.0));
 }
 
+// A GLDF luminaire's body follows its luminaire through edits, undo and redo, and tells the
+// renderer the geometry changed (its mesh moved).
+TEST(EditorUndo, LuminaireBodiesFollowMovesAndUndo) {
+    EditorState state = demo();
+    nlohmann::json lamp = {{"type", "gldf"},
+                           {"name", "Pendant"},
+                           {"file", CANDELA_TEST_DATA "/gldf/PendantTwoEmitters.gldf"},
+                           {"position", {0, 2.2, 0}}};
+    applyEdit(state, "Add pendant", kChangeLuminaires, [&](Scene& s) {
+        s.luminaires.push_back(parseLuminaire(lamp, json::Where{"test", "luminaires"}));
+        for (auto& c : s.luminaires.back()->companions()) s.luminaires.push_back(std::move(c));
+    });
+    auto bodyX = [&] {
+        for (const Mesh& m : state.scene.meshes)
+            if (m.luminaireBody) return double(m.boundsMin.x);
+        return -1e9;
+    };
+    ASSERT_EQ(state.scene.bodyCount(), 1u);
+    double x0 = bodyX();
+    state.pendingChanges = kChangeNone;
+    int pendant = int(state.scene.luminaires.size()) - 2;
+    move(state, pendant, {0.5, 0.0, 0.0});
+    EXPECT_NEAR(bodyX(), x0 + 0.5, 1e-6);  // its sibling emitter moved with it, and the body
+    EXPECT_NE(state.pendingChanges & kChangeGeometry, 0u);
+    state.pendingChanges = kChangeNone;
+    ASSERT_TRUE(undo(state));
+    EXPECT_NEAR(bodyX(), x0, 1e-6);
+    EXPECT_NE(state.pendingChanges & kChangeGeometry, 0u);
+    ASSERT_TRUE(undo(state));  // the pendant itself
+    EXPECT_EQ(state.scene.bodyCount(), 0u);
+    ASSERT_TRUE(redo(state));
+    EXPECT_EQ(state.scene.bodyCount(), 1u);
+    // The saved scene holds no body geometry: it is the luminaire's.
+    Scene saved = parseScene(sceneToJson(state.scene), state.scene.path);
+    EXPECT_EQ(saved.geometry.size(), state.scene.geometry.size());
+    EXPECT_EQ(saved.bodyCount(), 1u);
+}
+
 // A glare observer at the camera: its eye where the camera is, its line of sight the camera's
 // made horizontal; one step, saved with the scene, refused when the camera looks straight down.
 TEST(EditorUndo, GlareObserversAtTheCameraAreStepsAndSaveWithTheScene) {

@@ -74,7 +74,9 @@ bool step(EditorState& state, std::vector<UndoStep>& from, std::vector<UndoStep>
     from.pop_back();
     UndoStep back{s.label, s.changes, -1, snapshot(state, s.before.hasGeometry)};
     restore(state, s.before);
+    if (state.scene.updateBodies()) s.changes |= kChangeGeometry;
     to.push_back(std::move(back));
+    to.back().changes |= s.changes;
     state.pendingChanges |= s.changes;
     state.dirty = true;
     ++state.edits;
@@ -135,6 +137,11 @@ void applyEdit(EditorState& state, std::string_view label, unsigned changes,
         for (const auto& l : state.scene.luminaires) before.push_back(l->pose);
     edit(state.scene);
     if (changes & kChangeLuminaires) keepGldfPlacementsTogether(state.scene, before);
+    // Luminaire bodies follow their luminaires: the geometry changes with them.
+    if ((changes & (kChangeLuminaires | kChangeGeometry)) && state.scene.updateBodies()) {
+        changes |= kChangeGeometry;
+        if (recorded) h.undo.back().changes |= kChangeGeometry;
+    }
     state.pendingChanges |= changes;
     state.dirty = true;
     ++state.edits;

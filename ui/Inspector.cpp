@@ -265,6 +265,29 @@ bool luminaireInspector(EditorState& state, int index) {
     ImGui::Separator();
 
     changed = kindFields(state, index) || changed;
+    // A GLDF variant's L3D body: shown and casting shadows, or not (all its placements alike:
+    // the same geometry at the same insertion point).
+    // (kindFields may have replaced the luminaire: `lum` is stale from here.)
+    const Luminaire& current = *state.scene.luminaires[size_t(index)];
+    if (const auto* ph = dynamic_cast<const PhotometricLuminaire*>(&current); ph && ph->geometry) {
+        bool show = ph->showBody;
+        if (ImGui::Checkbox("Body (L3D geometry)", &show)) {
+            applyEdit(state, std::string(show ? "Show" : "Hide") + " body of " + current.name,
+                      kChangeLuminaires, [&](Scene& s) {
+                          for (auto& other : s.luminaires)
+                              if (auto* p = dynamic_cast<PhotometricLuminaire*>(other.get());
+                                  p && p->geometry == ph->geometry &&
+                                  p->pose.position == ph->pose.position)
+                                  p->showBody = show;
+                      });
+            changed = true;
+        }
+        recordRect(state, "inspector.body");
+        itemTooltip(
+            "The luminaire's housing from its L3D geometry: drawn, and casting shadows on the "
+            "light "
+            "of every other luminaire (never on its own, which its photometry already holds)");
+    }
 
     kindDetails(*state.scene.luminaires[size_t(index)]);
     if (!state.inspectorError.empty()) errorText(state.inspectorError);

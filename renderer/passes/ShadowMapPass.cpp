@@ -42,7 +42,8 @@ void ShadowGeometry::set(const Scene& scene) {
     std::vector<uint32_t> indices;
     lo = glm::dvec3(1e300);
     hi = glm::dvec3(-1e300);
-    for (const Mesh& mesh : scene.meshes) {
+    mBodies.clear();
+    auto add = [&](const Mesh& mesh) {
         uint32_t base = uint32_t(positions.size());
         for (const glm::vec3& p : mesh.positions) {
             positions.push_back(p);
@@ -50,7 +51,17 @@ void ShadowGeometry::set(const Scene& scene) {
             hi = glm::max(hi, glm::dvec3(p));
         }
         for (uint32_t i : mesh.indices) indices.push_back(base + i);
-    }
+    };
+    for (const Mesh& mesh : scene.meshes)
+        if (!mesh.luminaireBody) add(mesh);
+    mSceneCount = GLsizei(indices.size());
+    for (const Mesh& mesh : scene.meshes)
+        if (mesh.luminaireBody) {
+            GLsizei first = GLsizei(indices.size());
+            add(mesh);
+            mBodies.push_back({first, GLsizei(indices.size()) - first, glm::dvec3(mesh.boundsMin),
+                               glm::dvec3(mesh.boundsMax)});
+        }
     if (positions.empty()) lo = hi = glm::dvec3(0.0);
     mIndexCount = GLsizei(indices.size());
     mVao = gl::VertexArray();
@@ -64,10 +75,21 @@ void ShadowGeometry::set(const Scene& scene) {
     glVertexArrayAttribBinding(mVao.id(), 0, 0);
 }
 
-void ShadowGeometry::draw() const {
+void ShadowGeometry::draw(const glm::dvec3* light) const {
     if (mIndexCount == 0) return;
     glBindVertexArray(mVao.id());
-    glDrawElements(GL_TRIANGLES, mIndexCount, GL_UNSIGNED_INT, nullptr);
+    if (!light || mBodies.empty()) {
+        glDrawElements(GL_TRIANGLES, mIndexCount, GL_UNSIGNED_INT, nullptr);
+        return;
+    }
+    auto range = [](GLsizei first, GLsizei count) {
+        if (count > 0)
+            glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT,
+                           reinterpret_cast<const void*>(uintptr_t(first) * sizeof(uint32_t)));
+    };
+    range(0, mSceneCount);
+    for (const Body& b : mBodies)
+        if (!insideBody(*light, b.lo, b.hi)) range(b.first, b.count);
 }
 
 bool ShadowMaps::stale(const ShadowLights& lights, const ShadowMapSettings& settings,
@@ -128,7 +150,7 @@ void ShadowMaps::render(ShaderLibrary& shaders, const ShadowGeometry& geometry,
             glm::dvec3 l = lights.lights[k];
             glm::mat4 viewProj = glm::mat4(proj * glm::lookAt(l, l + kForward[f], kUp[f]));
             glProgramUniformMatrix4fv(program, 0, 1, GL_FALSE, &viewProj[0][0]);
-            geometry.draw();
+            geometry.draw(&l);
         }
     }
     glDisable(GL_DEPTH_TEST);

@@ -31,7 +31,9 @@ struct ShadowMapSettings {
 class ShadowGeometry {
   public:
     void set(const Scene& scene);
-    void draw() const;
+    /// Draws every triangle; with a light position, leaves out the luminaire bodies whose bounds
+    /// hold it (they cast no shadow on their own light: scene/Scene.h, insideBody).
+    void draw(const glm::dvec3* light = nullptr) const;
     /// Smallest and largest corner of the triangles' bounds (metres).
     glm::dvec3 lo{0.0}, hi{0.0};
 
@@ -39,6 +41,13 @@ class ShadowGeometry {
     gl::Buffer mVertices, mIndices;
     gl::VertexArray mVao;
     GLsizei mIndexCount = 0;
+    /// The indices hold every other mesh first (mSceneCount of them), then each body's.
+    GLsizei mSceneCount = 0;
+    struct Body {
+        GLsizei first = 0, count = 0;
+        glm::dvec3 lo{0.0}, hi{0.0};
+    };
+    std::vector<Body> mBodies;
 };
 
 class ShadowMaps {

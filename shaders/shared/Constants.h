@@ -18,6 +18,10 @@ using real = glm::f64;
 
 CANDELA_CONST real kPi = 3.14159265358979323846;
 
+/// How far outside a luminaire body's bounds a light's emission point may be and still be the
+/// body's own, metres (scene/Scene.h: insideBody): the body casts no shadow on that light.
+CANDELA_CONST real kBodyMargin = 0.01;
+
 /// Gauss-Legendre rule of 16 points on [-1, 1]: the nodes are +-kGaussLegendre16Node[i], both
 /// weighted kGaussLegendre16Weight[i] (i = 0 .. 7), tabulated to 16 digits.
 CANDELA_CONST real kGaussLegendre16Node[8] = {
