@@ -89,7 +89,9 @@ struct MeasureState {
     /// "Draw a task area": the next left drag in the viewport draws one on the grid's plane.
     bool drawingArea = false;
     std::optional<SurfaceReport> surfaces;  ///< Last computed surfaces and points.
-    std::string surfacesError;              ///< Why the last computation failed.
+    /// Each computed surface point's cell filled with its false colour in the viewport.
+    bool colourSurfaces = false;
+    std::string surfacesError;  ///< Why the last computation failed.
     // Glare (scene/Glare.h): the next observer's name and limit, the last UGR computed.
     std::string observerName = "Observer";
     double observerLimit = 19.0;  ///< UGR_L; EN 12464-1's for offices.

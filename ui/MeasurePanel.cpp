@@ -366,6 +366,11 @@ void surfaceControls(EditorState& state, MeasureState& measure) {
         }
     }
     recordRect(state, "measure.compute_surfaces");
+    ImGui::Checkbox("False colour on the surfaces", &measure.colourSurfaces);
+    recordRect(state, "measure.colour_surfaces");
+    itemTooltip(
+        "Fills each computed point's cell of the grid in the viewport with the colour of its "
+        "value on the false-colour legend (its range: tick False colour above)");
     if (!measure.surfacesError.empty()) errorText(measure.surfacesError);
     if (!measure.surfaces) return;
     const SurfaceReport& r = *measure.surfaces;
@@ -534,9 +539,64 @@ void drawValues(const EditorState& state, const Renderer& renderer,
     draw->PopClipRect();
 }
 
+/// The rectangle [lo, hi] less [holeLo, holeHi]: up to four rectangles (left, right, then the
+/// parts below and above the hole between them), as lo, hi pairs.
+std::vector<std::pair<glm::dvec2, glm::dvec2>> minusHole(glm::dvec2 lo, glm::dvec2 hi,
+                                                         glm::dvec2 holeLo, glm::dvec2 holeHi) {
+    std::vector<std::pair<glm::dvec2, glm::dvec2>> out;
+    bool overlaps = lo.x < holeHi.x && holeLo.x < hi.x && lo.y < holeHi.y && holeLo.y < hi.y;
+    if (!overlaps) return {{lo, hi}};
+    if (lo.x < holeLo.x) out.push_back({lo, {holeLo.x, hi.y}});
+    if (hi.x > holeHi.x) out.push_back({{holeHi.x, lo.y}, hi});
+    double x0 = std::max(lo.x, holeLo.x), x1 = std::min(hi.x, holeHi.x);
+    if (lo.y < holeLo.y) out.push_back({{x0, lo.y}, {x1, holeLo.y}});
+    if (hi.y > holeHi.y) out.push_back({{x0, holeHi.y}, {x1, hi.y}});
+    return out;
+}
+
+/// Each computed surface point's grid cell (the rectangle of its spacing around it, on its plane,
+/// less its surface's hole) filled with its value's colour on the false-colour legend, opaque,
+/// under the values. Backgrounds first, task areas last, so inner surfaces show where cells meet.
+void drawSurfaceColours(const EditorState& state, const SurfaceReport& report,
+                        const Renderer& renderer) {
+    const glm::vec4& v = state.layout.viewport;
+    int width = renderer.settings().width, height = renderer.settings().height;
+    ImDrawList* draw = ImGui::GetForegroundDrawList();
+    draw->PushClipRect(ImVec2(v.x, v.y), ImVec2(v.x + v.z, v.y + v.w), true);
+    glm::mat4 viewProj = renderer.viewProj();
+    FalseColourLegend legend = sanitizedLegend(state.settings.legend);
+    auto byte = [](float x) { return int(std::lround(std::clamp(x, 0.f, 1.f) * 255.f)); };
+    for (auto it = report.surfaces.rbegin(); it != report.surfaces.rend(); ++it) {
+        const SurfaceResult& s = *it;
+        for (size_t k = 0; k < s.points.size(); ++k) {
+            glm::dvec2 c = s.points[k], h = 0.5 * s.spacing;
+            glm::vec3 rgb = gpu::falseColour(gpu::legendPosition(
+                float(s.E[k]), legend.min, legend.max, legend.logScale ? 1 : 0));
+            ImU32 colour = IM_COL32(byte(rgb.x), byte(rgb.y), byte(rgb.z), 255);
+            for (auto [lo, hi] : minusHole(c - h, c + h, s.holeLo, s.holeHi)) {
+                glm::dvec2 corners[4] = {lo, {hi.x, lo.y}, hi, {lo.x, hi.y}};
+                ImVec2 quad[4];
+                bool shown = true;
+                for (int i = 0; i < 4 && shown; ++i) {
+                    auto px = projectToPixels(viewProj, s.plane.point(corners[i].x, corners[i].y),
+                                              width, height);
+                    shown = px.has_value();
+                    if (shown)
+                        quad[i] = ImVec2(v.x + float(px->x) * v.z / float(width),
+                                         v.y + float(px->y) * v.w / float(height));
+                }
+                if (shown) draw->AddQuadFilled(quad[0], quad[1], quad[2], quad[3], colour);
+            }
+        }
+    }
+    draw->PopClipRect();
+}
+
 /// The grid's points, and the computed surfaces' points, with their values in the viewport.
 void drawMeasuredValues(const EditorState& state, const MeasureState& measure,
                         const Renderer& renderer) {
+    if (measure.colourSurfaces && measure.surfaces)
+        drawSurfaceColours(state, *measure.surfaces, renderer);
     if (!measure.showValues) return;
     std::vector<glm::dvec3> points;
     std::vector<double> values;
