@@ -458,11 +458,19 @@ class KernelTable {
         n = glm::ivec2(std::isfinite(points.x) ? std::clamp(points.x, 2.0, 400.0) : 400.0,
                        std::isfinite(points.y) ? std::clamp(points.y, 2.0, 400.0) : 400.0);
         st = (oMax - oMin) / glm::dvec2(n - 1);
+        // A range lost to rounding (fuzzing: a basis origin of 1e308 m next to an image of 8 cm,
+        // where oMax - oMin is 0) gets a positive step, so lookups clamp to its ends instead of
+        // dividing by 0.
+        for (int a = 0; a < 2; ++a)
+            if (!(st[a] > 0.0) || !std::isfinite(st[a])) st[a] = step > 0.0 ? step : 1.0;
         table.assign(size_t(n.x) * size_t(n.y), std::numeric_limits<double>::quiet_NaN());
     }
 
     double lookup(glm::dvec2 o) {
-        glm::dvec2 f = glm::clamp((o - oMin) / st, glm::dvec2(0.0), glm::dvec2(n - 1) - 1e-9);
+        glm::dvec2 f = (o - oMin) / st;
+        for (int a = 0; a < 2; ++a)
+            if (std::isnan(f[a])) f[a] = 0.0;  // infinities clamp to an end below
+        f = glm::clamp(f, glm::dvec2(0.0), glm::dvec2(n - 1) - 1e-9);
         int i = int(f.x), j = int(f.y);
         double fx = f.x - i, fy = f.y - j;
         return (1 - fy) * ((1 - fx) * entry(i, j) + fx * entry(i + 1, j)) +
