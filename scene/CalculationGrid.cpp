@@ -49,6 +49,10 @@ glm::dvec3 CalcPlane::point(double u, double v) const {
     return p;
 }
 
+glm::dvec2 CalcPlane::inPlane(const glm::dvec3& p) const {
+    return {p[uAxis(axis)], p[vAxis(axis)]};
+}
+
 std::string CalcPlane::axisName() const {
     return kAxisNames[axis];
 }

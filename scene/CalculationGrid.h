@@ -25,8 +25,9 @@ struct CalcPlane {
     double sign = 1.0;    ///< +1 or -1: which way the receiving side faces.
     glm::dvec3 normal() const;
     glm::dvec3 point(double u, double v) const;  ///< World point (m) at in-plane coordinates (m).
-    std::string axisName() const;                ///< "x", "y" or "z": the normal's axis.
-    std::string uName() const;                   ///< "x", "y" or "z".
+    glm::dvec2 inPlane(const glm::dvec3& p) const;  ///< A point's (u, v), m: point()'s inverse.
+    std::string axisName() const;                   ///< "x", "y" or "z": the normal's axis.
+    std::string uName() const;                      ///< "x", "y" or "z".
     std::string vName() const;
 };
 

@@ -68,40 +68,14 @@ std::vector<std::string> Scene::inputFiles() const {
 }
 
 bool Scene::updateBodies() {
-    size_t before = bodyCount();
-    // Out with the old bodies, keeping the geometry entries' mesh indices right (an entry added
-    // after a body came in after it).
-    std::vector<uint32_t> newIndex(meshes.size(), 0);
-    std::vector<Mesh> kept;
-    kept.reserve(meshes.size());
-    for (size_t m = 0; m < meshes.size(); ++m) {
-        newIndex[m] = uint32_t(kept.size());
-        if (!meshes[m].luminaireBody) kept.push_back(std::move(meshes[m]));
-    }
-    meshes = std::move(kept);
-    if (before > 0)
-        for (GeometryItem& item : geometry)
-            for (uint32_t& m : item.meshes) m = newIndex[m];
     // L3D carries no materials: a neutral housing, about a powder-coated grey's reflectance.
     constexpr const char* kHousing = "luminaire housing";
-    uint32_t material = 0;
-    bool haveMaterial = false;
+    auto housing = std::find_if(materials.begin(), materials.end(),
+                                [&](const Material& m) { return m.name == kHousing; });
+    auto material = uint32_t(housing - materials.begin());  // materials.size(): added if needed
+    std::vector<Mesh> bodies;
     for (const auto& l : luminaires) {
         std::vector<glm::dvec3> triangles = l->bodyTriangles();
-        if (triangles.empty()) continue;
-        if (!haveMaterial) {
-            auto it = std::find_if(materials.begin(), materials.end(),
-                                   [&](const Material& m) { return m.name == kHousing; });
-            if (it == materials.end()) {
-                Material housing;
-                housing.name = kHousing;
-                housing.albedo = glm::vec3(0.6f);
-                materials.push_back(housing);
-                it = materials.end() - 1;
-            }
-            material = uint32_t(it - materials.begin());
-            haveMaterial = true;
-        }
         Mesh body;
         body.name = l->name + " (body)";
         body.material = material;
@@ -120,9 +94,37 @@ bool Scene::updateBodies() {
         }
         if (body.indices.empty()) continue;
         body.computeBounds();
-        meshes.push_back(std::move(body));
+        bodies.push_back(std::move(body));
     }
-    return before > 0 || bodyCount() > 0;
+    // Unchanged (an edit of another luminaire, or of none with a body): the geometry stays.
+    std::vector<const Mesh*> old;
+    for (const Mesh& m : meshes)
+        if (m.luminaireBody) old.push_back(&m);
+    bool same = old.size() == bodies.size();
+    for (size_t i = 0; same && i < bodies.size(); ++i)
+        same = old[i]->name == bodies[i].name && old[i]->positions == bodies[i].positions;
+    if (same) return false;
+    bool anyBody = !bodies.empty();
+    // Out with the old bodies, keeping the geometry entries' mesh indices right (an entry added
+    // after a body came in after it); in with the new ones, after every entry's meshes.
+    std::vector<uint32_t> newIndex(meshes.size(), 0);
+    std::vector<Mesh> kept;
+    kept.reserve(meshes.size() + bodies.size());
+    for (size_t m = 0; m < meshes.size(); ++m) {
+        newIndex[m] = uint32_t(kept.size());
+        if (!meshes[m].luminaireBody) kept.push_back(std::move(meshes[m]));
+    }
+    for (GeometryItem& item : geometry)
+        for (uint32_t& m : item.meshes) m = newIndex[m];
+    for (Mesh& body : bodies) kept.push_back(std::move(body));
+    meshes = std::move(kept);
+    if (anyBody && housing == materials.end()) {
+        Material m;
+        m.name = kHousing;
+        m.albedo = glm::vec3(0.6f);
+        materials.push_back(m);
+    }
+    return true;
 }
 
 size_t Scene::bodyCount() const {

@@ -120,7 +120,8 @@ struct Scene {
 
     /// Replaces the luminaires' body meshes (Luminaire::bodyTriangles: flat-shaded, the
     /// "luminaire housing" material, after every geometry entry's meshes) with their current
-    /// shape and pose. Returns whether any body was there before or is now: the geometry changed.
+    /// shape and pose. Returns whether that changed the meshes (false when every body is as it
+    /// was: an edit of another luminaire moves no geometry).
     bool updateBodies();
     size_t bodyCount() const;
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "renderer/Renderer.h"
 #include "renderer/ShaderLibrary.h"
 #include "renderer/context/GlContext.h"
 #include "renderer/gl/GlObjects.h"
@@ -90,6 +91,15 @@ GlContext& glContext() {
     static std::unique_ptr<GlContext> context = createOffscreenContext();
     context->makeCurrent();
     return *context;
+}
+
+std::vector<float> renderConverged(Renderer& renderer, const Scene& scene,
+                                   const RenderSettings& settings) {
+    renderer.setSettings(settings);
+    renderer.update(scene, kChangeAll);
+    do renderer.renderFrame();
+    while (!renderer.converged());
+    return renderer.readLinear();
 }
 
 std::vector<std::byte> runComputeTest(const std::string& shader,

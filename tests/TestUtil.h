@@ -17,7 +17,10 @@
 
 namespace candela {
 class GlContext;
-}
+class Renderer;
+struct RenderSettings;
+struct Scene;
+}  // namespace candela
 
 namespace candela::test {
 
@@ -68,6 +71,11 @@ std::string inputError(F f) {
 /// One offscreen context for the whole GL test binary (created on first use; OSMesa unless
 /// CANDELA_GL=egl picks a GPU driver, see createOffscreenContext).
 GlContext& glContext();
+
+/// Renders `scene` with `settings` until the renderer converges and returns the linear image
+/// (RGB floats, rows as Renderer::readLinear gives them).
+std::vector<float> renderConverged(Renderer& renderer, const Scene& scene,
+                                   const RenderSettings& settings);
 
 /// Runs a test compute shader (a path relative to shaders/, e.g. "../tests/shaders/x.comp") with
 /// 64-wide groups over `count` inputs: `record` (a luminaire's gpuData) at binding 1, the inputs

@@ -47,11 +47,7 @@ std::vector<float> referenceRender(ShaderLibrary& shaders, const Scene& scene, i
     s.techniqueOverride = Comparison::kReferenceTechniques;
     s.maxSamples = spp;
     s.seed = seed;
-    r.setSettings(s);
-    r.update(scene, kChangeAll);
-    do r.renderFrame();
-    while (!r.converged());
-    return r.readLinear();
+    return test::renderConverged(r, scene, s);
 }
 
 TEST(Comparison, ReferenceNoiseMatchesTwoIndependentRenders) {

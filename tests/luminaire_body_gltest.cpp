@@ -50,11 +50,7 @@ std::vector<float> illuminance(Renderer& renderer, const Scene& scene, const std
     s.seed = 5;
     s.quantity = Quantity::Illuminance;
     s.techniqueOverride = technique;
-    renderer.setSettings(s);
-    renderer.update(scene, kChangeAll);
-    do renderer.renderFrame();
-    while (!renderer.converged());
-    return renderer.readLinear();
+    return test::renderConverged(renderer, scene, s);
 }
 
 class LuminaireBodyGl : public ::testing::Test {

@@ -83,11 +83,7 @@ std::vector<float> illuminance(Renderer& renderer, const Scene& scene, const std
     s.quantity = Quantity::Illuminance;
     s.techniqueOverride = technique;
     s.shadowMaps = maps;
-    renderer.setSettings(s);
-    renderer.update(scene, kChangeAll);
-    do renderer.renderFrame();
-    while (!renderer.converged());
-    return renderer.readLinear();
+    return test::renderConverged(renderer, scene, s);
 }
 
 /// The GL tests share one context; each gets its own shader library and renderer.

@@ -209,12 +209,10 @@ bool addTaskAreaFromGrid(EditorState& state) {
 
 bool addTaskAreaFromDrag(EditorState& state, const glm::dvec3& a, const glm::dvec3& b) {
     GridSpec& g = state.measure.grid;
-    // The plane's in-plane axes, as CalcPlane orders them: (x, z) for y, (y, z) for x, (x, y)
-    // for z; coordinates rounded to 1 cm, as a designer types them.
-    int u = g.plane.axis == 0 ? 1 : 0, v = g.plane.axis == 2 ? 1 : 2;
-    auto cm = [](double x) { return std::round(x * 100.0) / 100.0; };
-    glm::dvec2 lo(cm(std::min(a[u], b[u])), cm(std::min(a[v], b[v])));
-    glm::dvec2 hi(cm(std::max(a[u], b[u])), cm(std::max(a[v], b[v])));
+    // In-plane coordinates rounded to 1 cm, as a designer types them.
+    glm::dvec2 pa = g.plane.inPlane(a), pb = g.plane.inPlane(b);
+    glm::dvec2 lo = glm::round(glm::min(pa, pb) * 100.0) / 100.0;
+    glm::dvec2 hi = glm::round(glm::max(pa, pb) * 100.0) / 100.0;
     if (!(hi.x - lo.x >= kMinDrawnSide) || !(hi.y - lo.y >= kMinDrawnSide)) {
         char text[160];
         std::snprintf(text, sizeof text,

@@ -166,9 +166,8 @@ bool pickSelectedPlane(const EditorState& state, GridSpec& grid, std::string& er
     grid.plane.axis = axis;
     grid.plane.sign = n[axis] > 0.f ? 1.0 : -1.0;
     grid.plane.offset = 0.5 * double(mesh.boundsMin[axis] + mesh.boundsMax[axis]);
-    int u = axis == 0 ? 1 : 0, v = axis == 2 ? 1 : 2;
-    grid.lo = {mesh.boundsMin[u], mesh.boundsMin[v]};
-    grid.hi = {mesh.boundsMax[u], mesh.boundsMax[v]};
+    grid.lo = grid.plane.inPlane(glm::dvec3(mesh.boundsMin));
+    grid.hi = grid.plane.inPlane(glm::dvec3(mesh.boundsMax));
     error.clear();
     return true;
 }

@@ -139,10 +139,8 @@ void drawTaskAreas(const EditorState& state, const Renderer& renderer, const Ima
         rectangle(a.plane, a.lo, a.hi, IM_COL32(80, 220, 255, 220), a.name);
     if (state.drag.mode != DragMode::Area) return;
     const CalcPlane& plane = state.measure.grid.plane;
-    int u = plane.axis == 0 ? 1 : 0, v = plane.axis == 2 ? 1 : 2;
-    glm::dvec3 a = state.drag.areaStart, b = state.drag.areaEnd;
-    glm::dvec2 lo(std::min(a[u], b[u]), std::min(a[v], b[v]));
-    glm::dvec2 hi(std::max(a[u], b[u]), std::max(a[v], b[v]));
+    glm::dvec2 a = plane.inPlane(state.drag.areaStart), b = plane.inPlane(state.drag.areaEnd);
+    glm::dvec2 lo = glm::min(a, b), hi = glm::max(a, b);
     char label[96];
     std::snprintf(label, sizeof label, "%.2f x %.2f m", hi.x - lo.x, hi.y - lo.y);
     rectangle(plane, lo, hi, IM_COL32(255, 210, 40, 255), label);
