@@ -18,6 +18,7 @@
 
 #include "luminaires/EnvironmentSampling.h"
 #include "luminaires/Random.h"
+#include "renderer/passes/EnvironmentPass.h"
 #include "scene/Bvh.h"
 #include "scene/SceneIo.h"
 #include "tests/EnvironmentTestUtil.h"
@@ -257,6 +258,74 @@ TEST(Environment, CubeSamplersPassChiSquare) {
     }
     // Balanced: a face wholly behind n gets no samples (mu_f = 0).
     EXPECT_EQ(balanced[3], 0.0);  // -Y: every corner has n . c < 0 for n.y = 0.8
+}
+
+// environment_global_cdf.frag's search, in the shader's float arithmetic: the last entry of an
+// n-entry CDF (entry 0 is 0, entries 1..n in cdf) not above u, searched in [lo, hi).
+static int searchCdf(const std::vector<float>& cdf, float u, int lo, int hi) {
+    while (hi - lo > 1) {
+        int mid = (lo + hi) >> 1;
+        if ((mid == 0 ? 0.f : cdf[size_t(mid - 1)]) <= u)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
+TEST(Environment, CdfSearchGuideFindsTheSameBinInOneOrTwoSteps) {
+    Random rng(99);
+    for (int n : {1, 2, 3, 7, 256, 1000, 16384}) {
+        for (int shape = 0; shape < 3; ++shape) {
+            // Uniform bins; random bins with runs of empty ones; all mass in one bin.
+            std::vector<double> weight(static_cast<size_t>(n), 1.0);
+            if (shape == 1)
+                for (double& w : weight) w = rng.uniform() < 0.3 ? 0.0 : rng.uniform();
+            if (shape == 2) std::fill(weight.begin(), weight.end(), 0.0), weight[size_t(n / 2)] = 1;
+            double total = 0.0;
+            for (double w : weight) total += w;
+            if (!(total > 0)) weight[0] = total = 1.0;
+            std::vector<float> cdf(static_cast<size_t>(n));
+            double sum = 0.0;
+            for (int i = 0; i < n; ++i) cdf[size_t(i)] = float((sum += weight[size_t(i)]) / total);
+            cdf.back() = 1.f;
+            std::vector<float> guide = cdfSearchGuide(cdf.data(), n);
+            ASSERT_EQ(guide.size(), size_t(n));
+            std::vector<float> us;
+            for (int k = 0; k < 20000; ++k) us.push_back(float(rng.uniform()));
+            for (int j = 0; j <= n; ++j) {  // the buckets' edges, a few ulps either side
+                float e = float(j) / float(n);
+                for (int step = 0; step < 3; ++step) {
+                    us.push_back(e);
+                    e = std::nextafter(e, 0.f);
+                }
+                e = float(j) / float(n);
+                for (int step = 0; step < 3; ++step) us.push_back(e = std::nextafter(e, 2.f));
+            }
+            double width = 0.0;
+            int counted = 0, widest = 0;
+            for (float u : us) {
+                if (!(u >= 0.f && u < 1.f)) continue;
+                int j = std::min(int(u * float(n)), n - 1);
+                int lo = int(guide[size_t(j)]);
+                int hi = j + 1 < n ? int(guide[size_t(j + 1)]) + 1 : n;
+                ASSERT_EQ(searchCdf(cdf, u, lo, hi), searchCdf(cdf, u, 0, n))
+                    << "n " << n << " shape " << shape << " u " << u;
+                width += hi - lo;
+                widest = std::max(widest, hi - lo);
+                ++counted;
+            }
+            // Uniform bins: a bracket holds one or two entries, three where float rounding moves
+            // an entry across a bucket's edge, so at most two search steps. Otherwise the mean
+            // bracket is still a few entries (a heavy bin spans many buckets sharing one entry).
+            if (shape == 0) {
+                EXPECT_LE(widest, 3) << n;
+                EXPECT_LE(width / counted, 2.1) << n;
+            } else {
+                EXPECT_LE(width / counted, 4.0) << n << " shape " << shape;
+            }
+        }
+    }
 }
 
 TEST(Environment, GlobalCdfPassesChiSquare) {

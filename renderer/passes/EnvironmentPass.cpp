@@ -126,22 +126,48 @@ void EnvironmentPass::drawSamples(ShaderLibrary& shaders, uint32_t seed, int poo
     dispatch(shaders, programs::EnvironmentTables::Samples, GLuint((pool + 63) / 64), 1, 6);
 }
 
+std::vector<float> cdfSearchGuide(const float* cdf, int n) {
+    std::vector<float> guide(size_t(std::max(n, 0)), 0.f);
+    auto entry = [cdf](int i) { return i == 0 ? 0.f : cdf[i - 1]; };
+    auto bucket = [n](float u) { return std::min(int(u * float(n)), n - 1); };
+    int i = 0;
+    for (int j = 0; j < n; ++j) {
+        // The smallest float the shader puts in bucket j (float(j) / n give or take an ulp).
+        float start = float(j) / float(n);
+        while (start > 0.f && bucket(std::nextafter(start, 0.f)) >= j)
+            start = std::nextafter(start, 0.f);
+        while (bucket(start) < j) start = std::nextafter(start, 2.f);
+        while (i + 1 < n && entry(i + 1) <= start) ++i;  // entries never decrease
+        guide[size_t(j)] = float(i);                     // exact: n is at most GL's texture width
+    }
+    return guide;
+}
+
 void EnvironmentPass::prepareGlobalCdf() {
     if (!mMap || mGlobalCdfFor.lock() == mMap) return;
     LatLongDistribution global(*mMap);
     int w = mMap->width(), h = mMap->height(), width = std::max(w, h);
-    // Entry i of a CDF at texel i - 1: entry 0 is 0 (kUnitEnvGlobalCdf in GpuTypes.h).
-    std::vector<float> table(size_t(width) * size_t(h + 1), 0.f);
+    // Per texel (kUnitEnvGlobalCdf in GpuTypes.h): .r entry i + 1 of the line's CDF (entry 0 is
+    // 0), .g entry i of its search guide, which leaves one or two of the binary searches'
+    // dependent fetches: the pass 1.14x faster on an H100, 1.17x on llvmpipe (docs/bench/gpu-h100).
+    std::vector<float> cdf(size_t(width) * size_t(h + 1), 0.f);
     if (!global.empty()) {
-        for (int y = 1; y <= h; ++y) table[size_t(y - 1)] = float(global.rows().cdf[size_t(y)]);
+        for (int y = 1; y <= h; ++y) cdf[size_t(y - 1)] = float(global.rows().cdf[size_t(y)]);
         for (int y = 0; y < h; ++y)
             for (int x = 1; x <= w; ++x)
-                table[size_t(y + 1) * size_t(width) + size_t(x - 1)] =
+                cdf[size_t(y + 1) * size_t(width) + size_t(x - 1)] =
                     float(global.columns(y).cdf[size_t(x)]);
     }
-    mGlobalCdf = gl::Texture2D(width, h + 1, GL_R32F);
+    std::vector<glm::vec2> table(cdf.size(), glm::vec2(0.f));
+    for (int line = 0; line <= h; ++line) {
+        const float* row = cdf.data() + size_t(line) * size_t(width);
+        std::vector<float> guide = cdfSearchGuide(row, line == 0 ? h : w);
+        for (size_t i = 0; i < guide.size(); ++i)
+            table[size_t(line) * size_t(width) + i] = glm::vec2(row[i], guide[i]);
+    }
+    mGlobalCdf = gl::Texture2D(width, h + 1, GL_RG32F);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    glTextureSubImage2D(mGlobalCdf.id(), 0, 0, 0, width, h + 1, GL_RED, GL_FLOAT, table.data());
+    glTextureSubImage2D(mGlobalCdf.id(), 0, 0, 0, width, h + 1, GL_RG, GL_FLOAT, table.data());
     mGlobalCdfFor = mMap;
 }
 

@@ -24,6 +24,14 @@ namespace candela {
 
 class GBufferPass;
 
+/// A guide for searching one CDF the way environment_global_cdf.frag does: `cdf` holds entries
+/// 1..n of a CDF whose entry 0 is 0, as floats; the result's entry j is the last entry i in
+/// [0, n) that does not exceed the smallest u the shader puts in bucket j = min(int(u n), n - 1)
+/// in float arithmetic. Every u of bucket j then lies in [entry g[j], entry g[j + 1] + 1) (n for
+/// the last bucket), so the shader's search starts there: the same index as a search of the
+/// whole CDF, in one or two steps instead of log2 n dependent fetches.
+std::vector<float> cdfSearchGuide(const float* cdf, int n);
+
 class EnvironmentPass final : public SourcePass {
   public:
     EnvironmentPass();  ///< Needs a current GL context.
@@ -85,7 +93,7 @@ class EnvironmentPass final : public SourcePass {
     gl::Buffer mUniformBuffer, mCube, mFaces, mSamples, mExtra;
     gl::TextureArray mRowCdf;  ///< CDF(v | u) per face and column (kUnitEnvRowCdf).
     gl::Texture2D mColumnCdf;  ///< CDF(u) per face, then the columns' totals.
-    gl::Texture2D mGlobalCdf;  ///< The global-cdf technique's lat-long CDF.
+    gl::Texture2D mGlobalCdf;  ///< The global-cdf technique's lat-long CDF and its search guide.
     std::weak_ptr<const EnvironmentMap> mExtraFor;      ///< Map whose Havran lights mExtra holds.
     std::weak_ptr<const EnvironmentMap> mGlobalCdfFor;  ///< Map mGlobalCdf was built for.
     std::unique_ptr<HavranLights> mHavran;

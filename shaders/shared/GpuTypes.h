@@ -42,12 +42,13 @@ CANDELA_CONST int kBindingEnvExtra = 13;    // SSBO of Havran lights
 /// The environment's CDFs as textures (float-float pairs, RG32F; environment_cdf.comp writes
 /// them through image units, shading reads them with texelFetch): CDF(v | u) of face f, column c
 /// in row c of layer f, N + 1 entries; CDF(u) of face f in row f of the column table, N + 1
-/// entries, and the columns' totals in row 6 + f. The global-cdf technique's lat-long CDF (R32F,
-/// built on the CPU): row 0 the CDF over rows, row 1 + y the CDF over row y's columns, entry i at
-/// texel i - 1 (entry 0 is 0, so a map 16384 texels wide fits GL's 16384).
+/// entries, and the columns' totals in row 6 + f. The global-cdf technique's lat-long CDF (RG32F,
+/// built on the CPU): row 0 the CDF over rows, row 1 + y the CDF over row y's columns, entry i in
+/// .r of texel i - 1 (entry 0 is 0, so a map 16384 texels wide fits GL's 16384), the line's
+/// search guide in .g (cdfSearchGuide in renderer/passes/EnvironmentPass.h).
 CANDELA_CONST int kUnitEnvRowCdf = 11;
 CANDELA_CONST int kUnitEnvColumnCdf = 12;
-CANDELA_CONST int kUnitEnvGlobalCdf = 13;
+CANDELA_CONST int kUnitEnvGlobalCdf = 13;  // RG32F: the lat-long CDF and its search guide (.g)
 CANDELA_CONST int kImageEnvRowCdf = 0;
 CANDELA_CONST int kImageEnvColumnCdf = 1;
 
