@@ -322,6 +322,7 @@ void LdtParse::lampSets() {
         std::string cri = optionalText(base + 4, "colour rendering index of " + set);
         double wattage = optionalNumber(base + 5, "wattage of " + set, 0.0, "taken as 0 W");
         totalFlux += flux;
+        d.lampSetFlux.push_back(flux);
         watts += wattage;
         if (!(totalFlux <= kMaxLumens) || !std::isfinite(watts))
             fail(path, base + 2,

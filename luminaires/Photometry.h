@@ -107,6 +107,9 @@ struct PhotometricData {
 
     double lampFlux =
         -1.0;  ///< Rated lamp lumens in total (all lamps); -1 for absolute photometry.
+    /// EULUMDAT: each lamp set's total luminous flux (field 26c), lm, in the file's order (their
+    /// sum is lampFlux); empty for the other formats. Catalogue UGR tables use the first set's.
+    std::vector<double> lampSetFlux;
     double lightOutputRatio = 1.0;          ///< EULUMDAT LORL / 100; 1 when the file does not say.
     bool declaresLightOutputRatio = false;  ///< The file states one (EULUMDAT; IES has no field).
     double inputWatts = 0.0;

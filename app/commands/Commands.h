@@ -23,6 +23,8 @@ int cmdBench(const Args& args);
 int cmdGrid(const Args& args);
 int cmdSurfaces(const Args& args);
 int cmdGlare(const Args& args);
+/// `glare --table FILE`: the standard UGR table of a photometric file (scene/UgrTable.h).
+int cmdGlareTable(const Args& args);
 int cmdReport(const Args& args);
 int cmdPolar(const Args& args);
 int cmdValidate(const Args& args);

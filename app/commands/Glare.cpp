@@ -71,6 +71,8 @@ std::string reportCsv(const GlareReport& report) {
 }  // namespace
 
 int cmdGlare(const Args& args) {
+    for (const std::string& a : args)
+        if (a == "--table") return cmdGlareTable(args);
     std::string scenePath, csvPath;
     GridSpec how;
     GlareObserver one;
@@ -101,7 +103,8 @@ int cmdGlare(const Args& args) {
     if (scenePath.empty() || position != view)
         throw InputError(
             "usage: candela glare scene.json [--observer X,Y,Z --view X,Y,Z [--limit UGR_L] "
-            "[--background CD_M2]] [--spp N] [--patches N] [--csv out.csv]");
+            "[--background CD_M2]] [--spp N] [--patches N] [--csv out.csv], or candela glare "
+            "--table FILE.ldt|FILE.ies [--spacing 0.25] [--csv out.csv]");
     std::vector<GlareObserver> observers;
     if (position) {
         // Through the scene file's parser, so the command line gets the same checks.
