@@ -14,6 +14,7 @@
 #include "luminaires/Registry.h"
 #include "scene/GltfLoader.h"
 #include "scene/SceneIo.h"
+#include "scene/UgrTable.h"
 #include "util/Error.h"
 #include "util/TextEncoding.h"
 
@@ -81,6 +82,29 @@ static void printDeclaredFlux(const PhotometricData& d, double flux) {
         std::printf("absolute photometry: no lamp flux declared\n");
 }
 
+/// The UGR reference values a datasheet gives: the CIE 190 table's 4H x 8H room at reflectances
+/// 70/50/20 (scene/UgrTable.h; `candela glare --table` prints the whole table), or why there are
+/// none.
+static void printUgrReference(const PhotometricData& d) {
+    try {
+        UgrTable t = computeUgrTable(d);
+        auto shown = [](double ugr) {
+            char s[16] = "-";  // no light towards the eye: no glare to rate
+            if (std::isfinite(ugr)) std::snprintf(s, sizeof s, "%.1f", ugr);
+            return std::string(s);
+        };
+        for (const UgrRoomResult& r : t.rooms)
+            if (r.size.x == 4 && r.size.y == 8)
+                std::printf(
+                    "UGR reference (CIE 190 table, room 4H x 8H, reflectances 70/50/20 %%, "
+                    "luminaires every %.4g H): %s crosswise, %s endwise at %.6g lm\n",
+                    t.options.spacing, shown(r.crosswise[0]).c_str(), shown(r.endwise[0]).c_str(),
+                    t.flux);
+    } catch (const InputError& e) {
+        std::printf("UGR reference: none (%s)\n", e.what());
+    }
+}
+
 /// The photometry's description; `path` names it ("lamp.ldt", "lamp.gldf:ldc/lamp.ldt").
 static void printPhotometry(const std::string& path, std::shared_ptr<const PhotometricData> data) {
     auto light = std::make_unique<PhotometricLuminaire>();
@@ -112,6 +136,7 @@ static void printPhotometry(const std::string& path, std::shared_ptr<const Photo
                     flux / d.statedFlux);
     if (d.inputWatts > 0.0 && std::isfinite(flux / d.inputWatts))
         std::printf("input power: %.4g W (%.1f lm/W)\n", d.inputWatts, flux / d.inputWatts);
+    printUgrReference(d);
     for (const std::string& w : d.warnings) std::printf("warning: %s\n", w.c_str());
 }
 

@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # `candela glare --table`: the standard UGR table of an EULUMDAT file (tests/data/ugr): the
-# header, 19 rooms x 10 columns, the 4H x 8H reference line, the CSV's 190 cells equal to the
-# printed ones, --spacing; refusals (a missing file, the CSV onto the input, a file without a
-# luminous area, a spacing that leaves part rows) each one line naming the file or the flag, with
-# a non-zero exit and nothing written.
+# header, 19 rooms x 10 columns, the 4H x 8H reference line (and candela info's), the CSV's 190
+# cells equal to the printed ones, --spacing; refusals (a missing file, the CSV onto the input, a
+# file without a luminous area, a spacing that leaves part rows) each one line naming the file or
+# the flag, with a non-zero exit and nothing written.
 set -uo pipefail
 binary=$1
 data="$2/data"
@@ -44,6 +44,11 @@ check "the reference line repeats 4H x 8H, 70/50/20: $ref" \
 check "4H x 8H near the published 17.9 / 19.9: $cross / $end" \
     'awk -v a="$cross" -v b="$end" "BEGIN { exit !(a - 17.9 <= 0.2 && 17.9 - a <= 0.2 && b - 19.9 <= 0.2 && 19.9 - b <= 0.2) }"'
 
+# candela info gives the same reference values as a datasheet would.
+info=$("$binary" info "$tmp/lamp.ldt" 2>&1)
+check "info states the table's 4H x 8H values: $(grep UGR <<<"$info")" \
+    'grep -q "^UGR reference (CIE 190 table, room 4H x 8H, reflectances 70/50/20 %, luminaires every 0.25 H): $cross crosswise, $end endwise at 12334 lm$" <<<"$info"'
+
 # CIE 190's own spacing: 4H x 8H holds 32 luminaires and rates 15.6 / 15.2.
 one=$("$binary" glare --table "$tmp/lamp.ldt" --spacing 1 2>&1)
 check "--spacing 1: $one" \
@@ -70,6 +75,10 @@ sed '16s/.*/0/;17s/.*/0/' "$tmp/lamp.ldt" >"$tmp/dot.ldt"  # luminous area 0 x 0
 refused "no luminous area (EULUMDAT)" "$tmp/dot.ldt: no luminous area" --table "$tmp/dot.ldt" --csv "$tmp/d.csv"
 printf 'IESNA:LM-63-2002\n[TEST] point\nTILT=NONE\n1 -1 1 3 1 1 2 0 0 0\n1 1 10\n0 45 90\n0\n100 70 0\n' >"$tmp/dot.ies"
 refused "no luminous area (IES point source)" "$tmp/dot.ies: no luminous area" --table "$tmp/dot.ies"
+dotInfo=$("$binary" info "$tmp/dot.ies" 2>&1)
+check "info says why a point source has no UGR reference: $(grep UGR <<<"$dotInfo")" \
+    'grep -q "^UGR reference: none ($tmp/dot.ies: no luminous area" <<<"$dotInfo"'
+
 refused "a spacing that leaves part rows" "--spacing: expected 1 / n of H" --table "$tmp/lamp.ldt" --spacing 0.3
 refused "an option of the observer form" "unknown option --observer" --table "$tmp/lamp.ldt" --observer 0,1.2,4
 check "no CSV from a refused run" '[ ! -e "$tmp/m.csv" ] && [ ! -e "$tmp/d.csv" ]'
