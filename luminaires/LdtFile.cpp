@@ -25,7 +25,8 @@
 //   convention for EULUMDAT: the "lamp" flux is then the luminaire flux and LORL 100 %); the
 //   count is used as its absolute value and the keyword "absolute photometry" is set. The
 //   intensities are still cd/klm of the given flux, so the conversion is the same.
-// - Opening height: the largest of the four luminous-area heights.
+// - Luminous area: the file's length along C90-C270 (the luminaire's long axis), its width along
+//   C0-C180 (see LdtParse::opening); its height the largest of the four luminous-area heights.
 // Leniencies (Photometry.h; each a warning, or an error with PhotometryOptions::strict): empty
 // lamp type, colour temperature, colour rendering index or wattage (0 W); empty DFF, conversion
 // factor (1) or tilt (0); empty direct ratios (recognised when the ten lines after the lamp sets
@@ -525,22 +526,27 @@ void LdtParse::intensities() {
 }
 
 void LdtParse::opening() {
-    // Luminous area: length along C0-C180, width along C90-C270; width 0 means round.
+    // Luminous area: the length runs along the luminaire's long axis, C90-C270, and the width
+    // across it, along C0-C180 (EN 13032-1's C planes: "C0/C180 quer, C90/C270 längs", crosswise
+    // and lengthwise, as DIAL's DIALux documentation and manufacturers' catalogues put it; Relux's
+    // printed luminances of a linear luminaire with luminous sides fit this reading only). So the
+    // file's length is the opening's extent along local y and its width the extent along local x
+    // (LuminousOpening::length is along C0). Width 0 means round.
     const double mm = 1e-3;
-    double length = size[3] * mm, width = size[4] * mm;
+    double fileLength = size[3] * mm, fileWidth = size[4] * mm;
     double height = std::max({size[5], size[6], size[7], size[8]}) * mm;
     d.opening.height = height;
-    if (length == 0.0 && width == 0.0) {
+    if (fileLength == 0.0 && fileWidth == 0.0) {
         d.opening.shape = LuminousOpening::Shape::Point;
         d.opening.height = 0.0;
-    } else if (width == 0.0) {
+    } else if (fileWidth == 0.0) {  // round: the length is its diameter
         d.opening.shape =
             height > 0.0 ? LuminousOpening::Shape::Cylinder : LuminousOpening::Shape::Ellipse;
-        d.opening.length = d.opening.width = length;
+        d.opening.length = d.opening.width = fileLength;
     } else {
         d.opening.shape = LuminousOpening::Shape::Rectangle;
-        d.opening.length = length;
-        d.opening.width = width;
+        d.opening.length = fileWidth;  // along C0-C180
+        d.opening.width = fileLength;  // along C90-C270
     }
 }
 

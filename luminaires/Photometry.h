@@ -44,8 +44,9 @@ enum class PhotometricSymmetry {
     PlaneC90C270,  ///< Mirror about the C90-C270 plane (IES 90-270 / Isym 3).
 };
 
-/// The luminous opening in the local frame, centred on the origin, in metres. IES and EULUMDAT
-/// both give a length along C0-C180 (local x) and a width along C90-C270 (local y).
+/// The luminous opening in the local frame, centred on the origin, in metres. An IES file gives
+/// its length along C0-C180 (local x) and its width along C90-C270 (local y); a EULUMDAT file its
+/// length along C90-C270 (the luminaire's long axis) and its width along C0-C180.
 struct LuminousOpening {
     enum class Shape { Point, Rectangle, Ellipse, Sphere, Cylinder };
     /// Axis of a Cylinder (added for the LM-63-2002 horizontal cylinders): Z for the usual
@@ -55,8 +56,10 @@ struct LuminousOpening {
     enum class Axis { Z, X, Y };
     Shape shape = Shape::Point;
     Axis axis = Axis::Z;
-    double length = 0.0;  ///< Along local x (C0-C180), metres.
-    double width = 0.0;   ///< Along local y (C90-C270), metres.
+    /// Along local x (C0-C180), metres: an IES file's length, a EULUMDAT file's width.
+    double length = 0.0;
+    /// Along local y (C90-C270), metres: an IES file's width, a EULUMDAT file's length.
+    double width = 0.0;
     double height = 0.0;  ///< Along local z, metres (0 for flat openings).
     /// Polygon of the emitting face, counter-clockwise seen from below (from +z looking back at
     /// the luminaire, i.e. the emitting side), in the local z = 0 plane; ellipses as 16-gons.

@@ -393,11 +393,10 @@ UgrLuminousArea ugrLuminousArea(const PhotometricData& d) {
         ": the UGR table needs the luminaire's luminance, its intensity over its luminous area";
     UgrLuminousArea a;
     if (d.format == "EULUMDAT") {
-        // Fields 16-21 as DIALux and Relux read them: the length runs along C90-C270, so the
-        // faces seen from C0 and C180 are length x height (Relux's printed luminances of a
-        // linear luminaire with luminous sides agree with this reading, not the other).
-        // Candela's LuminousOpening puts the length along C0; for a flat area seen from below
-        // the two readings agree.
+        // Fields 16-21: the length runs along C90-C270, so the faces seen from C0 and C180 are
+        // length x height (Relux's printed luminances of a linear luminaire with luminous sides
+        // agree with this reading, not the other), as LdtParse::opening reads it; here with
+        // each face's own height, which the opening reduces to the largest.
         const double mm = 1e-3;
         double length = keywordNumber(d, "luminous area length/diameter (mm)", 0.0) * mm;
         double width = keywordNumber(d, "luminous area width (mm)", 0.0) * mm;

@@ -12,7 +12,8 @@
 #   TARGET: ies ldt tm25 lightfield scene gltf image gldf (default: all).
 # Environment: FUZZ_RUNS (stop a target after this many executions as well), FUZZ_SUMMARY (a file
 # to append the table to), FUZZ_NO_BUILD=1 (skip the build and the replay: for several runs side by
-# side on a build made before).
+# side on a build made before), FUZZ_TAG (a suffix for the log, seed and crash folders: two runs of one
+# target side by side, sharing its corpus, each on a core).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source fuzz/targets.sh
@@ -44,7 +45,8 @@ trap 'rm -f "$summary"' EXIT
 printf "%-11s %12s %9s %8s %8s %8s %6s\n" target executions exec/s seconds corpus crashes slow >"$summary"
 failed=0
 for t in "${targets[@]}"; do
-  corpus="$build/corpus/$t" seeds="$build/seeds/$t" crashes="$build/crashes/$t"
+  tag=${FUZZ_TAG:-}
+  corpus="$build/corpus/$t" seeds="$build/seeds/$t$tag" crashes="$build/crashes/$t$tag"
   mkdir -p "$corpus"
   rm -rf "$seeds" "$crashes" && mkdir -p "$seeds" "$crashes"
   while IFS= read -r -d '' f; do cp "$f" "$seeds/$(tr '/ ' '__' <<<"$f")"; done < <(fuzz_seeds "$t")
@@ -58,7 +60,7 @@ for t in "${targets[@]}"; do
         -artifact_prefix="$crashes/" -print_final_stats=1)
   [ -n "$(fuzz_dict "$t")" ] && args+=(-dict="$(fuzz_dict "$t")")
   [ -n "${FUZZ_RUNS:-}" ] && args+=(-runs="$FUZZ_RUNS")
-  log="$build/fuzz-$t.log"
+  log="$build/fuzz-$t$tag.log"
   echo "fuzz: $t for ${seconds} s (log $log)"
   rc=0 start=$(date +%s)
   "$build/fuzz/fuzz_$t" "${args[@]}" "$corpus" "$seeds" >"$log" 2>&1 || rc=$?

@@ -137,6 +137,27 @@ TEST(PhotometryLdt, SharedSymmetryFilesMirror) {
     }
 }
 
+// The luminous area's length runs along C90-C270, the luminaire's long axis (EN 13032-1's C
+// planes: C0-C180 crosswise, C90-C270 lengthwise), its width along C0-C180. lidrs/example.ldt is
+// a linear luminaire (Ityp 2) with a 1195 x 210 mm luminous area: its emitting polygon spans
+// 0.21 m along local x (C0) and 1.195 m along local y (C90).
+TEST(PhotometryLdt, LuminousAreaLengthRunsAlongC90) {
+    PhotometricData d = loadPhotometry(photometryDir() + "/ldt/lidrs/example.ldt");
+    EXPECT_EQ(d.opening.shape, LuminousOpening::Shape::Rectangle);
+    EXPECT_DOUBLE_EQ(d.opening.length, 0.210);  // along C0-C180: the file's width
+    EXPECT_DOUBLE_EQ(d.opening.width, 1.195);   // along C90-C270: the file's length
+    glm::dvec2 lo(1e9), hi(-1e9);
+    for (const glm::dvec2& v : d.opening.polygon()) lo = glm::min(lo, v), hi = glm::max(hi, v);
+    EXPECT_NEAR(hi.x - lo.x, 0.210, 1e-12);
+    EXPECT_NEAR(hi.y - lo.y, 1.195, 1e-12);
+    // A round area (width 0) is a circle of the length's diameter, whichever axis.
+    PhotometricData round =
+        loadPhotometry(photometryDir() +
+                       "/ldt/photometric-viewer/rectangular_luminaire_round_luminous_opening.ldt");
+    EXPECT_EQ(round.opening.length, round.opening.width);
+    EXPECT_DOUBLE_EQ(round.opening.length, 0.050);
+}
+
 TEST(PhotometryLdt, LampFluxTimesLorAgainstTable) {
     // For a consistent file, flux from the table = lamp flux x LOR. Files found inconsistent
     // are reported (printed) and not forced: the photometric-viewer dummies reuse one made-up

@@ -258,6 +258,16 @@ TEST(UgrTable, LuminousAreaProjectsAsReluxDoes) {
     EXPECT_NEAR(a.bottom(), l * b, 1e-12);
 }
 
+// The renderer's opening reads the EULUMDAT length along the same axis as the UGR table (until
+// 2026-11-26 it put it along C0, turning linear luminaires' rectangles by 90 degrees).
+TEST(UgrTable, RendererOpeningAgreesWithTheLuminousArea) {
+    PhotometricData d =
+        parseEulumdat(panelLdt(1208.0, 105.0, {1983.0}, {51.0, 0.0, 51.0, 0.0}), "side.ldt");
+    UgrLuminousArea a = ugrLuminousArea(d);
+    EXPECT_DOUBLE_EQ(d.opening.length, a.alongC0);
+    EXPECT_DOUBLE_EQ(d.opening.width, a.alongC90);
+}
+
 TEST(UgrTable, FilesWithoutALuminousAreaAreRefused) {
     PhotometricData ldt = parseEulumdat(panelLdt(0.0, 0.0, {1000.0}), "dot.ldt");
     PhotometricData ies = parseIes(

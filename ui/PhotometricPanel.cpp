@@ -75,9 +75,9 @@ void photometricDetails(const PhotometricLuminaire& light) {
         ImGui::TextWrapped(
             "Opening: a point (the file gives no size): every technique is the point law");
     else
-        ImGui::TextWrapped("Opening: %.3g x %.3g m, %s of %.4g m2%s", d.opening.length,
-                           d.opening.width, poly.size() == 2 ? "a segment" : "a polygon",
-                           light.area(),
+        ImGui::TextWrapped("Opening: %.3g m (C0-C180) x %.3g m (C90-C270), %s of %.4g m2%s",
+                           d.opening.length, d.opening.width,
+                           poly.size() == 2 ? "a segment" : "a polygon", light.area(),
                            light.openingOverride.x > 0.0 ? " (overridden in the scene)" : "");
     photometryWarnings(d);
     float side = std::min(ImGui::GetContentRegionAvail().x, 260.f);

@@ -122,7 +122,7 @@ static void printPhotometry(const std::string& path, std::shared_ptr<const Photo
         d.horizontal.front(), d.horizontal.back());
     std::printf("max intensity: %.6g cd\n", d.maxIntensity());
     std::printf(
-        "opening: %.4g x %.4g x %.4g m (length along C0, width along C90, height), emitting "
+        "opening: %.4g m along C0-C180 x %.4g m along C90-C270 x %.4g m high, emitting "
         "polygon %.4g m2%s\n",
         d.opening.length, d.opening.width, d.opening.height, light->area(),
         light->polygon().empty() ? " (a point source)" : "");
