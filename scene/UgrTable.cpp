@@ -393,26 +393,25 @@ UgrLuminousArea ugrLuminousArea(const PhotometricData& d) {
         ": the UGR table needs the luminaire's luminance, its intensity over its luminous area";
     UgrLuminousArea a;
     if (d.format == "EULUMDAT") {
-        // Fields 16-21: the length runs along C90-C270, so the faces seen from C0 and C180 are
-        // length x height (Relux's printed luminances of a linear luminaire with luminous sides
-        // agree with this reading, not the other), as LdtParse::opening reads it; here with
-        // each face's own height, which the opening reduces to the largest.
+        // The size from the parsed opening (LdtParse::opening: the file's length along
+        // C90-C270, so the faces seen from C0 and C180 are length x height, which Relux's printed
+        // luminances of a linear luminaire with luminous sides bear out), with each face's own
+        // height (fields 18-21), which the opening reduces to the largest.
         const double mm = 1e-3;
-        double length = keywordNumber(d, "luminous area length/diameter (mm)", 0.0) * mm;
-        double width = keywordNumber(d, "luminous area width (mm)", 0.0) * mm;
+        const LuminousOpening& o = d.opening;
         const char* faces[4] = {"luminous area height C0 (mm)", "luminous area height C90 (mm)",
                                 "luminous area height C180 (mm)", "luminous area height C270 (mm)"};
         for (int k = 0; k < 4; ++k) a.heights[k] = keywordNumber(d, faces[k], 0.0) * mm;
-        if (!(length > 0.0))
+        if (!(o.width > 0.0))
             throw InputError(d.path + ": no luminous area (EULUMDAT field 16, its length, is " +
-                             millimetres(length) + " mm, and field 17, its width, " +
-                             millimetres(width) + " mm)" + why);
-        a.shape = width > 0.0 ? UgrLuminousArea::Shape::Box : UgrLuminousArea::Shape::Round;
-        a.alongC90 = length;
-        a.alongC0 = width > 0.0 ? width : length;
-        a.note = width > 0.0 ? "EULUMDAT fields 16-21, length along C90-C270 as DIALux and Relux "
-                               "read it"
-                             : "EULUMDAT fields 16-21, round (width 0)";
+                             millimetres(o.width) + " mm, and field 17, its width, " +
+                             millimetres(o.length) + " mm)" + why);
+        bool round = o.shape != LuminousOpening::Shape::Rectangle;
+        a.shape = round ? UgrLuminousArea::Shape::Round : UgrLuminousArea::Shape::Box;
+        a.alongC0 = o.length;
+        a.alongC90 = o.width;
+        a.note = round ? "EULUMDAT fields 16-21, round (width 0)"
+                       : "EULUMDAT fields 16-21, length along C90-C270 as DIALux and Relux read it";
         return a;
     }
     const LuminousOpening& o = d.opening;

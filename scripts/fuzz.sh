@@ -44,8 +44,8 @@ summary=$(mktemp)
 trap 'rm -f "$summary"' EXIT
 printf "%-11s %12s %9s %8s %8s %8s %6s\n" target executions exec/s seconds corpus crashes slow >"$summary"
 failed=0
+tag=${FUZZ_TAG:-}
 for t in "${targets[@]}"; do
-  tag=${FUZZ_TAG:-}
   corpus="$build/corpus/$t" seeds="$build/seeds/$t$tag" crashes="$build/crashes/$t$tag"
   mkdir -p "$corpus"
   rm -rf "$seeds" "$crashes" && mkdir -p "$seeds" "$crashes"
