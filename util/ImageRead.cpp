@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <vector>
 
 #include "util/Error.h"
 
@@ -31,13 +33,92 @@ int32_t le32(const unsigned char* b) {
                    uint32_t(b[3]) << 24);
 }
 
+/// Bytes OpenEXR 3.1 reads for a value of each fixed-size attribute type it knows, whatever size
+/// the attribute declares (OpenEXR File Layout, "Predefined Attribute Types"); 0 for the others.
+int64_t fixedValueSize(const std::string& type) {
+    static const std::map<std::string, int64_t> sizes = {{"box2i", 16},
+                                                         {"box2f", 16},
+                                                         {"chromaticities", 32},
+                                                         {"compression", 1},
+                                                         {"deepImageState", 1},
+                                                         {"double", 8},
+                                                         {"envmap", 1},
+                                                         {"float", 4},
+                                                         {"int", 4},
+                                                         {"keycode", 28},
+                                                         {"lineOrder", 1},
+                                                         {"m33d", 72},
+                                                         {"m33f", 36},
+                                                         {"m44d", 128},
+                                                         {"m44f", 64},
+                                                         {"rational", 8},
+                                                         {"tiledesc", 9},
+                                                         {"timecode", 8},
+                                                         {"v2d", 16},
+                                                         {"v2f", 8},
+                                                         {"v2i", 8},
+                                                         {"v3d", 24},
+                                                         {"v3f", 12},
+                                                         {"v3i", 12}};
+    auto it = sizes.find(type);
+    return it == sizes.end() ? 0 : it->second;
+}
+
+/// Why OpenEXR 3.1 would read a value of `type` other than as the `bytes` that `value` holds
+/// (empty when it reads exactly those). It reads a fixed-size type's own size, a channel list up
+/// to its empty name and a preview as large as its width and height say, not the declared size:
+/// a file whose declarations disagree desynchronises it, and what it then reads as the next
+/// attribute is no longer what this walk checked.
+std::string valueMismatch(const std::string& type, const std::string& value) {
+    const int64_t bytes = int64_t(value.size());
+    if (int64_t fixed = fixedValueSize(type))
+        return fixed == bytes ? std::string()
+                              : "declares " + std::to_string(bytes) + " bytes where a " + type +
+                                    " holds " + std::to_string(fixed);
+    if (type == "chlist") {  // per channel a NUL-terminated name and 16 bytes; an empty name ends
+        size_t at = 0;
+        while (at < value.size() && value[at] != '\0') {
+            size_t nul = value.find('\0', at);
+            if (nul == std::string::npos) break;
+            at = nul + 1 + 16;
+        }
+        return at + 1 == value.size() ? std::string()
+                                      : "is a channel list that does not end at its " +
+                                            std::to_string(bytes) + " bytes";
+    }
+    if (type == "preview") {  // width and height (unsigned 32-bit), then 4 bytes a pixel
+        if (bytes < 8) return "is a preview of " + std::to_string(bytes) + " bytes";
+        const uint64_t w = uint32_t(le32(reinterpret_cast<const unsigned char*>(value.data()))),
+                       h = uint32_t(le32(reinterpret_cast<const unsigned char*>(value.data()) + 4));
+        return w * h == uint64_t(bytes - 8) / 4 && (bytes - 8) % 4 == 0
+                   ? std::string()
+                   : "is a " + std::to_string(w) + "x" + std::to_string(h) + " preview in " +
+                         std::to_string(bytes) + " bytes";
+    }
+    if (type == "stringvector") {  // per string a 32-bit length and its characters
+        int64_t at = 0;
+        while (at + 4 <= bytes) {
+            int64_t n = le32(reinterpret_cast<const unsigned char*>(value.data()) + at);
+            if (n < 0 || n > bytes - at - 4) break;
+            at += 4 + n;
+        }
+        return at == bytes ? std::string()
+                           : "is a string list that does not end at its " + std::to_string(bytes) +
+                                 " bytes";
+    }
+    if (type == "floatvector" && bytes % 4 != 0)
+        return "declares " + std::to_string(bytes) + " bytes for 4-byte floats";
+    return {};  // string, idmanifest and unknown types: OpenEXR reads the declared bytes
+}
+
 /// OpenEXR 3.1 allocates (and clears) the size a header attribute declares before reading it, and
 /// tables as long as the data window is high, so a 100-byte file can make it allocate gigabytes
 /// or spend half a minute (fuzzing found both). Walks the header(s) as the file layout specifies
 /// ("OpenEXR File Layout": magic number, version field whose bit 12 marks multi-part files; per
 /// attribute a name and a type name, NUL-terminated, an int32 size and the value; an empty name
 /// ends a header, an empty header ends a multi-part file's list) and refuses an attribute larger
-/// than what is left of the file, and a data window (box2i) wider or higher than `maxSide`.
+/// than what is left of the file, one whose value OpenEXR would read as a different number of
+/// bytes (valueMismatch), and a data window (box2i) wider or higher than `maxSide`.
 /// Anything else malformed is left to OpenEXR.
 void checkExrHeader(const std::string& path, const std::string& context, int maxSide) {
     std::ifstream in(path, std::ios::binary);
@@ -49,31 +130,39 @@ void checkExrHeader(const std::string& path, const std::string& context, int max
     in.seekg(0, std::ios::end);
     const int64_t size = int64_t(in.tellg());
     in.seekg(8);
-    std::string name, type;
+    std::string name, type, value;
     for (bool firstHeader = true;; firstHeader = false) {
         int attributes = 0;
         while (readName(in, name) && !name.empty() && readName(in, type)) {
-            unsigned char b[16];
+            unsigned char b[4];
             if (!in.read(reinterpret_cast<char*>(b), 4)) return;
             int64_t bytes = le32(b);
             int64_t at = int64_t(in.tellg());
-            if (bytes < 0 || bytes > size - at) {
-                std::string shown;
-                for (char c : name) shown += std::isprint(static_cast<unsigned char>(c)) ? c : '?';
+            std::string shown;
+            for (char c : name) shown += std::isprint(static_cast<unsigned char>(c)) ? c : '?';
+            if (bytes < 0 || bytes > size - at)
                 throw InputError(context + ": cannot read image: its header attribute \"" + shown +
                                  "\" declares " + std::to_string(bytes) + " bytes, more than the " +
                                  std::to_string(size - at) + " left in the file");
+            value.resize(size_t(bytes));
+            if (!in.read(value.data(), bytes)) return;
+            std::string why = valueMismatch(type, value);
+            if (!why.empty()) {
+                std::string shownType;
+                for (char c : type)
+                    shownType += std::isprint(static_cast<unsigned char>(c)) ? c : '?';
+                throw InputError(context + ": cannot read image: its header attribute \"" + shown +
+                                 "\" (" + shownType + ") " + why);
             }
-            if (name == "dataWindow" && type == "box2i" && bytes == 16 &&
-                in.read(reinterpret_cast<char*>(b), 16)) {
-                int64_t w = int64_t(le32(b + 8)) - le32(b) + 1,
-                        h = int64_t(le32(b + 12)) - le32(b + 4) + 1;
+            if (name == "dataWindow" && type == "box2i") {
+                auto v = reinterpret_cast<const unsigned char*>(value.data());
+                int64_t w = int64_t(le32(v + 8)) - le32(v) + 1,
+                        h = int64_t(le32(v + 12)) - le32(v + 4) + 1;
                 if (w < 1 || h < 1 || w > maxSide || h > maxSide)
                     throw InputError(context + ": image size " + std::to_string(w) + "x" +
                                      std::to_string(h) + " out of range (1.." +
                                      std::to_string(maxSide) + " per side)");
             }
-            in.seekg(at + bytes);
             ++attributes;
         }
         if (!in || !multiPart || (attributes == 0 && !firstHeader)) return;
@@ -111,12 +200,48 @@ ImageFileReader::~ImageFileReader() = default;
 
 std::unique_ptr<float[]> ImageFileReader::readPixels(int channels) {
     channels = std::clamp(channels, 1, mChannels);
-    // Not cleared (make_unique_for_overwrite): OpenImageIO decodes a band of rows at a time into
-    // it, so only the pages of rows that decoded are ever touched.
-    auto pixels = std::make_unique_for_overwrite<float[]>(size_t(mWidth) * size_t(mHeight) *
-                                                          size_t(channels));
-    if (!mInput->in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.get()))
-        throw InputError(mContext + ": cannot read pixels: " + mInput->in->geterror());
+    OIIO::ImageInput& in = *mInput->in;
+    const OIIO::ImageSpec& spec = in.spec();
+    // Not cleared (make_unique_for_overwrite): it is filled a band of rows at a time, so only the
+    // pages of rows that decoded are ever touched.
+    const size_t rowValues = size_t(mWidth) * size_t(channels);
+    auto pixels = std::make_unique_for_overwrite<float[]>(rowValues * size_t(mHeight));
+    // Bands of rows are read in the file's own channel formats and converted here. Asked for
+    // float, OpenImageIO 2.4 converts through a buffer of about 64 MB whatever the image's size
+    // (ImageInput::read_scanlines sizes it from 64 MB over the row's bytes, not from the rows
+    // asked for): every small map paid for 64 MB of allocation, which under AddressSanitizer was
+    // most of the image fuzz target's time. A band holds about 4 MB of the file's pixels, whole
+    // tiles high.
+    const size_t pixelBytes = spec.pixel_bytes(0, channels, true);
+    const int rowsPerStep = spec.tile_width > 0 ? std::max(1, spec.tile_height) : 1;
+    const size_t stepBytes = pixelBytes * size_t(mWidth) * size_t(rowsPerStep);
+    const int band =
+        std::min(mHeight, rowsPerStep * int(std::max<size_t>(1, (4u << 20) / stepBytes)));
+    std::vector<std::byte> raw(stepBytes / size_t(rowsPerStep) * size_t(band));
+    const OIIO::stride_t floatPixel = OIIO::stride_t(channels * sizeof(float));
+    for (int y0 = 0; y0 < mHeight; y0 += band) {
+        const int y1 = std::min(mHeight, y0 + band);
+        bool ok =
+            spec.tile_width > 0
+                ? in.read_tiles(0, 0, spec.x, spec.x + mWidth, spec.y + y0, spec.y + y1, spec.z,
+                                spec.z + 1, 0, channels, OIIO::TypeDesc::UNKNOWN, raw.data())
+                : in.read_scanlines(0, 0, spec.y + y0, spec.y + y1, spec.z, 0, channels,
+                                    OIIO::TypeDesc::UNKNOWN, raw.data());
+        if (!ok) throw InputError(mContext + ": cannot read pixels: " + in.geterror());
+        // Channel by channel: an OpenEXR file may give each channel its own format.
+        size_t offset = 0;
+        for (int c = 0; c < channels; ++c) {
+            const OIIO::TypeDesc format = spec.channelformat(c);
+            if (!OIIO::convert_image(
+                    1, mWidth, y1 - y0, 1, raw.data() + offset, format, OIIO::stride_t(pixelBytes),
+                    OIIO::stride_t(pixelBytes) * mWidth, OIIO::AutoStride,
+                    pixels.get() + size_t(y0) * rowValues + size_t(c), OIIO::TypeDesc::FLOAT,
+                    floatPixel, floatPixel * mWidth, OIIO::AutoStride))
+                throw InputError(mContext + ": cannot read pixels: no conversion from " +
+                                 format.c_str() + " to float");
+            offset += format.size();
+        }
+    }
     return pixels;
 }
 
