@@ -77,6 +77,12 @@ TEST(ImageRead, ExrHeadersCannotClaimMoreThanTheFile) {
                      "box2i holds 16"),
               std::string::npos)
         << m;
+    m = test::inputError(
+        [] { EnvironmentMap::load(regression("exr-channel-list-unterminated.exr")); });
+    EXPECT_NE(m.find("its header attribute \"channels\" (chlist) is a channel list that does not "
+                     "end at its 55 bytes"),
+              std::string::npos)
+        << m;
 }
 
 /// `file` with one more attribute at the start of its header: NAME, TYPE, the declared size
@@ -136,6 +142,10 @@ TEST(ImageRead, ExrValuesMustBeAsLongAsOpenExrReadsThem) {
                "\"f\" (float) declares 5 bytes where a float holds 4");
     refusedFor(withAttribute(dir / "map.exr", "g", "chlist", 20, channel + '\0' + 'x'),
                "\"g\" (chlist) is a channel list that does not end at its 20 bytes");
+    // Its last byte not the empty name that ends it (fuzzing's exr-channel-list-unterminated.exr):
+    // OpenEXR read on past the declared bytes.
+    refusedFor(withAttribute(dir / "map.exr", "g2", "chlist", 19, channel + 'x'),
+               "\"g2\" (chlist) is a channel list that does not end at its 19 bytes");
     refusedFor(withAttribute(dir / "map.exr", "h", "preview", 24,
                              le32Bytes(3) + le32Bytes(2) + std::string(16, '\x7f')),
                "\"h\" (preview) is a 3x2 preview in 24 bytes");

@@ -82,9 +82,10 @@ std::string valueMismatch(const std::string& type, const std::string& value) {
             if (nul == std::string::npos) break;
             at = nul + 1 + 16;
         }
-        return at + 1 == value.size() ? std::string()
-                                      : "is a channel list that does not end at its " +
-                                            std::to_string(bytes) + " bytes";
+        return at + 1 == value.size() && value[at] == '\0'
+                   ? std::string()
+                   : "is a channel list that does not end at its " + std::to_string(bytes) +
+                         " bytes";
     }
     if (type == "preview") {  // width and height (unsigned 32-bit), then 4 bytes a pixel
         if (bytes < 8) return "is a preview of " + std::to_string(bytes) + " bytes";
