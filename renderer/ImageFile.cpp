@@ -1,9 +1,11 @@
 #include "renderer/ImageFile.h"
 
-#include <OpenImageIO/imageio.h>
+#include <algorithm>
+#include <memory>
 
 #include "util/Error.h"
 #include "util/FileOutput.h"
+#include "util/ImageRead.h"
 
 namespace candela {
 
@@ -31,19 +33,15 @@ void writeImageFloat(const std::string& path, int width, int height,
 }
 
 std::vector<float> readImageFloat(const std::string& path, int& width, int& height) {
-    auto in = OIIO::ImageInput::open(path);
-    if (!in) throw InputError(path + ": cannot read image: " + OIIO::geterror());
-    const OIIO::ImageSpec& spec = in->spec();
-    width = spec.width;
-    height = spec.height;
-    int channels = spec.nchannels;
-    std::vector<float> all(size_t(width) * size_t(height) * size_t(channels));
-    if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, all.data()))
-        throw InputError(path + ": cannot read image: " + in->geterror());
+    ImageFileReader in(path, path, 1 << 16);
+    width = in.width();
+    height = in.height();
+    const int channels = std::min(in.channels(), 3);
+    std::unique_ptr<float[]> read = in.readPixels(channels);
     std::vector<float> rgb(size_t(width) * size_t(height) * 3);
     for (size_t i = 0; i < size_t(width) * size_t(height); ++i)
-        for (size_t c = 0; c < 3; ++c)
-            rgb[i * 3 + c] = all[i * size_t(channels) + std::min(c, size_t(channels - 1))];
+        for (size_t c = 0; c < 3; ++c)  // grey images repeat their one channel
+            rgb[i * 3 + c] = read[i * size_t(channels) + std::min(c, size_t(channels - 1))];
     return rgb;
 }
 

@@ -26,7 +26,8 @@ std::vector<T> rgbTopDown(const std::vector<T>& rgba, int width, int height) {
     return rgb;
 }
 
-/// Reads any OpenImageIO format as float RGB (tests compare images with it).
+/// Reads an image as float RGB through ImageFileReader, the reader its extension names (tests
+/// compare images with it).
 std::vector<float> readImageFloat(const std::string& path, int& width, int& height);
 
 }  // namespace candela
