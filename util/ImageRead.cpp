@@ -210,9 +210,8 @@ std::unique_ptr<float[]> ImageFileReader::readPixels(int channels) {
     // Bands of rows are read in the file's own channel formats and converted here. Asked for
     // float, OpenImageIO 2.4 converts through a buffer of about 64 MB whatever the image's size
     // (ImageInput::read_scanlines sizes it from 64 MB over the row's bytes, not from the rows
-    // asked for): every small map paid for 64 MB of allocation, which under AddressSanitizer was
-    // most of the image fuzz target's time. A band holds about 4 MB of the file's pixels, whole
-    // tiles high.
+    // asked for): every small map paid for 64 MB of allocation. A band holds about 4 MB of the
+    // file's pixels, whole tiles high.
     const size_t pixelBytes = spec.pixel_bytes(0, channels, true);
     const int rowsPerStep = spec.tile_width > 0 ? std::max(1, spec.tile_height) : 1;
     const size_t stepBytes = pixelBytes * size_t(mWidth) * size_t(rowsPerStep);
