@@ -85,6 +85,13 @@ TEST(ImageRead, ExrHeadersCannotClaimMoreThanTheFile) {
         << m;
 }
 
+/// `v` as four little-endian bytes.
+std::string le32Bytes(uint32_t v) {
+    std::string s;
+    for (int i = 0; i < 4; ++i) s += char(v >> (8 * i) & 0xff);
+    return s;
+}
+
 /// `file` with one more attribute at the start of its header: NAME, TYPE, the declared size
 /// `declared` and the bytes `value`.
 std::string withAttribute(const std::string& file, const std::string& name, const std::string& type,
@@ -92,18 +99,11 @@ std::string withAttribute(const std::string& file, const std::string& name, cons
     std::ifstream in(file, std::ios::binary);
     std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     std::string attribute = name + '\0' + type + '\0';
-    for (int i = 0; i < 4; ++i) attribute += char(uint32_t(declared) >> (8 * i) & 0xff);
-    attribute += value;
+    attribute += le32Bytes(uint32_t(declared)) + value;
     bytes.insert(8, attribute);
     std::string out = file + "." + name + ".exr";
     std::ofstream(out, std::ios::binary) << bytes;
     return out;
-}
-
-std::string le32Bytes(uint32_t v) {
-    std::string s;
-    for (int i = 0; i < 4; ++i) s += char(v >> (8 * i) & 0xff);
-    return s;
 }
 
 /// The header walk reads each value as OpenEXR 3.1 does, so that what OpenEXR takes for the next

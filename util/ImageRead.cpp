@@ -28,6 +28,13 @@ bool readName(std::istream& in, std::string& name) {
     return false;
 }
 
+/// `text` with each character that does not print replaced by '?', for a message.
+std::string printable(const std::string& text) {
+    std::string shown;
+    for (char c : text) shown += std::isprint(static_cast<unsigned char>(c)) ? c : '?';
+    return shown;
+}
+
 int32_t le32(const unsigned char* b) {
     return int32_t(uint32_t(b[0]) | uint32_t(b[1]) << 8 | uint32_t(b[2]) << 16 |
                    uint32_t(b[3]) << 24);
@@ -71,6 +78,7 @@ int64_t fixedValueSize(const std::string& type) {
 /// attribute is no longer what this walk checked.
 std::string valueMismatch(const std::string& type, const std::string& value) {
     const int64_t bytes = int64_t(value.size());
+    const auto* v = reinterpret_cast<const unsigned char*>(value.data());
     if (int64_t fixed = fixedValueSize(type))
         return fixed == bytes ? std::string()
                               : "declares " + std::to_string(bytes) + " bytes where a " + type +
@@ -89,8 +97,7 @@ std::string valueMismatch(const std::string& type, const std::string& value) {
     }
     if (type == "preview") {  // width and height (unsigned 32-bit), then 4 bytes a pixel
         if (bytes < 8) return "is a preview of " + std::to_string(bytes) + " bytes";
-        const uint64_t w = uint32_t(le32(reinterpret_cast<const unsigned char*>(value.data()))),
-                       h = uint32_t(le32(reinterpret_cast<const unsigned char*>(value.data()) + 4));
+        const uint64_t w = uint32_t(le32(v)), h = uint32_t(le32(v + 4));
         return w * h == uint64_t(bytes - 8) / 4 && (bytes - 8) % 4 == 0
                    ? std::string()
                    : "is a " + std::to_string(w) + "x" + std::to_string(h) + " preview in " +
@@ -99,7 +106,7 @@ std::string valueMismatch(const std::string& type, const std::string& value) {
     if (type == "stringvector") {  // per string a 32-bit length and its characters
         int64_t at = 0;
         while (at + 4 <= bytes) {
-            int64_t n = le32(reinterpret_cast<const unsigned char*>(value.data()) + at);
+            int64_t n = le32(v + at);
             if (n < 0 || n > bytes - at - 4) break;
             at += 4 + n;
         }
@@ -139,24 +146,19 @@ void checkExrHeader(const std::string& path, const std::string& context, int max
             if (!in.read(reinterpret_cast<char*>(b), 4)) return;
             int64_t bytes = le32(b);
             int64_t at = int64_t(in.tellg());
-            std::string shown;
-            for (char c : name) shown += std::isprint(static_cast<unsigned char>(c)) ? c : '?';
             if (bytes < 0 || bytes > size - at)
-                throw InputError(context + ": cannot read image: its header attribute \"" + shown +
-                                 "\" declares " + std::to_string(bytes) + " bytes, more than the " +
-                                 std::to_string(size - at) + " left in the file");
+                throw InputError(context + ": cannot read image: its header attribute \"" +
+                                 printable(name) + "\" declares " + std::to_string(bytes) +
+                                 " bytes, more than the " + std::to_string(size - at) +
+                                 " left in the file");
             value.resize(size_t(bytes));
             if (!in.read(value.data(), bytes)) return;
             std::string why = valueMismatch(type, value);
-            if (!why.empty()) {
-                std::string shownType;
-                for (char c : type)
-                    shownType += std::isprint(static_cast<unsigned char>(c)) ? c : '?';
-                throw InputError(context + ": cannot read image: its header attribute \"" + shown +
-                                 "\" (" + shownType + ") " + why);
-            }
+            if (!why.empty())
+                throw InputError(context + ": cannot read image: its header attribute \"" +
+                                 printable(name) + "\" (" + printable(type) + ") " + why);
             if (name == "dataWindow" && type == "box2i") {
-                auto v = reinterpret_cast<const unsigned char*>(value.data());
+                const auto* v = reinterpret_cast<const unsigned char*>(value.data());
                 int64_t w = int64_t(le32(v + 8)) - le32(v) + 1,
                         h = int64_t(le32(v + 12)) - le32(v + 4) + 1;
                 if (w < 1 || h < 1 || w > maxSide || h > maxSide)
@@ -213,11 +215,11 @@ std::unique_ptr<float[]> ImageFileReader::readPixels(int channels) {
     // asked for): every small map paid for 64 MB of allocation. A band holds about 4 MB of the
     // file's pixels, whole tiles high.
     const size_t pixelBytes = spec.pixel_bytes(0, channels, true);
+    const size_t rowBytes = pixelBytes * size_t(mWidth);
     const int rowsPerStep = spec.tile_width > 0 ? std::max(1, spec.tile_height) : 1;
-    const size_t stepBytes = pixelBytes * size_t(mWidth) * size_t(rowsPerStep);
-    const int band =
-        std::min(mHeight, rowsPerStep * int(std::max<size_t>(1, (4u << 20) / stepBytes)));
-    std::vector<std::byte> raw(stepBytes / size_t(rowsPerStep) * size_t(band));
+    const int band = std::min(
+        mHeight, rowsPerStep * int(std::max<size_t>(1, (4u << 20) / (rowBytes * rowsPerStep))));
+    std::vector<std::byte> raw(rowBytes * size_t(band));
     const OIIO::stride_t floatPixel = OIIO::stride_t(channels * sizeof(float));
     for (int y0 = 0; y0 < mHeight; y0 += band) {
         const int y1 = std::min(mHeight, y0 + band);
@@ -234,7 +236,7 @@ std::unique_ptr<float[]> ImageFileReader::readPixels(int channels) {
             const OIIO::TypeDesc format = spec.channelformat(c);
             if (!OIIO::convert_image(
                     1, mWidth, y1 - y0, 1, raw.data() + offset, format, OIIO::stride_t(pixelBytes),
-                    OIIO::stride_t(pixelBytes) * mWidth, OIIO::AutoStride,
+                    OIIO::stride_t(rowBytes), OIIO::AutoStride,
                     pixels.get() + size_t(y0) * rowValues + size_t(c), OIIO::TypeDesc::FLOAT,
                     floatPixel, floatPixel * mWidth, OIIO::AutoStride))
                 throw InputError(mContext + ": cannot read pixels: no conversion from " +
