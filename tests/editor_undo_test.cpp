@@ -8,6 +8,7 @@
 
 #include "scene/SceneIo.h"
 #include "ui/EditorState.h"
+#include "ui/Project.h"
 
 namespace candela::ui {
 namespace {
@@ -258,6 +259,10 @@ TEST(EditorUndo, OpeningAnotherSceneForgetsTheHistory) {
     move(state, 0, {0.1, 0.0, 0.0});
     ASSERT_TRUE(openSceneFile(state, CANDELA_SOURCE_DIR "/resources/scenes/demo.json"));
     EXPECT_FALSE(undo(state));
+    // The unsaved move was kept in this session's autosave beside the shipped scene: not there.
+    std::string left = CANDELA_SOURCE_DIR "/resources/scenes/editor-room.json";
+    EXPECT_TRUE(std::filesystem::exists(autosavePath(left, state.project.session)));
+    removeAutosave(left, state.project.session);
 }
 
 }  // namespace

@@ -16,6 +16,7 @@
 #include <functional>
 #include <random>
 #include <sstream>
+#include <thread>
 
 #include "app/commands/Commands.h"
 #include "luminaires/LightField.h"
@@ -450,7 +451,7 @@ TEST(ProtectedInputs, EditorSaveAsRefusesTheFilesTheSceneReadsButItsOwn) {
     fs::copy_file(testData("photometric/spot.ies"), dir / "spot.ies");
     std::string ies = readBytes(dir / "spot.ies");
     ui::EditorState state;
-    state.scene = loadScene((dir / "scene.json").string());
+    ASSERT_TRUE(ui::openSceneFile(state, (dir / "scene.json").string()));
     EXPECT_FALSE(ui::saveSceneFile(state, (dir / "spot.ies").string()));
     EXPECT_TRUE(state.statusIsError);
     EXPECT_CONTAINS(state.status,
@@ -461,6 +462,41 @@ TEST(ProtectedInputs, EditorSaveAsRefusesTheFilesTheSceneReadsButItsOwn) {
     EXPECT_TRUE(ui::saveSceneFile(state, {}));
     EXPECT_TRUE(ui::saveSceneFile(state, (dir / "copy.json").string()));
     EXPECT_EQ(protectedInputFor((dir / "spot.ies").string()), "");
+    unsetenv("CANDELA_STATE_DIR");
+}
+
+TEST(ProtectedInputs, TheEditorsOwnSceneIsReplacedOnlyBySaveOnItsThread) {
+    // The editor protects every file its scene reads, the scene included, for its whole life
+    // (ui/Editor.cpp); only Save, through an InputReplacement on its thread, writes the scene.
+    TempDir dir;
+    fs::create_directories(dir / "state");
+    setenv("CANDELA_STATE_DIR", (dir / "state").c_str(), 1);
+    fs::copy_file(testData("photometric/scene.json"), dir / "scene.json");
+    fs::copy_file(testData("photometric/spot.ies"), dir / "spot.ies");
+    std::string scenePath = (dir / "scene.json").string();
+    ui::EditorState state;
+    ASSERT_TRUE(ui::openSceneFile(state, scenePath));
+    ProtectedInputs editorLifetime(state.scene.inputFiles());
+    std::string before = readBytes(dir / "scene.json");
+    // The layout file, a screenshot or a report written onto the scene: refused.
+    EXPECT_CONTAINS(inputError([&] { writeFileAtomically(scenePath, "{}"); }),
+                    "scene.json: writing " + scenePath + " would overwrite this input");
+    EXPECT_EQ(readBytes(dir / "scene.json"), before);
+    {
+        InputReplacement save(scenePath);
+        // Another thread (a report being exported) is still refused.
+        std::string other;
+        std::thread([&] { other = protectedInputFor(scenePath); }).join();
+        EXPECT_EQ(other, scenePath);
+        // This thread may replace the scene, and nothing else.
+        EXPECT_EQ(protectedInputFor(scenePath), "");
+        EXPECT_EQ(protectedInputFor((dir / "spot.ies").string()), (dir / "spot.ies").string());
+    }
+    EXPECT_EQ(protectedInputFor(scenePath), scenePath);  // the replacement ended with its scope
+    applyEdit(state, "Move", kChangeLuminaires,
+              [](Scene& s) { s.luminaires[0]->pose.position.x += 0.5; });
+    EXPECT_TRUE(ui::saveSceneFile(state, {}));
+    EXPECT_NE(readBytes(dir / "scene.json"), before);
     unsetenv("CANDELA_STATE_DIR");
 }
 

@@ -102,7 +102,8 @@ Editor::Editor(const EditorOptions& options) : mOptions(options) {
     if (!options.scenePath.empty())
         openSceneFile(*mState, options.scenePath);
     else
-        restoreAutosave(*mState, "");
+        mState->project.offers = findAutosaves("", mState->project.session);
+    protectInputs();
     mAutosavedEdits = mState->edits;
 
     IMGUI_CHECKVERSION();
@@ -137,7 +138,7 @@ Editor::~Editor() {
         if (mState->dirty && mState->edits != mAutosavedEdits)
             writeAutosave(*mState);
         else if (!mState->dirty)
-            removeAutosave(mState->scene.path);
+            removeAutosave(mState->scene.path, mState->project.session);
     }
     if (mImGuiReady) {
         ImGui_ImplOpenGL3_Shutdown();
@@ -207,9 +208,20 @@ void Editor::autosaveIfDue() {
         return;
     if (writeAutosave(state))
         std::fprintf(stderr, "candela edit: autosaved to %s\n",
-                     autosavePath(state.scene.path).c_str());
+                     autosavePath(state.scene.path, state.project.session).c_str());
     mAutosavedEdits = state.edits;
     mLastAutosave = now0();
+}
+
+void Editor::protectInputs() {
+    // Every file the open scene reads, the scene itself included: no writer of the editor
+    // (screenshots, sheets, reports, the autosave, the layout file) may replace one. Save writes
+    // the scene through an InputReplacement (saveSceneFile).
+    std::vector<std::string> inputs = mState->scene.inputFiles();
+    if (mInputs && inputs == mProtected) return;
+    mInputs.reset();
+    mInputs = std::make_unique<ProtectedInputs>(inputs);
+    mProtected = std::move(inputs);
 }
 
 void Editor::reloadShadersIfDue() {
@@ -310,6 +322,7 @@ void Editor::frame() {
     EditorState& state = *mState;
     FrameMode mode = frameMode();
     waitForEvents(mode);
+    protectInputs();
     autosaveIfDue();
     // Files dropped onto the window: luminaires, an environment map, geometry (dropFile).
     for (const std::string& path : gDropped) dropFile(state, path);
@@ -326,6 +339,7 @@ void Editor::frame() {
     if (state.quitRequested) glfwSetWindowShouldClose(mContext->window(), GLFW_TRUE);
     mIdleFrames = hadInput() ? 0 : mIdleFrames + 1;
     updateTitle();
+    protectInputs();  // before the layout file is written: the scene may have changed this frame
     writeLayout();
 }
 
@@ -853,10 +867,15 @@ void Editor::writeLayout() {
     // Written every frame (an idle editor draws ten a second), so a test waiting for "N more
     // frames" after its input always sees them come.
     j["frame"] = mFrame;
+    j["conflict"] = state.project.conflict;
+    j["autosave_offers"] = state.project.offers.size();
     try {
         writeFileAtomically(mOptions.layoutFile.string(), j.dump(2) + "\n");
+        mLayoutError.clear();
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "candela edit: layout file: %s\n", e.what());
+        if (mLayoutError != e.what())  // once, not every frame
+            std::fprintf(stderr, "candela edit: layout file: %s\n", e.what());
+        mLayoutError = e.what();
     }
 }
 

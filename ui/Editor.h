@@ -8,6 +8,7 @@
 #include <future>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace candela {
 
@@ -18,6 +19,7 @@ class Renderer;
 class Comparison;
 class ImageTextures;
 class InterreflectionWorker;
+class ProtectedInputs;
 
 namespace ui {
 
@@ -63,6 +65,8 @@ class Editor {
     void autosaveIfDue();
     /// Reloads changed shader files (every kReloadIntervalS) and says so in the status bar.
     void reloadShadersIfDue();
+    /// Keeps every file the open scene reads protected from the editor's writers.
+    void protectInputs();
     /// Hands this frame's scene changes to the comparison or to the single view (preview or full).
     void routeChanges(const FrameMode& mode);
     /// One refinement step of what the viewport shows; a failure is shown, not thrown.
@@ -124,6 +128,9 @@ class Editor {
     double mLastReloadCheck = 0.0;  ///< glfwGetTime() of the last shader reload check, s.
     std::string mTitle;
     std::string mLastShaderLog;  ///< Shader error log at the last reload check.
+    std::string mLayoutError;    ///< Why the layout file could not be written (printed once).
+    std::unique_ptr<ProtectedInputs> mInputs;  ///< The open scene's files (protectInputs).
+    std::vector<std::string> mProtected;       ///< What mInputs holds.
 };
 
 }  // namespace ui

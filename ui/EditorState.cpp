@@ -301,6 +301,10 @@ void reportError(EditorState& state, const std::string& message) {
 bool openSceneFile(EditorState& state, const std::string& path) {
     try {
         Scene loaded = loadScene(path);
+        std::string onDisk = fileFingerprint(path);
+        // Unsaved edits of the scene being left stay in this session's autosave, offered when
+        // that scene is opened again (or after this editor ends).
+        if (state.dirty) writeAutosave(state);
         state.scene = std::move(loaded);
         if (state.scene.path.empty()) state.scene.path = path;
         if (state.scene.camera.exposure > 0.0)
@@ -314,9 +318,16 @@ bool openSceneFile(EditorState& state, const std::string& path) {
         state.dirty = false;
         state.history = {};
         ++state.geometryVersion;
+        state.project.onDisk = onDisk;
+        state.project.conflict = false;
         setStatus(state, "Opened " + path);
         addRecentFile(path);
-        restoreAutosave(state, path);  // unsaved edits of a session that crashed
+        // Unsaved edits of editors that crashed or quit: offered, never applied unasked.
+        state.project.offers = findAutosaves(state.scene.path, state.project.session);
+        if (!state.project.offers.empty())
+            setStatus(state, "Opened " + path + "; unsaved edits of it were found (" +
+                                 std::to_string(state.project.offers.size()) + " autosave" +
+                                 (state.project.offers.size() > 1 ? "s" : "") + ")");
         return true;
     } catch (const std::exception& e) {
         reportError(state, std::string("Could not open scene: ") + e.what());
@@ -324,7 +335,7 @@ bool openSceneFile(EditorState& state, const std::string& path) {
     }
 }
 
-bool saveSceneFile(EditorState& state, const std::string& path) {
+bool saveSceneFile(EditorState& state, const std::string& path, bool overwriteChanges) {
     std::string target = path.empty() ? state.scene.path : path;
     if (target.empty()) {
         reportError(state, "Save: the scene has no file yet; use File > Save As");
@@ -332,18 +343,33 @@ bool saveSceneFile(EditorState& state, const std::string& path) {
     }
     try {
         // Every file the scene reads but its own may not be replaced by it (Save As onto the
-        // luminaire's .ies, the environment map, a glTF buffer, ...).
+        // luminaire's .ies, the environment map, a glTF buffer, ...); its own is what Save is for.
+        bool own = !state.scene.path.empty() && sameFile(target, state.scene.path);
         std::vector<std::string> inputs = state.scene.inputFiles();
         std::erase_if(inputs, [&](const std::string& file) {
             return !state.scene.path.empty() && sameFile(file, state.scene.path);
         });
         ProtectedInputs protectedInputs(inputs);
+        std::optional<InputReplacement> replacing;
+        if (own) replacing.emplace(state.scene.path);  // the editor's own scene (Editor.cpp)
         checkNotAnInput(target, "Save As", "the scene");
+        // Another editor or program changed the file since this editor read or wrote it: ask.
+        std::error_code ec;
+        if (own && !overwriteChanges && std::filesystem::exists(target, ec) &&
+            fileFingerprint(target) != state.project.onDisk) {
+            state.project.conflict = true;
+            setStatus(state, target + " changed on disk since it was opened; not saved yet", true);
+            return false;
+        }
         saveScene(state.scene, target);
-        removeAutosave(state.scene.path);  // the untitled one too, when saving it as a file
-        removeAutosave(target);
+        replacing.reset();
+        // This session's autosaves only (the untitled one too, when saving it as a file).
+        removeAutosave(state.scene.path, state.project.session);
+        removeAutosave(target, state.project.session);
         state.scene.path = target;
         state.dirty = false;
+        state.project.onDisk = fileFingerprint(target);
+        state.project.conflict = false;
         setStatus(state, "Saved " + target);
         addRecentFile(target);
         return true;

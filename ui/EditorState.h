@@ -23,6 +23,7 @@
 #include "scene/CalculationGrid.h"
 #include "scene/Scene.h"
 #include "ui/AccuracyPlot.h"
+#include "ui/EditorSession.h"
 #include "ui/Screenshot.h"
 
 namespace candela::ui {
@@ -60,6 +61,20 @@ struct FileDialogs {
     std::string openPath;
     std::string saveAsPath;
     std::string reportPath;
+};
+
+/// The scene file on disk and this session's autosaves of it (ui/Project.h).
+struct ProjectFiles {
+    EditorSession session = EditorSession::current();  ///< Whose autosaves this editor writes.
+    /// The scene file as this editor last read or wrote it (fileFingerprint); empty when unknown
+    /// (a restored autosave that may predate a change on disk): Save then asks first.
+    std::string onDisk;
+    /// Autosaves found when the scene was opened, offered in the "Unsaved edits found" dialog
+    /// until restored, discarded or put off.
+    std::vector<AutosaveFile> offers;
+    /// Save found the file changed on disk since it was read: the "Changed on disk" dialog asks
+    /// whether to overwrite, reload or save as.
+    bool conflict = false;
 };
 
 /// File > Export report (report/Report.h, as `candela report` writes it): the editor renders the
@@ -299,6 +314,7 @@ struct EditorState {
 
     int addKind = 0;  ///< Index into luminaireKinds() for the Add button.
     FileDialogs files;
+    ProjectFiles project;
     ViewportDrag drag;
     ScreenLayout layout;
     PassTotals passes;
@@ -355,9 +371,13 @@ void removeGlareObserver(EditorState& state, size_t index);
 void reportError(EditorState& state, const std::string& message);
 
 /// Loads a scene file into the state; on failure reports the error and keeps the current scene.
+/// Unsaved edits of the scene it replaces go to this session's autosave first; autosaves of the
+/// new scene left by other editors are offered (project.offers), not applied.
 bool openSceneFile(EditorState& state, const std::string& path);
 /// Saves atomically to path (the scene's own path when empty); reports errors, never throws.
-bool saveSceneFile(EditorState& state, const std::string& path);
+/// Saving over the scene's own file when it changed on disk since this editor read or wrote it
+/// saves nothing and sets project.conflict (the dialog asks) unless overwriteChanges.
+bool saveSceneFile(EditorState& state, const std::string& path, bool overwriteChanges = false);
 
 /// Adds a default luminaire of the kind 0.5 m below the top of the scene's bounds, centred,
 /// aimed down; selects it and returns its index.

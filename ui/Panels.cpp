@@ -97,7 +97,8 @@ bool mainMenuBar(EditorState& state, float& barHeight) {
             if (ImGui::MenuItem("Revert to Saved", nullptr, false,
                                 state.dirty && !state.scene.path.empty())) {
                 std::string path = state.scene.path;
-                removeAutosave(path);
+                removeAutosave(path, state.project.session);
+                state.dirty = false;  // discarded: not kept in an autosave by openSceneFile
                 changed = openSceneFile(state, path) || changed;
             }
             ImGui::Separator();
@@ -143,6 +144,110 @@ bool mainMenuBar(EditorState& state, float& barHeight) {
     return changed;
 }
 
+namespace {
+
+/// The scene file's name for a dialog ("untitled scene" without one).
+std::string sceneName(const EditorState& state) {
+    return state.scene.path.empty() ? std::string("the untitled scene")
+                                    : std::filesystem::path(state.scene.path).filename().string();
+}
+
+}  // namespace
+
+bool projectDialogs(EditorState& state) {
+    bool changed = false;
+    ProjectFiles& project = state.project;
+    // Autosaves left by editors that crashed or quit with unsaved edits (ui/Project.h).
+    if (!project.offers.empty() && !ImGui::IsPopupOpen("Unsaved edits found"))
+        ImGui::OpenPopup("Unsaved edits found");
+    if (ImGui::BeginPopupModal("Unsaved edits found", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+        ImGui::Text("Unsaved edits of %s were kept in %s:", sceneName(state).c_str(),
+                    project.offers.size() > 1 ? "these autosaves" : "an autosave");
+        if (project.offers.size() > 1)
+            ImGui::TextDisabled("Restore one to go on with it; the others stay until you decide.");
+        for (size_t i = 0; i < project.offers.size(); ++i) {
+            const AutosaveFile& offer = project.offers[i];
+            ImGui::PushID(int(i));
+            ImGui::TextUnformatted(offer.describe().c_str());
+            if (ImGui::Button("Restore")) {
+                AutosaveFile chosen = offer;
+                project.offers.clear();
+                changed = restoreAutosave(state, chosen);
+                ImGui::CloseCurrentPopup();
+                recordRect(state, "autosave.restore" + std::to_string(i));
+                ImGui::PopID();
+                break;
+            }
+            recordRect(state, "autosave.restore" + std::to_string(i));
+            ImGui::SameLine();
+            if (ImGui::Button("Discard")) {
+                discardAutosave(offer);
+                setStatus(state, "Discarded the autosave " + offer.path.filename().string());
+                project.offers.erase(project.offers.begin() + long(i));
+                recordRect(state, "autosave.discard" + std::to_string(i));
+                ImGui::PopID();
+                break;
+            }
+            recordRect(state, "autosave.discard" + std::to_string(i));
+            ImGui::PopID();
+        }
+        if (project.offers.empty()) ImGui::CloseCurrentPopup();
+        if (!project.offers.empty() && ImGui::Button("Decide later")) {
+            setStatus(state, "Autosaves kept: they are offered again when " + sceneName(state) +
+                                 " is next opened");
+            project.offers.clear();
+            ImGui::CloseCurrentPopup();
+        }
+        recordRect(state, "autosave.later");
+        ImGui::EndPopup();
+    }
+
+    // Save found the scene file changed on disk since this editor read or wrote it.
+    if (project.conflict && !ImGui::IsPopupOpen("Changed on disk"))
+        ImGui::OpenPopup("Changed on disk");
+    if (ImGui::BeginPopupModal("Changed on disk", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+        ImGui::PushTextWrapPos(ImGui::GetFontSize() * 40.f);
+        ImGui::Text(
+            "%s changed on disk since this editor opened or saved it (another editor or program "
+            "saved it). Saving now would replace those changes with yours.",
+            sceneName(state).c_str());
+        ImGui::PopTextWrapPos();
+        if (ImGui::Button("Overwrite with my edits")) {
+            project.conflict = false;
+            changed = saveSceneFile(state, {}, true) || changed;
+            ImGui::CloseCurrentPopup();
+        }
+        recordRect(state, "conflict.overwrite");
+        ImGui::SameLine();
+        if (ImGui::Button("Save mine as...")) {
+            project.conflict = false;
+            state.files.saveAsRequested = true;
+            state.files.saveAsPath.clear();
+            ImGui::CloseCurrentPopup();
+        }
+        recordRect(state, "conflict.save_as");
+        ImGui::SameLine();
+        if (ImGui::Button("Reload from disk (discard mine)")) {
+            project.conflict = false;
+            std::string path = state.scene.path;
+            removeAutosave(path, state.project.session);
+            state.dirty = false;  // discarded by choice: not kept in an autosave
+            changed = openSceneFile(state, path) || changed;
+            ImGui::CloseCurrentPopup();
+        }
+        recordRect(state, "conflict.reload");
+        ImGui::SameLine();
+        if (ImGui::Button("Cancel")) {
+            project.conflict = false;
+            setStatus(state, "Not saved: " + sceneName(state) + " changed on disk");
+            ImGui::CloseCurrentPopup();
+        }
+        recordRect(state, "conflict.cancel");
+        ImGui::EndPopup();
+    }
+    return changed;
+}
+
 bool fileDialogs(EditorState& state) {
     bool changed = false;
     if (state.files.openRequested) {
@@ -183,7 +288,8 @@ bool fileDialogs(EditorState& state) {
         ImGui::EndPopup();
     };
     pathDialog("Open scene", "Open", state.files.openPath, &openSceneFile);
-    pathDialog("Save scene as", "Save", state.files.saveAsPath, &saveSceneFile);
+    pathDialog("Save scene as", "Save", state.files.saveAsPath,
+               [](EditorState& s, const std::string& path) { return saveSceneFile(s, path); });
     pathDialog(
         "Export report", "Export", state.files.reportPath,
         [](EditorState& s, const std::string& path) {
@@ -192,6 +298,8 @@ bool fileDialogs(EditorState& state) {
         },
         "Report (.pdf): luminaire schedule, polar diagrams, the calculation surfaces, UGR and "
         "this view:");
+
+    changed = projectDialogs(state) || changed;
 
     if (!state.modalError.empty() && !ImGui::IsPopupOpen("Error")) ImGui::OpenPopup("Error");
     if (ImGui::BeginPopupModal("Error", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {

@@ -32,7 +32,10 @@ void recordPanelRect(EditorState& state, const std::string& name);
 /// File menu (Open, Save, Save As, Quit) and keyboard shortcuts (Ctrl+O, Ctrl+S, Delete).
 /// barHeight receives the menu bar's height in pixels.
 bool mainMenuBar(EditorState& state, float& barHeight);
-/// The Open / Save As modals and the error modal.
+/// The project's dialogs: autosaves found when the scene was opened (restore, discard, later) and
+/// a save that found the scene changed on disk (overwrite, save as, reload, cancel).
+bool projectDialogs(EditorState& state);
+/// The Open / Save As modals, the project's dialogs and the error modal.
 bool fileDialogs(EditorState& state);
 
 /// Outline of geometry and luminaires (click to select) with Add / Duplicate / Delete.

@@ -38,6 +38,9 @@ std::vector<const ProtectedInputs*>& registry() {
     return scopes;
 }
 
+/// The innermost InputReplacement of this thread (null: none).
+thread_local const InputReplacement* tReplacement = nullptr;
+
 std::string absolutePath(const std::string& path) {
     std::error_code ec;
     fs::path absolute = fs::absolute(path, ec);
@@ -231,9 +234,20 @@ void ProtectedInputs::add(const std::vector<std::string>& files) {
     for (const std::string& file : files) add(file);
 }
 
+InputReplacement::InputReplacement(const std::string& file)
+    : mAbsolute(absolutePath(file)), mOuter(tReplacement) {
+    tReplacement = this;
+}
+
+InputReplacement::~InputReplacement() {
+    tReplacement = mOuter;
+}
+
 std::string protectedInputFor(const std::string& output) {
     if (output.empty()) return {};
     std::string absolute = absolutePath(output);
+    for (const InputReplacement* r = tReplacement; r; r = r->mOuter)
+        if (sameFile(absolute, r->mAbsolute)) return {};
     std::lock_guard lock(registryMutex());
     for (const ProtectedInputs* scope : registry())
         for (const ProtectedInputs::Entry& input : scope->mFiles)

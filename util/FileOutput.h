@@ -86,7 +86,24 @@ class ProtectedInputs {
     std::vector<Entry> mFiles;
 };
 
-/// The protected input (as its command named it) that `output` resolves to; empty when none.
+/// The one input a command exists to replace: the scene the editor has open, which File > Save
+/// writes. While an object lives, writes from its own thread onto that file pass the check; every
+/// other protected file stays refused, and other threads (a report being exported) are unaffected.
+class InputReplacement {
+  public:
+    explicit InputReplacement(const std::string& file);
+    ~InputReplacement();
+    InputReplacement(const InputReplacement&) = delete;
+    InputReplacement& operator=(const InputReplacement&) = delete;
+
+  private:
+    std::string mAbsolute;
+    const InputReplacement* mOuter;  ///< The thread's replacement before this one.
+    friend std::string protectedInputFor(const std::string& output);
+};
+
+/// The protected input (as its command named it) that `output` resolves to; empty when none (or
+/// when this thread's InputReplacement names it).
 std::string protectedInputFor(const std::string& output);
 
 /// Throws InputError "INPUT: WHAT OUTPUT would overwrite this input of OWNER; choose another

@@ -12,6 +12,7 @@
 #include "ui/Editor.h"
 #include "ui/Screenshot.h"
 #include "util/Error.h"
+#include "util/FileOutput.h"
 
 namespace candela {
 
@@ -25,6 +26,7 @@ constexpr int kHeadlessMaxSpp = 64;   ///< Samples per pixel for progressive tec
 /// writes the screenshot files the editor's Screenshot button would.
 int renderScreenshotsOffscreen(const ui::EditorOptions& options) {
     Scene scene = loadScene(options.scenePath);
+    ProtectedInputs inputs(scene.inputFiles());  // no screenshot file may replace one
     auto context = createOffscreenContext();
     ShaderLibrary shaders;
     Renderer renderer(shaders);
@@ -51,6 +53,20 @@ int renderScreenshotsOffscreen(const ui::EditorOptions& options) {
     std::printf("wrote %s\nwrote %s\nwrote %s\n", files.png.c_str(), files.exr.c_str(),
                 files.json.c_str());
     return 0;
+}
+
+/// Refuses, before any window opens, a layout file that is the scene or a file it reads (the
+/// editor writes it every frame). The screenshots, sheets, reports and autosaves are checked as
+/// they are written (the editor protects the scene's files for its whole life).
+void checkOutputs(const ui::EditorOptions& options) {
+    if (options.layoutFile.empty()) return;
+    ProtectedInputs inputs({options.scenePath});
+    try {
+        inputs.add(loadScene(options.scenePath).inputFiles());
+    } catch (const InputError&) {
+        // The editor opens with the error shown; the scene file alone is protected here.
+    }
+    checkNotAnInput(options.layoutFile.string(), "--layout-file", "the editor");
 }
 
 }  // namespace
@@ -80,6 +96,7 @@ int cmdEdit(const Args& args) {
     }
     if (options.scenePath.empty())
         options.scenePath = std::string(CANDELA_SOURCE_DIR) + "/resources/scenes/demo.json";
+    checkOutputs(options);
 
     if (!displayAvailable()) {
         std::printf(

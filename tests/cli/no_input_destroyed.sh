@@ -82,6 +82,30 @@ expect "quadrant.ies" "unsupported output extension" -- polar "$work/photo/quadr
 ln -s Cyl10k.1.tm25ray "$work/rays/rays.lf.json"
 refuses "$work/rays/Cyl10k.1.tm25ray" "--out $work/rays/rays.lf.json" -- \
   convert "$work/rays/Cyl10k.1.tm25ray" --out "$work/rays/rays.lf.json" --grid 3x3 --res 8
+# The editor: its layout file (written every frame) may not be the scene or a file it reads; it
+# is refused before any window opens, with or without a display. Its screenshots (headless here)
+# take new names beside, never an input's.
+# refuses_edit INPUT LAYOUT: `edit` with that layout file exits 1 naming both, INPUT unchanged.
+refuses_edit() {
+  local before
+  before=$(checksum "$1")
+  expect "$(basename "$1"): --layout-file $2 would overwrite this input of the editor" -- \
+    edit "$work/photo/scene.json" --layout-file "$2"
+  [ "$(checksum "$1")" = "$before" ] || fail "candela edit --layout-file $2 changed $1"
+}
+refuses_edit "$work/photo/scene.json" "$work/photo/scene.json"
+refuses_edit "$work/photo/spot.ies" "$work/photo/spot.ies"
+ln -s scene.json "$work/photo/layout-link.json"
+refuses_edit "$work/photo/scene.json" "$work/photo/layout-link.json"
+before=$(checksum "$work/photo/scene.json")
+ln -s scene.json "$work/photo/shot-000.png"
+if env -u DISPLAY -u WAYLAND_DISPLAY "$binary" edit "$work/photo/scene.json" \
+    --screenshot-dir "$work/photo" >/dev/null 2>&1 &&
+  [ "$(checksum "$work/photo/scene.json")" = "$before" ] && [ -s "$work/photo/shot-001.png" ]; then
+  passed=$((passed + 1))
+else
+  fail "edit's headless screenshots into the scene's folder changed scene.json or wrote no shot-001.png"
+fi
 
 # full_disk TARGET [NAMED] -- ARGS: candela ARGS, with files limited to 2 blocks of 1024 bytes,
 # writes over TARGET (8 KiB of random bytes, more than the limit, so any replacement would have to

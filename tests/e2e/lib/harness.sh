@@ -1,5 +1,6 @@
 # The editor end-to-end tests' shared harness (sourced, not run; the e2e glob only picks up
-# tests/e2e/*.sh). The caller sets E2E_NAME (the prefix of its messages) and TIMEOUT_S (longest
+# tests/e2e/*.sh). E2E_OTHER_PIDS lists further processes (a second editor, a second X server)
+# that the cleanup stops too. The caller sets E2E_NAME (the prefix of its messages) and TIMEOUT_S (longest
 # wait for any one step), then calls e2e_setup, which makes TMP (with LAYOUT and SHOTS paths),
 # checks the tools and installs the cleanup. Later, e2e_start_xvfb WxH starts an X server and
 # exports DISPLAY; the caller starts the editor with --layout-file "$LAYOUT", sets EDITOR_PID and
@@ -18,6 +19,8 @@ log() { echo "$E2E_NAME: [$((SECONDS - T0)) s] $*"; }
 
 e2e_cleanup() {
     [ -n "$EDITOR_PID" ] && kill "$EDITOR_PID" 2>/dev/null || true
+    local pid
+    for pid in ${E2E_OTHER_PIDS:-}; do kill "$pid" 2>/dev/null || true; done
     [ -n "$XVFB_PID" ] && kill "$XVFB_PID" 2>/dev/null || true
     wait 2>/dev/null || true
     if [ "$PASSED" = 1 ] && [ -z "${CANDELA_E2E_KEEP:-}" ]; then
@@ -193,15 +196,18 @@ PY
 # e2e_start_xvfb WxH: an X server that picks a free display number itself and reports it once
 # it is ready.
 e2e_start_xvfb() {
-    Xvfb -displayfd 5 -screen 0 "${1}x24" -nolisten tcp 5>"$TMP/display" >/dev/null 2>"$TMP/xvfb.log" &
+    # A file of its own per server: a second server must not be read from the first's file.
+    local file
+    file=$(mktemp "$TMP/display.XXXXXX")
+    Xvfb -displayfd 5 -screen 0 "${1}x24" -nolisten tcp 5>"$file" >/dev/null 2>>"$TMP/xvfb.log" &
     XVFB_PID=$!
     local deadline=$((SECONDS + 30))
-    until [ -s "$TMP/display" ]; do
+    until [ -s "$file" ]; do
         kill -0 "$XVFB_PID" 2>/dev/null || fail "Xvfb did not start: $(cat "$TMP/xvfb.log")"
         ((SECONDS < deadline)) || fail "Xvfb did not report a display within 30 s"
         sleep 0.1
     done
-    export DISPLAY=":$(head -n 1 "$TMP/display")"
+    export DISPLAY=":$(head -n 1 "$file")"
     unset WAYLAND_DISPLAY  # GLFW must use the X server above
     log "Xvfb on $DISPLAY"
 }
@@ -243,7 +249,10 @@ e2e_start_editor() {
         ${E2E_EDITOR_ARGS:-} >>"$TMP/editor.log" 2>&1 &
     EDITOR_PID=$!
     wait_until "the editor's first layout" "$3"
-    WID=$(timeout 30 xdotool search --sync --onlyvisible --name Candela | head -n 1) ||
+    # This editor's window (GLFW sets _NET_WM_PID): the X server may show another's too.
+    local child
+    child=$(pgrep -P "$EDITOR_PID" | head -n 1)
+    WID=$(timeout 30 xdotool search --sync --onlyvisible --pid "${child:-$EDITOR_PID}" --name Candela | head -n 1) ||
         fail "no window named Candela"
     [ -n "$WID" ] || fail "no window named Candela"
     xdotool windowfocus "$WID" 2>/dev/null || true
