@@ -55,6 +55,17 @@ struct ShadowLights {
     bool operator==(const ShadowLights&) const = default;
 };
 
+/// What Luminaire::body() gives the scene.
+struct LuminaireBody {
+    /// World-space triangles, three points (metres) each; empty for none.
+    std::vector<glm::dvec3> triangles;
+    /// Seen by the camera: an L3D housing is; the luminous box of a photometry is not (the camera
+    /// sees the opening's light, which the box only stands in for).
+    bool drawn = true;
+    /// Diffuse reflectance of its surface (black unless the scene entry says otherwise).
+    double reflectance = 0.0;
+};
+
 class Luminaire {
   public:
     virtual ~Luminaire() = default;
@@ -109,11 +120,11 @@ class Luminaire {
     /// Where its emitting surface is: the pose, except for a luminaire whose geometry places the
     /// opening away from its insertion point (a GLDF variant's L3D light-emitting object).
     virtual Pose emitterPose() const { return pose; }
-    /// The luminaire's body (its housing, from L3D geometry) as world-space triangles, three
-    /// points (metres) each; empty for none. Scene::updateBodies makes it a mesh that is drawn
-    /// and casts shadows, except on light leaving a point inside its own bounds (the photometry
-    /// already holds what the housing does to its own light).
-    virtual std::vector<glm::dvec3> bodyTriangles() const { return {}; }
+    /// The luminaire's body: its housing from L3D geometry, or the photometry's luminous box.
+    /// Scene::updateBodies makes it a mesh that blocks every other light and the interreflected
+    /// light, except light leaving a point inside its own bounds (the photometry already holds
+    /// what the housing does to its own light).
+    virtual LuminaireBody body() const { return {}; }
     /// The other luminaires its scene entry makes (a GLDF variant placing several emitters: one
     /// luminaire per emitter, this one the first); the loader gives them this one's name, pose,
     /// technique and maintenance factor.

@@ -2,6 +2,7 @@
 #include "luminaires/PhotometricLuminaire.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -240,16 +241,51 @@ Pose PhotometricLuminaire::emitterPose() const {
     return e;
 }
 
-std::vector<glm::dvec3> PhotometricLuminaire::bodyTriangles() const {
-    std::vector<glm::dvec3> out;
-    if (!geometry || !showBody || gldfEmitter != 0) return out;
-    // The L3D frame at the pose, as emitterPose() places it.
+LuminaireBody PhotometricLuminaire::body() const {
+    LuminaireBody out;
+    out.reflectance = bodyReflectance;
+    if (!showBody) return out;
+    if (geometry) {
+        if (gldfEmitter != 0) return out;  // the first placement gives the variant's body
+        // The L3D frame at the pose, as emitterPose() places it.
+        glm::dvec3 x, y, z;
+        pose.frame(x, y, z);
+        auto place = [&](const glm::dvec3& v) {
+            return pose.position + v.x * x - v.y * y - v.z * z;
+        };
+        out.triangles.reserve(3 * geometry->triangleCount());
+        for (const L3dPart& part : geometry->parts)
+            for (uint32_t i : part.indices) out.triangles.push_back(place(part.positions[i]));
+        return out;
+    }
+    // The luminous opening's box: its polygon swept over the opening's height, centred on the
+    // emitting plane (LM-63 and EULUMDAT measure a luminaire about the centre of its luminous
+    // volume); a flat opening is the polygon alone. A point or a segment has none.
+    if (mPolygon.size() < 3 || !(mArea > 0.0)) return out;
+    out.drawn = false;
+    double half = 0.5 * std::max(0.0, opening().height);
     glm::dvec3 x, y, z;
-    pose.frame(x, y, z);
-    auto place = [&](const glm::dvec3& v) { return pose.position + v.x * x - v.y * y - v.z * z; };
-    out.reserve(3 * geometry->triangleCount());
-    for (const L3dPart& part : geometry->parts)
-        for (uint32_t i : part.indices) out.push_back(place(part.positions[i]));
+    photometricFrame(x, y, z);
+    glm::dvec3 centre = emitterPose().position;
+    auto at = [&](const glm::dvec2& q, double h) { return centre + q.x * x + q.y * y + h * z; };
+    size_t n = mPolygon.size();
+    for (double h : half > 0.0 ? std::vector<double>{-half, half} : std::vector<double>{0.0})
+        for (size_t i = 1; i + 1 < n; ++i)
+            for (const glm::dvec2& q : {mPolygon[0], mPolygon[i], mPolygon[i + 1]})
+                out.triangles.push_back(at(q, h));
+    if (half > 0.0)
+        for (size_t i = 0; i < n; ++i) {
+            const glm::dvec2 &a = mPolygon[i], &b = mPolygon[(i + 1) % n];
+            for (auto [q, h] : {std::pair{a, -half}, std::pair{b, -half}, std::pair{b, half},
+                                std::pair{a, -half}, std::pair{b, half}, std::pair{a, half}})
+                out.triangles.push_back(at(q, h));
+        }
+    // Every face wound so its normal points out of the box (the frame's handedness and the
+    // polygon's turn decide the winding above; this does not depend on them).
+    for (size_t t = 0; t + 2 < out.triangles.size(); t += 3) {
+        glm::dvec3 &a = out.triangles[t], &b = out.triangles[t + 1], &c = out.triangles[t + 2];
+        if (glm::dot(glm::cross(b - a, c - a), (a + b + c) / 3.0 - centre) < 0.0) std::swap(b, c);
+    }
     return out;
 }
 
@@ -402,7 +438,6 @@ void PhotometricLuminaire::writeJson(nlohmann::json& out) const {
         out["type"] = "gldf";
         out["variant"] = gldfVariant;
         if (gldfEmitterCount > 1) out["emitter"] = gldfEmitter;
-        if (!showBody) out["body"] = false;
         if (gldfMaintenance) {
             const GldfMaintenanceChoice& c = *gldfMaintenance;
             nlohmann::json m = {{"hours", c.hours}};
@@ -414,6 +449,8 @@ void PhotometricLuminaire::writeJson(nlohmann::json& out) const {
             out["maintenance"] = m;
         }
     }
+    if (!showBody) out["body"] = false;
+    if (bodyReflectance > 0.0) out["body_reflectance"] = bodyReflectance;
     out["file"] = file;
     out["scale"] = scale;  // always present, so the inspector offers it
     if (colour != glm::dvec3(1.0)) out["colour"] = {colour.x, colour.y, colour.z};
@@ -607,6 +644,13 @@ std::unique_ptr<PhotometricLuminaire> parseCommon(const nlohmann::json& entry,
                                json::fail(w, "[length, width] in metres, not negative, not both 0");
                            return s;
                        });
+    light->showBody = json::optional(entry, "body", where, true, json::boolean);
+    light->bodyReflectance = json::optional(
+        entry, "body_reflectance", where, 0.0, [](const nlohmann::json& v, const json::Where& w) {
+            double r = json::number(v, w);
+            if (!(r >= 0.0 && r < 1.0)) json::fail(w, "a reflectance from 0 up to (not) 1");
+            return r;
+        });
     return light;
 }
 
@@ -616,7 +660,7 @@ std::unique_ptr<Luminaire> PhotometricLuminaire::parse(const nlohmann::json& ent
                                                        const json::Where& where) {
     json::checkKeys(entry,
                     {"type", "name", "position", "aim", "c0", "technique", "maintenance_factor",
-                     "file", "scale", "colour", "opening"},
+                     "file", "scale", "colour", "opening", "body", "body_reflectance"},
                     where);
     std::string resolved;
     auto light = parseCommon(entry, where,
@@ -628,11 +672,11 @@ std::unique_ptr<Luminaire> PhotometricLuminaire::parse(const nlohmann::json& ent
 
 std::unique_ptr<Luminaire> PhotometricLuminaire::parseGldf(const nlohmann::json& entry,
                                                            const json::Where& where) {
-    json::checkKeys(
-        entry,
-        {"type", "name", "position", "aim", "c0", "technique", "maintenance_factor", "file",
-         "variant", "emitter", "maintenance", "scale", "colour", "opening", "body"},
-        where);
+    json::checkKeys(entry,
+                    {"type", "name", "position", "aim", "c0", "technique", "maintenance_factor",
+                     "file", "variant", "emitter", "maintenance", "scale", "colour", "opening",
+                     "body", "body_reflectance"},
+                    where);
     std::string resolved;
     auto light = parseCommon(entry, where, "the path of a .gldf container", resolved);
     std::string variant = json::optional(entry, "variant", where, std::string(), json::string);
@@ -644,7 +688,6 @@ std::unique_ptr<Luminaire> PhotometricLuminaire::parseGldf(const nlohmann::json&
         });
     light->loadGldf(resolved, variant, emitter);
     light->updateOpening();
-    light->showBody = json::optional(entry, "body", where, true, json::boolean);
     if (entry.contains("maintenance")) {
         // EN 12464-1's MF from the product's data: {"hours": h, "lmf": x | "years": y, "room":
         // r, "rsmf": x}.

@@ -55,14 +55,18 @@ class PhotometricLuminaire final : public Luminaire {
         LuminousOpening opening;
     };
     std::optional<Placement> placement;
-    /// The L3D body is drawn and casts shadows (scene entry "body": false turns it off). A
-    /// variant's placements share one body: its first placement (gldfEmitter 0) gives it.
+    /// The body blocks other light (scene entry "body": false turns it off): the L3D geometry,
+    /// drawn (a variant's placements share it: its first placement, gldfEmitter 0, gives it),
+    /// or without one the photometry's luminous box, which the camera sees through.
     bool showBody = true;
+    /// The body's diffuse reflectance (scene entry "body_reflectance"; neither L3D nor the
+    /// photometric formats hold one): black.
+    double bodyReflectance = 0.0;
 
     std::string_view kind() const override { return "photometric"; }
     /// The pose moved to the placement's object (the pose itself without one).
     Pose emitterPose() const override;
-    std::vector<glm::dvec3> bodyTriangles() const override;
+    LuminaireBody body() const override;
     std::unique_ptr<Luminaire> clone() const override;
     glm::dvec3 radiance(const glm::dvec3& x, const glm::dvec3& w) const override;
     /// Flux from the table (exact quadrature of the interpolant) times scale, lm per channel.
@@ -151,6 +155,8 @@ Estimate photometricPoisson24(const Luminaire&, const glm::dvec3& p, const glm::
                               const EstimateOptions&);
 Estimate photometricPoisson40(const Luminaire&, const glm::dvec3& p, const glm::dvec3& n,
                               const EstimateOptions&);
+Estimate photometricAdaptive(const Luminaire&, const glm::dvec3& p, const glm::dvec3& n,
+                             const EstimateOptions&);
 Estimate photometricHybrid(const Luminaire&, const glm::dvec3& p, const glm::dvec3& n,
                            const EstimateOptions&);
 

@@ -44,6 +44,13 @@ struct StatedLimits {
     /// The README's wording; empty: no statement, and the suites hold the technique to the
     /// strictest promise (exact if deterministic, unbiased if progressive).
     std::string_view statement = {};
+    /// Photometric techniques on a smooth, non-Lambertian table within a few opening sizes (an
+    /// up-and-down luminaire's batwings): within this, relative; < 0: any factor off.
+    double tableTolerance = 1e-3;
+    /// Photometric techniques: the flux a closed box absorbs whose walls lie 0.1 m from the
+    /// opening (or fromOpeningSizes, if farther) is the file's within this fraction, for every
+    /// file the flux audit reads (tests/flux_audit_test.cpp).
+    double fluxTolerance = 1.0;
 };
 
 struct TechniqueInfo {

@@ -46,6 +46,8 @@ struct RenderSettings {
     /// image shown is updated when a pass is complete (band by band during the first pass).
     /// 0: every call shades the whole image (headless rendering, benches, tests).
     double bandBudgetMs = 0.0;
+    /// > 0: bands of exactly this many rows instead (tests of the banding itself).
+    int bandRows = 0;
     /// A luminaire behind the others (one that moved) takes up to this many passes' samples in
     /// one pass: a pass has a fixed cost per pixel that more samples share (the light field's
     /// restricted-cdf at 960x540 on llvmpipe: 2.5 s for 16 spp, 4.4 s for 48). 1: every pass

@@ -367,18 +367,19 @@ void Renderer::shadeBand() {
     }
     int spp = mPassSpp;
     int height = mGBuffer->height(), width = mGBuffer->width();
-    int rows = height - mBandRow;
-    if (mSettings.bandBudgetMs > 0.0 && mPixelsPerMs > 0.0)
-        rows = std::clamp(int(mPixelsPerMs * mSettings.bandBudgetMs / width), 1, height - mBandRow);
+    int left = height - mBandRow;
+    int rows = mSettings.bandRows > 0         ? std::min(mSettings.bandRows, left)
+               : mSettings.bandBudgetMs > 0.0 ? bandRows(width, left)
+                                              : left;
     auto start = std::chrono::steady_clock::now();
+    bool first = mBandRow == 0;  // it also prepares the pass (shadow maps): not a band's cost
     runShading(spp, mBandRow, rows);
     if (mSettings.bandBudgetMs > 0.0) {
-        glFinish();  // the band's real cost sets the next band's height
+        glFinish();  // the band's real cost sizes the next bands
         double ms =
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
                 .count();
-        // Per pixel, so the rate carries over when the size changes (preview <-> full).
-        mPixelsPerMs = double(rows) * double(width) / std::max(ms, 1e-3);
+        if (!first || mBands.empty()) timeBand(double(rows) * double(width), ms);
     }
     mBandRow += rows;
     // A step's first pass shows band by band (rows not done yet lack its light); later passes
@@ -403,6 +404,41 @@ void Renderer::shadeBand() {
     bool more = false;
     for (int st : planSteps()) more = more || refines(st);
     mStats.converged = !more;
+}
+
+void Renderer::timeBand(double pixels, double ms) {
+    mBands.push_back({pixels, std::max(ms, 1e-3)});
+    if (mBands.size() > kBandHistory) mBands.erase(mBands.begin());
+    double n = double(mBands.size()), sx = 0.0, sy = 0.0, sxx = 0.0, sxy = 0.0;
+    double fewest = 1e300;  // the lowest cost per pixel: an upper bound of the marginal cost
+    for (const BandTime& b : mBands) {
+        sx += b.pixels;
+        sy += b.ms;
+        sxx += b.pixels * b.pixels;
+        sxy += b.pixels * b.ms;
+        fewest = std::min(fewest, b.ms / b.pixels);
+    }
+    double variance = sxx / n - (sx / n) * (sx / n);
+    double slope = variance > 1e-6 * (sxx / n) ? (sxy / n - sx / n * sy / n) / variance : 0.0;
+    // A fit that the noise turned flat or negative says nothing of the marginal cost: the
+    // cheapest band's cost per pixel bounds it from above (a band never costs less than its
+    // pixels), and the fixed cost is what the bands took beyond it on average.
+    mMsPerPixel = slope > 0.0 ? std::min(slope, fewest) : fewest;
+    mBandOverheadMs = std::max(0.0, sy / n - mMsPerPixel * sx / n);
+}
+
+int Renderer::bandRows(int width, int left) {
+    if (!(mMsPerPixel > 0.0)) return left;  // nothing measured yet: the whole pass at once
+    double perRow = mMsPerPixel * width;
+    // Within the budget after the band's fixed cost. Where that cost and showing the band (the
+    // resolve and tone mapping of the whole image) alone fill the budget, as much shading as
+    // they cost (half of each frame's time shades), rather than a row a frame: on llvmpipe a
+    // pass of 700 rows took 700 frames of almost nothing but showing them.
+    double fixed = mBandOverheadMs + mDisplayMs;
+    double work = std::max(mSettings.bandBudgetMs - fixed, fixed);
+    int rows = std::max(1, int(work / perRow));
+    if (++mBandCount % 2 == 0) rows += std::max(1, rows / 2);  // two sizes for the fit
+    return std::clamp(rows, 1, left);
 }
 
 void Renderer::resolve() {
@@ -454,7 +490,16 @@ void Renderer::renderFrame() {
     if (mPending || mPointMode) applyChanges();
     updateIndirect();
     if (!mStats.converged) shadeBand();
-    if (mNeedDisplay) resolve();
+    if (mNeedDisplay) {
+        auto start = std::chrono::steady_clock::now();
+        resolve();
+        if (mSettings.bandBudgetMs > 0.0) {
+            glFinish();  // what showing a band costs sizes the bands (bandRows)
+            mDisplayMs =
+                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                    .count();
+        }
+    }
     updateStatistics();
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }

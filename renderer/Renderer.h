@@ -161,9 +161,23 @@ class Renderer {
     FrameStats mStats;
     PassTimer mTimer{PassTimer::defaultMode(false)};  ///< Times every pass (renderer/PassTimer.h).
     unsigned mPending = kChangeAll;
-    int mFrames = 0;            ///< Passes of a probe (probe mode only).
-    int mBandRow = 0;           ///< Next row of the pass under way (banded refinement).
-    double mPixelsPerMs = 0.0;  ///< Pixels shaded per ms in the last band (0: not measured yet).
+    int mFrames = 0;   ///< Passes of a probe (probe mode only).
+    int mBandRow = 0;  ///< Next row of the pass under way (banded refinement).
+    /// Band sizing: a band's time is modelled as a fixed cost per band (llvmpipe spends tens of
+    /// ms on any band, however few rows it covers) plus a cost per pixel, both fitted by least
+    /// squares to the last kBandHistory bands (bandRows()), which alternate between two sizes so
+    /// that the fit can tell the costs apart.
+    struct BandTime {
+        double pixels = 0.0, ms = 0.0;
+    };
+    static constexpr size_t kBandHistory = 16;
+    std::vector<BandTime> mBands;  ///< The last bands timed (not a pass's first, which prepares).
+    uint64_t mBandCount = 0;
+    double mMsPerPixel = 0.0;      ///< Marginal cost (0: not measured yet).
+    double mBandOverheadMs = 0.0;  ///< Fixed cost of a band.
+    double mDisplayMs = 0.0;       ///< Wall time of the last resolve (bands only).
+    int bandRows(int width, int left);
+    void timeBand(double pixels, double ms);
     bool mNeedDisplay = false;
     bool mPointMode = false;  ///< The G-buffer holds probe points, not a camera view.
 

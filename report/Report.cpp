@@ -13,6 +13,7 @@
 #include "luminaires/Gldf.h"
 #include "luminaires/PhotometricLuminaire.h"
 #include "renderer/passes/TonemapPass.h"
+#include "scene/Plausibility.h"
 #include "scene/Scene.h"
 #include "shaders/shared/FalseColour.h"
 #include "ui/PolarDiagram.h"
@@ -248,6 +249,14 @@ class Pdf {
     int mPage = 1;
 };
 
+/// The luminaire bodies in plain words for a client.
+std::string housingText(const Scene& scene) {
+    size_t bodies = scene.bodyCount();
+    if (bodies == 0) return "none modelled";
+    return std::to_string(bodies) + (bodies > 1 ? " luminaires'" : " luminaire's") +
+           " housings block the light of the others and reflected light (black)";
+}
+
 std::string shortPath(const std::string& path) {
     size_t slash = path.find_last_of("/\\");
     return slash == std::string::npos ? path : path.substr(slash + 1);
@@ -280,6 +289,7 @@ void titlePage(Pdf& pdf, const ReportInput& in) {
         {"Units", units.photometric ? std::string("photometric: lm, cd, cd/m2, lx")
                                     : std::string("radiometric: W, W/sr, W/(m2 sr), W/m2")},
         {"Maintenance", scene.maintenanceNote()},
+        {"Luminaire housings", housingText(scene)},
         {"Room (scene bounds)", bounds},
         {"Surfaces", std::to_string(scene.geometry.size()) + " geometry entries"},
         {"Luminaires", std::to_string(scene.luminaires.size())},
@@ -414,6 +424,18 @@ void scheduleSection(Pdf& pdf, const ReportInput& in) {
                           fmt(" (%.1f lm/W)", totalFlux / totalPower) +
                           "; MF: the maintenance factor each luminaire's light is scaled by.",
                       8);
+    // Where a product's own figures disagree (scene/Plausibility.h): one line per photometry.
+    std::vector<std::pair<const void*, const void*>> checked;
+    for (const auto& l : scene.luminaires) {
+        auto* p = dynamic_cast<const PhotometricLuminaire*>(l.get());
+        if (!p || !p->data) continue;
+        std::pair<const void*, const void*> key(p->data.get(),
+                                                p->gldf ? p->gldfLightEmitter() : nullptr);
+        if (std::find(checked.begin(), checked.end(), key) != checked.end()) continue;
+        checked.push_back(key);
+        for (const std::string& note : plausibilityNotes(*p))
+            pdf.paragraph("Data check: " + note + ".", 8);
+    }
 
     // One polar diagram per distinct photometry, two to a row.
     std::vector<const PhotometricLuminaire*> distinct;
@@ -881,7 +903,8 @@ std::string reportEvaluationText(const GridSpec& how) {
            "techniques";
     out += how.visibility || how.indirect ? ", shadows" : ", no shadows (--visibility adds them)";
     out += how.indirect ? ", interreflected light from " + std::to_string(how.patches) +
-                              " radiosity patches and a final gather"
+                              " radiosity patches, traced point by point where the patches "
+                              "are not accurate enough"
                         : ", direct light only (--indirect adds the interreflected light)";
     return out;
 }

@@ -113,7 +113,7 @@ namespace {
 /// rays per receiver (over the hardware's threads), added to E with its standard error.
 void addIndirect(const Scene& scene, const GridSpec& spec, const std::vector<Receiver>& receivers,
                  ReceiverResult& r, const std::function<void(const std::string&)>& status) {
-    if (scene.meshes.empty())
+    if (!scene.hasSurfaces())
         throw InputError(
             (scene.path.empty() ? std::string("the scene") : scene.path) +
             ": geometry: no surfaces, so no light is interreflected (--indirect needs a room)");
@@ -134,7 +134,7 @@ void addIndirect(const Scene& scene, const GridSpec& spec, const std::vector<Rec
     size_t count = receivers.size();
     r.indirect.assign(count, 0.0);
     r.indirectStdError.assign(count, 0.0);
-    std::atomic<size_t> next{0};
+    std::atomic<size_t> next{0}, gathered{0};
     auto work = [&] {
         for (size_t index; (index = next.fetch_add(1)) < count;) {
             EstimateOptions g;
@@ -142,10 +142,19 @@ void addIndirect(const Scene& scene, const GridSpec& spec, const std::vector<Rec
             g.seed = 7777ull * index + 13;
             glm::dvec3 p = receivers[index].position, n = receivers[index].normal;
             Estimate e;
-            if (spec.indirectMethod == GridSpec::Indirect::Patches)
+            if (spec.indirectMethod == GridSpec::Indirect::Patches) {
                 e.irradiance = ir.fromPatches(p, n);
-            else
+            } else if (spec.indirectMethod == GridSpec::Indirect::Adaptive) {
+                glm::dvec3 error;
+                e.irradiance = ir.fromPatches(p, n, error);
+                double total = r.direct[index] + luminanceOf(e.irradiance);
+                if (luminanceOf(error) > GridSpec::kGatherAbove * total) {
+                    e = ir.gather(p, n, g);
+                    ++gathered;
+                }
+            } else {
                 e = ir.gather(p, n, g);
+            }
             r.indirect[index] = luminanceOf(e.irradiance);
             r.indirectStdError[index] = luminanceOf(e.stdError);
         }
@@ -155,6 +164,25 @@ void addIndirect(const Scene& scene, const GridSpec& spec, const std::vector<Rec
     work();
     for (auto& t : pool) t.join();
     r.hasIndirect = true;
+    std::string rays = std::to_string(std::max(1, spec.spp)) + " rays";
+    switch (spec.indirectMethod) {
+        case GridSpec::Indirect::Gather:
+            r.indirectNote = "interreflected light: a final gather of " + rays + " at every point";
+            break;
+        case GridSpec::Indirect::Patches:
+            r.indirectNote = "interreflected light: the patches' solution at every point";
+            break;
+        case GridSpec::Indirect::Adaptive: {
+            char above[16];
+            std::snprintf(above, sizeof above, "%g", 100.0 * GridSpec::kGatherAbove);
+            r.indirectNote =
+                "interreflected light: the patches' solution, refined near surfaces; a "
+                "final gather of " +
+                rays + " at " + std::to_string(gathered.load()) + " of " + std::to_string(count) +
+                " points, where the patches' error estimate exceeded " + above + " % of the light";
+            break;
+        }
+    }
     for (size_t k = 0; k < count; ++k) {
         r.E[k] = r.direct[k] + r.indirect[k];
         r.stdError[k] = std::sqrt(r.directStdError[k] * r.directStdError[k] +
@@ -238,6 +266,7 @@ GridResult computeGrid(const Scene& scene, const GridSpec& spec,
     ReceiverResult e = computeReceivers(scene, spec, receivers, status);
     r.units = e.units;
     r.maintenance = std::move(e.maintenance);
+    r.bodies = std::move(e.bodies);
     r.projectFactor = e.projectFactor;
     r.E = std::move(e.E);
     r.stdError = std::move(e.stdError);
@@ -246,6 +275,7 @@ GridResult computeGrid(const Scene& scene, const GridSpec& spec,
     r.directStdError = std::move(e.directStdError);
     r.indirect = std::move(e.indirect);
     r.indirectStdError = std::move(e.indirectStdError);
+    r.indirectNote = std::move(e.indirectNote);
     r.initial = std::move(e.initial);
     return r;
 }
@@ -300,6 +330,7 @@ ReceiverResult computeReceivers(const Scene& scene, const GridSpec& spec,
     ReceiverResult r;
     r.units = scene.units();
     r.maintenance = scene.maintenanceNote();
+    r.bodies = scene.bodiesNote();
     r.projectFactor = scene.maintenanceFactor;
     std::vector<double> scales;  // 683 lm/W for a radiometric luminaire in a mixed scene
     for (const auto& l : scene.luminaires) scales.push_back(scene.lightScale(*l));

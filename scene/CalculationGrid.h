@@ -51,9 +51,15 @@ struct GridSpec {
     bool indirect = false;
     int patches = 4000;  ///< About this many radiosity patches for the interreflection.
     /// How each point gets its interreflected light: the final gather (a reference, `spp`
-    /// rays, with a standard error) or the patches' solution alone (deterministic, about ten
-    /// times faster: the editor's grid).
-    enum class Indirect { Gather, Patches } indirectMethod = Indirect::Gather;
+    /// rays, with a standard error), the patches' solution alone (deterministic, about ten
+    /// times faster: the editor's grid), or the patches' solution refined near p with the final
+    /// gather only where its error estimate exceeds kGatherAbove of the point's light.
+    enum class Indirect { Gather, Patches, Adaptive } indirectMethod = Indirect::Adaptive;
+    /// Adaptive: the part of a point's light (direct plus interreflected) the patches' error
+    /// estimate may reach before the point gets the final gather. A quarter of the 1 % the
+    /// calculation promises: the estimate is what refining the near patches changed, which
+    /// understates what a second refinement would change.
+    static constexpr double kGatherAbove = 0.0025;
 };
 
 /// Point coordinates along one axis: floor(len / spacing) points (at least 1) spacing apart,
@@ -65,12 +71,14 @@ struct GridResult {
     std::vector<double> u, v;      ///< Point coordinates along u (columns) and v (rows), metres.
     UnitSystem units;              ///< What E is in: lx, or W/m2 for a radiometric scene.
     std::string maintenance;       ///< Its maintenance factors (Scene::maintenanceNote).
+    std::string bodies;            ///< The bodies that block light (Scene::bodiesNote).
     double projectFactor = 1.0;    ///< Scene::maintenanceFactor.
     std::vector<double> E;         ///< Illuminance at point (i, j) in E[j * u.size() + i], in
                                    ///< units.irradiance(), luminance-weighted: direct plus
                                    ///< interreflected when hasIndirect.
     std::vector<double> stdError;  ///< Standard error of each value (0 for exact techniques).
     bool hasIndirect = false;      ///< Interreflected light was computed (GridSpec::indirect).
+    std::string indirectNote;      ///< How (ReceiverResult::indirectNote).
     std::vector<double> direct, directStdError;      ///< The direct part alone (always filled).
     std::vector<double> indirect, indirectStdError;  ///< The interreflected part (hasIndirect).
     /// E before maintenance (every maintenance factor 1): E / initial is the factor in effect at
@@ -103,10 +111,14 @@ struct Receiver {
 struct ReceiverResult {
     UnitSystem units;
     std::string maintenance;
+    std::string bodies;               ///< Scene::bodiesNote().
     double projectFactor = 1.0;       ///< Scene::maintenanceFactor.
     std::vector<double> E, stdError;  ///< In units.irradiance(), per receiver: direct (+ indirect).
     bool hasIndirect = false;
     std::vector<double> direct, directStdError, indirect, indirectStdError;
+    /// How the interreflected light was found ("" without it): the method, and for the adaptive
+    /// one at how many points the final gather was needed.
+    std::string indirectNote;
     std::vector<double> initial;  ///< E before maintenance (GridResult::initial).
 };
 

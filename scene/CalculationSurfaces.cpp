@@ -228,6 +228,7 @@ SurfaceReport computeSurfaces(const Scene& scene, const GridSpec& how,
     ReceiverResult e = computeReceivers(scene, how, receivers, status);
     report.units = e.units;
     report.maintenance = e.maintenance;
+    report.bodies = e.bodies;
     report.projectFactor = e.projectFactor;
     report.hasIndirect = e.hasIndirect;
     bool anyLux = false;

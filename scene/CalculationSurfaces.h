@@ -105,6 +105,7 @@ struct PointResult {
 struct SurfaceReport {
     UnitSystem units;
     std::string maintenance;     ///< Scene::maintenanceNote().
+    std::string bodies;          ///< Scene::bodiesNote().
     double projectFactor = 1.0;  ///< Scene::maintenanceFactor.
     bool hasIndirect = false;
     std::vector<SurfaceResult> surfaces;

@@ -127,12 +127,13 @@ GlareReport computeGlare(const Scene& scene, const GridSpec& how,
                          "radiometric");
     GlareReport report;
     report.maintenance = scene.maintenanceNote();
+    report.bodies = scene.bodiesNote();
     std::vector<Receiver> eyes;
     for (const GlareObserver& o : observers)
         if (o.background <= 0.0) eyes.push_back({o.position, o.view});
     ReceiverResult indirect;
     if (!eyes.empty()) {
-        if (scene.meshes.empty())
+        if (!scene.hasSurfaces())
             throw InputError(scene.path + ": observer \"" + observers[0].name +
                              "\" needs the background luminance, from light the room reflects, "
                              "and the scene has no surfaces: give \"background_cd_m2\" (or "

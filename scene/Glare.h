@@ -86,6 +86,7 @@ struct GlareResult {
 
 struct GlareReport {
     std::string maintenance;  ///< Scene::maintenanceNote().
+    std::string bodies;       ///< Scene::bodiesNote().
     std::vector<GlareResult> observers;
 };
 

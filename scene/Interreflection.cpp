@@ -50,6 +50,7 @@ Interreflection::Interreflection(const Scene& scene, const InterreflectionOption
     mDirectTotal.assign(mMesh.patches.size(), glm::dvec3(0.0));
     mIndirect.assign(mMesh.patches.size(), glm::dvec3(0.0));
     mIndirectVertices.assign(mMesh.vertices.size(), glm::dvec3(0.0));
+    mTotalVertices.assign(mMesh.vertices.size(), glm::dvec3(0.0));
 }
 
 Interreflection::~Interreflection() = default;
@@ -84,12 +85,24 @@ bool Interreflection::computeDirect(Source& s, int spp, std::vector<glm::dvec3>&
     o.seed = 0x5eed0000ull + uint64_t(spp);
     for (std::byte b : s.key) o.seed = o.seed * 131ull + uint64_t(b);
     o.visibility = mVisibility.get();
+    // Its own body receives none of its light: the photometry already holds what the housing
+    // does to it (points on the body lie on the opening, or behind it).
+    std::vector<bool> ownBody(mMesh.bodyBounds.size(), false);
+    if (!s.luminaire->atInfinity()) {
+        glm::dvec3 centre = s.luminaire->emitterPose().position;
+        for (size_t b = 0; b < ownBody.size(); ++b)
+            ownBody[b] = insideBody(centre, mMesh.bodyBounds[b].first, mMesh.bodyBounds[b].second);
+    }
     return directOnPatches(
         mMesh,
         [&](const glm::dvec3& p, const glm::dvec3& n, const EstimateOptions& opt) {
             return s.estimate(p, n, opt);
         },
-        o, mOptions.threads, out, progress);
+        o, mOptions.threads, out, progress,
+        [&](size_t i) {
+            int b = mMesh.patches[i].body;
+            return b >= 0 && ownBody[size_t(b)];
+        });
 }
 
 bool Interreflection::solveChange(const std::vector<glm::dvec3>& change, const Progress& progress) {
@@ -106,6 +119,9 @@ bool Interreflection::solveChange(const std::vector<glm::dvec3>& change, const P
         mDirectTotal[i] = glm::max(mDirectTotal[i], glm::dvec3(0.0));
     }
     mIndirectVertices = vertexValues(mMesh, mIndirect);
+    std::vector<glm::dvec3> total(mIndirect.size());
+    for (size_t i = 0; i < total.size(); ++i) total[i] = mDirectTotal[i] + mIndirect[i];
+    mTotalVertices = vertexValues(mMesh, total);
     return true;
 }
 
@@ -224,9 +240,14 @@ bool Interreflection::compute(const Progress& progress) {
 }
 
 glm::dvec3 Interreflection::directAt(const glm::dvec3& x, const glm::dvec3& n,
-                                     const EstimateOptions& o) const {
+                                     const EstimateOptions& o, int body) const {
     glm::dvec3 sum(0.0);
     for (size_t s = 0; s < mSources.size(); ++s) {
+        const Luminaire& l = *mSources[s].luminaire;
+        if (body >= 0 && !l.atInfinity() &&
+            insideBody(l.emitterPose().position, mMesh.bodyBounds[size_t(body)].first,
+                       mMesh.bodyBounds[size_t(body)].second))
+            continue;  // its own body: none of its light (computeDirect)
         EstimateOptions so = o;
         so.seed = o.seed * 31ull + s;
         Estimate e = mSources[s].estimate(x, n, so);
@@ -281,6 +302,75 @@ glm::dvec3 Interreflection::fromPatches(const glm::dvec3& p, const glm::dvec3& n
     return sum;
 }
 
+glm::dvec3 Interreflection::fromPatches(const glm::dvec3& p, const glm::dvec3& normal,
+                                        glm::dvec3& error) const {
+    error = glm::dvec3(0.0);
+    double len = glm::length(normal);
+    if (!(len > 0.0)) return glm::dvec3(0.0);
+    glm::dvec3 n = normal / len, sum(0.0);
+    for (size_t j = 0; j < mMesh.patches.size(); ++j) {
+        const RadiosityMesh::Patch& q = mMesh.patches[j];
+        if (!(q.albedo.x + q.albedo.y + q.albedo.z > 0.0)) continue;
+        if (!(glm::dot(q.normal, p - q.centroid) > 0.0)) continue;  // p behind its reflecting side
+        const glm::dvec3 a = mMesh.vertices[q.vertex[0]], b = mMesh.vertices[q.vertex[1]],
+                         c = mMesh.vertices[q.vertex[2]];
+        double f = pointTriangleFormFactor(p, n, a, b, c);
+        if (!(f > 0.0)) continue;
+        glm::dvec3 total = mDirectTotal[j] + mIndirect[j];
+        glm::dvec3 coarse = mVisibility->visibleBetweenSurfaces(p, q.centroid)
+                                ? f * q.albedo * total
+                                : glm::dvec3(0.0);
+        if (f <= kRefineFormFactor) {
+            sum += coarse;
+            continue;
+        }
+        // Split into four at the edges' midpoints, again wherever a part's form factor is above
+        // the threshold (down to kRefineDepth): each part valued at its centroid by the vertices'
+        // linear interpolation there, less its mean over the patch (the vertices' mean), plus
+        // the patch's own value.
+        const glm::dvec3 va = mTotalVertices[q.vertex[0]], vb = mTotalVertices[q.vertex[1]],
+                         vc = mTotalVertices[q.vertex[2]];
+        glm::dvec3 mean = (va + vb + vc) / 3.0;
+        struct Part {
+            glm::dvec3 corner[3], weight[3];  // positions, and barycentrics in (a, b, c)
+            int depth;
+        };
+        Part stack[3 * kRefineDepth + 4];
+        int top = 0;
+        auto split = [&](const Part& t) {
+            glm::dvec3 m[3], mw[3];
+            for (int e = 0; e < 3; ++e) {
+                m[e] = 0.5 * (t.corner[e] + t.corner[(e + 1) % 3]);
+                mw[e] = 0.5 * (t.weight[e] + t.weight[(e + 1) % 3]);
+            }
+            int d = t.depth + 1;
+            stack[top++] = {{t.corner[0], m[0], m[2]}, {t.weight[0], mw[0], mw[2]}, d};
+            stack[top++] = {{m[0], t.corner[1], m[1]}, {mw[0], t.weight[1], mw[1]}, d};
+            stack[top++] = {{m[2], m[1], t.corner[2]}, {mw[2], mw[1], t.weight[2]}, d};
+            stack[top++] = {{m[0], m[1], m[2]}, {mw[0], mw[1], mw[2]}, d};
+        };
+        split({{a, b, c}, {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, 0});
+        glm::dvec3 refined(0.0);
+        while (top > 0) {
+            Part t = stack[--top];
+            double fk = pointTriangleFormFactor(p, n, t.corner[0], t.corner[1], t.corner[2]);
+            if (!(fk > 0.0)) continue;
+            if (fk > kRefineFormFactor && t.depth < kRefineDepth) {
+                split(t);
+                continue;
+            }
+            glm::dvec3 centre = (t.corner[0] + t.corner[1] + t.corner[2]) / 3.0;
+            if (!mVisibility->visibleBetweenSurfaces(p, centre)) continue;
+            glm::dvec3 w = (t.weight[0] + t.weight[1] + t.weight[2]) / 3.0;
+            glm::dvec3 value = total + w.x * va + w.y * vb + w.z * vc - mean;
+            refined += fk * q.albedo * glm::max(value, glm::dvec3(0.0));
+        }
+        sum += refined;
+        error += glm::abs(refined - coarse);
+    }
+    return sum;
+}
+
 Estimate Interreflection::gather(const glm::dvec3& p, const glm::dvec3& normal,
                                  const EstimateOptions& options, int directSpp) const {
     Estimate out;
@@ -323,7 +413,7 @@ Estimate Interreflection::gather(const glm::dvec3& p, const glm::dvec3& normal,
                     glm::dvec3 eInd = weights.x * mIndirectVertices[q.vertex[0]] +
                                       weights.y * mIndirectVertices[q.vertex[1]] +
                                       weights.z * mIndirectVertices[q.vertex[2]];
-                    f = q.albedo * (directAt(h, q.normal, direct) + eInd);
+                    f = q.albedo * (directAt(h, q.normal, direct, q.body) + eInd);
                 }
             }
         }

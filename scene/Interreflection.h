@@ -94,13 +94,28 @@ class Interreflection {
     /// reflected light rho (E_dir + E_ind), Lambert's form factor from p, a shadow ray to its
     /// centroid): deterministic, smooth and fast (the editor's grid, the bench's work plane).
     glm::dvec3 fromPatches(const glm::dvec3& p, const glm::dvec3& n) const;
+    /// The same, refined where p is close to a patch (its form factor above
+    /// kRefineFormFactor): the patch is split into four, and each part again while its form
+    /// factor is above it (kRefineDepth levels at most), each part with its own form factor,
+    /// shadow ray and value (the patch's, tilted by the vertices' values so that its mean stays
+    /// the patch's). `error` gets what the refinement changed, summed over the refined patches
+    /// without cancelling: an estimate of what the patches leave out at p (RGB, the scene's units).
+    glm::dvec3 fromPatches(const glm::dvec3& p, const glm::dvec3& n, glm::dvec3& error) const;
+    /// The form factor above which fromPatches refines a patch or a part: nearer than about six
+    /// of its sizes. Beyond it the value and visibility vary little over its solid angle.
+    static constexpr double kRefineFormFactor = 2e-3;
+    /// Levels of splitting at most: parts of 1/64 of a patch's size (3 mm of a 0.2 m patch).
+    static constexpr int kRefineDepth = 6;
 
   private:
     struct Source;
     /// The sources of `scene`, each with the key of what its light depends on (no light yet).
     std::vector<Source> currentSources(const Scene& scene) const;
     /// Every source's direct irradiance at point x with normal n, in the scene's units.
-    glm::dvec3 directAt(const glm::dvec3& x, const glm::dvec3& n, const EstimateOptions& o) const;
+    /// `body`: the body (RadiosityMesh::bodyBounds) x lies on, whose luminaire's light it does
+    /// not receive; -1 for none.
+    glm::dvec3 directAt(const glm::dvec3& x, const glm::dvec3& n, const EstimateOptions& o,
+                        int body = -1) const;
     /// The direct light of source s at `spp` samples into s's patch values.
     bool computeDirect(Source& s, int spp, std::vector<glm::dvec3>& out,
                        const Progress& progress) const;
@@ -116,6 +131,8 @@ class Interreflection {
     bool mTransferBuilt = false;
     std::vector<glm::dvec3> mDirectTotal, mIndirect;
     std::vector<glm::dvec3> mIndirectVertices;  ///< For display and the gather's interpolation.
+    /// Direct plus interreflected light per vertex (fromPatches' refinement).
+    std::vector<glm::dvec3> mTotalVertices;
     int mLastIterations = 0;
 };
 

@@ -130,7 +130,8 @@ std::vector<bool> luminairesNeedingShadows(const Scene& scene, const glm::mat4& 
         const Mesh& mesh = scene.meshes[m];
         if (mesh.triangleCount() == 0 || mesh.positions.empty()) continue;
         solid.push_back(m);
-        if (mayBeVisible(boundsOf(mesh), glm::dmat4(viewProj))) receivers.push_back(m);
+        if (!mesh.hidden && mayBeVisible(boundsOf(mesh), glm::dmat4(viewProj)))
+            receivers.push_back(m);
     }
 
     std::vector<bool> needs(scene.luminaires.size(), false);

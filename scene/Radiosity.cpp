@@ -175,6 +175,7 @@ void addTrianglePatches(RadiosityMesh& out, VertexWelder& welder, const Mesh& m,
         p.normal = normal;
         p.area = area;
         p.albedo = albedo;
+        p.hidden = m.hidden;
         out.patches.push_back(p);
     };
     for (uint32_t j = 0; j < n; ++j)
@@ -234,8 +235,14 @@ RadiosityMesh RadiosityMesh::build(const Scene& scene, const RadiositySettings& 
                                 ? glm::dvec3(scene.materials[m.material].albedo)
                                 : glm::dvec3(0.0);
         albedo = glm::clamp(albedo, 0.0, 1.0);
+        size_t first = out.patches.size();
         for (size_t t = 0; t + 2 < m.indices.size(); t += 3)
             addTrianglePatches(out, welder, m, mi, t, albedo, h, patchArea);
+        if (m.luminaireBody) {
+            for (size_t p = first; p < out.patches.size(); ++p)
+                out.patches[p].body = int(out.bodyBounds.size());
+            out.bodyBounds.emplace_back(glm::dvec3(m.boundsMin), glm::dvec3(m.boundsMax));
+        }
     }
     out.convexRoom = isConvexRoom(out);
     indexVertexPatches(out);
@@ -321,7 +328,7 @@ bool TransferMatrix::build(const RadiosityMesh& mesh, const EmbreeVisibility& vi
 
 bool directOnPatches(const RadiosityMesh& mesh, const PointEstimator& estimate,
                      const EstimateOptions& options, int threads, std::vector<glm::dvec3>& out,
-                     const Progress& progress) {
+                     const Progress& progress, const std::function<bool(size_t)>& dark) {
     out.assign(mesh.patches.size(), glm::dvec3(0.0));
     static const double kRule[3][3] = {{2.0 / 3.0, 1.0 / 6.0, 1.0 / 6.0},
                                        {1.0 / 6.0, 2.0 / 3.0, 1.0 / 6.0},
@@ -333,7 +340,7 @@ bool directOnPatches(const RadiosityMesh& mesh, const PointEstimator& estimate,
     return parallelFor(mesh.patches.size(), workerThreads(threads), inner, [&](size_t i) {
         const RadiosityMesh::Patch& p = mesh.patches[i];
         glm::dvec3 sum(0.0);
-        for (int q = 0; q < 3; ++q) {
+        for (int q = 0; q < 3 && !(dark && dark(i)); ++q) {
             glm::dvec3 x = kRule[q][0] * mesh.vertices[p.vertex[0]] +
                            kRule[q][1] * mesh.vertices[p.vertex[1]] +
                            kRule[q][2] * mesh.vertices[p.vertex[2]];

@@ -50,7 +50,12 @@ struct RadiosityMesh {
         glm::dvec3 normal{0.0};            ///< Unit, the reflecting side.
         double area = 0.0;                 ///< m2.
         glm::dvec3 albedo{0.0};            ///< Diffuse reflectance, RGB in [0, 1].
+        bool hidden = false;               ///< On a mesh the camera does not see (Mesh::hidden).
+        int body = -1;  ///< On a luminaire's body: its index into bodyBounds; -1 elsewhere.
     };
+    /// The luminaire bodies' bounds (lo, hi), metres: a body receives no light of its own
+    /// luminaire (insideBody), whose photometry already holds it.
+    std::vector<std::pair<glm::dvec3, glm::dvec3>> bodyBounds;
     std::vector<glm::dvec3> vertices;  ///< Metres.
     std::vector<Patch> patches;
     double patchSize = 0.0;  ///< Longest edge asked for, metres.
@@ -102,12 +107,14 @@ struct TransferMatrix {
 /// Direct irradiance on every patch from one source, in the scene's units, RGB: the mean of its
 /// estimator at three points of the patch (the degree-2 rule with barycentrics (2/3, 1/6, 1/6)
 /// and permutations), each with `options` (seeded per patch and point) and Embree visibility.
-/// `estimate` is the source's estimator at (p, n). Returns false when cancelled.
+/// `estimate` is the source's estimator at (p, n); patches `dark` names get none (the source's
+/// own body) without asking it. Returns false when cancelled.
 using PointEstimator =
     std::function<Estimate(const glm::dvec3& p, const glm::dvec3& n, const EstimateOptions& o)>;
 bool directOnPatches(const RadiosityMesh& mesh, const PointEstimator& estimate,
                      const EstimateOptions& options, int threads, std::vector<glm::dvec3>& out,
-                     const Progress& progress = {});
+                     const Progress& progress = {},
+                     const std::function<bool(size_t patch)>& dark = {});
 
 /// Solves E_ind = T (rho o (E_dir + E_ind)) for the patches' interreflected irradiance, starting
 /// from `indirect` (zero, or a previous solution of a nearby problem), until an iteration adds

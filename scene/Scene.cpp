@@ -68,18 +68,17 @@ std::vector<std::string> Scene::inputFiles() const {
 }
 
 bool Scene::updateBodies() {
-    // L3D carries no materials: a neutral housing, about a powder-coated grey's reflectance.
-    constexpr const char* kHousing = "luminaire housing";
-    auto housing = std::find_if(materials.begin(), materials.end(),
-                                [&](const Material& m) { return m.name == kHousing; });
-    auto material = uint32_t(housing - materials.begin());  // materials.size(): added if needed
     std::vector<Mesh> bodies;
+    std::vector<double> reflectances;  ///< Of each body, for its material.
     for (const auto& l : luminaires) {
-        std::vector<glm::dvec3> triangles = l->bodyTriangles();
+        LuminaireBody source = l->body();
         Mesh body;
         body.name = l->name + " (body)";
-        body.material = material;
         body.luminaireBody = true;
+        body.hidden = !source.drawn;
+        // A luminous box (a polygon swept straight, or flat) cannot shadow itself.
+        if (body.hidden) body.shape = MeshShape::Convex;
+        const std::vector<glm::dvec3>& triangles = source.triangles;
         for (size_t t = 0; t + 2 < triangles.size(); t += 3) {
             glm::dvec3 a = triangles[t], b = triangles[t + 1], c = triangles[t + 2];
             glm::dvec3 n = glm::cross(b - a, c - a);
@@ -95,6 +94,28 @@ bool Scene::updateBodies() {
         if (body.indices.empty()) continue;
         body.computeBounds();
         bodies.push_back(std::move(body));
+        reflectances.push_back(source.reflectance);
+    }
+    // Neither L3D nor the photometric formats hold a housing's material: "luminaire housing"
+    // (black) unless the scene entry gives a reflectance, one material per reflectance.
+    for (size_t b = 0; b < bodies.size(); ++b) {
+        std::string name = "luminaire housing";
+        if (reflectances[b] > 0.0) {
+            char text[32];
+            std::snprintf(text, sizeof text, " %.3g", reflectances[b]);
+            name += text;
+        }
+        auto found = std::find_if(materials.begin(), materials.end(),
+                                  [&](const Material& m) { return m.name == name; });
+        if (found == materials.end()) {
+            Material m;
+            m.name = name;
+            m.albedo = glm::vec3(float(reflectances[b]));
+            m.specular = glm::vec3(0.f);
+            materials.push_back(m);
+            found = materials.end() - 1;
+        }
+        bodies[b].material = uint32_t(found - materials.begin());
     }
     // Unchanged (an edit of another luminaire, or of none with a body): the geometry stays.
     std::vector<const Mesh*> old;
@@ -102,9 +123,9 @@ bool Scene::updateBodies() {
         if (m.luminaireBody) old.push_back(&m);
     bool same = old.size() == bodies.size();
     for (size_t i = 0; same && i < bodies.size(); ++i)
-        same = old[i]->name == bodies[i].name && old[i]->positions == bodies[i].positions;
+        same = old[i]->name == bodies[i].name && old[i]->positions == bodies[i].positions &&
+               old[i]->material == bodies[i].material && old[i]->hidden == bodies[i].hidden;
     if (same) return false;
-    bool anyBody = !bodies.empty();
     // Out with the old bodies, keeping the geometry entries' mesh indices right (an entry added
     // after a body came in after it); in with the new ones, after every entry's meshes.
     std::vector<uint32_t> newIndex(meshes.size(), 0);
@@ -118,13 +139,12 @@ bool Scene::updateBodies() {
         for (uint32_t& m : item.meshes) m = newIndex[m];
     for (Mesh& body : bodies) kept.push_back(std::move(body));
     meshes = std::move(kept);
-    if (anyBody && housing == materials.end()) {
-        Material m;
-        m.name = kHousing;
-        m.albedo = glm::vec3(0.6f);
-        materials.push_back(m);
-    }
     return true;
+}
+
+bool Scene::hasSurfaces() const {
+    return std::any_of(meshes.begin(), meshes.end(),
+                       [](const Mesh& m) { return !m.luminaireBody && m.triangleCount() > 0; });
 }
 
 size_t Scene::bodyCount() const {
@@ -176,6 +196,26 @@ bool Scene::maintained() const {
     for (const auto& l : luminaires)
         if (maintenanceFactorOf(*l) < 1.0) return true;
     return false;
+}
+
+std::string Scene::bodiesNote() const {
+    size_t boxes = 0, housings = 0;
+    bool black = true;
+    for (const Mesh& m : meshes) {
+        if (!m.luminaireBody) continue;
+        ++(m.hidden ? boxes : housings);
+        black = black && m.material < materials.size() &&
+                materials[m.material].albedo == glm::vec3(0.f);
+    }
+    if (boxes + housings == 0) return "luminaire bodies: none (no luminaire has a body)";
+    std::string kinds;
+    if (boxes) kinds = std::to_string(boxes) + " luminous box" + (boxes > 1 ? "es" : "");
+    if (housings)
+        kinds += (kinds.empty() ? "" : ", ") + std::to_string(housings) + " L3D housing" +
+                 (housings > 1 ? "s" : "");
+    return "luminaire bodies: " + kinds + ", opaque and " +
+           (black ? "black" : "of the reflectance their entries give") +
+           ", block other luminaires' light and the reflected light";
 }
 
 std::string Scene::maintenanceNote() const {

@@ -51,6 +51,9 @@ struct Mesh {
     /// A luminaire's body (Scene::updateBodies): not part of any geometry entry, not saved, and
     /// no shadow on light leaving a point within kBodyMargin of its bounds.
     bool luminaireBody = false;
+    /// Not drawn for the camera (a photometry's luminous box: it blocks other light and the
+    /// interreflected light, but the camera sees the luminaire's opening through it).
+    bool hidden = false;
 
     size_t triangleCount() const { return indices.size() / 3; }
     void computeBounds();
@@ -118,12 +121,16 @@ struct Scene {
     /// them (util/FileOutput.h) so no output is written onto one.
     std::vector<std::string> inputFiles() const;
 
-    /// Replaces the luminaires' body meshes (Luminaire::bodyTriangles: flat-shaded, the
-    /// "luminaire housing" material, after every geometry entry's meshes) with their current
-    /// shape and pose. Returns whether that changed the meshes (false when every body is as it
-    /// was: an edit of another luminaire moves no geometry).
+    /// Replaces the luminaires' body meshes (Luminaire::body: flat-shaded, a "luminaire housing"
+    /// material of the body's reflectance, after every geometry entry's meshes; hidden when the
+    /// camera sees through it) with their current shape and pose. Returns whether that changed
+    /// the meshes (false when every body is as it was: an edit of another luminaire moves no
+    /// geometry).
     bool updateBodies();
     size_t bodyCount() const;
+    /// Whether the scene has surfaces of its own (meshes other than luminaire bodies): a room
+    /// to reflect light.
+    bool hasSurfaces() const;
 
     glm::vec3 boundsMin() const;
     glm::vec3 boundsMax() const;
@@ -143,6 +150,10 @@ struct Scene {
     /// One line for every output that reports illuminance: "maintenance factor 1 (initial
     /// values)", or the project's factor and each luminaire's own ("maintained values: ...").
     std::string maintenanceNote() const;
+    /// One line for every output that reports light: the luminaire bodies that block it ("6
+    /// luminaire bodies (luminous boxes), opaque and black, block other luminaires' light and
+    /// the reflected light"), or that there are none.
+    std::string bodiesNote() const;
     /// Factor on everything a source contributes: unitScale x maintenanceFactorOf. Every
     /// estimator, pass and report scales a luminaire's light by it.
     double lightScale(const Luminaire& source) const;

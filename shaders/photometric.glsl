@@ -328,6 +328,49 @@ bool phInCircumcircle(vec3 a, vec3 b, vec3 c, vec3 d) {
 
 float phSide(vec3 a, vec3 b, vec3 c) { return dot(cross(a, b), c); }
 
+/// The initial triangulation of scattered sampling (Prost Fig. 5.8) over the polygon q seen from
+/// the receiver, with vertex 0 the closest point (place, index as phClosest) and 1..k the
+/// corners, made Delaunay by Lawson's flips (Alg. 5.1, bounded like the CPU version) when asked.
+/// Returns the number of triangles.
+int phTriangulate(int k, int place, int index, vec3 dirs[kMaxPolygon + 1], bool delaunay,
+                  out ivec3 tri[2 * kMaxPolygon], inout int flips) {
+    int count = 0;
+    if (place == PH_CORNER) {
+        for (int j = 1; j + 1 < k; ++j)
+            tri[count++] = ivec3(1 + index, 1 + (index + j) % k, 1 + (index + j + 1) % k);
+    } else {
+        for (int i = 0; i < k; ++i)
+            if (!(place == PH_EDGE && i == index)) tri[count++] = ivec3(0, 1 + i, 1 + (i + 1) % k);
+    }
+    bool changed = delaunay;
+    while (changed && flips < 4 * kMaxPolygon) {
+        changed = false;
+        for (int i = 0; i < count && !changed; ++i) {
+            for (int e = 0; e < 3 && !changed; ++e) {
+                int a = tri[i][e], b = tri[i][(e + 1) % 3], cc = tri[i][(e + 2) % 3];
+                for (int j = 0; j < count; ++j) {
+                    if (j == i) continue;
+                    ivec3 o = tri[j];
+                    bool hasA = o.x == a || o.y == a || o.z == a;
+                    bool hasB = o.x == b || o.y == b || o.z == b;
+                    if (!hasA || !hasB) continue;
+                    int d = (o.x != a && o.x != b) ? o.x : ((o.y != a && o.y != b) ? o.y : o.z);
+                    if (!phInCircumcircle(dirs[a], dirs[b], dirs[cc], dirs[d])) break;
+                    bool convex = phSide(dirs[a], dirs[b], dirs[cc]) * phSide(dirs[a], dirs[b], dirs[d]) < 0.0 &&
+                                  phSide(dirs[cc], dirs[d], dirs[a]) * phSide(dirs[cc], dirs[d], dirs[b]) < 0.0;
+                    if (!convex) break;
+                    tri[i] = ivec3(a, d, cc);
+                    tri[j] = ivec3(d, b, cc);
+                    ++flips;
+                    changed = true;
+                    break;
+                }
+            }
+        }
+    }
+    return count;
+}
+
 /// Scattered sampling (Prost Ch. 5): corners of the opening clipped at the tilted horizon plus
 /// the closest point, Delaunay triangulation by flips, cubature (5.6) of the cosine-weighted
 /// mean of L, times the closed-form projected solid angle (5.11).
@@ -356,49 +399,131 @@ float phScattered(vec3 p, vec3 n, out int flips) {
         f[i] = phIntegrand(n, dirs[i]);
         c[i] = max(dot(n, dirs[i]), 0.0);
     }
-    // Initial triangulation (Fig. 5.8).
     ivec3 tri[2 * kMaxPolygon];
-    int count = 0;
-    if (place == PH_CORNER) {
-        for (int j = 1; j + 1 < k; ++j)
-            tri[count++] = ivec3(1 + index, 1 + (index + j) % k, 1 + (index + j + 1) % k);
-    } else {
-        for (int i = 0; i < k; ++i)
-            if (!(place == PH_EDGE && i == index)) tri[count++] = ivec3(0, 1 + i, 1 + (i + 1) % k);
-    }
-    // Lawson's flips (Alg. 5.1), bounded like the CPU version.
-    bool changed = true;
-    while (changed && flips < 4 * kMaxPolygon) {
-        changed = false;
-        for (int i = 0; i < count && !changed; ++i) {
-            for (int e = 0; e < 3 && !changed; ++e) {
-                int a = tri[i][e], b = tri[i][(e + 1) % 3], cc = tri[i][(e + 2) % 3];
-                for (int j = 0; j < count; ++j) {
-                    if (j == i) continue;
-                    ivec3 o = tri[j];
-                    bool hasA = o.x == a || o.y == a || o.z == a;
-                    bool hasB = o.x == b || o.y == b || o.z == b;
-                    if (!hasA || !hasB) continue;
-                    int d = (o.x != a && o.x != b) ? o.x : ((o.y != a && o.y != b) ? o.y : o.z);
-                    if (!phInCircumcircle(dirs[a], dirs[b], dirs[cc], dirs[d])) break;
-                    bool convex = phSide(dirs[a], dirs[b], dirs[cc]) * phSide(dirs[a], dirs[b], dirs[d]) < 0.0 &&
-                                  phSide(dirs[cc], dirs[d], dirs[a]) * phSide(dirs[cc], dirs[d], dirs[b]) < 0.0;
-                    if (!convex) break;
-                    tri[i] = ivec3(a, d, cc);
-                    tri[j] = ivec3(d, b, cc);
-                    ++flips;
-                    changed = true;
-                    break;
-                }
-            }
-        }
-    }
+    int count = phTriangulate(k, place, index, dirs, true, tri, flips);
     float qf = 0.0, qc = 0.0;
     for (int i = 0; i < count; ++i) {
         ivec3 t = tri[i];
         float area = phTriangleSolidAngle(dirs[t.x], dirs[t.y], dirs[t.z]);
         qf += area * (f[t.x] + f[t.y] + f[t.z]) / 3.0;
         qc += area * (c[t.x] + c[t.y] + c[t.z]) / 3.0;
+    }
+    return qc > 0.0 ? projected * qf / qc : 0.0;
+}
+
+// --- The adaptive technique (PhotometricEstimators.cpp, adaptiveValue) ---------------------------
+
+/// A point of the cubature on the plane of its initial triangle's unit corners: p, its direction
+/// d, f = L cos_p and c = cos_p there.
+struct PhVertex {
+    vec3 p, d;
+    float f, c;
+};
+
+PhVertex phVertex(vec3 n, vec3 p) {
+    float l = length(p);
+    vec3 d = l > 0.0 ? p / l : vec3(0.0, 0.0, 1.0);
+    return PhVertex(p, d, phIntegrand(n, d), max(dot(n, d), 0.0));
+}
+
+/// The vertex rule on the spherical triangle xyz: solid angle times the means of f and c.
+vec2 phVertexRule(PhVertex x, PhVertex y, PhVertex z) {
+    float area = phTriangleSolidAngle(x.d, y.d, z.d);
+    return area * vec2(x.f + y.f + z.f, x.c + y.c + z.c) / 3.0;
+}
+
+// The cubature's triangles: their three corners (points, as PhVertex::p), and (x, y, z) = their
+// children's vertex rule of f and c and its error estimate. Private to each invocation, at most
+// kAdaptiveGpuTriangles of them; a split evaluates its triangle's corners and midpoints again
+// rather than keep them (the shader compiler's time grows with this memory).
+vec3 phTriCorner[3 * kAdaptiveGpuTriangles];
+vec3 phTriFine[kAdaptiveGpuTriangles];
+
+/// Scattered sampling on the opening clipped at the true horizon, its worst spherical triangle
+/// split at its flat edges' midpoints until the estimated errors sum to kAdaptiveTolerance of
+/// the value or kAdaptiveGpuSplits splits are spent; times the closed-form projected solid angle.
+/// One loop stores every triangle, the initial ones and each split's four children, and one
+/// evaluates every point: the shader compiler inlines every call, and one intensity lookup site
+/// keeps llvmpipe's compile in seconds.
+float phAdaptive(vec3 p, vec3 n) {
+    PhPolygon visible = phClip(phOpening(p), n);
+    if (visible.count < 3) return 0.0;
+    float projected = phProjectedSolidAngle(visible, n);
+    if (!(projected > 0.0)) return 0.0;
+    int place, index;
+    vec3 cp = phClosest(visible, vec3(0.0), 1e-6 * ph.axisX.w, place, index);
+    const int V = kMaxPolygon + 1;
+    vec3 dirs[V];
+    int k = visible.count;
+    for (int i = 0; i <= k; ++i) {
+        vec3 v = i == 0 ? cp : visible.v[i - 1];
+        float lv = length(v);
+        dirs[i] = lv > 0.0 ? v / lv : vec3(0.0, 0.0, 1.0);
+    }
+    ivec3 tri[2 * kMaxPolygon];
+    int flips = 0;
+    int initial = phTriangulate(k, place, index, dirs, false, tri, flips);  // the fan: see the CPU
+    // A triangle's six points: corners a, b, c, then midpoints ab, bc, ca; its children as
+    // indices into them (CubatureTriangle::children).
+    const ivec3 kChild[4] = ivec3[4](ivec3(0, 3, 5), ivec3(3, 1, 4), ivec3(5, 4, 2), ivec3(3, 4, 5));
+    PhVertex parent[6];
+    int stored = 0, next = 0, child = 4, worst = 0, splits = 0;
+    float sumF = 0.0, sumError = 0.0;
+    for (;;) {
+        // The triangle to store: its corners' points, and which of them need evaluating.
+        vec3 corner[3];
+        int slot;
+        bool evaluate = true;
+        if (next < initial) {  // the initial triangulation's next triangle
+            corner[0] = dirs[tri[next].x];
+            corner[1] = dirs[tri[next].y];
+            corner[2] = dirs[tri[next].z];
+            slot = stored++;
+            ++next;
+        } else if (child < 4) {  // the next child of the triangle being split
+            slot = child == 0 ? worst : stored++;
+            evaluate = false;
+        } else {  // every triangle stored: split the worst, or stop
+            if (splits >= kAdaptiveGpuSplits || !(sumError > kAdaptiveTolerance * sumF) ||
+                stored + 3 > kAdaptiveGpuTriangles)
+                break;
+            worst = 0;
+            for (int i = 1; i < stored; ++i)
+                if (phTriFine[i].z > phTriFine[worst].z) worst = i;
+            for (int j = 0; j < 6; ++j) {
+                vec3 q = j < 3 ? phTriCorner[3 * worst + j]
+                               : 0.5 * (phTriCorner[3 * worst + j - 3] + phTriCorner[3 * worst + (j - 2) % 3]);
+                parent[j] = phVertex(n, q);
+            }
+            sumF -= phTriFine[worst].x;
+            sumError -= phTriFine[worst].z;
+            child = 0;
+            ++splits;
+            continue;
+        }
+        PhVertex t[6];
+        if (!evaluate) {
+            ivec3 c = kChild[child];
+            t[0] = parent[c.x];
+            t[1] = parent[c.y];
+            t[2] = parent[c.z];
+            ++child;
+        }
+        // The corners (an initial triangle's), then the edges' midpoints.
+        for (int e = evaluate ? 0 : 3; e < 6; ++e)
+            t[e] = phVertex(n, e < 3 ? corner[e] : 0.5 * (t[e - 3].p + t[(e - 2) % 3].p));
+        vec2 coarse = phVertexRule(t[0], t[1], t[2]);
+        vec2 fine = vec2(0.0);
+        for (int j = 0; j < 4; ++j) fine += phVertexRule(t[kChild[j].x], t[kChild[j].y], t[kChild[j].z]);
+        for (int j = 0; j < 3; ++j) phTriCorner[3 * slot + j] = t[j].p;
+        phTriFine[slot] = vec3(fine, abs(fine.x - coarse.x));
+        sumF += fine.x;
+        sumError += phTriFine[slot].z;
+    }
+    float qf = 0.0, qc = 0.0;
+    for (int i = 0; i < stored; ++i) {
+        qf += phTriFine[i].x;
+        qc += phTriFine[i].y;
     }
     return qc > 0.0 ? projected * qf / qc : 0.0;
 }

@@ -97,7 +97,7 @@ TEST(EditorPlacement, SwapKeepsPoseAndNameAndIsOneUndoStep) {
     EXPECT_EQ(swapped.name, "Ceiling panel");
     EXPECT_EQ(swapped.pose.position, pose.position);
     EXPECT_EQ(swapped.pose.aim, pose.aim);
-    EXPECT_EQ(swapped.technique, "hybrid");  // "analytic" is not photometric: the kind's default
+    EXPECT_EQ(swapped.technique, "adaptive");  // "analytic" is not photometric: the kind's default
     // A light field in place of the pendant keeps nothing of the photometric technique either.
     ASSERT_TRUE(swapLuminaireFile(
         state, 2, CANDELA_SOURCE_DIR "/resources/luminaires/osram-lertduw.lf.json"));
@@ -135,7 +135,7 @@ TEST(EditorPlacement, ArrayIsAGridOfCopiesAndOneUndoStep) {
     const Luminaire& last = *state.scene.luminaires.back();
     EXPECT_NEAR(glm::length(last.pose.position - (origin + glm::dvec3(2.4, 0.0, 0.8))), 0.0, 1e-12);
     EXPECT_EQ(last.pose.aim, state.scene.luminaires[2]->pose.aim);
-    EXPECT_EQ(last.technique, "hybrid");
+    EXPECT_EQ(last.technique, "adaptive");
     EXPECT_EQ(arrayLuminaire(state, 2, 1, 1, 1.0, 1.0), 0);  // 1 x 1: nothing to add
     ASSERT_TRUE(undo(state));
     EXPECT_EQ(state.scene.luminaires.size(), 3u);
@@ -196,7 +196,7 @@ TEST(EditorPlacement, DroppedGldfBecomesItsFirstVariant) {
     ASSERT_NE(light->gldf, nullptr);
     EXPECT_EQ(light->gldf->manufacturer, "DIAL");
     EXPECT_EQ(light->gldfVariant, "variant-1");
-    EXPECT_EQ(light->technique, "hybrid");  // the photometric kind's default
+    EXPECT_EQ(light->technique, "adaptive");  // the photometric kind's default
     EXPECT_TRUE(state.placement.armed);
     // A container that cannot be placed is reported, naming the member, and changes nothing.
     size_t steps = state.history.undo.size();

@@ -667,7 +667,7 @@ TEST(Gldf, SceneEntryLoadsRendersAsPhotometricAndRoundTrips) {
     auto* first = dynamic_cast<const PhotometricLuminaire*>(scene.luminaires[0].get());
     ASSERT_NE(first, nullptr);
     EXPECT_EQ(first->kind(), "photometric");  // rendered by the photometric techniques
-    EXPECT_EQ(first->technique, "hybrid");    // the photometric kind's default
+    EXPECT_EQ(first->technique, "adaptive");  // the photometric kind's default
     EXPECT_EQ(first->gldfVariant, "v1");      // the first variant when none is named
     ASSERT_NE(first->gldf, nullptr);
     EXPECT_EQ(first->gldf->manufacturer, "Acme");

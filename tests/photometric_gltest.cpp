@@ -51,9 +51,12 @@ TEST(PhotometricGl, EveryTechniqueMatchesItsCppTwin) {
                 // Deterministic techniques: the same algorithm in float, 2e-3 relative (angles
                 // from acos/atan in float near the table's steep flanks) plus 1e-4 lux. The
                 // reference: five of the CPU estimator's standard errors (independent streams).
+                // `adaptive` splits fewer triangles on the GPU (kAdaptiveGpuSplits): the two
+                // are within its stated limit of each other.
                 double tol = t.progressive
                                  ? 5.0 * std::sqrt(2.0) * cpu.stdError.y + 1e-3 * cpu.irradiance.y
-                                 : 2e-3 * cpu.irradiance.y + 1e-4;
+                             : t.name == "adaptive" ? t.limits.tolerance * cpu.irradiance.y + 1e-4
+                                                    : 2e-3 * cpu.irradiance.y + 1e-4;
                 EXPECT_NEAR(gpu[i].y, cpu.irradiance.y, tol) << t.name << " point " << i;
             }
         }

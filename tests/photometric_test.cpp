@@ -191,6 +191,9 @@ TEST(PhotometricLuminaire, LambertianFileIsALambertianRectangle) {
             << i;
         EXPECT_NEAR(run("hybrid", *l, cases[i].p, cases[i].n).irradiance.y, exact, 0.05 * exact)
             << i;
+        // So is the adaptive refinement of it, whatever it splits.
+        EXPECT_NEAR(run("adaptive", *l, cases[i].p, cases[i].n).irradiance.y, exact, 1e-4 * exact)
+            << i;
         // The reference is unbiased: within 4 standard errors (+ the table's 1e-4).
         Estimate ref = run("reference", *l, cases[i].p, cases[i].n, 200000);
         EXPECT_NEAR(ref.irradiance.y, exact, 4 * ref.stdError.y + 1e-4 * exact) << i;

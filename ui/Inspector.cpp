@@ -265,28 +265,30 @@ bool luminaireInspector(EditorState& state, int index) {
     ImGui::Separator();
 
     changed = kindFields(state, index) || changed;
-    // A GLDF variant's L3D body: shown and casting shadows, or not (all its placements alike:
-    // the same geometry at the same insertion point).
+    // The body: a GLDF variant's L3D housing (drawn; all its placements alike: the same geometry
+    // at the same insertion point) or the photometry's luminous box, blocking other light, or not.
     // (kindFields may have replaced the luminaire: `lum` is stale from here.)
     const Luminaire& current = *state.scene.luminaires[size_t(index)];
-    if (const auto* ph = dynamic_cast<const PhotometricLuminaire*>(&current); ph && ph->geometry) {
+    if (const auto* ph = dynamic_cast<const PhotometricLuminaire*>(&current);
+        ph && (ph->geometry || ph->area() > 0.0)) {
         bool show = ph->showBody;
-        if (ImGui::Checkbox("Body (L3D geometry)", &show)) {
+        if (ImGui::Checkbox(ph->geometry ? "Body (L3D geometry)" : "Body (luminous box)", &show)) {
             applyEdit(state, std::string(show ? "Show" : "Hide") + " body of " + current.name,
                       kChangeLuminaires, [&](Scene& s) {
+                          const Luminaire* self = s.luminaires[size_t(index)].get();
                           for (auto& other : s.luminaires)
                               if (auto* p = dynamic_cast<PhotometricLuminaire*>(other.get());
-                                  p && p->geometry == ph->geometry &&
-                                  p->pose.position == ph->pose.position)
+                                  p && (p == self || (ph->geometry && p->geometry == ph->geometry &&
+                                                      p->pose.position == ph->pose.position)))
                                   p->showBody = show;
                       });
             changed = true;
         }
         recordRect(state, "inspector.body");
         itemTooltip(
-            "The luminaire's housing from its L3D geometry: drawn, and casting shadows on the "
-            "light "
-            "of every other luminaire (never on its own, which its photometry already holds)");
+            "The luminaire's housing (its L3D geometry, drawn; or its photometry's luminous box, "
+            "seen through): opaque and black, it blocks the light of every other luminaire and "
+            "the reflected light (never its own, which its photometry already holds)");
     }
 
     kindDetails(*state.scene.luminaires[size_t(index)]);

@@ -8,6 +8,7 @@
 
 #include "luminaires/Gldf.h"
 #include "luminaires/PhotometricLuminaire.h"
+#include "scene/Plausibility.h"
 #include "ui/Panels.h"
 #include "ui/PolarDiagram.h"
 #include "util/TextEncoding.h"
@@ -49,6 +50,26 @@ void gldfDetails(const GldfProduct& product, const std::string& variantId) {
         ImGui::TextWrapped("%s: %.3g", m.what.c_str(), m.factor);
 }
 
+/// Where the file's own figures disagree (scene/Plausibility.h), highlighted, one line each.
+/// Computed once per photometry shown (its UGR table takes milliseconds, too long for a frame).
+void plausibility(const PhotometricLuminaire& light) {
+    // Held, not only compared, so that a freed photometry's address cannot come back as another.
+    static std::shared_ptr<const PhotometricData> shownData;
+    static std::shared_ptr<const GldfProduct> shownProduct;
+    static const GldfLightEmitter* shownEmitter = nullptr;
+    static std::vector<std::string> notes;
+    const GldfLightEmitter* emitter = light.gldf ? light.gldfLightEmitter() : nullptr;
+    if (light.data != shownData || light.gldf != shownProduct || emitter != shownEmitter) {
+        notes = plausibilityNotes(light);
+        shownData = light.data;
+        shownProduct = light.gldf;
+        shownEmitter = emitter;
+    }
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.75f, 0.3f, 1.0f));
+    for (const std::string& n : notes) ImGui::TextWrapped("%s", n.c_str());
+    ImGui::PopStyleColor();
+}
+
 }  // namespace
 
 void photometricDetails(const PhotometricLuminaire& light) {
@@ -79,6 +100,7 @@ void photometricDetails(const PhotometricLuminaire& light) {
                            d.opening.length, d.opening.width,
                            poly.size() == 2 ? "a segment" : "a polygon", light.area(),
                            light.openingOverride.x > 0.0 ? " (overridden in the scene)" : "");
+    plausibility(light);
     photometryWarnings(d);
     float side = std::min(ImGui::GetContentRegionAvail().x, 260.f);
     drawPolarDiagram(d, side);

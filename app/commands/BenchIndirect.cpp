@@ -335,7 +335,7 @@ int benchIndirect(const Args& args) {
                               [&](const auto& l) { return l->name == o.moved; });
     if (moved == scene.luminaires.end())
         throw InputError(o.scenePath + ": no luminaire named \"" + o.moved + "\" (--move)");
-    if (scene.meshes.empty())
+    if (!scene.hasSurfaces())
         throw InputError(o.scenePath + ": geometry: no surfaces to interreflect light");
 
     std::vector<glm::dvec3> points = workPlanePoints(scene, o.spacing, o.height);

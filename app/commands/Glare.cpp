@@ -122,7 +122,7 @@ int cmdGlare(const Args& args) {
         std::fprintf(stderr, "glare: %s\n", s.c_str());
     });
     std::printf("Unified Glare Rating (CIE 117), UGR = 8 log10(0.25 / Lb x sum L2 omega / p2)\n");
-    std::printf("%s\n", report.maintenance.c_str());
+    std::printf("%s\n%s\n", report.maintenance.c_str(), report.bodies.c_str());
     int failed = 0;
     for (const GlareResult& r : report.observers) {
         printResult(r);

@@ -56,7 +56,7 @@ void printGrid(const GridResult& r, const GridSummary& s) {
                 units.photometric ? "illuminance" : "irradiance", units.irradiance(),
                 units.converted ? ", " : "", units.note().c_str(), p.vName().c_str(),
                 p.uName().c_str());
-    std::printf("%s\n", r.maintenance.c_str());
+    std::printf("%s\n%s\n", r.maintenance.c_str(), r.bodies.c_str());
     std::printf("%7s\\%s", p.vName().c_str(), p.uName().c_str());
     for (double u : r.u) std::printf(" %9.3f", u);
     std::printf("\n");
@@ -83,6 +83,7 @@ void printGrid(const GridResult& r, const GridSummary& s) {
     part("direct:", r.direct);
     part("interreflected:", r.indirect);
     part("total:", r.E);
+    std::printf("%s\n", r.indirectNote.c_str());
 }
 
 std::string gridCsv(const GridResult& r) {
@@ -136,7 +137,18 @@ bool parseEvaluationFlag(const Args& args, size_t& i, GridSpec& how) {
         how.indirect = true;
     else if (a == "--patches")
         how.patches = parseInt(a, flagValue(args, i), 16, 50000);
-    else
+    else if (a == "--indirect-method") {
+        std::string m = flagValue(args, i);
+        if (m == "adaptive")
+            how.indirectMethod = GridSpec::Indirect::Adaptive;
+        else if (m == "gather")
+            how.indirectMethod = GridSpec::Indirect::Gather;
+        else if (m == "patches")
+            how.indirectMethod = GridSpec::Indirect::Patches;
+        else
+            throw InputError("--indirect-method: expected adaptive, gather or patches, got \"" + m +
+                             "\"");
+    } else
         return false;
     return true;
 }
@@ -170,7 +182,7 @@ int cmdGrid(const Args& args) {
         throw InputError(
             "usage: candela grid scene.json --plane y=0.8 [--extent u0,v0,u1,v1] "
             "[--spacing 0.25] [--spp N] [--technique T] [--env-technique T] [--visibility] "
-            "[--indirect [--patches N]] "
+            "[--indirect [--patches N] [--indirect-method adaptive|gather|patches]] "
             "[--csv out.csv]");
     if (!(spec.spacing > 0.0))
         throw InputError("--spacing: expected a positive number of metres, got " +

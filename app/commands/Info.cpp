@@ -13,6 +13,7 @@
 #include "luminaires/PhotometricLuminaire.h"
 #include "luminaires/Registry.h"
 #include "scene/GltfLoader.h"
+#include "scene/Plausibility.h"
 #include "scene/SceneIo.h"
 #include "scene/UgrTable.h"
 #include "util/Error.h"
@@ -37,34 +38,18 @@ static const char* symmetryName(PhotometricSymmetry s) {
 }
 
 /// `candela info FILE.ies|FILE.ldt|FILE.xml`: what the file holds, its flux two ways and what was
-/// assumed to read it (one "warning:" line each; --strict refuses the file instead). How far a
-/// file's declared light output ratio may sit from its table's before `info` warns: EULUMDAT states
-/// LORL in whole or tenth percent, and the table's own rounding (four or five digits per intensity)
-/// moves its flux by far less than 1 %.
-constexpr double kLorTolerance = 0.01;
+/// assumed to read it (one "warning:" line each; --strict refuses the file instead), and where its
+/// own figures disagree (scene/Plausibility.h, one "warning:" line each).
 
 /// The light output ratio as designers read it: the luminaire's flux (the table's) over the
-/// lamps' rated flux, with a warning where the file's own figures disagree.
-static void printLightOutputRatio(const std::string& path, const PhotometricData& d, double flux) {
+/// lamps' rated flux.
+static void printLightOutputRatio(const PhotometricData& d, double flux) {
     if (!(d.lampFlux > 0.0)) return;  // absolute photometry: no lamp flux, no ratio
-    double lor = flux / d.lampFlux;
     char said[64] = "";
     if (d.declaresLightOutputRatio)
         std::snprintf(said, sizeof said, "; the file declares %.4g %%", 100.0 * d.lightOutputRatio);
     std::printf("light output ratio (luminaire flux / lamp flux): %.1f %% (%.6g lm / %.6g lm%s)\n",
-                100.0 * lor, flux, d.lampFlux, said);
-    std::string shown = toValidUtf8(path);
-    if (d.declaresLightOutputRatio && d.lightOutputRatio > 0.0 &&
-        std::abs(lor / d.lightOutputRatio - 1.0) > kLorTolerance)
-        std::printf(
-            "warning: %s: the file declares a light output ratio of %.4g %% but its table gives "
-            "%.1f %% of the lamp flux (luminaire flux / lamp flux)\n",
-            shown.c_str(), 100.0 * d.lightOutputRatio, 100.0 * lor);
-    else if (!d.declaresLightOutputRatio && lor > 1.0 + kLorTolerance)
-        std::printf(
-            "warning: %s: the table's flux is %.1f %% of the rated lamp flux: a luminaire cannot "
-            "emit more than its lamps (the lamp lumens are wrong, or the photometry is absolute)\n",
-            shown.c_str(), 100.0 * lor);
+                100.0 * flux / d.lampFlux, flux, d.lampFlux, said);
 }
 
 /// EULUMDAT's declared luminaire flux (lamp flux x LORL) against the table's.
@@ -106,7 +91,9 @@ static void printUgrReference(const PhotometricData& d) {
 }
 
 /// The photometry's description; `path` names it ("lamp.ldt", "lamp.gldf:ldc/lamp.ldt").
-static void printPhotometry(const std::string& path, std::shared_ptr<const PhotometricData> data) {
+/// `rated`: the GLDF light emitter whose photometry it is, or null.
+static void printPhotometry(const std::string& path, std::shared_ptr<const PhotometricData> data,
+                            const GldfLightEmitter* rated = nullptr) {
     auto light = std::make_unique<PhotometricLuminaire>();
     light->file = path;
     light->data = std::move(data);
@@ -128,7 +115,7 @@ static void printPhotometry(const std::string& path, std::shared_ptr<const Photo
         light->polygon().empty() ? " (a point source)" : "");
     double flux = d.fluxFromTable();
     std::printf("luminaire flux (exact quadrature of the table): %.6g lm\n", flux);
-    printLightOutputRatio(path, d, flux);
+    printLightOutputRatio(d, flux);
     // IES declares no LOR to multiply by: the ratio above is all there is to say.
     if (d.declaresLightOutputRatio) printDeclaredFlux(d, flux);
     if (d.statedFlux > 0.0)
@@ -138,6 +125,8 @@ static void printPhotometry(const std::string& path, std::shared_ptr<const Photo
         std::printf("input power: %.4g W (%.1f lm/W)\n", d.inputWatts, flux / d.inputWatts);
     printUgrReference(d);
     for (const std::string& w : d.warnings) std::printf("warning: %s\n", w.c_str());
+    for (const std::string& w : plausibilityNotes(path, d, rated))
+        std::printf("warning: %s\n", w.c_str());
 }
 
 static void printMaintenance(const char* indent, const std::vector<GldfMaintenance>& factors) {
@@ -260,8 +249,13 @@ static void printGldf(const std::string& path) {
                     continue;
                 }
                 printed.push_back(name);
-                printPhotometry(
-                    name, std::make_shared<const PhotometricData>(std::move(photometry.data)));
+                const GldfLightEmitter* rated =
+                    photometry.emitter && !photometry.emitter->lights.empty()
+                        ? &photometry.emitter->lights.front()
+                        : nullptr;
+                printPhotometry(name,
+                                std::make_shared<const PhotometricData>(std::move(photometry.data)),
+                                rated);
             } catch (const InputError& e) {
                 std::printf("  cannot be placed: %s\n", e.what());
                 break;

@@ -354,7 +354,8 @@ void printProbeCsv(const Scene& scene, const std::vector<ProbePoint>& points, co
     std::fprintf(stderr, "probe: E, E_r, E_g, E_b and E_stderr in %s%s\n",
                  units.irradianceLabel().c_str(),
                  indirect ? ", direct plus interreflected light" : "");
-    std::fprintf(stderr, "probe: %s\n", scene.maintenanceNote().c_str());
+    std::fprintf(stderr, "probe: %s\nprobe: %s\n", scene.maintenanceNote().c_str(),
+                 scene.bodiesNote().c_str());
     std::printf("x,y,z,nx,ny,nz,E,E_r,E_g,E_b,E_stderr\n");
     for (size_t i = 0; i < points.size(); ++i) {
         const ProbePoint& q = points[i];

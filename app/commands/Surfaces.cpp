@@ -29,7 +29,7 @@ void printReport(const SurfaceReport& r) {
     const char* unit = r.units.irradiance();
     std::printf("maintained illuminance E [%s]%s%s\n", unit, r.units.converted ? ", " : "",
                 r.units.note().c_str());
-    std::printf("%s\n", r.maintenance.c_str());
+    std::printf("%s\n%s\n", r.maintenance.c_str(), r.bodies.c_str());
     std::printf("light: %s\n", r.hasIndirect ? "direct and interreflected"
                                              : "direct only (interreflected light: --indirect)");
     int failed = 0;

@@ -48,6 +48,7 @@ void GBufferPass::setGeometry(const Scene& scene) {
     std::vector<Vertex> vertices;
     std::vector<uint32_t> indices;
     for (const Mesh& mesh : scene.meshes) {
+        if (mesh.hidden) continue;  // a luminous box: the camera sees the opening's light
         const Material& m = scene.materials.at(mesh.material);
         uint32_t base = uint32_t(vertices.size());
         float flags = m.isGlossy() ? float(gpu::kMaterialGlossy) : 0.f;

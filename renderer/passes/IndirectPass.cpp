@@ -33,7 +33,8 @@ void IndirectPass::set(const std::shared_ptr<const RadiosityMesh>& mesh,
         std::vector<uint32_t> indices;
         indices.reserve(3 * mesh->patches.size());
         for (const auto& p : mesh->patches)
-            indices.insert(indices.end(), p.vertex.begin(), p.vertex.end());
+            if (!p.hidden)  // a luminous box: it blocks, the camera sees through it
+                indices.insert(indices.end(), p.vertex.begin(), p.vertex.end());
         mPositions =
             gl::Buffer(GLsizeiptr(positions.size() * sizeof(glm::vec3)), positions.data(), 0);
         mIndices = gl::Buffer(GLsizeiptr(indices.size() * sizeof(uint32_t)), indices.data(), 0);

@@ -23,6 +23,20 @@ using glm::clamp;
 /// PhPolygon): enough for a 16-gon cut by one plane, plus rounding slack.
 CANDELA_CONST int kMaxPolygon = 20;
 
+/// The adaptive technique (photometric `adaptive`, PhotometricEstimators.cpp) splits its worst
+/// spherical triangle until the errors its triangles estimate sum to this fraction of its value
+/// (the estimate is the disagreement of a triangle's vertex rule with its children's, some two to
+/// four times the children's own error)...
+CANDELA_CONST real kAdaptiveTolerance = 3e-3;
+/// ...or it has split this often: on the CPU (grids, surfaces, probe: 12 intensity lookups a
+/// split, at most some 2000 a point)...
+CANDELA_CONST int kAdaptiveCpuSplits = 160;
+/// ...and on the GPU, which holds every triangle of a pixel's cubature in its local memory (at
+/// most the initial triangulation's kMaxPolygon + 1 and three more a split; llvmpipe's compile
+/// time grows with it: about 5 s at 40 splits, 11 s at 80).
+CANDELA_CONST int kAdaptiveGpuSplits = 40;
+CANDELA_CONST int kAdaptiveGpuTriangles = kMaxPolygon + 1 + 3 * kAdaptiveGpuSplits;
+
 /// The hybrid technique's Monte Carlo weight at `distance` (m) from an opening whose largest
 /// extent is `size` (m): 0 within half an opening size, 1 beyond one and a half, smoothstep in
 /// between (where the 24-point set's light bumps fade in `candela bench --prost`; Prost Sec. 6.6

@@ -18,8 +18,8 @@ check() { if eval "$2"; then passed=$((passed + 1)); else failures=$((failures +
   >"$out/stdout" 2>"$out/stderr"
 rc=$?
 check "bench exits 0 (rc $rc): $(tail -3 "$out/stderr")" '[ $rc -eq 0 ]'
-# 2 files x 4 heights x 5 rotations x 7 techniques, plus the header.
-check "results.csv has 281 lines" '[ "$(wc -l <"$out/results.csv")" -eq 281 ]'
+# 2 files x 4 heights x 5 rotations x 8 techniques, plus the header.
+check "results.csv has 321 lines" '[ "$(wc -l <"$out/results.csv")" -eq 321 ]'
 bad=$(tail -n +2 "$out/results.csv" | awk -F, '!($5 >= 0 && $5 == $5 && $10 > 0 && $6 >= 0 && $7 <= 0) {print}')
 check "finite figures, bounds on the right sides: $bad" '[ -z "$bad" ]'
 better=$(awk -F, '$1 ~ /lambert/ && $3 == 1.1 {n[$2] = $4} END {print (n["scattered"] < n["point"]) ? "yes" : "no"}' "$out/nmse_by_height.csv")

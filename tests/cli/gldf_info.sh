@@ -22,6 +22,8 @@ check "emitter with its photometry member: $info" 'grep -q "changeable light emi
 check "rated flux, power and efficacy with units: $info" 'grep -q "rated luminous flux: 800 lm" <<<"$info" && grep -q "rated input power: 110 W" <<<"$info" && grep -q "luminous efficacy (rated flux / rated power): 7.273 lm/W" <<<"$info"'
 check "light source maintenance: $info" 'grep -q "LLMF after 125 h: 0.9 (90.0 %)" <<<"$info" && grep -q "LSF after 150 h: 0.82 (82.0 %)" <<<"$info"'
 check "photometry named inside the container: $info" 'grep -q "photometry: .*GldfWithFilesComplete.gldf:ldc/photometry.ldt" <<<"$info"'
+# The product rates its light source at 800 lm; its photometry was measured with 6300 lm of lamps.
+check "the rated flux against the photometry's, with the one used: $info" 'grep -qF "GldfWithFilesComplete.gldf:ldc/photometry.ldt: the product rates its light source at 800 lm, but the photometry was measured with 6300 lm of lamps (-87.3 %); Candela uses the table'"'"'s 4048.7 lm" <<<"$info"'
 
 python3 - "$complete" "$tmp/photometry.ldt" <<'PY'
 import sys, zipfile
@@ -73,7 +75,7 @@ sys.exit(0 if len(a) == len(b) == 5 and a[0] == b[0] and
 PY
 }
 for device in cpu gpu; do
-  for t in hybrid point reference; do
+  for t in adaptive point reference; do
     a=$("$binary" probe "$tmp/ldt_scene.json" --points "$2/data/photometric/far_points.csv" --technique $t --spp 256 --device $device 2>/dev/null)
     b=$("$binary" probe "$tmp/gldf_scene.json" --points "$2/data/photometric/far_points.csv" --technique $t --spp 256 --device $device 2>/dev/null)
     check "probe $t on $device: the GLDF variant lights like its ldt ($b vs $a)" 'same "$a" "$b"'
@@ -94,6 +96,9 @@ cat > "$tmp/scene.json" <<'JSON'
 JSON
 info=$("$binary" info "$tmp/scene.json" 2>&1)
 check "a scene places a GLDF variant: $info" 'grep -q "GLDF lamp.gldf variant \"variant-2\" (DIAL Product name): EULUMDAT" <<<"$info"'
+"$binary" report "$tmp/scene.json" --out "$tmp/report.pdf" --no-view >/dev/null 2>&1
+report=$(pdftotext "$tmp/report.pdf" - 2>&1 | tr '\n' ' ')
+check "the report states the product's disagreeing figures: $report" 'grep -qF "Data check: lamp.gldf: the product rates its light source at 800 lm, but the photometry was measured with 6300 lm of lamps (-87.3 %); Candela uses the table'"'"'s 4048.7 lm." <<<"$report"'
 expect "lamp.gldf: " "would overwrite this input of the command" -- \
   grid "$tmp/scene.json" --plane y=0 --spacing 1 --csv "$tmp/lamp.gldf"
 check "the container is untouched" 'cmp -s "$complete" "$tmp/lamp.gldf"'

@@ -26,7 +26,7 @@ for row in csv.DictReader(open(sys.argv[1])):
 PY
 )
 for device in cpu gpu; do
-  for t in reference point scattered mc-poisson-24 hybrid; do
+  for t in reference point scattered mc-poisson-24 hybrid adaptive; do
     out=$("$binary" probe "$data/probe_scene.json" --points "$data/far_points.csv" --technique "$t" --spp 20000 --device $device 2>/dev/null)
     bad=$(paste -d, <(tail -n +2 <<<"$out") <(echo "$law") | awk -F, '{
         e = $7; se = $11; r = $12; tol = 0.01 * r + 4 * se;

@@ -13,7 +13,7 @@ CANDELA=${1:?usage: editor_autosave.sh /path/to/candela /path/to/tests}
 TESTS=${2:?usage: editor_autosave.sh /path/to/candela /path/to/tests}
 SOURCE=$(cd "$TESTS/.." && pwd)
 DRAG_PX=150
-TIMEOUT_S=60
+TIMEOUT_S=240
 
 E2E_NAME=editor_autosave
 source "$(dirname "$0")/lib/harness.sh"

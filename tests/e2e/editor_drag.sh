@@ -16,7 +16,7 @@ TESTS=${2:?usage: editor_drag.sh /path/to/candela /path/to/tests}
 SOURCE=$(cd "$TESTS/.." && pwd)
 DRAG_PX=150        # horizontal drag, window pixels
 BOX=20             # side of the boxes whose mean brightness is compared, image pixels
-TIMEOUT_S=60       # longest wait for any one step
+TIMEOUT_S=240       # longest wait for any one step
 
 E2E_NAME=editor_drag
 source "$(dirname "$0")/lib/harness.sh"

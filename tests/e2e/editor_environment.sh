@@ -15,7 +15,7 @@ set -euo pipefail
 
 CANDELA=${1:?usage: editor_environment.sh /path/to/candela /path/to/tests}
 TESTS=${2:?usage: editor_environment.sh /path/to/candela /path/to/tests}
-TIMEOUT_S=60
+TIMEOUT_S=240
 
 E2E_NAME=editor_environment
 source "$(dirname "$0")/lib/harness.sh"

@@ -17,7 +17,7 @@ CANDELA=${1:?usage: editor_interreflection.sh /path/to/candela /path/to/tests}
 TESTS=${2:?usage: editor_interreflection.sh /path/to/candela /path/to/tests}
 SOURCE=$(cd "$TESTS/.." && pwd)
 DRAG_PX=150        # horizontal drag, window pixels
-TIMEOUT_S=120      # longest wait for any one step (form factors and a refinement on 2 shared cores)
+TIMEOUT_S=240      # longest wait for any one step (form factors and a refinement on 2 shared cores)
 
 E2E_NAME=editor_interreflection
 source "$(dirname "$0")/lib/harness.sh"

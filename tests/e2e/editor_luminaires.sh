@@ -33,7 +33,7 @@ DRAG_PX=280        # horizontal drag of the LED, window pixels
 # frames after each change) works too but takes about twice as long.
 LF_TECHNIQUE=${CANDELA_E2E_LF_TECHNIQUE:-granier2003}
 BOX=10             # side of the boxes whose mean brightness is compared, image pixels
-TIMEOUT_S=60       # longest wait for any one step
+TIMEOUT_S=240       # longest wait for any one step
 SPIN_DEG=30        # Spin typed for the photometric luminaire
 
 E2E_NAME=editor_luminaires

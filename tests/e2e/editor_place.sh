@@ -20,7 +20,7 @@ set -euo pipefail
 CANDELA=${1:?usage: editor_place.sh /path/to/candela /path/to/tests}
 TESTS=${2:?usage: editor_place.sh /path/to/candela /path/to/tests}
 SOURCE=$(cd "$TESTS/.." && pwd)
-TIMEOUT_S=60
+TIMEOUT_S=240
 WALL_POINT="[0.6, 2.0, -3.0]"  # on the back wall (z = -3), seen by the camera below
 
 E2E_NAME=editor_place
@@ -205,15 +205,34 @@ xdotool key Return
 wait_until "the bench curves" "d['compare']['bench_series'] == 4"
 wait_until "winners at the budget" "d['compare']['winner'] != '' and d['compare']['bench_winner'] != ''"
 log "plot at $(layout "d['compare']['budget_ms']") ms: this view's winner $(layout "d['compare']['winner']"), the bench's $(layout "d['compare']['bench_winner']")"
-# On this view both panes are done within the budget (their last GPU times are below it): the
-# winner is the one with the lower relative RMSE.
-python3 - "$LAYOUT" <<'PY' || fail "the plot's winner is not the pane with the lower error"
-import json, sys
+# The winner is the pane with the lower relative RMSE at the budget, each pane's error there read
+# off its measured series as the plot reads it (ui/AccuracyPlot.cpp, errorAtTime: none before its
+# first point, log-log between two, its last beyond): on a busy machine a pane may not reach the
+# budget's time with all its points.
+python3 - "$LAYOUT" <<'PY' || fail "the plot's winner is not the pane with the lower error at the budget"
+import json, math, sys
 d = json.load(open(sys.argv[1]))["compare"]
-a, b = d["panes"]
-assert max(a["series"][-1]["gpu_ms"], b["series"][-1]["gpu_ms"]) < d["budget_ms"]
-best = min((a, b), key=lambda p: p["series"][-1]["rel_rmse"])
-sys.exit(0 if d["winner"].startswith(best["name"] + " ") else 1)
+t = d["budget_ms"]
+def error_at(series):
+    s = [(p["gpu_ms"], p["rel_rmse"]) for p in series
+         if math.isfinite(p["gpu_ms"]) and math.isfinite(p["rel_rmse"])]
+    if not s or t < s[0][0]:
+        return math.nan
+    for (ta, ea), (tb, eb) in zip(s, s[1:]):
+        if min(ta, tb) <= t <= max(ta, tb):
+            if ta == tb:
+                return eb
+            if ta > 0 and tb > 0 and ea > 0 and eb > 0:
+                u = min(max((math.log(t) - math.log(ta)) / (math.log(tb) - math.log(ta)), 0), 1)
+                return math.exp(math.log(ea) + u * (math.log(eb) - math.log(ea)))
+            u = min(max((t - ta) / (tb - ta), 0), 1)
+            return ea * (1 - u) + eb * u
+    last = max(range(len(s)), key=lambda k: (s[k][0], k))
+    return s[last][1]
+errors = [(error_at(p["series"]), p["name"]) for p in d["panes"]]
+errors = [e for e in errors if not math.isnan(e[0])]
+print("errors at the budget:", errors, "winner:", d["winner"])
+sys.exit(0 if errors and d["winner"].startswith(min(errors)[1] + " ") else 1)
 PY
 click_widget viewport.plot
 wait_until "the plot closed" "not d['compare']['plot_open']"

@@ -12,7 +12,7 @@ set -euo pipefail
 CANDELA=${1:?usage: editor_report.sh /path/to/candela /path/to/tests}
 TESTS=${2:?usage: editor_report.sh /path/to/candela /path/to/tests}
 SOURCE=$(cd "$TESTS/.." && pwd)
-TIMEOUT_S=180
+TIMEOUT_S=240
 
 E2E_NAME=editor_report
 source "$(dirname "$0")/lib/harness.sh"

@@ -16,9 +16,9 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-const char* const kClassNames[] = {"ordinary", "contact", "on-plane",     "grazing",     "behind",
-                                   "far",      "tiny",    "huge",         "segment",     "point",
-                                   "spike",    "zero",    "single-value", "bright-pixel"};
+const char* const kClassNames[] = {"ordinary", "contact", "on-plane",     "grazing",      "behind",
+                                   "far",      "tiny",    "huge",         "segment",      "point",
+                                   "spike",    "zero",    "single-value", "bright-pixel", "table"};
 
 // --- The test's own closed forms ------------------------------------------------------------
 
@@ -325,6 +325,7 @@ struct CaseBuilder {
     void photometricSegment();
     void photometricPoint();
     void photometricTables();
+    void photometricBox();
     void lambertianRect();
     void lightFields();
 };
@@ -492,6 +493,51 @@ void CaseBuilder::photometricTables() {
         "I (linear between 25 and 30 deg) cos / r^2");
 }
 
+/// The up-and-down luminaire's table, cd at gamma (radians from straight down): a batwing down
+/// (1500 cd at 35 degrees) and a wider one up (2600 cd at 125 degrees), light out of the sides,
+/// tabulated every 5 degrees and linear between, as the estimators read a table.
+double boxTabulated(double deg) {
+    double r = deg * kPi / 180.0;
+    if (deg < 90.0)
+        return 900.0 * std::pow(std::cos(r), 0.6) * (1.0 + 1.4 * std::pow(std::sin(r), 2));
+    double u = (180.0 - deg) * kPi / 180.0;
+    return 700.0 * std::sqrt(std::cos(u)) * (1.0 + 2.5 * std::pow(std::sin(u), 2)) +
+           120.0 * std::pow(std::sin(r), 8);
+}
+double boxTable(double gamma) {
+    double deg = std::clamp(gamma * 180.0 / kPi, 0.0, 180.0);
+    double i = std::min(std::floor(deg / 5.0), 35.0), t = deg / 5.0 - i;
+    return boxTabulated(5.0 * i) + t * (boxTabulated(5.0 * (i + 1.0)) - boxTabulated(5.0 * i));
+}
+
+/// A large up-and-down luminaire, 0.45 x 0.45 m, its opening emitting up, down and (near its
+/// plane) sideways as a box-shaped one does: receivers 0.1 and 0.3 m from it and 2 and 5
+/// opening diagonals away, each against the area form by the test's own graded quadrature.
+void CaseBuilder::photometricBox() {
+    const double a = 0.225;
+    std::vector<double> g, c;
+    for (int i = 0; i <= 36; ++i) {
+        g.push_back(5.0 * i);
+        c.push_back(boxTabulated(5.0 * i));
+    }
+    table = boxTable;
+    opening.clear();  // no peak: no upper bound needed
+    lMax = 0.0;
+    auto light = photometric(iesText(g, c, 2 * a, 2 * a), 2 * a, 2 * a);
+    auto add1 = [&](const char* name, glm::dvec3 p, glm::dvec3 n) {
+        add(std::string("photometric/box-up-down/") + name, "photometric", Class::Table, light, p,
+            n, areaForm(p, glm::normalize(n), a, a, boxTable),
+            "the area form by the test's graded quadrature");
+    };
+    add1("above-0.3m", {0.0, kH + 0.3, 0.0}, down);
+    add1("above-0.1m-corner", {a, kH + 0.1, a}, down);
+    add1("below-0.1m", {0.05, kH - 0.1, 0.02}, up);
+    add1("beside-0.1m", {a + 0.1, kH - 0.05, 0.0}, {-1, 0, 0});
+    add1("beside-above-0.1m", {a + 0.1, kH + 0.05, 0.1}, {-1, 0.2, 0});
+    add1("below-2-diagonals", {0.6, kH - 1.1, 0.3}, up);
+    add1("below-5-diagonals", {1.8, kH - 2.5, 0.9}, up);
+}
+
 /// The Lambertian rectangle 0.6 x 0.3 m.
 void CaseBuilder::lambertianRect() {
     const double a = 0.3, b = 0.15, L = 1000.0;
@@ -569,6 +615,7 @@ std::vector<Case> build() {
     b.photometricSegment();
     b.photometricPoint();
     b.photometricTables();
+    b.photometricBox();
     b.lambertianRect();
     b.lightFields();
     return std::move(b.out);

@@ -1,9 +1,10 @@
 #pragma once
 // The hard-case grid (issue 18, part 1): geometries at the extremes (receivers at contact, in the
 // emitter's plane, at grazing normals, 1e5 m away; openings from 1e-6 m to 100 m, segments,
-// points; intensity tables with a narrow spike, all zeros, one non-zero value; light fields with
-// one bright pixel), each with an expected value the test owns: a closed form or a quadrature
-// written here, in double precision, that shares no code with the estimators.
+// points; intensity tables with a narrow spike, all zeros, one non-zero value; a large up-and-down
+// opening with batwing tables; light fields with one bright pixel), each with an expected value the
+// test owns: a closed form or a quadrature written here, in double precision, that shares no code
+// with the estimators.
 //
 // Every technique the registry lists for a case's kind runs on it (a technique added later runs
 // without editing this table); TechniqueLimits (hardcases_test.cpp) says what each technique
@@ -39,6 +40,7 @@ enum class Class {
     Zero,         ///< A table of zeros.
     SingleValue,  ///< A table with one non-zero entry.
     BrightPixel,  ///< A light field with one bright pixel.
+    Table,        ///< A smooth measured-like table, up and down, near a large opening.
 };
 const char* className(Class c);
 

@@ -62,6 +62,18 @@ Promise stated(const TechniqueInfo& t, const Case& c) {
                 0,
                 0,
                 "nearer than its stated distance: any factor off (" + why + ")"};
+    // A smooth table near a large opening (not Lambertian): what the technique's few samples make
+    // of it, as measured.
+    if (c.cls == Class::Table && l.accuracy != StatedLimits::Unbiased) {
+        if (l.tableTolerance < 0.0)
+            return {Promise::Finite,
+                    0,
+                    0,
+                    0,
+                    0,
+                    "a measured table near the opening: any factor off (" + why + ")"};
+        return exact(l.tableTolerance, why);
+    }
     switch (l.accuracy) {
         case StatedLimits::Unbiased:
             return unbiased(l.tolerance, why);

@@ -244,7 +244,8 @@ PY
 # SHOTS, layout into LAYOUT), waits until the layout satisfies the condition, and finds and
 # focuses its window (WID). E2E_EDITOR_ARGS adds options (e.g. --autosave-seconds 2).
 e2e_start_editor() {
-    LIBGL_ALWAYS_SOFTWARE=1 timeout 280 "$CANDELA" edit "$1" --size "$2" \
+    # The editor's own limit (a hung editor ends); each step waits on the layout file's state.
+    LIBGL_ALWAYS_SOFTWARE=1 timeout 840 "$CANDELA" edit "$1" --size "$2" \
         --screenshot-dir "$SHOTS" --layout-file "$LAYOUT" --quit-after-frames 1000000 \
         ${E2E_EDITOR_ARGS:-} >>"$TMP/editor.log" 2>&1 &
     EDITOR_PID=$!
