@@ -332,33 +332,49 @@ ReceiverResult computeReceivers(const Scene& scene, const GridSpec& spec,
     r.maintenance = scene.maintenanceNote();
     r.bodies = scene.bodiesNote();
     r.projectFactor = scene.maintenanceFactor;
-    std::vector<double> scales;  // 683 lm/W for a radiometric luminaire in a mixed scene
-    for (const auto& l : scene.luminaires) scales.push_back(scene.lightScale(*l));
+    std::vector<double> scales;      // 683 lm/W for a radiometric luminaire in a mixed scene
+    std::vector<double> unitScales;  // the same without maintenance
+    for (const auto& l : scene.luminaires) {
+        scales.push_back(scene.lightScale(*l));
+        unitScales.push_back(scene.unitScale(*l));
+    }
     const Luminaire* environment = envChosen ? scene.environmentLight() : nullptr;
     double envScale = scene.environmentUnitScale();
-    for (size_t index = 0; index < receivers.size(); ++index) {
-        glm::dvec3 p = receivers[index].position, n = receivers[index].normal;
-        glm::dvec3 e(0.0), var(0.0), before(0.0);  // before: without maintenance
-        if (environment) {
-            EstimateOptions o = options;
-            o.seed = 1000003ull * index + 999983ull;
-            Estimate est = envChosen->irradiance(*environment, p, n, o);
-            e += envScale * est.irradiance;
-            before += envScale * est.irradiance;  // daylight takes no maintenance factor
-            var += envScale * envScale * est.stdError * est.stdError;
+    // Every receiver on its own (seeded by its index), over the hardware's threads.
+    size_t count = receivers.size();
+    r.direct.assign(count, 0.0);
+    r.initial.assign(count, 0.0);
+    r.directStdError.assign(count, 0.0);
+    std::atomic<size_t> next{0};
+    auto work = [&] {
+        for (size_t index; (index = next.fetch_add(1)) < count;) {
+            glm::dvec3 p = receivers[index].position, n = receivers[index].normal;
+            glm::dvec3 e(0.0), var(0.0), before(0.0);  // before: without maintenance
+            if (environment) {
+                EstimateOptions o = options;
+                o.seed = 1000003ull * index + 999983ull;
+                Estimate est = envChosen->irradiance(*environment, p, n, o);
+                e += envScale * est.irradiance;
+                before += envScale * est.irradiance;  // daylight takes no maintenance factor
+                var += envScale * envScale * est.stdError * est.stdError;
+            }
+            for (size_t k = 0; k < scene.luminaires.size(); ++k) {
+                EstimateOptions o = options;
+                o.seed = 1000003ull * index + k + 1;
+                Estimate est = chosen[k]->irradiance(*scene.luminaires[k], p, n, o);
+                e += scales[k] * est.irradiance;
+                before += unitScales[k] * est.irradiance;
+                var += scales[k] * scales[k] * est.stdError * est.stdError;
+            }
+            r.direct[index] = luminanceOf(e);
+            r.initial[index] = luminanceOf(before);
+            r.directStdError[index] = luminanceOf(glm::sqrt(var));
         }
-        for (size_t k = 0; k < scene.luminaires.size(); ++k) {
-            EstimateOptions o = options;
-            o.seed = 1000003ull * index + k + 1;
-            Estimate est = chosen[k]->irradiance(*scene.luminaires[k], p, n, o);
-            e += scales[k] * est.irradiance;
-            before += scene.unitScale(*scene.luminaires[k]) * est.irradiance;
-            var += scales[k] * scales[k] * est.stdError * est.stdError;
-        }
-        r.direct.push_back(luminanceOf(e));
-        r.initial.push_back(luminanceOf(before));
-        r.directStdError.push_back(luminanceOf(glm::sqrt(var)));
-    }
+    };
+    std::vector<std::thread> pool;
+    for (int t = 1; t < workerThreads(0); ++t) pool.emplace_back(work);
+    work();
+    for (auto& t : pool) t.join();
     r.E = r.direct;
     r.stdError = r.directStdError;
     if (spec.indirect) addIndirectBeforeMaintenance(scene, spec, receivers, r, status);

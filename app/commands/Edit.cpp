@@ -8,6 +8,8 @@
 #include "renderer/Renderer.h"
 #include "renderer/ShaderLibrary.h"
 #include "renderer/context/GlContext.h"
+#include "scene/Interreflection.h"
+#include "scene/InterreflectionWorker.h"
 #include "scene/SceneIo.h"
 #include "ui/Editor.h"
 #include "ui/Screenshot.h"
@@ -38,6 +40,18 @@ int renderScreenshotsOffscreen(const ui::EditorOptions& options) {
     if (scene.camera.exposure > 0.0) settings.exposure = float(scene.camera.exposure);
     renderer.setSettings(settings);
     renderer.update(scene, kChangeAll);
+    // The interreflected light, as the editor's worker converges to it: what the window shows.
+    InterreflectionOptions io;
+    io.directSpp = InterreflectionWorker::kFineSpp;
+    Interreflection ir(scene, io);
+    std::string light = "direct light only: no surface reflects onto another";
+    if (ir.mesh().reflects() && ir.compute() && ir.hasInterreflection()) {
+        std::vector<glm::vec3> v;
+        for (const glm::dvec3& e : ir.indirectAtVertices()) v.push_back(glm::vec3(e));
+        renderer.setIndirect(std::make_shared<RadiosityMesh>(ir.mesh()), std::move(v));
+        light = "direct and interreflected light (" + std::to_string(ir.mesh().patches.size()) +
+                " patches)";
+    }
 
     ui::PassTotals passes;
     // Guard against a plan that never reports convergence: 64 spp at 1 spp per frame at most.
@@ -47,9 +61,9 @@ int renderScreenshotsOffscreen(const ui::EditorOptions& options) {
         if (renderer.converged()) break;
     }
     ui::ScreenshotFiles files = ui::writeScreenshot(options.screenshotDir, scene, renderer, passes);
-    std::printf("rendered %s offscreen (%dx%d, %d spp%s)\n", options.scenePath.c_str(),
+    std::printf("rendered %s offscreen (%dx%d, %d spp%s), %s\n", options.scenePath.c_str(),
                 kHeadlessWidth, kHeadlessHeight, renderer.stats().samplesPerPixel,
-                renderer.plan().progressive() ? "" : ", exact techniques");
+                renderer.plan().progressive() ? "" : ", exact techniques", light.c_str());
     std::printf("wrote %s\nwrote %s\nwrote %s\n", files.png.c_str(), files.exr.c_str(),
                 files.json.c_str());
     return 0;

@@ -45,8 +45,8 @@ int cmdReport(const Args& args) {
     if (scenePath.empty() || out.empty())
         throw InputError(
             "usage: candela report scene.json --out report.pdf [--title T] [--spp N] "
-            "[--technique T] [--visibility] [--indirect [--patches N]] [--view-size WxH] "
-            "[--view-spp N] [--no-view]");
+            "[--technique T] [--visibility] [--indirect [--patches N] [--indirect-method M]] "
+            "[--view-size WxH] [--view-spp N] [--no-view]");
     if (std::filesystem::path(out).extension() != ".pdf")
         throw InputError(out + ": the report is a PDF: name it NAME.pdf");
     Scene scene = loadScene(scenePath);

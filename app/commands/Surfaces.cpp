@@ -134,7 +134,8 @@ int cmdSurfaces(const Args& args) {
     if (scenePath.empty())
         throw InputError(
             "usage: candela surfaces scene.json [--spp N] [--technique T] [--env-technique T] "
-            "[--visibility] [--indirect [--patches N]] [--csv out.csv]");
+            "[--visibility] [--indirect [--patches N] [--indirect-method adaptive|gather|patches]] "
+            "[--csv out.csv]");
     Scene scene = loadScene(scenePath);
     ProtectedInputs inputs(scene.inputFiles());
     checkNotAnInput(csvPath, "--csv");
