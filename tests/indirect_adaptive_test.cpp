@@ -1,6 +1,6 @@
 // The interreflected light at calculation points from the patches' solution, refined near
 // surfaces and gathered where its error estimate says so (GridSpec::Indirect::Adaptive), against
-// the final gather at 4096 rays (the reference, scene/Interreflection.h) on the office: a work
+// the final gather at 2048 rays (the reference, scene/Interreflection.h) on the office: a work
 // plane and points beside walls, the desk and the ceiling, where the patches alone are off.
 #include <gtest/gtest.h>
 
@@ -53,9 +53,9 @@ ReceiverResult evaluate(const Scene& scene, GridSpec::Indirect method, int spp) 
 
 TEST(IndirectAtPoints, AdaptiveIsWithinOnePercentOfTheGatherEverywhere) {
     Scene scene = loadScene(kData + "/rooms/office.json");
-    ReceiverResult reference = evaluate(scene, GridSpec::Indirect::Gather, 4096);
-    ReceiverResult adaptive = evaluate(scene, GridSpec::Indirect::Adaptive, 4096);
-    ReceiverResult patches = evaluate(scene, GridSpec::Indirect::Patches, 4096);
+    ReceiverResult reference = evaluate(scene, GridSpec::Indirect::Gather, 2048);
+    ReceiverResult adaptive = evaluate(scene, GridSpec::Indirect::Adaptive, 2048);
+    ReceiverResult patches = evaluate(scene, GridSpec::Indirect::Patches, 2048);
     std::vector<Receiver> points = officePoints();
     int patchesOff = 0;
     for (size_t i = 0; i < points.size(); ++i) {
@@ -74,7 +74,7 @@ TEST(IndirectAtPoints, AdaptiveIsWithinOnePercentOfTheGatherEverywhere) {
     // The refinement and the gather have something to do: the patches alone miss by more
     // somewhere (facing the walls).
     EXPECT_GT(patchesOff, 0) << "no point where the patches alone are off: a weak test";
-    EXPECT_NE(adaptive.indirectNote.find("a final gather of 4096 rays at"), std::string::npos)
+    EXPECT_NE(adaptive.indirectNote.find("a final gather of 2048 rays at"), std::string::npos)
         << adaptive.indirectNote;
 }
 
