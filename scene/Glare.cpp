@@ -4,13 +4,14 @@
 
 #include "luminaires/PhotometricLuminaire.h"
 #include "scene/Scene.h"
+#include "shaders/shared/Constants.h"
 #include "util/Error.h"
 
 namespace candela {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using gpu::kPi;
 constexpr double kDeg = 180.0 / kPi;
 const glm::dvec3 kUp{0.0, 1.0, 0.0};
 

@@ -286,24 +286,17 @@ std::string Interreflection::orientationWarning(const Scene& scene) const {
 }
 
 glm::dvec3 Interreflection::fromPatches(const glm::dvec3& p, const glm::dvec3& normal) const {
-    double len = glm::length(normal);
-    if (!(len > 0.0)) return glm::dvec3(0.0);
-    glm::dvec3 n = normal / len, sum(0.0);
-    for (size_t j = 0; j < mMesh.patches.size(); ++j) {
-        const RadiosityMesh::Patch& q = mMesh.patches[j];
-        if (!(q.albedo.x + q.albedo.y + q.albedo.z > 0.0)) continue;
-        if (!(glm::dot(q.normal, p - q.centroid) > 0.0)) continue;  // p behind its reflecting side
-        double f =
-            pointTriangleFormFactor(p, n, mMesh.vertices[q.vertex[0]], mMesh.vertices[q.vertex[1]],
-                                    mMesh.vertices[q.vertex[2]]);
-        if (!(f > 0.0) || !mVisibility->visibleBetweenSurfaces(p, q.centroid)) continue;
-        sum += f * q.albedo * (mDirectTotal[j] + mIndirect[j]);
-    }
-    return sum;
+    glm::dvec3 unused;
+    return patchLight(p, normal, false, unused);
 }
 
 glm::dvec3 Interreflection::fromPatches(const glm::dvec3& p, const glm::dvec3& normal,
                                         glm::dvec3& error) const {
+    return patchLight(p, normal, true, error);
+}
+
+glm::dvec3 Interreflection::patchLight(const glm::dvec3& p, const glm::dvec3& normal, bool refine,
+                                       glm::dvec3& error) const {
     error = glm::dvec3(0.0);
     double len = glm::length(normal);
     if (!(len > 0.0)) return glm::dvec3(0.0);
@@ -320,7 +313,7 @@ glm::dvec3 Interreflection::fromPatches(const glm::dvec3& p, const glm::dvec3& n
         glm::dvec3 coarse = mVisibility->visibleBetweenSurfaces(p, q.centroid)
                                 ? f * q.albedo * total
                                 : glm::dvec3(0.0);
-        if (f <= kRefineFormFactor) {
+        if (!refine || f <= kRefineFormFactor) {
             sum += coarse;
             continue;
         }

@@ -108,6 +108,9 @@ class Interreflection {
     static constexpr int kRefineDepth = 6;
 
   private:
+    /// Both fromPatches: the patches' light at p, refined near it when `refine`.
+    glm::dvec3 patchLight(const glm::dvec3& p, const glm::dvec3& n, bool refine,
+                          glm::dvec3& error) const;
     struct Source;
     /// The sources of `scene`, each with the key of what its light depends on (no light yet).
     std::vector<Source> currentSources(const Scene& scene) const;

@@ -6,13 +6,14 @@
 #include <cstdio>
 #include <limits>
 
+#include "shaders/shared/Constants.h"
 #include "util/Error.h"
 
 namespace candela {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using gpu::kPi;
 constexpr double kRad = kPi / 180.0;
 
 // ---------------------------------------------------------------------------------------------

@@ -12,13 +12,14 @@
 
 #include "luminaires/Gldf.h"
 #include "luminaires/Photometry.h"
+#include "shaders/shared/Constants.h"
 #include "util/Error.h"
 
 namespace candela {
 namespace {
 
 const std::string kData = CANDELA_TEST_DATA;
-constexpr double kPi = 3.14159265358979323846;
+using gpu::kPi;
 
 /// An isotropic point source of `flux` lm in IES form: `lamp` lumens (-1: absolute photometry)
 /// and `watts` of input power. Constant intensity integrates to 4 pi I exactly.
