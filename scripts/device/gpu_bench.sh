@@ -87,7 +87,7 @@ done
 }
 
 stage_shadows() {
-# The shadow-map bench (README, "Shadow-map bench") on the GPU: maps against a shadow ray per sample.
+# The shadow-map bench (docs/performance.md, "Shadow-map bench") on the GPU: maps against a shadow ray per sample.
 for scene in headlight-room headlight-grille; do
   stamp "shadow maps against shadow rays, $scene"
   timeout "${SHADOW_LIMIT:-60}" "$current" bench --shadows "resources/scenes/$scene.json" \
@@ -100,7 +100,7 @@ tar -czf "$out/shadows.tgz" -C "$work" --exclude='*.png' shadows-headlight-room 
 }
 
 stage_prost() {
-# Prost's evaluation (README, "Photometric bench") on the 14 files of the committed llvmpipe run.
+# Prost's evaluation (docs/performance.md, "Photometric bench") on the 14 files of the committed llvmpipe run.
 stamp "photometric bench (Prost's Sec. 6.2)"
 d=tests/data/photometry/ies
 timeout "${PROST_LIMIT:-90}" "$current" bench --prost tests/data/photometric/lambert.ies \
