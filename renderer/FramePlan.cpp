@@ -128,6 +128,7 @@ FramePlan planFrame(const Scene& scene, const glm::mat4& viewProj,
     FramePlan plan;
     plan.glossy = quantity == Quantity::Radiance && scene.hasGlossy();
     std::vector<const Luminaire*> sources = scene.sources();
+    UnitSystem units = scene.units();
     std::vector<bool> shadows = sourcesNeedingShadows(scene, viewProj);
     for (size_t i = 0; i < sources.size(); ++i) {
         const Luminaire& source = *sources[i];
@@ -144,7 +145,7 @@ FramePlan planFrame(const Scene& scene, const glm::mat4& viewProj,
         // refines (Havran's lights are a fixed set, their shadow rays included).
         step.progressive = t.progressive || (!source.atInfinity() && (rays || plan.glossy));
         step.name = "shade:" + source.name + ":" + std::string(t.name);
-        step.unitScale = float(scene.lightScale(source));
+        step.unitScale = float(scene.lightScale(source, units));
         step.prepasses = sourcePrepasses(t);
         plan.needsBvh = plan.needsBvh || rays;
         plan.shading.push_back(std::move(step));

@@ -670,9 +670,7 @@ void surfacesSection(Pdf& pdf, const ReportInput& in) {
     pdf.paragraph(
         "Maintained illuminance on each task area, its immediate surrounding and its "
         "background, on the standard's grids; " +
-            r.maintenance +
-            "; light: " + (r.hasIndirect ? "direct and interreflected." : "direct only.") + " " +
-            in.evaluation + ".",
+            r.maintenance + "; light: " + in.evaluation + ".",
         8);
     if (r.surfaces.empty()) pdf.paragraph("The scene has no task areas.");
     for (const SurfaceResult& s : r.surfaces) {
@@ -764,11 +762,8 @@ void methodSection(Pdf& pdf, const ReportInput& in) {
     pdf.heading("How this was computed", 12);
     pdf.paragraph(
         "Illuminance: " + in.evaluation +
-            ". Each luminaire's light comes from its "
-            "measured photometry through its own estimator (Candela's README, \"What is "
-            "computed\"); the grids follow EN 12464-1's rule p = 0.2 x 5^log10(d) unless a "
-            "spacing is given; U0 = Emin / Em. The same numbers are printed by `candela "
-            "surfaces` and `candela glare` on the same scene.",
+            ". The grids follow EN 12464-1's rule p = 0.2 x 5^log10(d) unless a spacing is "
+            "given; U0 = Emin / Em.",
         8);
     pdf.paragraph(
         "Rendered view: " + (in.view.empty() ? "none (" + in.viewNote + ")" : in.viewNote) + ".",
@@ -894,18 +889,15 @@ std::vector<ScheduleRow> luminaireSchedule(const Scene& scene) {
     return rows;
 }
 
-/// What `how` asks of the estimators, as the report states it.
-std::string reportEvaluationText(const GridSpec& how) {
-    std::string out =
-        how.technique.empty() ? "each luminaire's own technique" : "technique " + how.technique;
-    out += ", " + std::to_string(how.spp) +
-           " samples per point and luminaire for Monte Carlo "
-           "techniques";
-    out += how.visibility || how.indirect ? ", shadows" : ", no shadows (--visibility adds them)";
-    out += how.indirect ? ", interreflected light from " + std::to_string(how.patches) +
-                              " radiosity patches, traced point by point where the patches "
-                              "are not accurate enough"
-                        : ", direct light only (--indirect adds the interreflected light)";
+/// What `how` computed on `scene`, as the report states it to a client.
+std::string reportEvaluationText(const Scene& scene, const GridSpec& how, size_t patches) {
+    std::string out = lightStatement(scene, how);
+    out += how.technique.empty() ? "; each luminaire's light from its own measured photometry"
+                                 : "; every luminaire's light by technique " + how.technique;
+    if (how.indirect && patches > 0)
+        out += "; interreflected light from " + std::to_string(patches) +
+               " surface patches, traced point by point where the patches are not accurate "
+               "enough";
     return out;
 }
 
@@ -924,13 +916,14 @@ void computeReportContents(ReportInput& in, const Scene& scene, const std::strin
     in.scene = &scene;
     in.title = title;
     in.date = todayUtc();
-    in.evaluation = reportEvaluationText(how);
     if (!scene.taskAreas.empty() || !scene.calcPoints.empty()) {
         in.surfaces = computeSurfaces(scene, how, status);
     } else {
         in.surfaces.units = scene.units();
         in.surfaces.maintenance = scene.maintenanceNote();
+        in.surfaces.light = lightStatement(scene, how);
     }
+    in.evaluation = reportEvaluationText(scene, how, in.surfaces.patches);
     if (!scene.glareObservers.empty())
         in.glare = computeGlare(scene, how, {}, status);
     else

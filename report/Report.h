@@ -34,9 +34,10 @@ struct ReportInput {
     std::string viewNote;
 };
 
-/// What `how` asks of the estimators, in the report's words ("each luminaire's own technique,
-/// 1024 samples per point ..., direct light only ...").
-std::string reportEvaluationText(const GridSpec& how);
+/// What `how` computed on `scene` with `patches` interreflection patches (0: none), in the
+/// report's words ("direct light with shadows, and interreflected light; each luminaire's
+/// light from its own measured photometry; ...").
+std::string reportEvaluationText(const Scene& scene, const GridSpec& how, size_t patches);
 
 /// Today's date, YYYY-MM-DD in UTC (thread-safe): a report's date and a converted file's.
 std::string todayUtc();

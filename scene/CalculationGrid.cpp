@@ -99,6 +99,45 @@ std::string planeText(const CalcPlane& plane) {
     return buf;
 }
 
+bool sceneCastsShadows(const Scene& scene) {
+    return scene.hasSurfaces() || scene.bodyCount() > 0;
+}
+
+bool sceneReflects(const Scene& scene) {
+    size_t reflecting = 0;
+    bool flat = true;
+    for (const Mesh& m : scene.meshes)
+        if (!m.luminaireBody && m.triangleCount() > 0 && m.material < scene.materials.size() &&
+            glm::any(glm::greaterThan(scene.materials[m.material].albedo, glm::vec3(0.f)))) {
+            ++reflecting;
+            flat = flat && m.shape == MeshShape::Plane;
+        }
+    // One flat surface alone sees nothing its light could reach.
+    return reflecting > 1 || (reflecting == 1 && !flat);
+}
+
+void applyLightChoice(const Scene& scene, const LightChoice& choice, GridSpec& spec) {
+    spec.visibility = choice.shadows && sceneCastsShadows(scene);
+    spec.indirect = choice.interreflection && (choice.insist || sceneReflects(scene));
+}
+
+std::string lightStatement(const Scene& scene, const GridSpec& spec) {
+    std::string s = "direct light";
+    if (spec.visibility)
+        s += " with shadows";
+    else if (sceneCastsShadows(scene))
+        s += " without shadows (switched off)";
+    else
+        s += " (nothing in the scene casts a shadow)";
+    if (spec.indirect)
+        s += ", and interreflected light";
+    else if (sceneReflects(scene))
+        s += "; no interreflected light (switched off)";
+    else
+        s += "; no interreflected light (no surface reflects)";
+    return s;
+}
+
 std::vector<double> gridCoordinates(double lo, double hi, double spacing) {
     double n = std::max(1.0, std::floor((hi - lo) / spacing + 1e-9));
     double first = 0.5 * (lo + hi) - 0.5 * (n - 1.0) * spacing;
@@ -164,6 +203,7 @@ void addIndirect(const Scene& scene, const GridSpec& spec, const std::vector<Rec
     work();
     for (auto& t : pool) t.join();
     r.hasIndirect = true;
+    r.patches = ir.mesh().patches.size();
     std::string rays = std::to_string(std::max(1, spec.spp)) + " rays";
     switch (spec.indirectMethod) {
         case GridSpec::Indirect::Gather:
@@ -267,6 +307,7 @@ GridResult computeGrid(const Scene& scene, const GridSpec& spec,
     r.units = e.units;
     r.maintenance = std::move(e.maintenance);
     r.bodies = std::move(e.bodies);
+    r.light = std::move(e.light);
     r.projectFactor = e.projectFactor;
     r.E = std::move(e.E);
     r.stdError = std::move(e.stdError);
@@ -276,6 +317,7 @@ GridResult computeGrid(const Scene& scene, const GridSpec& spec,
     r.indirect = std::move(e.indirect);
     r.indirectStdError = std::move(e.indirectStdError);
     r.indirectNote = std::move(e.indirectNote);
+    r.patches = e.patches;
     r.initial = std::move(e.initial);
     return r;
 }
@@ -322,7 +364,7 @@ ReceiverResult computeReceivers(const Scene& scene, const GridSpec& spec,
     std::unique_ptr<EmbreeVisibility> vis;
     EstimateOptions options;
     options.spp = std::max(1, spec.spp);
-    if (spec.visibility || spec.indirect) {
+    if (spec.visibility) {
         vis = std::make_unique<EmbreeVisibility>(scene);
         options.visibility = vis.get();
     }
@@ -331,12 +373,13 @@ ReceiverResult computeReceivers(const Scene& scene, const GridSpec& spec,
     r.units = scene.units();
     r.maintenance = scene.maintenanceNote();
     r.bodies = scene.bodiesNote();
+    r.light = lightStatement(scene, spec);
     r.projectFactor = scene.maintenanceFactor;
     std::vector<double> scales;      // 683 lm/W for a radiometric luminaire in a mixed scene
     std::vector<double> unitScales;  // the same without maintenance
     for (const auto& l : scene.luminaires) {
-        scales.push_back(scene.lightScale(*l));
-        unitScales.push_back(scene.unitScale(*l));
+        scales.push_back(scene.lightScale(*l, r.units));
+        unitScales.push_back(scene.unitScale(*l, r.units));
     }
     const Luminaire* environment = envChosen ? scene.environmentLight() : nullptr;
     double envScale = scene.environmentUnitScale();

@@ -229,8 +229,11 @@ SurfaceReport computeSurfaces(const Scene& scene, const GridSpec& how,
     report.units = e.units;
     report.maintenance = e.maintenance;
     report.bodies = e.bodies;
+    report.light = e.light;
     report.projectFactor = e.projectFactor;
     report.hasIndirect = e.hasIndirect;
+    report.indirectNote = e.indirectNote;
+    report.patches = e.patches;
     bool anyLux = false;
     size_t next = 0;
     // A point's value and standard error: one receiver's, or the mean of its azimuths'.
@@ -252,8 +255,10 @@ SurfaceReport computeSurfaces(const Scene& scene, const GridSpec& how,
         for (size_t k = 0; k < s.points.size(); ++k)
             take(s.cylindrical, s.E[k], s.stdError[k], s.initial[k]);
         s.summary = summariseGrid(s.E);
-        s.passes =
-            s.summary.count > 0 && s.summary.eAvg >= s.required.em && s.summary.u0 >= s.required.u0;
+        // A surface the room leaves no points of (a task area over the whole floor has no
+        // surroundings) has nothing to fail: every output counts it as met, as none.
+        s.passes = s.summary.count == 0 ||
+                   (s.summary.eAvg >= s.required.em && s.summary.u0 >= s.required.u0);
         anyLux = anyLux || s.required.em > 0.0;
     }
     for (const CalcPoint& p : scene.calcPoints) {

@@ -92,7 +92,7 @@ struct SurfaceResult {
     std::vector<double> initial;          ///< The same before maintenance (GridResult::initial).
     GridSummary summary;
     Requirement required;
-    bool passes = true;  ///< Every requirement met (true when there is none).
+    bool passes = true;  ///< Every requirement met (true when there is none, or no point).
 };
 
 struct PointResult {
@@ -106,8 +106,11 @@ struct SurfaceReport {
     UnitSystem units;
     std::string maintenance;     ///< Scene::maintenanceNote().
     std::string bodies;          ///< Scene::bodiesNote().
+    std::string light;           ///< What light E includes (lightStatement).
     double projectFactor = 1.0;  ///< Scene::maintenanceFactor.
     bool hasIndirect = false;
+    std::string indirectNote;  ///< How the interreflected light was found (ReceiverResult).
+    size_t patches = 0;        ///< The interreflection's patches (0 without it).
     std::vector<SurfaceResult> surfaces;
     std::vector<PointResult> points;
 };

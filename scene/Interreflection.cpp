@@ -127,6 +127,7 @@ bool Interreflection::solveChange(const std::vector<glm::dvec3>& change, const P
 
 std::vector<Interreflection::Source> Interreflection::currentSources(const Scene& scene) const {
     std::vector<Source> fresh;
+    UnitSystem units = scene.units();
     for (const auto& l : scene.luminaires) {
         // As `candela probe --technique`: the named technique where the kind has it, else the
         // luminaire's own.
@@ -140,7 +141,7 @@ std::vector<Interreflection::Source> Interreflection::currentSources(const Scene
         Source s;
         s.origin = l.get();
         s.irradiance = t->irradiance;
-        s.scale = scene.lightScale(*l);
+        s.scale = scene.lightScale(*l, units);
         nlohmann::json fields;
         l->writeJson(fields);
         append(s.key, std::string(l->kind()) + ":" + name + ":" + fields.dump());
@@ -272,6 +273,11 @@ std::string Interreflection::orientationWarning(const Scene& scene) const {
             glm::dvec3 w;
             uint32_t p = mMesh.patchAt(hit.mesh, hit.triangle, hit.u, hit.v, w);
             if (p == UINT32_MAX) continue;
+            // Its own body, seen from inside, takes none of its light (RadiosityMesh::body).
+            int body = mMesh.patches[p].body;
+            if (body >= 0 && insideBody(emitter.position, mMesh.bodyBounds[size_t(body)].first,
+                                        mMesh.bodyBounds[size_t(body)].second))
+                continue;
             ++hits;
             backs += glm::dot(mMesh.patches[p].normal, d) > 0.0;
         }

@@ -185,7 +185,11 @@ UnitSystem Scene::units() const {
 }
 
 double Scene::unitScale(const Luminaire& luminaire) const {
-    return units().scale(luminaire.quantities());
+    return unitScale(luminaire, units());
+}
+
+double Scene::unitScale(const Luminaire& luminaire, const UnitSystem& units) const {
+    return units.scale(luminaire.quantities());
 }
 
 double Scene::maintenanceFactorOf(const Luminaire& source) const {
@@ -233,7 +237,11 @@ std::string Scene::maintenanceNote() const {
 }
 
 double Scene::lightScale(const Luminaire& source) const {
-    return unitScale(source) * maintenanceFactorOf(source);
+    return lightScale(source, units());
+}
+
+double Scene::lightScale(const Luminaire& source, const UnitSystem& units) const {
+    return unitScale(source, units) * maintenanceFactorOf(source);
 }
 
 double Scene::environmentUnitScale() const {

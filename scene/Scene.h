@@ -142,6 +142,9 @@ struct Scene {
     /// Factor on a luminaire's (or the environment's) contribution in those units: 683 lm/W for
     /// a radiometric source in a mixed scene, else 1.
     double unitScale(const Luminaire& luminaire) const;
+    /// The same in `units` (this scene's units(), taken once by a loop over many luminaires:
+    /// units() itself looks at every luminaire).
+    double unitScale(const Luminaire& luminaire, const UnitSystem& units) const;
     double environmentUnitScale() const;
     /// A source's maintenance factor: its own, else the scene's; 1 for a source at infinity.
     double maintenanceFactorOf(const Luminaire& source) const;
@@ -157,6 +160,7 @@ struct Scene {
     /// Factor on everything a source contributes: unitScale x maintenanceFactorOf. Every
     /// estimator, pass and report scales a luminaire's light by it.
     double lightScale(const Luminaire& source) const;
+    double lightScale(const Luminaire& source, const UnitSystem& units) const;
 
     /// The environment as a light source (luminaires/EnvironmentLight.h), made from
     /// environmentMap and kept while the map stays the same (a new map is a new source); null

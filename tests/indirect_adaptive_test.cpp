@@ -45,6 +45,7 @@ std::vector<Receiver> officePoints() {
 
 ReceiverResult evaluate(const Scene& scene, GridSpec::Indirect method, int spp) {
     GridSpec how;
+    how.visibility = true;
     how.indirect = true;
     how.indirectMethod = method;
     how.spp = spp;

@@ -84,6 +84,21 @@ TEST(Interreflection, AConvexRoomNeedsNoShadowRays) {
     EXPECT_FALSE(RadiosityMesh::build(withLamp(kDesk, lampAt(0, 2.7, 0)), settings).convexRoom);
 }
 
+TEST(Interreflection, WarnsOfARoomTurnedInsideOutButNotOfALampsOwnBody) {
+    // A lamp inside a room whose walls face out lights their backs: warned. A lamp with its
+    // body in a proper room sees the body's inside first on many rays, which is no mistake.
+    std::string outside = kRoom;
+    outside.replace(outside.find(R"("inside": true)"), 14, R"("inside": false)");
+    InterreflectionOptions o;
+    o.mesh.targetPatches = 200;
+    Scene wrong = withLamp(outside, lampAt(0, 2.7, 0));
+    Scene right = withLamp(kRoom, lampAt(0, 2.7, 0));
+    ASSERT_EQ(right.bodyCount(), 1u);
+    EXPECT_NE(Interreflection(wrong, o).orientationWarning(wrong).find("lights the back"),
+              std::string::npos);
+    EXPECT_EQ(Interreflection(right, o).orientationWarning(right), "");
+}
+
 TEST(Interreflection, MovingOneLuminaireUpdatesItsShareAlone) {
     // Two lamps in a room with a desk: after computing everything, one lamp moves and only its
     // share is recomputed (its direct light, then the solution for the change). The result must

@@ -283,6 +283,7 @@ TEST(LuminaireBody, ALuminousBoxAbsorbsReflectedLight) {
     GridSpec how;
     how.technique = "adaptive";
     how.spp = 4;
+    how.visibility = true;
     how.indirect = true;
     how.indirectMethod = GridSpec::Indirect::Patches;  // deterministic: differences are real
     std::vector<Receiver> points = {{{0.5, 0.75, 0.5}, {0, 1, 0}}, {{0, 2.99, 0}, {0, -1, 0}}};

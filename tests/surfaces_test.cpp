@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+#include "TestUtil.h"
 #include "scene/CalculationSurfaces.h"
 #include "scene/Scene.h"
 #include "scene/SceneIo.h"
@@ -135,6 +136,22 @@ TEST(CalculationSurfaces, SummariesAreTheClosedFormsMeans) {
     // A uniformity it cannot reach fails though Em passes.
     scene.taskAreas[0].required = {100.0, 0.95};
     EXPECT_FALSE(computeSurfaces(scene, GridSpec{}).surfaces[0].passes);
+}
+
+TEST(CalculationSurfaces, ASurfaceWithoutPointsHasNothingToFail) {
+    // The classroom's task area covers its floor: no immediate surrounding or background is
+    // left, and they count as met (with no points), as the CLI, the report and the editor
+    // count them; the task area itself is judged.
+    Scene classroom = loadScene(test::sourceDir() + "/resources/scenes/classroom.json");
+    SurfaceReport r = computeSurfaces(classroom, GridSpec{});
+    ASSERT_EQ(r.surfaces.size(), 3u);
+    EXPECT_EQ(r.surfaces[0].points.size(), 80u);
+    EXPECT_FALSE(r.surfaces[0].passes);  // direct light alone is far from 500 lx
+    for (size_t k : {1u, 2u}) {
+        EXPECT_TRUE(r.surfaces[k].points.empty()) << r.surfaces[k].name;
+        EXPECT_TRUE(r.surfaces[k].required.any()) << r.surfaces[k].name;
+        EXPECT_TRUE(r.surfaces[k].passes) << r.surfaces[k].name;
+    }
 }
 
 TEST(CalculationSurfaces, VerticalAndCylindricalPoints) {

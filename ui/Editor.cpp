@@ -614,8 +614,7 @@ void Editor::updateReport() {
     auto scene = std::make_shared<Scene>(state.scene.clone());
     GridSpec how;
     how.spp = state.measure.grid.spp;
-    how.indirect = state.measure.grid.indirect;
-    how.visibility = state.measure.grid.visibility;
+    applyLightChoice(*scene, state.measure.light, how);
     std::string title = state.scene.path.empty()
                             ? std::string("untitled")
                             : std::filesystem::path(state.scene.path).stem().string();
@@ -837,6 +836,8 @@ void Editor::writeLayout() {
                                      {"points", s.points.size()},
                                      {"em", s.summary.eAvg},
                                      {"u0", s.summary.u0},
+                                     {"emin", s.summary.eMin},
+                                     {"emax", s.summary.eMax},
                                      {"passes", s.passes}});
         for (const PointResult& p : state.measure.surfaces->points)
             j["surfaces"].push_back(

@@ -90,6 +90,7 @@ struct ReportExport {
 /// the operator that false colour replaced (the Render panel's operator combo switches it too).
 struct MeasureState {
     GridSpec grid;                     ///< Plane, extent (m), spacing (m), samples per point.
+    LightChoice light;                 ///< What the grid, surfaces and report include.
     bool extentSet = false;            ///< False: take the extent from the scene's bounds.
     std::optional<GridResult> result;  ///< Last computed grid (shown until recomputed).
     GridSummary summary;

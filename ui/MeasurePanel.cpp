@@ -177,9 +177,7 @@ void computeNow(const EditorState& state, MeasureState& measure) {
         if (!measure.extentSet) defaultGridExtent(state.scene, measure.grid);
         measure.extentSet = true;
         GridSpec spec = measure.grid;
-        spec.indirectMethod =
-            GridSpec::Indirect::Patches;  // interactive: the fast deterministic way
-        spec.patches = 2500;
+        applyLightChoice(state.scene, measure.light, spec);  // as `candela grid` does
         measure.result = computeGrid(state.scene, spec);
         measure.summary = summariseGrid(measure.result->E);
         measure.error.clear();
@@ -246,16 +244,15 @@ void gridSpecControls(EditorState& state, MeasureState& measure) {
                         "%.3f", ImGuiSliderFlags_Logarithmic);
     ImGui::SliderInt("Samples / point", &g.spp, 16, 4096, "%d", ImGuiSliderFlags_Logarithmic);
     itemTooltip("For stochastic techniques; exact ones ignore it");
-    ImGui::Checkbox("Shadows", &g.visibility);
-    itemTooltip("Shadow rays through the scene (occluders block light)");
-    ImGui::Checkbox("Interreflected light##grid", &g.indirect);
+    // What a light meter would read unless switched off, as on the command line.
+    ImGui::Checkbox("Shadows", &measure.light.shadows);
+    itemTooltip("Surfaces and luminaire bodies block light (where the scene has any)");
+    ImGui::Checkbox("Interreflected light##grid", &measure.light.interreflection);
     recordRect(state, "measure.indirect");
     itemTooltip(
-        "Adds the light the surfaces reflect onto each other (radiosity over patches, then each "
-        "point's "
-        "light from the patches; a few seconds). Turns shadows on. candela grid --indirect gives "
-        "the "
-        "reference (a final gather with a standard error).");
+        "The light the surfaces reflect onto each other (where any surface reflects): the "
+        "patches' solution, traced point by point where it is not accurate enough. Uncheck for "
+        "direct light alone.");
 }
 
 /// Emin, Eavg, Emax and the uniformities of the computed grid; with interreflected light, Em
@@ -356,8 +353,7 @@ void surfaceControls(EditorState& state, MeasureState& measure) {
     if (ImGui::Button("Compute surfaces", ImVec2(-1.f, 0.f))) {
         try {
             GridSpec how = measure.grid;
-            how.indirectMethod = GridSpec::Indirect::Patches;  // interactive, as the grid
-            how.patches = 2500;
+            applyLightChoice(state.scene, measure.light, how);  // as the command line does
             measure.surfaces = computeSurfaces(state.scene, how);
             measure.surfacesError.clear();
         } catch (const std::exception& e) {
@@ -461,8 +457,7 @@ void glareControls(EditorState& state, MeasureState& measure) {
     if (ImGui::Button("Compute UGR", ImVec2(-1.f, 0.f))) {
         try {
             GridSpec how = measure.grid;
-            how.indirectMethod = GridSpec::Indirect::Patches;  // interactive, as the grid
-            how.patches = 2500;
+            applyLightChoice(state.scene, measure.light, how);  // as the command line does
             measure.glare = computeGlare(state.scene, how);
             measure.glareError.clear();
         } catch (const std::exception& e) {

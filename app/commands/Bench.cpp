@@ -239,6 +239,7 @@ int cmdBench(const Args& args) {
     if (hasFlag(args, "--shadows")) return benchShadows(args);
     if (hasFlag(args, "--indirect")) return benchIndirect(args);
     if (hasFlag(args, "--drag")) return benchDrag(args);
+    if (hasFlag(args, "--design")) return benchDesign(args);
     return benchLightField(args);
 }
 

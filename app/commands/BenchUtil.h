@@ -67,5 +67,8 @@ int benchShadows(const Args& args);
 /// `candela bench --indirect`: interreflected light from scratch and after a move, against time
 /// (app/commands/BenchIndirect.cpp).
 int benchIndirect(const Args& args);
+/// `candela bench --design`: the designer's calculations' time and accuracy
+/// (app/commands/BenchDesign.cpp).
+int benchDesign(const Args& args);
 
 }  // namespace candela

@@ -11,6 +11,7 @@ struct CalcPlane;
 struct Scene;
 struct GridResult;
 struct GridSpec;
+struct LightChoice;
 
 using Args = std::vector<std::string>;
 
@@ -35,19 +36,27 @@ void parseSize(const std::string& text, int& width, int& height);
 std::vector<float> parseNumberList(const std::string& flag, const std::string& text);
 /// Value following a flag, or throws InputError naming the flag.
 const std::string& flagValue(const Args& args, size_t& i);
+/// The same for a flag that names a file or folder to write: an empty name is refused too.
+const std::string& outputValue(const Args& args, size_t& i);
 int parseInt(const std::string& flag, const std::string& text, int min, int max);
 /// A finite number in min..max; throws InputError "FLAG: expected a number in MIN..MAX, got ...".
 double parseDouble(const std::string& flag, const std::string& text, double min, double max);
 
-/// The flags `grid` and `surfaces` share (how illuminance is evaluated): --spp N, --technique T,
-/// --env-technique T, --visibility, --indirect, --patches N. When args[i] is one of them, reads
-/// it (and its value, advancing i) into `how` and returns true.
-bool parseEvaluationFlag(const Args& args, size_t& i, GridSpec& how);
+/// The flags `grid`, `surfaces` and `report` share (how illuminance is evaluated): --spp N,
+/// --technique T, --env-technique T, --light total|direct, --no-shadows (into `light`, which
+/// applyLightChoice turns into `how` once the scene is loaded), --patches N, --indirect-method M;
+/// --indirect and --visibility ask for what is already the default. When args[i] is one of
+/// them, reads it (and its value, advancing i) and returns true.
+bool parseEvaluationFlag(const Args& args, size_t& i, GridSpec& how, LightChoice& light);
+/// The usage text of those flags.
+extern const char* const kEvaluationUsage;
 
-/// The scene from its camera, offscreen (OSMesa): `spp` samples per pixel with the interreflected
-/// light, tone-mapped as `render` draws it; 8-bit RGB rows top to bottom. `note` says how.
-std::vector<unsigned char> renderSceneView(const Scene& scene, int width, int height, int spp,
-                                           std::string& note);
+/// The scene from its camera, offscreen (OSMesa): `spp` samples per pixel, lit as `how`
+/// computes the numbers beside it (its interreflected light, when it has it, from as many
+/// patches), tone-mapped as `render` draws it; 8-bit RGB rows top to bottom. `note` says how,
+/// in a client's words.
+std::vector<unsigned char> renderSceneView(const Scene& scene, const GridSpec& how, int width,
+                                           int height, int spp, std::string& note);
 
 /// `grid --csv`: x,y,z,E_lx,E_stderr_lx (_W_m2 for a radiometric scene) through a temporary file
 /// and a rename (util/FileOutput.h); throws InputError naming the file.

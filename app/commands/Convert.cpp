@@ -141,7 +141,7 @@ ConvertOptions parseArgs(const Args& args) {
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
         if (a == "--out") {
-            o.out = flagValue(args, i);
+            o.out = outputValue(args, i);
         } else if (a == "--procedural") {
             o.procedural = flagValue(args, i);
         } else if (a == "--rays") {

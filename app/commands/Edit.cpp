@@ -92,9 +92,9 @@ int cmdEdit(const Args& args) {
         if (a == "--size")
             parseSize(flagValue(args, i), options.width, options.height);
         else if (a == "--screenshot-dir")
-            options.screenshotDir = flagValue(args, i);
+            options.screenshotDir = outputValue(args, i);
         else if (a == "--layout-file")
-            options.layoutFile = flagValue(args, i);
+            options.layoutFile = outputValue(args, i);
         else if (a == "--autosave-seconds")
             options.autosaveSeconds = parseInt(a, flagValue(args, i), 1, 1 << 20);
         else if (a == "--quit-after-frames")

@@ -92,7 +92,7 @@ int cmdGlare(const Args& args) {
         else if (a == "--background")
             one.background = parseDouble(a, flagValue(args, i), 1e-6, 1e9);
         else if (a == "--csv")
-            csvPath = flagValue(args, i);
+            csvPath = outputValue(args, i);
         else if (!a.empty() && a[0] == '-')
             throw InputError("glare: unknown option " + a);
         else if (scenePath.empty())

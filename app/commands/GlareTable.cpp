@@ -166,7 +166,7 @@ int cmdGlareTable(const Args& args) {
             spacingText = flagValue(args, i);
             options.spacing = parseDouble(a, spacingText, 0.05, 1.0);
         } else if (a == "--csv") {
-            csvPath = flagValue(args, i);
+            csvPath = outputValue(args, i);
         } else if (!a.empty() && a[0] == '-') {
             throw InputError("glare --table: unknown option " + a + " (" + usage + ")");
         } else {

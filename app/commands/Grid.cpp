@@ -56,7 +56,7 @@ void printGrid(const GridResult& r, const GridSummary& s) {
                 units.photometric ? "illuminance" : "irradiance", units.irradiance(),
                 units.converted ? ", " : "", units.note().c_str(), p.vName().c_str(),
                 p.uName().c_str());
-    std::printf("%s\n%s\n", r.maintenance.c_str(), r.bodies.c_str());
+    std::printf("%s\n%s\nlight: %s\n", r.maintenance.c_str(), r.bodies.c_str(), r.light.c_str());
     std::printf("%7s\\%s", p.vName().c_str(), p.uName().c_str());
     for (double u : r.u) std::printf(" %9.3f", u);
     std::printf("\n");
@@ -70,10 +70,7 @@ void printGrid(const GridResult& r, const GridSummary& s) {
     std::printf("Emin: %.6g %s\nEavg: %.6g %s\nEmax: %.6g %s\n", s.eMin, unit, s.eAvg, unit, s.eMax,
                 unit);
     std::printf("U0 (Emin/Eavg): %.4f\nEmin/Emax: %.4f\n", s.u0, s.minOverMax);
-    if (!r.hasIndirect) {
-        std::printf("light: direct only (interreflected light: --indirect)\n");
-        return;
-    }
+    if (!r.hasIndirect) return;
     // Em (the mean) and U0 of each part, as design tools report them.
     auto part = [&](const char* name, const std::vector<double>& values) {
         GridSummary p = summariseGrid(values);
@@ -123,7 +120,11 @@ void writeGridCsv(const std::string& path, const GridResult& r) {
     writeFileAtomically(path, gridCsv(r), "cannot write the CSV file");
 }
 
-bool parseEvaluationFlag(const Args& args, size_t& i, GridSpec& how) {
+const char* const kEvaluationUsage =
+    "[--light total|direct] [--no-shadows] [--spp N] [--technique T] [--env-technique T] "
+    "[--patches N] [--indirect-method adaptive|gather|patches]";
+
+bool parseEvaluationFlag(const Args& args, size_t& i, GridSpec& how, LightChoice& light) {
     const std::string& a = args[i];
     if (a == "--spp")
         how.spp = parseInt(a, flagValue(args, i), 1, 1 << 24);
@@ -131,10 +132,21 @@ bool parseEvaluationFlag(const Args& args, size_t& i, GridSpec& how) {
         how.technique = flagValue(args, i);
     else if (a == "--env-technique")
         how.environmentTechnique = flagValue(args, i);
+    else if (a == "--light") {
+        std::string m = flagValue(args, i);
+        if (m != "total" && m != "direct")
+            throw InputError(
+                "--light: expected total (direct light with shadows and "
+                "interreflected light, the default) or direct, got \"" +
+                m + "\"");
+        light.interreflection = m == "total";
+        light.insist = false;
+    } else if (a == "--no-shadows")
+        light.shadows = false;
     else if (a == "--visibility")
-        how.visibility = true;
+        light.shadows = true;
     else if (a == "--indirect")
-        how.indirect = true;
+        light.interreflection = light.insist = true;
     else if (a == "--patches")
         how.patches = parseInt(a, flagValue(args, i), 16, 50000);
     else if (a == "--indirect-method") {
@@ -156,6 +168,7 @@ bool parseEvaluationFlag(const Args& args, size_t& i, GridSpec& how) {
 int cmdGrid(const Args& args) {
     std::string scenePath, csvPath;
     GridSpec spec;
+    LightChoice light;
     bool havePlane = false, haveExtent = false;
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
@@ -167,10 +180,10 @@ int cmdGrid(const Args& args) {
             haveExtent = true;
         } else if (a == "--spacing")
             spec.spacing = parseFinite(a, flagValue(args, i));
-        else if (parseEvaluationFlag(args, i, spec))
+        else if (parseEvaluationFlag(args, i, spec, light))
             continue;
         else if (a == "--csv")
-            csvPath = flagValue(args, i);
+            csvPath = outputValue(args, i);
         else if (!a.empty() && a[0] == '-')
             throw InputError("grid: unknown option " + a);
         else if (scenePath.empty())
@@ -179,11 +192,9 @@ int cmdGrid(const Args& args) {
             throw InputError("grid: unexpected argument " + a);
     }
     if (scenePath.empty() || !havePlane)
-        throw InputError(
-            "usage: candela grid scene.json --plane y=0.8 [--extent u0,v0,u1,v1] "
-            "[--spacing 0.25] [--spp N] [--technique T] [--env-technique T] [--visibility] "
-            "[--indirect [--patches N] [--indirect-method adaptive|gather|patches]] "
-            "[--csv out.csv]");
+        throw InputError(std::string("usage: candela grid scene.json --plane y=0.8 "
+                                     "[--extent u0,v0,u1,v1] [--spacing 0.25] ") +
+                         kEvaluationUsage + " [--csv out.csv]");
     if (!(spec.spacing > 0.0))
         throw InputError("--spacing: expected a positive number of metres, got " +
                          std::to_string(spec.spacing));
@@ -191,6 +202,7 @@ int cmdGrid(const Args& args) {
     ProtectedInputs inputs(scene.inputFiles());
     checkNotAnInput(csvPath, "--csv");
     if (!haveExtent) defaultGridExtent(scene, spec);
+    applyLightChoice(scene, light, spec);
     GridResult result = computeGrid(
         scene, spec, [](const std::string& s) { std::fprintf(stderr, "grid: %s\n", s.c_str()); });
     GridSummary summary = summariseGrid(result.E);

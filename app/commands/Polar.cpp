@@ -85,7 +85,7 @@ int cmdPolar(const Args& args) {
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
         if (a == "--out")
-            out = flagValue(args, i);
+            out = outputValue(args, i);
         else if (a == "--step")
             step = parseInt(a, flagValue(args, i), 1, 90);
         else if (!a.empty() && a[0] == '-')

@@ -164,7 +164,7 @@ ProbeOptions parseProbeOptions(const Args& args) {
         else if (a == "--patches")
             o.patches = parseInt(a, flagValue(args, i), 16, 50000);
         else if (a == "--show-samples")
-            o.chartPath = flagValue(args, i);
+            o.chartPath = outputValue(args, i);
         else if (a == "--pixel")
             o.pixel = flagValue(args, i);
         else if (a == "--size")

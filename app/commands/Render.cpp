@@ -10,6 +10,7 @@
 #include "renderer/Renderer.h"
 #include "renderer/context/GlContext.h"
 #include "report/Report.h"
+#include "scene/CalculationGrid.h"
 #include "scene/Interreflection.h"
 #include "scene/InterreflectionWorker.h"
 #include "scene/SceneIo.h"
@@ -68,6 +69,13 @@ std::vector<float> parseNumberList(const std::string& flag, const std::string& t
 const std::string& flagValue(const Args& args, size_t& i) {
     if (i + 1 >= args.size()) throw InputError(args[i] + ": expected a value after it");
     return args[++i];
+}
+
+const std::string& outputValue(const Args& args, size_t& i) {
+    // `--csv ""` would otherwise write nothing and exit 0.
+    if (i + 1 < args.size() && args[i + 1].empty())
+        throw InputError(args[i] + ": expected a file name, got an empty one");
+    return flagValue(args, i);
 }
 
 int parseInt(const std::string& flag, const std::string& text, int min, int max) {
@@ -227,11 +235,11 @@ RenderOptions parseRenderOptions(const Args& args) {
         const std::string& a = args[i];
         if (parseChoice(args, i, o) || parseFalseColour(args, i, o)) continue;
         if (a == "--out")
-            o.out = flagValue(args, i);
+            o.out = outputValue(args, i);
         else if (a == "--pane")
             o.paneTexts.push_back(flagValue(args, i));
         else if (a == "--sheet")
-            o.sheetDir = flagValue(args, i);
+            o.sheetDir = outputValue(args, i);
         else if (a == "--reference-spp")
             o.referenceSpp = parseInt(a, flagValue(args, i), 1, 1 << 20);
         else if (a == "--error-maps")
@@ -422,8 +430,8 @@ void writeRender(const Renderer& renderer, const Scene& scene, const RenderOptio
 
 }  // namespace
 
-std::vector<unsigned char> renderSceneView(const Scene& scene, int width, int height, int spp,
-                                           std::string& note) {
+std::vector<unsigned char> renderSceneView(const Scene& scene, const GridSpec& how, int width,
+                                           int height, int spp, std::string& note) {
     RenderOptions o;
     o.settings.width = width;
     o.settings.height = height;
@@ -431,22 +439,24 @@ std::vector<unsigned char> renderSceneView(const Scene& scene, int width, int he
     o.spp = spp;
     o.settings.samplesPerFrame = std::min(spp, 16);
     o.settings.maxSamples = spp;
+    o.indirect = how.indirect;
+    o.patches = how.patches;
     auto context = createOffscreenContext();
     ShaderLibrary shaders;
     Renderer renderer(shaders);
     renderer.setSettings(o.settings);
     renderer.update(scene, kChangeAll);
     auto start = Clock::now();
-    std::string indirect = addInterreflection(renderer, scene, o, start);
+    addInterreflection(renderer, scene, o, start);
     int frames = 0;
     refine(renderer, spp, frames);
-    char text[256];
-    std::snprintf(text, sizeof text,
-                  "%dx%d pixels, %d samples per pixel, each luminaire's own "
-                  "technique; %s; %.1f s",
-                  width, height, spp, indirect.c_str(),
-                  std::chrono::duration<double>(Clock::now() - start).count());
-    note = text;
+    std::fprintf(stderr, "view: %dx%d pixels, %d samples per pixel in %.1f s\n", width, height, spp,
+                 std::chrono::duration<double>(Clock::now() - start).count());
+    note = std::to_string(width) + "x" + std::to_string(height) + " pixels, " +
+           std::to_string(spp) + " samples per pixel, direct light with shadows" +
+           (how.indirect ? " and the interreflected light of the same surface patches as the "
+                           "numbers"
+                         : ", without interreflected light");
     return renderer.readDisplay();
 }
 

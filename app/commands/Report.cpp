@@ -19,14 +19,15 @@ namespace {}  // namespace
 int cmdReport(const Args& args) {
     std::string scenePath, out, title;
     GridSpec how;
+    LightChoice light;
     int viewWidth = 960, viewHeight = 540, viewSpp = 64;
     bool view = true;
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
-        if (parseEvaluationFlag(args, i, how))
+        if (parseEvaluationFlag(args, i, how, light))
             continue;
         else if (a == "--out")
-            out = flagValue(args, i);
+            out = outputValue(args, i);
         else if (a == "--title")
             title = flagValue(args, i);
         else if (a == "--view-size")
@@ -43,13 +44,13 @@ int cmdReport(const Args& args) {
             throw InputError("report: unexpected argument " + a);
     }
     if (scenePath.empty() || out.empty())
-        throw InputError(
-            "usage: candela report scene.json --out report.pdf [--title T] [--spp N] "
-            "[--technique T] [--visibility] [--indirect [--patches N] [--indirect-method M]] "
-            "[--view-size WxH] [--view-spp N] [--no-view]");
+        throw InputError(std::string("usage: candela report scene.json --out report.pdf "
+                                     "[--title T] ") +
+                         kEvaluationUsage + " [--view-size WxH] [--view-spp N] [--no-view]");
     if (std::filesystem::path(out).extension() != ".pdf")
         throw InputError(out + ": the report is a PDF: name it NAME.pdf");
     Scene scene = loadScene(scenePath);
+    applyLightChoice(scene, light, how);
     ProtectedInputs inputs(scene.inputFiles());
     checkNotAnInput(out, "--out");
     auto status = [](const std::string& s) { std::fprintf(stderr, "report: %s\n", s.c_str()); };
@@ -61,7 +62,7 @@ int cmdReport(const Args& args) {
     if (view) {
         try {
             status("rendering the view");
-            in.view = renderSceneView(scene, viewWidth, viewHeight, viewSpp, in.viewNote);
+            in.view = renderSceneView(scene, how, viewWidth, viewHeight, viewSpp, in.viewNote);
             in.viewWidth = viewWidth;
             in.viewHeight = viewHeight;
         } catch (const std::exception& e) {

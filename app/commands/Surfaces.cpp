@@ -30,8 +30,8 @@ void printReport(const SurfaceReport& r) {
     std::printf("maintained illuminance E [%s]%s%s\n", unit, r.units.converted ? ", " : "",
                 r.units.note().c_str());
     std::printf("%s\n%s\n", r.maintenance.c_str(), r.bodies.c_str());
-    std::printf("light: %s\n", r.hasIndirect ? "direct and interreflected"
-                                             : "direct only (interreflected light: --indirect)");
+    std::printf("light: %s\n", r.light.c_str());
+    if (r.hasIndirect) std::printf("%s\n", r.indirectNote.c_str());
     int failed = 0;
     for (const SurfaceResult& s : r.surfaces) {
         if (s.cylindrical)
@@ -118,12 +118,13 @@ std::string reportCsv(const SurfaceReport& r) {
 int cmdSurfaces(const Args& args) {
     std::string scenePath, csvPath;
     GridSpec how;
+    LightChoice light;
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
-        if (parseEvaluationFlag(args, i, how))
+        if (parseEvaluationFlag(args, i, how, light))
             continue;
         else if (a == "--csv")
-            csvPath = flagValue(args, i);
+            csvPath = outputValue(args, i);
         else if (!a.empty() && a[0] == '-')
             throw InputError("surfaces: unknown option " + a);
         else if (scenePath.empty())
@@ -132,11 +133,10 @@ int cmdSurfaces(const Args& args) {
             throw InputError("surfaces: unexpected argument " + a);
     }
     if (scenePath.empty())
-        throw InputError(
-            "usage: candela surfaces scene.json [--spp N] [--technique T] [--env-technique T] "
-            "[--visibility] [--indirect [--patches N] [--indirect-method adaptive|gather|patches]] "
-            "[--csv out.csv]");
+        throw InputError(std::string("usage: candela surfaces scene.json ") + kEvaluationUsage +
+                         " [--csv out.csv]");
     Scene scene = loadScene(scenePath);
+    applyLightChoice(scene, light, how);
     ProtectedInputs inputs(scene.inputFiles());
     checkNotAnInput(csvPath, "--csv");
     SurfaceReport report = computeSurfaces(scene, how, [](const std::string& s) {

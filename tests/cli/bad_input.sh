@@ -34,5 +34,14 @@ expect "unknown option" -- render "$data/ok.json" --out "$out/a.png" --frobnicat
 # A failed render leaves no output file behind.
 [ ! -e "$out/a.png" ] || { echo "FAIL: a failed render left $out/a.png"; failures=$((failures + 1)); }
 
+# An empty output name is refused, naming the flag (it used to write nothing and exit 0).
+office="$2/../resources/scenes/office.json"
+expect "--csv" "empty" -- grid "$office" --plane y=0.8 --csv ""
+expect "--csv" "empty" -- surfaces "$office" --csv ""
+expect "--csv" "empty" -- glare "$office" --csv ""
+expect "--csv" "empty" -- glare --table "$2/../resources/luminaires/photometric/prolicht-e30.ldt" --csv ""
+expect "--out" "empty" -- polar "$2/../resources/luminaires/photometric/prolicht-e30.ldt" --out ""
+expect "--show-samples" "empty" -- probe "$data/ok.json" --points "$data/ok_points.csv" --show-samples ""
+
 echo "$passed passed, $failures failed"
 [ $failures -eq 0 ]

@@ -104,11 +104,13 @@ fi
 # the table (1.6 x 0.9 m top at 0.75 m, centred on (0, -0.5)) lose the pendant's light, the
 # ones beyond it keep theirs; without it nothing changes (issue 17: the CPU estimators ignored
 # occluders for photometric luminaires).
+# Shadows are the default (with the interreflected light, the same in both runs); --no-shadows
+# leaves them out.
 room="$2/../resources/scenes/photometric.json"
-if "$binary" grid "$room" --plane y=0.0 --extent -0.6,-0.8,0.6,-0.2 --spacing 0.2 >"$out/open.txt" 2>&1 &&
-    "$binary" grid "$room" --plane y=0.0 --extent -0.6,-0.8,0.6,-0.2 --spacing 0.2 --visibility >"$out/vis.txt" 2>&1 &&
-    "$binary" grid "$room" --plane y=0.0 --extent -0.6,1.2,0.6,1.6 --spacing 0.2 >"$out/open2.txt" 2>&1 &&
-    "$binary" grid "$room" --plane y=0.0 --extent -0.6,1.2,0.6,1.6 --spacing 0.2 --visibility >"$out/vis2.txt" 2>&1; then
+if "$binary" grid "$room" --plane y=0.0 --extent -0.6,-0.8,0.6,-0.2 --spacing 0.2 --no-shadows >"$out/open.txt" 2>&1 &&
+    "$binary" grid "$room" --plane y=0.0 --extent -0.6,-0.8,0.6,-0.2 --spacing 0.2 >"$out/vis.txt" 2>&1 &&
+    "$binary" grid "$room" --plane y=0.0 --extent -0.6,1.2,0.6,1.6 --spacing 0.2 --no-shadows >"$out/open2.txt" 2>&1 &&
+    "$binary" grid "$room" --plane y=0.0 --extent -0.6,1.2,0.6,1.6 --spacing 0.2 >"$out/vis2.txt" 2>&1; then
   python3 - "$out/open.txt" "$out/vis.txt" "$out/open2.txt" "$out/vis2.txt" <<'PY' || failures=$((failures + 1))
 import sys
 def summary(path):
@@ -123,6 +125,8 @@ if not v["Eavg"] < 0.5 * o["Emin"]: fail.append("under the table: Eavg %g with v
 for k in ("Emin", "Eavg", "Emax"):
     if abs(v2[k] - o2[k]) > 1e-4 * o2[k]: fail.append("beyond the table %s %g vs %g" % (k, v2[k], o2[k]))
 if "illuminance E [lx]" not in tv: fail.append("the photometric room is not reported in lx")
+if "light: direct light with shadows, and interreflected light" not in tv: fail.append("the default does not say it has shadows and interreflected light")
+if "light: direct light without shadows (switched off), and interreflected light" not in to: fail.append("--no-shadows is not stated")
 print("photometric room under the table: Eavg %.4g lx with --visibility, %.4g lx without" % (v["Eavg"], o["Eavg"]))
 for f in fail: print("FAIL:", f)
 sys.exit(1 if fail else 0)

@@ -100,6 +100,26 @@ expect "--device gpu" "--indirect" -- probe "$data/office.json" --points "$out/p
 "$binary" grid "$data/outward.json" --plane y=0.8 --spacing 1 --indirect >/dev/null 2>"$out/outward.err"
 check "a room facing out is warned about" grep -q "lights the back of surfaces" "$out/outward.err"
 
+# Right by default: with no flag, grid computes what a light meter reads (direct light with
+# shadows and the interreflected light), the same numbers as the explicit flags, and says so;
+# --light direct and --no-shadows are explicit choices the output states.
+"$binary" grid "$data/office.json" --plane y=0.8 --spacing 1 --spp 64 --csv "$out/default.csv" >"$out/default.txt" 2>/dev/null
+"$binary" grid "$data/office.json" --plane y=0.8 --spacing 1 --spp 64 --indirect --visibility --csv "$out/explicit.csv" >/dev/null 2>&1
+"$binary" grid "$data/office.json" --plane y=0.8 --spacing 1 --spp 64 --light direct --no-shadows >"$out/direct.txt" 2>/dev/null
+check "grid with no flag is the full calculation" cmp -s "$out/default.csv" "$out/explicit.csv"
+check "grid with no flag says what it includes" grep -qx "light: direct light with shadows, and interreflected light" "$out/default.txt"
+check "grid --light direct --no-shadows says what it left out" grep -qx "light: direct light without shadows (switched off); no interreflected light (switched off)" "$out/direct.txt"
+check "the default's direct part is --light direct's light" python3 - "$out/default.txt" "$out/direct.txt" <<'PY'
+import sys
+full = [l for l in open(sys.argv[1]) if l.startswith("direct:")][0]
+direct = [l for l in open(sys.argv[2]) if l.startswith("Eavg:")][0]
+em = float(full.split("Em ")[1].split()[0]); eavg = float(direct.split()[1])
+# The office has no occluder between a downlight and the work plane's points at 1 m spacing
+# except the desk's top, which no point lies under: shadows change nothing there.
+sys.exit(0 if abs(em - eavg) <= 1e-5 * eavg else "direct Em %g vs --light direct %g" % (em, eavg))
+PY
+expect "--light" "total" "direct" "\"all\"" -- grid "$data/office.json" --plane y=0.8 --light all
+
 "$binary" validate --case direct-point-plane >"$out/case.txt" 2>&1
 check "validate --case runs one case" grep -q "^direct-point-plane .* pass" "$out/case.txt"
 check "validate --list lists every case" bash -c "[ \$('$binary' validate --list | wc -l) -eq 19 ]"
