@@ -12,6 +12,7 @@
 #include "renderer/Renderer.h"
 #include "renderer/context/GlContext.h"
 #include "scene/Bvh.h"
+#include "scene/CalculationGrid.h"
 #include "scene/EmbreeVisibility.h"
 #include "scene/Interreflection.h"
 #include "scene/SceneIo.h"
@@ -349,13 +350,21 @@ ProbeSums probeGpu(const Scene& scene, const std::vector<ProbePoint>& points, co
 
 /// The CSV on stdout (a stable contract); its unit on stderr (and in the README).
 void printProbeCsv(const Scene& scene, const std::vector<ProbePoint>& points, const ProbeSums& sums,
-                   bool indirect) {
+                   bool shadows, bool indirect) {
     UnitSystem units = scene.units();
     std::fprintf(stderr, "probe: E, E_r, E_g, E_b and E_stderr in %s%s\n",
                  units.irradianceLabel().c_str(),
                  indirect ? ", direct plus interreflected light" : "");
     std::fprintf(stderr, "probe: %s\nprobe: %s\n", scene.maintenanceNote().c_str(),
                  scene.bodiesNote().c_str());
+    // A tool for comparing techniques: direct light without shadows unless asked for.
+    GridSpec light;
+    light.visibility = shadows;
+    light.indirect = indirect;
+    std::fprintf(stderr, "probe: light: %s%s\n", lightStatement(scene, light).c_str(),
+                 shadows && indirect ? ""
+                                     : " (probe's default; --visibility and --indirect "
+                                       "add shadows and interreflected light)");
     std::printf("x,y,z,nx,ny,nz,E,E_r,E_g,E_b,E_stderr\n");
     for (size_t i = 0; i < points.size(); ++i) {
         const ProbePoint& q = points[i];
@@ -386,7 +395,7 @@ int cmdProbe(const Args& args) {
         throw InputError("--show-samples: " + o.pointsPath + " has no points");
     if (!o.chartPath.empty())
         writeSampleChart(scene, points.front().n, env->name, o.chartSpp, o.chartPath);
-    printProbeCsv(scene, points, sums, o.indirect);
+    printProbeCsv(scene, points, sums, o.withVisibility, o.indirect);
     return 0;
 }
 
