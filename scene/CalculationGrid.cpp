@@ -104,16 +104,13 @@ bool sceneCastsShadows(const Scene& scene) {
 }
 
 bool sceneReflects(const Scene& scene) {
-    size_t reflecting = 0;
-    bool flat = true;
+    // One flat floor alone reflects nothing onto itself, but onto every receiver that faces it
+    // (a wall's or a face's vertical illuminance, a point under a canopy): any surface counts.
     for (const Mesh& m : scene.meshes)
         if (!m.luminaireBody && m.triangleCount() > 0 && m.material < scene.materials.size() &&
-            glm::any(glm::greaterThan(scene.materials[m.material].albedo, glm::vec3(0.f)))) {
-            ++reflecting;
-            flat = flat && m.shape == MeshShape::Plane;
-        }
-    // One flat surface alone sees nothing its light could reach.
-    return reflecting > 1 || (reflecting == 1 && !flat);
+            glm::any(glm::greaterThan(scene.materials[m.material].albedo, glm::vec3(0.f))))
+            return true;
+    return false;
 }
 
 void applyLightChoice(const Scene& scene, const LightChoice& choice, GridSpec& spec) {

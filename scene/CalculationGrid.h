@@ -81,8 +81,8 @@ struct LightChoice {
 };
 /// Something in `scene` can block a luminaire's light: a surface or a luminaire body.
 bool sceneCastsShadows(const Scene& scene);
-/// A surface of `scene` reflects light onto another: an albedo above 0 on two surfaces, or on
-/// one that is not a single flat polygon.
+/// A surface of `scene` reflects light: an albedo above 0 on any surface that is not a luminaire's
+/// body (a lone floor reflects onto every receiver that faces it).
 bool sceneReflects(const Scene& scene);
 /// Sets spec.visibility and spec.indirect to what `scene` calls for, less what `choice` turns
 /// off.

@@ -11,7 +11,11 @@
 //   interreflected part is rho Phi / (A (1 - rho)) at every point, however uneven the direct light;
 // - direct light: an isotropic point source over a plane (I cos^3 / h^2), a Lambertian rectangle
 //   over a parallel and a perpendicular plane (Howell's configuration factors);
-// - an obstruction: a table between a luminaire and the work plane.
+// - an obstruction: a table between a luminaire and the work plane;
+// - CIE 171:2006's own analytical cases (cie171-5.2 point source, 5.3 area source, 5.4 flux
+//   conservation, 5.6 diffuse reflection, 5.7 internal obstruction, 5.8 interreflection in the
+//   4 m cube up to rho 0.95), each computed as a design calculation is (computeReceivers with
+//   everything the scene calls for).
 //
 // `candela validate` prints them as a table; tests/validation_test.cpp runs each as a ctest.
 

@@ -73,13 +73,17 @@ point = L * 0.04 * (H * H / r2) ** 2 / (H * H)
 if abs(best[0] - point) > 0.01 * point: fail.append("point-source check %g vs %g" % (best[0], point))
 # CSV: header and one row per point, 10 significant digits.
 csv = open(sys.argv[2]).read().split()
-if csv[0] != "x,y,z,E_W_m2,E_stderr_W_m2,maintenance_factor,E_initial_W_m2": fail.append("CSV header %s" % csv[0])
+# The lone floor reflects, so its interreflected columns are there, and 0: a flat floor does not
+# light itself.
+if csv[0] != ("x,y,z,E_W_m2,E_stderr_W_m2,maintenance_factor,E_initial_W_m2,E_direct_W_m2,"
+              "E_direct_stderr_W_m2,E_indirect_W_m2,E_indirect_stderr_W_m2"):
+    fail.append("CSV header %s" % csv[0])
 if not any(l.startswith("irradiance E [W/m2]") for l in text): fail.append("no 'irradiance E [W/m2]' header")
 for line in csv[1:]:
-    x, y, z, e, se, mf, initial = map(float, line.split(","))
+    x, y, z, e, se, mf, initial, direct, dse, indirect, ise = map(float, line.split(","))
     # No maintenance factor in this scene: 1, and the initial value is the value.
     if y != 0.0 or abs(e - exact(x, z)) > 1e-8 * exact(x, z) or se != 0.0 or mf != 1.0 \
-            or abs(initial - e) > 1e-9 * e:
+            or abs(initial - e) > 1e-9 * e or direct != e or indirect != 0.0 or ise != 0.0:
         fail.append("CSV row %s, want E %.10g" % (line, exact(x, z)))
 if len(csv) != 65: fail.append("CSV has %d rows, want 65" % len(csv))
 for f in fail: print("FAIL:", f)

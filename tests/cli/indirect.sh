@@ -122,7 +122,7 @@ expect "--light" "total" "direct" "\"all\"" -- grid "$data/office.json" --plane 
 
 "$binary" validate --case direct-point-plane >"$out/case.txt" 2>&1
 check "validate --case runs one case" grep -q "^direct-point-plane .* pass" "$out/case.txt"
-check "validate --list lists every case" bash -c "[ \$('$binary' validate --list | wc -l) -eq 19 ]"
+check "validate --list lists every case" bash -c "[ \$('$binary' validate --list | wc -l) -eq 30 ]"
 expect "unknown case" "cube-laser" "cube-point-rho0.5" -- validate --case cube-laser
 
 echo "$passed passed, $failures failed"

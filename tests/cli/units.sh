@@ -23,7 +23,7 @@ check() {  # check NAME COMMAND...: runs it, counts a failure with NAME when it 
 check "mixed grid names lx and the conversion" grep -qF "illuminance E [lx], $note" "$out/mixed.txt"
 check "mixed grid summary in lx" grep -q "^Eavg: [0-9.]* lx$" "$out/mixed.txt"
 check "photometric grid has no conversion note" bash -c "! grep -q '683' '$out/photometric.txt'"
-check "CSV columns name lx" grep -q "^x,y,z,E_lx,E_stderr_lx,maintenance_factor,E_initial_lx$" "$out/mixed.csv"
+check "CSV columns name lx" grep -q "^x,y,z,E_lx,E_stderr_lx,maintenance_factor,E_initial_lx,E_direct_lx,E_direct_stderr_lx,E_indirect_lx,E_indirect_stderr_lx$" "$out/mixed.csv"
 # The panel's 2 W/(m2 sr) at 683 lm/W is the photometric scene's 1366 cd/m2: the same grid.
 check "mixed = photometric at 683 lm/W" python3 - "$out/mixed.csv" "$out/photometric.csv" <<'PY'
 import sys
