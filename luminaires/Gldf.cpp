@@ -11,6 +11,7 @@
 #include <set>
 
 #include "util/Error.h"
+#include "util/FileInput.h"
 #include "util/TextEncoding.h"
 #include "util/ZipArchive.h"
 
@@ -37,12 +38,6 @@ constexpr int kMembersNamed = 5;
 
 std::string inQuotes(const std::string& s) {
     return "\"" + s + "\"";
-}
-
-std::string megabytes(uint64_t bytes) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.1f MB", double(bytes) / double(1 << 20));
-    return buf;
 }
 
 /// Reads product.xml's elements; every message names the container and product.xml.
@@ -513,17 +508,7 @@ const GldfVariant* GldfProduct::variant(const std::string& id) const {
 }
 
 std::string readGldfBytes(const std::string& path) {
-    std::error_code ec;
-    if (!fs::is_regular_file(path, ec)) fail(path + ": no such file");
-    uintmax_t size = fs::file_size(path, ec);
-    if (ec) fail(path + ": cannot be read (" + ec.message() + ")");
-    if (size > kMaxGldfContainer)
-        fail(path + ": " + megabytes(size) + ", more than the " + megabytes(kMaxGldfContainer) +
-             " a GLDF container may hold here");
-    std::ifstream in(path, std::ios::binary);
-    std::string bytes(size_t(size), '\0');
-    if (!in.read(bytes.data(), std::streamsize(size))) fail(path + ": cannot be read");
-    return bytes;
+    return readInputFile(path, "GLDF", kMaxGldfContainer);
 }
 
 GldfProduct parseGldf(const std::string& bytes, const std::string& path) {

@@ -23,6 +23,7 @@
 
 #include "luminaires/Photometry.h"
 #include "util/Error.h"
+#include "util/FileInput.h"
 
 namespace candela {
 
@@ -274,16 +275,14 @@ void readTiltSection(const std::string& tiltLineText, size_t tiltLine, TokenStre
         if (tilt.empty())
             fail(path, int(tiltLine) + 1, "NONE, INCLUDE or a file name after TILT=", "nothing");
         std::filesystem::path tiltPath = std::filesystem::path(path).parent_path() / tilt;
-        std::error_code ec;
-        std::ifstream tf;
-        if (std::filesystem::is_regular_file(tiltPath, ec)) tf.open(tiltPath, std::ios::binary);
-        if (!tf.is_open())
+        std::string tiltText;
+        try {
+            tiltText = readInputFile(tiltPath.string(), "TILT", kMaxPhotometryBytes);
+        } catch (const InputError& e) {
             fail(path, int(tiltLine) + 1,
-                 "the TILT file " + showToken(tilt) + " next to the photometry file",
-                 "no readable file " + tiltPath.string());
-        std::stringstream tiltText;
-        tiltText << tf.rdbuf();
-        TokenStream tiltIn(tiltPath.string(), splitLines(tiltText.str()), 0);
+                 "the TILT file " + showToken(tilt) + " next to the photometry file", e.what());
+        }
+        TokenStream tiltIn(tiltPath.string(), splitLines(tiltText), 0);
         readTilt(tiltIn, d);
         d.tiltPath = tiltPath.string();
     }

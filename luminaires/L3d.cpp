@@ -16,6 +16,7 @@
 
 #include "luminaires/Photometry.h"
 #include "util/Error.h"
+#include "util/FileInput.h"
 #include "util/TextEncoding.h"
 #include "util/ZipArchive.h"
 
@@ -396,19 +397,11 @@ L3dLuminaire loadL3d(const std::string& path) {
                                 [](const fs::path& part) { return part == ".."; }))
                     return std::nullopt;
                 fs::path file = fs::path(path) / relative;
-                if (!fs::is_regular_file(file, ec)) return std::nullopt;
-                if (fs::file_size(file, ec) > kMaxZipMember)
-                    fail(path + ": " + member + ": more than the 64 MB a member may hold");
-                std::ifstream in(file, std::ios::binary);
-                return std::string(std::istreambuf_iterator<char>(in), {});
+                if (!fs::exists(file, ec)) return std::nullopt;
+                return readInputFile(file.string(), "L3D member", kMaxZipMember);
             });
     }
-    if (!fs::is_regular_file(path, ec)) fail(path + ": no such file or folder");
-    uintmax_t size = fs::file_size(path, ec);
-    if (ec || size > (uintmax_t(256) << 20)) fail(path + ": cannot be read or larger than 256 MB");
-    std::ifstream in(path, std::ios::binary);
-    std::string bytes(std::istreambuf_iterator<char>(in), {});
-    return parseL3d(bytes, path);
+    return parseL3d(readInputFile(path, "L3D", kMaxL3dContainer), path);
 }
 
 }  // namespace candela

@@ -28,6 +28,8 @@ namespace candela {
 /// Largest number of vertices read from one L3D (all parts together): the examples hold
 /// thousands, manufacturers' models up to about a million.
 constexpr size_t kMaxL3dVertices = size_t(4) << 20;
+/// Largest .l3d container read: the archive is read whole before it is unpacked.
+constexpr uint64_t kMaxL3dContainer = uint64_t(256) << 20;
 
 /// One Geometry element: its OBJ part placed in the luminaire frame.
 struct L3dPart {

@@ -8,6 +8,7 @@
 
 #include "luminaires/LightField.h"
 #include "util/Error.h"
+#include "util/FileInput.h"
 #include "util/FileOutput.h"
 #include "util/ImageRead.h"
 #include "util/JsonRead.h"
@@ -89,13 +90,10 @@ namespace {
 
 /// The light-field file's JSON document; InputError when it cannot be read or is not JSON.
 nlohmann::json readJsonFile(const fs::path& file) {
-    std::ifstream in(file);
-    if (!in) throw InputError(file.string() + ": cannot open light-field file");
-    std::stringstream text;
-    text << in.rdbuf();
+    std::string text = readInputFile(file.string(), "light-field", kMaxTextBytes);
     nlohmann::json doc;
     try {
-        doc = nlohmann::json::parse(text.str());
+        doc = nlohmann::json::parse(text);
     } catch (const nlohmann::json::exception& e) {
         throw InputError(file.string() + ": invalid JSON (" + e.what() + ")");
     }

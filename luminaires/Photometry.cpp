@@ -12,6 +12,7 @@
 
 #include "shaders/shared/Constants.h"
 #include "util/Error.h"
+#include "util/FileInput.h"
 #include "util/TextEncoding.h"
 
 // Shared part of the far-field photometry: the luminous opening, bilinear evaluation of the
@@ -26,9 +27,6 @@ using gpu::kPi;
 constexpr double kDegToRad = kPi / 180.0;
 /// Two angles closer than this (degrees) are the same angle when unfolding symmetries.
 constexpr double kAngleEps = 1e-9;
-/// Files larger than this are refused before reading (the largest real IES/LDT files are a few
-/// MB; this keeps a corrupt path from exhausting memory).
-constexpr std::streamoff kMaxFileBytes = 64ll << 20;
 /// Sides of the polygon that stands for an ellipse or a circle.
 constexpr int kEllipseSides = 16;
 
@@ -479,19 +477,10 @@ PhotometricData loadPhotometry(const std::string& path, const PhotometryOptions&
                          ": expected a photometry file ending in .ies, .ldt, .xml or .iesxml "
                          "(TM-33), found '" +
                          toValidUtf8(ext) + "'");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(shown + ": cannot open photometry file");
-    in.seekg(0, std::ios::end);
-    std::streamoff size = in.tellg();
-    if (size > kMaxFileBytes)
-        throw InputError(shown + ": expected a photometry file of at most 64 MiB, found " +
-                         std::to_string(size) + " bytes");
-    in.seekg(0, std::ios::beg);
-    std::stringstream text;
-    text << in.rdbuf();
-    if (ext == ".ies") return parseIes(text.str(), path, options);
-    if (ext == ".ldt") return parseEulumdat(text.str(), path, options);
-    return parseTm33(text.str(), path, options);
+    std::string text = readInputFile(path, "photometry", kMaxPhotometryBytes);
+    if (ext == ".ies") return parseIes(text, path, options);
+    if (ext == ".ldt") return parseEulumdat(text, path, options);
+    return parseTm33(text, path, options);
 }
 
 }  // namespace candela

@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "util/Error.h"
+#include "util/FileInput.h"
 
 namespace candela {
 
@@ -93,8 +94,8 @@ std::string utf32(const unsigned char* p, uint64_t units) {
 class Source {
   public:
     explicit Source(const fs::path& file) : mName(file.string()) {
-        std::error_code ec;
-        if (fs::is_directory(file, ec)) fail("is a directory, not a TM-25 ray file");
+        // A regular file only (a FIFO would block the open); streamed, so no size limit here.
+        checkInputFile(mName, "TM-25 ray", kStreamed);
         mIn.open(file, std::ios::binary);
         if (!mIn) fail("cannot open TM-25 ray file");
         mIn.seekg(0, std::ios::end);

@@ -16,6 +16,7 @@
 #include <map>
 
 #include "util/Error.h"
+#include "util/FileInput.h"
 
 namespace candela {
 
@@ -525,14 +526,13 @@ std::string percentDecoded(const std::string& uri) {
 std::vector<std::string> loadGltf(const std::string& path, const glm::dmat4& transform,
                                   Scene& scene, const json::Where& where) {
     const std::string prefix = where.file.empty() ? path : where.str() + ": " + path;
-    errno = 0;
-    std::FILE* probe = std::fopen(path.c_str(), "rb");
-    if (!probe) {
-        int err = errno;
-        throw InputError(prefix + ": cannot open glTF file (" +
-                         (err ? std::strerror(err) : "unknown error") + ")");
+    try {
+        checkInputFile(path, "glTF", kMaxGltfBytes);
+    } catch (const InputError& e) {
+        // The message names the path; the scene's field goes before it.
+        throw InputError(where.file.empty() ? std::string(e.what())
+                                            : where.str() + ": " + e.what());
     }
-    std::fclose(probe);
 
     std::string ext = std::filesystem::path(path).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(),
@@ -542,6 +542,32 @@ std::vector<std::string> loadGltf(const std::string& path, const glm::dmat4& tra
                          "\" (expected .gltf or .glb)");
 
     tinygltf::TinyGLTF loader;
+    // Every file tinygltf reads (the glTF, its buffers and images) through util/FileInput.h:
+    // regular files only, each within kMaxGltfBytes (its own reader would block on a FIFO and
+    // read a device until memory ran out).
+    tinygltf::FsCallbacks reads{};
+    reads.FileExists = [](const std::string& file, void*) {
+        std::error_code ec;
+        return std::filesystem::exists(file, ec);
+    };
+    reads.ExpandFilePath = [](const std::string& file, void*) { return file; };
+    reads.ReadWholeFile = [](std::vector<unsigned char>* out, std::string* err,
+                             const std::string& file, void*) {
+        try {
+            std::string bytes = readInputFile(file, "glTF", kMaxGltfBytes);
+            out->assign(bytes.begin(), bytes.end());
+            return true;
+        } catch (const InputError& e) {
+            if (err) *err += std::string(e.what()) + "\n";
+            return false;
+        }
+    };
+    reads.WriteWholeFile = [](std::string* err, const std::string&,
+                              const std::vector<unsigned char>&, void*) {
+        if (err) *err += "Candela does not write glTF files here\n";
+        return false;
+    };
+    loader.SetFsCallbacks(reads);
     tinygltf::Model model;
     std::string err, warn;
     bool ok = ext == ".glb" ? loader.LoadBinaryFromFile(&model, &err, &warn, path)

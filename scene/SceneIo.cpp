@@ -17,6 +17,7 @@
 #include "scene/GltfLoader.h"
 #include "shaders/shared/Constants.h"
 #include "util/Error.h"
+#include "util/FileInput.h"
 #include "util/FileOutput.h"
 
 namespace candela {
@@ -48,24 +49,10 @@ std::string lowerExtension(const std::string& path) {
     return ext;
 }
 
-/// Whole file as bytes; throws InputError "PATH: cannot open scene file (reason)".
+/// Whole file as bytes (util/FileInput.h: a regular file of at most kMaxSceneBytes); throws
+/// InputError "PATH: cannot open scene file (reason)" and the like.
 std::string readFile(const std::string& path) {
-    errno = 0;
-    std::FILE* file = std::fopen(path.c_str(), "rb");
-    if (!file) {
-        int err = errno;
-        throw InputError(path + ": cannot open scene file (" +
-                         (err ? std::strerror(err) : "unknown error") + ")");
-    }
-    std::string text;
-    char buffer[1 << 16];
-    size_t n;
-    while ((n = std::fread(buffer, 1, sizeof buffer, file)) > 0) text.append(buffer, n);
-    bool failed = std::ferror(file) != 0;
-    int err = errno;
-    std::fclose(file);
-    if (failed) throw InputError(path + ": cannot read scene file (" + std::strerror(err) + ")");
-    return text;
+    return readInputFile(path, "scene", kMaxSceneBytes);
 }
 
 /// nlohmann reports a parse error at a 1-based byte count (the last byte it read). Converts it

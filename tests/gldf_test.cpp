@@ -644,7 +644,7 @@ TEST(Gldf, NotAZipAndNotXml) {
     EXPECT_EQ(refusal([&] { loadGldf(path); }),
               path + ": product.xml: the root element is <Product>, expected <Root>");
     EXPECT_EQ(refusal([&] { loadGldf(tmp.file("none.gldf")); }),
-              tmp.file("none.gldf") + ": no such file");
+              tmp.file("none.gldf") + ": cannot open GLDF file (No such file or directory)");
 }
 
 // --- Scene files -------------------------------------------------------------------------------

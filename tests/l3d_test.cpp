@@ -189,7 +189,9 @@ TEST(L3d, DefectsAreOneLineErrorsNamingTheMember) {
     }
     test::TempDir empty;
     EXPECT_NE(refusal(empty.path().string()).find("structure.xml: missing"), std::string::npos);
-    EXPECT_NE(refusal(empty.file("nothing.l3d")).find("no such file or folder"), std::string::npos);
+    EXPECT_NE(
+        refusal(empty.file("nothing.l3d")).find("cannot open L3D file (No such file or directory)"),
+        std::string::npos);
     std::ofstream(empty / "structure.xml") << "";
     EXPECT_NE(refusal(empty.path().string()).find("structure.xml: not well-formed XML"),
               std::string::npos);

@@ -5,11 +5,13 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <sstream>
 #include <string_view>
 #include <system_error>
 #include <unordered_map>
 
 #include "util/Error.h"
+#include "util/FileInput.h"
 
 namespace candela::ui {
 
@@ -124,8 +126,7 @@ std::vector<ErrorSeries> readBenchCsv(const std::filesystem::path& path) {
         throw InputError(file + ": no such file (expected a benchmark CSV)");
     if (!std::filesystem::is_regular_file(path, ec))
         throw InputError(file + ": not a regular file (expected a benchmark CSV)");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(file + ": cannot be opened for reading");
+    std::istringstream in(readInputFile(file, "benchmark CSV", kMaxTextBytes));
 
     CsvPlace at{file, 0};
     std::string line;

@@ -41,6 +41,8 @@ void saveFolders(EditorState& state) {
 
 /// Whether an .xml file's first kilobytes name a TM-33 root element.
 bool looksLikeTm33(const fs::path& path) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) return false;  // a FIFO would block the scan
     std::ifstream in(path, std::ios::binary);
     std::string head(4096, '\0');
     in.read(head.data(), std::streamsize(head.size()));

@@ -9,6 +9,8 @@
 #include <sstream>
 
 #include "scene/SceneIo.h"
+#include "util/Error.h"
+#include "util/FileInput.h"
 #include "util/FileOutput.h"
 
 namespace candela::ui {
@@ -239,10 +241,12 @@ void removeAutosave(const std::string& scenePath, const EditorSession& owner) {
 }
 
 std::string fileFingerprint(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return {};
-    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (in.bad()) return {};
+    std::string bytes;
+    try {
+        bytes = readInputFile(path, "scene", kMaxSceneBytes);
+    } catch (const InputError&) {
+        return {};
+    }
     return std::to_string(bytes.size()) + ":" + std::to_string(std::hash<std::string>{}(bytes));
 }
 

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "util/Error.h"
+#include "util/FileInput.h"
 
 namespace candela {
 
@@ -182,6 +183,11 @@ ImageFileReader::ImageFileReader(const std::string& path, const std::string& con
     : mInput(std::make_unique<Input>()), mContext(context) {
     std::string ext = std::filesystem::path(path).extension().string();
     for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    try {
+        checkInputFile(path, "image", kMaxImageBytes);
+    } catch (const InputError& e) {
+        throw InputError(context + ": cannot read image: " + e.what());
+    }
     if (ext == ".exr") checkExrHeader(path, context, maxSide);
     auto& in = mInput->in;
     in = OIIO::ImageInput::create(ext.size() > 1 ? ext.substr(1) : std::string("none"));

@@ -18,6 +18,7 @@
 #include "scene/SceneIo.h"
 #include "ui/ViewportMath.h"
 #include "util/Error.h"
+#include "util/FileInput.h"
 #include "util/FileOutput.h"
 
 namespace candela {
@@ -36,8 +37,7 @@ std::string trim(const std::string& s) {
 
 /// Reads "x,y,z,nx,ny,nz" rows after that exact header; errors name the file and line.
 std::vector<ProbePoint> readPoints(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw InputError(path + ": cannot open points file");
+    std::istringstream in(readInputFile(path, "points", kMaxTextBytes));
     std::string line;
     int lineNo = 0;
     std::vector<ProbePoint> points;
