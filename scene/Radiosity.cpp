@@ -8,6 +8,7 @@
 #include "scene/EmbreeVisibility.h"
 #include "scene/Scene.h"
 #include "shaders/shared/Constants.h"
+#include "util/Error.h"
 
 namespace candela {
 
@@ -127,6 +128,19 @@ class VertexWelder {
 
 /// Splits triangle t of mesh mi into patches of about `patchArea` (edge h), appending them and
 /// the triangle's Split to `out`.
+/// How many times the edges of triangle (a, b, c) are divided for patches of edge about h (area
+/// patchArea): its n^2 patches are about the patch area (half a square's triangle of edge h gets
+/// n = s / h), and no patch edge is over 1.5 h (slivers, such as a disc's fan, get split
+/// lengthwise). 0 for a degenerate triangle (no patch).
+uint32_t triangleSubdivisions(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
+                              double h, double patchArea) {
+    double twiceArea = glm::length(glm::cross(b - a, c - a));
+    if (!(twiceArea > 1e-18) || !std::isfinite(twiceArea)) return 0;
+    double longest = std::max({glm::length(b - a), glm::length(c - b), glm::length(a - c)});
+    double divisions = std::max(std::sqrt(0.5 * twiceArea / patchArea), longest / (1.5 * h));
+    return uint32_t(std::clamp(std::ceil(divisions - 1e-9), 1.0, double(kMaxSubdivisions)));
+}
+
 void addTrianglePatches(RadiosityMesh& out, VertexWelder& welder, const Mesh& m, size_t mi,
                         size_t t, const glm::dvec3& albedo, double h, double patchArea) {
     using Split = RadiosityMesh::Split;
@@ -137,7 +151,8 @@ void addTrianglePatches(RadiosityMesh& out, VertexWelder& welder, const Mesh& m,
     double twiceArea = glm::length(g);
     Split split;
     split.firstPatch = uint32_t(out.patches.size());
-    if (!(twiceArea > 1e-18) || !std::isfinite(twiceArea)) {
+    uint32_t n = triangleSubdivisions(a, b, c, h, patchArea);
+    if (n == 0) {
         split.subdivisions = 0;  // degenerate: no patch
         out.splits[mi].push_back(split);
         return;
@@ -152,11 +167,6 @@ void addTrianglePatches(RadiosityMesh& out, VertexWelder& welder, const Mesh& m,
         flip = glm::dot(nv, normal) < 0.0;
     }
     if (flip) normal = -normal;
-    // n^2 patches of about the patch area (half a square's triangle of edge h gets n = s / h),
-    // and no patch edge over 1.5 h (slivers, such as a disc's fan, get split lengthwise).
-    double longest = std::max({glm::length(b - a), glm::length(c - b), glm::length(a - c)});
-    double divisions = std::max(std::sqrt(0.5 * twiceArea / patchArea), longest / (1.5 * h));
-    uint32_t n = uint32_t(std::clamp(std::ceil(divisions - 1e-9), 1.0, double(kMaxSubdivisions)));
     split.subdivisions = n;
     out.splits[mi].push_back(split);
     // Grid points a + i/n (b - a) + j/n (c - a), i + j <= n.
@@ -227,6 +237,33 @@ RadiosityMesh RadiosityMesh::build(const Scene& scene, const RadiositySettings& 
                         ? settings.patchSize
                         : std::sqrt(2.0 * total / double(std::max(1, settings.targetPatches)));
     double h = std::max(out.patchSize, 1e-9), patchArea = 0.5 * h * h;
+    // Counted before anything is built: every triangle gets a patch at least, and the solution
+    // keeps a coefficient for every pair of patches.
+    size_t count = 0, most = 0, mostMesh = 0;
+    for (size_t mi = 0; mi < scene.meshes.size(); ++mi) {
+        const Mesh& m = scene.meshes[mi];
+        size_t own = 0;
+        for (size_t t = 0; t + 2 < m.indices.size(); t += 3) {
+            uint32_t n = triangleSubdivisions(
+                glm::dvec3(m.positions[m.indices[t]]), glm::dvec3(m.positions[m.indices[t + 1]]),
+                glm::dvec3(m.positions[m.indices[t + 2]]), h, patchArea);
+            own += size_t(n) * n;
+        }
+        count += own;
+        if (own > most) most = own, mostMesh = mi;
+    }
+    if (count > kMaxPatches) {
+        const Mesh& m = scene.meshes[mostMesh];
+        throw InputError(
+            (scene.path.empty() ? std::string("the scene") : scene.path) +
+            ": interreflected light: its surfaces make " + std::to_string(count) +
+            " patches, more than the " + std::to_string(kMaxPatches) +
+            " whose solution fits in memory (a patch per triangle at least; " +
+            (m.name.empty() ? "one surface" : "\"" + m.name + "\"") + " alone has " +
+            std::to_string(m.indices.size() / 3) +
+            " triangles); leave the interreflected light out, or use a model with fewer "
+            "triangles");
+    }
     VertexWelder welder(out.vertices, h);
     out.splits.resize(scene.meshes.size());
     for (size_t mi = 0; mi < scene.meshes.size(); ++mi) {

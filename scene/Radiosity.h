@@ -44,6 +44,10 @@ struct RadiositySettings {
 /// The scene's surfaces as patches, with vertices shared between the patches of one flat surface
 /// (for smooth display) but not across creases.
 struct RadiosityMesh {
+    /// The most patches a solution may have: its transfer coefficients take 4 bytes for every
+    /// pair of patches (1.6 GB at 20 000). A scene whose surfaces make more (a finely
+    /// tessellated glTF: a patch per triangle at least) is refused by build() with a message.
+    static constexpr size_t kMaxPatches = 20000;
     struct Patch {
         std::array<uint32_t, 3> vertex{};  ///< Counter-clockwise seen from the normal's side.
         glm::dvec3 centroid{0.0};          ///< Metres.
@@ -76,7 +80,8 @@ struct RadiosityMesh {
     /// vertexStart[v + 1]]).
     std::vector<uint32_t> vertexStart, vertexPatches;
 
-    /// Patches of the scene's meshes, `settings` choosing their size.
+    /// Patches of the scene's meshes, `settings` choosing their size. Throws InputError naming
+    /// the scene and its largest surface when they would make more than kMaxPatches.
     static RadiosityMesh build(const Scene& scene, const RadiositySettings& settings);
     /// The patch that holds the point of barycentric (u, v) (Embree's: p = (1-u-v) a + u b + v c)
     /// on triangle `triangle` of mesh `mesh`, and the point's barycentrics within that patch.

@@ -12,6 +12,7 @@
 #include "TestUtil.h"
 #include "scene/EmbreeVisibility.h"
 #include "scene/SceneIo.h"
+#include "util/Error.h"
 
 namespace candela {
 namespace {
@@ -142,6 +143,38 @@ TEST(Interreflection, NothingIsReflectedByBlackOrLonelySurfaces) {
     ASSERT_TRUE(b.compute());
     EXPECT_FALSE(b.hasInterreflection());
     for (const glm::dvec3& e : b.indirect()) EXPECT_EQ(e, glm::dvec3(0.0));
+}
+
+TEST(Interreflection, TooManyTrianglesAreRefusedBeforeAnythingIsBuilt) {
+    // A geodesic sphere of 327 680 facets: a patch each at least, far over kMaxPatches (its
+    // solution would take 4 x 327680^2 bytes, 430 GB). Refused with a message naming the scene,
+    // the count and the surface, instead of std::bad_alloc.
+    Scene fine = withLamp(
+        R"({"name": "Dome", "sphere": {"center": [0, 0, 0], "radius": 2, "subdivisions": 7, "inside": true}})",
+        lampAt(0, 0, 0));
+    InterreflectionOptions o;
+    o.mesh.targetPatches = 1500;
+    try {
+        Interreflection ir(fine, o);
+        FAIL() << "built " << ir.mesh().patches.size() << " patches";
+    } catch (const InputError& e) {
+        std::string m = e.what();
+        // 327 680 of the sphere's and the few of the lamp's body.
+        EXPECT_NE(m.find("scene.json: interreflected light: its surfaces make 3276"),
+                  std::string::npos)
+            << m;
+        EXPECT_NE(m.find(" patches, more than the 20000 whose solution fits in memory"),
+                  std::string::npos)
+            << m;
+        EXPECT_NE(m.find("\"Dome\" alone has 327680 triangles"), std::string::npos) << m;
+    }
+    // At subdivision 4 (5120 facets) it is built.
+    Scene coarse = withLamp(
+        R"({"sphere": {"center": [0, 0, 0], "radius": 2, "subdivisions": 4, "inside": true}})",
+        lampAt(0, 0, 0));
+    Interreflection ok(coarse, o);
+    EXPECT_LE(ok.mesh().patches.size(), RadiosityMesh::kMaxPatches);
+    EXPECT_GE(ok.mesh().patches.size(), 5120u);
 }
 
 TEST(Interreflection, TheFinalGatherAgreesWithThePatches) {
