@@ -273,6 +273,19 @@ class StructureReader {
                     if (std::optional<std::string> m = mRead(gid + "/" + lib)) mtl = *m;
                     break;
                 }
+            // Every face makes a triangle at least: count them before the OBJ is parsed.
+            size_t faces = 0;
+            for (size_t at = 0; at < text->size();) {
+                if (text->compare(at, 2, "f ") == 0 || text->compare(at, 2, "f\t") == 0) ++faces;
+                size_t end = text->find('\n', at);
+                if (end == std::string::npos) break;
+                at = end + 1;
+            }
+            if (faces + mTriangles > kMaxL3dTriangles)
+                fail(mOut.path + ": " + member + ": more than the " +
+                     std::to_string(kMaxL3dTriangles) +
+                     " triangles an L3D may hold here (all its parts together): " +
+                     std::to_string(faces) + " faces");
             tinyobj::ObjReaderConfig config;
             config.triangulate = false;  // Fans below keep each triangle's face index.
             config.vertex_color = false;
@@ -286,6 +299,14 @@ class StructureReader {
             fail(mOut.path + ": " + member + ": more than the " + std::to_string(kMaxL3dVertices) +
                  " vertices an L3D may hold here");
         mVertices += attrib.vertices.size() / 3;
+        size_t triangles = 0;
+        for (const tinyobj::shape_t& shape : def.obj->GetShapes())
+            for (unsigned char n : shape.mesh.num_face_vertices) triangles += n > 2 ? n - 2 : 0;
+        if (triangles + mTriangles > kMaxL3dTriangles)
+            fail(mOut.path + ": " + member + ": more than the " + std::to_string(kMaxL3dTriangles) +
+                 " triangles an L3D may hold here (all its parts together; part " + inQuotes(name) +
+                 " would bring them to " + std::to_string(triangles + mTriangles) + ")");
+        mTriangles += triangles;
         L3dPart p;
         p.name = name;
         p.geometryId = gid;
@@ -334,6 +355,7 @@ class StructureReader {
     std::set<std::string> mNames;
     std::vector<PendingSurface> mSurfaces;
     size_t mVertices = 0;
+    size_t mTriangles = 0;  ///< Made so far, all parts together (kMaxL3dTriangles).
 };
 
 }  // namespace

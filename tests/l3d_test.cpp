@@ -151,6 +151,43 @@ std::string refusal(const std::string& path) {
     return "";
 }
 
+TEST(L3d, TrianglesAreCountedOverEveryPartThatSharesAnObj) {
+    // 1100 parts share one OBJ of 4000 triangles: 4.4 million triangles, over kMaxL3dTriangles,
+    // although the OBJ is parsed once (a small L3D that shares a large OBJ among its parts took
+    // gigabytes). Refused at the part that would pass the limit, naming it.
+    test::TempDir dir;
+    fs::create_directories(dir / "g");
+    {
+        std::ofstream obj(dir / "g" / "fan.obj");
+        obj << "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+        for (int i = 0; i < 4000; ++i) obj << "f 1 2 3\n";
+    }
+    std::string xml =
+        "<Luminaire><GeometryDefinitions><GeometryFileDefinition id=\"g\" filename=\"fan.obj\" "
+        "units=\"m\"/></GeometryDefinitions><Structure>";
+    for (int i = 0; i < 1100; ++i)
+        xml += "<Geometry partName=\"p" + std::to_string(i) +
+               "\"><Position x=\"0\" y=\"0\" z=\"0\"/><Rotation x=\"0\" y=\"0\" z=\"0\"/>"
+               "<GeometryReference geometryId=\"g\"/></Geometry>";
+    std::ofstream(dir / "structure.xml") << xml + "</Structure></Luminaire>";
+    std::string m = refusal(dir.path().string());
+    EXPECT_NE(m.find("g/fan.obj: more than the 4194304 triangles an L3D may hold here (all its "
+                     "parts together; part \"p1048\" would bring them to 4196000)"),
+              std::string::npos)
+        << m;
+    // One OBJ alone with more faces than that is refused before it is parsed.
+    {
+        std::ofstream obj(dir / "g" / "fan.obj");
+        obj << "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+        for (int i = 0; i < 4200000; ++i) obj << "f 1 2 3\n";
+    }
+    m = refusal(dir.path().string());
+    EXPECT_NE(m.find("g/fan.obj: more than the 4194304 triangles an L3D may hold here (all its "
+                     "parts together): 4200000 faces"),
+              std::string::npos)
+        << m;
+}
+
 TEST(L3d, DefectsAreOneLineErrorsNamingTheMember) {
     struct Case {
         std::string from, to, message;
