@@ -483,7 +483,9 @@ EnvironmentSource parseEnvironment(const nlohmann::json& v, const json::Where& w
     int kinds = int(v.contains("file")) + int(v.contains("sky")) + int(v.contains("sequence"));
     if (kinds != 1) json::fail(where, "exactly one of \"file\", \"sky\" or \"sequence\"");
     double intensity = json::optional(v, "intensity", where, 1.0, readIntensity);
-    double rotation = json::optional(v, "rotation_deg", where, 0.0, json::number);
+    double rotation =
+        json::optional(v, "rotation_deg", where, 0.0,
+                       json::range(-json::kMaxAngleDeg, json::kMaxAngleDeg, "an angle in degrees"));
     EnvironmentSource out;
     if (v.contains("file")) {
         json::checkKeys(v, {"file", "intensity", "rotation_deg", "unit"}, where);

@@ -29,6 +29,12 @@ using gpu::kPi;
 
 /// Openings smaller than this (m2, relative to the squared extent) are a segment or a point.
 constexpr double kDegenerateArea = 1e-9;
+/// Largest "scale" (a multiplier of the file's flux): a million lamps in one is beyond any
+/// design, and 1e308 made the light infinite or, through rounding, 0.
+constexpr double kMaxScale = 1e6;
+/// Largest "colour" component (a tint of the file's light, normally at most 1).
+constexpr double kMaxColour = 1e3;
+using photometry_detail::formatNumber;
 
 glm::dvec3 toLocalDir(const PhotometricLuminaire& l, const glm::dvec3& w) {
     glm::dvec3 x, y, z;
@@ -628,22 +634,35 @@ std::unique_ptr<PhotometricLuminaire> parseCommon(const nlohmann::json& entry,
     fs::path resolved(light->file);
     if (resolved.is_relative()) resolved = fs::path(where.file).parent_path() / resolved;
     resolvedFile = resolved.string();
-    light->scale = json::optional(entry, "scale", where, 1.0, json::positive);
-    light->colour = json::optional(entry, "colour", where, glm::dvec3(1.0),
-                                   [](const nlohmann::json& v, const json::Where& w) {
-                                       glm::dvec3 c = json::vec3(v, w);
-                                       if (c.x < 0.0 || c.y < 0.0 || c.z < 0.0)
-                                           json::fail(w, "a colour with no negative component");
-                                       return c;
-                                   });
-    light->openingOverride =
-        json::optional(entry, "opening", where, glm::dvec2(0.0),
-                       [](const nlohmann::json& v, const json::Where& w) {
-                           glm::dvec2 s = json::vec2(v, w);
-                           if (!(s.x >= 0.0 && s.y >= 0.0 && s.x + s.y > 0.0))
-                               json::fail(w, "[length, width] in metres, not negative, not both 0");
-                           return s;
-                       });
+    light->scale = json::optional(
+        entry, "scale", where, 1.0, [](const nlohmann::json& v, const json::Where& w) {
+            double s = json::positive(v, w);
+            if (!(s <= kMaxScale))
+                json::fail(w, "a positive multiplier of at most " + formatNumber(kMaxScale) +
+                                  ", got " + v.dump());
+            return s;
+        });
+    light->colour = json::optional(
+        entry, "colour", where, glm::dvec3(1.0), [](const nlohmann::json& v, const json::Where& w) {
+            glm::dvec3 c = json::vec3(v, w);
+            if (c.x < 0.0 || c.y < 0.0 || c.z < 0.0)
+                json::fail(w, "a colour with no negative component");
+            if (!(glm::max(c.x, glm::max(c.y, c.z)) <= kMaxColour))
+                json::fail(w, "a colour whose components are at most " + formatNumber(kMaxColour) +
+                                  ", got " + v.dump());
+            return c;
+        });
+    light->openingOverride = json::optional(
+        entry, "opening", where, glm::dvec2(0.0),
+        [](const nlohmann::json& v, const json::Where& w) {
+            glm::dvec2 s = json::vec2(v, w);
+            if (!(s.x >= 0.0 && s.y >= 0.0 && s.x + s.y > 0.0))
+                json::fail(w, "[length, width] in metres, not negative, not both 0");
+            if (!(s.x <= kMaxOpening && s.y <= kMaxOpening))
+                json::fail(w, "[length, width] of at most " + formatNumber(kMaxOpening) +
+                                  " m each, got " + v.dump());
+            return s;
+        });
     light->showBody = json::optional(entry, "body", where, true, json::boolean);
     light->bodyReflectance = json::optional(
         entry, "body_reflectance", where, 0.0, [](const nlohmann::json& v, const json::Where& w) {

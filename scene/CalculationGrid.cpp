@@ -418,6 +418,18 @@ ReceiverResult computeReceivers(const Scene& scene, const GridSpec& spec,
     r.E = r.direct;
     r.stdError = r.directStdError;
     if (spec.indirect) addIndirectBeforeMaintenance(scene, spec, receivers, r, status);
+    // No infinity or NaN is ever printed as a result: the first such point stops the calculation.
+    for (size_t i = 0; i < r.E.size(); ++i)
+        if (!std::isfinite(r.E[i]) || !std::isfinite(r.stdError[i])) {
+            const glm::dvec3& p = receivers[i].position;
+            char at[96];
+            std::snprintf(at, sizeof at, "(%.3f, %.3f, %.3f) m", p.x, p.y, p.z);
+            throw InputError(
+                (scene.path.empty() ? std::string("the scene") : scene.path) + ": the light at " +
+                at + " is not a finite number (" +
+                (std::isfinite(r.direct[i]) ? "its interreflected part" : "its direct part") +
+                "); a luminaire's data or a scene value is out of range");
+        }
     return r;
 }
 

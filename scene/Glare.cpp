@@ -11,6 +11,10 @@ namespace candela {
 
 namespace {
 
+/// A background luminance's bounds, cd/m2: darker than any lit interior's (UGR divides by it, and
+/// 5e-324 made it infinite) and brighter than the sun's disc.
+constexpr double kMinBackground = 1e-3, kMaxBackground = 1e9;
+
 using gpu::kPi;
 constexpr double kDeg = 180.0 / kPi;
 const glm::dvec3 kUp{0.0, 1.0, 0.0};
@@ -39,7 +43,9 @@ GlareObserver parseGlareObserver(const nlohmann::json& entry, const json::Where&
         json::fail(where / "view", "the line of sight [x, y, z] (horizontal)");
     o.view = horizontalView(json::direction(entry["view"], where / "view"), where / "view");
     o.limit = json::optional(entry, "limit", where, 0.0, json::positive);
-    o.background = json::optional(entry, "background_cd_m2", where, 0.0, json::positive);
+    o.background =
+        json::optional(entry, "background_cd_m2", where, 0.0,
+                       json::range(kMinBackground, kMaxBackground, "a luminance in cd/m2"));
     return o;
 }
 

@@ -26,6 +26,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
+/// A rotation about the vertical, degrees, within ten turns (json::kMaxAngleDeg).
+const auto kAngle = json::range(-json::kMaxAngleDeg, json::kMaxAngleDeg, "an angle in degrees");
+
 /// A maintenance factor (EN 12464-1): maintained over initial output, in (0, 1].
 double maintenanceFactorValue(const nlohmann::json& v, const json::Where& where) {
     double x = json::number(v, where);
@@ -212,7 +215,7 @@ void parseBox(const nlohmann::json& item, const json::Where& where, size_t index
     if (!spec.contains("size"))
         json::fail(at / "size", "[x, y, z] edge lengths in metres (missing)");
     glm::dvec3 half = 0.5 * positive3(spec["size"], at / "size");
-    double angle = json::optional(spec, "rotate_y_deg", at, 0.0, json::number);
+    double angle = json::optional(spec, "rotate_y_deg", at, 0.0, kAngle);
     glm::dmat3 rotation(glm::rotate(glm::dmat4(1.0), glm::radians(angle), glm::dvec3(0, 1, 0)));
     // "inside": a room seen from within: the faces look inwards (they reflect light inside).
     bool inside = json::optional(spec, "inside", at, false, json::boolean);
@@ -314,7 +317,7 @@ std::vector<std::string> parseGltfItem(const nlohmann::json& item, const json::W
         const nlohmann::json& t = item["transform"];
         json::checkKeys(t, {"translate", "rotate_y_deg", "scale"}, at);
         glm::dvec3 translate = json::optional(t, "translate", at, glm::dvec3(0.0), json::vec3);
-        double angle = json::optional(t, "rotate_y_deg", at, 0.0, json::number);
+        double angle = json::optional(t, "rotate_y_deg", at, 0.0, kAngle);
         double scale = json::optional(t, "scale", at, 1.0, json::positive);
         transform = glm::translate(glm::dmat4(1.0), translate) *
                     glm::rotate(glm::dmat4(1.0), glm::radians(angle), glm::dvec3(0, 1, 0)) *

@@ -1,6 +1,7 @@
 #include "util/JsonRead.h"
 
 #include <cmath>
+#include <cstdio>
 
 #include "util/Error.h"
 
@@ -41,6 +42,17 @@ bool boolean(const nlohmann::json& v, const Where& where) {
 double positive(const nlohmann::json& v, const Where& where) {
     double x = number(v, where);
     if (!(x > 0.0)) fail(where, "a positive number, got " + v.dump());
+    return x;
+}
+
+double inRange(const nlohmann::json& v, const Where& where, double lo, double hi,
+               const std::string& what) {
+    double x = number(v, where);
+    if (!(x >= lo && x <= hi)) {
+        char bounds[96];
+        std::snprintf(bounds, sizeof bounds, " from %g to %g, got ", lo, hi);
+        fail(where, what + bounds + v.dump());
+    }
     return x;
 }
 

@@ -31,6 +31,22 @@ bool boolean(const nlohmann::json& v, const Where& where);
 void checkKeys(const nlohmann::json& object, std::initializer_list<const char*> allowed,
                const Where& where);
 
+/// A number in [lo, hi] (both finite): a field whose physical sense has bounds, so that a value
+/// such as 1e308 is refused at load instead of becoming an infinity or a silent 0 later.
+/// `what` says what it is ("an angle in degrees"); the message adds the bounds.
+double inRange(const nlohmann::json& v, const Where& where, double lo, double hi,
+               const std::string& what);
+/// inRange as a reader for optional().
+inline auto range(double lo, double hi, std::string what) {
+    return [=](const nlohmann::json& v, const Where& where) {
+        return inRange(v, where, lo, hi, what);
+    };
+}
+
+/// The largest turn an angle field may ask for, degrees (ten turns): beyond it a float's
+/// rounding makes the angle meaningless (1e308 degrees turned everything to 0).
+inline constexpr double kMaxAngleDeg = 3600.0;
+
 /// Optional field: returns fallback when absent; validates like the functions above if present.
 template <class Fn, class T>
 T optional(const nlohmann::json& object, const char* key, const Where& where, T fallback, Fn read) {

@@ -43,5 +43,25 @@ expect "--csv" "empty" -- glare --table "$2/../resources/luminaires/photometric/
 expect "--out" "empty" -- polar "$2/../resources/luminaires/photometric/prolicht-e30.ldt" --out ""
 expect "--show-samples" "empty" -- probe "$data/ok.json" --points "$data/ok_points.csv" --show-samples ""
 
+# Numbers out of their physical range are refused at load, naming the field (each used to give an
+# infinite or NaN result, or a silent 0, with exit 0).
+ies="$(cd "$2/.." && pwd)/resources/validation/isotropic.ies"
+lamp() {  # lamp EXTRA: a scene of one floor and one lamp with EXTRA fields
+  printf '{"geometry": [{"plane": {"center": [0, 0, 0], "normal": [0, 1, 0], "size": [4, 4]}}],
+ "luminaires": [{"type": "photometric", "file": "%s", "position": [0, 2, 0]%s}]%s}' "$ies" "$1" "${2:-}"
+}
+lamp ', "colour": [1e308, 1, 1]' >"$out/colour.json"
+expect "luminaires[0].colour" "at most 1000" -- grid "$out/colour.json" --plane y=0
+lamp ', "scale": 1e308' >"$out/scale.json"
+expect "luminaires[0].scale" "at most 1000000" -- grid "$out/scale.json" --plane y=0
+lamp ', "opening": [1e308, 0.1]' >"$out/opening.json"
+expect "luminaires[0].opening" "at most 1000 m" -- grid "$out/opening.json" --plane y=0
+lamp ', "opening": [1e6, 0.1]' >"$out/opening6.json"
+expect "luminaires[0].opening" "at most 1000 m" -- grid "$out/opening6.json" --plane y=0
+lamp '' ', "environment": {"sky": {"sun_elevation_deg": 30, "sun_azimuth_deg": 0, "turbidity": 3, "resolution": 64}, "rotation_deg": 1e308}' >"$out/rotation.json"
+expect "environment.rotation_deg" "angle in degrees from -3600 to 3600" -- grid "$out/rotation.json" --plane y=0
+lamp '' ', "glare_observers": [{"name": "Eye", "position": [0, 1.2, 1.5], "view": [0, 0, -1], "background_cd_m2": 5e-324}]' >"$out/background.json"
+expect "glare_observers[0].background_cd_m2" "luminance in cd/m2 from 0.001" -- glare "$out/background.json"
+
 echo "$passed passed, $failures failed"
 [ $failures -eq 0 ]
