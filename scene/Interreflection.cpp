@@ -93,16 +93,14 @@ bool Interreflection::computeDirect(Source& s, int spp, std::vector<glm::dvec3>&
         for (size_t b = 0; b < ownBody.size(); ++b)
             ownBody[b] = insideBody(centre, mMesh.bodyBounds[b].first, mMesh.bodyBounds[b].second);
     }
-    return directOnPatches(
-        mMesh,
-        [&](const glm::dvec3& p, const glm::dvec3& n, const EstimateOptions& opt) {
-            return s.estimate(p, n, opt);
-        },
-        o, mOptions.threads, out, progress,
-        [&](size_t i) {
-            int b = mMesh.patches[i].body;
-            return b >= 0 && ownBody[size_t(b)];
-        });
+    auto estimate = [&](const glm::dvec3& p, const glm::dvec3& n, const EstimateOptions& opt) {
+        return s.estimate(p, n, opt);
+    };
+    auto dark = [&](size_t i) {
+        int b = mMesh.patches[i].body;
+        return b >= 0 && ownBody[size_t(b)];
+    };
+    return directOnPatches(mMesh, estimate, o, mOptions.threads, out, progress, dark);
 }
 
 bool Interreflection::solveChange(const std::vector<glm::dvec3>& change, const Progress& progress) {
@@ -307,6 +305,22 @@ glm::dvec3 Interreflection::patchLight(const glm::dvec3& p, const glm::dvec3& no
     double len = glm::length(normal);
     if (!(len > 0.0)) return glm::dvec3(0.0);
     glm::dvec3 n = normal / len, sum(0.0);
+    // How much of a triangle p sees: its centroid and, where asked, three inner points (the
+    // direct light's rule): the fraction of them visible.
+    auto seen = [&](const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, bool inner) {
+        glm::dvec3 centre = (a + b + c) / 3.0;
+        int visible = mVisibility->visibleBetweenSurfaces(p, centre), tried = 1;
+        if (inner) {
+            const double kNear = 2.0 / 3.0, kFar = 1.0 / 6.0;
+            for (const glm::dvec3& x :
+                 {kNear * a + kFar * b + kFar * c, kFar * a + kNear * b + kFar * c,
+                  kFar * a + kFar * b + kNear * c}) {
+                visible += mVisibility->visibleBetweenSurfaces(p, x);
+                ++tried;
+            }
+        }
+        return double(visible) / double(tried);
+    };
     for (size_t j = 0; j < mMesh.patches.size(); ++j) {
         const RadiosityMesh::Patch& q = mMesh.patches[j];
         if (!(q.albedo.x + q.albedo.y + q.albedo.z > 0.0)) continue;
@@ -316,17 +330,19 @@ glm::dvec3 Interreflection::patchLight(const glm::dvec3& p, const glm::dvec3& no
         double f = pointTriangleFormFactor(p, n, a, b, c);
         if (!(f > 0.0)) continue;
         glm::dvec3 total = mDirectTotal[j] + mIndirect[j];
-        glm::dvec3 coarse = mVisibility->visibleBetweenSurfaces(p, q.centroid)
-                                ? f * q.albedo * total
-                                : glm::dvec3(0.0);
-        if (!refine || f <= kRefineFormFactor) {
-            sum += coarse;
+        // Refined: near p (its form factor above kRefineFormFactor), or seen in part (an edge of
+        // an occluder crosses it: its inner points disagree).
+        bool inner = refine && f > kVisibilityFormFactor;
+        double v = seen(a, b, c, inner);
+        bool partial = v > 0.0 && v < 1.0;
+        if (!refine || (f <= kRefineFormFactor && !partial)) {
+            sum += v * f * q.albedo * total;
             continue;
         }
         // Split into four at the edges' midpoints, again wherever a part's form factor is above
-        // the threshold (down to kRefineDepth): each part valued at its centroid by the vertices'
-        // linear interpolation there, less its mean over the patch (the vertices' mean), plus
-        // the patch's own value.
+        // the threshold or it is seen in part (down to kRefineDepth): each part valued at its
+        // centroid by the vertices' linear interpolation there, less its mean over the patch
+        // (the vertices' mean), plus the patch's own value, times the part of it p sees.
         const glm::dvec3 va = mTotalVertices[q.vertex[0]], vb = mTotalVertices[q.vertex[1]],
                          vc = mTotalVertices[q.vertex[2]];
         glm::dvec3 mean = (va + vb + vc) / 3.0;
@@ -349,23 +365,29 @@ glm::dvec3 Interreflection::patchLight(const glm::dvec3& p, const glm::dvec3& no
             stack[top++] = {{m[0], m[1], m[2]}, {mw[0], mw[1], mw[2]}, d};
         };
         split({{a, b, c}, {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, 0});
-        glm::dvec3 refined(0.0);
+        // `flat`: the same parts with the patch's own value: what the tilt alone changes.
+        glm::dvec3 refined(0.0), flat(0.0), unsure(0.0);
         while (top > 0) {
             Part t = stack[--top];
             double fk = pointTriangleFormFactor(p, n, t.corner[0], t.corner[1], t.corner[2]);
             if (!(fk > 0.0)) continue;
-            if (fk > kRefineFormFactor && t.depth < kRefineDepth) {
+            double vk = seen(t.corner[0], t.corner[1], t.corner[2], partial);
+            bool partialPart = vk > 0.0 && vk < 1.0;
+            if ((fk > kRefineFormFactor || partialPart) && t.depth < kRefineDepth) {
                 split(t);
                 continue;
             }
-            glm::dvec3 centre = (t.corner[0] + t.corner[1] + t.corner[2]) / 3.0;
-            if (!mVisibility->visibleBetweenSurfaces(p, centre)) continue;
             glm::dvec3 w = (t.weight[0] + t.weight[1] + t.weight[2]) / 3.0;
-            glm::dvec3 value = total + w.x * va + w.y * vb + w.z * vc - mean;
-            refined += fk * q.albedo * glm::max(value, glm::dvec3(0.0));
+            glm::dvec3 value =
+                glm::max(total + w.x * va + w.y * vb + w.z * vc - mean, glm::dvec3(0.0));
+            refined += vk * fk * q.albedo * value;
+            flat += vk * fk * q.albedo * total;
+            // A part still seen in part at the last level: its light is known to within
+            // the unseen or seen share, whichever is smaller.
+            if (partialPart) unsure += std::min(vk, 1.0 - vk) * fk * q.albedo * value;
         }
         sum += refined;
-        error += glm::abs(refined - coarse);
+        error += glm::abs(refined - flat) + unsure;
     }
     return sum;
 }

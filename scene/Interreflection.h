@@ -95,15 +95,23 @@ class Interreflection {
     /// centroid): deterministic, smooth and fast (the editor's grid, the bench's work plane).
     glm::dvec3 fromPatches(const glm::dvec3& p, const glm::dvec3& n) const;
     /// The same, refined where p is close to a patch (its form factor above
-    /// kRefineFormFactor): the patch is split into four, and each part again while its form
-    /// factor is above it (kRefineDepth levels at most), each part with its own form factor,
-    /// shadow ray and value (the patch's, tilted by the vertices' values so that its mean stays
-    /// the patch's). `error` gets what the refinement changed, summed over the refined patches
-    /// without cancelling: an estimate of what the patches leave out at p (RGB, the scene's units).
+    /// kRefineFormFactor) or sees only part of it (an occluder's edge across it: of its
+    /// centroid and three inner points, some are seen and some not; looked for on patches
+    /// whose form factor is above kVisibilityFormFactor): the patch is split into four, and
+    /// each part again while either holds (kRefineDepth levels at most), each part with its own
+    /// form factor, the share of those points p sees, and its value (the patch's, tilted by the
+    /// vertices' values so that its mean stays the patch's). `error` gets an estimate of what
+    /// the result leaves out at p (RGB, the scene's units), summed over the refined patches
+    /// without cancelling: what the tilt changed, plus the smaller of the seen and unseen share
+    /// of parts still seen in part at the last level. An occluder narrower than a patch can pass
+    /// between all four points unseen: the estimate does not hold it.
     glm::dvec3 fromPatches(const glm::dvec3& p, const glm::dvec3& n, glm::dvec3& error) const;
     /// The form factor above which fromPatches refines a patch or a part: nearer than about six
     /// of its sizes. Beyond it the value and visibility vary little over its solid angle.
     static constexpr double kRefineFormFactor = 2e-3;
+    /// The form factor above which fromPatches looks for an occluder's edge across a patch
+    /// (its three inner points seen or not, against its centroid), refining it where one is.
+    static constexpr double kVisibilityFormFactor = 1e-4;
     /// Levels of splitting at most: parts of 1/64 of a patch's size (3 mm of a 0.2 m patch).
     static constexpr int kRefineDepth = 6;
 

@@ -79,5 +79,39 @@ TEST(IndirectAtPoints, AdaptiveIsWithinOnePercentOfTheGatherEverywhere) {
         << adaptive.indirectNote;
 }
 
+// The classroom: twelve direct-indirect pendants whose opaque bodies hang 0.6 m under the
+// ceiling they light, so that from the work plane each body hides the brightest part of the
+// ceiling, across the patches. The refinement follows the bodies' edges; its error estimate then
+// sends only a few points to the gather (it sent every point when it counted the visibility the
+// refinement corrects as error), and every point stays within 1 % of the gather.
+TEST(IndirectAtPoints, RefinementFollowsOccludersEdgesAndGathersOnlyWhereNeeded) {
+    Scene scene = loadScene(std::string(CANDELA_SOURCE_DIR) + "/resources/scenes/classroom.json");
+    std::vector<Receiver> points;
+    for (double x = -4.5; x <= 4.5; x += 1.0)
+        for (double z = -3.5; z <= 3.5; z += 2.0) points.push_back({{x, 0.75, z}, {0, 1, 0}});
+    GridSpec how;
+    how.visibility = true;
+    how.indirect = true;
+    how.spp = 2048;
+    how.indirectMethod = GridSpec::Indirect::Gather;
+    ReceiverResult reference = computeReceivers(scene, how, points);
+    how.indirectMethod = GridSpec::Indirect::Adaptive;
+    ReceiverResult adaptive = computeReceivers(scene, how, points);
+    for (size_t i = 0; i < points.size(); ++i) {
+        // As above: 1 % of the point's light plus three standard errors.
+        double allowed = 0.01 * reference.E[i] + 3.0 * std::hypot(reference.indirectStdError[i],
+                                                                  adaptive.indirectStdError[i]);
+        const glm::dvec3& p = points[i].position;
+        EXPECT_NEAR(adaptive.indirect[i], reference.indirect[i], allowed)
+            << "at (" << p.x << ", " << p.z << "): E " << reference.E[i];
+    }
+    // "... at N of M points": fewer than half gathered.
+    const std::string& note = adaptive.indirectNote;
+    size_t at = note.find("rays at ");
+    ASSERT_NE(at, std::string::npos) << note;
+    int gathered = std::stoi(note.substr(at + 8));
+    EXPECT_LT(gathered, int(points.size()) / 2) << note;
+}
+
 }  // namespace
 }  // namespace candela
