@@ -177,6 +177,38 @@ TEST(Interreflection, TooManyTrianglesAreRefusedBeforeAnythingIsBuilt) {
     EXPECT_GE(ok.mesh().patches.size(), 5120u);
 }
 
+TEST(Interreflection, ZeroAreaTrianglesAddNothingAndBreakNothing) {
+    // A room, then the same room with a mesh of zero-area triangles (three points on a line, a
+    // repeated vertex, one point three times) inside it: they get no patches, block no light,
+    // and every value stays finite and the same.
+    Scene clean = withLamp(kRoom, lampAt(0.3, 2.7, -0.2));
+    Scene degenerate = withLamp(kRoom, lampAt(0.3, 2.7, -0.2));
+    Mesh m;
+    m.name = "slivers";
+    m.positions = {{0, 1, 0}, {1, 1, 0}, {2, 1, 0}, {0.5, 1.5, 0.5}, {0.5, 1.5, 0.5}};
+    m.normals.assign(m.positions.size(), glm::vec3(0, 1, 0));
+    m.indices = {0, 1, 2, 3, 4, 0, 3, 3, 3};
+    m.material = degenerate.meshes.front().material;
+    m.computeBounds();
+    degenerate.meshes.push_back(m);
+    InterreflectionOptions o;
+    o.mesh.targetPatches = 400;
+    Interreflection a(clean, o), b(degenerate, o);
+    ASSERT_EQ(a.mesh().patches.size(), b.mesh().patches.size());
+    ASSERT_TRUE(a.compute());
+    ASSERT_TRUE(b.compute());
+    for (size_t i = 0; i < a.indirect().size(); ++i) {
+        ASSERT_TRUE(std::isfinite(b.indirect()[i].x + b.direct()[i].x)) << "patch " << i;
+        // The same estimators and seeds: only rounding may differ.
+        EXPECT_NEAR(b.indirect()[i].x, a.indirect()[i].x, 1e-9 * (1.0 + a.indirect()[i].x));
+    }
+    glm::dvec3 error;
+    glm::dvec3 p(0.0, 0.8, 0.0), up(0, 1, 0);
+    glm::dvec3 e = b.fromPatches(p, up, error);
+    EXPECT_TRUE(std::isfinite(e.x + error.x));
+    EXPECT_NEAR(e.x, a.fromPatches(p, up, error).x, 1e-9 * (1.0 + e.x));
+}
+
 TEST(Interreflection, TheFinalGatherAgreesWithThePatches) {
     // In a closed room the gather at a wall point (its first bounce from the exact direct light,
     // later ones from the patches) and the patch's own value differ only by the patches'
