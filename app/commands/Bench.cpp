@@ -210,6 +210,9 @@ int benchLightField(const Args& args) {
     writeBenchCsv((out / "bench.csv").string(), rows);
 
     BenchSummary summary;
+    summary.light(
+        "the light field's direct light with shadows (shadow maps; the reference a shadow ray per "
+        "sample); no interreflected light: the images compare techniques");
     summary.add("light field: %s (%dx%d images of %dx%d), precomputation %.1f ms, load %.0f ms\n",
                 o.lightField.c_str(), lf.count.x, lf.count.y, lf.width, lf.height, lf.precomputeMs,
                 loadMs);

@@ -331,6 +331,9 @@ int benchDrag(const Args& args) {
     writeDragCsv(out / "drag.csv", run.drags);
     run.release.write(out / "release.csv");
     BenchSummary summary;
+    summary.light(
+        "direct light with shadows, as the editor's viewport draws it while a luminaire moves; "
+        "no interreflected light");
     addSummary(summary, run, gpu.context->description());
     summary.write(out);
     plotRelease(out, scene);

@@ -332,6 +332,8 @@ int benchEnvironment(const Args& args) {
     settings.width = o.width;
     settings.height = o.height;
     BenchSummary summary;
+    summary.light(
+        "the environment's direct light with shadows (shadow rays); no interreflected light");
     summary.add("environment: %s (%dx%d lat-long), scene %s, %dx%d pixels\ncontext: %s\n",
                 o.source == "sky" ? "procedural sky, sun 35 deg up" : o.source.c_str(),
                 scene.environmentMap->width(), scene.environmentMap->height(),

@@ -105,6 +105,8 @@ class BenchSummary {
     /// Appends printf-formatted text (with its own newlines).
     void add(const char* format, ...) __attribute__((format(printf, 2, 3)));
     void addText(std::string_view text) { mText << text; }
+    /// "light: WHAT": which light the bench's figures include (every bench says so).
+    void light(std::string_view what) { mText << "light: " << what << "\n"; }
     std::string text() const { return mText.str(); }
     /// Writes DIR/summary.txt, and prints it on stdout when `echo`.
     void write(const std::filesystem::path& dir, bool echo = true) const;

@@ -351,6 +351,9 @@ int benchIndirect(const Args& args) {
     IndirectReport report{o, scene, timeline.ir->mesh().patches.size(), points.size(),
                           writeSteps(timeline, out / "bench.csv")};
     BenchSummary summary;
+    summary.light(
+        "interreflected light on the work plane, measured alone (the direct light is the same in "
+        "every step)");
     addSummary(summary, report, timeline, accuracy);
     summary.write(out);
     plotSteps(out);

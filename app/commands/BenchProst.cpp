@@ -461,6 +461,9 @@ int benchProst(const Args& args) {
     fs::path out = benchFolder(o.out);
     BenchGpu gpu;
     ProstRun run{o, evaluatedTechniques(), gpu.renderer, out};
+    run.summary.light(
+        "each technique's direct light on an open ground plane (nothing casts a "
+        "shadow); no interreflected light");
     run.summary.add(
         "bench --prost: %zu files, %dx%d receivers per image, reference %d spp, context %s\n",
         o.files.size(), o.size, o.size, o.referenceSpp, gpu.context->description().c_str());

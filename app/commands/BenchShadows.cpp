@@ -170,6 +170,9 @@ int benchShadows(const Args& args) {
     for (int r : o.sizes) measure(sweep, "resolution", o.fixedCount, r);
 
     BenchSummary summary;
+    summary.light(
+        "the luminaire's direct light with shadows, which the sweep varies; no interreflected "
+        "light");
     std::ostringstream text;
     text << "scene: " << o.scenePath << ", " << o.width << "x" << o.height << ", " << o.spp
          << " spp, seed " << kSeed << " for every image\ncontext: " << gpu.context->description()

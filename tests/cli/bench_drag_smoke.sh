@@ -21,6 +21,7 @@ check "release.csv header" '[ "$(head -1 "$out/release.csv")" = "luminaire,refin
 check "release rows of both kinds" 'grep -q ",moved only," "$out/release.csv" && grep -q ",everything," "$out/release.csv"'
 bad=$(tail -n +2 "$out/release.csv" | awk -F, '!($3 > 0 && $5 >= 0 && $5 == $5 && $6 >= 0 && $6 == $6) {print}')
 check "finite figures: $bad" '[ -z "$bad" ]'
+check "summary states its light" 'grep -q "^light: .*interreflected light" "$out/summary.txt"'
 check "summary names both release times" 'grep -q "refining it alone" "$out/summary.txt" && grep -q "refining everything" "$out/summary.txt"'
 echo "$passed passed, $failures failed"
 [ $failures -eq 0 ]

@@ -27,6 +27,7 @@ check "rebuild.csv: 32 frames, each with a rebuild" \
   '[ "$(tail -n +2 "$out/rebuild.csv" | awk -F, "\$3 > 0" | wc -l)" -eq 32 ]'
 # 3 sun steps x 5 cases x (3 - 1) frame pairs.
 check "temporal.csv has 30 rows" '[ "$(tail -n +2 "$out/temporal.csv" | wc -l)" -eq 30 ]'
+check "summary states its light" 'grep -q "^light: .*interreflected light" "$out/summary.txt"'
 check "summary and images written" '[ -s "$out/summary.txt" ] && [ -s "$out/reference.png" ] && [ -s "$out/bench_scene.json" ]'
 err=$("$binary" bench --environment "$out/nothing.hdr" --out "$out/x" 2>&1 >/dev/null); rc=$?
 check "missing map (rc $rc): $err" '[ $rc -eq 1 ] && grep -q "nothing.hdr" <<<"$err"'

@@ -25,6 +25,7 @@ check "finite figures, bounds on the right sides: $bad" '[ -z "$bad" ]'
 better=$(awk -F, '$1 ~ /lambert/ && $3 == 1.1 {n[$2] = $4} END {print (n["scattered"] < n["point"]) ? "yes" : "no"}' "$out/nmse_by_height.csv")
 check "Lambertian: scattered beats the point law at 1.1 m" '[ "$better" = yes ]'
 check "sheets written" '[ -s "$out/lambert_h1_images.png" ] && [ -s "$out/spot_h51_errors.png" ]'
+check "summary states its light" 'grep -q "^light: .*interreflected light" "$out/summary.txt"'
 check "broken file skipped and named" 'grep -q "skipped: .*Invalid Profile - 01.ies:1" "$out/summary.txt"'
 err=$("$binary" bench --prost --out "$out/x" 2>&1 >/dev/null); rc=$?
 check "no files is a usage error (rc $rc): $err" '[ $rc -eq 1 ] && grep -q "usage: candela bench --prost" <<<"$err"'

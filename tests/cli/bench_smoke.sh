@@ -29,6 +29,7 @@ bad=$(tail -n +2 "$out/bench.csv" | awk -F, '!($3 > 0 && $4 >= 0 && $5 >= 0 && $
 check "finite, positive figures: $bad" '[ -z "$bad" ]'
 falls=$(awk -F, '$1 == "restricted-cdf" {e[$2] = $6} END {print (e[32] < e[2]) ? "yes" : "no"}' "$out/bench.csv")
 check "restricted-cdf error falls from 2 to 32 spp" '[ "$falls" = yes ]'
+check "summary states its light" 'grep -q "^light: .*interreflected light" "$out/summary.txt"'
 check "summary and images written" '[ -s "$out/summary.txt" ] && [ -s "$out/reference.png" ] && [ -s "$out/bench_scene.json" ]'
 err=$("$binary" bench --lightfield "$data/nothing.lf.json" --out "$out/x" 2>&1 >/dev/null); rc=$?
 check "missing light field (rc $rc): $err" '[ $rc -eq 1 ] && grep -q "nothing.lf.json" <<<"$err"'
