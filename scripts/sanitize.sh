@@ -25,7 +25,7 @@ export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_string_checks=1:dete
 export LSAN_OPTIONS="suppressions=$PWD/tests/sanitize/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 cd build-asan
-# Five long tests repeat, at many points and sample counts, code that shorter tests run under the
+# Six long tests repeat, at many points and sample counts, code that shorter tests run under the
 # sanitizers too; under ASan they took 590 of the stage's 2200 test-seconds (the obstruction
 # sweep alone 280 s, 28 times its Release time), so they run in the Release stage only:
 # every technique's shadow of the table (Obstruction.EveryEnvironmentTechnique... and the
@@ -33,6 +33,7 @@ cd build-asan
 # occluder (LightFieldVisibility's boxed luminaire and the light-field probes), glslang over
 # every shader variant (an external tool: nothing of ours to sanitize), the flux from a sphere of
 # probes and the brute-force quadrature (PhotometryIes' closed-form fluxes, the photometric
-# luminaire's other tests).
-LONG='Obstruction\.EveryTechniqueOfEveryKind|LightFieldVisibility\.ProbeMatchesADisc|ShaderVariants\.|PhotometricLuminaire\.FluxFromASphereOfProbes|PhotometryIes\.ExactQuadratureMatchesBruteForce'
+# luminaire's other tests), and the classroom's 2048-ray gathers at 40 points (the office's
+# adaptive test runs the same gather and refinement under the sanitizers).
+LONG='Obstruction\.EveryTechniqueOfEveryKind|LightFieldVisibility\.ProbeMatchesADisc|ShaderVariants\.|PhotometricLuminaire\.FluxFromASphereOfProbes|PhotometryIes\.ExactQuadratureMatchesBruteForce|IndirectAtPoints\.RefinementFollowsOccludersEdges'
 ctest --output-on-failure -j"$(nproc)" --timeout 1200 -E "^(cli|e2e|FluxAudit)\.|^($LONG)" "$@"
