@@ -291,8 +291,13 @@ GridResult computeGrid(const Scene& scene, const GridSpec& spec,
         throw InputError("--extent: expected u1 > u0 and v1 > v0 (an area, not a line)");
     double nu = std::floor((spec.hi.x - spec.lo.x) / spec.spacing) + 1.0;
     double nv = std::floor((spec.hi.y - spec.lo.y) / spec.spacing) + 1.0;
-    if (nu * nv > kMaxGridPoints)
-        throw InputError("--spacing: " + std::to_string(spec.spacing) + " m gives over 1e6 points");
+    if (nu * nv > kMaxGridPoints) {
+        char text[160];
+        std::snprintf(text, sizeof text,
+                      "--spacing: %g m gives %.4g x %.4g points, more than the %.0f allowed",
+                      spec.spacing, nu, nv, double(kMaxGridPoints));
+        throw InputError(text);
+    }
     GridResult r;
     r.spec = spec;
     r.u = gridCoordinates(spec.lo.x, spec.hi.x, spec.spacing);

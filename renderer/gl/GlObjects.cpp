@@ -1,5 +1,6 @@
 #include "renderer/gl/GlObjects.h"
 
+#include <cstdio>
 #include <string>
 
 #include "util/Error.h"
@@ -36,6 +37,22 @@ Texture2D::Texture2D(int width, int height, GLenum internalFormat, int levels)
     glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
 }
 
+namespace {
+
+/// "0x8CD6 (an attachment is incomplete)": a framebuffer status as OpenGL names it.
+std::string statusText(GLenum status) {
+    char hex[16];
+    std::snprintf(hex, sizeof hex, "0x%04X", unsigned(status));
+    const char* meaning = status == GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT ? "an image is incomplete"
+                          : status == GL_FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT
+                              ? "no image attached"
+                          : status == GL_FRAMEBUFFER_UNSUPPORTED ? "unsupported formats"
+                                                                 : "incomplete";
+    return std::string(hex) + ", " + meaning;
+}
+
+}  // namespace
+
 Framebuffer::Framebuffer(std::initializer_list<const Texture2D*> colour, const Texture2D* depth) {
     GLuint id = 0;
     glCreateFramebuffers(1, &id);
@@ -50,8 +67,16 @@ Framebuffer::Framebuffer(std::initializer_list<const Texture2D*> colour, const T
     glNamedFramebufferDrawBuffers(id, n, buffers);
     if (depth) glNamedFramebufferTexture(id, GL_DEPTH_ATTACHMENT, depth->id(), 0);
     GLenum status = glCheckNamedFramebufferStatus(id, GL_FRAMEBUFFER);
-    if (status != GL_FRAMEBUFFER_COMPLETE)
-        throw RuntimeError("framebuffer incomplete (status 0x" + std::to_string(status) + ")");
+    if (status != GL_FRAMEBUFFER_COMPLETE) {
+        // Usually images too large for this OpenGL's memory: say how large they were.
+        const Texture2D* any = colour.size() > 0 ? *colour.begin() : depth;
+        std::string size =
+            any ? std::to_string(any->width()) + " x " + std::to_string(any->height()) + " pixels"
+                : std::string("no image");
+        throw RuntimeError("OpenGL could not make an image of " + size + " (framebuffer status " +
+                           statusText(status) +
+                           "): too large for this OpenGL's memory? A smaller image size may fit");
+    }
 }
 
 TextureArray::TextureArray(GLenum target, int width, int height, int layers, GLenum internalFormat)
@@ -87,8 +112,9 @@ void Framebuffer::attachDepthLayer(const TextureArray& array, int layer) {
     glNamedFramebufferTextureLayer(id(), GL_DEPTH_ATTACHMENT, array.id(), 0, layer);
     GLenum status = glCheckNamedFramebufferStatus(id(), GL_FRAMEBUFFER);
     if (status != GL_FRAMEBUFFER_COMPLETE)
-        throw RuntimeError("shadow-map framebuffer incomplete (status 0x" + std::to_string(status) +
-                           ")");
+        throw RuntimeError("OpenGL could not make a shadow map of " +
+                           std::to_string(array.width()) + " x " + std::to_string(array.height()) +
+                           " pixels (framebuffer status " + statusText(status) + ")");
 }
 
 VertexArray::VertexArray() {

@@ -97,6 +97,7 @@ class TextureArray {
     TextureArray(GLenum target, int width, int height, int layers, GLenum internalFormat);
     GLuint id() const { return mHandle.id(); }
     int width() const { return mWidth; }
+    int height() const { return mHeight; }
     int layers() const { return mLayers; }
 
   private:

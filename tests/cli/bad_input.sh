@@ -37,6 +37,8 @@ expect "unknown option" -- render "$data/ok.json" --out "$out/a.png" --frobnicat
 # An empty output name is refused, naming the flag (it used to write nothing and exit 0).
 office="$2/../resources/scenes/office.json"
 expect "--csv" "empty" -- grid "$office" --plane y=0.8 --csv ""
+# A spacing that makes too many points says how many, in a few digits (not 300 of them).
+expect "--spacing: 1e-300 m gives 6e+300 x 4e+300 points, more than the 1000000 allowed" -- grid "$office" --plane y=0.8 --spacing 1e-300
 expect "--csv" "empty" -- surfaces "$office" --csv ""
 expect "--csv" "empty" -- glare "$office" --csv ""
 expect "--csv" "empty" -- glare --table "$2/../resources/luminaires/photometric/prolicht-e30.ldt" --csv ""
