@@ -33,8 +33,16 @@ void LuminairePass::setSource(const Luminaire& source, const std::vector<std::by
     std::shared_ptr<const GpuTables> tables = source.gpuTables();
     if (tables != mTables) {
         mTextures.clear();
-        if (tables)
-            for (const GpuTable& t : *tables) mTextures.push_back(uploadGpuTable(t));
+        try {
+            if (tables)
+                for (const GpuTable& t : *tables) mTextures.push_back(uploadGpuTable(t));
+        } catch (const RuntimeError& e) {
+            // Name the luminaire and its file: the table is the file's data.
+            std::vector<std::string> files = source.sourceFiles();
+            throw RuntimeError("luminaire \"" + source.name + "\"" +
+                               (files.empty() ? std::string() : " (" + files.front() + ")") + ": " +
+                               e.what());
+        }
         mTables = tables;
     }
     if (record == mRecord && mBuffer.id()) return;
