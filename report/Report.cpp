@@ -848,10 +848,11 @@ std::vector<unsigned char> withFalseColourLegend(const std::vector<unsigned char
 std::vector<ScheduleRow> luminaireSchedule(const Scene& scene) {
     std::vector<ScheduleRow> rows;
     std::map<std::string, size_t> index;
+    UnitSystem units = scene.units();  // once: it looks at every luminaire
     for (const auto& l : scene.luminaires) {
         ScheduleRow r;
         r.maintenanceFactor = scene.maintenanceFactorOf(*l);
-        glm::dvec3 power = l->power() * scene.unitScale(*l);
+        glm::dvec3 power = l->power() * scene.unitScale(*l, units);
         r.flux = (power.x + power.y + power.z) / 3.0;
         r.kind = std::string(l->kind());
         if (auto* p = dynamic_cast<const PhotometricLuminaire*>(l.get()); p && p->data) {

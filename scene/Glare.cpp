@@ -73,7 +73,10 @@ double guthPositionIndex(const glm::dvec3& toSource, const glm::dvec3& view, con
 
 namespace {
 
-GlareSource seenBy(const Scene& scene, const Luminaire& luminaire, const GlareObserver& o) {
+/// `units`: the scene's (Scene::units(), which looks at every luminaire: found once, not per
+/// luminaire).
+GlareSource seenBy(const Scene& scene, const UnitSystem& units, const Luminaire& luminaire,
+                   const GlareObserver& o) {
     GlareSource g;
     g.luminaire = luminaire.name;
     auto* p = dynamic_cast<const PhotometricLuminaire*>(&luminaire);
@@ -100,7 +103,7 @@ GlareSource seenBy(const Scene& scene, const Luminaire& luminaire, const GlareOb
         g.excluded = "behind the eye's frontal plane";
         return g;
     }
-    g.intensity = p->intensity(toEye) * scene.lightScale(luminaire);
+    g.intensity = p->intensity(toEye) * scene.lightScale(luminaire, units);
     g.projectedArea = p->area() * std::abs(glm::dot(z, toEye / g.distance));
     g.solidAngle = g.projectedArea / (g.distance * g.distance);
     double p2 = g.positionIndex * g.positionIndex;
@@ -167,8 +170,9 @@ GlareReport computeGlare(const Scene& scene, const GridSpec& how,
                                  "cd/m2), so UGR is unbounded; give \"background_cd_m2\"");
         }
         double sum = 0.0;
+        UnitSystem units = scene.units();
         for (const auto& l : scene.luminaires) {
-            r.sources.push_back(seenBy(scene, *l, o));
+            r.sources.push_back(seenBy(scene, units, *l, o));
             if (r.sources.back().excluded.empty()) sum += r.sources.back().term;
         }
         r.ugr = sum > 0.0 ? 8.0 * std::log10(0.25 / r.background * sum) : 0.0;

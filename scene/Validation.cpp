@@ -466,7 +466,9 @@ ValidationResult cieFlux() {
     double flux = 0.0, emitted = 0.0;
     for (size_t i = 0; i < ir.mesh().patches.size(); ++i)
         flux += ir.mesh().patches[i].area * luminance(ir.direct()[i]);
-    for (const auto& l : scene.luminaires) emitted += scene.lightScale(*l) * luminance(l->power());
+    UnitSystem units = scene.units();
+    for (const auto& l : scene.luminaires)
+        emitted += scene.lightScale(*l, units) * luminance(l->power());
     r.detail = std::to_string(ir.mesh().patches.size()) + " patches; " + number(emitted) +
                " lm emitted (the files' tables integrated)";
     return finish(r, emitted, flux, 0.01);
@@ -665,7 +667,9 @@ ValidationResult validateClosedRoom(const Scene& scene, int patches) {
         absorbed +=
             p.area * luminance((glm::dvec3(1.0) - p.albedo) * (ir.direct()[i] + ir.indirect()[i]));
     }
-    for (const auto& l : scene.luminaires) flux += scene.lightScale(*l) * luminance(l->power());
+    UnitSystem units = scene.units();
+    for (const auto& l : scene.luminaires)
+        flux += scene.lightScale(*l, units) * luminance(l->power());
     ValidationResult r;
     r.name = "closed-room";
     r.unit = scene.units().photometric ? "lm" : "W";
