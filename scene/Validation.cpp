@@ -672,7 +672,7 @@ ValidationResult validateClosedRoom(const Scene& scene, int patches) {
         flux += scene.lightScale(*l, units) * luminance(l->power());
     ValidationResult r;
     r.name = "closed-room";
-    r.unit = scene.units().photometric ? "lm" : "W";
+    r.unit = units.photometric ? "lm" : "W";
     r.description =
         file + ": light absorbed by every surface, sum A (1 - rho) E, = the luminaires' flux";
     r.detail = std::to_string(ir.mesh().patches.size()) + " patches, " +

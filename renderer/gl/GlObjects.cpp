@@ -39,7 +39,7 @@ Texture2D::Texture2D(int width, int height, GLenum internalFormat, int levels)
 
 namespace {
 
-/// "0x8CD6 (an attachment is incomplete)": a framebuffer status as OpenGL names it.
+/// "0x8CD6, an image is incomplete": a framebuffer status in hex, with what it means.
 std::string statusText(GLenum status) {
     char hex[16];
     std::snprintf(hex, sizeof hex, "0x%04X", unsigned(status));
