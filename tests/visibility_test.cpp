@@ -204,7 +204,7 @@ TEST(LightFieldVisibility, ABoxedLuminaireLightsNothingAndUToSIsInsideTheLuminai
     // 1. The light field inside a closed box: every technique gives exactly 0 outside it.
     // 2. A disc between U (y = 1) and S (y = 0.95): the model's radiance is what leaves S, so
     //    shadow rays run from the receiver to S and what lies between U and S belongs to the
-    //    measured luminaire. Such a disc changes nothing (README, "Visibility").
+    //    measured luminaire. Such a disc changes nothing (docs/visibility.md).
     fs::path dir = fs::temp_directory_path() / ("candela-boxed-" + std::to_string(::getpid()));
     fs::create_directories(dir);
     writeConstantField(dir, 250.0);

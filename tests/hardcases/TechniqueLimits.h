@@ -1,6 +1,6 @@
 #pragma once
 // What each technique promises on each hard case (issue 18, part 1): the limits its registry line
-// states (TechniqueInfo::limits, the README's "Hard cases" table), applied to a case, in a form
+// states (TechniqueInfo::limits, the table in docs/hard-cases.md), applied to a case, in a form
 // the suites hold the techniques to. A technique without a statement is held to the strictest
 // promise (exact if deterministic, unbiased with an honest standard error if progressive), so
 // one added later is covered without editing the suites, and fails until it states its limits.
@@ -24,7 +24,7 @@ struct Promise {
     double rel = 0.0;
     double lo = 0.0, hi = 0.0;
     double abs = 0.0;  ///< An absolute slack added to every tolerance, the case's unit.
-    std::string why;   ///< The README's wording, printed with a failure.
+    std::string why;   ///< The wording of docs/hard-cases.md, printed with a failure.
 };
 
 /// The promise of technique `t` on case `c` (CPU, double precision).

@@ -1,7 +1,7 @@
 // The hard-case grid on the CPU estimators (issue 18, part 1): every case of HardCases.cpp times
 // every technique the registry lists for its kind, each held to its stated limit
-// (TechniqueLimits.cpp, the README's table). Stochastic techniques run at two sample counts, so a
-// standard error that hides a miss at few samples fails too.
+// (TechniqueLimits.cpp, the table in docs/hard-cases.md). Stochastic techniques run at two sample
+// counts, so a standard error that hides a miss at few samples fails too.
 #include "tests/hardcases/HardCases.h"
 
 #include <gtest/gtest.h>
