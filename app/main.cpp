@@ -3,9 +3,11 @@
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <new>
 
 #include "app/commands/Commands.h"
 #include "luminaires/Photometry.h"
+#include "util/Activity.h"
 #include "util/TextEncoding.h"
 
 namespace {
@@ -131,6 +133,14 @@ int main(int argc, char** argv) {
         if (command == "validate") return candela::cmdValidate(args);
         std::fprintf(stderr, "candela: unknown command \"%s\"\n%s", command.c_str(), kUsage);
         return 2;
+    } catch (const std::bad_alloc&) {
+        // Says what it was doing (util/Activity.h) instead of "std::bad_alloc".
+        std::string what = candela::toValidUtf8(candela::takeFailedActivity());
+        std::fprintf(stderr,
+                     "candela %s: error: out of memory%s%s (docs/limits.md lists what Candela "
+                     "bounds)\n",
+                     command.c_str(), what.empty() ? "" : " while ", what.c_str());
+        return 1;
     } catch (const std::exception& e) {
         // One line of valid UTF-8 whatever the message quotes (file names, fields in Latin-1).
         std::string message = candela::toValidUtf8(e.what());

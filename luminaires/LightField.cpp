@@ -12,6 +12,8 @@
 #include <mutex>
 #include <thread>
 
+#include "util/Threads.h"
+
 namespace candela {
 
 double bspline2(double x) {
@@ -135,10 +137,7 @@ void LightFieldData::precompute() {
             next = images.size();
         }
     };
-    std::vector<std::thread> pool;
-    for (size_t k = 1; k < workers; ++k) pool.emplace_back(work);
-    work();
-    for (std::thread& t : pool) t.join();
+    runInParallel(int(workers), work);
     if (failed) std::rethrow_exception(failed);
     precomputeMs =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

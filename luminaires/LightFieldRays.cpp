@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "util/Error.h"
+#include "util/Threads.h"
 
 namespace candela {
 
@@ -77,10 +78,7 @@ class KernelTable {
                 }
         };
         int threads = std::clamp(int(std::thread::hardware_concurrency()), 1, 8);
-        std::vector<std::thread> pool;
-        for (int t = 1; t < threads; ++t) pool.emplace_back(rows, t, threads);
-        rows(0, threads);
-        for (std::thread& t : pool) t.join();
+        runSlices(threads, [&](int t) { rows(t, threads); });
     }
 
     double operator()(glm::dvec2 d) const {

@@ -9,6 +9,7 @@
 #include "luminaires/Random.h"
 #include "shaders/shared/Constants.h"
 #include "util/Error.h"
+#include "util/Threads.h"
 
 namespace candela {
 
@@ -224,10 +225,7 @@ void traceAll(const Tracer& tracer, uint64_t rays, int threads,
             uint64_t c = first + t;
             tracer.chunk(c, std::min(kChunkRays, rays - c * kChunkRays), batch[size_t(t)]);
         };
-        std::vector<std::thread> pool;
-        for (uint64_t t = 1; t < inBatch; ++t) pool.emplace_back(run, t);
-        run(0);
-        for (std::thread& t : pool) t.join();
+        runSlices(int(inBatch), [&](int t) { run(uint64_t(t)); });
         for (uint64_t t = 0; t < inBatch; ++t) sink(batch[size_t(t)]);
         if (progress) progress(double(first + inBatch) / double(chunks));
     }

@@ -482,6 +482,12 @@ void Renderer::updateStatistics() {
     mStats.samplesPerPixel = mPlan.progressive() ? std::max(fewestSamples, 0) : 0;
 }
 
+void Renderer::allocateImages() {
+    if (mGBuffer->width() == mSettings.width && mGBuffer->height() == mSettings.height) return;
+    resize(mSettings.width, mSettings.height);
+    mPending = kChangeAll;
+}
+
 void Renderer::renderFrame() {
     mStats.passes.clear();
     mTimer.collect();

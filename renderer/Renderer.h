@@ -57,6 +57,9 @@ class Renderer {
     void setSettings(const RenderSettings& settings);
     const RenderSettings& settings() const { return mSettings; }
 
+    /// Makes the images of the settings' size now rather than at the first frame, so that a size
+    /// this GL cannot hold fails (GlError naming it) before any long work that precedes it.
+    void allocateImages();
     /// One progressive iteration; does nothing once converged.
     void renderFrame();
     bool converged() const { return mStats.converged; }

@@ -17,6 +17,7 @@
 #include "scene/Interreflection.h"
 #include "scene/Scene.h"
 #include "util/Error.h"
+#include "util/Threads.h"
 
 namespace candela {
 
@@ -195,10 +196,7 @@ void addIndirect(const Scene& scene, const GridSpec& spec, const std::vector<Rec
             r.indirectStdError[index] = luminanceOf(e.stdError);
         }
     };
-    std::vector<std::thread> pool;
-    for (int t = 1; t < workerThreads(0); ++t) pool.emplace_back(work);
-    work();
-    for (auto& t : pool) t.join();
+    runInParallel(workerThreads(0), work);
     r.hasIndirect = true;
     r.patches = ir.mesh().patches.size();
     std::string rays = std::to_string(std::max(1, spec.spp)) + " rays";
@@ -292,10 +290,13 @@ GridResult computeGrid(const Scene& scene, const GridSpec& spec,
     double nu = std::floor((spec.hi.x - spec.lo.x) / spec.spacing) + 1.0;
     double nv = std::floor((spec.hi.y - spec.lo.y) / spec.spacing) + 1.0;
     if (nu * nv > kMaxGridPoints) {
-        char text[160];
+        // Neither flag may have been given (the scene's extent at the default spacing).
+        char text[240];
         std::snprintf(text, sizeof text,
-                      "--spacing: %g m gives %.4g x %.4g points, more than the %.0f allowed",
-                      spec.spacing, nu, nv, double(kMaxGridPoints));
+                      "the grid at a spacing of %g m over %.4g x %.4g m gives %.4g x %.4g points, "
+                      "more than the %.0f allowed: a larger --spacing or a smaller --extent",
+                      spec.spacing, spec.hi.x - spec.lo.x, spec.hi.y - spec.lo.y, nu, nv,
+                      double(kMaxGridPoints));
         throw InputError(text);
     }
     GridResult r;
@@ -416,10 +417,7 @@ ReceiverResult computeReceivers(const Scene& scene, const GridSpec& spec,
             r.directStdError[index] = luminanceOf(glm::sqrt(var));
         }
     };
-    std::vector<std::thread> pool;
-    for (int t = 1; t < workerThreads(0); ++t) pool.emplace_back(work);
-    work();
-    for (auto& t : pool) t.join();
+    runInParallel(workerThreads(0), work);
     r.E = r.direct;
     r.stdError = r.directStdError;
     if (spec.indirect) addIndirectBeforeMaintenance(scene, spec, receivers, r, status);

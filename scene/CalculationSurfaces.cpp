@@ -100,14 +100,16 @@ TaskArea parseTaskArea(const nlohmann::json& entry, const json::Where& where) {
     if (!extent || !extent->is_array() || extent->size() != 4)
         json::fail(where / "extent", "[u0, v0, u1, v1] in metres on the plane");
     double e[4];
-    for (size_t k = 0; k < 4; ++k) e[k] = json::number((*extent)[k], (where / "extent")[k]);
+    for (size_t k = 0; k < 4; ++k)
+        e[k] = json::inRange((*extent)[k], (where / "extent")[k], -json::kMaxMetres,
+                             json::kMaxMetres, "a coordinate in metres");
     a.lo = {std::min(e[0], e[2]), std::min(e[1], e[3])};
     a.hi = {std::max(e[0], e[2]), std::max(e[1], e[3])};
     if (!(a.hi.x > a.lo.x) || !(a.hi.y > a.lo.y))
         json::fail(where / "extent", "an area (u1 != u0 and v1 != v0), not a line");
     if (entry.contains("required"))
         a.required = parseRequirement(entry["required"], where / "required");
-    a.spacing = json::optional(entry, "spacing", where, 0.0, json::positive);
+    a.spacing = json::optional(entry, "spacing", where, 0.0, json::length);
     std::string quantity =
         json::optional(entry, "illuminance", where, std::string("planar"), json::string);
     if (quantity != "planar" && quantity != "cylindrical")
@@ -128,7 +130,7 @@ CalcPoint parseCalcPoint(const nlohmann::json& entry, const json::Where& where) 
     CalcPoint p;
     p.name = json::optional(entry, "name", where, std::string("point"), json::string);
     if (!entry.contains("position")) json::fail(where / "position", "[x, y, z] in metres");
-    p.position = json::vec3(entry["position"], where / "position");
+    p.position = json::point(entry["position"], where / "position");
     std::string type = json::optional(entry, "type", where, std::string("planar"), json::string);
     if (type != "planar" && type != "cylindrical")
         json::fail(where / "type",

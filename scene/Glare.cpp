@@ -38,7 +38,7 @@ GlareObserver parseGlareObserver(const nlohmann::json& entry, const json::Where&
     o.name = json::optional(entry, "name", where, std::string("observer"), json::string);
     if (!entry.contains("position"))
         json::fail(where / "position", "the eye's [x, y, z] in metres");
-    o.position = json::vec3(entry["position"], where / "position");
+    o.position = json::point(entry["position"], where / "position");
     if (!entry.contains("view"))
         json::fail(where / "view", "the line of sight [x, y, z] (horizontal)");
     o.view = horizontalView(json::direction(entry["view"], where / "view"), where / "view");

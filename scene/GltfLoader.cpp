@@ -15,6 +15,7 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <map>
 
+#include "util/Activity.h"
 #include "util/Error.h"
 #include "util/FileInput.h"
 
@@ -526,6 +527,7 @@ std::string percentDecoded(const std::string& uri) {
 std::vector<std::string> loadGltf(const std::string& path, const glm::dmat4& transform,
                                   Scene& scene, const json::Where& where) {
     const std::string prefix = where.file.empty() ? path : where.str() + ": " + path;
+    ScopedActivity activity("reading the glTF model " + prefix);
     try {
         checkInputFile(path, "glTF", kMaxGltfBytes);
     } catch (const InputError& e) {

@@ -7,6 +7,7 @@
 #include "scene/EmbreeVisibility.h"
 #include "scene/Scene.h"
 #include "shaders/shared/Constants.h"
+#include "util/Activity.h"
 #include "util/Error.h"
 
 namespace candela {
@@ -46,6 +47,8 @@ void append(std::vector<std::byte>& key, const std::string& text) {
 
 Interreflection::Interreflection(const Scene& scene, const InterreflectionOptions& options)
     : mGeometry(scene), mOptions(options), mVisibility(std::make_unique<EmbreeVisibility>(scene)) {
+    ScopedActivity activity("building the interreflection's patches of " +
+                            (scene.path.empty() ? std::string("the scene") : scene.path));
     mMesh = RadiosityMesh::build(scene, options.mesh);
     mDirectTotal.assign(mMesh.patches.size(), glm::dvec3(0.0));
     mIndirect.assign(mMesh.patches.size(), glm::dvec3(0.0));
@@ -235,6 +238,8 @@ bool Interreflection::refine(int spp, const Progress& progress) {
 }
 
 bool Interreflection::compute(const Progress& progress) {
+    ScopedActivity activity("computing the interreflected light of " +
+                            (mGeometry.path.empty() ? std::string("the scene") : mGeometry.path));
     return buildTransfer(progress) && sync(mGeometry, mOptions.directSpp, progress);
 }
 
@@ -325,11 +330,19 @@ glm::dvec3 Interreflection::patchLight(const glm::dvec3& p, const glm::dvec3& no
         const RadiosityMesh::Patch& q = mMesh.patches[j];
         if (!(q.albedo.x + q.albedo.y + q.albedo.z > 0.0)) continue;
         if (!(glm::dot(q.normal, p - q.centroid) > 0.0)) continue;  // p behind its reflecting side
-        const glm::dvec3 a = mMesh.vertices[q.vertex[0]], b = mMesh.vertices[q.vertex[1]],
-                         c = mMesh.vertices[q.vertex[2]];
-        double f = pointTriangleFormFactor(p, n, a, b, c);
+        double f = mMesh.formFactorTo(p, n, uint32_t(j));
         if (!(f > 0.0)) continue;
         glm::dvec3 total = mDirectTotal[j] + mIndirect[j];
+        if (q.cluster) {
+            // Its stand-in is off the surface: seen or not at its centroid, never split; near
+            // p, all of its share is unsure (a final gather takes over).
+            double v = mVisibility->visibleBetweenSurfaces(p, q.centroid) ? 1.0 : 0.0;
+            sum += v * f * q.albedo * total;
+            if (refine && f > kRefineFormFactor) error += v * f * q.albedo * total;
+            continue;
+        }
+        const glm::dvec3 a = mMesh.vertices[q.vertex[0]], b = mMesh.vertices[q.vertex[1]],
+                         c = mMesh.vertices[q.vertex[2]];
         // Refined: near p (its form factor above kRefineFormFactor), or seen in part (an edge of
         // an occluder crosses it: its inner points disagree).
         bool inner = refine && f > kVisibilityFormFactor;

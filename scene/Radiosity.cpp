@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <map>
 #include <thread>
 
@@ -9,6 +11,7 @@
 #include "scene/Scene.h"
 #include "shaders/shared/Constants.h"
 #include "util/Error.h"
+#include "util/Threads.h"
 
 namespace candela {
 
@@ -40,10 +43,7 @@ bool parallelFor(size_t count, int threads, const Progress& progress, Body&& bod
             if (progress.cancelled()) stop = true;
         }
     };
-    std::vector<std::thread> pool;
-    for (int t = 1; t < threads; ++t) pool.emplace_back(work);
-    work();
-    for (auto& t : pool) t.join();
+    runInParallel(threads, work);
     if (progress.report && !stop) progress.report(1.0);
     return !stop && !progress.cancelled();
 }
@@ -126,8 +126,6 @@ class VertexWelder {
     std::vector<glm::dvec3> mVertexNormal;
 };
 
-/// Splits triangle t of mesh mi into patches of about `patchArea` (edge h), appending them and
-/// the triangle's Split to `out`.
 /// How many times the edges of triangle (a, b, c) are divided for patches of edge about h (area
 /// patchArea): its n^2 patches are about the patch area (half a square's triangle of edge h gets
 /// n = s / h), and no patch edge is over 1.5 h (slivers, such as a disc's fan, get split
@@ -141,14 +139,95 @@ uint32_t triangleSubdivisions(const glm::dvec3& a, const glm::dvec3& b, const gl
     return uint32_t(std::clamp(std::ceil(divisions - 1e-9), 1.0, double(kMaxSubdivisions)));
 }
 
+/// A triangle of a mesh: its corners, its unit normal on the reflecting side (the vertex
+/// normals' side where the mesh has them, else the winding's: counter-clockwise seen from
+/// outside), whether that is against the winding, and its area.
+struct Facet {
+    uint32_t index[3];
+    glm::dvec3 corner[3], normal{0.0};
+    bool flip = false;
+    double area = 0.0;
+
+    Facet(const Mesh& m, size_t t) {
+        for (int k = 0; k < 3; ++k) {
+            index[k] = m.indices[t + k];
+            corner[k] = glm::dvec3(m.positions[index[k]]);
+        }
+        glm::dvec3 g = glm::cross(corner[1] - corner[0], corner[2] - corner[0]);
+        double twice = glm::length(g);
+        if (!(twice > 0.0) || !std::isfinite(twice)) return;
+        area = 0.5 * twice;
+        normal = g / twice;
+        if (index[0] < m.normals.size() && index[1] < m.normals.size() &&
+            index[2] < m.normals.size()) {
+            glm::dvec3 nv = glm::dvec3(m.normals[index[0]]) + glm::dvec3(m.normals[index[1]]) +
+                            glm::dvec3(m.normals[index[2]]);
+            flip = glm::dot(nv, normal) < 0.0;
+        }
+        if (flip) normal = -normal;
+    }
+    glm::dvec3 centroid() const { return (corner[0] + corner[1] + corner[2]) / 3.0; }
+};
+
+/// The degree-2 rule's points of triangle (a, b, c): barycentrics (2/3, 1/6, 1/6) and permutations.
+std::array<glm::dvec3, 3> rulePoints(const glm::dvec3& a, const glm::dvec3& b,
+                                     const glm::dvec3& c) {
+    const double kNear = 2.0 / 3.0, kFar = 1.0 / 6.0;
+    return {kNear * a + kFar * b + kFar * c, kFar * a + kNear * b + kFar * c,
+            kFar * a + kFar * b + kNear * c};
+}
+
+/// A triangle smaller than this part of a patch's area is gathered into a cluster (Radiosity.h):
+/// a quarter, so that a triangle kept whole is at least a quarter of a patch and a mesh's
+/// patches stay within four times its area's share of the target.
+constexpr double kClusterAreaFraction = 0.25;
+
+/// The clusters of one mesh: the cluster of each triangle (kNoCluster for one cut into patches
+/// of its own), how many clusters, and how many patches its other triangles make.
+constexpr uint32_t kNoCluster = UINT32_MAX;
+struct MeshClusters {
+    std::vector<uint32_t> of;
+    uint32_t count = 0;
+    size_t trianglePatches = 0;
+};
+
+MeshClusters findClusters(const Mesh& m, double h, double patchArea) {
+    MeshClusters out;
+    out.of.assign(m.triangleCount(), kNoCluster);
+    // Key: the cube of edge h holding the centroid, and the axis direction the normal leans to.
+    using Key = std::tuple<int64_t, int64_t, int64_t, int>;
+    std::map<Key, uint32_t> ids;
+    // Cells beyond 1e12 patch edges are one: the scene's coordinates are bounded far below.
+    const double kCell = 1e12;
+    for (size_t t = 0; t + 2 < m.indices.size(); t += 3) {
+        Facet f(m, t);
+        uint32_t n = triangleSubdivisions(f.corner[0], f.corner[1], f.corner[2], h, patchArea);
+        if (n != 1 || !(f.area < kClusterAreaFraction * patchArea)) {
+            out.trianglePatches += size_t(n) * n;
+            continue;
+        }
+        glm::dvec3 c = f.centroid() / h;
+        glm::dvec3 a = glm::abs(f.normal);
+        int axis = a.x >= a.y && a.x >= a.z ? 0 : (a.y >= a.z ? 1 : 2);
+        Key key{int64_t(std::floor(std::clamp(c.x, -kCell, kCell))),
+                int64_t(std::floor(std::clamp(c.y, -kCell, kCell))),
+                int64_t(std::floor(std::clamp(c.z, -kCell, kCell))),
+                2 * axis + (f.normal[axis] < 0.0 ? 1 : 0)};
+        auto [it, added] = ids.emplace(key, out.count);
+        if (added) ++out.count;
+        out.of[t / 3] = it->second;
+    }
+    return out;
+}
+
+/// Splits triangle t of mesh mi into patches of about `patchArea` (edge h), appending them and
+/// the triangle's Split to `out`.
 void addTrianglePatches(RadiosityMesh& out, VertexWelder& welder, const Mesh& m, size_t mi,
                         size_t t, const glm::dvec3& albedo, double h, double patchArea) {
     using Split = RadiosityMesh::Split;
     using Patch = RadiosityMesh::Patch;
-    uint32_t ia = m.indices[t], ib = m.indices[t + 1], ic = m.indices[t + 2];
-    glm::dvec3 a(m.positions[ia]), b(m.positions[ib]), c(m.positions[ic]);
-    glm::dvec3 g = glm::cross(b - a, c - a);
-    double twiceArea = glm::length(g);
+    Facet f(m, t);
+    const glm::dvec3 &a = f.corner[0], &b = f.corner[1], &c = f.corner[2];
     Split split;
     split.firstPatch = uint32_t(out.patches.size());
     uint32_t n = triangleSubdivisions(a, b, c, h, patchArea);
@@ -157,16 +236,6 @@ void addTrianglePatches(RadiosityMesh& out, VertexWelder& welder, const Mesh& m,
         out.splits[mi].push_back(split);
         return;
     }
-    glm::dvec3 normal = g / twiceArea;
-    // The reflecting side: the vertex normals' side where the mesh has them, else the
-    // winding's (counter-clockwise seen from outside).
-    bool flip = false;
-    if (ia < m.normals.size() && ib < m.normals.size() && ic < m.normals.size()) {
-        glm::dvec3 nv =
-            glm::dvec3(m.normals[ia]) + glm::dvec3(m.normals[ib]) + glm::dvec3(m.normals[ic]);
-        flip = glm::dot(nv, normal) < 0.0;
-    }
-    if (flip) normal = -normal;
     split.subdivisions = n;
     out.splits[mi].push_back(split);
     // Grid points a + i/n (b - a) + j/n (c - a), i + j <= n.
@@ -175,14 +244,17 @@ void addTrianglePatches(RadiosityMesh& out, VertexWelder& welder, const Mesh& m,
     for (uint32_t j = 0; j <= n; ++j)
         for (uint32_t i = 0; i + j <= n; ++i) {
             glm::dvec3 p = a + (double(i) / n) * (b - a) + (double(j) / n) * (c - a);
-            grid[gridIndex(i, j)] = welder.vertexOf(p, normal, uint32_t(mi));
+            grid[gridIndex(i, j)] = welder.vertexOf(p, f.normal, uint32_t(mi));
         }
-    double area = 0.5 * twiceArea / double(n * n);
+    double area = f.area / double(n * n);
     auto add = [&](uint32_t v0, uint32_t v1, uint32_t v2) {
         Patch p;
-        p.vertex = flip ? std::array<uint32_t, 3>{v0, v2, v1} : std::array<uint32_t, 3>{v0, v1, v2};
-        p.centroid = (out.vertices[v0] + out.vertices[v1] + out.vertices[v2]) / 3.0;
-        p.normal = normal;
+        p.vertex =
+            f.flip ? std::array<uint32_t, 3>{v0, v2, v1} : std::array<uint32_t, 3>{v0, v1, v2};
+        const glm::dvec3 &x0 = out.vertices[v0], &x1 = out.vertices[v1], &x2 = out.vertices[v2];
+        p.centroid = (x0 + x1 + x2) / 3.0;
+        p.samples = rulePoints(x0, x1, x2);
+        p.normal = f.normal;
         p.area = area;
         p.albedo = albedo;
         p.hidden = m.hidden;
@@ -195,6 +267,85 @@ void addTrianglePatches(RadiosityMesh& out, VertexWelder& welder, const Mesh& m,
                 add(grid[gridIndex(i + 1, j)], grid[gridIndex(i + 1, j + 1)],
                     grid[gridIndex(i, j + 1)]);
         }
+}
+
+/// The clusters of mesh mi (findClusters) as patches (Radiosity.h), with their triangles for
+/// display and the Splits of those triangles pointing at them.
+void addClusterPatches(RadiosityMesh& out, const Mesh& m, size_t mi, const MeshClusters& clusters,
+                       const glm::dvec3& albedo) {
+    if (clusters.count == 0) return;
+    const uint32_t first = uint32_t(out.patches.size());
+    struct Sum {
+        double area = 0.0;
+        glm::dvec3 at{0.0}, normal{0.0};
+    };
+    std::vector<Sum> sums(clusters.count);
+    for (size_t t = 0; t + 2 < m.indices.size(); t += 3) {
+        uint32_t id = clusters.of[t / 3];
+        if (id == kNoCluster) continue;
+        Facet f(m, t);
+        sums[id].area += f.area;
+        sums[id].at += f.area * f.centroid();
+        sums[id].normal += f.area * f.normal;
+    }
+    // The stand-ins: an equilateral triangle of the cluster's area around its mean position, in
+    // the plane of its mean normal, counter-clockwise seen from that side.
+    std::vector<glm::dvec3> mean(clusters.count);
+    for (uint32_t id = 0; id < clusters.count; ++id) {
+        const Sum& s = sums[id];
+        RadiosityMesh::Patch p;
+        p.cluster = true;
+        p.area = s.area;
+        p.normal = glm::length(s.normal) > 0.0 ? glm::normalize(s.normal) : glm::dvec3(0, 1, 0);
+        mean[id] = s.area > 0.0 ? s.at / s.area : glm::dvec3(0.0);
+        glm::dvec3 helper = std::abs(p.normal.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+        glm::dvec3 u = glm::normalize(glm::cross(helper, p.normal)), v = glm::cross(p.normal, u);
+        // Circumradius of the equilateral triangle of this area: side sqrt(4 A / sqrt 3).
+        double r = std::sqrt(4.0 * s.area / std::sqrt(3.0)) / std::sqrt(3.0);
+        for (int k = 0; k < 3; ++k) {
+            double angle = 0.5 * kPi + 2.0 * kPi * k / 3.0;
+            p.vertex[k] = uint32_t(out.vertices.size());
+            out.vertices.push_back(mean[id] + r * (std::cos(angle) * u + std::sin(angle) * v));
+        }
+        p.centroid = mean[id];
+        p.albedo = albedo;
+        p.hidden = m.hidden;
+        out.patches.push_back(p);
+    }
+    // On the surface: the centroid is its member's nearest the mean (preferring members that
+    // face its way), the samples its members' nearest the stand-in's rule points.
+    std::vector<double> best(clusters.count, std::numeric_limits<double>::infinity());
+    std::vector<std::array<double, 3>> bestSample(
+        clusters.count,
+        {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+         std::numeric_limits<double>::infinity()});
+    std::vector<std::array<glm::dvec3, 3>> rule(clusters.count);
+    for (uint32_t id = 0; id < clusters.count; ++id) {
+        const RadiosityMesh::Patch& p = out.patches[first + id];
+        rule[id] = rulePoints(out.vertices[p.vertex[0]], out.vertices[p.vertex[1]],
+                              out.vertices[p.vertex[2]]);
+    }
+    const uint32_t displayBase = uint32_t(out.vertices.size());
+    for (const glm::vec3& x : m.positions) out.vertices.push_back(glm::dvec3(x));
+    for (size_t t = 0; t + 2 < m.indices.size(); t += 3) {
+        uint32_t id = clusters.of[t / 3];
+        if (id == kNoCluster) continue;
+        Facet f(m, t);
+        RadiosityMesh::Patch& p = out.patches[first + id];
+        glm::dvec3 c = f.centroid();
+        // Distance squared, plus the cluster's area for a member facing 90 degrees away.
+        double score = glm::dot(c - mean[id], c - mean[id]) +
+                       sums[id].area * (1.0 - glm::dot(f.normal, p.normal));
+        if (score < best[id]) best[id] = score, p.centroid = c;
+        for (int k = 0; k < 3; ++k) {
+            double d = glm::dot(c - rule[id][k], c - rule[id][k]);
+            if (d < bestSample[id][k]) bestSample[id][k] = d, p.samples[k] = c;
+        }
+        out.splits[mi][t / 3] = {first + id, 1};
+        out.displayTriangles.push_back(
+            {displayBase + f.index[0], displayBase + f.index[1], displayBase + f.index[2]});
+        out.displayPatch.push_back(first + id);
+    }
 }
 
 /// A convex room: no vertex behind any patch (within rounding of the coordinates).
@@ -213,11 +364,14 @@ bool isConvexRoom(const RadiosityMesh& out) {
     return convexRoom;
 }
 
-/// Patches around each vertex (out.vertexStart, out.vertexPatches).
+/// Patches around each vertex (out.vertexStart, out.vertexPatches), the display triangles'
+/// with their clusters.
 void indexVertexPatches(RadiosityMesh& out) {
     std::vector<uint32_t> counts(out.vertices.size() + 1, 0);
     for (const RadiosityMesh::Patch& p : out.patches)
         for (uint32_t v : p.vertex) ++counts[v + 1];
+    for (const auto& t : out.displayTriangles)
+        for (uint32_t v : t) ++counts[v + 1];
     out.vertexStart.assign(out.vertices.size() + 1, 0);
     for (size_t v = 0; v < out.vertices.size(); ++v)
         out.vertexStart[v + 1] = out.vertexStart[v] + counts[v + 1];
@@ -225,6 +379,9 @@ void indexVertexPatches(RadiosityMesh& out) {
     std::vector<uint32_t> fill(out.vertexStart.begin(), out.vertexStart.end() - 1);
     for (uint32_t p = 0; p < out.patches.size(); ++p)
         for (uint32_t v : out.patches[p].vertex) out.vertexPatches[fill[v]++] = p;
+    for (size_t t = 0; t < out.displayTriangles.size(); ++t)
+        for (uint32_t v : out.displayTriangles[t])
+            out.vertexPatches[fill[v]++] = out.displayPatch[t];
 }
 
 }  // namespace
@@ -237,32 +394,28 @@ RadiosityMesh RadiosityMesh::build(const Scene& scene, const RadiositySettings& 
                         ? settings.patchSize
                         : std::sqrt(2.0 * total / double(std::max(1, settings.targetPatches)));
     double h = std::max(out.patchSize, 1e-9), patchArea = 0.5 * h * h;
-    // Counted before anything is built: every triangle gets a patch at least, and the solution
-    // keeps a coefficient for every pair of patches.
+    // Counted before anything is built: the solution keeps a coefficient for every pair of
+    // patches.
+    std::vector<MeshClusters> clusters(scene.meshes.size());
     size_t count = 0, most = 0, mostMesh = 0;
     for (size_t mi = 0; mi < scene.meshes.size(); ++mi) {
-        const Mesh& m = scene.meshes[mi];
-        size_t own = 0;
-        for (size_t t = 0; t + 2 < m.indices.size(); t += 3) {
-            uint32_t n = triangleSubdivisions(
-                glm::dvec3(m.positions[m.indices[t]]), glm::dvec3(m.positions[m.indices[t + 1]]),
-                glm::dvec3(m.positions[m.indices[t + 2]]), h, patchArea);
-            own += size_t(n) * n;
-        }
+        clusters[mi] = findClusters(scene.meshes[mi], h, patchArea);
+        size_t own = clusters[mi].trianglePatches + clusters[mi].count;
         count += own;
         if (own > most) most = own, mostMesh = mi;
     }
     if (count > kMaxPatches) {
         const Mesh& m = scene.meshes[mostMesh];
+        char size[32];
+        std::snprintf(size, sizeof size, "%.3g", h);
         throw InputError(
             (scene.path.empty() ? std::string("the scene") : scene.path) +
-            ": interreflected light: its surfaces make " + std::to_string(count) +
-            " patches, more than the " + std::to_string(kMaxPatches) +
-            " whose solution fits in memory (a patch per triangle at least; " +
-            (m.name.empty() ? "one surface" : "\"" + m.name + "\"") + " alone has " +
-            std::to_string(m.indices.size() / 3) +
-            " triangles); leave the interreflected light out, or use a model with fewer "
-            "triangles");
+            ": interreflected light: its surfaces make " + std::to_string(count) + " patches of " +
+            size + " m, more than the " + std::to_string(kMaxPatches) +
+            " whose solution fits in memory (" +
+            (m.name.empty() ? "one surface" : "\"" + m.name + "\"") + " alone makes " +
+            std::to_string(most) +
+            "); ask for fewer or larger patches, or leave the interreflected light out");
     }
     VertexWelder welder(out.vertices, h);
     out.splits.resize(scene.meshes.size());
@@ -273,15 +426,22 @@ RadiosityMesh RadiosityMesh::build(const Scene& scene, const RadiositySettings& 
                                 : glm::dvec3(0.0);
         albedo = glm::clamp(albedo, 0.0, 1.0);
         size_t first = out.patches.size();
-        for (size_t t = 0; t + 2 < m.indices.size(); t += 3)
-            addTrianglePatches(out, welder, m, mi, t, albedo, h, patchArea);
+        for (size_t t = 0; t + 2 < m.indices.size(); t += 3) {
+            if (clusters[mi].of[t / 3] == kNoCluster)
+                addTrianglePatches(out, welder, m, mi, t, albedo, h, patchArea);
+            else
+                out.splits[mi].push_back({});  // set by addClusterPatches
+        }
+        addClusterPatches(out, m, mi, clusters[mi], albedo);
+        clusters[mi] = {};
         if (m.luminaireBody) {
             for (size_t p = first; p < out.patches.size(); ++p)
                 out.patches[p].body = int(out.bodyBounds.size());
             out.bodyBounds.emplace_back(glm::dvec3(m.boundsMin), glm::dvec3(m.boundsMax));
         }
     }
-    out.convexRoom = isConvexRoom(out);
+    // Clusters' stand-ins are off their surfaces: no room with them counts as convex.
+    out.convexRoom = out.displayTriangles.empty() && isConvexRoom(out);
     indexVertexPatches(out);
     return out;
 }
@@ -300,6 +460,10 @@ uint32_t RadiosityMesh::patchAt(uint32_t mesh, uint32_t triangle, double u, doub
     double r = std::clamp(fu - i, 0.0, 1.0), q = std::clamp(fv - j, 0.0, 1.0);
     bool down = r + q > 1.0 && i + j < n - 1;
     uint32_t index = s.firstPatch + localIndex(i, j, down, n);
+    if (patches[index].cluster) {
+        weights = glm::dvec3(1.0 / 3.0);
+        return index;
+    }
     // Weights of the patch's corners in the order of the grid points that made it.
     if (down)
         weights = {1.0 - q, r + q - 1.0, 1.0 - r};
@@ -311,6 +475,21 @@ uint32_t RadiosityMesh::patchAt(uint32_t mesh, uint32_t triangle, double u, doub
                e2 = vertices[p.vertex[2]] - vertices[p.vertex[0]];
     if (glm::dot(glm::cross(e1, e2), p.normal) < 0.0) std::swap(weights.y, weights.z);
     return index;
+}
+
+double RadiosityMesh::formFactorTo(const glm::dvec3& x, const glm::dvec3& n, uint32_t patch) const {
+    const Patch& q = patches[patch];
+    const glm::dvec3 &a = vertices[q.vertex[0]], &b = vertices[q.vertex[1]],
+                     &c = vertices[q.vertex[2]];
+    double polygon = pointTriangleFormFactor(x, n, a, b, c);
+    if (!q.cluster) return polygon;
+    glm::dvec3 d = (a + b + c) / 3.0 - x;
+    double r2 = glm::dot(d, d);
+    if (!(r2 > 0.0)) return 0.0;
+    glm::dvec3 dir = d / std::sqrt(r2);
+    double cosHere = glm::dot(n, dir), cosThere = -glm::dot(q.normal, dir);
+    if (!(cosHere > 0.0) || !(cosThere > 0.0)) return 0.0;
+    return std::min(polygon, q.area * cosHere * cosThere / (kPi * r2));
 }
 
 bool RadiosityMesh::reflects() const {
@@ -330,7 +509,6 @@ bool TransferMatrix::build(const RadiosityMesh& mesh, const EmbreeVisibility& vi
     size = mesh.patches.size();
     t.assign(size * size, 0.f);
     const auto& patches = mesh.patches;
-    const auto& vertices = mesh.vertices;
     std::atomic<size_t> rows{0};
     Progress inner = progress;
     inner.report = nullptr;
@@ -345,11 +523,9 @@ bool TransferMatrix::build(const RadiosityMesh& mesh, const EmbreeVisibility& vi
                 // A receiver reflects on its normal's side only: the shooter must be in front.
                 if (!(glm::dot(receiver.normal, shooter.centroid - receiver.centroid) > 0.0))
                     continue;
-                const glm::dvec3& a = vertices[receiver.vertex[0]];
-                const glm::dvec3& b = vertices[receiver.vertex[1]];
-                const glm::dvec3& c = vertices[receiver.vertex[2]];
-                // From the shooter's centroid: over a closed room the row sums to exactly one.
-                double f = pointTriangleFormFactor(shooter.centroid, shooter.normal, a, b, c);
+                // From the shooter's centroid: over a closed room of triangle patches the row
+                // sums to exactly one.
+                double f = mesh.formFactorTo(shooter.centroid, shooter.normal, uint32_t(k));
                 if (!(f > 0.0)) continue;
                 if (!mesh.convexRoom &&
                     !visibility.visibleBetweenSurfaces(shooter.centroid, receiver.centroid))
@@ -367,9 +543,6 @@ bool directOnPatches(const RadiosityMesh& mesh, const PointEstimator& estimate,
                      const EstimateOptions& options, int threads, std::vector<glm::dvec3>& out,
                      const Progress& progress, const std::function<bool(size_t)>& dark) {
     out.assign(mesh.patches.size(), glm::dvec3(0.0));
-    static const double kRule[3][3] = {{2.0 / 3.0, 1.0 / 6.0, 1.0 / 6.0},
-                                       {1.0 / 6.0, 2.0 / 3.0, 1.0 / 6.0},
-                                       {1.0 / 6.0, 1.0 / 6.0, 2.0 / 3.0}};
     std::atomic<size_t> count{0};
     std::thread::id caller = std::this_thread::get_id();
     Progress inner = progress;
@@ -378,9 +551,7 @@ bool directOnPatches(const RadiosityMesh& mesh, const PointEstimator& estimate,
         const RadiosityMesh::Patch& p = mesh.patches[i];
         glm::dvec3 sum(0.0);
         for (int q = 0; q < 3 && !(dark && dark(i)); ++q) {
-            glm::dvec3 x = kRule[q][0] * mesh.vertices[p.vertex[0]] +
-                           kRule[q][1] * mesh.vertices[p.vertex[1]] +
-                           kRule[q][2] * mesh.vertices[p.vertex[2]];
+            const glm::dvec3& x = p.samples[q];
             EstimateOptions o = options;
             o.seed = options.seed * 0x9E3779B97F4A7C15ull + uint64_t(i) * 3 + uint64_t(q) + 1;
             Estimate e = estimate(x, p.normal, o);

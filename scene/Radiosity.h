@@ -43,25 +43,52 @@ struct RadiositySettings {
 
 /// The scene's surfaces as patches, with vertices shared between the patches of one flat surface
 /// (for smooth display) but not across creases.
+///
+/// The patch count follows the surfaces' area, not their tessellation. A triangle about the patch
+/// size or larger is cut into patches of that size. Triangles much smaller than a patch (a finely
+/// tessellated glTF model) are gathered into clusters: those of one mesh whose centroids fall in
+/// one cube of the patch's edge and whose normals lean towards one of the six axis directions.
+/// A cluster is one patch: its area the sum of its triangles', its normal their area-weighted
+/// mean, its centroid the centroid of its member nearest to their mean position (a point on the
+/// surface, so shadow rays to it are not blocked by the surface itself), and its direct light
+/// the mean at three of its triangles' centroids. The form factor to it is a disc's of its area
+/// at that mean facing its normal, A cos cos / (pi r^2 + A) (formFactorTo): bounded where its
+/// neighbours' centroids come close to it, which a flat stand-in for a curved piece would not be
+/// (a neighbour's centroid over its footprint, a millimetre in front of it, saw half its
+/// hemisphere filled). The display draws its triangles themselves (displayTriangles) with the
+/// cluster's value; `vertex` holds a stand-in triangle of its area at the mean, in the plane of
+/// its normal, whose corners carry its value for interpolation.
 struct RadiosityMesh {
     /// The most patches a solution may have: its transfer coefficients take 4 bytes for every
-    /// pair of patches (1.6 GB at 20 000). A scene whose surfaces make more (a finely
-    /// tessellated glTF: a patch per triangle at least) is refused by build() with a message.
+    /// pair of patches (1.6 GB at 20 000). A scene whose surfaces make more (a patch size asked
+    /// for that is small against the scene's area) is refused by build() with a message.
     static constexpr size_t kMaxPatches = 20000;
     struct Patch {
-        std::array<uint32_t, 3> vertex{};  ///< Counter-clockwise seen from the normal's side.
-        glm::dvec3 centroid{0.0};          ///< Metres.
-        glm::dvec3 normal{0.0};            ///< Unit, the reflecting side.
-        double area = 0.0;                 ///< m2.
-        glm::dvec3 albedo{0.0};            ///< Diffuse reflectance, RGB in [0, 1].
-        bool hidden = false;               ///< On a mesh the camera does not see (Mesh::hidden).
+        /// Counter-clockwise seen from the normal's side; a cluster's stand-in triangle.
+        std::array<uint32_t, 3> vertex{};
+        glm::dvec3 centroid{0.0};  ///< Metres; a cluster's: on one of its triangles.
+        glm::dvec3 normal{0.0};    ///< Unit, the reflecting side.
+        double area = 0.0;         ///< m2.
+        glm::dvec3 albedo{0.0};    ///< Diffuse reflectance, RGB in [0, 1].
+        bool hidden = false;       ///< On a mesh the camera does not see (Mesh::hidden).
         int body = -1;  ///< On a luminaire's body: its index into bodyBounds; -1 elsewhere.
+        /// A cluster of small triangles (above): its stand-in triangle is not on the surface, so
+        /// it is neither drawn, nor split into parts, nor a form factor's target.
+        bool cluster = false;
+        /// Where its direct light is sampled, on the surface: the degree-2 rule's points of its
+        /// triangle (barycentrics 2/3, 1/6, 1/6 and permutations), or three of a cluster's
+        /// triangles' centroids.
+        std::array<glm::dvec3, 3> samples{};
     };
     /// The luminaire bodies' bounds (lo, hi), metres: a body receives no light of its own
     /// luminaire (insideBody), whose photometry already holds it.
     std::vector<std::pair<glm::dvec3, glm::dvec3>> bodyBounds;
     std::vector<glm::dvec3> vertices;  ///< Metres.
     std::vector<Patch> patches;
+    /// The clustered triangles as the mesh has them (indices into vertices), for display, each
+    /// with its cluster (displayPatch): they, not the clusters' stand-ins, are drawn.
+    std::vector<std::array<uint32_t, 3>> displayTriangles;
+    std::vector<uint32_t> displayPatch;
     double patchSize = 0.0;  ///< Longest edge asked for, metres.
     /// Every patch sees every other unobstructed: all vertices lie on or in front of every
     /// patch's plane (a convex room seen from inside, such as a closed box or sphere). Then the
@@ -69,24 +96,29 @@ struct RadiosityMesh {
     bool convexRoom = false;
 
     /// Where each mesh triangle's patches start and how many times its edges were divided:
-    /// triangle t of mesh m has subdivisions^2 patches from firstPatch on.
+    /// triangle t of mesh m has subdivisions^2 patches from firstPatch on (a clustered triangle:
+    /// its cluster, subdivisions 1).
     struct Split {
         uint32_t firstPatch = 0;
         uint32_t subdivisions = 1;
     };
     std::vector<std::vector<Split>> splits;  ///< [mesh][triangle]
 
-    /// The patches around each vertex (compressed rows: vertexPatches[vertexStart[v] ..
-    /// vertexStart[v + 1]]).
+    /// The patches around each vertex, the display triangles' included (compressed rows:
+    /// vertexPatches[vertexStart[v] .. vertexStart[v + 1]]).
     std::vector<uint32_t> vertexStart, vertexPatches;
 
     /// Patches of the scene's meshes, `settings` choosing their size. Throws InputError naming
     /// the scene and its largest surface when they would make more than kMaxPatches.
     static RadiosityMesh build(const Scene& scene, const RadiositySettings& settings);
     /// The patch that holds the point of barycentric (u, v) (Embree's: p = (1-u-v) a + u b + v c)
-    /// on triangle `triangle` of mesh `mesh`, and the point's barycentrics within that patch.
+    /// on triangle `triangle` of mesh `mesh`, and the point's barycentrics within that patch
+    /// (1/3 each on a cluster: its stand-in's corners all hold its own value).
     uint32_t patchAt(uint32_t mesh, uint32_t triangle, double u, double v,
                      glm::dvec3& weights) const;
+    /// The form factor from a point x with unit normal n to patch `patch` (metres): its
+    /// triangle's (pointTriangleFormFactor), or a cluster's disc's (above).
+    double formFactorTo(const glm::dvec3& x, const glm::dvec3& n, uint32_t patch) const;
     /// True when some patch reflects light (a non-zero albedo).
     bool reflects() const;
     double totalArea() const;
@@ -110,8 +142,8 @@ struct TransferMatrix {
 };
 
 /// Direct irradiance on every patch from one source, in the scene's units, RGB: the mean of its
-/// estimator at three points of the patch (the degree-2 rule with barycentrics (2/3, 1/6, 1/6)
-/// and permutations), each with `options` (seeded per patch and point) and Embree visibility.
+/// estimator at the patch's three sample points (Patch::samples), each with `options` (seeded per
+/// patch and point) and Embree visibility.
 /// `estimate` is the source's estimator at (p, n); patches `dark` names get none (the source's
 /// own body) without asking it. Returns false when cancelled.
 using PointEstimator =

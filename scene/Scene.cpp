@@ -1,10 +1,12 @@
 #include "scene/Scene.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdio>
 
 #include "luminaires/Environment.h"
 #include "luminaires/EnvironmentLight.h"
+#include "util/Error.h"
 
 namespace candela {
 
@@ -67,11 +69,20 @@ std::vector<std::string> Scene::inputFiles() const {
     return files;
 }
 
-bool Scene::updateBodies() {
+bool Scene::updateBodies(size_t maxTriangles) {
     std::vector<Mesh> bodies;
     std::vector<double> reflectances;  ///< Of each body, for its material.
+    size_t triangleTotal = 0;
+    for (const Mesh& m : meshes)
+        if (!m.luminaireBody) triangleTotal += m.triangleCount();
     for (const auto& l : luminaires) {
         LuminaireBody source = l->body();
+        triangleTotal += source.triangles.size() / 3;
+        if (triangleTotal > maxTriangles)
+            throw InputError((path.empty() ? std::string("the scene") : path) + ": luminaire \"" +
+                             l->name + "\": the geometry and the luminaires' bodies make more " +
+                             "than " + std::to_string(maxTriangles) +
+                             " triangles; leave bodies out (\"body\": false) or use fewer");
         Mesh body;
         body.name = l->name + " (body)";
         body.luminaireBody = true;

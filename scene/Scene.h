@@ -2,6 +2,7 @@
 // The scene as Candela edits and renders it: world-space meshes with materials, luminaire
 // instances, the camera. World is Y-up, lengths in metres.
 
+#include <cstdint>
 #include <glm/glm.hpp>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -125,8 +126,10 @@ struct Scene {
     /// material of the body's reflectance, after every geometry entry's meshes; hidden when the
     /// camera sees through it) with their current shape and pose. Returns whether that changed
     /// the meshes (false when every body is as it was: an edit of another luminaire moves no
-    /// geometry).
-    bool updateBodies();
+    /// geometry). `maxTriangles`: the most triangles the scene's meshes may make with the bodies
+    /// (SceneLimits::triangles at load); beyond, InputError naming the scene and the luminaire
+    /// that passed it, before its body is kept.
+    bool updateBodies(size_t maxTriangles = SIZE_MAX);
     size_t bodyCount() const;
     /// Whether the scene has surfaces of its own (meshes other than luminaire bodies): a room
     /// to reflect light.

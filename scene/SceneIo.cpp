@@ -16,6 +16,7 @@
 #include "luminaires/Registry.h"
 #include "scene/GltfLoader.h"
 #include "shaders/shared/Constants.h"
+#include "util/Activity.h"
 #include "util/Error.h"
 #include "util/FileInput.h"
 #include "util/FileOutput.h"
@@ -101,14 +102,16 @@ double unitNumber(const nlohmann::json& v, const json::Where& where) {
 glm::dvec2 positive2(const nlohmann::json& v, const json::Where& where) {
     glm::dvec2 s = json::vec2(v, where);
     for (int i = 0; i < 2; ++i)
-        if (!(s[i] > 0.0)) json::fail(where[i], "a positive size, got " + v.dump());
+        if (!(s[i] > 0.0 && s[i] <= json::kMaxMetres))
+            json::fail(where[i], "a positive size in metres of at most 1e+06, got " + v.dump());
     return s;
 }
 
 glm::dvec3 positive3(const nlohmann::json& v, const json::Where& where) {
     glm::dvec3 s = json::vec3(v, where);
     for (int i = 0; i < 3; ++i)
-        if (!(s[i] > 0.0)) json::fail(where[i], "a positive size, got " + v.dump());
+        if (!(s[i] > 0.0 && s[i] <= json::kMaxMetres))
+            json::fail(where[i], "a positive size in metres of at most 1e+06, got " + v.dump());
     return s;
 }
 
@@ -149,7 +152,7 @@ void parsePlane(const nlohmann::json& item, const json::Where& where, size_t ind
     const json::Where at = where / "plane";
     const nlohmann::json& spec = item["plane"];
     json::checkKeys(spec, {"center", "normal", "size"}, at);
-    glm::dvec3 center = json::optional(spec, "center", at, glm::dvec3(0.0), json::vec3);
+    glm::dvec3 center = json::optional(spec, "center", at, glm::dvec3(0.0), json::point);
     glm::dvec3 n = glm::normalize(
         json::optional(spec, "normal", at, glm::dvec3(0.0, 1.0, 0.0), json::direction));
     if (!spec.contains("size")) json::fail(at / "size", "[width, height] in metres (missing)");
@@ -178,11 +181,11 @@ void parseDisc(const nlohmann::json& item, const json::Where& where, size_t inde
     const json::Where at = where / "disc";
     const nlohmann::json& spec = item["disc"];
     json::checkKeys(spec, {"center", "normal", "radius", "segments"}, at);
-    glm::dvec3 center = json::optional(spec, "center", at, glm::dvec3(0.0), json::vec3);
+    glm::dvec3 center = json::optional(spec, "center", at, glm::dvec3(0.0), json::point);
     glm::dvec3 n = glm::normalize(
         json::optional(spec, "normal", at, glm::dvec3(0.0, 1.0, 0.0), json::direction));
     if (!spec.contains("radius")) json::fail(at / "radius", "a radius in metres (missing)");
-    double radius = json::positive(spec["radius"], at / "radius");
+    double radius = json::length(spec["radius"], at / "radius");
     double segmentsValue = json::optional(spec, "segments", at, 256.0, json::positive);
     if (segmentsValue != std::floor(segmentsValue) || segmentsValue < 3 || segmentsValue > 65536)
         json::fail(at / "segments", "a whole number of segments from 3 to 65536");
@@ -211,7 +214,7 @@ void parseBox(const nlohmann::json& item, const json::Where& where, size_t index
     const json::Where at = where / "box";
     const nlohmann::json& spec = item["box"];
     json::checkKeys(spec, {"center", "size", "rotate_y_deg", "inside"}, at);
-    glm::dvec3 center = json::optional(spec, "center", at, glm::dvec3(0.0), json::vec3);
+    glm::dvec3 center = json::optional(spec, "center", at, glm::dvec3(0.0), json::point);
     if (!spec.contains("size"))
         json::fail(at / "size", "[x, y, z] edge lengths in metres (missing)");
     glm::dvec3 half = 0.5 * positive3(spec["size"], at / "size");
@@ -256,9 +259,9 @@ void parseSphere(const nlohmann::json& item, const json::Where& where, size_t in
     const json::Where at = where / "sphere";
     const nlohmann::json& spec = item["sphere"];
     json::checkKeys(spec, {"center", "radius", "subdivisions", "inside"}, at);
-    glm::dvec3 center = json::optional(spec, "center", at, glm::dvec3(0.0), json::vec3);
+    glm::dvec3 center = json::optional(spec, "center", at, glm::dvec3(0.0), json::point);
     if (!spec.contains("radius")) json::fail(at / "radius", "a radius in metres (missing)");
-    double radius = json::positive(spec["radius"], at / "radius");
+    double radius = json::length(spec["radius"], at / "radius");
     double levels = json::optional(spec, "subdivisions", at, 3.0, json::number);
     if (levels != std::floor(levels) || levels < 0 || levels > 7)
         json::fail(at / "subdivisions", "a whole number from 0 to 7 (20 x 4^n triangles)");
@@ -316,9 +319,11 @@ std::vector<std::string> parseGltfItem(const nlohmann::json& item, const json::W
         const json::Where at = where / "transform";
         const nlohmann::json& t = item["transform"];
         json::checkKeys(t, {"translate", "rotate_y_deg", "scale"}, at);
-        glm::dvec3 translate = json::optional(t, "translate", at, glm::dvec3(0.0), json::vec3);
+        glm::dvec3 translate = json::optional(t, "translate", at, glm::dvec3(0.0), json::point);
         double angle = json::optional(t, "rotate_y_deg", at, 0.0, kAngle);
-        double scale = json::optional(t, "scale", at, 1.0, json::positive);
+        // A model in micrometres to one in kilometres, in metres.
+        double scale =
+            json::optional(t, "scale", at, 1.0, json::range(1e-6, 1e6, "a scale factor"));
         transform = glm::translate(glm::dmat4(1.0), translate) *
                     glm::rotate(glm::dmat4(1.0), glm::radians(angle), glm::dvec3(0, 1, 0)) *
                     glm::scale(glm::dmat4(1.0), glm::dvec3(scale));
@@ -365,8 +370,8 @@ void parseGeometryItem(const nlohmann::json& item, const json::Where& where, siz
 Camera parseCamera(const nlohmann::json& v, const json::Where& where) {
     json::checkKeys(v, {"position", "target", "fov_deg", "exposure"}, where);
     Camera camera;
-    camera.position = json::optional(v, "position", where, camera.position, json::vec3);
-    camera.target = json::optional(v, "target", where, camera.target, json::vec3);
+    camera.position = json::optional(v, "position", where, camera.position, json::point);
+    camera.target = json::optional(v, "target", where, camera.target, json::point);
     camera.fovDeg = json::optional(v, "fov_deg", where, camera.fovDeg, json::number);
     if (!(camera.fovDeg > 0.0 && camera.fovDeg < 180.0))
         json::fail(where / "fov_deg",
@@ -447,6 +452,7 @@ void rebaseGltfPaths(nlohmann::json& doc, const std::string& fromPath, const std
 }  // namespace
 
 Scene loadScene(const std::string& path) {
+    ScopedActivity activity("loading the scene " + path);
     std::string ext = lowerExtension(path);
     if (ext != ".json") {
         throw InputError(path + ": unsupported scene file type \"" + ext +
@@ -469,7 +475,30 @@ Scene loadScene(const std::string& path) {
     return parseScene(doc, path);
 }
 
-Scene parseScene(const nlohmann::json& doc, const std::string& path) {
+namespace {
+
+/// The list `key` of the scene document: an array of at most `limit` entries (`what`), else
+/// InputError naming the field and the limit.
+const nlohmann::json& boundedList(const nlohmann::json& doc, const char* key,
+                                  const json::Where& root, size_t limit, const char* what) {
+    const nlohmann::json& items = doc[key];
+    if (!items.is_array()) json::fail(root / key, std::string("an array of ") + what);
+    if (items.size() > limit)
+        json::fail(root / key, "at most " + std::to_string(limit) + " " + what + ", found " +
+                                   std::to_string(items.size()));
+    return items;
+}
+
+/// Triangles of the scene's meshes.
+size_t triangleCount(const Scene& scene) {
+    size_t n = 0;
+    for (const Mesh& m : scene.meshes) n += m.triangleCount();
+    return n;
+}
+
+}  // namespace
+
+Scene parseScene(const nlohmann::json& doc, const std::string& path, const SceneLimits& limits) {
     const json::Where root{path, ""};
     json::checkKeys(doc,
                     {"geometry", "luminaires", "environment", "camera", "maintenance_factor",
@@ -481,14 +510,19 @@ Scene parseScene(const nlohmann::json& doc, const std::string& path) {
         json::optional(doc, "maintenance_factor", root, 1.0, maintenanceFactorValue);
 
     if (doc.contains("geometry")) {
-        const nlohmann::json& items = doc["geometry"];
-        if (!items.is_array()) json::fail(root / "geometry", "an array of geometry entries");
-        for (size_t i = 0; i < items.size(); ++i)
+        const nlohmann::json& items =
+            boundedList(doc, "geometry", root, limits.geometryEntries, "geometry entries");
+        for (size_t i = 0; i < items.size(); ++i) {
             parseGeometryItem(items[i], (root / "geometry")[i], i, scene);
+            if (size_t n = triangleCount(scene); n > limits.triangles)
+                json::fail((root / "geometry")[i],
+                           "geometry of at most " + std::to_string(limits.triangles) +
+                               " triangles in all, reached " + std::to_string(n));
+        }
     }
     if (doc.contains("luminaires")) {
-        const nlohmann::json& items = doc["luminaires"];
-        if (!items.is_array()) json::fail(root / "luminaires", "an array of luminaires");
+        const nlohmann::json& items =
+            boundedList(doc, "luminaires", root, limits.luminaires, "luminaires");
         for (size_t i = 0; i < items.size(); ++i) {
             std::unique_ptr<Luminaire> first =
                 parseLuminaire(items[i], (root / "luminaires")[i], i);
@@ -503,6 +537,12 @@ Scene parseScene(const nlohmann::json& doc, const std::string& path) {
             }
             scene.luminaires.push_back(std::move(first));
             for (auto& m : more) scene.luminaires.push_back(std::move(m));
+            if (scene.luminaires.size() > limits.luminaires)
+                json::fail(root / "luminaires",
+                           "at most " + std::to_string(limits.luminaires) +
+                               " luminaires, their products' emitters counted, reached " +
+                               std::to_string(scene.luminaires.size()) + " at entry " +
+                               std::to_string(i));
         }
     }
     scene.environment = nullptr;
@@ -515,25 +555,25 @@ Scene parseScene(const nlohmann::json& doc, const std::string& path) {
     }
     if (doc.contains("camera")) scene.camera = parseCamera(doc["camera"], root / "camera");
     if (doc.contains("task_areas")) {
-        const nlohmann::json& items = doc["task_areas"];
-        if (!items.is_array()) json::fail(root / "task_areas", "an array of task areas");
+        const nlohmann::json& items =
+            boundedList(doc, "task_areas", root, limits.taskAreas, "task areas");
         for (size_t i = 0; i < items.size(); ++i)
             scene.taskAreas.push_back(parseTaskArea(items[i], (root / "task_areas")[i]));
     }
     if (doc.contains("calculation_points")) {
-        const nlohmann::json& items = doc["calculation_points"];
-        if (!items.is_array()) json::fail(root / "calculation_points", "an array of points");
+        const nlohmann::json& items =
+            boundedList(doc, "calculation_points", root, limits.calculationPoints, "points");
         for (size_t i = 0; i < items.size(); ++i)
             scene.calcPoints.push_back(parseCalcPoint(items[i], (root / "calculation_points")[i]));
     }
     if (doc.contains("glare_observers")) {
-        const nlohmann::json& items = doc["glare_observers"];
-        if (!items.is_array()) json::fail(root / "glare_observers", "an array of observers");
+        const nlohmann::json& items =
+            boundedList(doc, "glare_observers", root, limits.glareObservers, "observers");
         for (size_t i = 0; i < items.size(); ++i)
             scene.glareObservers.push_back(
                 parseGlareObserver(items[i], (root / "glare_observers")[i]));
     }
-    scene.updateBodies();
+    scene.updateBodies(limits.triangles);
     return scene;
 }
 
@@ -592,7 +632,7 @@ std::unique_ptr<Luminaire> parseLuminaire(const nlohmann::json& entry, const jso
     luminaire->name =
         json::optional(entry, "name", where, type + " " + std::to_string(index), json::string);
     Pose& pose = luminaire->pose;
-    pose.position = json::optional(entry, "position", where, Pose{}.position, json::vec3);
+    pose.position = json::optional(entry, "position", where, Pose{}.position, json::point);
     pose.aim = json::optional(entry, "aim", where, Pose{}.aim, json::direction);
     pose.c0 = json::optional(entry, "c0", where, Pose{}.c0, json::direction);
     luminaire->technique = json::optional(entry, "technique", where,

@@ -36,11 +36,25 @@
 
 namespace candela {
 
+/// The most entries each of a scene file's lists may hold, and the most triangles its geometry
+/// and luminaire bodies may make together: counted before the entries are read (the triangles as
+/// each entry is), so that a small file cannot ask for unbounded memory or time. docs/limits.md
+/// gives the reason for each; tests pass smaller ones.
+struct SceneLimits {
+    size_t geometryEntries = 100000;
+    size_t luminaires = 100000;  ///< After a GLDF's emitters are counted.
+    size_t taskAreas = 10000;
+    size_t calculationPoints = 1000000;
+    size_t glareObservers = 10000;
+    size_t triangles = 20000000;
+};
+
 /// Reads a scene file (.json). Throws InputError naming the file (and line and column for
 /// invalid JSON, the field for invalid values).
 Scene loadScene(const std::string& path);
 /// Builds a scene from a parsed document; `path` names it in errors and anchors relative paths.
-Scene parseScene(const nlohmann::json& doc, const std::string& path);
+Scene parseScene(const nlohmann::json& doc, const std::string& path,
+                 const SceneLimits& limits = {});
 /// The scene file document: geometry entries as written, luminaires, environment, camera.
 nlohmann::json sceneToJson(const Scene& scene);
 /// Writes the scene atomically: a temporary file in the target folder, flushed and fsync'ed, then

@@ -282,6 +282,23 @@ TEST(FileOutput, SheetWriterLeavesNoFileOnAFullDisk) {
     EXPECT_EQ(dir.entries(), std::vector<std::string>{"notes.txt"});
 }
 
+TEST(FileOutput, AHalfWrittenSheetIsTakenBack) {
+    // A 1 x 1 sheet: its PNG fits in the disk's room, its EXR (a header of several hundred
+    // bytes) and sidecar do not. The PNG already written is removed, so no half sheet is left
+    // and the next sheet does not skip a number.
+    TempDir dir;
+    ui::SheetImage sheet;
+    sheet.width = 1;
+    sheet.height = 1;
+    sheet.display = noise8(3);
+    sheet.linear = noiseFloat(3);
+    int code = runOnFullDisk([&] { ui::writeSheet(dir.path(), sheet, nullptr); }, "sheet-000.");
+    EXPECT_EQ(code, kInputErrorNamingFile);
+    EXPECT_EQ(dir.entries(), std::vector<std::string>{});
+    ui::SheetFiles next = ui::writeSheet(dir.path(), sheet, nullptr);
+    EXPECT_EQ(fs::path(next.png).filename(), "sheet-000.png");
+}
+
 TEST(FileOutput, ReplacingKeepsPermissionsAndLeavesNoTemporaryFile) {
     TempDir dir;
     fs::path kept = dir / "private.json";

@@ -143,7 +143,8 @@ TEST(SceneIo, ValueErrorsNameTheField) {
     EXPECT_CONTAINS(inputError([] {
                         parse(R"({"geometry": [{"gltf": "a.gltf", "transform": {"scale": 0}}]})");
                     }),
-                    "t.json: geometry[0].transform.scale: expected a positive number");
+                    "t.json: geometry[0].transform.scale: expected a scale factor from 1e-06 to "
+                    "1e+06, got 0");
     EXPECT_CONTAINS(inputError([] { parse(R"({"camera": {"fov_deg": 0}})"); }),
                     "t.json: camera.fov_deg: expected a field of view in (0, 180)");
     EXPECT_CONTAINS(inputError([] { parse(R"({"camera": {"exposure": 0}})"); }),
@@ -525,6 +526,76 @@ TEST(SceneIo, CloneIsDeep) {
     EXPECT_NE(scene.meshes[0].positions[0].x, 100.f);
     EXPECT_EQ(copy.path, scene.path);
     EXPECT_EQ(luminaireToJson(*copy.luminaires[1]), luminaireToJson(*scene.luminaires[1]));
+}
+
+TEST(SceneIo, EveryListIsCountedBeforeItsEntriesAreRead) {
+    // Each list one entry over its limit: refused by its count, naming the field, the limit and
+    // the count, before any entry is read (the entries are empty objects, which would fail on
+    // their own fields). At the limit, the count passes and the first entry is what fails.
+    const SceneLimits defaults;
+    struct List {
+        const char* key;
+        size_t limit;
+    } lists[] = {{"geometry", defaults.geometryEntries},
+                 {"luminaires", defaults.luminaires},
+                 {"task_areas", defaults.taskAreas},
+                 {"calculation_points", defaults.calculationPoints},
+                 {"glare_observers", defaults.glareObservers}};
+    for (const List& list : lists) {
+        SCOPED_TRACE(list.key);
+        nlohmann::json doc = nlohmann::json::object();
+        doc[list.key] = nlohmann::json::array();
+        for (size_t i = 0; i < list.limit; ++i) doc[list.key].push_back(nlohmann::json::object());
+        std::string atLimit = inputError([&] { parseScene(doc, "t.json"); });
+        EXPECT_CONTAINS(atLimit, std::string("t.json: ") + list.key + "[0]");
+        doc[list.key].push_back(nlohmann::json::object());
+        std::string over = inputError([&] { parseScene(doc, "t.json"); });
+        EXPECT_CONTAINS(over, std::string("t.json: ") + list.key + ": expected at most " +
+                                  std::to_string(list.limit));
+        EXPECT_CONTAINS(over, ", found " + std::to_string(list.limit + 1));
+    }
+}
+
+TEST(SceneIo, TrianglesAreCountedOverEveryEntryAndBody) {
+    // The geometry's triangles over all entries: three boxes of 12 under a limit of 30 fail at
+    // the third entry.
+    SceneLimits limits;
+    limits.triangles = 30;
+    auto box = [](double x) {
+        return R"({"box": {"center": [)" + std::to_string(x) + R"(, 0.5, 0], "size": [1, 1, 1]}})";
+    };
+    nlohmann::json three =
+        nlohmann::json::parse(R"({"geometry": [)" + box(0) + "," + box(2) + "," + box(4) + "]}");
+    std::string m = inputError([&] { parseScene(three, "t.json", limits); });
+    EXPECT_CONTAINS(m,
+                    "t.json: geometry[2]: expected geometry of at most 30 triangles in all, "
+                    "reached 36");
+    limits.triangles = 36;
+    EXPECT_EQ(parseScene(three, "t.json", limits).meshes.size(), 3u);
+    // With the luminaires' bodies: the office-gldf product's L3D housing, three times, on 36
+    // triangles of boxes: refused at the luminaire that passes the limit, naming it.
+    std::string lamp = R"({"type": "gldf", "file": ")" + data("gldf/GldfWithFilesComplete.gldf") +
+                       R"(", "position": [0, 2.5, 0]})";
+    nlohmann::json withLamps = three;
+    withLamps["luminaires"] = nlohmann::json::array();
+    for (int i = 0; i < 3; ++i) {
+        nlohmann::json l = nlohmann::json::parse(lamp);
+        l["name"] = "Lamp " + std::to_string(i);
+        withLamps["luminaires"].push_back(l);
+    }
+    Scene unlimited = parseScene(withLamps, "t.json");
+    size_t bodyTriangles = 0;
+    for (const Mesh& mesh : unlimited.meshes)
+        if (mesh.luminaireBody) bodyTriangles += mesh.triangleCount();
+    ASSERT_GT(bodyTriangles, 0u);
+    limits.triangles = 36 + bodyTriangles - 1;
+    m = inputError([&] { parseScene(withLamps, "t.json", limits); });
+    EXPECT_CONTAINS(m,
+                    "t.json: luminaire \"Lamp 2\": the geometry and the luminaires' bodies "
+                    "make more than " +
+                        std::to_string(limits.triangles) + " triangles");
+    limits.triangles = 36 + bodyTriangles;
+    EXPECT_EQ(parseScene(withLamps, "t.json", limits).luminaires.size(), 3u);
 }
 
 }  // namespace

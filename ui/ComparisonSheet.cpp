@@ -373,19 +373,27 @@ SheetFiles writeSheet(const fs::path& dir, const SheetImage& sheet, const nlohma
     } catch (const fs::filesystem_error& e) {
         throw InputError(dir.string() + ": " + e.what());
     }
-    writeImage8(files.png, sheet.width, sheet.height, sheet.display);
-    writeImageFloat(files.exr, sheet.width, sheet.height, sheet.linear);
+    // Whole or none: a sheet whose sidecar (or EXR) could not be written takes back what was
+    // written, so that no half sheet stays and the next one takes its number.
+    try {
+        writeImage8(files.png, sheet.width, sheet.height, sheet.display);
+        writeImageFloat(files.exr, sheet.width, sheet.height, sheet.linear);
 
-    nlohmann::json out = sidecar.is_null() ? nlohmann::json::object() : sidecar;
-    out["png"] = files.png;
-    out["exr"] = files.exr;
-    out["sheet_size"] = {sheet.width, sheet.height};
-    nlohmann::json rects = nlohmann::json::array();
-    for (const glm::ivec4& r : sheet.tileRects) rects.push_back({r.x, r.y, r.z, r.w});
-    out["tile_rects"] = std::move(rects);
-    // Invalid UTF-8 in caller-supplied strings is replaced rather than thrown on.
-    writeFileAtomically(files.json,
-                        out.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+        nlohmann::json out = sidecar.is_null() ? nlohmann::json::object() : sidecar;
+        out["png"] = files.png;
+        out["exr"] = files.exr;
+        out["sheet_size"] = {sheet.width, sheet.height};
+        nlohmann::json rects = nlohmann::json::array();
+        for (const glm::ivec4& r : sheet.tileRects) rects.push_back({r.x, r.y, r.z, r.w});
+        out["tile_rects"] = std::move(rects);
+        // Invalid UTF-8 in caller-supplied strings is replaced rather than thrown on.
+        writeFileAtomically(
+            files.json, out.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+    } catch (...) {
+        std::error_code ignored;
+        for (const std::string& f : {files.png, files.exr, files.json}) fs::remove(f, ignored);
+        throw;
+    }
     return files;
 }
 

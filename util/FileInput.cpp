@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "util/Activity.h"
 #include "util/Error.h"
 #include "util/TextEncoding.h"
 
@@ -93,6 +94,7 @@ std::uintmax_t checkInputFile(const std::string& path, const std::string& kind,
 
 std::string readInputFile(const std::string& path, const std::string& kind,
                           std::uintmax_t maxBytes) {
+    ScopedActivity activity("reading " + toValidUtf8(path) + " (" + kind + " file)");
     Descriptor d;
     std::uintmax_t size = openChecked(path, kind, maxBytes, d);
     std::string bytes;

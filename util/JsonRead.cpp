@@ -56,6 +56,21 @@ double inRange(const nlohmann::json& v, const Where& where, double lo, double hi
     return x;
 }
 
+glm::dvec3 point(const nlohmann::json& v, const Where& where) {
+    glm::dvec3 p = vec3(v, where);
+    for (int i = 0; i < 3; ++i)
+        if (!(std::abs(p[i]) <= kMaxMetres))
+            fail(where[size_t(i)], "a coordinate in metres from -1e+06 to 1e+06, got " + v.dump());
+    return p;
+}
+
+double length(const nlohmann::json& v, const Where& where) {
+    double x = number(v, where);
+    if (!(x > 0.0 && x <= kMaxMetres))
+        fail(where, "a positive length in metres of at most 1e+06, got " + v.dump());
+    return x;
+}
+
 template <int N>
 static glm::vec<N, double> readVec(const nlohmann::json& v, const Where& where) {
     if (!v.is_array() || v.size() != N)

@@ -47,6 +47,14 @@ inline auto range(double lo, double hi, std::string what) {
 /// rounding makes the angle meaningless (1e308 degrees turned everything to 0).
 inline constexpr double kMaxAngleDeg = 3600.0;
 
+/// The largest coordinate or length a scene may give, metres (1000 km): no building is larger,
+/// the renderer's floats keep millimetres only to about 10 km, and 1e308 made areas infinite.
+inline constexpr double kMaxMetres = 1e6;
+/// A point [x, y, z] in metres, each coordinate within +-kMaxMetres.
+glm::dvec3 point(const nlohmann::json& v, const Where& where);
+/// A length in metres in (0, kMaxMetres].
+double length(const nlohmann::json& v, const Where& where);
+
 /// Optional field: returns fallback when absent; validates like the functions above if present.
 template <class Fn, class T>
 T optional(const nlohmann::json& object, const char* key, const Where& where, T fallback, Fn read) {

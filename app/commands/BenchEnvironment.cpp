@@ -326,6 +326,12 @@ int benchEnvironment(const Args& args) {
     ProtectedInputs
         inputs;  // the map (MAP.hdr|MAP.exr): bench_scene.json and every image must miss it
     if (o.source != "sky") inputs.add(o.source);
+    // Before any work: none of the files with fixed names may be the map (each image of the
+    // sweep is checked as it is written).
+    for (const char* name :
+         {"bench_scene.json", "reference.png", "reference.exr", "bench.csv", "rebuild.csv",
+          "temporal.csv", "error_vs_time.png", "summary.txt", "plot.gp"})
+        checkNotAnInput((out / name).string(), "--out");
     Scene scene = benchScene(o.source, sky, out);
     BenchGpu gpu;
     RenderSettings settings;

@@ -27,6 +27,7 @@
 #include "scene/SceneIo.h"
 #include "util/Error.h"
 #include "util/FileOutput.h"
+#include "util/Threads.h"
 
 namespace candela {
 
@@ -50,10 +51,7 @@ std::vector<double> workPlane(const Interreflection& ir, const std::vector<glm::
         for (size_t i; (i = next.fetch_add(1)) < points.size();)
             out[i] = lum(ir.fromPatches(points[i], {0, 1, 0}));
     };
-    std::vector<std::thread> pool;
-    for (int t = 1; t < workerThreads(0); ++t) pool.emplace_back(work);
-    work();
-    for (auto& t : pool) t.join();
+    runInParallel(workerThreads(0), work);
     return out;
 }
 

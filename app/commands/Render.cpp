@@ -446,6 +446,7 @@ std::vector<unsigned char> renderSceneView(const Scene& scene, const GridSpec& h
     Renderer renderer(shaders);
     renderer.setSettings(o.settings);
     renderer.update(scene, kChangeAll);
+    renderer.allocateImages();  // a size too large fails before the interreflection
     auto start = Clock::now();
     addInterreflection(renderer, scene, o, start);
     int frames = 0;
@@ -477,6 +478,7 @@ int cmdRender(const Args& args) {
     o.settings.maxSamples = o.spp;
     renderer.setSettings(o.settings);
     renderer.update(scene, kChangeAll);
+    renderer.allocateImages();  // a size too large fails before the interreflection
 
     auto start = Clock::now();
     std::string indirectLine = addInterreflection(renderer, scene, o, start);

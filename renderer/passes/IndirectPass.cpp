@@ -32,9 +32,15 @@ void IndirectPass::set(const std::shared_ptr<const RadiosityMesh>& mesh,
         for (const glm::dvec3& v : mesh->vertices) positions.push_back(glm::vec3(v));
         std::vector<uint32_t> indices;
         indices.reserve(3 * mesh->patches.size());
+        // Not a luminous box (it blocks, the camera sees through it), nor a cluster's stand-in
+        // (its triangles are drawn instead).
         for (const auto& p : mesh->patches)
-            if (!p.hidden)  // a luminous box: it blocks, the camera sees through it
+            if (!p.hidden && !p.cluster)
                 indices.insert(indices.end(), p.vertex.begin(), p.vertex.end());
+        for (size_t t = 0; t < mesh->displayTriangles.size(); ++t)
+            if (!mesh->patches[mesh->displayPatch[t]].hidden)
+                indices.insert(indices.end(), mesh->displayTriangles[t].begin(),
+                               mesh->displayTriangles[t].end());
         mPositions =
             gl::Buffer(GLsizeiptr(positions.size() * sizeof(glm::vec3)), positions.data(), 0);
         mIndices = gl::Buffer(GLsizeiptr(indices.size() * sizeof(uint32_t)), indices.data(), 0);

@@ -47,7 +47,7 @@ expect "--csv" "empty" -- grid "$office" --plane y=0.8 --csv ""
 printf '{"geometry": [{"plane": {"center": [0, 0, 0], "normal": [0, 1, 0], "size": [4, 4]}}], "luminaires": [{"type": "photometric", "name": "Wide", "file": "many-angles.ies", "position": [0, 2, 0]}], "camera": {"position": [3, 2, 3], "target": [0, 0, 0]}}' >"$out/many-angles.json"
 expect 'luminaire "Wide"' "many-angles.ies" "exceeds this GL" -- render "$out/many-angles.json" --size 32x32 --out "$out/many.png"
 # A spacing that makes too many points says how many, in a few digits (not 300 of them).
-expect "--spacing: 1e-300 m gives 6e+300 x 4e+300 points, more than the 1000000 allowed" -- grid "$office" --plane y=0.8 --spacing 1e-300
+expect "the grid at a spacing of 1e-300 m over 6 x 4 m gives 6e+300 x 4e+300 points, more than the 1000000 allowed: a larger --spacing or a smaller --extent" -- grid "$office" --plane y=0.8 --spacing 1e-300
 expect "--csv" "empty" -- surfaces "$office" --csv ""
 expect "--csv" "empty" -- glare "$office" --csv ""
 expect "--csv" "empty" -- glare --table "$2/../resources/luminaires/photometric/prolicht-e30.ldt" --csv ""
@@ -73,6 +73,50 @@ lamp '' ', "environment": {"sky": {"sun_elevation_deg": 30, "sun_azimuth_deg": 0
 expect "environment.rotation_deg" "angle in degrees from -3600 to 3600" -- grid "$out/rotation.json" --plane y=0
 lamp '' ', "glare_observers": [{"name": "Eye", "position": [0, 1.2, 1.5], "view": [0, 0, -1], "background_cd_m2": 5e-324}]' >"$out/background.json"
 expect "glare_observers[0].background_cd_m2" "luminance in cd/m2 from 0.001" -- glare "$out/background.json"
+# Coordinates and lengths: within 1000 km (1e308 used to make areas and distances infinite).
+printf '{"geometry": [{"plane": {"center": [0, 0, 0], "normal": [0, 1, 0], "size": [1e308, 4]}}]}' >"$out/huge-plane.json"
+expect "geometry[0].plane.size[0]" "a positive size in metres of at most 1e+06" -- info "$out/huge-plane.json"
+printf '{"geometry": [{"box": {"center": [0, -1e308, 0], "size": [1, 1, 1]}}]}' >"$out/far-box.json"
+expect "geometry[0].box.center[1]" "a coordinate in metres from -1e+06 to 1e+06" -- info "$out/far-box.json"
+lamp '' ', "calculation_points": [{"position": [1e300, 1, 0]}]' >"$out/far-point.json"
+expect "calculation_points[0].position[0]" "a coordinate in metres" -- surfaces "$out/far-point.json"
+printf '{"luminaires": [{"type": "photometric", "file": "%s", "position": [0, 1e7, 0]}]}' "$ies" >"$out/far-lamp.json"
+expect "luminaires[0].position[1]" "a coordinate in metres" -- info "$out/far-lamp.json"
+
+# A bench whose output folder holds its environment map under a name the bench writes: refused
+# before any rendering, leaving nothing behind (it used to render first, then refuse, leaving
+# bench_scene.json).
+mkdir -p "$out/benchdir"
+cp "$2/data/environment/constant_2.exr" "$out/benchdir/reference.exr"
+expect "reference.exr" "--out" -- bench --environment "$out/benchdir/reference.exr" --out "$out/benchdir"
+[ "$(ls "$out/benchdir")" = "reference.exr" ] || { echo "FAIL: the refused bench left $(ls "$out/benchdir")"; failures=$((failures + 1)); }
+
+# An empty list entry count over a limit: refused by the count, naming the list.
+python3 -c 'import json; print(json.dumps({"glare_observers": [{}] * 10001}))' >"$out/observers.json"
+expect "glare_observers: expected at most 10000 observers, found 10001" -- info "$out/observers.json"
+
+# Out of memory: a scene with a model of a million triangles (24 MB) under falling limits on the
+# address space. Each run must end with exit 0, or exit 1 and a message saying what it was
+# doing ("out of memory while reading ..."), never a crash (a worker thread's bad_alloc, or a
+# thread that could not start, used to end in std::terminate); one at least must be refused
+# that way. A limit under which the program cannot even print its help is skipped: its libraries
+# do not load, or one of them (log4cplus, under OpenImageIO) cannot start its thread before main.
+python3 "$2/../scripts/fine_gltf.py" "$out/million" 1000000 >/dev/null
+refused=0
+for limit in 1200000 1000000 900000 800000 750000 700000 650000 600000 550000 500000 450000; do
+  (ulimit -v $limit; exec "$binary" --help) >/dev/null 2>&1 || continue
+  (ulimit -v $limit; exec "$binary" info "$out/million.json") >"$out/oom.txt" 2>&1
+  code=$?
+  if [ $code -eq 1 ] && grep -q "error: out of memory while " "$out/oom.txt"; then
+    refused=$((refused + 1))
+  elif [ $code -ne 0 ] && [ $code -ne 1 ]; then
+    echo "FAIL: info under ulimit -v $limit ended with $code: $(tail -2 "$out/oom.txt")"
+    failures=$((failures + 1))
+  fi
+done
+if [ $refused -gt 0 ]; then passed=$((passed + 1)); else
+  echo "FAIL: no run under a memory limit said what it was doing"; failures=$((failures + 1))
+fi
 
 echo "$passed passed, $failures failed"
 [ $failures -eq 0 ]
