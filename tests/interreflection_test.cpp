@@ -238,8 +238,8 @@ TEST(Interreflection, AFinelyTessellatedSphereGetsPatchesByAreaAndKeepsItsEnergy
         Spread spread = indirectSpread(ir, 0, mesh.patches.size());
         // The mean: a closed room keeps its energy to the form factors' sum, which clusters
         // (a flat disc or triangle for a curved piece) miss by 0.2 % (rows of 0.998 measured),
-        // doubled by the bounces at rho 0.5 (-0.44 % measured): 1 %. Each patch against the
-        // mean: the same error spread unevenly (0.65 % measured): 2 %.
+        // doubled by the bounces at rho 0.5 (-0.43 % measured): 1 %. Each patch against the
+        // mean: the same error spread unevenly (0.64 % measured): 2 %.
         EXPECT_NEAR(spread.mean / expected, 1.0, 0.01);
         EXPECT_LT(spread.worst, 0.02);
         // The display: every vertex the clusters' triangles use holds the interreflected light.
