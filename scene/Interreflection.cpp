@@ -316,10 +316,7 @@ glm::dvec3 Interreflection::patchLight(const glm::dvec3& p, const glm::dvec3& no
         glm::dvec3 centre = (a + b + c) / 3.0;
         int visible = mVisibility->visibleBetweenSurfaces(p, centre), tried = 1;
         if (inner) {
-            const double kNear = 2.0 / 3.0, kFar = 1.0 / 6.0;
-            for (const glm::dvec3& x :
-                 {kNear * a + kFar * b + kFar * c, kFar * a + kNear * b + kFar * c,
-                  kFar * a + kFar * b + kNear * c}) {
+            for (const glm::dvec3& x : rulePoints(a, b, c)) {
                 visible += mVisibility->visibleBetweenSurfaces(p, x);
                 ++tried;
             }

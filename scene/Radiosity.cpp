@@ -79,6 +79,13 @@ double pointTriangleFormFactor(const glm::dvec3& x, const glm::dvec3& n, const g
     return std::isfinite(f) ? f : 0.0;
 }
 
+std::array<glm::dvec3, 3> rulePoints(const glm::dvec3& a, const glm::dvec3& b,
+                                     const glm::dvec3& c) {
+    const double kNear = 2.0 / 3.0, kFar = 1.0 / 6.0;
+    return {kNear * a + kFar * b + kFar * c, kFar * a + kNear * b + kFar * c,
+            kFar * a + kFar * b + kNear * c};
+}
+
 int workerThreads(int requested) {
     if (requested > 0) return requested;
     return std::max(1, int(std::thread::hardware_concurrency()));
@@ -168,14 +175,6 @@ struct Facet {
     }
     glm::dvec3 centroid() const { return (corner[0] + corner[1] + corner[2]) / 3.0; }
 };
-
-/// The degree-2 rule's points of triangle (a, b, c): barycentrics (2/3, 1/6, 1/6) and permutations.
-std::array<glm::dvec3, 3> rulePoints(const glm::dvec3& a, const glm::dvec3& b,
-                                     const glm::dvec3& c) {
-    const double kNear = 2.0 / 3.0, kFar = 1.0 / 6.0;
-    return {kNear * a + kFar * b + kFar * c, kFar * a + kNear * b + kFar * c,
-            kFar * a + kFar * b + kNear * c};
-}
 
 /// A triangle smaller than this part of a patch's area is gathered into a cluster (Radiosity.h):
 /// a quarter, so that a triangle kept whole is at least a quarter of a patch and a mesh's

@@ -103,7 +103,8 @@ glm::dvec2 positive2(const nlohmann::json& v, const json::Where& where) {
     glm::dvec2 s = json::vec2(v, where);
     for (int i = 0; i < 2; ++i)
         if (!(s[i] > 0.0 && s[i] <= json::kMaxMetres))
-            json::fail(where[i], "a positive size in metres of at most 1e+06, got " + v.dump());
+            json::fail(where[i], "a positive size in metres of at most " + json::maxMetresText() +
+                                     ", got " + v.dump());
     return s;
 }
 
@@ -111,7 +112,8 @@ glm::dvec3 positive3(const nlohmann::json& v, const json::Where& where) {
     glm::dvec3 s = json::vec3(v, where);
     for (int i = 0; i < 3; ++i)
         if (!(s[i] > 0.0 && s[i] <= json::kMaxMetres))
-            json::fail(where[i], "a positive size in metres of at most 1e+06, got " + v.dump());
+            json::fail(where[i], "a positive size in metres of at most " + json::maxMetresText() +
+                                     ", got " + v.dump());
     return s;
 }
 
@@ -489,13 +491,6 @@ const nlohmann::json& boundedList(const nlohmann::json& doc, const char* key,
     return items;
 }
 
-/// Triangles of the scene's meshes.
-size_t triangleCount(const Scene& scene) {
-    size_t n = 0;
-    for (const Mesh& m : scene.meshes) n += m.triangleCount();
-    return n;
-}
-
 }  // namespace
 
 Scene parseScene(const nlohmann::json& doc, const std::string& path, const SceneLimits& limits) {
@@ -512,12 +507,16 @@ Scene parseScene(const nlohmann::json& doc, const std::string& path, const Scene
     if (doc.contains("geometry")) {
         const nlohmann::json& items =
             boundedList(doc, "geometry", root, limits.geometryEntries, "geometry entries");
+        size_t triangles = 0;  // a running total: recounting every mesh per entry is quadratic
         for (size_t i = 0; i < items.size(); ++i) {
+            size_t counted = scene.meshes.size();
             parseGeometryItem(items[i], (root / "geometry")[i], i, scene);
-            if (size_t n = triangleCount(scene); n > limits.triangles)
+            for (size_t m = counted; m < scene.meshes.size(); ++m)
+                triangles += scene.meshes[m].triangleCount();
+            if (triangles > limits.triangles)
                 json::fail((root / "geometry")[i],
                            "geometry of at most " + std::to_string(limits.triangles) +
-                               " triangles in all, reached " + std::to_string(n));
+                               " triangles in all, reached " + std::to_string(triangles));
         }
     }
     if (doc.contains("luminaires")) {

@@ -56,18 +56,26 @@ double inRange(const nlohmann::json& v, const Where& where, double lo, double hi
     return x;
 }
 
+std::string maxMetresText() {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", kMaxMetres);
+    return text;
+}
+
 glm::dvec3 point(const nlohmann::json& v, const Where& where) {
     glm::dvec3 p = vec3(v, where);
     for (int i = 0; i < 3; ++i)
         if (!(std::abs(p[i]) <= kMaxMetres))
-            fail(where[size_t(i)], "a coordinate in metres from -1e+06 to 1e+06, got " + v.dump());
+            fail(where[size_t(i)], "a coordinate in metres from -" + maxMetresText() + " to " +
+                                       maxMetresText() + ", got " + v.dump());
     return p;
 }
 
 double length(const nlohmann::json& v, const Where& where) {
     double x = number(v, where);
     if (!(x > 0.0 && x <= kMaxMetres))
-        fail(where, "a positive length in metres of at most 1e+06, got " + v.dump());
+        fail(where,
+             "a positive length in metres of at most " + maxMetresText() + ", got " + v.dump());
     return x;
 }
 

@@ -50,6 +50,8 @@ inline constexpr double kMaxAngleDeg = 3600.0;
 /// The largest coordinate or length a scene may give, metres (1000 km): no building is larger,
 /// the renderer's floats keep millimetres only to about 10 km, and 1e308 made areas infinite.
 inline constexpr double kMaxMetres = 1e6;
+/// kMaxMetres as the messages write it ("1e+06").
+std::string maxMetresText();
 /// A point [x, y, z] in metres, each coordinate within +-kMaxMetres.
 glm::dvec3 point(const nlohmann::json& v, const Where& where);
 /// A length in metres in (0, kMaxMetres].
