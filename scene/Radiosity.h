@@ -172,8 +172,7 @@ double pointTriangleFormFactor(const glm::dvec3& x, const glm::dvec3& n, const g
 
 /// The degree-2 rule's points of triangle (a, b, c): barycentrics (2/3, 1/6, 1/6) and
 /// permutations (a patch's samples; its inner points where visibility is tested).
-std::array<glm::dvec3, 3> rulePoints(const glm::dvec3& a, const glm::dvec3& b,
-                                     const glm::dvec3& c);
+std::array<glm::dvec3, 3> rulePoints(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c);
 
 /// Threads to use for `requested` (0: the hardware's, at least 1).
 int workerThreads(int requested);
