@@ -24,10 +24,16 @@ class Visibility {
     virtual bool visibleToward(const glm::dvec3& from, const glm::dvec3& dir) const = 0;
 };
 
+struct Estimate;
+
 struct EstimateOptions {
     int spp = 4096;                          ///< Samples per point for stochastic techniques.
     uint64_t seed = 1;                       ///< Fixed seed: results are reproducible.
     const Visibility* visibility = nullptr;  ///< null: no shadowing.
+    /// The same technique's estimate at the same point without visibility, when the caller has
+    /// it already (a design calculation measures every luminaire unshadowed first, to share its
+    /// shadow rays): an exact technique may take it instead of computing it again. null: none.
+    const Estimate* unshadowed = nullptr;
 };
 
 struct Estimate {

@@ -6,7 +6,7 @@
 //
 // LightFieldData is the immutable model (file contents plus precomputed tables), shared between
 // luminaire instances. The file format is `NAME.lf.json` plus one float image per basis function
-// (README.md, "Light-field files"). No GL here.
+// (docs/luminaire-files.md, "Light-field files"). No GL here.
 
 #include <filesystem>
 #include <glm/glm.hpp>

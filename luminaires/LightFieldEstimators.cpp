@@ -409,7 +409,7 @@ Estimate lightFieldGranier2003(const Luminaire& l, const glm::dvec3& p, const gl
         // The goesele model's factor at the node (1 for canned): Psi / Phi there.
         double model = lf.psi(m, node, centre) / std::max(lf.basis(m, node), 1e-300);
         // The spot light's shadow ray ends where its ray to the receiver leaves the luminaire,
-        // on S (what lies between U and S is the measured luminaire itself, README "Visibility").
+        // on S (what lies between U and S is the measured luminaire itself, docs/visibility.md).
         if (o.visibility) {
             glm::dvec3 onS = glm::dvec3(s.q.x, s.q.y, s.q.z) + (lf.delta - s.q.z) / (-s.q.z) * d;
             if (!o.visibility->visible(p, worldOf(s, glm::dvec2(onS.x, onS.y)))) continue;

@@ -281,6 +281,17 @@ Estimate deterministic(const Luminaire& l, const glm::dvec3& p, const glm::dvec3
     Setup s = makeSetup(l, p, n, o.visibility);
     double e;
     if (degenerate(s, e)) return withColour(s, e);
+    if (o.unshadowed) {
+        // The caller's unshadowed estimate (colour times value(s)): only the shadow is left.
+        const glm::dvec3& u = o.unshadowed->irradiance;
+        if (!(std::max({u.x, u.y, u.z}) > 0.0) || !s.visibility) return *o.unshadowed;
+        double se;
+        double r = visibleFraction(s, o, se);
+        Estimate out;
+        out.irradiance = u * r;
+        out.stdError = u * se;
+        return out;
+    }
     e = value(s);
     if (!(e > 0.0) || !s.visibility) return withColour(s, e);
     double se;

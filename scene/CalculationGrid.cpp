@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -16,6 +17,7 @@
 #include "scene/EmbreeVisibility.h"
 #include "scene/Interreflection.h"
 #include "scene/Scene.h"
+#include "util/Activity.h"
 #include "util/Error.h"
 #include "util/Threads.h"
 
@@ -146,6 +148,21 @@ std::vector<double> gridCoordinates(double lo, double hi, double spacing) {
 
 namespace {
 
+/// A long step's progress for `status`: "STEP, 30 %" at every tenth, once the step has run for a
+/// second (a quick one says nothing). Called from one thread.
+std::function<void(double)> tenths(const std::function<void(const std::string&)>& status,
+                                   const std::string& step) {
+    if (!status) return nullptr;
+    return [status, step, start = std::chrono::steady_clock::now(), shown = 0](double f) mutable {
+        int tenth = int(std::floor(10.0 * std::clamp(f, 0.0, 1.0)));
+        if (tenth <= shown || tenth >= 10 ||
+            std::chrono::steady_clock::now() - start < std::chrono::seconds(1))
+            return;
+        shown = tenth;
+        status(step + ", " + std::to_string(10 * tenth) + " %");
+    };
+}
+
 /// The interreflected part of every receiver: the radiosity solution, then a final gather of spp
 /// rays per receiver (over the hardware's threads), added to E with its standard error.
 void addIndirect(const Scene& scene, const GridSpec& spec, const std::vector<Receiver>& receivers,
@@ -164,8 +181,22 @@ void addIndirect(const Scene& scene, const GridSpec& spec, const std::vector<Rec
     say("interreflection: " + std::to_string(ir.mesh().patches.size()) + " patches, form factors");
     if (std::string warning = ir.orientationWarning(scene); !warning.empty())
         say("warning: " + warning);
-    Progress progress;
-    if (!ir.compute(progress)) throw InputError("interreflection: cancelled");
+    auto stepProgress = [&](const std::string& step) {
+        Progress p;
+        p.report = tenths(status, "interreflection: " + step);
+        return p;
+    };
+    {
+        ScopedActivity activity("computing the interreflected light of " +
+                                (scene.path.empty() ? std::string("the scene") : scene.path));
+        if (!ir.buildTransfer(stepProgress("form factors")) ||
+            !ir.sync(scene, 0,
+                     stepProgress(
+                         "direct light on the patches from " +
+                         std::to_string(scene.luminaires.size() + (scene.environmentMap ? 1 : 0)) +
+                         " sources")))
+            throw InputError("interreflection: cancelled");
+    }
     say("interreflection: solved in " + std::to_string(ir.lastIterations()) +
         " iterations; final gather at " + std::to_string(receivers.size()) + " points");
     size_t count = receivers.size();
@@ -329,6 +360,12 @@ double effectiveMaintenanceFactor(double E, double initial, double fallback) {
     return initial > 0.0 ? E / initial : fallback;
 }
 
+int shadowRays(int spp, double unshadowed, double brightest) {
+    if (!(unshadowed > 0.0) || !(brightest > 0.0)) return kMinShadowRays;
+    double share = std::min(1.0, unshadowed / brightest);
+    return std::clamp(int(std::ceil(double(spp) * share)), std::min(spp, kMinShadowRays), spp);
+}
+
 ReceiverResult computeReceivers(const Scene& scene, const GridSpec& spec,
                                 const std::vector<Receiver>& receivers,
                                 const std::function<void(const std::string& status)>& status) {
@@ -363,7 +400,7 @@ ReceiverResult computeReceivers(const Scene& scene, const GridSpec& spec,
                 " with a CPU estimator (available: " + techniqueNames(l->kind()) + ")");
         chosen.push_back(t);
     }
-    // Shadows through Embree, the ray-traced reference (README, "Visibility").
+    // Shadows through Embree, the ray-traced reference (docs/visibility.md).
     std::unique_ptr<EmbreeVisibility> vis;
     EstimateOptions options;
     options.spp = std::max(1, spec.spp);
@@ -391,8 +428,12 @@ ReceiverResult computeReceivers(const Scene& scene, const GridSpec& spec,
     r.direct.assign(count, 0.0);
     r.initial.assign(count, 0.0);
     r.directStdError.assign(count, 0.0);
-    std::atomic<size_t> next{0};
+    std::atomic<size_t> next{0}, done{0};
+    std::thread::id caller = std::this_thread::get_id();
+    auto report = tenths(status, "direct light at " + std::to_string(count) + " points");
     auto work = [&] {
+        std::vector<double> unshadowed;  // per luminaire at this receiver; -1: not measured
+        std::vector<Estimate> free;      // the same, as the technique gave it (no visibility)
         for (size_t index; (index = next.fetch_add(1)) < count;) {
             glm::dvec3 p = receivers[index].position, n = receivers[index].normal;
             glm::dvec3 e(0.0), var(0.0), before(0.0);  // before: without maintenance
@@ -404,9 +445,28 @@ ReceiverResult computeReceivers(const Scene& scene, const GridSpec& spec,
                 before += envScale * est.irradiance;  // daylight takes no maintenance factor
                 var += envScale * envScale * est.stdError * est.stdError;
             }
+            // Shadow rays where the light is: an exact technique's rays go to each luminaire in
+            // proportion to its unshadowed light here (shadowRays), so a far luminaire of
+            // thousands costs a few rays, not spp of them.
+            unshadowed.assign(scene.luminaires.size(), -1.0);
+            free.resize(scene.luminaires.size());
+            double brightest = 0.0;
+            if (options.visibility)
+                for (size_t k = 0; k < scene.luminaires.size(); ++k) {
+                    if (chosen[k]->progressive) continue;
+                    EstimateOptions o = options;
+                    o.visibility = nullptr;
+                    free[k] = chosen[k]->irradiance(*scene.luminaires[k], p, n, o);
+                    unshadowed[k] = luminanceOf(scales[k] * free[k].irradiance);
+                    brightest = std::max(brightest, unshadowed[k]);
+                }
             for (size_t k = 0; k < scene.luminaires.size(); ++k) {
                 EstimateOptions o = options;
                 o.seed = 1000003ull * index + k + 1;
+                if (unshadowed[k] >= 0.0) {
+                    o.spp = shadowRays(options.spp, unshadowed[k], brightest);
+                    o.unshadowed = &free[k];
+                }
                 Estimate est = chosen[k]->irradiance(*scene.luminaires[k], p, n, o);
                 e += scales[k] * est.irradiance;
                 before += unitScales[k] * est.irradiance;
@@ -415,6 +475,9 @@ ReceiverResult computeReceivers(const Scene& scene, const GridSpec& spec,
             r.direct[index] = luminanceOf(e);
             r.initial[index] = luminanceOf(before);
             r.directStdError[index] = luminanceOf(glm::sqrt(var));
+            size_t finished = done.fetch_add(1) + 1;
+            if (report && std::this_thread::get_id() == caller)
+                report(double(finished) / double(count));
         }
     };
     runInParallel(workerThreads(0), work);

@@ -53,7 +53,7 @@ struct GridSpec {
     /// About this many radiosity patches for the interreflection. The patches' solution is
     /// refined near each point (Interreflection::fromPatches), so the patches need only carry
     /// the light across the room: on the office 1500 (1824 with the bodies) are within 0.13 % of
-    /// 8000 at every grid point, at a fifth of the time of 4000 (README, "Interreflected light").
+    /// 8000 at every grid point, at a fifth of the time of 4000 (docs/computation.md, "Interreflected light").
     int patches = 1500;
     /// How each point gets its interreflected light: the final gather (a reference, `spp`
     /// rays, with a standard error), the patches' solution alone (deterministic, about ten
@@ -159,6 +159,18 @@ struct ReceiverResult {
 /// The maintenance factor in effect where maintained illuminance `E` was `initial` before
 /// maintenance: E / initial, or `fallback` (the project's factor) where no light arrives.
 double effectiveMaintenanceFactor(double E, double initial, double fallback);
+
+/// The fewest shadow rays an exact technique traces to one luminaire from one receiver: enough
+/// for the visible fraction's standard error to mean something.
+constexpr int kMinShadowRays = 8;
+
+/// Shadow rays for one luminaire at a receiver where an exact technique finds `unshadowed` of its
+/// light and the brightest luminaire `brightest` (same units): spp for the brightest, the share
+/// spp * unshadowed / brightest for the others, never fewer than kMinShadowRays (nor more than
+/// spp). With n_k in proportion to E_k, the variance of the sum, sum E_k^2 v_k / n_k, is at most
+/// (E_total / E_max) times the brightest's at spp rays: the relative error of the total is no
+/// worse than one luminaire's at spp rays. Equal luminaires all get spp.
+int shadowRays(int spp, double unshadowed, double brightest);
 
 /// Evaluates the receivers with the estimators, visibility and interreflection that `how`
 /// asks for (its technique, environmentTechnique, spp, visibility, indirect, patches and

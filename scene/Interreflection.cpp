@@ -177,8 +177,15 @@ bool Interreflection::sync(const Scene& scene, int spp, const Progress& progress
     if (!mTransferBuilt && !buildTransfer(progress)) return false;
     spp = spp > 0 ? spp : mOptions.directSpp;
     std::vector<Source> fresh = currentSources(scene);
+    if (double(fresh.size()) * double(mMesh.patches.size()) > mOptions.maxKeptDirectValues)
+        return syncWhole(std::move(fresh), spp, progress);
     // Unchanged sources keep their light; the others get theirs now.
     std::vector<bool> taken(mSources.size(), false);
+    // Progress over every source to compute, not each source's patches alone.
+    size_t todo = fresh.size(), done = 0;
+    Progress each = progress;
+    if (progress.report)
+        each.report = [&](double f) { progress.report((double(done) + f) / double(todo)); };
     for (Source& s : fresh) {
         for (size_t i = 0; i < mSources.size(); ++i)
             if (!taken[i] && mSources[i].key == s.key) {
@@ -190,7 +197,7 @@ bool Interreflection::sync(const Scene& scene, int spp, const Progress& progress
             }
         if (s.spp > 0) continue;
         s.luminaire = s.origin->clone();  // the environment's clone shares its CPU tables
-        if (!computeDirect(s, spp, s.direct, progress)) {
+        if (!computeDirect(s, spp, s.direct, each)) {
             // Cancelled: keep the old sources (their light is still in the solution).
             for (size_t i = 0; i < mSources.size(); ++i)
                 for (Source& f : fresh)
@@ -199,6 +206,8 @@ bool Interreflection::sync(const Scene& scene, int spp, const Progress& progress
             return false;
         }
         s.spp = spp;
+        ++done;
+        if (progress.report) progress.report(double(done) / double(todo));
     }
     std::vector<glm::dvec3> change(mMesh.patches.size(), glm::dvec3(0.0));
     for (const Source& s : fresh)
@@ -215,7 +224,49 @@ bool Interreflection::sync(const Scene& scene, int spp, const Progress& progress
     return true;
 }
 
+bool Interreflection::syncWhole(std::vector<Source> fresh, int spp, const Progress& progress) {
+    bool same = fresh.size() == mSources.size();
+    for (size_t i = 0; same && i < fresh.size(); ++i)
+        same = fresh[i].key == mSources[i].key && mSources[i].spp >= spp;
+    if (same) return true;
+    std::vector<glm::dvec3> change(mMesh.patches.size(), glm::dvec3(0.0)), one;
+    size_t done = 0;
+    Progress each = progress;
+    if (progress.report)
+        each.report = [&](double f) { progress.report((double(done) + f) / double(fresh.size())); };
+    for (Source& s : fresh) {
+        s.luminaire = s.origin ? s.origin->clone() : s.luminaire;
+        if (!computeDirect(s, spp, one, each)) return false;  // cancelled: the old light stays
+        for (size_t i = 0; i < change.size(); ++i) change[i] += one[i];
+        s.spp = spp;
+        ++done;
+        if (progress.report) progress.report(double(done) / double(fresh.size()));
+    }
+    for (size_t i = 0; i < change.size(); ++i) change[i] -= mDirectTotal[i];
+    mSources = std::move(fresh);
+    if (!solveChange(change, progress)) {
+        mDirectTotal.assign(mMesh.patches.size(), glm::dvec3(0.0));
+        mIndirect.assign(mMesh.patches.size(), glm::dvec3(0.0));
+        for (Source& s : mSources) s.spp = 0;
+        return false;
+    }
+    return true;
+}
+
 bool Interreflection::refine(int spp, const Progress& progress) {
+    if (double(mSources.size()) * double(mMesh.patches.size()) > mOptions.maxKeptDirectValues) {
+        std::vector<Source> again;
+        for (const Source& s : mSources) {
+            Source copy;
+            copy.key = s.key;
+            copy.luminaire = s.luminaire;
+            copy.irradiance = s.irradiance;
+            copy.scale = s.scale;
+            copy.spp = s.spp;
+            again.push_back(std::move(copy));
+        }
+        return syncWhole(std::move(again), spp, progress);
+    }
     std::vector<glm::dvec3> change(mMesh.patches.size(), glm::dvec3(0.0));
     bool any = false;
     for (Source& s : mSources) {

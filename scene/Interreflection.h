@@ -36,6 +36,11 @@ struct InterreflectionOptions {
     /// The solver stops when an iteration adds less than this part of the reflected flux.
     double tolerance = 1e-6;
     int threads = 0;  ///< 0: the hardware's.
+    /// Patch values (sources x patches) at most that keep each source's direct light apart, so
+    /// that a changed luminaire recomputes its own light alone: 20 million (480 MB; 8 000
+    /// luminaires at 2 500 patches). Beyond it the sources' light is summed as it is computed
+    /// (the memory of one source) and any change recomputes every source.
+    double maxKeptDirectValues = 2e7;
     /// As `candela probe --technique`: a technique name used by the luminaires whose kind has
     /// it; the others (and every luminaire when empty) use their own.
     std::string technique;
@@ -132,6 +137,9 @@ class Interreflection {
                        const Progress& progress) const;
     /// Adds the solution of a change of the direct light to the indirect one.
     bool solveChange(const std::vector<glm::dvec3>& change, const Progress& progress);
+    /// sync() and refine() for more sources than keep their own light (maxKeptDirectValues):
+    /// every source's light at `spp` samples, summed as it is computed, replaces the direct light.
+    bool syncWhole(std::vector<Source> fresh, int spp, const Progress& progress);
 
     const Scene& mGeometry;
     InterreflectionOptions mOptions;

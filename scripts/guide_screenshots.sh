@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Takes the README's user-guide images with the editor itself (View > Save window image, F12),
+# Takes the user guide's images (docs/editor.md) with the editor itself (View > Save window image, F12),
 # driven by real X input under Xvfb: docs/guide/{editor,preview,place,compare,wipe}.png; and the
 # comparison sheet `candela render --pane ... --sheet` writes headless: docs/guide/sheet.png.
 # Usage: bash scripts/guide_screenshots.sh [build/candela]   (needs xvfb, xdotool, imagemagick)

@@ -3,12 +3,17 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
 #include "app/commands/BenchHarness.h"
 #include "app/commands/BenchUtil.h"
 #include "tests/TestUtil.h"
+#include "util/Error.h"
+#include "util/FileOutput.h"
 
 namespace candela {
 namespace {
@@ -95,6 +100,52 @@ TEST(BenchFiles, TheSummaryOpensWithTheMachine) {
     std::string text = summary.text();
     EXPECT_EQ(text.rfind("machine: ", 0), 0u);
     EXPECT_NE(text.find(machineDescription() + "\nspp 16\nend\n"), std::string::npos);
+}
+
+std::string readText(const std::filesystem::path& p) {
+    std::ifstream in(p);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+// A bench's folder is whole or untouched: what a failed bench wrote is taken away, what a
+// finished one wrote (subfolders too) lands in --out, and nothing lands on an input.
+TEST(BenchFiles, AFolderIsWholeOrUntouched) {
+    namespace fs = std::filesystem;
+    fs::path dir = fs::path(::testing::TempDir()) / "bench_folder_test";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    writeFileAtomically((dir / "bench.csv").string(), "old\n");
+    {
+        BenchFolder folder(dir.string());
+        EXPECT_NE(folder.path(), dir);
+        writeFileAtomically((folder.path() / "bench.csv").string(), "half\n");
+        writeFileAtomically((folder.path() / "a.png").string(), "png");
+        // destroyed without commit(): the bench failed
+    }
+    EXPECT_EQ(readText(dir / "bench.csv"), "old\n");
+    EXPECT_FALSE(fs::exists(dir / "a.png"));
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
+    {
+        BenchFolder folder(dir.string());
+        writeFileAtomically((folder.path() / "bench.csv").string(), "new\n");
+        fs::create_directories(folder.path() / "fig11");
+        writeFileAtomically((folder.path() / "fig11" / "b.png").string(), "png");
+        folder.commit();
+    }
+    EXPECT_EQ(readText(dir / "bench.csv"), "new\n");
+    EXPECT_EQ(readText(dir / "fig11" / "b.png"), "png");
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 2);
+    {
+        ProtectedInputs inputs;
+        inputs.add((dir / "bench.csv").string());
+        BenchFolder folder(dir.string());
+        writeFileAtomically((folder.path() / "c.png").string(), "png");
+        writeFileAtomically((folder.path() / "bench.csv").string(), "onto the input\n");
+        EXPECT_THROW(folder.commit(), InputError);
+    }
+    EXPECT_EQ(readText(dir / "bench.csv"), "new\n");
+    EXPECT_FALSE(fs::exists(dir / "c.png"));  // refused before anything moved
+    fs::remove_all(dir);
 }
 
 TEST(BenchRows, OneRepeatsMeanIsTheRowItself) {

@@ -127,6 +127,36 @@ TEST(Interreflection, MovingOneLuminaireUpdatesItsShareAlone) {
         ASSERT_NEAR(live.indirect()[i].y, fresh.indirect()[i].y, 1e-5 * largest) << "patch " << i;
 }
 
+TEST(Interreflection, SourcesBeyondTheMemoryForEachAreSummedAndRecomputedTogether) {
+    // Above maxKeptDirectValues the sources' light is summed, not kept apart: the same light
+    // (the same estimates in the same order: equal to rounding), and after a move the whole
+    // recomputation equals the kept sources' update to the solver's tolerance, as in
+    // MovingOneLuminaireUpdatesItsShareAlone.
+    Scene s =
+        withLamp(std::string(kRoom) + "," + kDesk, lampAt(-1, 2.7, 0) + "," + lampAt(1, 2.7, 0.5));
+    InterreflectionOptions kept, summed;
+    kept.mesh.targetPatches = summed.mesh.targetPatches = 700;
+    summed.maxKeptDirectValues = 1.0;
+    Interreflection a(s, kept), b(s, summed);
+    ASSERT_TRUE(a.compute());
+    ASSERT_TRUE(b.compute());
+    double largest = 0.0;
+    for (const glm::dvec3& e : a.indirect()) largest = std::max(largest, e.y);
+    ASSERT_GT(largest, 0.0);
+    for (size_t i = 0; i < a.indirect().size(); ++i) {
+        ASSERT_NEAR(a.direct()[i].y, b.direct()[i].y, 1e-12 * (1.0 + a.direct()[i].y));
+        ASSERT_NEAR(a.indirect()[i].y, b.indirect()[i].y, 1e-12 * largest) << "patch " << i;
+    }
+    s.luminaires[1]->pose.position = {1.2, 2.7, -0.8};
+    ASSERT_TRUE(a.sync(s, kept.directSpp));
+    ASSERT_TRUE(b.sync(s, summed.directSpp));
+    ASSERT_TRUE(a.refine(2 * kept.directSpp));
+    ASSERT_TRUE(b.refine(2 * summed.directSpp));
+    EXPECT_EQ(b.samples(), 2 * summed.directSpp);
+    for (size_t i = 0; i < a.indirect().size(); ++i)
+        ASSERT_NEAR(a.indirect()[i].y, b.indirect()[i].y, 1e-5 * largest) << "patch " << i;
+}
+
 TEST(Interreflection, NothingIsReflectedByBlackOrLonelySurfaces) {
     InterreflectionOptions o;
     o.mesh.targetPatches = 300;

@@ -639,7 +639,7 @@ void Editor::updateReport() {
 void Editor::takeWindowShot(int width, int height) {
     EditorState& state = *mState;
     state.windowShotRequested = false;
-    // The back buffer as drawn this frame, panels included (the README's guide images).
+    // The back buffer as drawn this frame, panels included (the guide images of docs/editor.md).
     std::vector<unsigned char> rgba(size_t(width) * size_t(height) * 4);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());

@@ -191,7 +191,8 @@ void plotErrorAgainstTime(const fs::path& out, const Sweep& sweep) {
 /// `candela bench --lightfield`.
 int benchLightField(const Args& args) {
     LightFieldOptions o = parseOptions(args);
-    fs::path out = benchFolder(o.out);
+    BenchFolder folder(o.out);  // whole or not at all: committed at the end
+    const fs::path& out = folder.path();
     auto loadStart = std::chrono::steady_clock::now();
     ProtectedInputs inputs;  // the light field and its images, once loaded
     Scene scene = benchScene(o.lightField, out, inputs);
@@ -226,6 +227,7 @@ int benchLightField(const Args& args) {
     addFig11(summary, gpu.renderer, scene, settings, ref, o, out);
     summary.write(out);
     plotErrorAgainstTime(out, sweep);
+    folder.commit();
     std::printf("wrote %s/bench.csv and images\n", o.out.c_str());
     return 0;
 }

@@ -80,7 +80,8 @@ int benchDesign(const Args& args) {
         .integer("--reference-spp", o.referenceSpp, 64, 1 << 20)
         .parse(args, [](const std::string& a) { return "bench --design: unknown option " + a; });
     if (o.scenes.empty()) o.scenes = (fs::path(CANDELA_SOURCE_DIR) / "resources/scenes").string();
-    fs::path out = benchFolder(o.out);
+    BenchFolder folder(o.out);  // whole or not at all: committed at the end
+    const fs::path& out = folder.path();
     auto scenePath = [&](const char* name) { return (fs::path(o.scenes) / name).string(); };
     Scene office = loadScene(scenePath("office.json"));
     Scene classroom = loadScene(scenePath("classroom.json"));
@@ -177,6 +178,7 @@ int benchDesign(const Args& args) {
     }
     csv.write(out / "bench.csv");
     summary.write(out);
+    folder.commit();
     std::printf("wrote %s/bench.csv\n", o.out.c_str());
     return 0;
 }

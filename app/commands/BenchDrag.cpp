@@ -297,7 +297,8 @@ void plotRelease(const fs::path& out, const Scene& scene) {
 
 int benchDrag(const Args& args) {
     DragOptions o = parseOptions(args);
-    fs::path out = benchFolder(o.out);
+    BenchFolder folder(o.out);  // whole or not at all: committed at the end
+    const fs::path& out = folder.path();
     Scene scene = loadScene(o.scenePath);
     ProtectedInputs inputs(scene.inputFiles());
     if (scene.luminaires.empty())
@@ -337,6 +338,7 @@ int benchDrag(const Args& args) {
     addSummary(summary, run, gpu.context->description());
     summary.write(out);
     plotRelease(out, scene);
+    folder.commit();
     return 0;
 }
 

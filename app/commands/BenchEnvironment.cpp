@@ -321,7 +321,8 @@ void plotResults(const fs::path& out) {
 
 int benchEnvironment(const Args& args) {
     EnvironmentOptions o = parseOptions(args);
-    fs::path out = benchFolder(o.out);
+    BenchFolder folder(o.out);  // whole or not at all: committed at the end
+    const fs::path& out = folder.path();
     SkyParams sky = benchSky();
     ProtectedInputs
         inputs;  // the map (MAP.hdr|MAP.exr): bench_scene.json and every image must miss it
@@ -331,7 +332,7 @@ int benchEnvironment(const Args& args) {
     for (const char* name :
          {"bench_scene.json", "reference.png", "reference.exr", "bench.csv", "rebuild.csv",
           "temporal.csv", "error_vs_time.png", "summary.txt", "plot.gp"})
-        checkNotAnInput((out / name).string(), "--out");
+        checkNotAnInput((fs::path(o.out) / name).string(), "--out");
     Scene scene = benchScene(o.source, sky, out);
     BenchGpu gpu;
     RenderSettings settings;
@@ -343,7 +344,7 @@ int benchEnvironment(const Args& args) {
     summary.add("environment: %s (%dx%d lat-long), scene %s, %dx%d pixels\ncontext: %s\n",
                 o.source == "sky" ? "procedural sky, sun 35 deg up" : o.source.c_str(),
                 scene.environmentMap->width(), scene.environmentMap->height(),
-                (out / "bench_scene.json").c_str(), o.width, o.height,
+                (fs::path(o.out) / "bench_scene.json").c_str(), o.width, o.height,
                 gpu.context->description().c_str());
 
     Sweep sweep = environmentSweep(o);
@@ -360,6 +361,7 @@ int benchEnvironment(const Args& args) {
 
     summary.write(out);
     plotResults(out);
+    folder.commit();
     std::printf("wrote %s/bench.csv, rebuild.csv, temporal.csv and images\n", o.out.c_str());
     return 0;
 }

@@ -1,5 +1,7 @@
 #include "app/commands/BenchHarness.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cstdarg>
 #include <cstdio>
@@ -76,11 +78,34 @@ void BenchFlags::parse(const Args& args, const UnknownMessage& unknown) const {
 
 // ---- Output files ------------------------------------------------------------------------------
 
-fs::path benchFolder(const std::string& dir) {
+BenchFolder::BenchFolder(const std::string& dir) : mDir(dir) {
     std::error_code ec;
-    fs::create_directories(dir, ec);
+    fs::create_directories(mDir, ec);
     if (ec) throw InputError(dir + ": cannot create folder (" + ec.message() + ")");
-    return fs::path(dir);
+    mStaging = mDir / (".partial-" + std::to_string(::getpid()));
+    fs::remove_all(mStaging, ec);  // a crashed run's of the same process id
+    fs::create_directory(mStaging, ec);
+    if (ec) throw InputError(dir + ": cannot create a folder in it (" + ec.message() + ")");
+}
+
+BenchFolder::~BenchFolder() {
+    std::error_code ec;
+    fs::remove_all(mStaging, ec);
+}
+
+void BenchFolder::commit() {
+    std::vector<fs::path> files;
+    for (const auto& entry : fs::recursive_directory_iterator(mStaging))
+        if (!entry.is_directory()) files.push_back(fs::relative(entry.path(), mStaging));
+    for (const fs::path& f : files) checkNotAnInput((mDir / f).string(), "--out");
+    for (const fs::path& f : files) {
+        std::error_code ec;
+        fs::create_directories((mDir / f).parent_path(), ec);
+        fs::rename(mStaging / f, mDir / f, ec);
+        if (ec)
+            throw InputError((mDir / f).string() + ": cannot move the bench's result into place (" +
+                             ec.message() + ")");
+    }
 }
 
 namespace {

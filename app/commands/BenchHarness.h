@@ -2,7 +2,7 @@
 // The harness every `candela bench` shares (app/commands/Bench*.cpp), so that a bench is the
 // description of its sweep plus what is genuinely its own:
 //  - BenchFlags: its command line, one line per flag;
-//  - benchFolder, CsvFile, BenchSummary, writePlot: the output folder, CSV files, summary.txt
+//  - BenchFolder, CsvFile, BenchSummary, writePlot: the output folder, CSV files, summary.txt
 //    (opening with the machine) and the gnuplot script and image;
 //  - BenchGpu, renderShot: an image rendered from scratch until converged at a sample budget,
 //    with the GPU time of each pass;
@@ -71,8 +71,26 @@ class BenchFlags {
 
 // ---- Output files ------------------------------------------------------------------------------
 
-/// Creates the folder DIR (and its parents); InputError naming it when that fails.
-std::filesystem::path benchFolder(const std::string& dir);
+/// A bench's output folder, whole or not at all: the bench writes into path(), a staging folder
+/// DIR/.partial-PID inside DIR (created with DIR and its parents; InputError naming DIR when
+/// that fails), and commit() moves what it wrote into DIR, refusing before it moves anything
+/// when a file would land on a protected input. Destroyed without commit() (the bench failed),
+/// the staging folder is removed and DIR keeps what it held before.
+class BenchFolder {
+  public:
+    explicit BenchFolder(const std::string& dir);
+    ~BenchFolder();
+    BenchFolder(const BenchFolder&) = delete;
+    BenchFolder& operator=(const BenchFolder&) = delete;
+
+    /// Where the bench writes.
+    const std::filesystem::path& path() const { return mStaging; }
+    /// Moves every file written into the folder (renames within one file system).
+    void commit();
+
+  private:
+    std::filesystem::path mDir, mStaging;
+};
 
 /// printf into a string.
 std::string formatText(const char* format, ...) __attribute__((format(printf, 1, 2)));

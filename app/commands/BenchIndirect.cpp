@@ -328,7 +328,8 @@ int benchIndirect(const Args& args) {
     IndirectOptions o = parseOptions(args);
     Scene scene = loadScene(o.scenePath);
     ProtectedInputs inputs(scene.inputFiles());
-    fs::path out = benchFolder(o.out);
+    BenchFolder folder(o.out);  // whole or not at all: committed at the end
+    const fs::path& out = folder.path();
     auto moved = std::find_if(scene.luminaires.begin(), scene.luminaires.end(),
                               [&](const auto& l) { return l->name == o.moved; });
     if (moved == scene.luminaires.end())
@@ -355,6 +356,7 @@ int benchIndirect(const Args& args) {
     addSummary(summary, report, timeline, accuracy);
     summary.write(out);
     plotSteps(out);
+    folder.commit();
     std::printf("wrote %s/bench.csv, scaling.csv, summary.txt\n", o.out.c_str());
     return 0;
 }

@@ -458,7 +458,8 @@ void plotNmse(const fs::path& out, const std::vector<std::string>& techniques) {
 int benchProst(const Args& args) {
     ProstOptions o = parseOptions(args);
     ProtectedInputs inputs(o.files);  // no result file may replace a photometric file
-    fs::path out = benchFolder(o.out);
+    BenchFolder folder(o.out);        // whole or not at all: committed at the end
+    const fs::path& out = folder.path();
     BenchGpu gpu;
     ProstRun run{o, evaluatedTechniques(), gpu.renderer, out};
     run.summary.light(
@@ -473,6 +474,7 @@ int benchProst(const Args& args) {
     addTotals(run);
     run.summary.write(out);
     plotNmse(out, run.techniques);
+    folder.commit();
     std::printf("wrote %s/results.csv, nmse_by_height.csv, summary.txt and image sheets\n",
                 o.out.c_str());
     return 0;

@@ -148,7 +148,8 @@ int benchShadows(const Args& args) {
     if (!any)
         throw InputError(o.scenePath +
                          ": the shadow bench needs a light-field luminaire in the scene");
-    fs::path out = benchFolder(o.out);
+    BenchFolder folder(o.out);  // whole or not at all: committed at the end
+    const fs::path& out = folder.path();
     BenchGpu gpu;
     RenderSettings settings;
     settings.width = o.width;
@@ -182,6 +183,7 @@ int benchShadows(const Args& args) {
     summary.addText(text.str());
     summary.write(out, false);
     plotSweeps(out, o, noiseDeltaE);
+    folder.commit();
     std::printf("wrote %s/shadows.csv, summary.txt\n", o.out.c_str());
     return 0;
 }

@@ -118,19 +118,22 @@ std::string sweepPlot(const std::string& techniques, int xColumn, int yColumn) {
 }
 
 bool runGnuplot(const std::string& dir, const std::string& output) {
+    // Named without the folder: a bench writes into a staging folder and moves its files into
+    // --out at the end (BenchFolder).
     std::string path = (std::filesystem::path(dir) / output).string();
     if (!gnuplotAvailable()) {
-        std::printf("gnuplot not found: %s/plot.gp is there to plot the CSV\n", dir.c_str());
+        std::printf("gnuplot not found: plot.gp, beside the results, plots the CSV\n");
         return false;
     }
     try {
         writeFileAtomically(path, gnuplotOutput("load 'plot.gp'\n", dir, path),
                             "cannot write the plot");
     } catch (const RuntimeError& e) {
-        std::printf("%s (%s/plot.gp is there to plot the CSV)\n", e.what(), dir.c_str());
+        std::printf("the plot %s was not made (%s); plot.gp, beside the results, plots the CSV\n",
+                    output.c_str(), e.what());
         return false;
     }
-    std::printf("wrote %s\n", path.c_str());
+    std::printf("plotted %s\n", output.c_str());
     return true;
 }
 

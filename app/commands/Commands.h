@@ -58,6 +58,11 @@ extern const char* const kEvaluationUsage;
 std::vector<unsigned char> renderSceneView(const Scene& scene, const GridSpec& how, int width,
                                            int height, int spp, std::string& note);
 
+/// Throws, as renderSceneView would, when a view of width x height pixels cannot be made
+/// (allocates its images offscreen and frees them): a command checks its view's size before
+/// its calculation.
+void checkSceneViewSize(int width, int height);
+
 /// `grid --csv`: x,y,z,E_lx,E_stderr_lx (_W_m2 for a radiometric scene) through a temporary file
 /// and a rename (util/FileOutput.h); throws InputError naming the file.
 void writeGridCsv(const std::string& path, const GridResult& result);

@@ -348,7 +348,7 @@ ProbeSums probeGpu(const Scene& scene, const std::vector<ProbePoint>& points, co
     return sums;
 }
 
-/// The CSV on stdout (a stable contract); its unit on stderr (and in the README).
+/// The CSV on stdout (a stable contract); its unit on stderr (and in docs/command-line.md).
 void printProbeCsv(const Scene& scene, const std::vector<ProbePoint>& points, const ProbeSums& sums,
                    bool shadows, bool indirect) {
     UnitSystem units = scene.units();

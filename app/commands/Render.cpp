@@ -318,7 +318,7 @@ std::string checkImageOptions(RenderOptions& o) {
 using Clock = std::chrono::steady_clock;
 
 /// Interreflected light, computed first on the CPU: only where some surface reflects onto
-/// another (README, "Interreflected light"). Returns the line that says what it did.
+/// another (docs/computation.md, "Interreflected light"). Returns the line that says what it did.
 std::string addInterreflection(Renderer& renderer, const Scene& scene, const RenderOptions& o,
                                Clock::time_point start) {
     if (!o.indirect) return "interreflection: off (--indirect off)";
@@ -429,6 +429,17 @@ void writeRender(const Renderer& renderer, const Scene& scene, const RenderOptio
 }
 
 }  // namespace
+
+void checkSceneViewSize(int width, int height) {
+    RenderSettings settings;
+    settings.width = width;
+    settings.height = height;
+    auto context = createOffscreenContext();
+    ShaderLibrary shaders;
+    Renderer renderer(shaders);
+    renderer.setSettings(settings);
+    renderer.allocateImages();
+}
 
 std::vector<unsigned char> renderSceneView(const Scene& scene, const GridSpec& how, int width,
                                            int height, int spp, std::string& note) {

@@ -14,8 +14,6 @@
 
 namespace candela {
 
-namespace {}  // namespace
-
 int cmdReport(const Args& args) {
     std::string scenePath, out, title;
     GridSpec how;
@@ -54,6 +52,16 @@ int cmdReport(const Args& args) {
     ProtectedInputs inputs(scene.inputFiles());
     checkNotAnInput(out, "--out");
     auto status = [](const std::string& s) { std::fprintf(stderr, "report: %s\n", s.c_str()); };
+    if (view) {
+        // A view that cannot be made at this size is refused now, not after the calculation.
+        try {
+            checkSceneViewSize(viewWidth, viewHeight);
+        } catch (const std::exception& e) {
+            throw InputError("--view-size " + std::to_string(viewWidth) + "x" +
+                             std::to_string(viewHeight) + ": " + e.what() +
+                             " (a smaller --view-size, or --no-view)");
+        }
+    }
 
     ReportInput in;
     computeReportContents(in, scene,

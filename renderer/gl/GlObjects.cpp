@@ -1,6 +1,5 @@
 #include "renderer/gl/GlObjects.h"
 
-#include <cstdio>
 #include <string>
 
 #include "util/Error.h"
@@ -40,15 +39,12 @@ Texture2D::Texture2D(int width, int height, GLenum internalFormat, int levels)
 namespace {
 
 /// "0x8CD6, an image is incomplete": a framebuffer status in hex, with what it means.
-std::string statusText(GLenum status) {
-    char hex[16];
-    std::snprintf(hex, sizeof hex, "0x%04X", unsigned(status));
-    const char* meaning = status == GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT ? "an image is incomplete"
-                          : status == GL_FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT
-                              ? "no image attached"
-                          : status == GL_FRAMEBUFFER_UNSUPPORTED ? "unsupported formats"
-                                                                 : "incomplete";
-    return std::string(hex) + ", " + meaning;
+/// What an incomplete framebuffer's status means, in words.
+const char* statusText(GLenum status) {
+    return status == GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT           ? "an image is incomplete"
+           : status == GL_FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT ? "no image attached"
+           : status == GL_FRAMEBUFFER_UNSUPPORTED                   ? "unsupported formats"
+                                                                    : "incomplete";
 }
 
 }  // namespace
@@ -73,8 +69,7 @@ Framebuffer::Framebuffer(std::initializer_list<const Texture2D*> colour, const T
         std::string size =
             any ? std::to_string(any->width()) + " x " + std::to_string(any->height()) + " pixels"
                 : std::string("no image");
-        throw RuntimeError("OpenGL could not make an image of " + size + " (framebuffer status " +
-                           statusText(status) +
+        throw RuntimeError("OpenGL could not make an image of " + size + " (" + statusText(status) +
                            "): too large for this OpenGL's memory? A smaller image size may fit");
     }
 }

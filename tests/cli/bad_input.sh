@@ -25,6 +25,17 @@ expect "scene.txt" "unsupported" -- info "$data/scene.txt"
 expect "a.jpg" "unsupported" -- render "$data/ok.json" --out "$out/a.jpg"
 expect "--size" "WIDTHxHEIGHT" -- render "$data/ok.json" --out "$out/a.png" --size 0x10
 expect "--spp" "integer" -- render "$data/ok.json" --out "$out/a.png" --spp many
+# A report's view too large for OpenGL is refused before its calculation starts, in words (no
+# status code), and writes nothing.
+err=$("$binary" report "$data/ok.json" --out "$out/big.pdf" --view-size 16384x16384 2>&1 >/dev/null)
+rc=$?
+if [ $rc -ne 1 ] || [ -e "$out/big.pdf" ] || ! grep -qF -- "--view-size 16384x16384" <<<"$err" ||
+  ! grep -qF "too large" <<<"$err" || grep -q "0x\|rendering the view" <<<"$err"; then
+  failures=$((failures + 1))
+  echo "FAIL: report --view-size 16384x16384 (exit $rc): $err"
+else
+  passed=$((passed + 1))
+fi
 expect "nan_points.csv:3" "column 2" -- probe "$data/ok.json" --points "$data/nan_points.csv"
 expect "bad_header.csv:1" "header" -- probe "$data/ok.json" --points "$data/bad_header.csv"
 expect "zero_normal.csv:2" "normal" -- probe "$data/ok.json" --points "$data/zero_normal.csv"

@@ -31,7 +31,22 @@ falls=$(awk -F, '$1 == "restricted-cdf" {e[$2] = $6} END {print (e[32] < e[2]) ?
 check "restricted-cdf error falls from 2 to 32 spp" '[ "$falls" = yes ]'
 check "summary states its light" 'grep -q "^light: .*interreflected light" "$out/summary.txt"'
 check "summary and images written" '[ -s "$out/summary.txt" ] && [ -s "$out/reference.png" ] && [ -s "$out/bench_scene.json" ]'
+check "fig11 images moved in with the rest, no staging folder left" \
+  '[ -n "$(ls "$out/fig11")" ] && [ -z "$(ls -A "$out" | grep "^\.partial")" ]'
 err=$("$binary" bench --lightfield "$data/nothing.lf.json" --out "$out/x" 2>&1 >/dev/null); rc=$?
 check "missing light field (rc $rc): $err" '[ $rc -eq 1 ] && grep -q "nothing.lf.json" <<<"$err"'
+# A bench that fails after it has written some of its files leaves --out as it was: here its
+# reference image would land on one of the light field's own images (an input), found when the
+# files move into place, so nothing moves.
+mkdir "$out/in"
+cp "$data"/tiny* "$out/in/"
+mv "$out/in/tiny_1_1.exr" "$out/in/reference.exr"
+sed -i 's/tiny_1_1.exr/reference.exr/' "$out/in/tiny.lf.json"
+before=$(ls -A "$out/in" | tr '\n' ' ')
+sum=$(md5sum <"$out/in/reference.exr")
+err=$("$binary" bench --lightfield "$out/in/tiny.lf.json" --out "$out/in" --spp 2 --reference-spp 64 \
+  --size 48x32 2>&1 >/dev/null); rc=$?
+check "a bench refused at the end (rc $rc) writes nothing and keeps the input: $err" \
+  '[ $rc -eq 1 ] && grep -q "reference.exr" <<<"$err" && [ "$(ls -A "$out/in" | tr "\n" " ")" = "$before" ] && [ "$(md5sum <"$out/in/reference.exr")" = "$sum" ]'
 echo "$passed passed, $failures failed"
 [ $failures -eq 0 ]

@@ -44,7 +44,7 @@ check "a missing member is reported per variant: $info" 'grep -qF "cannot be pla
 # The same light from the container and from its ldt extracted alone: every technique probes the
 # same illuminance, on the CPU and on the GPU (the same table through the same photometric code;
 # the reference's fixed seed makes it repeatable too). The container's emitter has a <Rotation>
-# of X 1, Y 2, Z 3, G0 4 degrees: the ldt is aimed as Candela reads it (README, "GLDF"), worked
+# of X 1, Y 2, Z 3, G0 4 degrees: the ldt is aimed as Candela reads it (docs/luminaire-files.md, "GLDF luminaires"), worked
 # out here with rotation matrices: G0 about the aim, then Rz Rx Ry in the luminaire frame (z up;
 # at this pose its x is world x, y world -z, z world y).
 python3 - "$tmp/ldt_scene.json" <<'PY'

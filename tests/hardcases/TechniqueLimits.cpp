@@ -33,7 +33,7 @@ bool common(const TechniqueInfo& t, const Case& c, Promise& out) {
         return true;
     }
     // A receiver on the emitter itself: the limit from its front is pi L, from behind 0; any
-    // value between is a correct reading of an ill-posed question (the README says so).
+    // value between is a correct reading of an ill-posed question (docs/hard-cases.md says so).
     if (c.cls == Class::OnPlane && c.kind != "lightfield") {
         out = bounded(0.0, c.expected * (1.0 + 1e-9),
                       "on the emitter: between the limits 0 and pi L");
