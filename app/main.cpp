@@ -12,101 +12,190 @@
 
 namespace {
 
-const char* kUsage =
-    "usage: candela <command> [options]\n"
-    "  edit [scene.json]                 open the editor (no display: render the scene's\n"
-    "                                    screenshots offscreen into ./candela-screenshots/)\n"
-    "  render scene.json --out F.png|F.exr [--technique T] [--spp N] [--size WxH] [--stats]\n"
-    "                                    [--indirect on|off] [--light "
-    "total|direct|interreflected]\n"
-    "                                    [--tonemap exponential|reinhard] [--exposure K]\n"
-    "                                    [--false-colour [--legend MIN,MAX] [--log] [--isolux "
-    "L,..|none]]\n"
-    "  render scene.json --sheet DIR --pane TECHNIQUES[:SPP] [--pane ...] [--reference-spp N] "
-    "[--error-maps]\n"
-    "                                    comparison sheet: 1-4 panes (technique lists, e.g.\n"
-    "                                    photometric=scattered,lightfield=precomputed-global) "
-    "against a\n"
-    "                                    progressive reference; sheet-NNN.png/.exr/.json in DIR\n"
-    "  probe scene.json --points pts.csv [--technique T] [--spp N] [--visibility [embree|bvh]]\n"
-    "                                    [--indirect] [--device cpu|gpu] [--seed S]\n"
-    "                                    CSV x,y,z,nx,ny,nz,E,... with E the irradiance (lx, or\n"
-    "                                    W/m2 for a radiometric scene; stderr names it)\n"
-    "  info FILE                         describe a scene (.json), a glTF file, a light field\n"
-    "                                    (.lf.json: basis, images, flux, precomputation time)\n"
-    "                                    or photometry (.ies/.ldt/.xml TM-33: flux from the table, "
-    "lamps x "
-    "LOR,\n"
-    "                                    warnings for what was assumed to read the file)\n"
-    "                                    or a GLDF container (.gldf: product, variants, rated\n"
-    "                                    flux and power, each variant's photometry)\n"
-    "  --strict (info, render, probe, grid, surfaces, polar): refuse photometry files that need a "
-    "leniency\n"
-    "                                    (empty EULUMDAT fields, Latin-1 or UTF-16 text, mixed "
-    "line\n"
-    "                                    endings, ...) instead of loading them with a warning\n"
-    "  convert RAYS.TM25RAY --out NAME.lf.json [--grid WxH] [--res N] [--delta D]\n"
-    "                                    [--axis z|main] [--coverage C] [--raw-flux]\n"
-    "  convert --procedural bike-headlight|car-headlight --out NAME.lf.json [--rays N]\n"
-    "                                    light-field luminaire from an IES TM-25 ray file\n"
-    "                                    (delta in metres) or a simulated headlight\n"
-    "  convert FILE.ies|FILE.ldt --out NAME.xml\n"
-    "                                    the photometry as IES TM-33-18 XML\n"
-    "  bench --lightfield F.lf.json [--out DIR] [--spp 4,8,..] [--reference-spp N] [--size WxH]\n"
-    "                                    [--fig11 SPP,SAMPLES]\n"
-    "                                    error against GPU time of the light-field techniques\n"
-    "                                    (CSV, images, plot, ratios; --fig11 63,63000: the "
-    "paper's\n"
-    "                                    Fig. 11, restricted-cdf against one shared sample set)\n"
-    "  bench --environment sky|MAP.hdr [--out DIR] [--spp 4,8,..] [--reference-spp N] [--size WxH] "
-    "[--repeats K]\n"
-    "                                    environment techniques: error against samples and time,\n"
-    "                                    table rebuild against shading, temporal stability\n"
-    "  bench --design [--out DIR] [--reference-spp N]\n"
-    "                                    a designer's calculations (grid, surfaces, reports on\n"
-    "                                    the shipped office and classroom): time and accuracy\n"
-    "  bench --prost FILE|DIR... [--out DIR] [--size N] [--reference-spp N]\n"
-    "                                    Prost's evaluation of the photometric techniques (NMSE,\n"
-    "                                    error bounds, bumps, GPU time; CSV, image sheets, plot)\n"
-    "  grid scene.json --plane y=0.8 [--extent u0,v0,u1,v1] [--spacing 0.25] [--spp N] [--csv F]\n"
-    "                                    [--light total|direct] [--no-shadows]\n"
-    "                                    illuminance on a calculation grid; Emin, Eavg, Emax, U0\n"
-    "                                    of the direct, interreflected and total light (by\n"
-    "                                    default shadows and interreflected light wherever the\n"
-    "                                    scene calls for them; --light direct, --no-shadows\n"
-    "                                    leave them out, and the output says so)\n"
-    "  surfaces scene.json [--spp N] [--light total|direct] [--no-shadows] [--csv F]\n"
-    "                                    EN 12464-1 task areas, their immediate surroundings and\n"
-    "                                    backgrounds (Em, U0, Emin, Emax against requirements) "
-    "and\n"
-    "                                    planar and cylindrical illuminance at points\n"
-    "  glare scene.json [--observer X,Y,Z --view X,Y,Z [--limit UGR_L] [--background CD_M2]]\n"
-    "                                    [--spp N] [--patches N] [--csv F]\n"
-    "                                    Unified Glare Rating (CIE 117) at the scene's\n"
-    "                                    \"glare_observers\" or the one given, background from\n"
-    "                                    the interreflected light\n"
-    "  glare --table FILE.ldt|FILE.ies|FILE.xml|FILE.gldf [--spacing 0.25] [--csv F]\n"
-    "                                    the standard UGR table of a luminaire (CIE 190 tabular\n"
-    "                                    method: 19 rooms x 5 reflectances, crosswise and\n"
-    "                                    endwise; luminaires every 0.25 H as DIALux and Relux\n"
-    "                                    print it, --spacing 1 for CIE 190's 1:1)\n"
-    "  report scene.json --out report.pdf [--title T] [--spp N] [--light total|direct] "
-    "[--no-shadows]\n"
-    "                                    [--view-size WxH] [--view-spp N] [--no-view]\n"
-    "                                    a PDF report: luminaire schedule, polar diagrams,\n"
-    "                                    surfaces with false colour and values, UGR, a view\n"
-    "  polar FILE.ies|FILE.ldt|FILE.xml [--out polar.png] [--step DEG]\n"
-    "                                    polar candela diagram (C0-C180, C90-C270) and its table\n"
-    "  validate [--case NAME]... [--list]\n"
-    "                                    the validation suite: integrating cube and sphere,\n"
-    "                                    direct light and an obstruction against closed forms\n";
+/// One command of the command line: its name, what it does in a line, its usage (every form
+/// with its options and their units) and an example. `candela --help` lists the commands;
+/// `candela help CMD` and `candela CMD --help` print one.
+struct Command {
+    const char* name;
+    const char* summary;
+    const char* usage;
+    const char* example;
+    int (*run)(const candela::Args&);
+};
+
+const Command kCommands[] = {
+    {"edit", "open the editor on a scene (without a display: its screenshots, offscreen)",
+     "edit [scene.json] [--size WxH] [--screenshot-dir DIR] [--layout-file FILE]\n"
+     "     [--autosave-seconds S] [--quit-after-frames N]\n"
+     "  Opens the interactive editor (window of WxH pixels). Without a display it renders the\n"
+     "  scene's view offscreen (OSMesa) and writes the screenshots (PNG, EXR, JSON) into DIR\n"
+     "  (./candela-screenshots/). --layout-file writes the window's layout as JSON (for tests),\n"
+     "  --autosave-seconds sets how often unsaved edits are autosaved (60),\n"
+     "  --quit-after-frames closes it after N frames.\n",
+     "candela edit resources/scenes/editor-room.json", &candela::cmdEdit},
+    {"info", "describe a scene, light field, glTF file, photometry file or GLDF container",
+     "info FILE [--strict]\n"
+     "  FILE: a scene (.json), a glTF file, a light field (.lf.json: basis, images, flux,\n"
+     "  precomputation time), photometry (.ies, .ldt, TM-33 .xml: flux from the table, lamps x\n"
+     "  LOR, warnings for what was assumed to read the file), a GLDF container (.gldf: product,\n"
+     "  variants, rated flux and power) or L3D geometry (.l3d).\n"
+     "  --strict  refuse photometry files that need a leniency (empty EULUMDAT fields, Latin-1 or\n"
+     "            UTF-16 text, mixed line endings) instead of loading them with a warning\n",
+     "candela info resources/luminaires/photometric/halo-recessed-downlight.ies",
+     &candela::cmdInfo},
+    {"render", "render a scene's view, in false colour, or a comparison sheet of techniques",
+     "render scene.json --out F.png|F.exr [--technique T] [--spp N] [--size WxH] [--stats]\n"
+     "       [--indirect on|off] [--light total|direct|interreflected]\n"
+     "       [--tonemap exponential|reinhard] [--exposure K]\n"
+     "       [--false-colour [--legend MIN,MAX] [--log] [--isolux L,..|none]] [--strict]\n"
+     "  PNG is tone-mapped, EXR linear (W/(m2 sr) or cd/m2; with --false-colour, lx).\n"
+     "render scene.json --sheet DIR --pane TECHNIQUES[:SPP] [--pane ...] [--reference-spp N]\n"
+     "       [--error-maps]\n"
+     "  A comparison sheet: 1-4 panes (technique lists such as\n"
+     "  photometric=scattered,lightfield=precomputed-global) against a progressive reference;\n"
+     "  sheet-NNN.png/.exr/.json in DIR.\n",
+     "candela render resources/scenes/office.json --out office.png --size 960x540",
+     &candela::cmdRender},
+    {"probe", "the irradiance at points (CSV), by any technique, on the CPU or the GPU",
+     "probe scene.json --points pts.csv [--technique T] [--env-technique T] [--spp N]\n"
+     "      [--visibility [embree|bvh]] [--indirect] [--patches N] [--device cpu|gpu]\n"
+     "      [--seed S] [--show-samples F.png] [--strict]\n"
+     "  pts.csv: x,y,z,nx,ny,nz per line (metres, a unit normal). Prints CSV\n"
+     "  x,y,z,nx,ny,nz,E,... with E the irradiance (lx, or W/m2 for a radiometric scene;\n"
+     "  stderr names the unit).\n",
+     "candela probe resources/scenes/office.json --points tests/data/photometric/far_points.csv",
+     &candela::cmdProbe},
+    {"grid", "illuminance on a calculation grid: Emin, Eavg, Emax, U0",
+     "grid scene.json --plane y=0.8 [--extent u0,v0,u1,v1] [--spacing 0.25] [--spp N]\n"
+     "     [--csv F] [--light total|direct] [--no-shadows] [--strict]\n"
+     "  --plane   the grid's plane: [+|-]x|y|z=VALUE in metres (y=0.8 faces up)\n"
+     "  --extent  the grid's rectangle on the plane, metres (default: the scene's floor)\n"
+     "  --spacing between adjacent points, metres\n"
+     "  By default shadows and interreflected light wherever the scene calls for them;\n"
+     "  --light direct and --no-shadows leave them out, and the output says so.\n",
+     "candela grid resources/scenes/office.json --plane y=0.8 --spacing 0.5", &candela::cmdGrid},
+    {"surfaces", "EN 12464-1 task areas, surroundings and backgrounds against requirements",
+     "surfaces scene.json [--spp N] [--light total|direct] [--no-shadows] [--csv F] [--strict]\n"
+     "  Em, U0, Emin, Emax (lx) of the scene's task areas, their immediate surroundings and\n"
+     "  backgrounds against their requirements, and planar and cylindrical illuminance at its\n"
+     "  calculation points.\n",
+     "candela surfaces resources/scenes/classroom.json", &candela::cmdSurfaces},
+    {"glare", "the Unified Glare Rating at observers, or a luminaire's UGR table",
+     "glare scene.json [--observer X,Y,Z --view X,Y,Z [--limit UGR_L] [--background CD_M2]]\n"
+     "      [--spp N] [--patches N] [--csv F]\n"
+     "  UGR (CIE 117) at the scene's \"glare_observers\" or the one given (metres), the\n"
+     "  background luminance (cd/m2) from the interreflected light.\n"
+     "glare --table FILE.ldt|FILE.ies|FILE.xml|FILE.gldf [--spacing 0.25] [--csv F]\n"
+     "  The standard UGR table of a luminaire (CIE 190 tabular method: 19 rooms x 5\n"
+     "  reflectances, crosswise and endwise); --spacing is the luminaires' spacing as a ratio of\n"
+     "  the mounting height (0.25 as DIALux and Relux print it, 1 for CIE 190's 1:1).\n",
+     "candela glare resources/scenes/office.json", &candela::cmdGlare},
+    {"report", "a PDF report of a scene for a client",
+     "report scene.json --out report.pdf [--title T] [--spp N] [--light total|direct]\n"
+     "       [--no-shadows] [--view-size WxH] [--view-spp N] [--no-view]\n"
+     "  Luminaire schedule, polar diagrams, surfaces with false colour and values, UGR and a\n"
+     "  view rendered from the scene's camera.\n",
+     "candela report resources/scenes/office.json --out office.pdf", &candela::cmdReport},
+    {"polar", "a photometric file's polar candela diagram and its table",
+     "polar FILE.ies|FILE.ldt|FILE.xml [--out polar.png] [--step DEG] [--strict]\n"
+     "  The C0-C180 and C90-C270 planes (cd/klm), their table on stdout.\n",
+     "candela polar resources/luminaires/photometric/halo-recessed-downlight.ies --out polar.png",
+     &candela::cmdPolar},
+    {"convert", "a light field from a TM-25 ray file or a headlight, or photometry as TM-33",
+     "convert RAYS.TM25RAY --out NAME.lf.json [--grid WxH] [--res N] [--delta D]\n"
+     "        [--axis z|main] [--coverage C] [--raw-flux]\n"
+     "  A light-field luminaire from an IES TM-25 ray file (delta in metres).\n"
+     "convert --procedural bike-headlight|car-headlight --out NAME.lf.json [--rays N]\n"
+     "  A simulated headlight as a light field.\n"
+     "convert FILE.ies|FILE.ldt --out NAME.xml\n"
+     "  The photometry as IES TM-33-18 XML.\n",
+     "candela convert resources/luminaires/photometric/halo-recessed-downlight.ies --out halo.xml",
+     &candela::cmdConvert},
+    {"bench", "what accuracy costs in time: error against time for a family of techniques",
+     "bench --lightfield F.lf.json [--out DIR] [--spp 4,8,..] [--reference-spp N] [--size WxH]\n"
+     "      [--fig11 SPP,SAMPLES]\n"
+     "  The light-field techniques' error against GPU time (CSV, images, plot, ratios).\n"
+     "bench --environment sky|MAP.hdr|MAP.exr [--out DIR] [--spp 4,8,..] [--reference-spp N]\n"
+     "      [--size WxH] [--repeats K]\n"
+     "  Environment techniques: error against samples and time, table rebuilds, stability.\n"
+     "bench --prost FILE|DIR... [--out DIR] [--size N] [--reference-spp N]\n"
+     "  Prost's evaluation of the photometric techniques (NMSE, bounds, bumps, GPU time).\n"
+     "bench --shadows [SCENE] [--out DIR] [--spp N] [--size WxH]\n"
+     "  Per-cell shadow maps against ray-traced shadows.\n"
+     "bench --indirect [SCENE] [--out DIR] [--patches N]\n"
+     "  What interreflected light costs in time, and how it scales with the patches.\n"
+     "bench --drag [SCENE] [--out DIR]\n"
+     "  How live the editor stays while a luminaire is dragged.\n"
+     "bench --design [--out DIR] [--reference-spp N]\n"
+     "  A designer's calculations (grid, surfaces, reports) on the shipped office and\n"
+     "  classroom: time and accuracy.\n"
+     "  Every bench writes into DIR whole or not at all; docs/performance.md holds results.\n",
+     "candela bench --design --out bench-design", &candela::cmdBench},
+    {"validate", "the validation suite against closed forms (CIE 171:2006)",
+     "validate [--case NAME]... [--list]\n"
+     "validate --closed ROOM.json\n"
+     "  The integrating cube and sphere, direct light and an obstruction against closed forms;\n"
+     "  --closed checks a closed room's energy balance.\n",
+     "candela validate --list", &candela::cmdValidate},
+};
+
+const Command* findCommand(const std::string& name) {
+    for (const Command& c : kCommands)
+        if (name == c.name) return &c;
+    return nullptr;
+}
+
+void printCommands(FILE* out) {
+    std::fputs(
+        "usage: candela COMMAND [options]    (candela help COMMAND: its options and an "
+        "example)\n\n",
+        out);
+    for (const Command& c : kCommands) std::fprintf(out, "  %-9s %s\n", c.name, c.summary);
+    std::fputs("\n  --version  the version and the commit it was built from\n", out);
+}
+
+void printCommand(const Command& c) {
+    std::printf("candela %s: %s\n\nusage:\n", c.name, c.summary);
+    // Each form of the usage as "candela FORM".
+    std::string usage = c.usage;
+    size_t at = 0;
+    while (at < usage.size()) {
+        size_t end = usage.find('\n', at);
+        std::string line = usage.substr(at, end - at);
+        // A form, a form's continuation (aligned under it) or a description.
+        bool form = line.rfind(c.name, 0) == 0;
+        bool continued = line.find_first_not_of(' ') != std::string::npos &&
+                         line[line.find_first_not_of(' ')] == '[';
+        std::printf("%s%s\n", form ? "  candela " : continued ? "          " : "  ", line.c_str());
+        at = end == std::string::npos ? usage.size() : end + 1;
+    }
+    std::printf("\nexample:\n  %s\n", c.example);
+}
 
 }  // namespace
 
 int main(int argc, char** argv) {
     if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) {
-        std::fputs(kUsage, argc < 2 ? stderr : stdout);
+        printCommands(argc < 2 ? stderr : stdout);
         return argc < 2 ? 2 : 0;
+    }
+    if (!std::strcmp(argv[1], "--version")) {
+        std::printf("candela %s (commit %s)\n", CANDELA_VERSION, CANDELA_COMMIT);
+        return 0;
+    }
+    if (!std::strcmp(argv[1], "help")) {
+        if (argc < 3) {
+            printCommands(stdout);
+            return 0;
+        }
+        const Command* c = findCommand(argv[2]);
+        if (!c) {
+            std::fprintf(stderr, "candela: unknown command \"%s\"\n", argv[2]);
+            printCommands(stderr);
+            return 2;
+        }
+        printCommand(*c);
+        return 0;
     }
     std::string command = argv[1];
     candela::Args args(argv + 2, argv + argc);
@@ -118,21 +207,19 @@ int main(int argc, char** argv) {
         args.erase(strict);
         candela::setDefaultPhotometryOptions({.strict = true});
     }
-    try {
-        if (command == "render") return candela::cmdRender(args);
-        if (command == "probe") return candela::cmdProbe(args);
-        if (command == "info") return candela::cmdInfo(args);
-        if (command == "edit") return candela::cmdEdit(args);
-        if (command == "convert") return candela::cmdConvert(args);
-        if (command == "bench") return candela::cmdBench(args);
-        if (command == "grid") return candela::cmdGrid(args);
-        if (command == "surfaces") return candela::cmdSurfaces(args);
-        if (command == "glare") return candela::cmdGlare(args);
-        if (command == "report") return candela::cmdReport(args);
-        if (command == "polar") return candela::cmdPolar(args);
-        if (command == "validate") return candela::cmdValidate(args);
-        std::fprintf(stderr, "candela: unknown command \"%s\"\n%s", command.c_str(), kUsage);
+    const Command* c = findCommand(command);
+    if (!c) {
+        std::fprintf(stderr, "candela: unknown command \"%s\"\n", command.c_str());
+        printCommands(stderr);
         return 2;
+    }
+    if (std::any_of(args.begin(), args.end(),
+                    [](const std::string& a) { return a == "--help" || a == "-h"; })) {
+        printCommand(*c);
+        return 0;
+    }
+    try {
+        return c->run(args);
     } catch (const std::bad_alloc&) {
         // Says what it was doing (util/Activity.h) instead of "std::bad_alloc".
         std::string what = candela::toValidUtf8(candela::takeFailedActivity());
