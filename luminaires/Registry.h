@@ -24,7 +24,8 @@ using IrradianceFn = Estimate (*)(const Luminaire& luminaire, const glm::dvec3& 
                                   const glm::dvec3& n, const EstimateOptions& options);
 
 /// What a technique promises at the extremes: tests/hardcases holds every technique to it on the
-/// hard-case grid (on the GPU with float's own allowances), and docs/hard-cases.md's table states it.
+/// hard-case grid (on the GPU with float's own allowances), and docs/hard-cases.md's table states
+/// it.
 struct StatedLimits {
     enum Accuracy {
         Exact,        ///< Within `tolerance` of the truth.
@@ -41,8 +42,8 @@ struct StatedLimits {
     /// False: a peak of the table narrower than its few sample directions is anywhere between 0
     /// and what the opening gives at its brightest radiance everywhere (pi F L_max).
     bool resolvesPeaks = true;
-    /// The wording of docs/hard-cases.md; empty: no statement, and the suites hold the technique to the
-    /// strictest promise (exact if deterministic, unbiased if progressive).
+    /// The wording of docs/hard-cases.md; empty: no statement, and the suites hold the technique to
+    /// the strictest promise (exact if deterministic, unbiased if progressive).
     std::string_view statement = {};
     /// Photometric techniques on a smooth, non-Lambertian table within a few opening sizes (an
     /// up-and-down luminaire's batwings): within this, relative; < 0: any factor off.

@@ -53,7 +53,8 @@ struct GridSpec {
     /// About this many radiosity patches for the interreflection. The patches' solution is
     /// refined near each point (Interreflection::fromPatches), so the patches need only carry
     /// the light across the room: on the office 1500 (1824 with the bodies) are within 0.13 % of
-    /// 8000 at every grid point, at a fifth of the time of 4000 (docs/computation.md, "Interreflected light").
+    /// 8000 at every grid point, at a fifth of the time of 4000 (docs/computation.md,
+    /// "Interreflected light").
     int patches = 1500;
     /// How each point gets its interreflected light: the final gather (a reference, `spp`
     /// rays, with a standard error), the patches' solution alone (deterministic, about ten
