@@ -8,6 +8,7 @@
 #include "app/commands/Commands.h"
 #include "luminaires/Photometry.h"
 #include "util/Activity.h"
+#include "util/Error.h"
 #include "util/TextEncoding.h"
 
 namespace {
@@ -154,8 +155,8 @@ void printCommands(FILE* out) {
     std::fputs("\n  --version  the version and the commit it was built from\n", out);
 }
 
-void printCommand(const Command& c) {
-    std::printf("candela %s: %s\n\nusage:\n", c.name, c.summary);
+void printCommand(const Command& c, FILE* out = stdout) {
+    std::fprintf(out, "candela %s: %s\n\nusage:\n", c.name, c.summary);
     // Each form of the usage as "candela FORM".
     std::string usage = c.usage;
     size_t at = 0;
@@ -166,10 +167,14 @@ void printCommand(const Command& c) {
         bool form = line.rfind(c.name, 0) == 0;
         bool continued = line.find_first_not_of(' ') != std::string::npos &&
                          line[line.find_first_not_of(' ')] == '[';
-        std::printf("%s%s\n", form ? "  candela " : continued ? "          " : "  ", line.c_str());
+        std::fprintf(out, "%s%s\n",
+                     form        ? "  candela "
+                     : continued ? "          "
+                                 : "  ",
+                     line.c_str());
         at = end == std::string::npos ? usage.size() : end + 1;
     }
-    std::printf("\nexample:\n  %s\n", c.example);
+    std::fprintf(out, "\nexample:\n  %s\n", c.example);
 }
 
 }  // namespace
@@ -220,6 +225,12 @@ int main(int argc, char** argv) {
     }
     try {
         return c->run(args);
+    } catch (const candela::UsageError& e) {
+        // Bad usage: what was wrong, then the command's usage; exit 2 as for an unknown command.
+        std::fprintf(stderr, "candela %s: error: %s\n\n", command.c_str(),
+                     candela::toValidUtf8(e.what()).c_str());
+        printCommand(*c, stderr);
+        return 2;
     } catch (const std::bad_alloc&) {
         // Says what it was doing (util/Activity.h) instead of "std::bad_alloc".
         std::string what = candela::toValidUtf8(candela::takeFailedActivity());

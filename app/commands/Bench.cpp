@@ -58,7 +58,7 @@ LightFieldOptions parseOptions(const Args& args) {
                })
         .parse(args, [](const std::string& a) { return "bench: unknown option " + a; });
     if (o.lightField.empty())
-        throw InputError(
+        throw UsageError(
             "usage: candela bench --lightfield FILE.lf.json [--out DIR] [--spp 4,8,...] "
             "[--reference-spp N] [--size WxH] [--fig11 SPP,SAMPLES|none]");
     return o;

@@ -49,7 +49,7 @@ EnvironmentOptions parseOptions(const Args& args) {
         .integer("--repeats", o.repeats, 1, 64)
         .parse(args, [](const std::string& a) { return "bench: unknown option " + a; });
     if (o.source.empty())
-        throw InputError(
+        throw UsageError(
             "usage: candela bench --environment sky|MAP.hdr|MAP.exr [--out DIR] [--spp 4,8,...] "
             "[--reference-spp N] [--size WxH] [--frames N] [--repeats K]");
     return o;

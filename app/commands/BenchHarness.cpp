@@ -66,7 +66,7 @@ void BenchFlags::parse(const Args& args, const UnknownMessage& unknown) const {
         auto flag =
             std::find_if(mFlags.begin(), mFlags.end(), [&](const Flag& f) { return f.name == a; });
         if (flag == mFlags.end()) {
-            if (!mPositional || isFlag(a)) throw InputError(unknown(a));
+            if (!mPositional || isFlag(a)) throw UsageError(unknown(a));
             mPositional(a);
         } else if (flag->arity == Arity::Value) {
             flag->set(flagValue(args, i));

@@ -161,7 +161,7 @@ ProstOptions parseOptions(const Args& args) {
         .positional([&o](const std::string& a) { addFiles(a, o.files); })
         .parse(args, [](const std::string& a) { return "bench --prost: unknown option " + a; });
     if (o.files.empty())
-        throw InputError(
+        throw UsageError(
             "usage: candela bench --prost FILE.ies|FILE.ldt|DIR... [--out DIR] [--size N] "
             "[--reference-spp N]");
     std::sort(o.files.begin(), o.files.end());

@@ -104,7 +104,7 @@ bool isPhotometryInput(const ConvertOptions& o) {
 
 void checkOptions(const ConvertOptions& o) {
     if (o.out.empty() || o.input.empty() == o.procedural.empty())
-        throw InputError(
+        throw UsageError(
             "usage: candela convert INPUT.TM25RAY --out NAME.lf.json [--grid WxH] [--res N] "
             "[--delta D] | candela convert --procedural bike-headlight|car-headlight "
             "--out NAME.lf.json [--rays N] | candela convert FILE.ies|FILE.ldt --out NAME.xml");
@@ -151,11 +151,11 @@ ConvertOptions parseArgs(const Args& args) {
         } else if (parseLayoutFlag(args, i, o.layout)) {
             o.layoutFlagGiven = true;
         } else if (!a.empty() && a[0] == '-') {
-            throw InputError("convert: unknown option " + a);
+            throw UsageError("convert: unknown option " + a);
         } else if (o.input.empty()) {
             o.input = a;
         } else {
-            throw InputError("convert: unexpected argument " + a);
+            throw UsageError("convert: unexpected argument " + a);
         }
     }
     checkOptions(o);

@@ -100,13 +100,13 @@ int cmdEdit(const Args& args) {
         else if (a == "--quit-after-frames")
             options.quitAfterFrames = parseInt(a, flagValue(args, i), 1, 1 << 30);
         else if (!a.empty() && a[0] == '-')
-            throw InputError("edit: unknown option " + a +
+            throw UsageError("edit: unknown option " + a +
                              " (expected --size WxH, --screenshot-dir DIR, --layout-file FILE, "
                              "--quit-after-frames N, --autosave-seconds S)");
         else if (options.scenePath.empty())
             options.scenePath = a;
         else
-            throw InputError("edit: unexpected argument " + a);
+            throw UsageError("edit: unexpected argument " + a);
     }
     if (options.scenePath.empty())
         options.scenePath = std::string(CANDELA_SOURCE_DIR) + "/resources/scenes/demo.json";

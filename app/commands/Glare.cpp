@@ -94,14 +94,14 @@ int cmdGlare(const Args& args) {
         else if (a == "--csv")
             csvPath = outputValue(args, i);
         else if (!a.empty() && a[0] == '-')
-            throw InputError("glare: unknown option " + a);
+            throw UsageError("glare: unknown option " + a);
         else if (scenePath.empty())
             scenePath = a;
         else
-            throw InputError("glare: unexpected argument " + a);
+            throw UsageError("glare: unexpected argument " + a);
     }
     if (scenePath.empty() || position != view)
-        throw InputError(
+        throw UsageError(
             "usage: candela glare scene.json [--observer X,Y,Z --view X,Y,Z [--limit UGR_L] "
             "[--background CD_M2]] [--spp N] [--patches N] [--csv out.csv], or candela glare "
             "--table FILE.ldt|FILE.ies [--spacing 0.25] [--csv out.csv]");

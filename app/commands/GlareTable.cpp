@@ -168,9 +168,9 @@ int cmdGlareTable(const Args& args) {
         } else if (a == "--csv") {
             csvPath = outputValue(args, i);
         } else if (!a.empty() && a[0] == '-') {
-            throw InputError("glare --table: unknown option " + a + " (" + usage + ")");
+            throw UsageError("glare --table: unknown option " + a + " (" + usage + ")");
         } else {
-            throw InputError("glare --table: unexpected argument " + a + " (" + usage + ")");
+            throw UsageError("glare --table: unexpected argument " + a + " (" + usage + ")");
         }
     }
     if (path.empty()) throw InputError(usage);

@@ -185,14 +185,14 @@ int cmdGrid(const Args& args) {
         else if (a == "--csv")
             csvPath = outputValue(args, i);
         else if (!a.empty() && a[0] == '-')
-            throw InputError("grid: unknown option " + a);
+            throw UsageError("grid: unknown option " + a);
         else if (scenePath.empty())
             scenePath = a;
         else
-            throw InputError("grid: unexpected argument " + a);
+            throw UsageError("grid: unexpected argument " + a);
     }
     if (scenePath.empty() || !havePlane)
-        throw InputError(std::string("usage: candela grid scene.json --plane y=0.8 "
+        throw UsageError(std::string("usage: candela grid scene.json --plane y=0.8 "
                                      "[--extent u0,v0,u1,v1] [--spacing 0.25] ") +
                          kEvaluationUsage + " [--csv out.csv]");
     if (!(spec.spacing > 0.0))

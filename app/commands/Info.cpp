@@ -315,7 +315,7 @@ static void printMeshes(const Scene& scene) {
 
 int cmdInfo(const Args& args) {
     if (args.size() != 1)
-        throw InputError(
+        throw UsageError(
             "usage: candela info FILE (.json scene, .lf.json, .gltf, .glb, .ies, .ldt, .xml or "
             ".iesxml (TM-33), .gldf, .l3d or an L3D folder) "
             "[--strict]");

@@ -89,14 +89,14 @@ int cmdPolar(const Args& args) {
         else if (a == "--step")
             step = parseInt(a, flagValue(args, i), 1, 90);
         else if (!a.empty() && a[0] == '-')
-            throw InputError("polar: unknown option " + a);
+            throw UsageError("polar: unknown option " + a);
         else if (path.empty())
             path = a;
         else
-            throw InputError("polar: unexpected argument " + a);
+            throw UsageError("polar: unexpected argument " + a);
     }
     if (path.empty())
-        throw InputError(
+        throw UsageError(
             "usage: candela polar FILE.ies|FILE.ldt|FILE.xml [--out polar.png] [--step DEG]");
     if (!out.empty() && fs::path(out).extension() != ".png")
         throw InputError(out + ": unsupported output extension \"" +

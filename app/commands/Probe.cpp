@@ -175,11 +175,11 @@ ProbeOptions parseProbeOptions(const Args& args) {
         else if (a == "--device")
             o.device = flagValue(args, i);
         else if (!a.empty() && a[0] == '-')
-            throw InputError("probe: unknown option " + a);
+            throw UsageError("probe: unknown option " + a);
         else if (o.scenePath.empty())
             o.scenePath = a;
         else
-            throw InputError("probe: unexpected argument " + a);
+            throw UsageError("probe: unexpected argument " + a);
     }
     return o;
 }
@@ -188,7 +188,7 @@ ProbeOptions parseProbeOptions(const Args& args) {
 /// geometry, so it brings shadows for the direct light too).
 void checkProbeOptions(ProbeOptions& o) {
     if (o.scenePath.empty() || o.pointsPath.empty() == o.pixel.empty())
-        throw InputError(
+        throw UsageError(
             "usage: candela probe scene.json --points pts.csv|--pixel X,Y [--size WxH] "
             "[--technique T] "
             "[--spp N] [--visibility [embree|bvh]] [--indirect [--patches N]] [--device cpu|gpu] "

@@ -266,11 +266,11 @@ RenderOptions parseRenderOptions(const Args& args) {
             settings.exposure = parseNumberList(a, flagValue(args, i)).at(0);
             o.haveExposure = true;
         } else if (!a.empty() && a[0] == '-')
-            throw InputError("render: unknown option " + a);
+            throw UsageError("render: unknown option " + a);
         else if (o.scenePath.empty())
             o.scenePath = a;
         else
-            throw InputError("render: unexpected argument " + a);
+            throw UsageError("render: unexpected argument " + a);
     }
     return o;
 }
@@ -278,7 +278,7 @@ RenderOptions parseRenderOptions(const Args& args) {
 /// The comparison sheet: panes, a reference, errors (the editor's Export sheet).
 int renderSheet(RenderOptions& o) {
     if (o.scenePath.empty() || o.sheetDir.empty() || o.paneTexts.empty() || o.paneTexts.size() > 4)
-        throw InputError(
+        throw UsageError(
             "usage: candela render scene.json --sheet DIR --pane TECHNIQUES[:SPP] (1 to 4 times) "
             "[--reference-spp N] [--spp N] [--size WxH] [--error-maps]");
     if (!o.out.empty())
@@ -293,7 +293,7 @@ int renderSheet(RenderOptions& o) {
 /// Checks an image render's options; returns the output's extension.
 std::string checkImageOptions(RenderOptions& o) {
     if (o.scenePath.empty() || o.out.empty())
-        throw InputError(
+        throw UsageError(
             "usage: candela render scene.json --out img.png|img.exr [--technique T] "
             "[--env-technique T] [--env-face-size N] [--spp N] [--size WxH] [--shadow-maps N] "
             "[--shadow-map-size R] [--indirect on|off] [--patches N] [--light "

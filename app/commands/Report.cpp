@@ -35,14 +35,14 @@ int cmdReport(const Args& args) {
         else if (a == "--no-view")
             view = false;
         else if (!a.empty() && a[0] == '-')
-            throw InputError("report: unknown option " + a);
+            throw UsageError("report: unknown option " + a);
         else if (scenePath.empty())
             scenePath = a;
         else
-            throw InputError("report: unexpected argument " + a);
+            throw UsageError("report: unexpected argument " + a);
     }
     if (scenePath.empty() || out.empty())
-        throw InputError(std::string("usage: candela report scene.json --out report.pdf "
+        throw UsageError(std::string("usage: candela report scene.json --out report.pdf "
                                      "[--title T] ") +
                          kEvaluationUsage + " [--view-size WxH] [--view-spp N] [--no-view]");
     if (std::filesystem::path(out).extension() != ".pdf")

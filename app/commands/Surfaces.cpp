@@ -126,14 +126,14 @@ int cmdSurfaces(const Args& args) {
         else if (a == "--csv")
             csvPath = outputValue(args, i);
         else if (!a.empty() && a[0] == '-')
-            throw InputError("surfaces: unknown option " + a);
+            throw UsageError("surfaces: unknown option " + a);
         else if (scenePath.empty())
             scenePath = a;
         else
-            throw InputError("surfaces: unexpected argument " + a);
+            throw UsageError("surfaces: unexpected argument " + a);
     }
     if (scenePath.empty())
-        throw InputError(std::string("usage: candela surfaces scene.json ") + kEvaluationUsage +
+        throw UsageError(std::string("usage: candela surfaces scene.json ") + kEvaluationUsage +
                          " [--csv out.csv]");
     Scene scene = loadScene(scenePath);
     applyLightChoice(scene, light, how);

@@ -23,7 +23,7 @@ int cmdValidate(const Args& args) {
         else if (args[i] == "--list")
             list = true;
         else
-            throw InputError(
+            throw UsageError(
                 "validate: unknown option " + args[i] +
                 " (usage: candela validate [--case NAME]... [--list] | --closed SCENE.json)");
     }

@@ -41,7 +41,7 @@ expect "bad_header.csv:1" "header" -- probe "$data/ok.json" --points "$data/bad_
 expect "zero_normal.csv:2" "normal" -- probe "$data/ok.json" --points "$data/zero_normal.csv"
 expect "magic" "analytic" -- probe "$data/ok.json" --points "$data/ok_points.csv" --technique magic
 expect "missing.csv" "cannot open" -- probe "$data/ok.json" --points "$data/missing.csv"
-expect "unknown option" -- render "$data/ok.json" --out "$out/a.png" --frobnicate
+expect_usage "unknown option" -- render "$data/ok.json" --out "$out/a.png" --frobnicate
 # A failed render leaves no output file behind.
 [ ! -e "$out/a.png" ] || { echo "FAIL: a failed render left $out/a.png"; failures=$((failures + 1)); }
 

@@ -59,8 +59,8 @@ expect "x.json" "NAME.lf.json" -- convert "$led" --out "$out/x.json"
 expect "no_such_dir" "does not exist" -- convert "$led" --out "$out/no_such_dir/x.lf.json"
 expect "tail-light" "bike-headlight" -- convert --procedural tail-light --out "$out/x.lf.json"
 expect "--rays" "--procedural" -- convert "$led" --out "$out/x.lf.json" --rays 5000
-expect "usage" -- convert "$led"
-expect "unknown option" -- convert "$led" --out "$out/x.lf.json" --frobnicate
+expect_usage "usage" -- convert "$led"
+expect_usage "unknown option" -- convert "$led" --out "$out/x.lf.json" --frobnicate
 # A failed conversion leaves nothing behind.
 left=$(ls "$out"/x.lf.json "$out"/x_*.exr 2>/dev/null | wc -l)
 check "failed conversions wrote no output (found $left files)" [ "$left" -eq 0 ]

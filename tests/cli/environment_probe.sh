@@ -73,7 +73,7 @@ floor=$("$binary" probe "$data/pixel.json" --pixel 480,330 2>/dev/null | awk -F,
 check "a lower pixel sees the floor: $floor" '[ "$floor" = ok ]'
 expect "--pixel: pixel (10, 10) of 960x540 sees no surface" -- probe "$data/pixel.json" --pixel 10,10
 expect "--pixel: expected X,Y inside the 64x48 image" -- probe "$data/pixel.json" --pixel 64,0 --size 64x48
-expect "usage" -- probe "$data/pixel.json" --pixel 1,1 --points "$pts"
+expect_usage "usage" -- probe "$data/pixel.json" --pixel 1,1 --points "$pts"
 echo '{"geometry": []}' > "$tmp/noenv.json"
 expect "--show-samples: the scene has no environment" -- probe "$tmp/noenv.json" --points "$pts" --show-samples "$tmp/x.png"
 

@@ -45,7 +45,7 @@ expect "no glare observers" -- glare "$tmp/one.json"
 expect "needs the background luminance" "has no surfaces" -- glare "$tmp/one.json" --observer 0,1.2,4 --view 0,0,-1
 expect "a line of sight with a horizontal part" -- glare "$tmp/one.json" --observer 0,1.2,4 --view 0,1,0 --background 10
 expect "--observer: expected X,Y,Z" -- glare "$tmp/one.json" --observer 0,1.2 --view 0,0,-1
-expect "usage: candela glare" -- glare "$tmp/one.json" --observer 0,1.2,4
+expect_usage "usage: candela glare" -- glare "$tmp/one.json" --observer 0,1.2,4
 
 echo "glare: $passed passed, $failures failed"
 [ "$failures" -eq 0 ]

@@ -160,8 +160,8 @@ expect "the grid at a spacing of 1e-05 m over" "more than the 1000000 allowed" -
 expect "--extent" "four numbers" -- grid "$data/plane.json" --plane y=0 --extent 0,0,1
 expect "--extent" "an area" -- grid "$data/plane.json" --plane y=0 --extent 0,0,0,1
 expect "--extent" "finite number" -- grid "$data/plane.json" --plane y=0 --extent 0,0,inf,1
-expect "usage" "--plane" -- grid "$data/plane.json"
-expect "unknown option" -- grid "$data/plane.json" --plane y=0 --frobnicate
+expect_usage "usage" "--plane" -- grid "$data/plane.json"
+expect_usage "unknown option" -- grid "$data/plane.json" --plane y=0 --frobnicate
 expect "--technique" "magic" -- grid "$data/plane.json" --plane y=0 --technique magic
 
 # render --false-colour: the illuminance picture with the legend it used; bad legends refused.

@@ -48,8 +48,8 @@ done < <(find "$2/data/photometry" -type f \( -iname '*.ies' -o -iname '*.ldt' \
 expect "nothing_here.ies" "cannot open" -- polar "$data/nothing_here.ies" --out "$out/a.png"
 expect "a.jpg" "unsupported" -- polar "$data/quadrant.ies" --out "$out/a.jpg"
 expect "--step" "integer" -- polar "$data/quadrant.ies" --step 0
-expect "usage" -- polar
-expect "unknown option" -- polar "$data/quadrant.ies" --frobnicate
+expect_usage "usage" -- polar
+expect_usage "unknown option" -- polar "$data/quadrant.ies" --frobnicate
 [ ! -e "$out/a.jpg" ] || { echo "FAIL: a refused polar left $out/a.jpg"; failures=$((failures + 1)); }
 
 echo "$passed passed, $failures failed"

@@ -69,7 +69,7 @@ sed -i "s#\.\./luminaires/#$resources/luminaires/#" "$out/office.json"
 before=$(md5sum <"$out/office.json")
 expect "--csv" "would overwrite" -- surfaces "$out/office.json" --csv "$out/office.json"
 [ "$(md5sum <"$out/office.json")" = "$before" ] || { echo "FAIL: the scene changed"; failures=$((failures + 1)); }
-expect "unknown option" -- surfaces "$out/office.json" --frobnicate
+expect_usage "unknown option" -- surfaces "$out/office.json" --frobnicate
 printf '{"task_areas": [{"plane": "y=1", "extent": [0, 0, 1, 1], "required": {"u0": 2}}]}\n' >"$out/bad.json"
 expect "bad.json" "task_areas[0].required.u0" -- surfaces "$out/bad.json"
 

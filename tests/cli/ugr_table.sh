@@ -80,7 +80,9 @@ check "info says why a point source has no UGR reference: $(grep UGR <<<"$dotInf
     'grep -q "^UGR reference: none ($tmp/dot.ies: no luminous area" <<<"$dotInfo"'
 
 refused "a spacing that leaves part rows" "--spacing: expected 1 / n of H" --table "$tmp/lamp.ldt" --spacing 0.3
-refused "an option of the observer form" "unknown option --observer" --table "$tmp/lamp.ldt" --observer 0,1.2,4
+err=$("$binary" glare --table "$tmp/lamp.ldt" --observer 0,1.2,4 2>&1 >/dev/null); rc=$?
+check "an option of the observer form is bad usage: exit 2, the error, then the usage (rc $rc): $err" \
+    '[ $rc -eq 2 ] && grep -qF -- "unknown option --observer" <<<"$err" && grep -q "^usage:" <<<"$err"'
 check "no CSV from a refused run" '[ ! -e "$tmp/m.csv" ] && [ ! -e "$tmp/d.csv" ]'
 expect "--table: expected a value" -- glare --table
 
