@@ -5,8 +5,8 @@
 
 #include <optional>
 
+#include "formats/Photometry.h"
 #include "fuzz/FuzzSupport.h"
-#include "luminaires/Photometry.h"
 #include "util/Error.h"
 
 namespace candela::fuzz {

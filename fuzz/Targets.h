@@ -8,35 +8,35 @@
 #include <cstring>
 #include <nlohmann/json.hpp>
 
+#include "formats/Gldf.h"
+#include "formats/L3d.h"
+#include "formats/Tm25RayFile.h"
 #include "fuzz/FuzzSupport.h"
 #include "fuzz/PhotometryChecks.h"
-#include "luminaires/Environment.h"
-#include "luminaires/Gldf.h"
-#include "luminaires/L3d.h"
-#include "luminaires/LightField.h"
-#include "luminaires/Tm25RayFile.h"
+#include "luminaires/environment/Environment.h"
+#include "luminaires/lightfield/LightField.h"
 #include "scene/GltfLoader.h"
 #include "scene/SceneIo.h"
 #include "util/Error.h"
 
 namespace candela::fuzz {
 
-/// The IES LM-63 parser (luminaires/IesFile.cpp), lenient and strict.
+/// The IES LM-63 parser (formats/IesFile.cpp), lenient and strict.
 inline void ies(const uint8_t* data, size_t size) {
     checkPhotometry(data, size, PhotometryFormat::Ies);
 }
 
-/// The EULUMDAT parser (luminaires/LdtFile.cpp), lenient and strict.
+/// The EULUMDAT parser (formats/LdtFile.cpp), lenient and strict.
 inline void ldt(const uint8_t* data, size_t size) {
     checkPhotometry(data, size, PhotometryFormat::Ldt);
 }
 
-/// The IES TM-33 parser (luminaires/Tm33File.cpp), lenient and strict.
+/// The IES TM-33 parser (formats/Tm33File.cpp), lenient and strict.
 inline void tm33(const uint8_t* data, size_t size) {
     checkPhotometry(data, size, PhotometryFormat::Tm33);
 }
 
-/// The IES TM-25 ray file reader (luminaires/Tm25RayFile.cpp). It reads files, so
+/// The IES TM-25 ray file reader (formats/Tm25RayFile.cpp). It reads files, so
 /// each input is written to a scratch file first.
 inline void tm25(const uint8_t* data, size_t size) {
     const std::string path = writeScratch("fuzz.tm25ray", data, size);
@@ -60,7 +60,7 @@ inline void tm25(const uint8_t* data, size_t size) {
     }
 }
 
-/// The light-field manifest (NAME.lf.json, luminaires/LightField.cpp). The input
+/// The light-field manifest (NAME.lf.json, luminaires/lightfield/LightField.cpp). The input
 /// is the manifest; the scratch folder holds the nine images of tests/data/lightfield/tiny.lf.json,
 /// so manifests that name them load through OpenImageIO and the precomputation.
 inline void lightfield(const uint8_t* data, size_t size) {
@@ -171,7 +171,7 @@ inline void gltf(const uint8_t* data, size_t size) {
     }
 }
 
-/// Environment-map loading (luminaires/Environment.cpp over OpenImageIO), the
+/// Environment-map loading (luminaires/environment/Environment.cpp over OpenImageIO), the
 /// image path a scene file or a dropped file reaches. Inputs starting with "#?" (Radiance) are
 /// written as .hdr, others as .exr.
 inline void image(const uint8_t* data, size_t size) {
@@ -208,7 +208,7 @@ inline void checkGldf(const GldfProduct& p) {
             if (!p.emitter(id)) violated("dangling emitter id " + id);
 }
 
-/// The GLDF reader (luminaires/Gldf.cpp): a ZIP container ("PK" first) through parseGldf and
+/// The GLDF reader (formats/Gldf.cpp): a ZIP container ("PK" first) through parseGldf and
 /// each variant's photometry; any other input as product.xml alone (so mutations reach the XML
 /// reader without breaking a ZIP checksum).
 inline void gldf(const uint8_t* data, size_t size) {
@@ -261,7 +261,7 @@ inline void checkL3d(const L3dLuminaire& l) {
     }
 }
 
-/// The L3D reader (luminaires/L3d.cpp): an .l3d archive ("PK..."), or, so that mutations reach
+/// The L3D reader (formats/L3d.cpp): an .l3d archive ("PK..."), or, so that mutations reach
 /// the XML and OBJ parsers past the archive's checksums, structure.xml and one OBJ text joined by
 /// kL3dObjMark (every geometry definition reads that text; without the mark, none has one).
 inline void l3d(const uint8_t* data, size_t size) {

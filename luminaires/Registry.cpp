@@ -1,10 +1,10 @@
 #include "luminaires/Registry.h"
 
-#include "luminaires/EnvironmentLight.h"
-#include "luminaires/LambertianRect.h"
-#include "luminaires/LightField.h"
-#include "luminaires/PhotometricLuminaire.h"
-#include "luminaires/PhotometricUniformArea.h"
+#include "luminaires/environment/EnvironmentLight.h"
+#include "luminaires/lambertian/LambertianRect.h"
+#include "luminaires/lightfield/LightField.h"
+#include "luminaires/photometric/PhotometricLuminaire.h"
+#include "luminaires/photometric/PhotometricUniformArea.h"
 
 namespace candela {
 

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "luminaires/FarField.h"
 #include "luminaires/Registry.h"
+#include "luminaires/lightfield/FarField.h"
 
 namespace candela {
 

@@ -1,11 +1,11 @@
 #pragma once
 // The editor's fallback while the user drags something (issue 7, "live while moving"): the same
 // scene at a fraction of the resolution, one sample per pixel and frame, every light field
-// replaced by its far field (luminaires/FarField.h), each luminaire kind's cheap technique
-// (LuminaireKindInfo::previewTechnique: the analytic rectangle, Prost's scattered sampling of the
-// far field) and a single small shadow map per luminaire. When the drag ends the editor renders
-// the real scene with the full settings again, which restarts the progressive refinement with the
-// chosen techniques.
+// replaced by its far field (luminaires/lightfield/FarField.h), each luminaire kind's cheap
+// technique (LuminaireKindInfo::previewTechnique: the analytic rectangle, Prost's scattered
+// sampling of the far field) and a single small shadow map per luminaire. When the drag ends the
+// editor renders the real scene with the full settings again, which restarts the progressive
+// refinement with the chosen techniques.
 
 #include "renderer/Renderer.h"
 #include "scene/Scene.h"

@@ -90,8 +90,8 @@ class Renderer {
     /// (width > 0: the points form a width x (count / width) image, row-major, so more than the
     /// largest texture width fit; the shading passes' GPU times are in stats() afterwards.)
 
-    /// Interreflected light to add to the image (scene/InterreflectionWorker.h): the patches and
-    /// their vertices' interreflected irradiance in the scene's units; a null mesh removes it.
+    /// Interreflected light to add to the image (calculation/InterreflectionWorker.h): the patches
+    /// and their vertices' interreflected irradiance in the scene's units; a null mesh removes it.
     /// The "indirect" pass draws it again only when this or the view changes.
     void setIndirect(std::shared_ptr<const RadiosityMesh> mesh,
                      std::vector<glm::vec3> vertexIrradiance);

@@ -10,13 +10,13 @@
 #include <ctime>
 #include <map>
 
-#include "luminaires/Gldf.h"
-#include "luminaires/PhotometricLuminaire.h"
+#include "calculation/Plausibility.h"
+#include "formats/Gldf.h"
+#include "luminaires/photometric/PhotometricLuminaire.h"
 #include "renderer/passes/TonemapPass.h"
-#include "scene/Plausibility.h"
+#include "report/PolarDiagram.h"
 #include "scene/Scene.h"
 #include "shaders/shared/FalseColour.h"
-#include "ui/PolarDiagram.h"
 #include "util/Error.h"
 #include "util/TextEncoding.h"
 
@@ -337,11 +337,11 @@ void titlePage(Pdf& pdf, const ReportInput& in) {
 void polarDiagram(Pdf& pdf, const PhotometricData& data, double scale, double x, double top,
                   double size) {
     cairo_t* cr = pdf.cr;
-    ui::PolarCurves curves = ui::polarCurves(data, 1.0);
+    PolarCurves curves = polarCurves(data, 1.0);
     for (std::vector<double>* c : {&curves.c0, &curves.c180, &curves.c90, &curves.c270})
         for (double& v : *c) v *= scale;
     curves.peak *= scale;
-    std::vector<double> rings = ui::polarRings(curves.peak);
+    std::vector<double> rings = polarRings(curves.peak);
     double outer = rings.empty() ? 1.0 : rings.back();
     double cx = x + size / 2, cy = top + size / 2, radius = size / 2 - 14;
     cairo_set_line_width(cr, 0.4);
@@ -424,7 +424,7 @@ void scheduleSection(Pdf& pdf, const ReportInput& in) {
                           fmt(" (%.1f lm/W)", totalFlux / totalPower) +
                           "; MF: the maintenance factor each luminaire's light is scaled by.",
                       8);
-    // Where a product's own figures disagree (scene/Plausibility.h): one line per photometry.
+    // Where a product's own figures disagree (calculation/Plausibility.h): one line per photometry.
     std::vector<std::pair<const void*, const void*>> checked;
     for (const auto& l : scene.luminaires) {
         auto* p = dynamic_cast<const PhotometricLuminaire*>(l.get());

@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "scene/CalculationSurfaces.h"
-#include "scene/Glare.h"
+#include "calculation/CalculationSurfaces.h"
+#include "calculation/Glare.h"
 
 namespace candela {
 

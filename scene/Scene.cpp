@@ -4,8 +4,8 @@
 #include <cstdint>
 #include <cstdio>
 
-#include "luminaires/Environment.h"
-#include "luminaires/EnvironmentLight.h"
+#include "luminaires/environment/Environment.h"
+#include "luminaires/environment/EnvironmentLight.h"
 #include "util/Error.h"
 
 namespace candela {

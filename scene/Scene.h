@@ -10,8 +10,7 @@
 #include <vector>
 
 #include "luminaires/Luminaire.h"
-#include "scene/CalculationSurfaces.h"
-#include "scene/Glare.h"
+#include "scene/Measurements.h"
 #include "shaders/shared/Constants.h"
 
 namespace candela {
@@ -97,7 +96,8 @@ struct Scene {
     std::vector<Material> materials;
     std::vector<std::unique_ptr<Luminaire>> luminaires;
     nlohmann::json environment;  ///< null: no environment map. Kept as written, for saving.
-    /// The environment's radiance now (luminaires/Environment.h); null when `environment` is.
+    /// The environment's radiance now (luminaires/environment/Environment.h); null when
+    /// `environment` is.
     std::shared_ptr<const EnvironmentMap> environmentMap;
     /// Set only for {"sequence": ...}: the frames; environmentMap is its frame at t = 0.
     std::shared_ptr<EnvironmentSequence> environmentSequence;
@@ -105,11 +105,11 @@ struct Scene {
     /// The project's maintenance factor (EN 12464-1: maintained over initial output, in (0, 1]):
     /// that of every luminaire that sets none. Daylight (the environment) takes none.
     double maintenanceFactor = 1.0;
-    /// EN 12464-1 calculation surfaces and points (scene/CalculationSurfaces.h), evaluated by
+    /// EN 12464-1 calculation surfaces and points (calculation/CalculationSurfaces.h), evaluated by
     /// `candela surfaces`.
     std::vector<TaskArea> taskAreas;
     std::vector<CalcPoint> calcPoints;
-    /// Where UGR is rated (scene/Glare.h), by `candela glare`.
+    /// Where UGR is rated (calculation/Glare.h), by `candela glare`.
     std::vector<GlareObserver> glareObservers;
 
     Scene() = default;
@@ -165,7 +165,7 @@ struct Scene {
     double lightScale(const Luminaire& source) const;
     double lightScale(const Luminaire& source, const UnitSystem& units) const;
 
-    /// The environment as a light source (luminaires/EnvironmentLight.h), made from
+    /// The environment as a light source (luminaires/environment/EnvironmentLight.h), made from
     /// environmentMap and kept while the map stays the same (a new map is a new source); null
     /// without one. Not thread-safe: each thread renders its own copy of a scene.
     const Luminaire* environmentLight() const;

@@ -12,8 +12,8 @@
 #include <map>
 #include <vector>
 
-#include "luminaires/Environment.h"
 #include "luminaires/Registry.h"
+#include "luminaires/environment/Environment.h"
 #include "scene/GltfLoader.h"
 #include "shaders/shared/Constants.h"
 #include "util/Activity.h"

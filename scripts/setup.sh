@@ -5,9 +5,10 @@ packages=(
   build-essential cmake pkg-config git python3
   libglfw3-dev libimgui-dev libglm-dev libtinygltf-dev libopenimageio-dev
   libosmesa6-dev libgl-dev libegl-dev libgtest-dev libbenchmark-dev nlohmann-json3-dev libembree-dev
-  libzip-dev libpugixml-dev  # GLDF containers (luminaires/Gldf.h)
-  libtinyobjloader-dev  # L3D geometry's OBJ parts (luminaires/L3d.h)
+  libzip-dev libpugixml-dev  # GLDF containers (formats/Gldf.h)
+  libtinyobjloader-dev  # L3D geometry's OBJ parts (formats/L3d.h)
   libcairo2-dev  # the PDF report (report/Report.h)
+  libcli11-dev  # the command line's parser (app/commands/Cli.h)
   poppler-utils  # pdftotext and pdftoppm: the report's test reads its pages
   xvfb xdotool imagemagick x11-utils mesa-utils clang-format gnuplot-nox
   fonts-dejavu-core openimageio-tools

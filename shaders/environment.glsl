@@ -1,6 +1,6 @@
 // The environment map on the GPU: the lat-long map, the cube-face frames and the per-face
 // tables built each time the map changes (environment_cdf.comp, Algorithm 1 of Lu et al. 2013).
-// Mirrors luminaires/EnvironmentSampling.cpp (the CPU reference): same face layout (OpenEXR
+// Mirrors luminaires/environment/EnvironmentSampling.cpp (the CPU reference): same face layout (OpenEXR
 // envmap=cube), same texel weights, same piecewise-constant CDFs, so pdfs agree.
 #include "common.glsl"
 #include "shared/CubeFaces.h"

@@ -6,7 +6,7 @@
 //                 giving CDF(v | u), and the column's total;
 //   PASS_COLUMNS  per face: the prefix sum over column totals giving CDF(u), and I_f;
 //   PASS_SAMPLES  per face: a pool of light samples drawn by binary search (line 10).
-// The weights are exactly those of CubeMapDistribution (luminaires/EnvironmentSampling.cpp):
+// The weights are exactly those of CubeMapDistribution (luminaires/environment/EnvironmentSampling.cpp):
 // (mean luminance + kEnvMaxShare x the largest lat-long luminance the texel touches + a floor of
 // kEnvFaceFloor x the face's mean luminance) x the texel's solid angle. Prefix sums run in
 // float-float (ff.glsl) and the tables are stored as float-float pairs (see envRand48 in

@@ -1,4 +1,4 @@
-// The radiosity patches with their interreflected irradiance per vertex (scene/Radiosity.h),
+// The radiosity patches with their interreflected irradiance per vertex (calculation/Radiosity.h),
 // rasterised like the G-buffer so each pixel gets the value at the surface it sees.
 #include "common.glsl"
 layout(location = 0) in vec3 inPosition;

@@ -1,4 +1,4 @@
-// The Lambertian rectangle in GLSL: the same algorithms as luminaires/LambertianRect.cpp (float).
+// The Lambertian rectangle in GLSL: the same algorithms as luminaires/lambertian/LambertianRect.cpp (float).
 // Needs shared/GpuTypes.h (LambertianRectGpu) and kPi from common.glsl.
 
 /// Closed-form irradiance at p for the unit normal n: Lambert's polygon formula on the part of

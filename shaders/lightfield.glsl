@@ -1,4 +1,4 @@
-// Light-field luminaires in GLSL: the same model, tables and sampler as luminaires/LightField.cpp
+// Light-field luminaires in GLSL: the same model, tables and sampler as luminaires/lightfield/LightField.cpp
 // (Lu, Pacanowski, Granier 2015). The summed-area tables are float-float pairs (ff.glsl): in
 // float, A_m of a small box far from the table's origin would lose most of its digits to
 // cancellation. Every difference of table entries is taken in float-float and rounded to float

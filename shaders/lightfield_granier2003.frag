@@ -1,6 +1,6 @@
 // lightfield `granier2003`: Granier et al. 2003, Eq. 14: one textured spot light per basis
 // function at its node, C_m averaged over the support's footprint (deterministic), as
-// luminaires/LightFieldEstimators.cpp.
+// luminaires/lightfield/LightFieldEstimators.cpp.
 #include "lightfield_shading.glsl"
 
 /// On S (onS) the footprints shrink to the receiver's point, and each mean to the pixel there:

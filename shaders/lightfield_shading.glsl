@@ -78,4 +78,4 @@ vec3 shadeOnS(Surface s, vec3 q, vec3 nl, int K, vec2 shift, float offset) {
     return sum / float(K);
 }
 
-/// Granier et al. 2003 (seed 001, Eq. 14), as luminaires/LightFieldEstimators.cpp.
+/// Granier et al. 2003 (seed 001, Eq. 14), as luminaires/lightfield/LightFieldEstimators.cpp.

@@ -1,4 +1,4 @@
-// Photometric area lights in GLSL: the same algorithms as luminaires/PhotometricEstimators.cpp
+// Photometric area lights in GLSL: the same algorithms as luminaires/photometric/PhotometricEstimators.cpp
 // and luminaires/SphericalPolygon.cpp, in float. Needs shared/GpuTypes.h (PhotometricGpu) and
 // kPi from common.glsl. Everything works in the luminaire's local frame (opening in z = 0, aim
 // +z) with vectors relative to the receiver, as on the CPU.
@@ -77,7 +77,7 @@ float phIntensity(vec3 d) {
 float phAreaCoordinate(float vertical) { return ph.dims.w == 1 ? sin(vertical) : -cos(vertical); }
 
 /// Probability per steradian of phTableSample at the unit local direction d: the cell's share
-/// of the CDF over its solid angle (luminaires/IntensitySampler.cpp, from the same floats).
+/// of the CDF over its solid angle (luminaires/photometric/IntensitySampler.cpp, from the same floats).
 float phTablePdf(vec3 d) {
     if (ph.samples.z == 0) return 0.0;
     float vertical, horizontal;

@@ -1,5 +1,5 @@
 // photometric `uniform-area`: points uniform on the opening's bounding rectangle, the textbook
-// Monte Carlo of the area form (Prost Eq. 6.3 on its own; luminaires/PhotometricUniformArea.cpp).
+// Monte Carlo of the area form (Prost Eq. 6.3 on its own; luminaires/photometric/PhotometricUniformArea.cpp).
 #include "photometric_shading.glsl"
 
 vec3 shadeTechnique(Surface s, vec3 p, vec3 n, int spp, inout uint rng) {

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "luminaires/Environment.h"
+#include "luminaires/environment/Environment.h"
 #include "shaders/shared/Constants.h"
 #include "util/Error.h"
 

@@ -5,7 +5,7 @@
 
 #include <glm/glm.hpp>
 
-#include "luminaires/LambertianRect.h"
+#include "luminaires/lambertian/LambertianRect.h"
 
 namespace candela::test {
 

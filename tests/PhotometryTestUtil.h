@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "TestUtil.h"
-#include "luminaires/Photometry.h"
+#include "formats/Photometry.h"
 
 namespace candela::phototest {
 

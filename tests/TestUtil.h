@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "luminaires/EnvironmentLight.h"
 #include "luminaires/GpuTable.h"
 #include "luminaires/Registry.h"
+#include "luminaires/environment/EnvironmentLight.h"
 #include "util/Error.h"
 
 namespace candela {

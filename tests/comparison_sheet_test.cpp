@@ -11,8 +11,8 @@
 #include <nlohmann/json.hpp>
 
 #include "renderer/ImageFile.h"
+#include "report/ComparisonSheet.h"
 #include "tests/TestUtil.h"
-#include "ui/ComparisonSheet.h"
 #include "util/Error.h"
 
 namespace candela::ui {

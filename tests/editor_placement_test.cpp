@@ -1,16 +1,16 @@
 // Placing luminaires on surfaces (ui/EditorState.h: poseOnSurface, surfaceBvh) and picking the
-// surface seen through a pixel of the demo room (ui/ViewportMath.h).
+// surface seen through a pixel of the demo room (renderer/ViewportMath.h).
 #include <gtest/gtest.h>
 
 #include <cstdlib>
 #include <filesystem>
 #include <set>
 
-#include "luminaires/Gldf.h"
-#include "luminaires/PhotometricLuminaire.h"
+#include "formats/Gldf.h"
+#include "luminaires/photometric/PhotometricLuminaire.h"
 #include "renderer/FramePlan.h"
+#include "renderer/ViewportMath.h"
 #include "ui/EditorState.h"
-#include "ui/ViewportMath.h"
 
 namespace candela::ui {
 namespace {

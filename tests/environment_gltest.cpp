@@ -8,18 +8,19 @@
 #include <algorithm>
 #include <cmath>
 
-#include "luminaires/EnvironmentSampling.h"
+#include "luminaires/environment/EnvironmentSampling.h"
 #include "renderer/Renderer.h"
 #include "renderer/ShaderLibrary.h"
 #include "renderer/passes/EnvironmentPass.h"
 #include "scene/SceneIo.h"
+#include "shaders/shared/Constants.h"
 #include "tests/TestUtil.h"
 #include "util/Error.h"
 
 namespace candela {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using gpu::kPi;
 double lum(const glm::dvec3& c) {
     return luminanceOf(c);
 }

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "luminaires/Environment.h"
-#include "luminaires/EnvironmentSampling.h"
+#include "luminaires/environment/Environment.h"
+#include "luminaires/environment/EnvironmentSampling.h"
 #include "scene/SceneIo.h"
 #include "tests/EnvironmentTestUtil.h"
 #include "tests/TestUtil.h"

@@ -3,7 +3,7 @@
 // against their pdfs, inversion), the balanced estimator of Lu et al. 2013 against the exact
 // reference and hard cases. Havran et al.'s lights, the sky, sequences and scene parsing are in
 // environment_sky_test.cpp.
-#include "luminaires/Environment.h"
+#include "luminaires/environment/Environment.h"
 
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "luminaires/EnvironmentSampling.h"
 #include "luminaires/Random.h"
+#include "luminaires/environment/EnvironmentSampling.h"
 #include "renderer/passes/EnvironmentPass.h"
 #include "scene/Bvh.h"
 #include "scene/SceneIo.h"

@@ -1,5 +1,5 @@
-// The far field of a light field (luminaires/FarField.h), the editor's stand-in while dragging:
-// against the light field's own flux (its U x S quadrature) and against the exact model's
+// The far field of a light field (luminaires/lightfield/FarField.h), the editor's stand-in while
+// dragging: against the light field's own flux (its U x S quadrature) and against the exact model's
 // irradiance far away (lightFieldReference, Gauss-Legendre over U: another code path), where
 // E R^2 -> I(w), in directions that tell the photometric frame's y from the light field's.
 #include <gtest/gtest.h>
@@ -7,13 +7,14 @@
 #include <algorithm>
 #include <cmath>
 
-#include "luminaires/FarField.h"
-#include "luminaires/LightField.h"
+#include "luminaires/lightfield/FarField.h"
+#include "luminaires/lightfield/LightField.h"
+#include "shaders/shared/Constants.h"
 
 namespace candela {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using gpu::kPi;
 
 double luminance(const glm::dvec3& c) {
     return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;

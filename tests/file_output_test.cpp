@@ -19,14 +19,14 @@
 #include <thread>
 
 #include "app/commands/Commands.h"
-#include "luminaires/LightField.h"
-#include "luminaires/Photometry.h"
+#include "calculation/CalculationGrid.h"
+#include "formats/Photometry.h"
+#include "luminaires/lightfield/LightField.h"
 #include "renderer/ImageFile.h"
-#include "scene/CalculationGrid.h"
+#include "report/ComparisonSheet.h"
 #include "scene/SceneIo.h"
 #include "tests/TempDir.h"
 #include "tests/TestUtil.h"
-#include "ui/ComparisonSheet.h"
 #include "ui/EditorState.h"
 #include "util/Error.h"
 #include "util/FileOutput.h"
@@ -269,14 +269,14 @@ TEST(FileOutput, SheetWriterLeavesNoFileOnAFullDisk) {
     // The sheet (and the screenshots, which share the writers) goes to new names: a failure must
     // leave the folder as it was, the file beside it untouched.
     TempDir dir;
-    ui::SheetImage sheet;
+    SheetImage sheet;
     sheet.width = 48;
     sheet.height = 32;
     sheet.display = noise8(48 * 32 * 3);
     sheet.linear = noiseFloat(48 * 32 * 3);
     fs::path beside = dir / "notes.txt";
     writeBytes(beside, oldContent());
-    int code = runOnFullDisk([&] { ui::writeSheet(dir.path(), sheet, nullptr); }, "sheet-000.png");
+    int code = runOnFullDisk([&] { writeSheet(dir.path(), sheet, nullptr); }, "sheet-000.png");
     EXPECT_EQ(code, kInputErrorNamingFile);
     EXPECT_EQ(readBytes(beside), oldContent());
     EXPECT_EQ(dir.entries(), std::vector<std::string>{"notes.txt"});
@@ -287,15 +287,15 @@ TEST(FileOutput, AHalfWrittenSheetIsTakenBack) {
     // bytes) and sidecar do not. The PNG already written is removed, so no half sheet is left
     // and the next sheet does not skip a number.
     TempDir dir;
-    ui::SheetImage sheet;
+    SheetImage sheet;
     sheet.width = 1;
     sheet.height = 1;
     sheet.display = noise8(3);
     sheet.linear = noiseFloat(3);
-    int code = runOnFullDisk([&] { ui::writeSheet(dir.path(), sheet, nullptr); }, "sheet-000.");
+    int code = runOnFullDisk([&] { writeSheet(dir.path(), sheet, nullptr); }, "sheet-000.");
     EXPECT_EQ(code, kInputErrorNamingFile);
     EXPECT_EQ(dir.entries(), std::vector<std::string>{});
-    ui::SheetFiles next = ui::writeSheet(dir.path(), sheet, nullptr);
+    SheetFiles next = writeSheet(dir.path(), sheet, nullptr);
     EXPECT_EQ(fs::path(next.png).filename(), "sheet-000.png");
 }
 

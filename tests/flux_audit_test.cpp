@@ -21,8 +21,8 @@
 #include <thread>
 #include <vector>
 
-#include "luminaires/PhotometricLuminaire.h"
 #include "luminaires/Registry.h"
+#include "luminaires/photometric/PhotometricLuminaire.h"
 #include "scene/SceneIo.h"
 #include "shaders/shared/Constants.h"
 

@@ -1,10 +1,10 @@
-// The Unified Glare Rating (scene/Glare.h) against closed forms: Guth's position index from the
-// published coefficients of Levin's fit, worked by hand; a uniform-luminance luminaire, whose L,
-// omega and UGR follow from the geometry alone; two mirrored luminaires (+8 log10 2); the
+// The Unified Glare Rating (calculation/Glare.h) against closed forms: Guth's position index from
+// the published coefficients of Levin's fit, worked by hand; a uniform-luminance luminaire, whose
+// L, omega and UGR follow from the geometry alone; two mirrored luminaires (+8 log10 2); the
 // maintenance factor (L^2 scales, a given Lb does not); CIE 147's small-source form; what is left
 // out; the background from the interreflected light; the scene file's observers.
 
-#include "scene/Glare.h"
+#include "calculation/Glare.h"
 
 #include <gtest/gtest.h>
 
@@ -13,7 +13,7 @@
 #include <string>
 
 #include "TestUtil.h"
-#include "scene/CalculationGrid.h"
+#include "calculation/CalculationGrid.h"
 #include "scene/Scene.h"
 #include "scene/SceneIo.h"
 #include "tests/TempDir.h"

@@ -1,9 +1,9 @@
-// GLDF containers (luminaires/Gldf.h): each of the twelve gldf.net test containers either loads
+// GLDF containers (formats/Gldf.h): each of the twelve gldf.net test containers either loads
 // (product data, variants, photometry) or is refused with a message naming the member and the
 // defect; containers this test writes with libzip cover what those do not (a URL photometry, a
 // dangling file id, a damaged or oversized member, IES inside, two emitters, code page 850
 // names); and a "gldf" scene entry loads, renders as photometric and round-trips through save.
-#include "luminaires/Gldf.h"
+#include "formats/Gldf.h"
 
 #include <gtest/gtest.h>
 #include <zip.h>
@@ -17,8 +17,8 @@
 #include <utility>
 #include <vector>
 
-#include "luminaires/PhotometricLuminaire.h"
-#include "scene/CalculationGrid.h"
+#include "calculation/CalculationGrid.h"
+#include "luminaires/photometric/PhotometricLuminaire.h"
 #include "scene/SceneIo.h"
 #include "tests/TempDir.h"
 #include "util/Error.h"

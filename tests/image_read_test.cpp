@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "luminaires/Environment.h"
+#include "luminaires/environment/Environment.h"
 #include "tests/TestUtil.h"
 #include "util/Error.h"
 #include "util/ImageRead.h"

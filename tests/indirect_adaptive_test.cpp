@@ -1,7 +1,7 @@
 // The interreflected light at calculation points from the patches' solution, refined near
 // surfaces and gathered where its error estimate says so (GridSpec::Indirect::Adaptive), against
-// the final gather at 2048 rays (the reference, scene/Interreflection.h) on the office: a work
-// plane and points beside walls, the desk and the ceiling, where the patches alone are off.
+// the final gather at 2048 rays (the reference, calculation/Interreflection.h) on the office: a
+// work plane and points beside walls, the desk and the ceiling, where the patches alone are off.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "scene/CalculationGrid.h"
+#include "calculation/CalculationGrid.h"
 #include "scene/SceneIo.h"
 
 namespace candela {

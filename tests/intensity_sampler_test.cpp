@@ -4,15 +4,16 @@
 
 #include <cmath>
 
-#include "luminaires/IntensitySampler.h"
-#include "luminaires/Photometry.h"
+#include "formats/Photometry.h"
 #include "luminaires/Random.h"
+#include "luminaires/photometric/IntensitySampler.h"
+#include "shaders/shared/Constants.h"
 #include "tests/TestUtil.h"
 
 namespace candela {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using gpu::kPi;
 
 /// The files: type C with several C planes, an axial spot, a real asymmetric type C, type B.
 const char* const kFiles[] = {

@@ -1,7 +1,7 @@
 // Interreflected light (issue 17, part 3): radiosity over patches with Embree form factors,
 // their pieces: hit lookup, convex rooms, per-source updates, black surfaces, the final gather.
 // (Energy balance in closed rooms is the validation suite's, tests/validation_test.cpp.)
-#include "scene/Interreflection.h"
+#include "calculation/Interreflection.h"
 
 #include <gtest/gtest.h>
 

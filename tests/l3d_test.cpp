@@ -1,10 +1,10 @@
-// L3D geometry (luminaires/L3d.h): the eight examples of the format's repository load, with the
+// L3D geometry (formats/L3d.h): the eight examples of the format's repository load, with the
 // sizes their README states; every light-emitting object lies on the OBJ faces its
 // LightEmittingSurfaces assign to it and faces the way they face (a check of the transform
 // conventions that shares nothing with the reader: the faces' positions and windings come from
 // the OBJ files, the object's frame from structure.xml); GLDF's complete container's geometry
 // loads; defects are one-line errors naming the member.
-#include "luminaires/L3d.h"
+#include "formats/L3d.h"
 
 #include <gtest/gtest.h>
 
@@ -13,7 +13,7 @@
 #include <fstream>
 #include <string>
 
-#include "luminaires/Gldf.h"
+#include "formats/Gldf.h"
 #include "tests/TempDir.h"
 #include "util/Error.h"
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "luminaires/LambertianRect.h"
+#include "luminaires/lambertian/LambertianRect.h"
 #include "shaders/shared/GpuTypes.h"
 #include "tests/LambertianRectFixture.h"
 #include "util/Error.h"

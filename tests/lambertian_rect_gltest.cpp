@@ -6,7 +6,7 @@
 #include <cmath>
 #include <random>
 
-#include "luminaires/LambertianRect.h"
+#include "luminaires/lambertian/LambertianRect.h"
 #include "renderer/ShaderLibrary.h"
 #include "renderer/context/GlContext.h"
 #include "renderer/gl/GlObjects.h"

@@ -11,14 +11,15 @@
 #include <string>
 #include <vector>
 
-#include "luminaires/LambertianRect.h"
+#include "luminaires/lambertian/LambertianRect.h"
+#include "shaders/shared/Constants.h"
 #include "tests/LambertianRectFixture.h"
 #include "tests/TestUtil.h"
 
 namespace candela {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using gpu::kPi;
 
 // ---------------------------------------------------------------------------------------------
 // Quadrature: Gauss-Legendre nodes from Newton's method on the Legendre recurrence, and an

@@ -8,7 +8,7 @@
 #include <cstdio>
 #include <random>
 
-#include "luminaires/LightField.h"
+#include "luminaires/lightfield/LightField.h"
 #include "renderer/Renderer.h"
 #include "renderer/ShaderLibrary.h"
 #include "renderer/context/GlContext.h"

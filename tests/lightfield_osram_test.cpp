@@ -7,13 +7,14 @@
 #include <cmath>
 #include <cstdio>
 
-#include "luminaires/LightField.h"
-#include "luminaires/Tm25RayFile.h"
+#include "formats/Tm25RayFile.h"
+#include "luminaires/lightfield/LightField.h"
+#include "shaders/shared/Constants.h"
 
 namespace candela {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using gpu::kPi;
 constexpr double kHeaderFlux = 337.0;  ///< lm, the ray file's header.
 constexpr int kBands = 6;              ///< Polar-angle bands of 15 degrees over the front.
 

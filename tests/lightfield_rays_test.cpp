@@ -1,6 +1,6 @@
-// Projection of rays onto a light field (luminaires/LightFieldRays.h): a Lambertian patch of known
-// radiance is reproduced, flux is accounted for to the last ray, the source frame options work,
-// and the converted OSRAM LED keeps its 337 lm through LightFieldData::power().
+// Projection of rays onto a light field (luminaires/lightfield/LightFieldRays.h): a Lambertian
+// patch of known radiance is reproduced, flux is accounted for to the last ray, the source frame
+// options work, and the converted OSRAM LED keeps its 337 lm through LightFieldData::power().
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,8 +9,9 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "luminaires/LightFieldRays.h"
 #include "luminaires/Random.h"
+#include "luminaires/lightfield/LightFieldRays.h"
+#include "shaders/shared/Constants.h"
 #include "tests/TestUtil.h"
 #include "util/Error.h"
 
@@ -19,7 +20,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr double kPi = 3.14159265358979323846;
+using gpu::kPi;
 constexpr double kPatchHalf = 0.010;  ///< Half-size of the Lambertian patch, metres.
 constexpr double kRadiance = 1000.0;  ///< Its luminance, cd/m2.
 

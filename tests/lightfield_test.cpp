@@ -2,7 +2,7 @@
 // do not share their code path: the closed form of a Lambertian rectangle (a light field whose
 // images are constant and whose basis sums to one over every ray it emits), an independent
 // integrator over S, direct pixel sums, and chi-square tests.
-#include "luminaires/LightField.h"
+#include "luminaires/lightfield/LightField.h"
 
 #include <gtest/gtest.h>
 
@@ -11,7 +11,7 @@
 #include <fstream>
 #include <random>
 
-#include "luminaires/LambertianRect.h"
+#include "luminaires/lambertian/LambertianRect.h"
 #include "tests/TestUtil.h"
 #include "util/Error.h"
 

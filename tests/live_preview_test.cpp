@@ -1,7 +1,7 @@
 // The editor's settings and scene while dragging (renderer/LivePreview.h).
 #include <gtest/gtest.h>
 
-#include "luminaires/FarField.h"
+#include "luminaires/lightfield/FarField.h"
 #include "renderer/FramePlan.h"
 #include "renderer/LivePreview.h"
 #include "scene/SceneIo.h"

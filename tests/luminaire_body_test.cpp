@@ -9,12 +9,12 @@
 #include <cmath>
 #include <fstream>
 
-#include "luminaires/L3d.h"
-#include "luminaires/LambertianRect.h"
-#include "luminaires/PhotometricLuminaire.h"
+#include "calculation/CalculationGrid.h"
+#include "formats/L3d.h"
 #include "luminaires/Registry.h"
+#include "luminaires/lambertian/LambertianRect.h"
+#include "luminaires/photometric/PhotometricLuminaire.h"
 #include "scene/Bvh.h"
-#include "scene/CalculationGrid.h"
 #include "scene/EmbreeVisibility.h"
 #include "scene/Occlusion.h"
 #include "scene/SceneIo.h"

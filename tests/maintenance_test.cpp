@@ -9,7 +9,7 @@
 #include <string>
 
 #include "app/commands/Commands.h"  // parsePlane
-#include "scene/CalculationGrid.h"
+#include "calculation/CalculationGrid.h"
 #include "scene/SceneIo.h"
 #include "util/Error.h"
 

@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "luminaires/LambertianRect.h"
+#include "luminaires/lambertian/LambertianRect.h"
 #include "renderer/Renderer.h"
 #include "scene/SceneIo.h"
 #include "shaders/shared/FalseColour.h"

@@ -7,10 +7,10 @@
 #include <cmath>
 
 #include "app/commands/Commands.h"  // parsePlane
-#include "luminaires/LambertianRect.h"
+#include "calculation/CalculationGrid.h"
+#include "luminaires/lambertian/LambertianRect.h"
 #include "renderer/FramePlan.h"
 #include "renderer/Renderer.h"
-#include "scene/CalculationGrid.h"
 #include "scene/SceneIo.h"
 #include "shaders/shared/FalseColour.h"
 #include "util/Error.h"

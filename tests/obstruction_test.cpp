@@ -22,17 +22,18 @@
 #include <string>
 
 #include "TestUtil.h"
-#include "luminaires/EnvironmentSampling.h"
-#include "luminaires/LightField.h"
 #include "luminaires/Registry.h"
+#include "luminaires/environment/EnvironmentSampling.h"
+#include "luminaires/lightfield/LightField.h"
 #include "scene/EmbreeVisibility.h"
 #include "scene/SceneIo.h"
+#include "shaders/shared/Constants.h"
 
 namespace candela {
 namespace {
 
 namespace fs = std::filesystem;
-constexpr double kPi = 3.14159265358979323846;
+using gpu::kPi;
 
 constexpr double kL =
     25000.0;  ///< Luminance of every emitter, cd/m2 (lambert.ies: 1000 cd / 0.04 m2).

@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "luminaires/PhotometricLuminaire.h"
 #include "luminaires/Registry.h"
+#include "luminaires/photometric/PhotometricLuminaire.h"
 #include "scene/SceneIo.h"
 
 namespace candela {

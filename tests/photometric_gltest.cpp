@@ -5,8 +5,8 @@
 #include <cmath>
 
 #include "TestUtil.h"
-#include "luminaires/PhotometricLuminaire.h"
 #include "luminaires/Registry.h"
+#include "luminaires/photometric/PhotometricLuminaire.h"
 #include "renderer/Renderer.h"
 #include "renderer/ShaderLibrary.h"
 #include "scene/SceneIo.h"

@@ -9,15 +9,16 @@
 #include <memory>
 
 #include "TestUtil.h"
-#include "luminaires/PhotometricLuminaire.h"
 #include "luminaires/Random.h"
 #include "luminaires/Registry.h"
 #include "luminaires/SphericalPolygon.h"
+#include "luminaires/photometric/PhotometricLuminaire.h"
+#include "shaders/shared/Constants.h"
 
 namespace candela {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using gpu::kPi;
 const std::string kData = CANDELA_TEST_DATA "/photometric/";
 
 spherical::Polygon rectangle(double x0, double y0, double x1, double y1, double z) {

@@ -13,7 +13,7 @@
 
 #include "PhotometryTestUtil.h"
 #include "TestUtil.h"
-#include "luminaires/Photometry.h"
+#include "formats/Photometry.h"
 
 namespace candela {
 namespace {

@@ -1,7 +1,7 @@
 // Far-field photometry: IES LM-63 and EULUMDAT parsers, symmetry unfolding, bilinear evaluation
-// and the exact flux of the table (luminaires/Photometry.h).
+// and the exact flux of the table (formats/Photometry.h).
 
-#include "luminaires/Photometry.h"
+#include "formats/Photometry.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>

@@ -1,8 +1,8 @@
-// Where a luminaire's own figures disagree (scene/Plausibility.h): each rule fires on a file built
-// to break it, with both numbers and the one Candela uses, stays silent inside its tolerance, and
-// fires on the real files that break it (the gldf.net container's 800 lm light source beside its
-// photometry's 6300 lm of lamps; a LM-63 example whose UGR reference is 42).
-#include "scene/Plausibility.h"
+// Where a luminaire's own figures disagree (calculation/Plausibility.h): each rule fires on a file
+// built to break it, with both numbers and the one Candela uses, stays silent inside its tolerance,
+// and fires on the real files that break it (the gldf.net container's 800 lm light source beside
+// its photometry's 6300 lm of lamps; a LM-63 example whose UGR reference is 42).
+#include "calculation/Plausibility.h"
 
 #include <gtest/gtest.h>
 
@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "luminaires/Gldf.h"
-#include "luminaires/Photometry.h"
+#include "formats/Gldf.h"
+#include "formats/Photometry.h"
 #include "shaders/shared/Constants.h"
 #include "util/Error.h"
 

@@ -1,11 +1,11 @@
-// Procedural headlights (luminaires/ProceduralLuminaire.h) at a reduced ray count: the layouts of
-// the paper's Table 1, positive flux that the light field keeps, and determinism.
+// Procedural headlights (luminaires/lightfield/ProceduralLuminaire.h) at a reduced ray count: the
+// layouts of the paper's Table 1, positive flux that the light field keeps, and determinism.
 #include <gtest/gtest.h>
 
 #include <chrono>
 #include <cstdio>
 
-#include "luminaires/ProceduralLuminaire.h"
+#include "luminaires/lightfield/ProceduralLuminaire.h"
 #include "util/Error.h"
 
 namespace candela {

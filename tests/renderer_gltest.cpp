@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "luminaires/LambertianRect.h"
+#include "luminaires/lambertian/LambertianRect.h"
 #include "renderer/Renderer.h"
 #include "renderer/context/GlContext.h"
 #include "scene/SceneIo.h"

@@ -5,7 +5,7 @@
 
 #include <random>
 
-#include "luminaires/ShadowCells.h"
+#include "luminaires/lightfield/ShadowCells.h"
 
 namespace candela {
 namespace {

@@ -12,8 +12,8 @@
 #include <cstdio>
 #include <fstream>
 
-#include "luminaires/Environment.h"
-#include "luminaires/ShadowCells.h"
+#include "luminaires/environment/Environment.h"
+#include "luminaires/lightfield/ShadowCells.h"
 #include "renderer/Renderer.h"
 #include "renderer/ShaderLibrary.h"
 #include "scene/SceneIo.h"

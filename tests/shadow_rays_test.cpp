@@ -7,8 +7,8 @@
 #include <string>
 
 #include "TestUtil.h"
+#include "calculation/CalculationGrid.h"
 #include "luminaires/Registry.h"
-#include "scene/CalculationGrid.h"
 #include "scene/EmbreeVisibility.h"
 #include "scene/SceneIo.h"
 

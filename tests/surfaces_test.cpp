@@ -1,4 +1,4 @@
-// EN 12464-1 calculation surfaces (scene/CalculationSurfaces.h): the grid rule and Table 1
+// EN 12464-1 calculation surfaces (calculation/CalculationSurfaces.h): the grid rule and Table 1
 // against the standard's own formulas worked by hand, the layout of a desk's surroundings, and
 // the illuminance of task areas and calculation points against the closed form of a small
 // Lambertian source (a patch of area A and luminance L: E = L A cos(emission) cos(incidence) /
@@ -8,15 +8,16 @@
 #include <cmath>
 
 #include "TestUtil.h"
-#include "scene/CalculationSurfaces.h"
+#include "calculation/CalculationSurfaces.h"
 #include "scene/Scene.h"
 #include "scene/SceneIo.h"
+#include "shaders/shared/Constants.h"
 #include "util/Error.h"
 
 namespace candela {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using gpu::kPi;
 
 TEST(CalculationSurfaces, GridRuleIsTheStandardsFormula) {
     // p = 0.2 x 5^log10(d): 0.2 m at 1 m, 1 m at 10 m, 5 m at 100 m, capped at 10 m.

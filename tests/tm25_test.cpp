@@ -1,4 +1,4 @@
-// IES TM-25-13 ray file reader (luminaires/Tm25RayFile.h) against shared/formats/TM25.md: the
+// IES TM-25-13 ray file reader (formats/Tm25RayFile.h) against shared/formats/TM25.md: the
 // two real files' headers and rays, the three-ray files, synthetic files for the layouts the real
 // ones do not exercise, and every malformed variant we can make from a real file.
 #include <gtest/gtest.h>
@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "formats/Tm25RayFile.h"
 #include "luminaires/Random.h"
-#include "luminaires/Tm25RayFile.h"
 #include "tests/TestUtil.h"
 #include "util/Error.h"
 

@@ -1,4 +1,4 @@
-// IES TM-33 photometry (luminaires/Tm33File.cpp): hand-written files of both schema versions
+// IES TM-33 photometry (formats/Tm33File.cpp): hand-written files of both schema versions
 // against what they were written to hold, every shared IES and EULUMDAT file against its TM-33
 // twin (writeTm33, then parseTm33: flux, table, opening and the illuminance it casts), and the
 // defects the reader refuses.
@@ -14,8 +14,8 @@
 
 #include "PhotometryTestUtil.h"
 #include "TestUtil.h"
-#include "luminaires/Photometry.h"
-#include "scene/CalculationGrid.h"
+#include "calculation/CalculationGrid.h"
+#include "formats/Photometry.h"
 #include "scene/SceneIo.h"
 #include "tests/TempDir.h"
 #include "util/Error.h"

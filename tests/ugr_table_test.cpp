@@ -1,5 +1,5 @@
-// The standard UGR table (scene/UgrTable.h) against a closed form and a published table: a flat
-// Lambertian panel, whose luminance is the same in every direction and whose distribution
+// The standard UGR table (calculation/UgrTable.h) against a closed form and a published table: a
+// flat Lambertian panel, whose luminance is the same in every direction and whose distribution
 // fractions are sin^2 of the zone limits; its invariances (crosswise = endwise for a square or a
 // circle, + 8 log10 2 for twice the flux or half the area, nothing for another H); Guth's table
 // as CIE 117 prints it; the luminous area as DIALux and Relux project it; the first lamp set's
@@ -15,15 +15,16 @@
 #include <vector>
 
 #include "TestUtil.h"
-#include "luminaires/Photometry.h"
-#include "scene/UgrTable.h"
+#include "calculation/UgrTable.h"
+#include "formats/Photometry.h"
+#include "shaders/shared/Constants.h"
 #include "util/Error.h"
 
 using namespace candela;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using gpu::kPi;
 constexpr double kRad = kPi / 180.0;
 
 /// An EULUMDAT file of a flat downward Lambertian panel, I = (1000 / pi) cos gamma cd/klm

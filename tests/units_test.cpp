@@ -5,9 +5,9 @@
 #include <string>
 
 #include "TestUtil.h"
-#include "luminaires/LambertianRect.h"
+#include "calculation/CalculationGrid.h"
 #include "luminaires/Registry.h"
-#include "scene/CalculationGrid.h"
+#include "luminaires/lambertian/LambertianRect.h"
 #include "scene/SceneIo.h"
 
 namespace candela {

@@ -1,8 +1,8 @@
-// The validation suite (scene/Validation.h), one ctest per case: each compares Candela's CPU
+// The validation suite (calculation/Validation.h), one ctest per case: each compares Candela's CPU
 // path with a closed form within the tolerance the case states (integrating cube 1 %, sphere
 // 2 %, direct light 0.5 %, obstruction 1 %, the CIE 171:2006 cases 1 %: what a design calculation
 // promises; stochastic estimates beyond three standard errors).
-#include "scene/Validation.h"
+#include "calculation/Validation.h"
 
 #include <gtest/gtest.h>
 

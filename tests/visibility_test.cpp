@@ -11,18 +11,19 @@
 
 #include "TestUtil.h"
 #include "app/commands/Commands.h"
-#include "luminaires/LambertianRect.h"
-#include "luminaires/LightField.h"
+#include "luminaires/lambertian/LambertianRect.h"
+#include "luminaires/lightfield/LightField.h"
 #include "scene/Bvh.h"
 #include "scene/EmbreeVisibility.h"
 #include "scene/GltfLoader.h"
 #include "scene/SceneIo.h"
+#include "shaders/shared/Constants.h"
 
 namespace candela {
 namespace {
 
 namespace fs = std::filesystem;
-constexpr double kPi = 3.14159265358979323846;
+using gpu::kPi;
 
 Scene cornellScene() {
     Scene scene;

@@ -10,8 +10,8 @@
 #include <cstdio>
 #include <string>
 
-#include "luminaires/EnvironmentSampling.h"
-#include "ui/ComparisonExport.h"
+#include "luminaires/environment/EnvironmentSampling.h"
+#include "report/ComparisonExport.h"
 #include "ui/ImGuiUtil.h"
 #include "ui/Panels.h"
 

@@ -21,22 +21,22 @@
 #include <string>
 #include <vector>
 
+#include "calculation/InterreflectionWorker.h"
 #include "renderer/Comparison.h"
 #include "renderer/ImageFile.h"
 #include "renderer/LivePreview.h"
 #include "renderer/Renderer.h"
 #include "renderer/ShaderLibrary.h"
+#include "renderer/ViewportMath.h"
 #include "renderer/context/GlContext.h"
+#include "report/ComparisonExport.h"
 #include "report/Report.h"
-#include "scene/InterreflectionWorker.h"
+#include "report/Screenshot.h"
 #include "scene/SceneIo.h"
-#include "ui/ComparisonExport.h"
 #include "ui/EditorState.h"
 #include "ui/KeyLatch.h"
 #include "ui/Panels.h"
 #include "ui/Project.h"
-#include "ui/Screenshot.h"
-#include "ui/ViewportMath.h"
 #include "util/FileOutput.h"
 
 namespace {

@@ -81,7 +81,7 @@ class Editor {
     void prepareComparison();
     /// The renderer whose image the viewport shows: the preview's while a drag is previewed.
     Renderer& shownRenderer();
-    /// Writes the comparison sheet (ui/ComparisonExport.h) into the screenshot folder.
+    /// Writes the comparison sheet (report/ComparisonExport.h) into the screenshot folder.
     void exportSheet();
     void buildUi();
     void takeScreenshot();
@@ -108,7 +108,7 @@ class Editor {
     unsigned mFullOwed = 0;  ///< Changes made during a drag, owed to mRenderer (ChangeFlags).
     std::unique_ptr<Comparison> mComparison;  ///< The panes, while the viewport is split.
     std::unique_ptr<ImageTextures> mImages;   ///< The panels' pictures (EditorState::images).
-    /// Interreflected light, computed on its own thread (scene/InterreflectionWorker.h).
+    /// Interreflected light, computed on its own thread (calculation/InterreflectionWorker.h).
     std::unique_ptr<InterreflectionWorker> mInterreflection;
     /// The report being written: "" when it was, else why it was not.
     std::future<std::string> mReportJob;

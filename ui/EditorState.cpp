@@ -7,9 +7,9 @@
 #include <exception>
 #include <filesystem>
 
-#include "luminaires/Environment.h"
-#include "luminaires/PhotometricLuminaire.h"
 #include "luminaires/Registry.h"
+#include "luminaires/environment/Environment.h"
+#include "luminaires/photometric/PhotometricLuminaire.h"
 #include "scene/SceneIo.h"
 #include "ui/Project.h"
 #include "util/Error.h"

@@ -14,17 +14,19 @@
 #include <string>
 #include <string_view>
 
+#include "calculation/CalculationGrid.h"
+#include "calculation/CalculationSurfaces.h"
+#include "calculation/Glare.h"
 #include "luminaires/Registry.h"
 #include "renderer/Comparison.h"
 #include "renderer/ImageTextures.h"
 #include "renderer/LivePreview.h"
 #include "renderer/Renderer.h"
+#include "report/Screenshot.h"
 #include "scene/Bvh.h"
-#include "scene/CalculationGrid.h"
 #include "scene/Scene.h"
 #include "ui/AccuracyPlot.h"
 #include "ui/EditorSession.h"
-#include "ui/Screenshot.h"
 
 namespace candela::ui {
 
@@ -99,7 +101,7 @@ struct MeasureState {
     std::string error;       ///< Why the last computation failed.
     /// The operator false colour replaced, restored when it is turned off (setFalseColour).
     ToneMapOperator previousOperator = ToneMapOperator::Exponential;
-    // EN 12464-1 calculation surfaces (scene/CalculationSurfaces.h).
+    // EN 12464-1 calculation surfaces (calculation/CalculationSurfaces.h).
     std::string taskName = "Task area";    ///< Name of the next task area added.
     Requirement taskRequired{500.0, 0.6};  ///< Its requirement (lx, U0).
     /// "Draw a task area": the next left drag in the viewport draws one on the grid's plane.
@@ -108,7 +110,7 @@ struct MeasureState {
     /// Each computed surface point's cell filled with its false colour in the viewport.
     bool colourSurfaces = false;
     std::string surfacesError;  ///< Why the last computation failed.
-    // Glare (scene/Glare.h): the next observer's name and limit, the last UGR computed.
+    // Glare (calculation/Glare.h): the next observer's name and limit, the last UGR computed.
     std::string observerName = "Observer";
     double observerLimit = 19.0;  ///< UGR_L; EN 12464-1's for offices.
     std::optional<GlareReport> glare;
@@ -154,7 +156,7 @@ struct LivePreviewUi {
     int width = 0, height = 0;  ///< Preview render size, pixels.
 };
 
-/// Interreflected light (scene/InterreflectionWorker.h): the user's switch, and what the
+/// Interreflected light (calculation/InterreflectionWorker.h): the user's switch, and what the
 /// editor's worker reported this frame (the panels read it from here).
 struct InterreflectionUi {
     bool enabled = true;       ///< Off: no interreflection is computed or shown.

@@ -9,8 +9,8 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "luminaires/Environment.h"
-#include "luminaires/EnvironmentSampling.h"
+#include "luminaires/environment/Environment.h"
+#include "luminaires/environment/EnvironmentSampling.h"
 #include "renderer/passes/EnvironmentPass.h"
 #include "ui/ImGuiUtil.h"
 #include "ui/Panels.h"

@@ -10,12 +10,12 @@
 #include <exception>
 #include <vector>
 
-#include "luminaires/LightField.h"
-#include "luminaires/PhotometricLuminaire.h"
+#include "luminaires/lightfield/LightField.h"
+#include "luminaires/photometric/PhotometricLuminaire.h"
+#include "renderer/ViewportMath.h"
 #include "scene/SceneIo.h"
 #include "ui/ImGuiUtil.h"
 #include "ui/Panels.h"
-#include "ui/ViewportMath.h"
 #include "util/JsonRead.h"
 
 namespace candela::ui {

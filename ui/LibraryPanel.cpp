@@ -1,9 +1,9 @@
 // The Library panel: the luminaire files (.ies, .ldt, TM-33 .xml/.iesxml, .gldf, .lf.json) under
 // resources/luminaires and in folders the user adds, each with a thumbnail of the light it casts on
-// a floor 1 m below (luminaires/FarField.h: footprintImage; a light field through its far field; a
-// GLDF container through its first variant, listed with its manufacturer, product and variants).
-// Add puts one in the scene and arms placement; Swap replaces the selected luminaire's file keeping
-// its pose. Thumbnails are made one per frame, only while the panel shows them.
+// a floor 1 m below (luminaires/lightfield/FarField.h: footprintImage; a light field through its
+// far field; a GLDF container through its first variant, listed with its manufacturer, product and
+// variants). Add puts one in the scene and arms placement; Swap replaces the selected luminaire's
+// file keeping its pose. Thumbnails are made one per frame, only while the panel shows them.
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
@@ -12,10 +12,10 @@
 #include <filesystem>
 #include <fstream>
 
-#include "luminaires/FarField.h"
-#include "luminaires/Gldf.h"
-#include "luminaires/LightField.h"
-#include "luminaires/PhotometricLuminaire.h"
+#include "formats/Gldf.h"
+#include "luminaires/lightfield/FarField.h"
+#include "luminaires/lightfield/LightField.h"
+#include "luminaires/photometric/PhotometricLuminaire.h"
 #include "scene/SceneIo.h"
 #include "ui/ImGuiUtil.h"
 #include "ui/Panels.h"

@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "luminaires/LightField.h"
+#include "luminaires/lightfield/LightField.h"
 #include "ui/ImGuiUtil.h"
 #include "ui/Panels.h"
 

@@ -10,10 +10,10 @@
 #include <exception>
 #include <sstream>
 
+#include "renderer/ViewportMath.h"
 #include "shaders/shared/FalseColour.h"
 #include "ui/ImGuiUtil.h"
 #include "ui/Panels.h"
-#include "ui/ViewportMath.h"
 
 namespace candela::ui {
 
@@ -310,7 +310,7 @@ void gridControls(EditorState& state, MeasureState& measure) {
 }
 
 /// The scene's task areas (add the grid as one, remove), and the surfaces' and points' results
-/// against their requirements (scene/CalculationSurfaces.h), computed on demand.
+/// against their requirements (calculation/CalculationSurfaces.h), computed on demand.
 void surfaceControls(EditorState& state, MeasureState& measure) {
     ImGui::InputText("Task name", &measure.taskName);
     ImGui::DragScalar("Required Em [lx]", ImGuiDataType_Double, &measure.taskRequired.em, 5.0f,
@@ -427,7 +427,8 @@ void surfaceControls(EditorState& state, MeasureState& measure) {
 }
 
 /// The scene's glare observers (add one at the camera, remove), and the UGR at each against its
-/// limit (scene/Glare.h), computed on demand with the background from the interreflected light.
+/// limit (calculation/Glare.h), computed on demand with the background from the interreflected
+/// light.
 void glareControls(EditorState& state, MeasureState& measure) {
     ImGui::InputText("Observer name", &measure.observerName);
     ImGui::DragScalar("Limit UGR_L", ImGuiDataType_Double, &measure.observerLimit, 0.1f, nullptr,

@@ -1,16 +1,16 @@
 // The photometric part of the inspector: what the file holds, the flux two ways (the table's
 // exact quadrature and lamp flux x light output ratio), the emitting opening, what was assumed to
-// read the file (its warnings), and the polar candela diagram (ui/PolarDiagram.cpp).
+// read the file (its warnings), and the polar candela diagram (report/PolarDiagram.cpp).
 #include <imgui.h>
 
 #include <algorithm>
 #include <filesystem>
 
-#include "luminaires/Gldf.h"
-#include "luminaires/PhotometricLuminaire.h"
-#include "scene/Plausibility.h"
+#include "calculation/Plausibility.h"
+#include "formats/Gldf.h"
+#include "luminaires/photometric/PhotometricLuminaire.h"
+#include "report/PolarDiagram.h"
 #include "ui/Panels.h"
-#include "ui/PolarDiagram.h"
 #include "util/TextEncoding.h"
 
 namespace candela::ui {
@@ -50,7 +50,7 @@ void gldfDetails(const GldfProduct& product, const std::string& variantId) {
         ImGui::TextWrapped("%s: %.3g", m.what.c_str(), m.factor);
 }
 
-/// Where the file's own figures disagree (scene/Plausibility.h), highlighted, one line each.
+/// Where the file's own figures disagree (calculation/Plausibility.h), highlighted, one line each.
 /// Computed once per photometry shown (its UGR table takes milliseconds, too long for a frame).
 void plausibility(const PhotometricLuminaire& light) {
     // Held, not only compared, so that a freed photometry's address cannot come back as another.

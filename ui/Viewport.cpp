@@ -7,10 +7,10 @@
 #include <cstdint>
 #include <cstdio>
 
+#include "renderer/ViewportMath.h"
 #include "shaders/shared/Constants.h"
 #include "ui/ImGuiUtil.h"
 #include "ui/Panels.h"
-#include "ui/ViewportMath.h"
 
 namespace candela::ui {
 

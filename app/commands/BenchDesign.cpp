@@ -15,9 +15,9 @@
 #include "app/commands/BenchHarness.h"
 #include "app/commands/BenchUtil.h"
 #include "app/commands/Commands.h"
+#include "calculation/CalculationGrid.h"
+#include "calculation/CalculationSurfaces.h"
 #include "report/Report.h"
-#include "scene/CalculationGrid.h"
-#include "scene/CalculationSurfaces.h"
 #include "scene/SceneIo.h"
 #include "util/Error.h"
 

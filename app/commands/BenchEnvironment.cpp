@@ -17,7 +17,7 @@
 #include "app/commands/BenchHarness.h"
 #include "app/commands/BenchUtil.h"
 #include "app/commands/Commands.h"
-#include "luminaires/Environment.h"
+#include "luminaires/environment/Environment.h"
 #include "scene/SceneIo.h"
 #include "util/Error.h"
 #include "util/FileOutput.h"

@@ -1,6 +1,6 @@
 // `candela bench --indirect [SCENE] --out DIR`: what interreflected light costs in time (issue 17,
 // part 6), on the shipped office by default. It runs the pipeline the editor runs on its worker
-// thread (scene/InterreflectionWorker.h), step by step on this thread with the same settings:
+// thread (calculation/InterreflectionWorker.h), step by step on this thread with the same settings:
 // patches and form factors, every source's direct light at 4 samples, then refined at 32, and
 // measures after each step the interreflected illuminance on the work plane (0.8 m, from the
 // patches: what the editor's grid shows) against the value it converges to (the same pipeline at
@@ -21,9 +21,9 @@
 #include "app/commands/BenchHarness.h"
 #include "app/commands/BenchUtil.h"
 #include "app/commands/Commands.h"
-#include "scene/CalculationGrid.h"
-#include "scene/Interreflection.h"
-#include "scene/InterreflectionWorker.h"
+#include "calculation/CalculationGrid.h"
+#include "calculation/Interreflection.h"
+#include "calculation/InterreflectionWorker.h"
 #include "scene/SceneIo.h"
 #include "util/Error.h"
 #include "util/FileOutput.h"
@@ -237,7 +237,10 @@ std::pair<double, double> writeSteps(const Timeline& t, const fs::path& path) {
         const Step& s = t.steps[k];
         const std::vector<double>& c = t.convergedFor(k);
         double worst = worstDeviation(s.values, c), em = mean(s.values) / mean(c) - 1.0;
-        csv.line(formatText("%s,%s,%.3f,%.5g,%.5f,%.5f", s.phase.c_str(), s.step.c_str(), s.seconds,
+        // A step's name ("direct light, 4 spp") holds commas: ';' keeps the columns apart.
+        std::string step = s.step;
+        std::replace(step.begin(), step.end(), ',', ';');
+        csv.line(formatText("%s,%s,%.3f,%.5g,%.5f,%.5f", s.phase.c_str(), step.c_str(), s.seconds,
                             mean(s.values), worst, em));
         double& first = k < t.coldSteps ? coldTime : moveTime;
         if (first < 0.0 && worst <= 0.01) first = s.seconds;

@@ -21,8 +21,8 @@
 
 #include "app/commands/BenchHarness.h"
 #include "app/commands/BenchUtil.h"
-#include "luminaires/PhotometricLuminaire.h"
 #include "luminaires/Registry.h"
+#include "luminaires/photometric/PhotometricLuminaire.h"
 #include "renderer/ImageFile.h"
 #include "renderer/Renderer.h"
 #include "shaders/shared/Constants.h"

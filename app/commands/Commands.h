@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "app/commands/Cli.h"
+
 namespace candela {
 
 struct CalcPlane;
@@ -12,8 +14,6 @@ struct Scene;
 struct GridResult;
 struct GridSpec;
 struct LightChoice;
-
-using Args = std::vector<std::string>;
 
 int cmdRender(const Args& args);
 int cmdProbe(const Args& args);
@@ -24,32 +24,22 @@ int cmdBench(const Args& args);
 int cmdGrid(const Args& args);
 int cmdSurfaces(const Args& args);
 int cmdGlare(const Args& args);
-/// `glare --table FILE`: the standard UGR table of a photometric file (scene/UgrTable.h).
+/// `glare --table FILE`: the standard UGR table of a photometric file (calculation/UgrTable.h).
 int cmdGlareTable(const Args& args);
 int cmdReport(const Args& args);
 int cmdPolar(const Args& args);
 int cmdValidate(const Args& args);
 
-/// Parses "WxH" (e.g. 512x512); throws InputError.
-void parseSize(const std::string& text, int& width, int& height);
-/// "A,B,.." as finite numbers; throws InputError naming the flag.
-std::vector<float> parseNumberList(const std::string& flag, const std::string& text);
 /// Value following a flag, or throws InputError naming the flag.
 const std::string& flagValue(const Args& args, size_t& i);
 /// The same for a flag that names a file or folder to write: an empty name is refused too.
 const std::string& outputValue(const Args& args, size_t& i);
-int parseInt(const std::string& flag, const std::string& text, int min, int max);
-/// A finite number in min..max; throws InputError "FLAG: expected a number in MIN..MAX, got ...".
-double parseDouble(const std::string& flag, const std::string& text, double min, double max);
 
-/// The flags `grid`, `surfaces` and `report` share (how illuminance is evaluated): --spp N,
-/// --technique T, --env-technique T, --light total|direct, --no-shadows (into `light`, which
-/// applyLightChoice turns into `how` once the scene is loaded), --patches N, --indirect-method M;
-/// --indirect and --visibility ask for what is already the default. When args[i] is one of
-/// them, reads it (and its value, advancing i) and returns true.
-bool parseEvaluationFlag(const Args& args, size_t& i, GridSpec& how, LightChoice& light);
-/// The usage text of those flags.
-extern const char* const kEvaluationUsage;
+/// The options `grid`, `surfaces` and `report` share (how illuminance is evaluated): --light
+/// total|direct, --no-shadows (into `light`, which applyLightChoice turns into `how` once the
+/// scene is loaded), --spp N, --technique T, --env-technique T, --patches N, --indirect-method M;
+/// --indirect and --visibility ask for what is already the default.
+void declareEvaluation(CommandLine& cli, GridSpec& how, LightChoice& light);
 
 /// The scene from its camera, offscreen (OSMesa): `spp` samples per pixel, lit as `how`
 /// computes the numbers beside it (its interreflected light, when it has it, from as many

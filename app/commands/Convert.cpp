@@ -7,10 +7,10 @@
 #include <filesystem>
 
 #include "app/commands/Commands.h"
-#include "luminaires/LightFieldRays.h"
-#include "luminaires/Photometry.h"
-#include "luminaires/ProceduralLuminaire.h"
-#include "luminaires/Tm25RayFile.h"
+#include "formats/Photometry.h"
+#include "formats/Tm25RayFile.h"
+#include "luminaires/lightfield/LightFieldRays.h"
+#include "luminaires/lightfield/ProceduralLuminaire.h"
 #include "report/Report.h"
 #include "util/Error.h"
 #include "util/FileOutput.h"

@@ -5,14 +5,14 @@
 #include <string>
 
 #include "app/commands/Commands.h"
+#include "calculation/Interreflection.h"
+#include "calculation/InterreflectionWorker.h"
 #include "renderer/Renderer.h"
 #include "renderer/ShaderLibrary.h"
 #include "renderer/context/GlContext.h"
-#include "scene/Interreflection.h"
-#include "scene/InterreflectionWorker.h"
+#include "report/Screenshot.h"
 #include "scene/SceneIo.h"
 #include "ui/Editor.h"
-#include "ui/Screenshot.h"
 #include "util/Error.h"
 #include "util/FileOutput.h"
 
@@ -53,14 +53,14 @@ int renderScreenshotsOffscreen(const ui::EditorOptions& options) {
                 " patches)";
     }
 
-    ui::PassTotals passes;
+    PassTotals passes;
     // Guard against a plan that never reports convergence: 64 spp at 1 spp per frame at most.
     for (int frame = 0; frame < 4 * kHeadlessMaxSpp; ++frame) {
         renderer.renderFrame();
         passes.add(renderer.stats());
         if (renderer.converged()) break;
     }
-    ui::ScreenshotFiles files = ui::writeScreenshot(options.screenshotDir, scene, renderer, passes);
+    ScreenshotFiles files = writeScreenshot(options.screenshotDir, scene, renderer, passes);
     std::printf("rendered %s offscreen (%dx%d, %d spp%s), %s\n", options.scenePath.c_str(),
                 kHeadlessWidth, kHeadlessHeight, renderer.stats().samplesPerPixel,
                 renderer.plan().progressive() ? "" : ", exact techniques", light.c_str());

@@ -1,7 +1,7 @@
 // `candela glare`: the Unified Glare Rating (CIE 117) at the scene's observers, or at one given
-// on the command line, computed by scene/Glare.h: UGR with its limit, the background luminance and
-// where it came from, and what each luminaire contributes.
-#include "scene/Glare.h"
+// on the command line, computed by calculation/Glare.h: UGR with its limit, the background
+// luminance and where it came from, and what each luminaire contributes.
+#include "calculation/Glare.h"
 
 #include <cmath>
 #include <cstdio>

@@ -1,5 +1,5 @@
 // `candela glare --table LAMP`: the standard UGR table of a photometric file (CIE 190 tabular
-// method, scene/UgrTable.h) as catalogues print it, with the 4H x 8H reference values, and
+// method, calculation/UgrTable.h) as catalogues print it, with the 4H x 8H reference values, and
 // optionally every cell with its intermediate values as CSV.
 #include <cctype>
 #include <cmath>
@@ -8,8 +8,8 @@
 #include <memory>
 
 #include "app/commands/Commands.h"
-#include "luminaires/PhotometricLuminaire.h"
-#include "scene/UgrTable.h"
+#include "calculation/UgrTable.h"
+#include "luminaires/photometric/PhotometricLuminaire.h"
 #include "util/Error.h"
 #include "util/FileOutput.h"
 

@@ -1,12 +1,12 @@
 // `candela grid`: illuminance on a calculation grid over an axis-aligned plane, with its summary
-// (Emin, Eavg, Emax, U0 = Emin / Eavg, Emin / Emax), computed by scene/CalculationGrid.h, printed
-// as a table and optionally written as CSV.
+// (Emin, Eavg, Emax, U0 = Emin / Eavg, Emin / Emax), computed by calculation/CalculationGrid.h,
+// printed as a table and optionally written as CSV.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 
 #include "app/commands/Commands.h"
-#include "scene/CalculationGrid.h"
+#include "calculation/CalculationGrid.h"
 #include "scene/SceneIo.h"
 #include "util/Error.h"
 #include "util/FileOutput.h"
@@ -120,87 +120,77 @@ void writeGridCsv(const std::string& path, const GridResult& r) {
     writeFileAtomically(path, gridCsv(r), "cannot write the CSV file");
 }
 
-const char* const kEvaluationUsage =
-    "[--light total|direct] [--no-shadows] [--spp N] [--technique T] [--env-technique T] "
-    "[--patches N] [--indirect-method adaptive|gather|patches]";
-
-bool parseEvaluationFlag(const Args& args, size_t& i, GridSpec& how, LightChoice& light) {
-    const std::string& a = args[i];
-    if (a == "--spp")
-        how.spp = parseInt(a, flagValue(args, i), 1, 1 << 24);
-    else if (a == "--technique")
-        how.technique = flagValue(args, i);
-    else if (a == "--env-technique")
-        how.environmentTechnique = flagValue(args, i);
-    else if (a == "--light") {
-        std::string m = flagValue(args, i);
-        if (m != "total" && m != "direct")
-            throw InputError(
-                "--light: expected total (direct light with shadows and "
-                "interreflected light, the default) or direct, got \"" +
-                m + "\"");
-        light.interreflection = m == "total";
-        light.insist = false;
-    } else if (a == "--no-shadows")
-        light.shadows = false;
-    else if (a == "--visibility")
-        light.shadows = true;
-    else if (a == "--indirect")
-        light.interreflection = light.insist = true;
-    else if (a == "--patches")
-        how.patches = parseInt(a, flagValue(args, i), 16, 50000);
-    else if (a == "--indirect-method") {
-        std::string m = flagValue(args, i);
-        if (m == "adaptive")
-            how.indirectMethod = GridSpec::Indirect::Adaptive;
-        else if (m == "gather")
-            how.indirectMethod = GridSpec::Indirect::Gather;
-        else if (m == "patches")
-            how.indirectMethod = GridSpec::Indirect::Patches;
-        else
-            throw InputError("--indirect-method: expected adaptive, gather or patches, got \"" + m +
-                             "\"");
-    } else
-        return false;
-    return true;
+void declareEvaluation(CommandLine& cli, GridSpec& how, LightChoice& light) {
+    cli.group("how the light is computed (grid, surfaces and report alike)");
+    cli.option("--light", "total|direct",
+               "total: direct light with shadows and interreflected light, wherever the scene "
+               "calls for them (the default); direct: the direct light alone",
+               [&light](const std::string& m) {
+                   if (m != "total" && m != "direct")
+                       throw InputError(
+                           "--light: expected total (direct light with shadows and "
+                           "interreflected light, the default) or direct, got \"" +
+                           m + "\"");
+                   light.interreflection = m == "total";
+                   light.insist = false;
+               });
+    cli.flag("--no-shadows", light.shadows,
+             "leave shadows out (every luminaire lights every point; the output says so)", false);
+    cli.flag("--visibility", light.shadows, "shadows wherever the scene casts them (the default)");
+    cli.flag("--indirect", "interreflected light even where the scene would not call for it",
+             [&light] { light.interreflection = light.insist = true; });
+    cli.integer("--spp", how.spp, 1, 1 << 24, "N",
+                "samples per point and luminaire of the stochastic techniques (1024)");
+    cli.text("--technique", how.technique, "T",
+             "one technique for every luminaire (default: each luminaire's own)");
+    cli.text(
+        "--env-technique", how.environmentTechnique, "T",
+        "the environment's technique (default: --technique's when it names one, else the exact "
+        "reference)");
+    cli.integer("--patches", how.patches, 16, 50000, "N",
+                "about this many patches for the interreflection (1500)");
+    cli.option(
+        "--indirect-method", "adaptive|gather|patches",
+        "how interreflected light reaches the points (adaptive)", [&how](const std::string& m) {
+            if (m == "adaptive")
+                how.indirectMethod = GridSpec::Indirect::Adaptive;
+            else if (m == "gather")
+                how.indirectMethod = GridSpec::Indirect::Gather;
+            else if (m == "patches")
+                how.indirectMethod = GridSpec::Indirect::Patches;
+            else
+                throw InputError("--indirect-method: expected adaptive, gather or patches, got \"" +
+                                 m + "\"");
+        });
 }
 
 int cmdGrid(const Args& args) {
     std::string scenePath, csvPath;
     GridSpec spec;
     LightChoice light;
-    bool havePlane = false, haveExtent = false;
-    for (size_t i = 0; i < args.size(); ++i) {
-        const std::string& a = args[i];
-        if (a == "--plane") {
-            spec.plane = parsePlane(flagValue(args, i));
-            havePlane = true;
-        } else if (a == "--extent") {
-            parseExtent(flagValue(args, i), spec);
-            haveExtent = true;
-        } else if (a == "--spacing")
-            spec.spacing = parseFinite(a, flagValue(args, i));
-        else if (parseEvaluationFlag(args, i, spec, light))
-            continue;
-        else if (a == "--csv")
-            csvPath = outputValue(args, i);
-        else if (!a.empty() && a[0] == '-')
-            throw UsageError("grid: unknown option " + a);
-        else if (scenePath.empty())
-            scenePath = a;
-        else
-            throw UsageError("grid: unexpected argument " + a);
-    }
-    if (scenePath.empty() || !havePlane)
-        throw UsageError(std::string("usage: candela grid scene.json --plane y=0.8 "
-                                     "[--extent u0,v0,u1,v1] [--spacing 0.25] ") +
-                         kEvaluationUsage + " [--csv out.csv]");
+    CommandLine cli("grid");
+    cli.argument("scene.json", scenePath, "the scene file");
+    cli.option("--plane", "[+|-]x|y|z=VALUE", "the grid's plane, metres (y=0.8 faces up)",
+               [&spec](const std::string& v) { spec.plane = parsePlane(v, "--plane"); });
+    cli.option("--extent", "U0,V0,U1,V1",
+               "the grid's rectangle on the plane, metres (default: the scene's floor)",
+               [&spec](const std::string& v) { parseExtent(v, spec); });
+    cli.option("--spacing", "METRES", "between adjacent points (0.25)",
+               [&spec](const std::string& v) { spec.spacing = parseFinite("--spacing", v); });
+    cli.output("--out", csvPath, "F.csv", "also write every point as CSV (x,y,z,E_lx,E_stderr_lx)");
+    cli.renamed("--csv", "--out");
+    cli.strictPhotometry();
+    declareEvaluation(cli, spec, light);
+    if (!cli.parse(args)) return 0;
+    if (!cli.given("--plane"))
+        throw CommandUsageError("missing --plane (the grid's plane, e.g. y=0.8)", cli.shortHelp());
+    bool haveExtent = cli.given("--extent");
     if (!(spec.spacing > 0.0))
         throw InputError("--spacing: expected a positive number of metres, got " +
                          std::to_string(spec.spacing));
     Scene scene = loadScene(scenePath);
     ProtectedInputs inputs(scene.inputFiles());
-    checkNotAnInput(csvPath, "--csv");
+    checkNotAnInput(csvPath, "--out");
     if (!haveExtent) defaultGridExtent(scene, spec);
     applyLightChoice(scene, light, spec);
     GridResult result = computeGrid(

@@ -7,15 +7,15 @@
 #include <memory>
 
 #include "app/commands/Commands.h"
-#include "luminaires/Gldf.h"
-#include "luminaires/L3d.h"
-#include "luminaires/LightField.h"
-#include "luminaires/PhotometricLuminaire.h"
+#include "calculation/Plausibility.h"
+#include "calculation/UgrTable.h"
+#include "formats/Gldf.h"
+#include "formats/L3d.h"
 #include "luminaires/Registry.h"
+#include "luminaires/lightfield/LightField.h"
+#include "luminaires/photometric/PhotometricLuminaire.h"
 #include "scene/GltfLoader.h"
-#include "scene/Plausibility.h"
 #include "scene/SceneIo.h"
-#include "scene/UgrTable.h"
 #include "util/Error.h"
 #include "util/TextEncoding.h"
 
@@ -39,7 +39,7 @@ static const char* symmetryName(PhotometricSymmetry s) {
 
 /// `candela info FILE.ies|FILE.ldt|FILE.xml`: what the file holds, its flux two ways and what was
 /// assumed to read it (one "warning:" line each; --strict refuses the file instead), and where its
-/// own figures disagree (scene/Plausibility.h, one "warning:" line each).
+/// own figures disagree (calculation/Plausibility.h, one "warning:" line each).
 
 /// The light output ratio as designers read it: the luminaire's flux (the table's) over the
 /// lamps' rated flux.
@@ -68,8 +68,8 @@ static void printDeclaredFlux(const PhotometricData& d, double flux) {
 }
 
 /// The UGR reference values a datasheet gives: the CIE 190 table's 4H x 8H room at reflectances
-/// 70/50/20 (scene/UgrTable.h; `candela glare --table` prints the whole table), or why there are
-/// none.
+/// 70/50/20 (calculation/UgrTable.h; `candela glare --table` prints the whole table), or why there
+/// are none.
 static void printUgrReference(const PhotometricData& d) {
     try {
         UgrTable t = computeUgrTable(d);

@@ -7,8 +7,8 @@
 
 #include "app/commands/Commands.h"
 #include "app/commands/Gnuplot.h"
-#include "luminaires/Photometry.h"
-#include "ui/PolarDiagram.h"
+#include "formats/Photometry.h"
+#include "report/PolarDiagram.h"
 #include "util/Error.h"
 #include "util/FileOutput.h"
 
@@ -20,7 +20,7 @@ namespace fs = std::filesystem;
 
 /// gnuplot data block $polar: one block per plane, theta (degrees, 0 at the bottom, + to the
 /// right) and cd, the two separated by two blank lines (gnuplot's `index`).
-std::string plotData(const ui::PolarCurves& c) {
+std::string plotData(const PolarCurves& c) {
     std::ostringstream out;
     out << "$polar << EOD\n";
     auto block = [&](const std::vector<double>& left, const std::vector<double>& right) {
@@ -50,10 +50,10 @@ std::string singleQuoted(const std::string& s) {
     return out + "'";
 }
 
-void plotPng(const PhotometricData& data, const ui::PolarCurves& curves, const std::string& out) {
+void plotPng(const PhotometricData& data, const PolarCurves& curves, const std::string& out) {
     if (!gnuplotAvailable())
         throw RuntimeError("gnuplot not found (install gnuplot-nox: scripts/setup.sh)");
-    std::vector<double> rings = ui::polarRings(curves.peak);
+    std::vector<double> rings = polarRings(curves.peak);
     std::string title = (data.name.empty() ? fs::path(data.path).filename().string() : data.name) +
                         ": luminous intensity [cd]";
     // The image comes back on gnuplot's standard output, then is written like every output.
@@ -115,7 +115,7 @@ int cmdPolar(const Args& args) {
         double s = step > 0.0 ? step : 5.0;
         for (int k = 0; k * s <= 180.0 + 1e-9; ++k) gamma.push_back(k * s);
     }
-    ui::PolarCurves table = ui::polarCurves(data, gamma);
+    PolarCurves table = polarCurves(data, gamma);
     std::printf("%s (%s, type %s), peak %.6g cd\n", path.c_str(), data.format.c_str(),
                 data.goniometer == Goniometer::C ? "C" : "B", data.maxIntensity());
     std::printf("luminous intensity [cd]; gamma [deg] from the aim\n");
@@ -124,7 +124,7 @@ int cmdPolar(const Args& args) {
         std::printf("%9.3g %12.6g %12.6g %12.6g %12.6g\n", table.gamma[k], table.c0[k],
                     table.c180[k], table.c90[k], table.c270[k]);
     if (!out.empty()) {
-        plotPng(data, ui::polarCurves(data, 0.5), out);
+        plotPng(data, polarCurves(data, 0.5), out);
         std::printf("wrote %s\n", out.c_str());
     }
     return 0;

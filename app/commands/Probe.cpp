@@ -5,18 +5,18 @@
 #include <sstream>
 
 #include "app/commands/Commands.h"
-#include "luminaires/EnvironmentSampling.h"
+#include "calculation/CalculationGrid.h"
+#include "calculation/Interreflection.h"
 #include "luminaires/Registry.h"
+#include "luminaires/environment/EnvironmentSampling.h"
 #include "renderer/FramePlan.h"
 #include "renderer/ImageFile.h"
 #include "renderer/Renderer.h"
+#include "renderer/ViewportMath.h"
 #include "renderer/context/GlContext.h"
 #include "scene/Bvh.h"
-#include "scene/CalculationGrid.h"
 #include "scene/EmbreeVisibility.h"
-#include "scene/Interreflection.h"
 #include "scene/SceneIo.h"
-#include "ui/ViewportMath.h"
 #include "util/Error.h"
 #include "util/FileInput.h"
 #include "util/FileOutput.h"
@@ -118,7 +118,7 @@ ProbePoint pixelPoint(const Scene& scene, const std::string& text, int width, in
     int x = int(xy[0]), y = int(xy[1]);
     Bvh bvh = Bvh::build(scene);
     glm::mat4 viewProj = cameraViewProj(scene.camera, double(width) / double(height));
-    std::optional<BvhHit> hit = ui::pickSurface(bvh, viewProj, x + 0.5, y + 0.5, width, height);
+    std::optional<BvhHit> hit = pickSurface(bvh, viewProj, x + 0.5, y + 0.5, width, height);
     if (!hit)
         throw InputError("--pixel: pixel (" + std::to_string(x) + ", " + std::to_string(y) +
                          ") of " + std::to_string(width) + "x" + std::to_string(height) +
@@ -275,7 +275,7 @@ struct CpuProbeSetup {
 
 /// --visibility: shadow rays through Embree (the ray-traced reference); --visibility bvh:
 /// through Candela's own BVH, the one the GPU traverses. --indirect: the radiosity solution,
-/// whose final gather's standard error joins the direct light's (scene/Interreflection.h).
+/// whose final gather's standard error joins the direct light's (calculation/Interreflection.h).
 CpuProbeSetup setUpCpuProbe(const Scene& scene, const ProbeOptions& o) {
     CpuProbeSetup setup;
     if (o.withVisibility && o.visibilityBackend == "bvh") {

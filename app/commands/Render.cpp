@@ -5,16 +5,16 @@
 #include <filesystem>
 
 #include "app/commands/Commands.h"
+#include "calculation/CalculationGrid.h"
+#include "calculation/Interreflection.h"
+#include "calculation/InterreflectionWorker.h"
 #include "renderer/Comparison.h"
 #include "renderer/ImageFile.h"
 #include "renderer/Renderer.h"
 #include "renderer/context/GlContext.h"
+#include "report/ComparisonExport.h"
 #include "report/Report.h"
-#include "scene/CalculationGrid.h"
-#include "scene/Interreflection.h"
-#include "scene/InterreflectionWorker.h"
 #include "scene/SceneIo.h"
-#include "ui/ComparisonExport.h"
 #include "util/Error.h"
 #include "util/FileOutput.h"
 
@@ -32,40 +32,6 @@ float peakLuminance(const std::vector<float>& rgb) {
 
 }  // namespace
 
-void parseSize(const std::string& text, int& width, int& height) {
-    int w = 0, h = 0;
-    char x = 0, extra = 0;
-    if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w < 1 ||
-        h < 1 || w > 16384 || h > 16384)
-        throw InputError("--size: expected WIDTHxHEIGHT with each in 1..16384, got \"" + text +
-                         "\"");
-    width = w;
-    height = h;
-}
-
-std::vector<float> parseNumberList(const std::string& flag, const std::string& text) {
-    std::vector<float> values;
-    size_t start = 0;
-    while (true) {
-        size_t comma = text.find(',', start);
-        std::string item = text.substr(start, comma - start);
-        size_t used = 0;
-        double v = 0.0;
-        try {
-            v = std::stod(item, &used);
-        } catch (const std::exception&) {
-            used = 0;
-        }
-        if (item.empty() || used != item.size() || !std::isfinite(v))
-            throw InputError(flag + ": expected comma-separated finite numbers, got \"" + text +
-                             "\"");
-        values.push_back(float(v));
-        if (comma == std::string::npos) break;
-        start = comma + 1;
-    }
-    return values;
-}
-
 const std::string& flagValue(const Args& args, size_t& i) {
     if (i + 1 >= args.size()) throw InputError(args[i] + ": expected a value after it");
     return args[++i];
@@ -76,29 +42,6 @@ const std::string& outputValue(const Args& args, size_t& i) {
     if (i + 1 < args.size() && args[i + 1].empty())
         throw InputError(args[i] + ": expected a file name, got an empty one");
     return flagValue(args, i);
-}
-
-int parseInt(const std::string& flag, const std::string& text, int min, int max) {
-    try {
-        size_t used = 0;
-        long v = std::stol(text, &used);
-        if (used == text.size() && v >= min && v <= max) return int(v);
-    } catch (const std::exception&) {
-    }
-    throw InputError(flag + ": expected an integer in " + std::to_string(min) + ".." +
-                     std::to_string(max) + ", got \"" + text + "\"");
-}
-
-double parseDouble(const std::string& flag, const std::string& text, double min, double max) {
-    try {
-        size_t used = 0;
-        double v = std::stod(text, &used);
-        if (used == text.size() && std::isfinite(v) && v >= min && v <= max) return v;
-    } catch (const std::exception&) {
-    }
-    char range[96];
-    std::snprintf(range, sizeof range, "a number in %g..%g", min, max);
-    throw InputError(flag + ": expected " + range + ", got \"" + text + "\"");
 }
 
 namespace {
@@ -139,7 +82,7 @@ int renderComparison(const std::string& scenePath, const RenderSettings& setting
     std::fprintf(stderr, "\n");
     std::vector<std::string> names;
     for (size_t i = 0; i < panes.size(); ++i) names.emplace_back(1, char('A' + i));
-    ui::SheetFiles files = ui::exportComparisonSheet(dir, comparison, scene, names, errorMaps);
+    SheetFiles files = exportComparisonSheet(dir, comparison, scene, names, errorMaps);
     double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::printf("pane,techniques,spp,gpu_ms,mean_delta_e,rel_rmse\n");

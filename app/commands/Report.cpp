@@ -20,31 +20,18 @@ int cmdReport(const Args& args) {
     LightChoice light;
     int viewWidth = 960, viewHeight = 540, viewSpp = 64;
     bool view = true;
-    for (size_t i = 0; i < args.size(); ++i) {
-        const std::string& a = args[i];
-        if (parseEvaluationFlag(args, i, how, light))
-            continue;
-        else if (a == "--out")
-            out = outputValue(args, i);
-        else if (a == "--title")
-            title = flagValue(args, i);
-        else if (a == "--view-size")
-            parseSize(flagValue(args, i), viewWidth, viewHeight);
-        else if (a == "--view-spp")
-            viewSpp = parseInt(a, flagValue(args, i), 1, 65536);
-        else if (a == "--no-view")
-            view = false;
-        else if (!a.empty() && a[0] == '-')
-            throw UsageError("report: unknown option " + a);
-        else if (scenePath.empty())
-            scenePath = a;
-        else
-            throw UsageError("report: unexpected argument " + a);
-    }
-    if (scenePath.empty() || out.empty())
-        throw UsageError(std::string("usage: candela report scene.json --out report.pdf "
-                                     "[--title T] ") +
-                         kEvaluationUsage + " [--view-size WxH] [--view-spp N] [--no-view]");
+    CommandLine cli("report");
+    cli.argument("scene.json", scenePath, "the scene file");
+    cli.output("--out", out, "F.pdf", "the report to write (required)");
+    cli.text("--title", title, "TEXT", "the report's title (default: the scene file's name)");
+    cli.option("--view-size", "WxH", "the rendered view's size, pixels (960x540)",
+               [&](const std::string& v) { parseSize(v, viewWidth, viewHeight, "--view-size"); });
+    cli.integer("--view-spp", viewSpp, 1, 65536, "N", "samples per pixel of the view (64)");
+    cli.flag("--no-view", view, "leave the rendered view out", false);
+    declareEvaluation(cli, how, light);
+    if (!cli.parse(args)) return 0;
+    if (out.empty())
+        throw CommandUsageError("missing --out F.pdf (the report to write)", cli.shortHelp());
     if (std::filesystem::path(out).extension() != ".pdf")
         throw InputError(out + ": the report is a PDF: name it NAME.pdf");
     Scene scene = loadScene(scenePath);

@@ -1,10 +1,11 @@
 // `candela surfaces`: the scene's EN 12464-1 calculation surfaces (task areas, their immediate
-// surroundings and backgrounds) and calculation points, computed by scene/CalculationSurfaces.h:
-// a summary per surface checked against its requirement, and optionally every point as CSV.
+// surroundings and backgrounds) and calculation points, computed by
+// calculation/CalculationSurfaces.h: a summary per surface checked against its requirement, and
+// optionally every point as CSV.
 #include <cstdio>
 
 #include "app/commands/Commands.h"
-#include "scene/CalculationSurfaces.h"
+#include "calculation/CalculationSurfaces.h"
 #include "scene/SceneIo.h"
 #include "util/Error.h"
 #include "util/FileOutput.h"
@@ -119,26 +120,17 @@ int cmdSurfaces(const Args& args) {
     std::string scenePath, csvPath;
     GridSpec how;
     LightChoice light;
-    for (size_t i = 0; i < args.size(); ++i) {
-        const std::string& a = args[i];
-        if (parseEvaluationFlag(args, i, how, light))
-            continue;
-        else if (a == "--csv")
-            csvPath = outputValue(args, i);
-        else if (!a.empty() && a[0] == '-')
-            throw UsageError("surfaces: unknown option " + a);
-        else if (scenePath.empty())
-            scenePath = a;
-        else
-            throw UsageError("surfaces: unexpected argument " + a);
-    }
-    if (scenePath.empty())
-        throw UsageError(std::string("usage: candela surfaces scene.json ") + kEvaluationUsage +
-                         " [--csv out.csv]");
+    CommandLine cli("surfaces");
+    cli.argument("scene.json", scenePath, "the scene file (its task areas and calculation points)");
+    cli.output("--out", csvPath, "F.csv", "also write every surface's and point's values as CSV");
+    cli.renamed("--csv", "--out");
+    cli.strictPhotometry();
+    declareEvaluation(cli, how, light);
+    if (!cli.parse(args)) return 0;
     Scene scene = loadScene(scenePath);
     applyLightChoice(scene, light, how);
     ProtectedInputs inputs(scene.inputFiles());
-    checkNotAnInput(csvPath, "--csv");
+    checkNotAnInput(csvPath, "--out");
     SurfaceReport report = computeSurfaces(scene, how, [](const std::string& s) {
         std::fprintf(stderr, "surfaces: %s\n", s.c_str());
     });

@@ -1,12 +1,12 @@
-// `candela validate`: the validation suite (scene/Validation.h) as a table: case, expected,
+// `candela validate`: the validation suite (calculation/Validation.h) as a table: case, expected,
 // measured, deviation, tolerance, result; exit code 1 when a case fails.
 #include <cmath>
 #include <cstdio>
 #include <memory>
 
 #include "app/commands/Commands.h"
+#include "calculation/Validation.h"
 #include "scene/SceneIo.h"
-#include "scene/Validation.h"
 #include "util/Error.h"
 
 namespace candela {

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "luminaires/EnvironmentLight.h"
+#include "luminaires/environment/EnvironmentLight.h"
 #include "renderer/PassTimer.h"
 #include "renderer/ProgramVariants.h"
 #include "renderer/passes/GBufferPass.h"

@@ -11,7 +11,7 @@
 #include <memory>
 #include <vector>
 
-#include "luminaires/EnvironmentSampling.h"
+#include "luminaires/environment/EnvironmentSampling.h"
 #include "renderer/FramePlan.h"
 #include "renderer/ProgramVariants.h"
 #include "renderer/ShaderLibrary.h"

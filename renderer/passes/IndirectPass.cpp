@@ -1,8 +1,8 @@
 #include "renderer/passes/IndirectPass.h"
 
+#include "calculation/Radiosity.h"
 #include "renderer/ProgramVariants.h"
 #include "renderer/passes/GBufferPass.h"
-#include "scene/Radiosity.h"
 #include "shaders/shared/GpuTypes.h"
 
 namespace candela {

@@ -1,8 +1,8 @@
 #pragma once
-// Shows interreflected light (scene/InterreflectionWorker.h): rasterises the radiosity patches
-// with their per-vertex interreflected irradiance into an image of the radiance they reflect
-// (shaders/indirect.*), with its own depth buffer, which the resolve adds to the luminaires'
-// accumulations. It runs only when the solution or the view changed.
+// Shows interreflected light (calculation/InterreflectionWorker.h): rasterises the radiosity
+// patches with their per-vertex interreflected irradiance into an image of the radiance they
+// reflect (shaders/indirect.*), with its own depth buffer, which the resolve adds to the
+// luminaires' accumulations. It runs only when the solution or the view changed.
 
 #include <glm/glm.hpp>
 #include <memory>

@@ -1,8 +1,9 @@
 // The frames of the environment's cube-map faces, valid as both C++ and GLSL: the CPU sampler
-// (luminaires/EnvironmentSampling.cpp) and the GPU tables (shaders/environment.glsl) use these.
-// Faces follow the OpenEXR envmap=cube layout (ImfEnvmap.h; luminaires/EnvironmentSampling.h
-// says how texels map to face coordinates): texel (a, b) of face f looks along
-// centre_f + a right_f + b down_f, the OpenEXR orientation (seen from inside the cube):
+// (luminaires/environment/EnvironmentSampling.cpp) and the GPU tables (shaders/environment.glsl)
+// use these. Faces follow the OpenEXR envmap=cube layout (ImfEnvmap.h;
+// luminaires/environment/EnvironmentSampling.h says how texels map to face coordinates): texel (a,
+// b) of face f looks along centre_f + a right_f + b down_f, the OpenEXR orientation (seen from
+// inside the cube):
 //
 //   face  centre      right (+col)   down (+row)
 //   +X    (+1, 0, 0)  (0, 0, +1)     (0, -1, 0)

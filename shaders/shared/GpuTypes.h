@@ -89,8 +89,9 @@ struct ShadowMapGpu {
 /// Texture unit of the lat-long environment map (RGB32F, intensity applied, row 0 = top, v = 0).
 CANDELA_CONST int kUnitEnvironmentMap = 5;
 
-/// Cube-map sampling weights (luminaires/EnvironmentSampling.h, CubeMapDistribution): the share
-/// of the largest luminance a texel touches, and the floor as a fraction of the face's mean.
+/// Cube-map sampling weights (luminaires/environment/EnvironmentSampling.h, CubeMapDistribution):
+/// the share of the largest luminance a texel touches, and the floor as a fraction of the face's
+/// mean.
 CANDELA_CONST float kEnvMaxShare = 0.1;
 CANDELA_CONST float kEnvFaceFloor = 1e-3;
 /// Steps along each edge of a cube texel at which the largest luminance it may touch is sought
@@ -120,8 +121,8 @@ struct LambertianRectGpu {
 /// A light-field luminaire (std430): this header, then in the same buffer the summed-area
 /// tables of all images as float-float pairs (vec2, shaders/ff.glsl), their luminance as floats
 /// and, for RGB data, their colour ratios as two packed halves per pixel
-/// (luminaires/LightFieldLuminaire.cpp packs it). Offsets are in elements of each array's type
-/// from the start of the buffer.
+/// (luminaires/lightfield/LightFieldLuminaire.cpp packs it). Offsets are in elements of each
+/// array's type from the start of the buffer.
 struct LightFieldGpu {
     vec4 position;  // xyz world position of the local origin (m)
     vec4 axisX;     // xyz world direction of local +x (c0)

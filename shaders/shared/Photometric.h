@@ -1,6 +1,6 @@
 // What the photometric techniques share between C++ (luminaires/SphericalPolygon.*,
-// luminaires/PhotometricEstimators.cpp) and GLSL (shaders/photometric*.glsl), valid as both. A
-// `real` is 64-bit in C++ and 32-bit in GLSL.
+// luminaires/photometric/PhotometricEstimators.cpp) and GLSL (shaders/photometric*.glsl), valid as
+// both. A `real` is 64-bit in C++ and 32-bit in GLSL.
 #ifdef __cplusplus
 #pragma once
 #include <glm/glm.hpp>

@@ -5,16 +5,17 @@
 #include <cstdio>
 #include <functional>
 
-#include "luminaires/LambertianRect.h"
-#include "luminaires/LightField.h"
-#include "luminaires/PhotometricLuminaire.h"
+#include "luminaires/lambertian/LambertianRect.h"
+#include "luminaires/lightfield/LightField.h"
+#include "luminaires/photometric/PhotometricLuminaire.h"
+#include "shaders/shared/Constants.h"
 #include "tests/TestUtil.h"
 
 namespace candela::hard {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using gpu::kPi;
 
 const char* const kClassNames[] = {"ordinary", "contact", "on-plane",     "grazing",      "behind",
                                    "far",      "tiny",    "huge",         "segment",      "point",

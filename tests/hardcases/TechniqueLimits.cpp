@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <limits>
 
-#include "luminaires/PhotometricLuminaire.h"
+#include "luminaires/photometric/PhotometricLuminaire.h"
 
 namespace candela::hard {
 
