@@ -8,18 +8,22 @@
 
 #include "app/commands/Cli.h"
 #include "app/commands/CommandTable.h"
-#include "formats/Photometry.h"
+#include "calculation/SettingError.h"
 #include "util/Activity.h"
 #include "util/Error.h"
 #include "util/TextEncoding.h"
 
 namespace {
 
-/// A command's help: declared through CommandLine, the command prints it itself.
+/// The option that gives a calculation's setting (calculation/SettingError.h).
+std::string optionFor(const std::string& setting) {
+    if (setting == "environment technique") return "--env-technique";
+    return "--" + setting;  // technique, spacing, extent
+}
+
+/// A command's help: the command prints it from its declarations (app/commands/Cli.h).
 int printHelp(const candela::CommandInfo& c) {
-    if (c.declared) return c.run({"--help"});
-    std::fputs(candela::commandUsage(c).c_str(), stdout);
-    return 0;
+    return c.run({"--help"});
 }
 
 }  // namespace
@@ -55,19 +59,6 @@ int main(int argc, char** argv) {
                      commandList().c_str());
         return 2;
     }
-    if (!c->declared) {
-        // --strict: every photometry file these commands load is read strictly (Photometry.h).
-        auto strict = std::find(args.begin(), args.end(), "--strict");
-        if (strict != args.end() &&
-            std::string("info render probe grid surfaces polar").find(command) !=
-                std::string::npos) {
-            args.erase(strict);
-            candela::setDefaultPhotometryOptions({.strict = true});
-        }
-        if (std::any_of(args.begin(), args.end(),
-                        [](const std::string& a) { return a == "--help" || a == "-h"; }))
-            return printHelp(*c);
-    }
     try {
         return c->run(args);
     } catch (const candela::CommandUsageError& e) {
@@ -75,10 +66,11 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "candela %s: error: %s\n\n%s", command.c_str(),
                      candela::toValidUtf8(e.what()).c_str(), e.help().c_str());
         return 2;
-    } catch (const candela::UsageError& e) {
-        std::fprintf(stderr, "candela %s: error: %s\n\n%s", command.c_str(),
-                     candela::toValidUtf8(e.what()).c_str(), candela::commandUsage(*c).c_str());
-        return 2;
+    } catch (const candela::SettingError& e) {
+        // A calculation's setting, worded as the command line gives it.
+        std::fprintf(stderr, "candela %s: error: %s: %s\n", command.c_str(),
+                     optionFor(e.setting()).c_str(), candela::toValidUtf8(e.problem()).c_str());
+        return 1;
     } catch (const std::bad_alloc&) {
         // Says what it was doing (util/Activity.h) instead of "std::bad_alloc".
         std::string what = candela::toValidUtf8(candela::takeFailedActivity());

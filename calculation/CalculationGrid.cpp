@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "calculation/Interreflection.h"
+#include "calculation/SettingError.h"
 #include "luminaires/Registry.h"
 #include "luminaires/environment/EnvironmentSampling.h"
 #include "scene/EmbreeVisibility.h"
@@ -232,7 +233,9 @@ void defaultGridExtent(const Scene& scene, GridSpec& spec) {
     glm::dvec2 lo = spec.plane.inPlane(glm::dvec3(scene.boundsMin()));
     glm::dvec2 hi = spec.plane.inPlane(glm::dvec3(scene.boundsMax()));
     if (scene.meshes.empty() || !(hi.x > lo.x) || !(hi.y > lo.y))
-        throw InputError("the scene's geometry does not span the plane: give --extent u0,v0,u1,v1");
+        throw SettingError("extent",
+                           "the scene's geometry does not span the plane: give the grid's "
+                           "rectangle (u0, v0, u1, v1 in metres)");
     spec.lo = lo;
     spec.hi = hi;
 }
@@ -240,11 +243,11 @@ void defaultGridExtent(const Scene& scene, GridSpec& spec) {
 GridResult computeGrid(const Scene& scene, const GridSpec& spec,
                        const std::function<void(const std::string& status)>& status) {
     if (!(spec.spacing > 0.0) || !std::isfinite(spec.spacing))
-        throw InputError("--spacing: expected a positive number of metres");
+        throw SettingError("spacing", "expected a positive number of metres");
     for (double x : {spec.lo.x, spec.lo.y, spec.hi.x, spec.hi.y})
-        if (!std::isfinite(x)) throw InputError("--extent: expected finite coordinates");
+        if (!std::isfinite(x)) throw SettingError("extent", "expected finite coordinates");
     if (!(spec.hi.x > spec.lo.x) || !(spec.hi.y > spec.lo.y))
-        throw InputError("--extent: expected u1 > u0 and v1 > v0 (an area, not a line)");
+        throw SettingError("extent", "expected u1 > u0 and v1 > v0 (an area, not a line)");
     double nu = std::floor((spec.hi.x - spec.lo.x) / spec.spacing) + 1.0;
     double nv = std::floor((spec.hi.y - spec.lo.y) / spec.spacing) + 1.0;
     if (nu * nv > kMaxGridPoints) {
@@ -252,10 +255,10 @@ GridResult computeGrid(const Scene& scene, const GridSpec& spec,
         char text[240];
         std::snprintf(text, sizeof text,
                       "the grid at a spacing of %g m over %.4g x %.4g m gives %.4g x %.4g points, "
-                      "more than the %.0f allowed: a larger --spacing or a smaller --extent",
+                      "more than the %.0f allowed: a larger spacing or a smaller extent",
                       spec.spacing, spec.hi.x - spec.lo.x, spec.hi.y - spec.lo.y, nu, nv,
                       double(kMaxGridPoints));
-        throw InputError(text);
+        throw SettingError("spacing", text);
     }
     GridResult r;
     r.spec = spec;
@@ -310,9 +313,9 @@ ReceiverResult computeReceivers(const Scene& scene, const GridSpec& spec,
             name = findTechnique("environment", spec.technique) ? spec.technique : "reference";
         envChosen = findTechnique("environment", name);
         if (!envChosen)
-            throw InputError("--env-technique: \"" + name +
-                             "\" is not an environment technique (available: " +
-                             techniqueNames("environment") + ")");
+            throw SettingError("environment technique",
+                               "\"" + name + "\" is not an environment technique (available: " +
+                                   techniqueNames("environment") + ")");
     }
     std::vector<const TechniqueInfo*> chosen;
     for (const auto& l : scene.luminaires) {
@@ -322,9 +325,10 @@ ReceiverResult computeReceivers(const Scene& scene, const GridSpec& spec,
             name = l->technique;  // a name only the environment has leaves luminaires on their own
         const TechniqueInfo* t = findTechnique(l->kind(), name);
         if (!t || !t->irradiance)
-            throw InputError(
-                "--technique: \"" + name + "\" is not a technique of " + std::string(l->kind()) +
-                " with a CPU estimator (available: " + techniqueNames(l->kind()) + ")");
+            throw SettingError(
+                "technique", "\"" + name + "\" is not a technique of " + std::string(l->kind()) +
+                                 " with a CPU estimator (available: " + techniqueNames(l->kind()) +
+                                 ")");
         chosen.push_back(t);
     }
     // Shadows through Embree, the ray-traced reference (docs/visibility.md).

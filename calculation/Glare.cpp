@@ -88,8 +88,8 @@ GlareReport computeGlare(const Scene& scene, const GridSpec& how,
     const std::vector<GlareObserver>& observers = given.empty() ? scene.glareObservers : given;
     if (observers.empty())
         throw InputError(scene.path +
-                         ": no glare observers (add \"glare_observers\" to the scene, or give "
-                         "--observer X,Y,Z --view X,Y,Z)");
+                         ": no glare observers (add \"glare_observers\" to the scene, or place an "
+                         "observer)");
     if (!scene.units().photometric)
         throw InputError(scene.path +
                          ": UGR is photometric (cd/m2), and every source of this scene is "

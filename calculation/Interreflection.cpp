@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "calculation/SettingError.h"
 #include "luminaires/Random.h"
 #include "luminaires/environment/EnvironmentSampling.h"
 #include "scene/EmbreeVisibility.h"
@@ -136,9 +137,10 @@ std::vector<Interreflection::Source> Interreflection::currentSources(const Scene
             findTechnique(l->kind(), mOptions.technique) ? mOptions.technique : l->technique;
         const TechniqueInfo* t = findTechnique(l->kind(), name);
         if (!t || !t->irradiance)
-            throw InputError(
-                "--technique: \"" + name + "\" is not a technique of " + std::string(l->kind()) +
-                " with a CPU estimator (available: " + techniqueNames(l->kind()) + ")");
+            throw SettingError(
+                "technique", "\"" + name + "\" is not a technique of " + std::string(l->kind()) +
+                                 " with a CPU estimator (available: " + techniqueNames(l->kind()) +
+                                 ")");
         Source s;
         s.origin = l.get();
         s.irradiance = t->irradiance;
@@ -158,9 +160,9 @@ std::vector<Interreflection::Source> Interreflection::currentSources(const Scene
         Source s;
         const TechniqueInfo* t = findTechnique("environment", name);
         if (!t)
-            throw InputError("--env-technique: \"" + name +
-                             "\" is not an environment technique (available: " +
-                             techniqueNames("environment") + ")");
+            throw SettingError("environment technique",
+                               "\"" + name + "\" is not an environment technique (available: " +
+                                   techniqueNames("environment") + ")");
         s.origin = scene.environmentLight();
         s.irradiance = t->irradiance;
         s.scale = scene.environmentUnitScale();

@@ -1,5 +1,5 @@
-// The benches' shared harness (app/commands/BenchHarness.h) without a GL context: the flags,
-// the CSV and summary text, and the row arithmetic every sweep relies on.
+// The benches' shared harness (app/commands/BenchHarness.h) without a GL context: the CSV and
+// summary text, and the row arithmetic every sweep relies on.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -17,68 +17,6 @@
 
 namespace candela {
 namespace {
-
-std::string unknown(const std::string& a) {
-    return "unknown " + a;
-}
-
-TEST(BenchFlags, SetsEachFlagsTargetInOrder) {
-    std::string out = "default", scene = "default.json";
-    int frames = 60, width = 0, height = 0;
-    std::vector<int> spp = {4};
-    std::vector<std::string> files;
-    BenchFlags()
-        .optional("--drag", scene)
-        .alone("--fast")
-        .text("--out", out)
-        .integer("--frames", frames, 4, 100)
-        .counts("--spp", spp)
-        .size("--size", width, height)
-        .positional([&](const std::string& a) { files.push_back(a); })
-        .parse({"--drag", "room.json", "--fast", "a.ies", "--out", "dir", "--frames", "8", "--spp",
-                "2,32", "--size", "48x32", "b.ldt"},
-               unknown);
-    EXPECT_EQ(scene, "room.json");
-    EXPECT_EQ(out, "dir");
-    EXPECT_EQ(frames, 8);
-    EXPECT_EQ(spp, (std::vector<int>{2, 32}));
-    EXPECT_EQ(width, 48);
-    EXPECT_EQ(height, 32);
-    EXPECT_EQ(files, (std::vector<std::string>{"a.ies", "b.ldt"}));
-}
-
-TEST(BenchFlags, AnOptionalValueIsNeverAFlag) {
-    std::string scene = "default.json", out;
-    BenchFlags()
-        .optional("--shadows", scene)
-        .text("--out", out)
-        .parse({"--shadows", "--out", "x"}, unknown);
-    EXPECT_EQ(scene, "default.json");
-    EXPECT_EQ(out, "x");
-    BenchFlags().optional("--shadows", scene).parse({"--shadows"}, unknown);
-    EXPECT_EQ(scene, "default.json");
-}
-
-TEST(BenchFlags, ErrorsNameTheArgument) {
-    std::string out;
-    int n = 0;
-    auto flags = BenchFlags().text("--out", out).integer("--frames", n, 4, 100);
-    EXPECT_EQ(test::inputError([&] { flags.parse({"--outt", "x"}, unknown); }), "unknown --outt");
-    // Without a positional handler a word is unknown too; with one, a "--" word still is.
-    EXPECT_EQ(test::inputError([&] { flags.parse({"x.ies"}, unknown); }), "unknown x.ies");
-    std::vector<std::string> files;
-    auto withFiles = BenchFlags().positional([&](const std::string& a) { files.push_back(a); });
-    EXPECT_EQ(test::inputError([&] {
-                  withFiles.parse({"--size", "4"}, unknown);
-              }),
-              "unknown --size");
-    EXPECT_EQ(test::inputError([&] { flags.parse({"--out"}, unknown); }),
-              "--out: expected a value after it");
-    EXPECT_NE(test::inputError([&] {
-                  flags.parse({"--frames", "2"}, unknown);
-              }).find("--frames"),
-              std::string::npos);
-}
 
 TEST(BenchFiles, CsvRowsPrintAsAnOstreamDoes) {
     CsvFile csv("name,count,value");

@@ -4,7 +4,7 @@
 // timer queries) and compared with a reference image: relative RMSE of linear luminance, and the
 // mean CIE76 Delta E of the tone-mapped images (the paper's "Lab error"). Writes bench.csv, the
 // images, and error-versus-time plots (gnuplot, when installed), and prints the ratios.
-// `candela bench` itself picks the bench its flags name (cmdBench, at the end).
+// cmdBench, at the end, reads the command line of every bench and runs the one it names.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -36,33 +36,6 @@ struct LightFieldOptions {
     /// default: minutes of rendering at the paper's counts): not rendered.
     std::vector<int> fig11;
 };
-
-LightFieldOptions parseOptions(const Args& args) {
-    LightFieldOptions o;
-    BenchFlags()
-        .text("--lightfield", o.lightField)
-        .text("--out", o.out)
-        .counts("--spp", o.spp)
-        .integer("--reference-spp", o.referenceSpp, 16, 1 << 22)
-        .size("--size", o.width, o.height)
-        .value("--fig11",
-               [&](const std::string& v) {
-                   if (v == "none") {
-                       o.fig11.clear();
-                       return;
-                   }
-                   std::vector<int> counts = parseList(v);
-                   if (counts.size() != 2)
-                       throw InputError("--fig11: expected SPP,SAMPLES (e.g. 63,63000) or none");
-                   o.fig11 = counts;
-               })
-        .parse(args, [](const std::string& a) { return "bench: unknown option " + a; });
-    if (o.lightField.empty())
-        throw UsageError(
-            "usage: candela bench --lightfield FILE.lf.json [--out DIR] [--spp 4,8,...] "
-            "[--reference-spp N] [--size WxH] [--fig11 SPP,SAMPLES|none]");
-    return o;
-}
 
 /// The sweep: every light-field technique the renderer shades with shadow maps, in registry
 /// order (restricted-cdf-raytraced is restricted-cdf with exact visibility, measured by
@@ -189,8 +162,7 @@ void plotErrorAgainstTime(const fs::path& out, const Sweep& sweep) {
 }
 
 /// `candela bench --lightfield`.
-int benchLightField(const Args& args) {
-    LightFieldOptions o = parseOptions(args);
+int benchLightField(const LightFieldOptions& o) {
     BenchFolder folder(o.out);  // whole or not at all: committed at the end
     const fs::path& out = folder.path();
     auto loadStart = std::chrono::steady_clock::now();
@@ -232,20 +204,334 @@ int benchLightField(const Args& args) {
     return 0;
 }
 
-bool hasFlag(const Args& args, const char* flag) {
-    return std::find(args.begin(), args.end(), flag) != args.end();
+/// The range of an integer option for one bench: converts it (parseInt's error) and states it,
+/// with the default, in the help.
+struct Range {
+    int min, max;
+    int parse(const std::string& flag, const std::string& text) const {
+        return parseInt(flag, text, min, max);
+    }
+    std::string text(int value) const { return formatText("%d..%d (%d)", min, max, value); }
+};
+
+// The ranges of the options several benches take.
+constexpr Range kReferenceSpp{16, 1 << 22};  // --lightfield, --environment, --prost
+constexpr Range kDragReferenceSpp{16, 1 << 20}, kDesignReferenceSpp{64, 1 << 20};
+constexpr Range kEnvironmentFrames{3, 10000}, kDragFrames{4, 100000};
+constexpr Range kShadowSpp{1, kMaxSampleCount}, kProstSize{8, 2048};
+
+/// A bench of `candela bench`: its flag and the options it takes besides --out.
+struct Bench {
+    const char* flag;
+    std::vector<std::string> options;
+    bool takes(const std::string& option) const {
+        return std::find(options.begin(), options.end(), option) != options.end();
+    }
+};
+
+const std::vector<Bench>& benches() {
+    static const std::vector<Bench> list = {
+        {"--lightfield", {"--spp", "--reference-spp", "--size", "--fig11"}},
+        {"--environment", {"--spp", "--reference-spp", "--size", "--frames", "--repeats"}},
+        {"--prost", {"--size", "--reference-spp"}},
+        {"--shadows", {"--spp", "--size", "--maps", "--map-sizes", "--count-at", "--size-at"}},
+        {"--indirect", {"--patches", "--move"}},
+        {"--drag",
+         {"--size", "--frames", "--reference-spp", "--preview-scale", "--preview-techniques",
+          "--preview-spp", "--samples-per-frame", "--timeout"}},
+        {"--design", {"--reference-spp", "--scenes"}},
+    };
+    return list;
+}
+
+/// The one bench the command line names, every option given being one it takes; throws
+/// CommandUsageError otherwise.
+const Bench& chosenBench(const CommandLine& cli) {
+    std::vector<const Bench*> named;
+    for (const Bench& b : benches())
+        if (cli.given(b.flag)) named.push_back(&b);
+    if (named.empty())
+        throw CommandUsageError(
+            "missing the bench to run: --lightfield F.lf.json, --environment sky|MAP.hdr|MAP.exr, "
+            "--prost, --shadows, --indirect, --drag or --design",
+            cli.shortHelp());
+    if (named.size() > 1)
+        throw CommandUsageError(
+            std::string(named[0]->flag) + " and " + named[1]->flag + " are two benches: give one",
+            cli.shortHelp());
+    const Bench& bench = *named[0];
+    for (const Bench& other : benches())
+        for (const std::string& option : other.options) {
+            if (!cli.given(option) || bench.takes(option)) continue;
+            std::vector<std::string> owners;
+            for (const Bench& b : benches())
+                if (b.takes(option)) owners.emplace_back(b.flag);
+            std::string list = owners[0];
+            for (size_t i = 1; i < owners.size(); ++i)
+                list += (i + 1 < owners.size() ? ", " : " and ") + owners[i];
+            throw CommandUsageError(option + " is an option of " + list + ", not of " + bench.flag,
+                                    cli.shortHelp());
+        }
+    return bench;
+}
+
+/// "4,8,16".
+std::string listText(const std::vector<int>& values) {
+    std::string text;
+    for (int v : values) {
+        if (!text.empty()) text += ',';
+        text += std::to_string(v);
+    }
+    return text;
+}
+
+/// `v`, refusing an empty file or folder name.
+std::string named(const std::string& flag, const std::string& v, const char* what) {
+    if (v.empty()) throw InputError(flag + ": expected a " + what + " name, got an empty one");
+    return v;
 }
 
 }  // namespace
 
 int cmdBench(const Args& args) {
-    if (hasFlag(args, "--prost")) return benchProst(args);
-    if (hasFlag(args, "--environment")) return benchEnvironment(args);
-    if (hasFlag(args, "--shadows")) return benchShadows(args);
-    if (hasFlag(args, "--indirect")) return benchIndirect(args);
-    if (hasFlag(args, "--drag")) return benchDrag(args);
-    if (hasFlag(args, "--design")) return benchDesign(args);
-    return benchLightField(args);
+    LightFieldOptions lightField;
+    EnvironmentOptions environment;
+    ProstOptions prost;
+    ShadowOptions shadows;
+    IndirectOptions indirect;
+    DragOptions drag;
+    DesignOptions design;
+    std::vector<std::string> files;
+    // The options several benches take, as given: converted for the bench chosen, after parse.
+    std::string out, size, spp, referenceSpp, frames;
+    auto keep = [](std::string& to) { return [&to](const std::string& v) { to = v; }; };
+
+    CommandLine cli("bench");
+    cli.group("the bench (one of them)");
+    cli.option(
+        "--lightfield", "F.lf.json",
+        "the light-field techniques' error against GPU time, on a scene scaled to the "
+        "light field (Lu et al. 2015, Fig. 11 and 12)",
+        [&](const std::string& v) { lightField.lightField = named("--lightfield", v, "file"); });
+    cli.option(
+        "--environment", "sky|MAP.hdr|MAP.exr",
+        "the environment techniques (Lu et al. 2013) under the map (sky: the bench's "
+        "procedural sky): error against samples and GPU time, the cost of a changing map, "
+        "stability while the sun moves",
+        [&](const std::string& v) { environment.source = named("--environment", v, "file"); });
+    cli.flag("--prost",
+             "Prost's evaluation (2019, Sec. 6.2) of the photometric techniques on the FILEs: "
+             "NMSE, error bounds, light bumps, GPU time",
+             [] {});
+    cli.flag("--shadows",
+             "per-cell shadow maps against ray-traced shadows, on the scene FILE (default " +
+                 shadows.scenePath + ")",
+             [] {});
+    cli.flag("--indirect",
+             "what interreflected light costs in time, from scratch and after a luminaire moves, "
+             "and how it scales with the patches, on the scene FILE (default " +
+                 indirect.scenePath + ")",
+             [] {});
+    cli.flag("--drag",
+             "how live the editor stays while each luminaire of the scene FILE is dragged, and how "
+             "soon the image is right again after release (default " +
+                 drag.scenePath + ")",
+             [] {});
+    cli.flag("--design",
+             "a designer's calculations (grid, surfaces, reports) on the shipped office and "
+             "classroom: time, and accuracy against a reference",
+             [] {});
+    cli.arguments(
+        "FILE", files,
+        "--prost: the photometry files, one or more (FILE.ies, FILE.ldt; a folder stands "
+        "for every .ies and .ldt file under it); --shadows, --indirect, --drag: the scene",
+        false);
+
+    cli.group("options of several benches");
+    cli.option("--out", "DIR",
+               "the folder to write, whole or not at all (created with its parents); default " +
+                   lightField.out + ", " + environment.out + ", " + prost.out + ", " + shadows.out +
+                   ", " + indirect.out + ", " + drag.out + " or " + design.out + " after the bench",
+               [&out](const std::string& v) { out = named("--out", v, "folder"); });
+    cli.option("--spp", "N,N,..|N",
+               "samples per pixel. --lightfield, --environment: the counts swept, each 1.." +
+                   std::to_string(kMaxSampleCount) + " (" +
+                   (lightField.spp == environment.spp
+                        ? listText(lightField.spp)
+                        : listText(lightField.spp) + ", " + listText(environment.spp)) +
+                   "); --shadows: of every image, " + kShadowSpp.text(shadows.spp),
+               keep(spp));
+    cli.option("--reference-spp", "N",
+               "the reference's samples per pixel: --lightfield " +
+                   kReferenceSpp.text(lightField.referenceSpp) + ", --environment " +
+                   kReferenceSpp.text(environment.referenceSpp) + ", --prost " +
+                   kReferenceSpp.text(prost.referenceSpp) + ", --drag " +
+                   kDragReferenceSpp.text(drag.referenceSpp) +
+                   "; --design: the rays gathering each point's interreflected light in the "
+                   "reference, " +
+                   kDesignReferenceSpp.text(design.referenceSpp),
+               keep(referenceSpp));
+    auto sizeText = [](int width, int height) { return formatText("%dx%d", width, height); };
+    cli.option("--size", "WxH|N",
+               "the image's size in pixels, each side 1..16384 (--lightfield " +
+                   sizeText(lightField.width, lightField.height) + ", --environment " +
+                   sizeText(environment.width, environment.height) + ", --shadows " +
+                   sizeText(shadows.width, shadows.height) + ", --drag " +
+                   sizeText(drag.width, drag.height) +
+                   ": the full image); --prost: N, the receivers along each side of the ground "
+                   "imaged, " +
+                   kProstSize.text(prost.size),
+               keep(size));
+    cli.option("--frames", "N",
+               "--environment: frames of the moving sun for the temporal stability, " +
+                   kEnvironmentFrames.text(environment.temporalFrames) +
+                   "; --drag: frames of each drag, " + kDragFrames.text(drag.frames),
+               keep(frames));
+
+    // An integer option of one bench, its range and default in the help.
+    auto integer = [&cli](const std::string& name, int& value, Range range, const char* form,
+                          const std::string& help) {
+        cli.integer(name, value, range.min, range.max, form, help + ", " + range.text(value));
+    };
+    cli.group("options of --lightfield");
+    cli.option(
+        "--fig11", "SPP,SAMPLES|none",
+        "the paper's Fig. 11 too: restricted-cdf at SPP samples per pixel against SAMPLES "
+        "shared samples of the global CDFs (precomputed-shared) and as many per pixel "
+        "(precomputed-global), e.g. 63,63000 (minutes of rendering); none: not rendered (" +
+            (lightField.fig11.empty() ? "the default" : "default " + listText(lightField.fig11)) +
+            ")",
+        [&](const std::string& v) {
+            if (v == "none") {
+                lightField.fig11.clear();
+                return;
+            }
+            std::vector<int> counts = parseList(v, "--fig11");
+            if (counts.size() != 2)
+                throw InputError("--fig11: expected SPP,SAMPLES (e.g. 63,63000) or none");
+            lightField.fig11 = counts;
+        });
+    cli.group("options of --environment");
+    integer("--repeats", environment.repeats, {1, 64}, "K",
+            "images of independent seeds averaged at each point of the sweep");
+    cli.group("options of --shadows");
+    cli.option("--maps", "N,N,..",
+               "the shadow maps per luminaire swept, 0 meaning one per cell of the light field (" +
+                   listText(shadows.counts) + ")",
+               [&shadows](const std::string& v) {
+                   shadows.counts.clear();
+                   for (float c : parseNumberList("--maps", v)) shadows.counts.push_back(int(c));
+               });
+    cli.option("--map-sizes", "N,N,..",
+               "the cube-face resolutions swept, texels, each 1.." +
+                   std::to_string(kMaxSampleCount) + " (" + listText(shadows.sizes) + ")",
+               [&shadows](const std::string& v) { shadows.sizes = parseList(v, "--map-sizes"); });
+    integer("--count-at", shadows.fixedSize, {8, 4096}, "TEXELS",
+            "the cube-face resolution while the map count is swept, texels");
+    integer("--size-at", shadows.fixedCount, {0, 4096}, "N",
+            "the shadow maps per luminaire while the resolution is swept, 0 meaning one per cell");
+    cli.group("options of --indirect");
+    integer("--patches", indirect.patches, {16, 50000}, "N",
+            "about this many patches for the interreflection (asked of the mesher)");
+    cli.text("--move", indirect.moved, "NAME",
+             "the luminaire moved 1 m along x (" + indirect.moved + ")");
+    cli.group("options of --drag");
+    cli.option(
+        "--preview-scale", "S",
+        "the preview's pixels per full-resolution pixel, per axis, in (0, 1] (" +
+            formatText("%g", drag.policy.scale) + ")",
+        [&drag](const std::string& v) {
+            float scale = parseNumberList("--preview-scale", v).at(0);
+            if (!(scale > 0.f && scale <= 1.f))
+                throw InputError("--preview-scale: expected a number in (0, 1], got \"" + v + "\"");
+            drag.policy.scale = scale;
+        });
+    cli.text("--preview-techniques", drag.policy.techniques, "T,T,..",
+             "the techniques the preview tries first, before each luminaire kind's preview "
+             "technique (" +
+                 (drag.policy.techniques.empty() ? "none" : drag.policy.techniques) + ")");
+    integer("--preview-spp", drag.policy.samplesPerFrame, {1, 1024}, "N",
+            "the preview's light samples per pixel and luminaire each frame");
+    integer("--samples-per-frame", drag.samplesPerFrame, {1, 1024}, "N",
+            "the full settings' samples per pixel each pass, as the editor refines");
+    cli.option(
+        "--timeout", "SECONDS",
+        "the longest refinement after a release, seconds of rendering, 1..100000 (" +
+            formatText("%g", drag.timeout) + ")",
+        [&drag](const std::string& v) { drag.timeout = parseInt("--timeout", v, 1, 100000); });
+    cli.group("options of --design");
+    cli.text(
+        "--scenes", design.scenes, "DIR",
+        "the folder of office.json, classroom.json and office-gldf.json (" + design.scenes + ")");
+    if (!cli.parse(args)) return 0;
+
+    const Bench& bench = chosenBench(cli);
+    const std::string flag = bench.flag;
+    auto given = [&cli](const char* option) { return cli.given(option); };
+    // FILE...: --prost's files, or the scene of a bench that takes one.
+    std::string* scene = flag == "--shadows"    ? &shadows.scenePath
+                         : flag == "--indirect" ? &indirect.scenePath
+                         : flag == "--drag"     ? &drag.scenePath
+                                                : nullptr;
+    if (flag == "--prost") {
+        if (files.empty())
+            throw CommandUsageError(
+                "missing FILE... (the photometry files, or folders of them, to evaluate)",
+                cli.shortHelp());
+        prost.files = files;
+    } else if (!files.empty()) {
+        if (!scene || files.size() > 1)
+            throw CommandUsageError("unexpected argument " + files[scene ? 1 : 0], cli.shortHelp());
+        *scene = files[0];
+    }
+
+    if (flag == "--lightfield") {
+        if (given("--out")) lightField.out = out;
+        if (given("--spp")) lightField.spp = parseList(spp);
+        if (given("--reference-spp"))
+            lightField.referenceSpp = kReferenceSpp.parse("--reference-spp", referenceSpp);
+        if (given("--size")) parseSize(size, lightField.width, lightField.height);
+        return benchLightField(lightField);
+    }
+    if (flag == "--environment") {
+        if (given("--out")) environment.out = out;
+        if (given("--spp")) environment.spp = parseList(spp);
+        if (given("--reference-spp"))
+            environment.referenceSpp = kReferenceSpp.parse("--reference-spp", referenceSpp);
+        if (given("--size")) parseSize(size, environment.width, environment.height);
+        if (given("--frames"))
+            environment.temporalFrames = kEnvironmentFrames.parse("--frames", frames);
+        return benchEnvironment(environment);
+    }
+    if (flag == "--prost") {
+        if (given("--out")) prost.out = out;
+        if (given("--size")) prost.size = kProstSize.parse("--size", size);
+        if (given("--reference-spp"))
+            prost.referenceSpp = kReferenceSpp.parse("--reference-spp", referenceSpp);
+        return benchProst(prost);
+    }
+    if (flag == "--shadows") {
+        if (given("--out")) shadows.out = out;
+        if (given("--spp")) shadows.spp = kShadowSpp.parse("--spp", spp);
+        if (given("--size")) parseSize(size, shadows.width, shadows.height);
+        return benchShadows(shadows);
+    }
+    if (flag == "--indirect") {
+        if (given("--out")) indirect.out = out;
+        return benchIndirect(indirect);
+    }
+    if (flag == "--drag") {
+        if (given("--out")) drag.out = out;
+        if (given("--size")) parseSize(size, drag.width, drag.height);
+        if (given("--frames")) drag.frames = kDragFrames.parse("--frames", frames);
+        if (given("--reference-spp"))
+            drag.referenceSpp = kDragReferenceSpp.parse("--reference-spp", referenceSpp);
+        return benchDrag(drag);
+    }
+    if (given("--out")) design.out = out;
+    if (given("--reference-spp"))
+        design.referenceSpp = kDesignReferenceSpp.parse("--reference-spp", referenceSpp);
+    return benchDesign(design);
 }
 
 }  // namespace candela

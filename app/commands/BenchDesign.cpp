@@ -32,12 +32,6 @@ double since(Clock::time_point t0) {
     return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-struct DesignOptions {
-    std::string out = "bench-design";
-    std::string scenes;  ///< Folder of office.json, classroom.json and office-gldf.json.
-    int referenceSpp = 4096;
-};
-
 /// Every value of a surfaces report, in order (task areas, their surroundings, points).
 std::vector<double> surfaceValues(const SurfaceReport& r, std::vector<double>* errors = nullptr) {
     std::vector<double> out;
@@ -71,15 +65,7 @@ Deviation deviation(const std::vector<double>& e, const std::vector<double>& ref
 
 }  // namespace
 
-int benchDesign(const Args& args) {
-    DesignOptions o;
-    BenchFlags()
-        .alone("--design")
-        .text("--out", o.out)
-        .text("--scenes", o.scenes)
-        .integer("--reference-spp", o.referenceSpp, 64, 1 << 20)
-        .parse(args, [](const std::string& a) { return "bench --design: unknown option " + a; });
-    if (o.scenes.empty()) o.scenes = (fs::path(CANDELA_SOURCE_DIR) / "resources/scenes").string();
+int benchDesign(const DesignOptions& o) {
     BenchFolder folder(o.out);  // whole or not at all: committed at the end
     const fs::path& out = folder.path();
     auto scenePath = [&](const char* name) { return (fs::path(o.scenes) / name).string(); };

@@ -102,40 +102,6 @@ DragRow drag(Renderer& renderer, Scene& scene, Scene& shown, size_t index,
     return row;
 }
 
-struct DragOptions {
-    std::string scenePath = std::string(CANDELA_SOURCE_DIR) + "/resources/scenes/editor-room.json";
-    std::string out = "bench-drag";
-    int width = 960, height = 540;  ///< Full image size, pixels.
-    int frames = 60;                ///< Frames of each drag.
-    int referenceSpp = 1024;
-    double timeout = 60.0;  ///< Longest refinement after a release, seconds of rendering.
-    PreviewPolicy policy;
-    int samplesPerFrame = 16;  // as the editor (ui/Editor.cpp)
-};
-
-DragOptions parseOptions(const Args& args) {
-    DragOptions o;
-    BenchFlags()
-        .optional("--drag", o.scenePath)
-        .text("--out", o.out)
-        .size("--size", o.width, o.height)
-        .integer("--frames", o.frames, 4, 100000)
-        .integer("--reference-spp", o.referenceSpp, 16, 1 << 20)
-        .value("--preview-scale",
-               [&o](const std::string& v) {
-                   o.policy.scale = float(parseNumberList("--preview-scale", v).at(0));
-               })
-        .text("--preview-techniques", o.policy.techniques)
-        .integer("--preview-spp", o.policy.samplesPerFrame, 1, 1024)
-        .integer("--samples-per-frame", o.samplesPerFrame, 1, 1024)
-        .value("--timeout",
-               [&o](const std::string& v) { o.timeout = parseInt("--timeout", v, 1, 100000); })
-        .parse(args, [](const std::string& a) { return "bench: unknown option " + a; });
-    if (!(o.policy.scale > 0.f && o.policy.scale <= 1.f))
-        throw InputError("bench: --preview-scale must be in (0, 1]");
-    return o;
-}
-
 /// The reference every image is compared with: the scene's own techniques, converged, with
 /// another seed; tone-mapped against its own mean luminance, which `full` takes too.
 struct DragReference {
@@ -295,8 +261,7 @@ void plotRelease(const fs::path& out, const Scene& scene) {
 
 }  // namespace
 
-int benchDrag(const Args& args) {
-    DragOptions o = parseOptions(args);
+int benchDrag(const DragOptions& o) {
     BenchFolder folder(o.out);  // whole or not at all: committed at the end
     const fs::path& out = folder.path();
     Scene scene = loadScene(o.scenePath);

@@ -28,33 +28,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct EnvironmentOptions {
-    std::string source, out = "bench-environment";
-    std::vector<int> spp = {4, 8, 16, 32, 64, 128, 256, 512};
-    int referenceSpp = 16384;
-    int width = 480, height = 270;  ///< Image size, pixels.
-    int temporalFrames = 24, temporalSpp = 16;
-    int repeats = 4;
-};
-
-EnvironmentOptions parseOptions(const Args& args) {
-    EnvironmentOptions o;
-    BenchFlags()
-        .text("--environment", o.source)
-        .text("--out", o.out)
-        .counts("--spp", o.spp)
-        .integer("--reference-spp", o.referenceSpp, 16, 1 << 22)
-        .size("--size", o.width, o.height)
-        .integer("--frames", o.temporalFrames, 3, 10000)
-        .integer("--repeats", o.repeats, 1, 64)
-        .parse(args, [](const std::string& a) { return "bench: unknown option " + a; });
-    if (o.source.empty())
-        throw UsageError(
-            "usage: candela bench --environment sky|MAP.hdr|MAP.exr [--out DIR] [--spp 4,8,...] "
-            "[--reference-spp N] [--size WxH] [--frames N] [--repeats K]");
-    return o;
-}
-
 /// The bench's sky: a clear noon-ish sun 35 degrees up (its disc a few texels of a 1024-wide
 /// map, some 1e4 times the sky's luminance), the moving map of parts 2 and 3 in any case.
 SkyParams benchSky() {
@@ -319,8 +292,7 @@ void plotResults(const fs::path& out) {
 
 }  // namespace
 
-int benchEnvironment(const Args& args) {
-    EnvironmentOptions o = parseOptions(args);
+int benchEnvironment(const EnvironmentOptions& o) {
     BenchFolder folder(o.out);  // whole or not at all: committed at the end
     const fs::path& out = folder.path();
     SkyParams sky = benchSky();

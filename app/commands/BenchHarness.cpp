@@ -17,65 +17,6 @@ namespace candela {
 
 namespace fs = std::filesystem;
 
-// ---- Command line ------------------------------------------------------------------------------
-
-BenchFlags& BenchFlags::value(std::string flag, Setter set) {
-    mFlags.push_back({std::move(flag), Arity::Value, std::move(set)});
-    return *this;
-}
-
-BenchFlags& BenchFlags::text(std::string flag, std::string& out) {
-    return value(std::move(flag), [&out](const std::string& v) { out = v; });
-}
-
-BenchFlags& BenchFlags::integer(std::string flag, int& out, int min, int max) {
-    std::string name = flag;
-    return value(std::move(flag), [&out, name, min, max](const std::string& v) {
-        out = parseInt(name, v, min, max);
-    });
-}
-
-BenchFlags& BenchFlags::counts(std::string flag, std::vector<int>& out) {
-    return value(std::move(flag), [&out](const std::string& v) { out = parseList(v); });
-}
-
-BenchFlags& BenchFlags::size(std::string flag, int& width, int& height) {
-    return value(std::move(flag),
-                 [&width, &height](const std::string& v) { parseSize(v, width, height); });
-}
-
-BenchFlags& BenchFlags::optional(std::string flag, std::string& out) {
-    mFlags.push_back({std::move(flag), Arity::Optional, [&out](const std::string& v) { out = v; }});
-    return *this;
-}
-
-BenchFlags& BenchFlags::alone(std::string flag) {
-    mFlags.push_back({std::move(flag), Arity::Alone, nullptr});
-    return *this;
-}
-
-BenchFlags& BenchFlags::positional(Setter take) {
-    mPositional = std::move(take);
-    return *this;
-}
-
-void BenchFlags::parse(const Args& args, const UnknownMessage& unknown) const {
-    auto isFlag = [](const std::string& a) { return a.rfind("--", 0) == 0; };
-    for (size_t i = 0; i < args.size(); ++i) {
-        const std::string& a = args[i];
-        auto flag =
-            std::find_if(mFlags.begin(), mFlags.end(), [&](const Flag& f) { return f.name == a; });
-        if (flag == mFlags.end()) {
-            if (!mPositional || isFlag(a)) throw UsageError(unknown(a));
-            mPositional(a);
-        } else if (flag->arity == Arity::Value) {
-            flag->set(flagValue(args, i));
-        } else if (flag->arity == Arity::Optional && i + 1 < args.size() && !isFlag(args[i + 1])) {
-            flag->set(args[++i]);
-        }
-    }
-}
-
 // ---- Output files ------------------------------------------------------------------------------
 
 BenchFolder::BenchFolder(const std::string& dir) : mDir(dir) {

@@ -1,7 +1,7 @@
 #pragma once
-// The harness every `candela bench` shares (app/commands/Bench*.cpp), so that a bench is the
-// description of its sweep plus what is genuinely its own:
-//  - BenchFlags: its command line, one line per flag;
+// The harness every `candela bench` shares (app/commands/Bench*.cpp; the command line is read in
+// app/commands/Bench.cpp), so that a bench is the description of its sweep plus what is genuinely
+// its own:
 //  - BenchFolder, CsvFile, BenchSummary, writePlot: the output folder, CSV files, summary.txt
 //    (opening with the machine) and the gnuplot script and image;
 //  - BenchGpu, renderShot: an image rendered from scratch until converged at a sample budget,
@@ -29,45 +29,6 @@
 namespace candela {
 
 struct Scene;
-
-// ---- Command line ------------------------------------------------------------------------------
-
-/// A bench's flags, each naming what it sets; parse() reads the arguments once, in order.
-class BenchFlags {
-  public:
-    using Setter = std::function<void(const std::string& value)>;
-    /// Message of the InputError for an argument no flag takes.
-    using UnknownMessage = std::function<std::string(const std::string& argument)>;
-
-    /// FLAG VALUE: `set` takes the value (flagValue's error when it is missing).
-    BenchFlags& value(std::string flag, Setter set);
-    BenchFlags& text(std::string flag, std::string& out);
-    /// An integer in min..max (parseInt's error otherwise).
-    BenchFlags& integer(std::string flag, int& out, int min, int max);
-    /// "4,8,16": sample counts (parseList).
-    BenchFlags& counts(std::string flag, std::vector<int>& out);
-    /// "WxH" (parseSize).
-    BenchFlags& size(std::string flag, int& width, int& height);
-    /// FLAG [VALUE]: the next argument is its value unless it starts with "--" ("--drag [SCENE]").
-    BenchFlags& optional(std::string flag, std::string& out);
-    /// FLAG alone ("--prost").
-    BenchFlags& alone(std::string flag);
-    /// Arguments that do not start with "--" go to `take`; without it they are unknown.
-    BenchFlags& positional(Setter take);
-
-    /// Throws InputError(unknown(argument)) for an argument no flag takes.
-    void parse(const Args& args, const UnknownMessage& unknown) const;
-
-  private:
-    enum class Arity { Value, Optional, Alone };
-    struct Flag {
-        std::string name;
-        Arity arity;
-        Setter set;
-    };
-    std::vector<Flag> mFlags;
-    Setter mPositional;
-};
 
 // ---- Output files ------------------------------------------------------------------------------
 

@@ -75,30 +75,6 @@ struct Step {
     std::vector<double> values;  ///< Work plane, lx.
 };
 
-struct IndirectOptions {
-    std::string scenePath = std::string(CANDELA_SOURCE_DIR) + "/resources/scenes/office.json";
-    std::string out = "bench-indirect";
-    std::string moved = "Downlight 2";  ///< The luminaire moved 1 m.
-    int patches = 2500;                 ///< Asked of the mesher.
-    double spacing = 0.25;              ///< Between work-plane points, m.
-    double height = 0.8;                ///< Of the work plane, m.
-};
-
-IndirectOptions parseOptions(const Args& args) {
-    IndirectOptions o;
-    BenchFlags()
-        .optional("--indirect", o.scenePath)
-        .text("--out", o.out)
-        .integer("--patches", o.patches, 16, 50000)
-        .text("--move", o.moved)
-        .parse(args, [](const std::string& a) {
-            return "bench --indirect: unknown option " + a +
-                   " (usage: candela bench --indirect [SCENE.json] [--out DIR] [--patches N] "
-                   "[--move NAME])";
-        });
-    return o;
-}
-
 constexpr int kConvergedSpp = 512;  ///< Every source's direct light for the value it converges to.
 
 /// The worker's steps from scratch and after the move, and what each phase converges to.
@@ -327,8 +303,7 @@ std::vector<glm::dvec3> workPlanePoints(const Scene& scene, double spacing, doub
 
 }  // namespace
 
-int benchIndirect(const Args& args) {
-    IndirectOptions o = parseOptions(args);
+int benchIndirect(const IndirectOptions& o) {
     Scene scene = loadScene(o.scenePath);
     ProtectedInputs inputs(scene.inputFiles());
     BenchFolder folder(o.out);  // whole or not at all: committed at the end

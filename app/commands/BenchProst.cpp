@@ -129,43 +129,31 @@ double diffuseness(const PhotometricData& d) {
     return i0 > 0.0 ? d.fluxFromTable() / (gpu::kPi * i0) : INFINITY;
 }
 
-struct ProstOptions {
+/// FILE.ies|FILE.ldt|DIR...: a folder stands for every .ies and .ldt file under it. Sorted;
+/// InputError naming the arguments when there is no file at all (only empty folders).
+std::vector<std::string> photometryFiles(const std::vector<std::string>& arguments) {
     std::vector<std::string> files;
-    std::string out = "bench-prost";
-    int size = 128;  ///< Receivers along each side of the ground region.
-    int referenceSpp = 2048;
-};
-
-/// FILE.ies|FILE.ldt|DIR...: a folder stands for every .ies and .ldt file under it.
-void addFiles(const std::string& argument, std::vector<std::string>& files) {
-    if (!fs::is_directory(argument)) {
-        files.push_back(argument);
-        return;
+    for (const std::string& argument : arguments) {
+        if (!fs::is_directory(argument)) {
+            files.push_back(argument);
+            continue;
+        }
+        for (const auto& e : fs::recursive_directory_iterator(argument)) {
+            std::string ext = e.path().extension().string();
+            std::transform(ext.begin(), ext.end(), ext.begin(),
+                           [](unsigned char c) { return char(std::tolower(c)); });
+            if (e.is_regular_file() && (ext == ".ies" || ext == ".ldt"))
+                files.push_back(e.path().string());
+        }
     }
-    for (const auto& e : fs::recursive_directory_iterator(argument)) {
-        std::string ext = e.path().extension().string();
-        std::transform(ext.begin(), ext.end(), ext.begin(),
-                       [](unsigned char c) { return char(std::tolower(c)); });
-        if (e.is_regular_file() && (ext == ".ies" || ext == ".ldt"))
-            files.push_back(e.path().string());
+    if (files.empty()) {
+        std::string given;
+        for (const std::string& a : arguments) given += (given.empty() ? "" : ", ") + a;
+        throw InputError(given + ": no .ies or .ldt file in " +
+                         (arguments.size() == 1 ? "it" : "them"));
     }
-}
-
-ProstOptions parseOptions(const Args& args) {
-    ProstOptions o;
-    BenchFlags()
-        .alone("--prost")
-        .text("--out", o.out)
-        .integer("--size", o.size, 8, 2048)
-        .integer("--reference-spp", o.referenceSpp, 16, 1 << 22)
-        .positional([&o](const std::string& a) { addFiles(a, o.files); })
-        .parse(args, [](const std::string& a) { return "bench --prost: unknown option " + a; });
-    if (o.files.empty())
-        throw UsageError(
-            "usage: candela bench --prost FILE.ies|FILE.ldt|DIR... [--out DIR] [--size N] "
-            "[--reference-spp N]");
-    std::sort(o.files.begin(), o.files.end());
-    return o;
+    std::sort(files.begin(), files.end());
+    return files;
 }
 
 /// The techniques Prost evaluates: the photometric ones that are exact in one frame (a fixed set
@@ -455,8 +443,9 @@ void plotNmse(const fs::path& out, const std::vector<std::string>& techniques) {
 
 }  // namespace
 
-int benchProst(const Args& args) {
-    ProstOptions o = parseOptions(args);
+int benchProst(const ProstOptions& options) {
+    ProstOptions o = options;
+    o.files = photometryFiles(options.files);
     ProtectedInputs inputs(o.files);  // no result file may replace a photometric file
     BenchFolder folder(o.out);        // whole or not at all: committed at the end
     const fs::path& out = folder.path();

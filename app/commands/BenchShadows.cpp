@@ -26,42 +26,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct ShadowOptions {
-    std::string scenePath =
-        std::string(CANDELA_SOURCE_DIR) + "/resources/scenes/headlight-room.json";
-    std::string out = "bench-shadows";
-    std::vector<int> counts = {1,  4,  9, 16,
-                               25, 49, 0};  ///< Maps per luminaire swept (0: one per cell).
-    std::vector<int> sizes = {32,  64,  128,
-                              192, 256, 512};  ///< Cube-face resolutions swept, texels.
-    int spp = 256;
-    int width = 480, height = 270;  ///< Image size, pixels.
-    int fixedCount = 49;            ///< Maps while the resolution is swept.
-    int fixedSize = 192;            ///< Resolution while the count is swept, texels.
-};
-
-ShadowOptions parseOptions(const Args& args) {
-    ShadowOptions o;
-    BenchFlags()
-        .optional("--shadows", o.scenePath)
-        .text("--out", o.out)
-        .integer("--spp", o.spp, 1, 1 << 20)
-        .size("--size", o.width, o.height)
-        .value("--maps",
-               [&o](const std::string& v) {
-                   o.counts.clear();
-                   for (int c : parseNumberList("--maps", v)) o.counts.push_back(c);
-               })
-        .counts("--map-sizes", o.sizes)
-        .integer("--count-at", o.fixedSize, 8, 4096)
-        .integer("--size-at", o.fixedCount, 0, 4096)
-        .parse(args, [](const std::string&) {
-            return "usage: candela bench --shadows [SCENE.json] [--out DIR] [--spp N] [--size WxH] "
-                   "[--maps 1,4,...,0] [--map-sizes 32,64,...] [--count-at R] [--size-at N]";
-        });
-    return o;
-}
-
 /// Every image: restricted-cdf (or its ray-traced twin) with the same seed, so all of them draw
 /// the same light samples and differ only in visibility. The two names are the comparison this
 /// bench makes (Lu et al. 2015, Sec. 6.2: the per-cell maps against exact visibility), not a
@@ -139,8 +103,7 @@ void plotSweeps(const fs::path& out, const ShadowOptions& o, double noiseDeltaE)
 
 }  // namespace
 
-int benchShadows(const Args& args) {
-    ShadowOptions o = parseOptions(args);
+int benchShadows(const ShadowOptions& o) {
     Scene scene = loadScene(o.scenePath);
     ProtectedInputs inputs(scene.inputFiles());
     bool any = false;

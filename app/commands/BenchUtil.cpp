@@ -26,12 +26,12 @@ std::string machineDescription() {
     return model + ", " + std::to_string(std::max(cores, 1)) + " cores";
 }
 
-std::vector<int> parseList(const std::string& text) {
+std::vector<int> parseList(const std::string& text, const std::string& flag) {
     std::vector<int> out;
     std::stringstream ss(text);
     std::string item;
-    while (std::getline(ss, item, ',')) out.push_back(parseInt("--spp", item, 1, 1 << 20));
-    if (out.empty()) throw InputError("--spp: expected a comma-separated list of sample counts");
+    while (std::getline(ss, item, ',')) out.push_back(parseInt(flag, item, 1, kMaxSampleCount));
+    if (out.empty()) throw InputError(flag + ": expected a comma-separated list of sample counts");
     return out;
 }
 

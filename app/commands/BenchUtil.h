@@ -1,5 +1,6 @@
 #pragma once
-// Image metrics and small helpers shared by the benches (app/commands/Bench*.cpp).
+// Image metrics and small helpers shared by the benches (app/commands/Bench*.cpp), and each
+// bench's options and entry point (app/commands/Bench.cpp reads them from the command line).
 
 #include <glm/glm.hpp>
 #include <string>
@@ -7,11 +8,15 @@
 
 #include "app/commands/Commands.h"
 #include "renderer/ImageMetrics.h"
+#include "renderer/LivePreview.h"
 
 namespace candela {
 
-/// "4,8,16" as integers (each checked as a sample count); throws InputError.
-std::vector<int> parseList(const std::string& text);
+/// The largest sample count of a list (parseList).
+constexpr int kMaxSampleCount = 1 << 20;
+/// "4,8,16" as integers (each a sample count in 1..kMaxSampleCount); throws InputError naming
+/// `flag`.
+std::vector<int> parseList(const std::string& text, const std::string& flag = "--spp");
 /// "Intel(R) Xeon(R) ... , 2 cores": the CPU the bench ran on (from /proc/cpuinfo), for its
 /// summary.
 std::string machineDescription();
@@ -54,21 +59,81 @@ std::string sweepPlot(const std::string& techniques, int xColumn, int yColumn);
 /// or when gnuplot fails. A failure to write DIR/OUTPUT is an InputError.
 bool runGnuplot(const std::string& dir, const std::string& output);
 
-/// `candela bench --prost`: the photometric-light evaluation of Prost (2019), Sec. 6.2.
-int benchProst(const Args& args);
+// ---- The benches of `candela bench` (app/commands/Bench.cpp reads their command line) --------
+
 /// `candela bench --environment`: the environment techniques (app/commands/BenchEnvironment.cpp).
-int benchEnvironment(const Args& args);
-/// `candela bench --drag`: the editor's frame rate while dragging and refinement after release
-/// (app/commands/BenchDrag.cpp).
-int benchDrag(const Args& args);
+struct EnvironmentOptions {
+    std::string source;  ///< "sky" (the bench's procedural sky) or an .hdr or .exr map.
+    std::string out = "bench-environment";
+    std::vector<int> spp = {4, 8, 16, 32, 64, 128, 256, 512};
+    int referenceSpp = 16384;
+    int width = 480, height = 270;  ///< Image size, pixels.
+    int temporalFrames = 24, temporalSpp = 16;
+    int repeats = 4;
+};
+int benchEnvironment(const EnvironmentOptions& options);
+
+/// `candela bench --prost`: the photometric-light evaluation of Prost (2019), Sec. 6.2
+/// (app/commands/BenchProst.cpp).
+struct ProstOptions {
+    std::vector<std::string> files;  ///< As given: a folder stands for its .ies and .ldt files.
+    std::string out = "bench-prost";
+    int size = 128;  ///< Receivers along each side of the ground region.
+    int referenceSpp = 2048;
+};
+int benchProst(const ProstOptions& options);
+
 /// `candela bench --shadows`: shadow maps against ray-traced visibility
 /// (app/commands/BenchShadows.cpp).
-int benchShadows(const Args& args);
+struct ShadowOptions {
+    std::string scenePath =
+        std::string(CANDELA_SOURCE_DIR) + "/resources/scenes/headlight-room.json";
+    std::string out = "bench-shadows";
+    std::vector<int> counts = {1,  4,  9, 16,
+                               25, 49, 0};  ///< Maps per luminaire swept (0: one per cell).
+    std::vector<int> sizes = {32,  64,  128,
+                              192, 256, 512};  ///< Cube-face resolutions swept, texels.
+    int spp = 256;
+    int width = 480, height = 270;  ///< Image size, pixels.
+    int fixedCount = 49;            ///< Maps while the resolution is swept.
+    int fixedSize = 192;            ///< Resolution while the count is swept, texels.
+};
+int benchShadows(const ShadowOptions& options);
+
 /// `candela bench --indirect`: interreflected light from scratch and after a move, against time
 /// (app/commands/BenchIndirect.cpp).
-int benchIndirect(const Args& args);
+struct IndirectOptions {
+    std::string scenePath = std::string(CANDELA_SOURCE_DIR) + "/resources/scenes/office.json";
+    std::string out = "bench-indirect";
+    std::string moved = "Downlight 2";  ///< The luminaire moved 1 m.
+    int patches = 2500;                 ///< Asked of the mesher.
+    double spacing = 0.25;              ///< Between work-plane points, m.
+    double height = 0.8;                ///< Of the work plane, m.
+};
+int benchIndirect(const IndirectOptions& options);
+
+/// `candela bench --drag`: the editor's frame rate while dragging and refinement after release
+/// (app/commands/BenchDrag.cpp).
+struct DragOptions {
+    std::string scenePath = std::string(CANDELA_SOURCE_DIR) + "/resources/scenes/editor-room.json";
+    std::string out = "bench-drag";
+    int width = 960, height = 540;  ///< Full image size, pixels.
+    int frames = 60;                ///< Frames of each drag.
+    int referenceSpp = 1024;
+    double timeout = 60.0;  ///< Longest refinement after a release, seconds of rendering.
+    PreviewPolicy policy;
+    int samplesPerFrame = 16;  // as the editor (ui/Editor.cpp)
+};
+int benchDrag(const DragOptions& options);
+
 /// `candela bench --design`: the designer's calculations' time and accuracy
 /// (app/commands/BenchDesign.cpp).
-int benchDesign(const Args& args);
+struct DesignOptions {
+    std::string out = "bench-design";
+    /// Folder of office.json, classroom.json and office-gldf.json.
+    std::string scenes = std::string(CANDELA_SOURCE_DIR) + "/resources/scenes";
+    int referenceSpp = 4096;
+};
+int benchDesign(const DesignOptions& options);
 
 }  // namespace candela

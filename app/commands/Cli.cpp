@@ -81,7 +81,11 @@ struct CommandLine::Impl {
                 break;
             case Kind::Positional:
                 d.option = app.add_option(cliName);
-                if (d.many) d.option->expected(0, CLI::detail::expected_max_vector_size);
+                // CLI11 gives a positional more values than its minimum only with extra arguments
+                // allowed.
+                if (d.many)
+                    d.option->expected(0, CLI::detail::expected_max_vector_size)
+                        ->allow_extra_args(true);
                 break;
             case Kind::Value:
                 d.option = app.add_option(cliName);
@@ -257,19 +261,28 @@ bool CommandLine::parse(const Args& args) {
         line.push_back(arg);
     }
     // Each value joined to its option (see the top of the file). CLI11 reads "NAME=" as NAME
-    // followed by a value still to come, so an empty value, and an optional value left out, go
-    // to the option directly.
+    // followed by a value still to come, so an empty value stays an argument of its own, and an
+    // optional value left out goes to the option directly.
     Args joined;
     std::vector<std::pair<const Declaration*, std::string>> direct;
     for (size_t i = 0; i < line.size(); ++i) {
         const Declaration* d = m.find(line[i]);
+        size_t equals = line[i].find('=');
+        if (!d && line[i].rfind("--", 0) == 0 && equals != std::string::npos) {
+            const Declaration* named = m.find(line[i].substr(0, equals));
+            if (named && named->kind == Kind::Flag)
+                m.usage(named->name + " takes no value (got \"" + line[i] + "\")", *this);
+        }
         if (d && d->kind == Kind::Value) {
             if (i + 1 >= line.size())
                 m.usage(d->name + ": expected " + d->form + " after it", *this);
-            if (line[i + 1].empty())
-                direct.emplace_back(d, "");
-            else
+            if (line[i + 1].empty()) {
+                // An empty value as an argument of its own, in its place among the others.
+                joined.push_back(line[i]);
+                joined.push_back("");
+            } else {
                 joined.push_back(line[i] + "=" + line[i + 1]);
+            }
             ++i;
         } else if (d && d->kind == Kind::OptionalValue) {
             bool takes = i + 1 < line.size() && std::find(d->values.begin(), d->values.end(),

@@ -9,42 +9,34 @@ namespace {
 
 const CommandInfo kCommands[] = {
     {"edit", "open the editor on a scene (without a display: its screenshots, offscreen)",
-     "edit [scene.json] [--size WxH] [--screenshot-dir DIR] [--layout-file FILE]\n"
-     "     [--autosave-seconds S] [--quit-after-frames N]\n"
-     "  Opens the interactive editor (window of WxH pixels). Without a display it renders the\n"
-     "  scene's view offscreen (OSMesa) and writes the screenshots (PNG, EXR, JSON) into DIR\n"
-     "  (./candela-screenshots/). --layout-file writes the window's layout as JSON (for tests),\n"
-     "  --autosave-seconds sets how often unsaved edits are autosaved (60),\n"
-     "  --quit-after-frames closes it after N frames.\n",
+     "edit [scene.json] [options]\n"
+     "  Opens the interactive editor. Without a display it renders the scene's view offscreen\n"
+     "  (OSMesa, 960x540, up to 64 samples per pixel) and writes the screenshots (PNG, EXR,\n"
+     "  JSON) into the screenshot folder.\n",
      "candela edit resources/scenes/editor-room.json", &cmdEdit},
     {"info", "describe a scene, light field, glTF file, photometry file or GLDF container",
      "info FILE [--strict]\n"
-     "  FILE: a scene (.json), a glTF file, a light field (.lf.json: basis, images, flux,\n"
-     "  precomputation time), photometry (.ies, .ldt, TM-33 .xml: flux from the table, lamps x\n"
-     "  LOR, warnings for what was assumed to read the file), a GLDF container (.gldf: product,\n"
-     "  variants, rated flux and power) or L3D geometry (.l3d).\n"
-     "  --strict  refuse photometry files that need a leniency (empty EULUMDAT fields, Latin-1 or\n"
-     "            UTF-16 text, mixed line endings) instead of loading them with a warning\n",
+     "  What the file holds: a scene's meshes, luminaires and units; a light field's basis,\n"
+     "  images, flux and precomputation time; photometry's flux from the table, lamps x LOR and\n"
+     "  warnings for what was assumed to read it; a GLDF container's product, variants, rated\n"
+     "  flux and power; L3D geometry's parts and luminous openings.\n",
      "candela info resources/luminaires/photometric/halo-recessed-downlight.ies", &cmdInfo},
     {"render", "render a scene's view, in false colour, or a comparison sheet of techniques",
-     "render scene.json --out F.png|F.exr [--technique T] [--spp N] [--size WxH] [--stats]\n"
-     "       [--indirect on|off] [--light total|direct|interreflected]\n"
-     "       [--tonemap exponential|reinhard] [--exposure K]\n"
-     "       [--false-colour [--legend MIN,MAX] [--log] [--isolux L,..|none]] [--strict]\n"
-     "  PNG is tone-mapped, EXR linear (W/(m2 sr) or cd/m2; with --false-colour, lx).\n"
-     "render scene.json --sheet DIR --pane TECHNIQUES[:SPP] [--pane ...] [--reference-spp N]\n"
-     "       [--error-maps]\n"
+     "render scene.json --out F.png|F.exr [options]\n"
+     "  The scene's view from its camera, with its interreflected light: PNG tone-mapped, EXR\n"
+     "  linear (W/(m2 sr) or cd/m2; with --false-colour, lx).\n"
+     "render scene.json --sheet DIR --pane TECHNIQUES[:SPP] [--pane ...] [options]\n"
      "  A comparison sheet: 1-4 panes (technique lists such as\n"
      "  photometric=scattered,lightfield=precomputed-global) against a progressive reference;\n"
      "  sheet-NNN.png/.exr/.json in DIR.\n",
      "candela render resources/scenes/office.json --out office.png --size 960x540", &cmdRender},
     {"probe", "the irradiance at points (CSV), by any technique, on the CPU or the GPU",
-     "probe scene.json --points pts.csv [--technique T] [--env-technique T] [--spp N]\n"
-     "      [--visibility [embree|bvh]] [--indirect] [--patches N] [--device cpu|gpu]\n"
-     "      [--seed S] [--show-samples F.png] [--strict]\n"
-     "  pts.csv: x,y,z,nx,ny,nz per line (metres, a unit normal). Prints CSV\n"
-     "  x,y,z,nx,ny,nz,E,... with E the irradiance (lx, or W/m2 for a radiometric scene;\n"
-     "  stderr names the unit).\n",
+     "probe scene.json --points pts.csv [options]\n"
+     "probe scene.json --pixel X,Y [--size WxH] [options]\n"
+     "  pts.csv: x,y,z,nx,ny,nz per line (metres, a unit normal); --pixel: the surface the\n"
+     "  scene's camera sees through that pixel. Prints CSV x,y,z,nx,ny,nz,E,... with E the\n"
+     "  irradiance (lx, or W/m2 for a radiometric scene; stderr names the unit). Direct light\n"
+     "  without shadows unless --visibility and --indirect add them.\n",
      "candela probe resources/scenes/office.json --points tests/data/photometric/far_points.csv",
      &cmdProbe},
     {"grid", "illuminance on a calculation grid: Emin, Eavg, Emax, U0",
@@ -53,37 +45,35 @@ const CommandInfo kCommands[] = {
      "  the direct, interreflected and total light. By default shadows and interreflected light\n"
      "  wherever the scene calls for them; --light direct and --no-shadows leave them out, and\n"
      "  the output says so.\n",
-     "candela grid resources/scenes/office.json --plane y=0.8 --spacing 0.5", &cmdGrid, true},
+     "candela grid resources/scenes/office.json --plane y=0.8 --spacing 0.5", &cmdGrid},
     {"surfaces", "EN 12464-1 task areas, surroundings and backgrounds against requirements",
      "surfaces scene.json [options]\n"
      "  Em, U0, Emin, Emax (lx) of the scene's task areas, their immediate surroundings and\n"
      "  backgrounds against their requirements, and planar and cylindrical illuminance at its\n"
      "  calculation points.\n",
-     "candela surfaces resources/scenes/classroom.json", &cmdSurfaces, true},
+     "candela surfaces resources/scenes/classroom.json", &cmdSurfaces},
     {"glare", "the Unified Glare Rating at observers, or a luminaire's UGR table",
-     "glare scene.json [--observer X,Y,Z --view X,Y,Z [--limit UGR_L] [--background CD_M2]]\n"
-     "      [--spp N] [--patches N] [--csv F]\n"
+     "glare scene.json [--observer X,Y,Z --view X,Y,Z] [options]\n"
      "  UGR (CIE 117) at the scene's \"glare_observers\" or the one given (metres), the\n"
      "  background luminance (cd/m2) from the interreflected light.\n"
-     "glare --table FILE.ldt|FILE.ies|FILE.xml|FILE.gldf [--spacing 0.25] [--csv F]\n"
+     "glare --table FILE.ldt|FILE.ies|FILE.xml|FILE.gldf [--spacing-ratio R] [--out F.csv]\n"
      "  The standard UGR table of a luminaire (CIE 190 tabular method: 19 rooms x 5\n"
-     "  reflectances, crosswise and endwise); --spacing is the luminaires' spacing as a ratio of\n"
-     "  the mounting height (0.25 as DIALux and Relux print it, 1 for CIE 190's 1:1).\n",
+     "  reflectances, crosswise and endwise), the luminaires R x the mounting height apart.\n",
      "candela glare resources/scenes/office.json", &cmdGlare},
     {"report", "a PDF report of a scene for a client",
      "report scene.json --out report.pdf [options]\n"
      "  Luminaire schedule, polar diagrams, surfaces with false colour and values, UGR and a\n"
      "  view rendered from the scene's camera.\n",
-     "candela report resources/scenes/office.json --out office.pdf", &cmdReport, true},
+     "candela report resources/scenes/office.json --out office.pdf", &cmdReport},
     {"polar", "a photometric file's polar candela diagram and its table",
-     "polar FILE.ies|FILE.ldt|FILE.xml [--out polar.png] [--step DEG] [--strict]\n"
-     "  The C0-C180 and C90-C270 planes (cd/klm), their table on stdout.\n",
+     "polar FILE.ies|FILE.ldt|FILE.xml [--out polar.png] [options]\n"
+     "  The C0-C180 and C90-C270 planes' luminous intensity (cd): their table on stdout, and\n"
+     "  their polar diagram as a PNG.\n",
      "candela polar resources/luminaires/photometric/halo-recessed-downlight.ies --out polar.png",
      &cmdPolar},
     {"convert", "a light field from a TM-25 ray file or a headlight, or photometry as TM-33",
-     "convert RAYS.TM25RAY --out NAME.lf.json [--grid WxH] [--res N] [--delta D]\n"
-     "        [--axis z|main] [--coverage C] [--raw-flux]\n"
-     "  A light-field luminaire from an IES TM-25 ray file (delta in metres).\n"
+     "convert RAYS.TM25RAY --out NAME.lf.json [ray-file options]\n"
+     "  A light-field luminaire from an IES TM-25 ray file.\n"
      "convert --procedural bike-headlight|car-headlight --out NAME.lf.json [--rays N]\n"
      "  A simulated headlight as a light field.\n"
      "convert FILE.ies|FILE.ldt --out NAME.xml\n"
@@ -91,21 +81,19 @@ const CommandInfo kCommands[] = {
      "candela convert resources/luminaires/photometric/halo-recessed-downlight.ies --out halo.xml",
      &cmdConvert},
     {"bench", "what accuracy costs in time: error against time for a family of techniques",
-     "bench --lightfield F.lf.json [--out DIR] [--spp 4,8,..] [--reference-spp N] [--size WxH]\n"
-     "      [--fig11 SPP,SAMPLES]\n"
+     "bench --lightfield F.lf.json [--out DIR] [options]\n"
      "  The light-field techniques' error against GPU time (CSV, images, plot, ratios).\n"
-     "bench --environment sky|MAP.hdr|MAP.exr [--out DIR] [--spp 4,8,..] [--reference-spp N]\n"
-     "      [--size WxH] [--repeats K]\n"
+     "bench --environment sky|MAP.hdr|MAP.exr [--out DIR] [options]\n"
      "  Environment techniques: error against samples and time, table rebuilds, stability.\n"
-     "bench --prost FILE|DIR... [--out DIR] [--size N] [--reference-spp N]\n"
+     "bench --prost FILE|DIR... [--out DIR] [options]\n"
      "  Prost's evaluation of the photometric techniques (NMSE, bounds, bumps, GPU time).\n"
-     "bench --shadows [SCENE] [--out DIR] [--spp N] [--size WxH]\n"
+     "bench --shadows [SCENE.json] [--out DIR] [options]\n"
      "  Per-cell shadow maps against ray-traced shadows.\n"
-     "bench --indirect [SCENE] [--out DIR] [--patches N]\n"
+     "bench --indirect [SCENE.json] [--out DIR] [options]\n"
      "  What interreflected light costs in time, and how it scales with the patches.\n"
-     "bench --drag [SCENE] [--out DIR]\n"
+     "bench --drag [SCENE.json] [--out DIR] [options]\n"
      "  How live the editor stays while a luminaire is dragged.\n"
-     "bench --design [--out DIR] [--reference-spp N]\n"
+     "bench --design [--out DIR] [options]\n"
      "  A designer's calculations (grid, surfaces, reports) on the shipped office and\n"
      "  classroom: time and accuracy.\n"
      "  Every bench writes into DIR whole or not at all; docs/performance.md holds results.\n",
@@ -159,10 +147,6 @@ std::string commandHeading(const CommandInfo& c) {
         at = end == std::string::npos ? usage.size() : end + 1;
     }
     return out;
-}
-
-std::string commandUsage(const CommandInfo& c) {
-    return commandHeading(c) + "\nexample:\n  " + c.example + "\n";
 }
 
 }  // namespace candela

@@ -1,8 +1,7 @@
 #pragma once
-// The table of commands: each command's name, what it does in a line, its forms (and, until its
-// options are declared through CommandLine, its options) and an example. `candela --help` lists
-// the commands; `candela help CMD` and `candela CMD --help` print one (CommandLine::help for a
-// command whose options it declares).
+// The table of commands: each command's name, what it does in a line, its forms and an example.
+// `candela --help` lists the commands; `candela help CMD` and `candela CMD --help` print one, with
+// the options the command declares through CommandLine (app/commands/Cli.h).
 
 #include <span>
 #include <string>
@@ -15,12 +14,11 @@ struct CommandInfo {
     const char* name;
     const char* summary;
     /// Every form of the command, each starting with its name, a form's continuation lines
-    /// starting with "[", and lines of description indented by two spaces.
+    /// starting with "[", and lines of description indented by two spaces; the options are the
+    /// command's declarations.
     const char* usage;
     const char* example;
     int (*run)(const Args&);
-    /// Its options are declared through CommandLine (app/commands/Cli.h), which prints its help.
-    bool declared = false;
 };
 
 std::span<const CommandInfo> commands();
@@ -28,8 +26,6 @@ std::span<const CommandInfo> commands();
 const CommandInfo* findCommand(const std::string& name);
 /// "candela NAME: SUMMARY", "usage:" and the forms, as the help begins.
 std::string commandHeading(const CommandInfo& c);
-/// The whole help of a command whose options are not declared through CommandLine.
-std::string commandUsage(const CommandInfo& c);
 /// The list of commands, as `candela --help` prints it.
 std::string commandList();
 

@@ -30,11 +30,6 @@ int cmdReport(const Args& args);
 int cmdPolar(const Args& args);
 int cmdValidate(const Args& args);
 
-/// Value following a flag, or throws InputError naming the flag.
-const std::string& flagValue(const Args& args, size_t& i);
-/// The same for a flag that names a file or folder to write: an empty name is refused too.
-const std::string& outputValue(const Args& args, size_t& i);
-
 /// The options `grid`, `surfaces` and `report` share (how illuminance is evaluated): --light
 /// total|direct, --no-shadows (into `light`, which applyLightChoice turns into `how` once the
 /// scene is loaded), --spp N, --technique T, --env-technique T, --patches N, --indirect-method M;

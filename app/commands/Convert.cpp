@@ -1,5 +1,6 @@
 // candela convert: a TM-25 ray file or a procedural luminaire to a light-field file, or an IES
 // or EULUMDAT file to IES TM-33.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -70,26 +71,6 @@ SourceAxis parseAxis(const std::string& v) {
         v + "\"");
 }
 
-/// The layout flags of a ray-file conversion; false when `a` is none of them.
-bool parseLayoutFlag(const Args& args, size_t& i, LayoutOptions& layout) {
-    const std::string& a = args[i];
-    if (a == "--grid") {
-        layout.count = parseGrid(flagValue(args, i));
-    } else if (a == "--res") {
-        int n = parseInt(a, flagValue(args, i), 4, 4096);
-        layout.resolution = {n, n};
-    } else if (a == "--delta") {
-        layout.delta = parseDouble(a, flagValue(args, i), 1e-6, 100.0);  // metres
-    } else if (a == "--coverage") {
-        layout.coverage = parseDouble(a, flagValue(args, i), 0.9, 0.99999);
-    } else if (a == "--axis") {
-        layout.axis = parseAxis(flagValue(args, i));
-    } else {
-        return false;
-    }
-    return true;
-}
-
 std::string lowerExtension(const std::string& path) {
     std::string ext = std::filesystem::path(path).extension().string();
     for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
@@ -102,12 +83,37 @@ bool isPhotometryInput(const ConvertOptions& o) {
     return ext == ".ies" || ext == ".ldt";
 }
 
-void checkOptions(const ConvertOptions& o) {
-    if (o.out.empty() || o.input.empty() == o.procedural.empty())
-        throw UsageError(
-            "usage: candela convert INPUT.TM25RAY --out NAME.lf.json [--grid WxH] [--res N] "
-            "[--delta D] | candela convert --procedural bike-headlight|car-headlight "
-            "--out NAME.lf.json [--rays N] | candela convert FILE.ies|FILE.ldt --out NAME.xml");
+/// The options that belong to one form of the command: bad usage when they are mixed.
+void checkForm(const ConvertOptions& o, const CommandLine& cli) {
+    if (o.input.empty() && o.procedural.empty())
+        throw CommandUsageError(
+            "missing the file to convert (RAYS.TM25RAY, FILE.ies or FILE.ldt) or --procedural "
+            "NAME",
+            cli.shortHelp());
+    if (!o.input.empty() && !o.procedural.empty())
+        throw CommandUsageError("give a file to convert or --procedural NAME, not both (" +
+                                    o.input + " and --procedural " + o.procedural + ")",
+                                cli.shortHelp());
+    if (o.out.empty())
+        throw CommandUsageError(
+            "missing --out (the file to write: NAME.lf.json, or NAME.xml for photometry)",
+            cli.shortHelp());
+    if (isPhotometryInput(o) && (o.layoutFlagGiven || o.rawFlux || o.rays > 0))
+        throw CommandUsageError(
+            "--grid, --res, --delta, --axis, --coverage, --raw-flux and --rays apply to ray "
+            "files and procedural luminaires, not to photometry",
+            cli.shortHelp());
+    if (!o.procedural.empty() && (o.layoutFlagGiven || o.rawFlux))
+        throw CommandUsageError(
+            "--grid, --res, --delta, --axis, --coverage and --raw-flux apply to ray files; a "
+            "procedural preset fixes its own layout",
+            cli.shortHelp());
+    if (o.procedural.empty() && !isPhotometryInput(o) && o.rays > 0)
+        throw CommandUsageError("--rays applies to --procedural only", cli.shortHelp());
+}
+
+/// The output's folder and name, once the form is known.
+void checkOutput(const ConvertOptions& o) {
     std::filesystem::path dir = std::filesystem::path(o.out).parent_path();
     if (!dir.empty() && !std::filesystem::is_directory(dir))
         throw InputError(o.out + ": the output folder " + dir.string() + " does not exist");
@@ -117,49 +123,71 @@ void checkOptions(const ConvertOptions& o) {
             throw InputError(o.out +
                              ": the output of a photometry conversion is IES TM-33, named "
                              "NAME.xml or NAME.iesxml");
-        if (o.layoutFlagGiven || o.rawFlux || o.rays > 0)
-            throw InputError(
-                "convert: --grid, --res, --delta, --axis, --coverage, --raw-flux and --rays "
-                "apply to ray files and procedural luminaires, not to photometry");
         return;
     }
     const std::string suffix = ".lf.json";
     if (o.out.size() <= suffix.size() ||
         o.out.compare(o.out.size() - suffix.size(), suffix.size(), suffix) != 0)
         throw InputError(o.out + ": the output must be named NAME.lf.json");
-    if (!o.procedural.empty() && (o.layoutFlagGiven || o.rawFlux))
-        throw InputError(
-            "convert: --grid, --res, --delta, --axis, --coverage and --raw-flux apply to "
-            "ray files; a procedural preset fixes its own layout");
-    if (o.procedural.empty() && o.rays > 0)
-        throw InputError("convert: --rays applies to --procedural only");
 }
 
-ConvertOptions parseArgs(const Args& args) {
-    ConvertOptions o;
+/// The command line into `o`; false when --help was asked for (printed).
+bool parseArgs(const Args& args, ConvertOptions& o) {
     o.layout.resolution = {128, 128};
-    for (size_t i = 0; i < args.size(); ++i) {
-        const std::string& a = args[i];
-        if (a == "--out") {
-            o.out = outputValue(args, i);
-        } else if (a == "--procedural") {
-            o.procedural = flagValue(args, i);
-        } else if (a == "--rays") {
-            o.rays = uint64_t(parseDouble(a, flagValue(args, i), 1000, 1e9));
-        } else if (a == "--raw-flux") {
-            o.rawFlux = true;
-        } else if (parseLayoutFlag(args, i, o.layout)) {
-            o.layoutFlagGiven = true;
-        } else if (!a.empty() && a[0] == '-') {
-            throw UsageError("convert: unknown option " + a);
-        } else if (o.input.empty()) {
-            o.input = a;
-        } else {
-            throw UsageError("convert: unexpected argument " + a);
-        }
-    }
-    checkOptions(o);
-    return o;
+    CommandLine cli("convert");
+    cli.argument("INPUT", o.input,
+                 "the file to convert: a TM-25 ray file (RAYS.TM25RAY) or photometry (FILE.ies, "
+                 "FILE.ldt); none with --procedural",
+                 false);
+    cli.output("--out", o.out, "FILE",
+               "the file to write (required): NAME.lf.json for a light field (its images "
+               "NAME_I_J.exr beside it), NAME.xml or NAME.iesxml for photometry");
+
+    cli.group("ray-file options (RAYS.TM25RAY to a light field)");
+    LayoutOptions& layout = o.layout;
+    cli.option("--grid", "WxH", "basis functions on U, each 3..64 (5x5)",
+               [&layout](const std::string& v) { layout.count = parseGrid(v); });
+    cli.option("--res", "N", "pixels of each image on S, N x N, 4..4096 (128)",
+               [&layout](const std::string& v) {
+                   int n = parseInt("--res", v, 4, 4096);
+                   layout.resolution = {n, n};
+               });
+    cli.number("--delta", layout.delta, 1e-6, 100.0, "METRES",
+               "the distance from U to S, 1e-6..100 (default: the larger half-width of the box on "
+               "U that keeps --coverage of the flux)");
+    cli.option("--axis", "z|main",
+               "z: the rays' +z is the emission axis (the default); main: rotate the "
+               "flux-weighted mean emission direction onto +z",
+               [&layout](const std::string& v) { layout.axis = parseAxis(v); });
+    cli.number("--coverage", layout.coverage, 0.9, 0.99999, "C",
+               "share of the forward flux that the box on U and the image on S each keep, "
+               "0.9..0.99999 (0.995)");
+    cli.flag("--raw-flux", o.rawFlux,
+             "the rays' flux as the file stores it (default: per-ray values are relative weights, "
+             "scaled to the header's total flux when it gives one)");
+
+    cli.group("procedural headlight options");
+    cli.option("--procedural", "bike-headlight|car-headlight",
+               "a simulated headlight (dies, reflector and cover, traced) instead of a file; it "
+               "fixes its own layout",
+               [&o](const std::string& v) {
+                   const std::vector<std::string>& presets = proceduralPresets();
+                   if (std::find(presets.begin(), presets.end(), v) == presets.end())
+                       throw InputError("--procedural: unknown procedural luminaire \"" + v +
+                                        "\" (expected bike-headlight or car-headlight)");
+                   o.procedural = v;
+               });
+    cli.option(
+        "--rays", "N",
+        "rays the dies emit, 1000..1e9 (32000000 for bike-headlight, 40000000 for "
+        "car-headlight)",
+        [&o](const std::string& v) { o.rays = uint64_t(parseDouble("--rays", v, 1000, 1e9)); });
+    if (!cli.parse(args)) return false;
+    for (const char* flag : {"--grid", "--res", "--delta", "--axis", "--coverage"})
+        o.layoutFlagGiven = o.layoutFlagGiven || cli.given(flag);
+    checkForm(o, cli);
+    checkOutput(o);
+    return true;
 }
 
 void printFlux(const char* label, double v, double total, const char* unit) {
@@ -302,7 +330,8 @@ int convertPhotometry(const ConvertOptions& o) {
 }  // namespace
 
 int cmdConvert(const Args& args) {
-    ConvertOptions o = parseArgs(args);
+    ConvertOptions o;
+    if (!parseArgs(args, o)) return 0;
     if (!o.input.empty() && isPhotometryInput(o)) return convertPhotometry(o);
     return o.procedural.empty() ? convertRayFile(o) : convertProcedural(o);
 }

@@ -87,27 +87,29 @@ void checkOutputs(const ui::EditorOptions& options) {
 
 int cmdEdit(const Args& args) {
     ui::EditorOptions options;
-    for (size_t i = 0; i < args.size(); ++i) {
-        const std::string& a = args[i];
-        if (a == "--size")
-            parseSize(flagValue(args, i), options.width, options.height);
-        else if (a == "--screenshot-dir")
-            options.screenshotDir = outputValue(args, i);
-        else if (a == "--layout-file")
-            options.layoutFile = outputValue(args, i);
-        else if (a == "--autosave-seconds")
-            options.autosaveSeconds = parseInt(a, flagValue(args, i), 1, 1 << 20);
-        else if (a == "--quit-after-frames")
-            options.quitAfterFrames = parseInt(a, flagValue(args, i), 1, 1 << 30);
-        else if (!a.empty() && a[0] == '-')
-            throw UsageError("edit: unknown option " + a +
-                             " (expected --size WxH, --screenshot-dir DIR, --layout-file FILE, "
-                             "--quit-after-frames N, --autosave-seconds S)");
-        else if (options.scenePath.empty())
-            options.scenePath = a;
-        else
-            throw UsageError("edit: unexpected argument " + a);
-    }
+    std::string screenshotDir = options.screenshotDir.string(), layoutFile;
+    CommandLine cli("edit");
+    cli.argument("scene.json", options.scenePath,
+                 "the scene to open (default: resources/scenes/demo.json of the source tree)",
+                 false);
+    cli.option("--size", "WxH", "the window's size, screen pixels (1280x800)",
+               [&options](const std::string& v) { parseSize(v, options.width, options.height); });
+    cli.output("--screenshot-dir", screenshotDir, "DIR",
+               "where the Screenshot button writes shot-NNN.png, .exr and .json, and where they "
+               "go without a display (candela-screenshots, in the current folder)");
+    cli.output(
+        "--layout-file", layoutFile, "FILE",
+        "after every frame, write the window's layout as JSON: window, viewport, Screenshot "
+        "button, widgets and luminaire positions in window pixels (for tests; default: none)");
+    cli.option("--autosave-seconds", "S", "how often unsaved edits are autosaved, seconds (60)",
+               [&options](const std::string& v) {
+                   options.autosaveSeconds = parseInt("--autosave-seconds", v, 1, 1 << 20);
+               });
+    cli.integer("--quit-after-frames", options.quitAfterFrames, 1, 1 << 30, "N",
+                "close the editor after N frames (for tests; default: run until closed)");
+    if (!cli.parse(args)) return 0;
+    options.screenshotDir = screenshotDir;
+    options.layoutFile = layoutFile;
     if (options.scenePath.empty())
         options.scenePath = std::string(CANDELA_SOURCE_DIR) + "/resources/scenes/demo.json";
     checkOutputs(options);

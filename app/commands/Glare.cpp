@@ -71,40 +71,59 @@ std::string reportCsv(const GlareReport& report) {
 }  // namespace
 
 int cmdGlare(const Args& args) {
+    // The table form parses its own options (GlareTable.cpp); they are declared here too so
+    // that this help lists both forms', and here they can only be misplaced.
     for (const std::string& a : args)
-        if (a == "--table") return cmdGlareTable(args);
-    std::string scenePath, csvPath;
+        if (a == "--table" || a.rfind("--table=", 0) == 0) return cmdGlareTable(args);
+    std::string scenePath, csvPath, unused;
     GridSpec how;
     GlareObserver one;
-    bool position = false, view = false;
-    for (size_t i = 0; i < args.size(); ++i) {
-        const std::string& a = args[i];
-        if (a == "--spp")
-            how.spp = parseInt(a, flagValue(args, i), 1, 1 << 24);
-        else if (a == "--patches")
-            how.patches = parseInt(a, flagValue(args, i), 16, 1000000);
-        else if (a == "--observer")
-            one.position = parseTriple(a, flagValue(args, i)), position = true;
-        else if (a == "--view")
-            one.view = parseTriple(a, flagValue(args, i)), view = true;
-        else if (a == "--limit")
-            one.limit = parseDouble(a, flagValue(args, i), 1.0, 40.0);
-        else if (a == "--background")
-            one.background = parseDouble(a, flagValue(args, i), 1e-6, 1e9);
-        else if (a == "--csv")
-            csvPath = outputValue(args, i);
-        else if (!a.empty() && a[0] == '-')
-            throw UsageError("glare: unknown option " + a);
-        else if (scenePath.empty())
-            scenePath = a;
-        else
-            throw UsageError("glare: unexpected argument " + a);
-    }
-    if (scenePath.empty() || position != view)
-        throw UsageError(
-            "usage: candela glare scene.json [--observer X,Y,Z --view X,Y,Z [--limit UGR_L] "
-            "[--background CD_M2]] [--spp N] [--patches N] [--csv out.csv], or candela glare "
-            "--table FILE.ldt|FILE.ies [--spacing 0.25] [--csv out.csv]");
+    CommandLine cli("glare");
+    cli.argument(
+        "scene.json", scenePath,
+        "the scene file, whose \"glare_observers\" are rated unless --observer places one");
+    cli.output("--out", csvPath, "F.csv",
+               "also write each observer's UGR as CSV (observer, position, view, Lb, UGR, limit); "
+               "with --table, every cell of the table with its intermediate values");
+    cli.renamed("--csv", "--out");
+    cli.group("one observer instead of the scene's \"glare_observers\"");
+    cli.option("--observer", "X,Y,Z", "the eye's position, metres (with --view)",
+               [&one](const std::string& v) { one.position = parseTriple("--observer", v); });
+    cli.option("--view", "X,Y,Z", "the line of sight, with a horizontal part (with --observer)",
+               [&one](const std::string& v) { one.view = parseTriple("--view", v); });
+    cli.number("--limit", one.limit, 1.0, 40.0, "UGR_L",
+               "the observer's UGR limit, 1..40, to pass or fail (default: none)");
+    cli.number("--background", one.background, 1e-6, 1e9, "CD_M2",
+               "the background luminance Lb, cd/m2 (default: from the interreflected light at "
+               "the eye)");
+    cli.group("the background luminance from the interreflected light");
+    cli.integer("--spp", how.spp, 1, 1 << 24, "N",
+                "samples per eye of the interreflected light's final gather (1024)");
+    cli.integer("--patches", how.patches, 16, 1000000, "N",
+                "about this many patches for the interreflection (1500)");
+    cli.group("the table form (candela glare --table FILE)");
+    cli.text("--table", unused, "FILE",
+             "the standard UGR table of this photometry file (.ldt, .ies, .xml or .gldf) instead "
+             "of a scene's UGR");
+    cli.text("--spacing-ratio", unused, "R",
+             "the luminaires' spacing as a ratio of the mounting height H, 1 / n (0.25 as "
+             "DIALux and Relux print it, 1 for CIE 190's 1:1; default 0.25)");
+    if (!cli.parse(args)) return 0;
+    if (cli.given("--spacing-ratio"))
+        throw CommandUsageError("--spacing-ratio goes with --table (the table form)",
+                                cli.shortHelp());
+    bool position = cli.given("--observer");
+    if (position != cli.given("--view"))
+        throw CommandUsageError(
+            std::string("missing ") + (position ? "--view" : "--observer") +
+                " (--observer X,Y,Z and --view X,Y,Z place one observer together)",
+            cli.shortHelp());
+    for (const char* option : {"--limit", "--background"})
+        if (!position && cli.given(option))
+            throw CommandUsageError(std::string(option) +
+                                        " goes with --observer and --view (the scene's observers "
+                                        "give their own in \"glare_observers\")",
+                                    cli.shortHelp());
     std::vector<GlareObserver> observers;
     if (position) {
         // Through the scene file's parser, so the command line gets the same checks.
@@ -117,7 +136,7 @@ int cmdGlare(const Args& args) {
     }
     Scene scene = loadScene(scenePath);
     ProtectedInputs inputs(scene.inputFiles());
-    checkNotAnInput(csvPath, "--csv");
+    checkNotAnInput(csvPath, "--out");
     GlareReport report = computeGlare(scene, how, observers, [](const std::string& s) {
         std::fprintf(stderr, "glare: %s\n", s.c_str());
     });

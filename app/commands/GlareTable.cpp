@@ -155,29 +155,33 @@ std::string lowerExtension(const std::string& path) {
 int cmdGlareTable(const Args& args) {
     std::string path, csvPath, spacingText;
     UgrTableOptions options;
-    const char* usage =
-        "usage: candela glare --table FILE.ldt|FILE.ies|FILE.xml|FILE.gldf [--spacing 0.25] "
-        "[--csv out.csv]";
-    for (size_t i = 0; i < args.size(); ++i) {
-        const std::string& a = args[i];
-        if (a == "--table") {
-            path = flagValue(args, i);
-        } else if (a == "--spacing") {
-            spacingText = flagValue(args, i);
-            options.spacing = parseDouble(a, spacingText, 0.05, 1.0);
-        } else if (a == "--csv") {
-            csvPath = outputValue(args, i);
-        } else if (!a.empty() && a[0] == '-') {
-            throw UsageError("glare --table: unknown option " + a + " (" + usage + ")");
-        } else {
-            throw UsageError("glare --table: unexpected argument " + a + " (" + usage + ")");
-        }
-    }
-    if (path.empty()) throw InputError(usage);
+    CommandLine cli("glare");
+    cli.group("the table form (candela glare --table FILE)");
+    cli.option("--table", "FILE",
+               "the standard UGR table of this photometry file (.ldt, .ies, .xml or .gldf)",
+               [&path](const std::string& v) {
+                   if (v.empty())
+                       throw InputError("--table: expected a photometry file, got an empty name");
+                   path = v;
+               });
+    cli.option("--spacing-ratio", "R",
+               "the luminaires' spacing as a ratio of the mounting height H, 1 / n (0.25 as "
+               "DIALux and Relux print it, 1 for CIE 190's 1:1; default 0.25)",
+               [&](const std::string& v) {
+                   spacingText = v;
+                   options.spacing = parseDouble("--spacing-ratio", v, 0.05, 1.0);
+               });
+    cli.output("--out", csvPath, "F.csv",
+               "also write every cell with its intermediate values as CSV");
+    cli.renamed("--csv", "--out");
+    cli.renamed("--spacing", "--spacing-ratio");
+    if (!cli.parse(args)) return 0;
+    if (path.empty())
+        throw CommandUsageError("missing --table FILE (the photometry file)", cli.shortHelp());
     double perH = 1.0 / options.spacing;
     if (std::abs(perH - std::round(perH)) > 1e-6)
         throw InputError(
-            "--spacing: expected 1 / n of H (1, 0.5, 0.25, .., 0.05) so that each "
+            "--spacing-ratio: expected 1 / n of H (1, 0.5, 0.25, .., 0.05) so that each "
             "standard room holds whole rows of luminaires, got " +
             spacingText);
     std::shared_ptr<const PhotometricData> data;
@@ -194,7 +198,7 @@ int cmdGlareTable(const Args& args) {
     }
     if (!data->name.empty()) name += (name.empty() ? "\"" : ", \"") + data->name + "\"";
     ProtectedInputs inputs({path, data->path, data->tiltPath});
-    checkNotAnInput(csvPath, "--csv", "glare --table");
+    checkNotAnInput(csvPath, "--out", "glare --table");
     UgrTable table = computeUgrTable(*data, options);
     table.path = path;
     // The CSV first, so that a file that cannot be written fails before the table is printed.

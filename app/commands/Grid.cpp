@@ -177,7 +177,7 @@ int cmdGrid(const Args& args) {
                [&spec](const std::string& v) { parseExtent(v, spec); });
     cli.option("--spacing", "METRES", "between adjacent points (0.25)",
                [&spec](const std::string& v) { spec.spacing = parseFinite("--spacing", v); });
-    cli.output("--out", csvPath, "F.csv", "also write every point as CSV (x,y,z,E_lx,E_stderr_lx)");
+    cli.output("--out", csvPath, "F.csv", "also write every point's illuminance as CSV");
     cli.renamed("--csv", "--out");
     cli.strictPhotometry();
     declareEvaluation(cli, spec, light);

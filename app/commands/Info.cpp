@@ -314,12 +314,15 @@ static void printMeshes(const Scene& scene) {
 }
 
 int cmdInfo(const Args& args) {
-    if (args.size() != 1)
-        throw UsageError(
-            "usage: candela info FILE (.json scene, .lf.json, .gltf, .glb, .ies, .ldt, .xml or "
-            ".iesxml (TM-33), .gldf, .l3d or an L3D folder) "
-            "[--strict]");
-    const std::string& path = args[0];
+    std::string path;
+    CommandLine cli("info");
+    cli.argument("FILE", path,
+                 "the file to describe: a scene (.json), light field (.lf.json), glTF file (.gltf, "
+                 ".glb), photometry "
+                 "(.ies, .ldt, TM-33 .xml or .iesxml), GLDF container (.gldf), or L3D geometry "
+                 "(.l3d or an unpacked L3D folder)");
+    cli.strictPhotometry();
+    if (!cli.parse(args)) return 0;
     std::string ext = std::filesystem::path(path).extension().string();
     for (char& c : ext) c = char(std::tolower((unsigned char)c));
     if (isPhotometryExtension(ext)) {

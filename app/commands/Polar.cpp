@@ -82,22 +82,15 @@ void plotPng(const PhotometricData& data, const PolarCurves& curves, const std::
 int cmdPolar(const Args& args) {
     std::string path, out;
     double step = 0.0;
-    for (size_t i = 0; i < args.size(); ++i) {
-        const std::string& a = args[i];
-        if (a == "--out")
-            out = outputValue(args, i);
-        else if (a == "--step")
-            step = parseInt(a, flagValue(args, i), 1, 90);
-        else if (!a.empty() && a[0] == '-')
-            throw UsageError("polar: unknown option " + a);
-        else if (path.empty())
-            path = a;
-        else
-            throw UsageError("polar: unexpected argument " + a);
-    }
-    if (path.empty())
-        throw UsageError(
-            "usage: candela polar FILE.ies|FILE.ldt|FILE.xml [--out polar.png] [--step DEG]");
+    CommandLine cli("polar");
+    cli.argument("FILE", path, "the photometry file: .ies, .ldt or TM-33 .xml");
+    cli.output("--out", out, "F.png", "also draw the polar diagram as a PNG (needs gnuplot)");
+    cli.option("--step", "DEG",
+               "the table's gamma step, degrees, 1..90 (default: the file's own "
+               "vertical angles for type C photometry, else 5)",
+               [&step](const std::string& v) { step = parseInt("--step", v, 1, 90); });
+    cli.strictPhotometry();
+    if (!cli.parse(args)) return 0;
     if (!out.empty() && fs::path(out).extension() != ".png")
         throw InputError(out + ": unsupported output extension \"" +
                          fs::path(out).extension().string() + "\" (use .png)");

@@ -134,69 +134,93 @@ ProbePoint pixelPoint(const Scene& scene, const std::string& text, int width, in
 struct ProbeOptions {
     std::string scenePath, pointsPath, technique, envTechnique, device = "cpu";
     EstimateOptions estimate;
-    bool withVisibility = false, indirect = false;
-    int patches = 4000;  ///< Asked of the interreflection's mesher.
+    bool withVisibility = false, indirect = false, noIndirect = false;
+    bool byPixel = false;  ///< --pixel given (else --points).
+    int patches = 4000;    ///< Asked of the interreflection's mesher.
     std::string visibilityBackend = "embree";
     std::string chartPath, pixel;
     int chartSpp = 64, width = 960, height = 540;
 };
 
-ProbeOptions parseProbeOptions(const Args& args) {
-    ProbeOptions o;
-    o.estimate.spp = 4096;
-    for (size_t i = 0; i < args.size(); ++i) {
-        const std::string& a = args[i];
-        if (a == "--points")
-            o.pointsPath = flagValue(args, i);
-        else if (a == "--technique")
-            o.technique = flagValue(args, i);
-        else if (a == "--env-technique")
-            o.envTechnique = flagValue(args, i);
-        else if (a == "--spp")
-            o.estimate.spp = parseInt(a, flagValue(args, i), 1, 1 << 26);
-        else if (a == "--seed")
-            o.estimate.seed = uint64_t(parseInt(a, flagValue(args, i), 0, 1 << 30));
-        else if (a == "--visibility") {
+void declareProbeOptions(CommandLine& cli, ProbeOptions& o) {
+    cli.argument("scene.json", o.scenePath, "the scene file");
+    cli.option("--points", "pts.csv",
+               "the points: CSV with the header x,y,z,nx,ny,nz, a point (metres) and its normal "
+               "per line",
+               [&o](const std::string& v) {
+                   if (v.empty())
+                       throw InputError("--points: expected a file name, got an empty one");
+                   o.pointsPath = v;
+               });
+    cli.text("--pixel", o.pixel, "X,Y",
+             "instead of --points: the surface the scene's camera sees through this pixel (x "
+             "right, y down from the top-left, as in the rendered PNG), its normal towards the "
+             "camera");
+    cli.option("--size", "WxH", "with --pixel: the size of the render the pixel is in (960x540)",
+               [&o](const std::string& v) { parseSize(v, o.width, o.height); });
+    cli.text("--technique", o.technique, "T",
+             "one technique for every luminaire (default: each luminaire's own); a name only the "
+             "environment has applies to the environment alone");
+    cli.text("--env-technique", o.envTechnique, "T",
+             "the environment's technique (default: --technique's when it names one, else "
+             "reference; on the GPU, balanced)");
+    cli.integer("--spp", o.estimate.spp, 1, 1 << 26, "N",
+                "samples per point of stochastic techniques (4096)");
+    cli.option("--seed", "S", "the random numbers' seed, 0..1073741824 (1)",
+               [&o](const std::string& v) {
+                   o.estimate.seed = uint64_t(parseInt("--seed", v, 0, 1 << 30));
+               });
+    cli.optionalValue(
+        "--visibility", {"embree", "bvh"},
+        "shadows: a shadow ray per sample through Embree (embree, the default) or "
+        "Candela's own BVH, the one the GPU traverses (bvh); without it, no shadows",
+        [&o](const std::string& v) {
+            if (!v.empty() && v != "embree" && v != "bvh")
+                throw InputError("--visibility: expected embree or bvh, got \"" + v + "\"");
             o.withVisibility = true;
-            if (i + 1 < args.size() && (args[i + 1] == "embree" || args[i + 1] == "bvh"))
-                o.visibilityBackend = args[++i];
-        } else if (a == "--indirect")
-            o.indirect = true;
-        else if (a == "--patches")
-            o.patches = parseInt(a, flagValue(args, i), 16, 50000);
-        else if (a == "--show-samples")
-            o.chartPath = outputValue(args, i);
-        else if (a == "--pixel")
-            o.pixel = flagValue(args, i);
-        else if (a == "--size")
-            parseSize(flagValue(args, i), o.width, o.height);
-        else if (a == "--chart-spp")
-            o.chartSpp = parseInt(a, flagValue(args, i), 1, 4096);
-        else if (a == "--device")
-            o.device = flagValue(args, i);
-        else if (!a.empty() && a[0] == '-')
-            throw UsageError("probe: unknown option " + a);
-        else if (o.scenePath.empty())
-            o.scenePath = a;
-        else
-            throw UsageError("probe: unexpected argument " + a);
-    }
-    return o;
+            o.visibilityBackend = v.empty() ? "embree" : v;
+        });
+    cli.flag("--indirect", o.indirect,
+             "add interreflected light, a radiosity solution on the CPU (brings --visibility)");
+    cli.flag("--no-indirect", o.noIndirect, "direct light alone (the default)");
+    cli.integer("--patches", o.patches, 16, 50000, "N",
+                "about this many patches for the interreflection (4000)");
+    cli.option("--device", "cpu|gpu",
+               "cpu: each technique's double-precision estimator (the default); gpu: the "
+               "renderer's shading pass on a G-buffer made of the points",
+               [&o](const std::string& v) {
+                   if (v != "cpu" && v != "gpu")
+                       throw InputError("--device: expected cpu or gpu, got \"" + v + "\"");
+                   o.device = v;
+               });
+    cli.output("--show-samples", o.chartPath, "F.png",
+               "with an environment: draw the light samples taken for the first point's normal on "
+               "the unfolded cube into this image, the table per face on stderr");
+    cli.integer("--chart-spp", o.chartSpp, 1, 4096, "N",
+                "samples drawn in the --show-samples chart (64)");
+    cli.strictPhotometry();
 }
 
 /// Refuses what cannot go together; --indirect brings --visibility (reflected light needs the
 /// geometry, so it brings shadows for the direct light too).
-void checkProbeOptions(ProbeOptions& o) {
-    if (o.scenePath.empty() || o.pointsPath.empty() == o.pixel.empty())
-        throw UsageError(
-            "usage: candela probe scene.json --points pts.csv|--pixel X,Y [--size WxH] "
-            "[--technique T] "
-            "[--spp N] [--visibility [embree|bvh]] [--indirect [--patches N]] [--device cpu|gpu] "
-            "[--seed S] "
-            "[--env-technique T] "
-            "[--show-samples chart.png [--chart-spp N]]");
-    if (o.device != "cpu" && o.device != "gpu")
-        throw InputError("--device: expected cpu or gpu, got \"" + o.device + "\"");
+void checkProbeOptions(const CommandLine& cli, ProbeOptions& o) {
+    o.byPixel = cli.given("--pixel");
+    if (!cli.given("--points") && !o.byPixel)
+        throw CommandUsageError("missing --points pts.csv or --pixel X,Y (the points to probe)",
+                                cli.shortHelp());
+    if (cli.given("--points") && o.byPixel)
+        throw CommandUsageError(
+            "--points and --pixel: give one of them (points from a file, or the surface a pixel "
+            "sees)",
+            cli.shortHelp());
+    if (cli.given("--size") && !o.byPixel)
+        throw CommandUsageError("--size: an option of --pixel X,Y (the render the pixel is in)",
+                                cli.shortHelp());
+    if (o.indirect && o.noIndirect)
+        throw CommandUsageError(
+            "interreflected light both asked for (--indirect) and left out (--no-indirect): give "
+            "one of them",
+            cli.shortHelp());
     if (o.device == "gpu" && o.indirect)
         throw InputError(
             "--device gpu: --indirect is computed on the CPU only (the default device)");
@@ -378,12 +402,15 @@ void printProbeCsv(const Scene& scene, const std::vector<ProbePoint>& points, co
 }  // namespace
 
 int cmdProbe(const Args& args) {
-    ProbeOptions o = parseProbeOptions(args);
-    checkProbeOptions(o);
+    ProbeOptions o;
+    CommandLine cli("probe");
+    declareProbeOptions(cli, o);
+    if (!cli.parse(args)) return 0;
+    checkProbeOptions(cli, o);
     Scene scene = loadScene(o.scenePath);
     std::vector<ProbePoint> points =
-        o.pixel.empty() ? readPoints(o.pointsPath)
-                        : std::vector<ProbePoint>{pixelPoint(scene, o.pixel, o.width, o.height)};
+        o.byPixel ? std::vector<ProbePoint>{pixelPoint(scene, o.pixel, o.width, o.height)}
+                  : readPoints(o.pointsPath);
     ProtectedInputs inputs(scene.inputFiles());
     inputs.add(o.pointsPath);
     checkNotAnInput(o.chartPath, "--show-samples");

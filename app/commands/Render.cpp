@@ -32,18 +32,6 @@ float peakLuminance(const std::vector<float>& rgb) {
 
 }  // namespace
 
-const std::string& flagValue(const Args& args, size_t& i) {
-    if (i + 1 >= args.size()) throw InputError(args[i] + ": expected a value after it");
-    return args[++i];
-}
-
-const std::string& outputValue(const Args& args, size_t& i) {
-    // `--csv ""` would otherwise write nothing and exit 0.
-    if (i + 1 < args.size() && args[i + 1].empty())
-        throw InputError(args[i] + ": expected a file name, got an empty one");
-    return flagValue(args, i);
-}
-
 namespace {
 
 /// "--pane LIST[:SPP]": a pane's technique list and its sample budget (default spp).
@@ -107,125 +95,200 @@ struct RenderOptions {
     std::vector<std::string> paneTexts;
     bool printStats = false, falseColour = false, haveLegend = false, errorMaps = false,
          indirect = true, haveExposure = false;
+    bool askedIndirect = false, askedNoIndirect = false;  ///< --indirect, --no-indirect given.
     int patches = 4000;  ///< Asked of the interreflection's mesher.
 };
 
-/// The flags that take a word: --indirect, --light, --tonemap. False when `a` is none of them.
-bool parseChoice(const Args& args, size_t& i, RenderOptions& o) {
-    const std::string& a = args[i];
+/// The options of both forms: the image's size and sampling, the shadow maps, the tone mapping.
+void declareShared(CommandLine& cli, RenderOptions& o) {
     RenderSettings& settings = o.settings;
-    if (a == "--indirect") {
-        std::string v = flagValue(args, i);
-        if (v != "on" && v != "off")
-            throw InputError("--indirect: expected on or off, got \"" + v + "\"");
-        o.indirect = v == "on";
-    } else if (a == "--light") {
-        std::string v = flagValue(args, i);
-        if (v == "total")
-            settings.parts = LightParts::Total;
-        else if (v == "direct")
-            settings.parts = LightParts::Direct;
-        else if (v == "interreflected")
-            settings.parts = LightParts::Interreflected;
-        else
-            throw InputError("--light: expected total, direct or interreflected, got \"" + v +
-                             "\"");
-    } else if (a == "--tonemap") {
-        std::string op = flagValue(args, i);
-        if (op == "exponential")
-            settings.toneMap = ToneMapOperator::Exponential;
-        else if (op == "reinhard")
-            settings.toneMap = ToneMapOperator::Reinhard;
-        else
-            throw InputError("--tonemap: expected exponential or reinhard, got \"" + op + "\"");
-    } else {
-        return false;
-    }
-    return true;
+    cli.argument("scene.json", o.scenePath, "the scene file");
+    cli.group("options of both forms");
+    cli.option(
+        "--size", "WxH", "the image's size, pixels (512x512)",
+        [&settings](const std::string& v) { parseSize(v, settings.width, settings.height); });
+    cli.integer("--spp", o.spp, 1, 1 << 24, "N",
+                "light samples per pixel per luminaire of progressive techniques (64; exact ones "
+                "finish in one frame); in a sheet, the samples of each pane without :SPP");
+    cli.integer("--env-face-size", settings.environmentFaceSize, 4, 2048, "N",
+                "the environment's cube faces of N x N texels (default: half the map's width, "
+                "within 8..256)");
+    cli.integer("--shadow-maps", settings.shadowMaps.count, 0, 4096, "N",
+                "shadow maps per luminaire, about, for techniques that read them (49; 0: one per "
+                "cell)");
+    cli.integer("--shadow-map-size", settings.shadowMaps.resolution, 8, 4096, "R",
+                "texels along the edge of a shadow map's cube face (192)");
+    cli.option(
+        "--tonemap", "exponential|reinhard", "the tone mapping of PNG images (exponential)",
+        [&settings](const std::string& op) {
+            if (op == "exponential")
+                settings.toneMap = ToneMapOperator::Exponential;
+            else if (op == "reinhard")
+                settings.toneMap = ToneMapOperator::Reinhard;
+            else
+                throw InputError("--tonemap: expected exponential or reinhard, got \"" + op + "\"");
+        });
+    cli.option("--exposure", "K",
+               "the tone mapping's exposure k (default: the scene camera's exposure when it has "
+               "one, else 1; a sheet: 1)",
+               [&o](const std::string& v) {
+                   o.settings.exposure = parseNumberList("--exposure", v).at(0);
+                   o.haveExposure = true;
+               });
+    cli.strictPhotometry();
 }
 
-/// The false-colour flags: --false-colour, --log, --legend, --isolux. False when `a` is none.
-bool parseFalseColour(const Args& args, size_t& i, RenderOptions& o) {
-    const std::string& a = args[i];
-    FalseColourLegend& legend = o.settings.legend;
-    if (a == "--false-colour")
-        o.falseColour = true;
-    else if (a == "--log")
-        legend.logScale = true;
-    else if (a == "--legend") {
-        std::vector<float> range = parseNumberList(a, flagValue(args, i));
-        if (range.size() != 2 || !(range[1] > range[0]))
-            throw InputError("--legend: expected MIN,MAX in lux with MAX > MIN");
-        legend.min = range[0];
-        legend.max = range[1];
-        o.haveLegend = true;
-    } else if (a == "--isolux") {
-        std::string levels = flagValue(args, i);
-        if (levels == "none")
-            legend.contours = false;
-        else
-            legend.levels = parseNumberList(a, levels);
-    } else {
-        return false;
-    }
-    return true;
+/// --indirect and --no-indirect; `--indirect on|off`, their old spelling, with a line saying so.
+void declareIndirect(CommandLine& cli, RenderOptions& o) {
+    cli.optionalValue(
+        "--indirect", {"on", "off"},
+        "interreflected light, computed first on the CPU where some surface reflects onto another "
+        "(the default); on and off are old spellings of --indirect and --no-indirect",
+        [&o](const std::string& v) {
+            if (!v.empty() && v != "on" && v != "off")
+                throw InputError(
+                    "--indirect: a switch (--indirect, or --no-indirect to leave the light out); "
+                    "expected no value, or on or off, got \"" +
+                    v + "\"");
+            if (!v.empty())
+                std::fprintf(stderr,
+                             "candela render: --indirect %s is now spelled %s (the old spelling "
+                             "will stop working in the next release)\n",
+                             v.c_str(), v == "on" ? "--indirect" : "--no-indirect");
+            (v == "off" ? o.askedNoIndirect : o.askedIndirect) = true;
+        });
+    cli.flag("--no-indirect", o.askedNoIndirect, "leave interreflected light out");
+    cli.integer("--patches", o.patches, 16, 50000, "N",
+                "about this many patches for the interreflection (4000)");
 }
 
-RenderOptions parseRenderOptions(const Args& args) {
-    RenderOptions o;
+/// The options of the single view (--out).
+void declareView(CommandLine& cli, RenderOptions& o) {
     RenderSettings& settings = o.settings;
-    for (size_t i = 0; i < args.size(); ++i) {
-        const std::string& a = args[i];
-        if (parseChoice(args, i, o) || parseFalseColour(args, i, o)) continue;
-        if (a == "--out")
-            o.out = outputValue(args, i);
-        else if (a == "--pane")
-            o.paneTexts.push_back(flagValue(args, i));
-        else if (a == "--sheet")
-            o.sheetDir = outputValue(args, i);
-        else if (a == "--reference-spp")
-            o.referenceSpp = parseInt(a, flagValue(args, i), 1, 1 << 20);
-        else if (a == "--error-maps")
-            o.errorMaps = true;
-        else if (a == "--technique")
-            settings.techniqueOverride = flagValue(args, i);
-        else if (a == "--env-technique")
-            settings.environmentTechnique = flagValue(args, i);
-        else if (a == "--env-face-size")
-            settings.environmentFaceSize = parseInt(a, flagValue(args, i), 4, 2048);
-        else if (a == "--spp")
-            o.spp = parseInt(a, flagValue(args, i), 1, 1 << 24);
-        else if (a == "--size")
-            parseSize(flagValue(args, i), settings.width, settings.height);
-        else if (a == "--shadow-maps")
-            settings.shadowMaps.count = parseInt(a, flagValue(args, i), 0, 4096);
-        else if (a == "--shadow-map-size")
-            settings.shadowMaps.resolution = parseInt(a, flagValue(args, i), 8, 4096);
-        else if (a == "--stats")
-            o.printStats = true;
-        else if (a == "--patches")
-            o.patches = parseInt(a, flagValue(args, i), 16, 50000);
-        else if (a == "--exposure") {
-            settings.exposure = parseNumberList(a, flagValue(args, i)).at(0);
-            o.haveExposure = true;
-        } else if (!a.empty() && a[0] == '-')
-            throw UsageError("render: unknown option " + a);
-        else if (o.scenePath.empty())
-            o.scenePath = a;
-        else
-            throw UsageError("render: unexpected argument " + a);
+    cli.group("the single view (--out)");
+    cli.output("--out", o.out, "F.png|F.exr",
+               "the image: PNG tone-mapped (sRGB), EXR linear (radiance in cd/m2 or W/(m2 sr), "
+               "which it prints; with --false-colour, illuminance)");
+    cli.text("--technique", settings.techniqueOverride, "T",
+             "a technique, or a comma-separated list, for every luminaire, each taking the first "
+             "its kind has (default: each luminaire's own)");
+    cli.text("--env-technique", settings.environmentTechnique, "T",
+             "the environment's technique (default: --technique's when it names one, else "
+             "balanced)");
+    declareIndirect(cli, o);
+    cli.option("--light", "total|direct|interreflected", "the light the image shows (total)",
+               [&settings](const std::string& v) {
+                   if (v == "total")
+                       settings.parts = LightParts::Total;
+                   else if (v == "direct")
+                       settings.parts = LightParts::Direct;
+                   else if (v == "interreflected")
+                       settings.parts = LightParts::Interreflected;
+                   else
+                       throw InputError(
+                           "--light: expected total, direct or interreflected, got \"" + v + "\"");
+               });
+    cli.flag("--stats", o.printStats,
+             "print the GL context, the interreflection, each pass's total GPU time and the "
+             "shader variants compiled");
+    cli.flag(
+        "--false-colour", o.falseColour,
+        "the illuminance in false colour with isolux lines, in the scene's unit (lx, or W/m2); "
+        "a PNG carries its legend on its right");
+    FalseColourLegend& legend = settings.legend;
+    cli.option(
+        "--legend", "MIN,MAX",
+        "with --false-colour: the scale's range, in the scene's unit (default: fitted to the "
+        "image)",
+        [&o, &legend](const std::string& v) {
+            std::vector<float> range = parseNumberList("--legend", v);
+            if (range.size() != 2 || !(range[1] > range[0]))
+                throw InputError("--legend: expected MIN,MAX in lux with MAX > MIN");
+            legend.min = range[0];
+            legend.max = range[1];
+            o.haveLegend = true;
+        });
+    cli.flag("--log", legend.logScale,
+             "with --false-colour: a log scale, decades equally spaced (default: linear)");
+    cli.option("--isolux", "L,..|none",
+               "with --false-colour: the isolux levels, in the scene's unit (default: at the "
+               "legend's ticks); none: no isolux lines",
+               [&legend](const std::string& v) {
+                   if (v == "none")
+                       legend.contours = false;
+                   else
+                       legend.levels = parseNumberList("--isolux", v);
+               });
+}
+
+/// The options of the comparison sheet (--sheet DIR --pane ...).
+void declareSheet(CommandLine& cli, RenderOptions& o) {
+    cli.group("the comparison sheet (--sheet DIR --pane ...)");
+    cli.output("--sheet", o.sheetDir, "DIR",
+               "the folder the sheet is written into (sheet-NNN.png, .exr and .json)");
+    cli.option("--pane", "TECHNIQUES[:SPP]",
+               "a pane, 1 to 4 times: a technique list such as "
+               "photometric=scattered,lightfield=precomputed-global (empty: each luminaire's own) "
+               "and its samples per pixel (default: --spp)",
+               [&o](const std::string& v) { o.paneTexts.push_back(v); });
+    cli.integer("--reference-spp", o.referenceSpp, 1, 1 << 20, "N",
+                "samples per pixel of the progressive reference (512)");
+    cli.flag("--error-maps", o.errorMaps,
+             "each pane's tile shows its error against the reference instead of its image");
+}
+
+/// Whether the options given are the comparison sheet's (else the single view's); options of
+/// the other form, and contradictory ones, are bad usage.
+bool chooseForm(const CommandLine& cli, RenderOptions& o) {
+    static const char* const kView[] = {
+        "--out",   "--technique", "--env-technique", "--indirect", "--no-indirect", "--patches",
+        "--light", "--stats",     "--false-colour",  "--legend",   "--log",         "--isolux"};
+    static const char* const kSheet[] = {"--sheet", "--pane", "--reference-spp", "--error-maps"};
+    if (o.askedIndirect && o.askedNoIndirect)
+        throw CommandUsageError(
+            "interreflected light both asked for (--indirect) and left out (--no-indirect): give "
+            "one of them",
+            cli.shortHelp());
+    o.indirect = !o.askedNoIndirect;
+    bool sheet = cli.given("--sheet") || cli.given("--pane");
+    if (sheet) {
+        for (const char* name : kView)
+            if (cli.given(name))
+                throw CommandUsageError(std::string(name) +
+                                            ": an option of the single view (--out F.png|F.exr), "
+                                            "not of a comparison sheet (--sheet DIR --pane ...)",
+                                        cli.shortHelp());
+        if (!cli.given("--sheet"))
+            throw CommandUsageError(
+                "missing --sheet DIR (the folder the comparison sheet is "
+                "written into)",
+                cli.shortHelp());
+        if (o.paneTexts.empty())
+            throw CommandUsageError(
+                "missing --pane TECHNIQUES[:SPP] (a pane of the comparison, 1 to 4 times)",
+                cli.shortHelp());
+        if (o.paneTexts.size() > 4)
+            throw CommandUsageError(
+                "--pane: expected 1 to 4 times, got " + std::to_string(o.paneTexts.size()),
+                cli.shortHelp());
+        return true;
     }
-    return o;
+    for (const char* name : kSheet)
+        if (cli.given(name))
+            throw CommandUsageError(std::string(name) +
+                                        ": an option of a comparison sheet (--sheet DIR --pane "
+                                        "...), not of the single view (--out F.png|F.exr)",
+                                    cli.shortHelp());
+    if (!cli.given("--out"))
+        throw CommandUsageError(
+            "missing --out F.png|F.exr (the image to write; --sheet DIR --pane ... writes a "
+            "comparison sheet instead)",
+            cli.shortHelp());
+    return false;
 }
 
 /// The comparison sheet: panes, a reference, errors (the editor's Export sheet).
 int renderSheet(RenderOptions& o) {
-    if (o.scenePath.empty() || o.sheetDir.empty() || o.paneTexts.empty() || o.paneTexts.size() > 4)
-        throw UsageError(
-            "usage: candela render scene.json --sheet DIR --pane TECHNIQUES[:SPP] (1 to 4 times) "
-            "[--reference-spp N] [--spp N] [--size WxH] [--error-maps]");
-    if (!o.out.empty())
-        throw InputError("--out: a comparison writes its sheet into --sheet DIR instead");
     std::vector<PaneSpec> panes;
     for (const std::string& p : o.paneTexts) panes.push_back(parsePane(p, o.spp));
     o.settings.samplesPerFrame = 16;
@@ -235,15 +298,6 @@ int renderSheet(RenderOptions& o) {
 
 /// Checks an image render's options; returns the output's extension.
 std::string checkImageOptions(RenderOptions& o) {
-    if (o.scenePath.empty() || o.out.empty())
-        throw UsageError(
-            "usage: candela render scene.json --out img.png|img.exr [--technique T] "
-            "[--env-technique T] [--env-face-size N] [--spp N] [--size WxH] [--shadow-maps N] "
-            "[--shadow-map-size R] [--indirect on|off] [--patches N] [--light "
-            "total|direct|interreflected] "
-            "[--stats]\n"
-            "       candela render scene.json --sheet DIR --pane TECHNIQUES[:SPP] [--pane ...] "
-            "[--reference-spp N] [--error-maps]");
     RenderSettings& settings = o.settings;
     if (o.falseColour) {
         settings.quantity = Quantity::Illuminance;
@@ -264,7 +318,7 @@ using Clock = std::chrono::steady_clock;
 /// another (docs/computation.md, "Interreflected light"). Returns the line that says what it did.
 std::string addInterreflection(Renderer& renderer, const Scene& scene, const RenderOptions& o,
                                Clock::time_point start) {
-    if (!o.indirect) return "interreflection: off (--indirect off)";
+    if (!o.indirect) return "interreflection: off (--no-indirect)";
     InterreflectionOptions io;
     io.mesh.targetPatches = o.patches;
     const std::string& technique = o.settings.techniqueOverride;
@@ -416,8 +470,13 @@ std::vector<unsigned char> renderSceneView(const Scene& scene, const GridSpec& h
 }
 
 int cmdRender(const Args& args) {
-    RenderOptions o = parseRenderOptions(args);
-    if (!o.paneTexts.empty() || !o.sheetDir.empty()) return renderSheet(o);
+    RenderOptions o;
+    CommandLine cli("render");
+    declareShared(cli, o);
+    declareView(cli, o);
+    declareSheet(cli, o);
+    if (!cli.parse(args)) return 0;
+    if (chooseForm(cli, o)) return renderSheet(o);
     std::string ext = checkImageOptions(o);
     Scene scene = loadScene(o.scenePath);
     ProtectedInputs inputs(scene.inputFiles());

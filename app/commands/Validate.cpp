@@ -1,5 +1,6 @@
 // `candela validate`: the validation suite (calculation/Validation.h) as a table: case, expected,
 // measured, deviation, tolerance, result; exit code 1 when a case fails.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -15,18 +16,32 @@ int cmdValidate(const Args& args) {
     std::vector<std::string> names;
     std::string closed;
     bool list = false;
-    for (size_t i = 0; i < args.size(); ++i) {
-        if (args[i] == "--case")
-            names.push_back(flagValue(args, i));
-        else if (args[i] == "--closed")
-            closed = flagValue(args, i);
-        else if (args[i] == "--list")
-            list = true;
-        else
-            throw UsageError(
-                "validate: unknown option " + args[i] +
-                " (usage: candela validate [--case NAME]... [--list] | --closed SCENE.json)");
-    }
+    CommandLine cli("validate");
+    cli.group("the suite (candela validate [--case NAME]... [--list])");
+    cli.option("--case", "NAME", "run this case (again for more; default: every case)",
+               [&names](const std::string& v) {
+                   std::vector<std::string> known = validationCases();
+                   if (std::find(known.begin(), known.end(), v) == known.end()) {
+                       std::string all;
+                       for (const std::string& n : known) all += (all.empty() ? "" : ", ") + n;
+                       throw InputError("--case: unknown case \"" + v + "\" (known: " + all + ")");
+                   }
+                   names.push_back(v);
+               });
+    cli.flag("--list", list, "list the cases' names instead of running them");
+    cli.group("a closed room (candela validate --closed ROOM.json)");
+    cli.option("--closed", "ROOM.json",
+               "check this closed room's energy balance instead of running the suite",
+               [&closed](const std::string& v) {
+                   if (v.empty())
+                       throw InputError("--closed: expected a scene file, got an empty name");
+                   closed = v;
+               });
+    if (!cli.parse(args)) return 0;
+    if (!closed.empty() && (list || !names.empty()))
+        throw CommandUsageError(std::string("--closed checks one room: ") +
+                                    (list ? "--list" : "--case") + " belongs to the suite's form",
+                                cli.shortHelp());
     if (list) {
         for (const std::string& n : validationCases()) std::printf("%s\n", n.c_str());
         return 0;

@@ -47,7 +47,7 @@ expect_usage "unknown option" -- render "$data/ok.json" --out "$out/a.png" --fro
 
 # An empty output name is refused, naming the flag (it used to write nothing and exit 0).
 office="$2/../resources/scenes/office.json"
-expect "--csv" "empty" -- grid "$office" --plane y=0.8 --csv ""
+expect "--out" "empty" -- grid "$office" --plane y=0.8 --out ""
 # A table larger than the GL's textures: the render names the luminaire and its file.
 {
   echo "IESNA:LM-63-2002"; echo "TILT=NONE"; echo "1 1000 1 100000 1 1 2 0.1 0.1 0"; echo "1 1 10"
@@ -58,10 +58,10 @@ expect "--csv" "empty" -- grid "$office" --plane y=0.8 --csv ""
 printf '{"geometry": [{"plane": {"center": [0, 0, 0], "normal": [0, 1, 0], "size": [4, 4]}}], "luminaires": [{"type": "photometric", "name": "Wide", "file": "many-angles.ies", "position": [0, 2, 0]}], "camera": {"position": [3, 2, 3], "target": [0, 0, 0]}}' >"$out/many-angles.json"
 expect 'luminaire "Wide"' "many-angles.ies" "exceeds this GL" -- render "$out/many-angles.json" --size 32x32 --out "$out/many.png"
 # A spacing that makes too many points says how many, in a few digits (not 300 of them).
-expect "the grid at a spacing of 1e-300 m over 6 x 4 m gives 6e+300 x 4e+300 points, more than the 1000000 allowed: a larger --spacing or a smaller --extent" -- grid "$office" --plane y=0.8 --spacing 1e-300
-expect "--csv" "empty" -- surfaces "$office" --csv ""
-expect "--csv" "empty" -- glare "$office" --csv ""
-expect "--csv" "empty" -- glare --table "$2/../resources/luminaires/photometric/prolicht-e30.ldt" --csv ""
+expect "--spacing: the grid at a spacing of 1e-300 m over 6 x 4 m gives 6e+300 x 4e+300 points, more than the 1000000 allowed: a larger spacing or a smaller extent" -- grid "$office" --plane y=0.8 --spacing 1e-300
+expect "--out" "empty" -- surfaces "$office" --out ""
+expect "--out" "empty" -- glare "$office" --out ""
+expect "--out" "empty" -- glare --table "$2/../resources/luminaires/photometric/prolicht-e30.ldt" --out ""
 expect "--out" "empty" -- polar "$2/../resources/luminaires/photometric/prolicht-e30.ldt" --out ""
 expect "--show-samples" "empty" -- probe "$data/ok.json" --points "$data/ok_points.csv" --show-samples ""
 

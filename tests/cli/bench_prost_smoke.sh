@@ -28,6 +28,7 @@ check "sheets written" '[ -s "$out/lambert_h1_images.png" ] && [ -s "$out/spot_h
 check "summary states its light" 'grep -q "^light: .*interreflected light" "$out/summary.txt"'
 check "broken file skipped and named" 'grep -q "skipped: .*Invalid Profile - 01.ies:1" "$out/summary.txt"'
 err=$("$binary" bench --prost --out "$out/x" 2>&1 >/dev/null); rc=$?
-check "no files is a usage error (rc $rc): $err" '[ $rc -eq 2 ] && grep -q "usage: candela bench --prost" <<<"$err"'
+check "no files is a usage error (rc $rc): $err" \
+  '[ $rc -eq 2 ] && grep -q "missing FILE" <<<"$err" && grep -q "^usage:" <<<"$err" && grep -q "candela bench --prost FILE" <<<"$err"'
 echo "$passed passed, $failures failed"
 [ $failures -eq 0 ]

@@ -58,8 +58,12 @@ expect "--delta" "number" -- convert "$led" --out "$out/x.lf.json" --delta -1
 expect "x.json" "NAME.lf.json" -- convert "$led" --out "$out/x.json"
 expect "no_such_dir" "does not exist" -- convert "$led" --out "$out/no_such_dir/x.lf.json"
 expect "tail-light" "bike-headlight" -- convert --procedural tail-light --out "$out/x.lf.json"
-expect "--rays" "--procedural" -- convert "$led" --out "$out/x.lf.json" --rays 5000
-expect_usage "usage" -- convert "$led"
+# Options of another form are bad usage (exit 2), as are a missing input and a missing --out.
+expect_usage "--rays applies to --procedural only" -- convert "$led" --out "$out/x.lf.json" --rays 5000
+expect_usage "a procedural preset fixes its own layout" -- convert --procedural bike-headlight --out "$out/x.lf.json" --grid 5x5
+expect_usage "not both" -- convert "$led" --procedural bike-headlight --out "$out/x.lf.json"
+expect_usage "missing the file to convert" -- convert --out "$out/x.lf.json"
+expect_usage "missing --out" -- convert "$led"
 expect_usage "unknown option" -- convert "$led" --out "$out/x.lf.json" --frobnicate
 # A failed conversion leaves nothing behind.
 left=$(ls "$out"/x.lf.json "$out"/x_*.exr 2>/dev/null | wc -l)

@@ -36,16 +36,25 @@ check "UGR $got against the closed form $want: $out" 'awk -v a="$got" -v b="$wan
 check "the background is the one given: $out" 'grep -q "background luminance Lb 20 cd/m2 (given)" <<<"$out"'
 check "a uniform luminance of 5556 cd/m2: $out" 'grep -q "5556 " <<<"$out"'
 
-office=$("$binary" glare "$2/../resources/scenes/office.json" --spp 128 --csv "$tmp/ugr.csv" 2>/dev/null)
+office=$("$binary" glare "$2/../resources/scenes/office.json" --spp 128 --out "$tmp/ugr.csv" 2>/dev/null)
 check "the office's two observers, each with its limit: $office" '[ $(grep -c "limit UGR_L 19: \(PASS\|FAIL\)" <<<"$office") -eq 2 ]'
 check "their background from the interreflected light: $office" '[ $(grep -c "interreflected light at the eye" <<<"$office") -eq 2 ]'
 check "the CSV has a row per observer" '[ $(wc -l <"$tmp/ugr.csv") -eq 3 ] && head -1 "$tmp/ugr.csv" | grep -q "^observer,x_m,y_m,z_m,view_x,view_y,view_z,Lb_cd_m2,UGR,limit,passes$"'
+# --csv, the old name of --out, still writes the CSV, with a line saying what replaces it.
+err=$("$binary" glare "$tmp/one.json" --observer 0,1.2,4 --view 0,0,-1 --background 20 --csv "$tmp/old.csv" 2>&1 >/dev/null); rc=$?
+check "--csv still works with its deprecation line (exit $rc): $err" \
+    '[ $rc -eq 0 ] && [ $(wc -l <"$tmp/old.csv") -eq 2 ] && grep -qF -- "--csv is now called --out" <<<"$err"'
 
 expect "no glare observers" -- glare "$tmp/one.json"
 expect "needs the background luminance" "has no surfaces" -- glare "$tmp/one.json" --observer 0,1.2,4 --view 0,0,-1
 expect "a line of sight with a horizontal part" -- glare "$tmp/one.json" --observer 0,1.2,4 --view 0,1,0 --background 10
 expect "--observer: expected X,Y,Z" -- glare "$tmp/one.json" --observer 0,1.2 --view 0,0,-1
-expect_usage "usage: candela glare" -- glare "$tmp/one.json" --observer 0,1.2,4
+expect_usage "missing --view" -- glare "$tmp/one.json" --observer 0,1.2,4
+expect_usage "missing --observer" -- glare "$tmp/one.json" --view 0,0,-1
+expect_usage "--limit goes with --observer and --view" -- glare "$tmp/one.json" --limit 19
+expect_usage "missing scene.json" -- glare
+expect_usage "unknown option --spacing" -- glare "$tmp/one.json" --spacing 1
+expect_usage "--spacing-ratio goes with --table" -- glare "$tmp/one.json" --spacing-ratio 1
 
 echo "glare: $passed passed, $failures failed"
 [ "$failures" -eq 0 ]

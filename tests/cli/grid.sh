@@ -14,7 +14,7 @@ source "$(dirname "$0")/lib/expect.sh"  # expect SUBSTRING... -- ARGS
 
 # A 0.2 m square panel of 1000 W/(m2 sr) at (0.3, 3, -0.2) facing down over the floor y = 0.
 if "$binary" grid "$data/plane.json" --plane y=0 --extent -2,-2,2,2 --spacing 0.5 \
-    --csv "$out/grid.csv" >"$out/grid.txt" 2>"$out/err.txt"; then
+    --out "$out/grid.csv" >"$out/grid.txt" 2>"$out/err.txt"; then
   python3 - "$out/grid.txt" "$out/grid.csv" <<'PY' || failures=$((failures + 1))
 import math, sys
 L, CX, H, CZ, HALF = 1000.0, 0.3, 3.0, -0.2, 0.1
@@ -191,6 +191,17 @@ expect "--legend" "finite numbers" -- render "$data/plane.json" --out "$out/b.pn
 expect "--legend" "MIN > 0" -- render "$data/plane.json" --out "$out/b.png" --false-colour --legend 0,10 --log
 expect "--isolux" "finite numbers" -- render "$data/plane.json" --out "$out/b.png" --false-colour --isolux 1,,2
 [ ! -e "$out/b.png" ] || { echo "FAIL: a refused render left $out/b.png"; failures=$((failures + 1)); }
+
+# The old name of --out still works for one release, with a line saying what replaces it, and
+# writes the same file.
+if err=$("$binary" grid "$data/plane.json" --plane y=0 --extent -2,-2,2,2 --spacing 0.5 \
+    --csv "$out/old.csv" 2>&1 >/dev/null) && grep -qF -- "--csv is now called --out" <<<"$err" &&
+    cmp -s "$out/old.csv" "$out/grid.csv"; then
+  passed=$((passed + 1))
+else
+  echo "FAIL: grid --csv (the old name of --out): $err"
+  failures=$((failures + 1))
+fi
 
 echo "$passed passed, $failures failed"
 [ $failures -eq 0 ]

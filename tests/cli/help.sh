@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Every command explains itself: `candela --help` lists the commands, and for each of them
 # `candela CMD --help` and `candela help CMD` print the same usage with an example whose files
-# exist; `--version` names the version and the commit; an unknown command exits 2 with the list.
+# exist; every option its forms and example name is one it declares; `--version` names the version
+# and the commit; an unknown command exits 2 with the list.
 set -uo pipefail
 binary=$1
 source_dir=$(cd "$2/.." && pwd)
@@ -27,6 +28,15 @@ for command in $commands; do
       resources/* | tests/*)
         check "$command's example names $word, which exists" '[ -e "$source_dir/$word" ]' ;;
     esac
+  done
+  # Every option the forms name is one the command declares (listed under its options), and the
+  # example runs no option the command lacks.
+  declared=$(grep -oE '^  (--[a-z][a-z0-9-]*|-h, --help)' <<<"$help" | sed 's/^  //')
+  forms=$(sed -n '/^usage:/,/^$/p' <<<"$help"; sed -n '/^example:/{n;p}' <<<"$help")
+  for option in $(grep -oE '(^|[][ |])--[a-z][a-z0-9-]*' <<<"$forms" | grep -oE -- '--[a-z0-9-]+' |
+                  sort -u); do
+    check "$command: $option in its forms or example is declared" \
+      'grep -qxF -- "$option" <<<"$declared"'
   done
 done
 version=$("$binary" --version); rc=$?

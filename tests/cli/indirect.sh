@@ -25,7 +25,7 @@ check() {  # check NAME COMMAND...
   if "$@"; then passed=$((passed + 1)); else echo "FAIL: $name"; failures=$((failures + 1)); fi
 }
 
-"$binary" grid "$data/office.json" --plane y=0.8 --spacing 0.5 --indirect --spp 256 --csv "$out/grid.csv" \
+"$binary" grid "$data/office.json" --plane y=0.8 --spacing 0.5 --indirect --spp 256 --out "$out/grid.csv" \
     >"$out/grid.txt" 2>"$out/grid.err"
 check "grid --indirect exits 0" [ $? -eq 0 ]
 check "grid --indirect says how the interreflected light was found" grep -q "^interreflected light: the patches' solution, refined near surfaces; a final gather of 256 rays at [0-9]* of [0-9]* points" "$out/grid.txt"
@@ -95,7 +95,11 @@ expect "empty.json" "geometry: no surfaces" -- validate --closed "$data/empty.js
 expect "empty.json" "no surfaces" -- grid "$data/empty.json" --plane y=0.8 --extent -1,-1,1,1 --indirect
 expect "bright.json" "geometry[1].albedo[1]" "[0, 1]" -- grid "$data/bright.json" --plane y=0.8 --indirect
 expect "nan_albedo.json" "geometry[0].albedo[0]" "finite number" -- validate --closed "$data/nan_albedo.json"
-expect "--indirect" "on or off" -- render "$data/office.json" --out "$out/x.png" --indirect maybe
+# --indirect is a switch (--no-indirect its opposite); "on" and "off" its old spelling.
+expect_usage "unexpected argument maybe" -- render "$data/office.json" --out "$out/x.png" --indirect maybe
+expect "--indirect" "on or off" -- render "$data/office.json" --out "$out/x.png" --indirect=maybe
+expect_usage "--indirect" "--no-indirect" -- render "$data/office.json" --out "$out/x.png" --indirect --no-indirect
+expect_usage "--indirect" "--no-indirect" -- probe "$data/office.json" --points "$out/points.csv" --indirect --no-indirect
 expect "--device gpu" "--indirect" -- probe "$data/office.json" --points "$out/points.csv" --indirect --device gpu
 "$binary" grid "$data/outward.json" --plane y=0.8 --spacing 1 --indirect >/dev/null 2>"$out/outward.err"
 check "a room facing out is warned about" grep -q "lights the back of surfaces" "$out/outward.err"
@@ -103,8 +107,8 @@ check "a room facing out is warned about" grep -q "lights the back of surfaces" 
 # Right by default: with no flag, grid computes what a light meter reads (direct light with
 # shadows and the interreflected light), the same numbers as the explicit flags, and says so;
 # --light direct and --no-shadows are explicit choices the output states.
-"$binary" grid "$data/office.json" --plane y=0.8 --spacing 1 --spp 64 --csv "$out/default.csv" >"$out/default.txt" 2>/dev/null
-"$binary" grid "$data/office.json" --plane y=0.8 --spacing 1 --spp 64 --indirect --visibility --csv "$out/explicit.csv" >/dev/null 2>&1
+"$binary" grid "$data/office.json" --plane y=0.8 --spacing 1 --spp 64 --out "$out/default.csv" >"$out/default.txt" 2>/dev/null
+"$binary" grid "$data/office.json" --plane y=0.8 --spacing 1 --spp 64 --indirect --visibility --out "$out/explicit.csv" >/dev/null 2>&1
 "$binary" grid "$data/office.json" --plane y=0.8 --spacing 1 --spp 64 --light direct --no-shadows >"$out/direct.txt" 2>/dev/null
 check "grid with no flag is the full calculation" cmp -s "$out/default.csv" "$out/explicit.csv"
 check "grid with no flag says what it includes" grep -qx "light: direct light with shadows, and interreflected light" "$out/default.txt"

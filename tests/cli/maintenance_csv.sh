@@ -24,7 +24,7 @@ json.dump(scene, open(os.path.join(sys.argv[2], "maintained.json"), "w"))
 PY
 for s in initial panel maintained; do
   if ! "$binary" grid "$out/$s.json" --plane y=0 --extent -1.5,-1,1.5,1 --spacing 0.5 \
-      --csv "$out/$s.csv" >"$out/$s.txt" 2>&1; then
+      --out "$out/$s.csv" >"$out/$s.txt" 2>&1; then
     echo "FAIL: grid $s: $(tail -1 "$out/$s.txt")"
     exit 1
   fi

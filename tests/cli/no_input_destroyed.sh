@@ -51,14 +51,14 @@ refuses() {
 }
 
 # Outputs onto inputs.
-refuses "$work/grid/plane.json" "--csv $work/grid/plane.json" -- \
-  grid "$work/grid/plane.json" --plane y=0 --spacing 1 --csv "$work/grid/plane.json"
-refuses "$work/photo/spot.ies" "--csv $work/photo/spot.ies" -- \
-  grid "$work/photo/scene.json" --plane y=0 --spacing 1 --csv "$work/photo/spot.ies"
+refuses "$work/grid/plane.json" "--out $work/grid/plane.json" -- \
+  grid "$work/grid/plane.json" --plane y=0 --spacing 1 --out "$work/grid/plane.json"
+refuses "$work/photo/spot.ies" "--out $work/photo/spot.ies" -- \
+  grid "$work/photo/scene.json" --plane y=0 --spacing 1 --out "$work/photo/spot.ies"
 # Relative and ".." spellings of the same file, run from the copy's folder.
 cd "$work/photo"
-refuses "$work/photo/spot.ies" "--csv ../photo/./spot.ies" -- \
-  grid scene.json --plane y=0 --spacing 1 --csv ../photo/./spot.ies
+refuses "$work/photo/spot.ies" "--out ../photo/./spot.ies" -- \
+  grid scene.json --plane y=0 --spacing 1 --out ../photo/./spot.ies
 cd - >/dev/null
 refuses "$work/env/constant_2.exr" "--out $work/env/constant_2.exr" -- \
   render "$work/env/constant.json" --out "$work/env/constant_2.exr" --size 32x16
@@ -144,7 +144,7 @@ full_disk() {
 mkdir -p "$work/out"
 # 16 x 16 points of about 40 bytes: some 10 kB of CSV.
 full_disk "$work/out/grid.csv" -- grid "$work/grid/plane.json" --plane y=0 --extent -2,-2,2,2 --spacing 0.25 \
-  --csv "$work/out/grid.csv"
+  --out "$work/out/grid.csv"
 # The panel's light on the floor at 128 x 96: a PNG and an EXR of several kilobytes.
 full_disk "$work/out/render.png" -- render "$work/grid/plane.json" --out "$work/out/render.png" --size 128x96
 full_disk "$work/out/render.exr" -- render "$work/grid/plane.json" --out "$work/out/render.exr" --size 128x96

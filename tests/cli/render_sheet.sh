@@ -87,7 +87,7 @@ fi
 expect "no kind has a technique \"magic\"" -- render "$scene" --sheet "$out/c" --pane magic
 expect "photometric has no technique \"analytic\"" -- render "$scene" --sheet "$out/c" --pane photometric=analytic
 expect_usage "1 to 4 times" -- render "$scene" --sheet "$out/c" --pane "" --pane "" --pane "" --pane "" --pane ""
-expect "--out" -- render "$scene" --sheet "$out/c" --pane "" --out "$out/c.png"
+expect_usage "--out" "not of a comparison sheet" -- render "$scene" --sheet "$out/c" --pane "" --out "$out/c.png"
 expect_usage "--sheet DIR" -- render "$scene" --pane ""
 expect "expected an integer" -- render "$scene" --sheet "$out/c" --pane "analytic:many"
 check "no sheet written for bad input" test ! -e "$out/c"

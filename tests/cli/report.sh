@@ -45,7 +45,7 @@ eavg=$(sed -n 's/^Eavg: \([0-9.]*\) lx/\1/p' <<<"$grid")
 check "the desk's Em is candela grid's Eavg ($eavg lx) to the 4 digits printed" 'grep -qF "Em $(printf "%.4g" "$eavg") lx" <<<"$text"'
 # The desk's value table: every one of the grid's 50 values (from its CSV's full digits), rounded
 # as the table prints them.
-"$binary" grid "$scene" --plane y=0.75 --extent -0.4,-0.7,1.2,0.1 --spacing 0.16 --csv "$tmp/desk.csv" >/dev/null 2>&1
+"$binary" grid "$scene" --plane y=0.75 --extent -0.4,-0.7,1.2,0.1 --spacing 0.16 --out "$tmp/desk.csv" >/dev/null 2>&1
 want=$(awk -F, 'NR > 1 { printf "%.0f\n", $4 }' "$tmp/desk.csv" | sort -n | tr '\n' ' ')
 table=$(awk '/z \\ x \[m\]/ { n++ } n == 1 && /^ *-?[0-9]\.[0-9][0-9] +[0-9]/ && NF == 11 { for (i = 2; i <= 11; ++i) print $i }' "$tmp/office.txt" | sort -n | tr '\n' ' ')
 check "the desk's value table holds the grid's 50 values: [$table] vs [$want]" '[ -n "$want" ] && [ "$table" = "$want" ]'

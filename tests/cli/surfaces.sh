@@ -13,7 +13,7 @@ passed=0
 
 source "$(dirname "$0")/lib/expect.sh"  # expect SUBSTRING... -- ARGS
 
-if "$binary" surfaces "$office" --csv "$out/s.csv" >"$out/s.txt" 2>"$out/err.txt" &&
+if "$binary" surfaces "$office" --out "$out/s.csv" >"$out/s.txt" 2>"$out/err.txt" &&
     "$binary" grid "$office" --plane y=0.75 --extent -0.4,-0.7,1.2,0.1 --spacing 0.16 \
       >"$out/grid.txt" 2>>"$out/err.txt"; then
   python3 - "$out/s.txt" "$out/s.csv" "$out/grid.txt" <<'PY' || failures=$((failures + 1))
@@ -67,7 +67,7 @@ cp "$office" "$out/office.json"
 resources=$(cd "$2/../resources" && pwd)
 sed -i "s#\.\./luminaires/#$resources/luminaires/#" "$out/office.json"
 before=$(md5sum <"$out/office.json")
-expect "--csv" "would overwrite" -- surfaces "$out/office.json" --csv "$out/office.json"
+expect "--out" "would overwrite" -- surfaces "$out/office.json" --out "$out/office.json"
 [ "$(md5sum <"$out/office.json")" = "$before" ] || { echo "FAIL: the scene changed"; failures=$((failures + 1)); }
 expect_usage "unknown option" -- surfaces "$out/office.json" --frobnicate
 printf '{"task_areas": [{"plane": "y=1", "extent": [0, 0, 1, 1], "required": {"u0": 2}}]}\n' >"$out/bad.json"

@@ -49,7 +49,7 @@ ln -s "$tmp/example.ldt" "$tmp/link.xml"
 before=$(sha256sum "$tmp/example.ldt")
 expect "link.xml" "input" -- convert "$tmp/example.ldt" --out "$tmp/link.xml"
 check "the input is untouched" '[ "$(sha256sum "$tmp/example.ldt")" = "$before" ]'
-expect "apply to ray files and procedural luminaires, not to photometry" -- convert "$tmp/example.ldt" --out "$tmp/x.xml" --grid 8x8
+expect_usage "apply to ray files and procedural luminaires, not to photometry" -- convert "$tmp/example.ldt" --out "$tmp/x.xml" --grid 8x8
 check "no file written on a refusal" '[ ! -e "$tmp/x.xml" ] && [ -z "$(find "$tmp" -name ".*tmp*")" ]'
 printf '<IESTM33><Version>1.0</Version></IESTM33>\n' >"$tmp/empty.xml"
 expect "empty.xml:1: expected an <Emitter> with <LuminousData>" -- info "$tmp/empty.xml"

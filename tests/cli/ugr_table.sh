@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # `candela glare --table`: the standard UGR table of an EULUMDAT file (tests/data/ugr): the
 # header, 19 rooms x 10 columns, the 4H x 8H reference line (and candela info's), the CSV's 190
-# cells equal to the printed ones, --spacing; refusals (a missing file, the CSV onto the input, a
+# cells equal to the printed ones, --spacing-ratio; refusals (a missing file, the CSV onto the input, a
 # file without a luminous area, a spacing that leaves part rows) each one line naming the file or
 # the flag, with a non-zero exit and nothing written.
 set -uo pipefail
@@ -15,7 +15,7 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
 cp "$data/ugr/sample_02_isym4.ldt" "$tmp/lamp.ldt"
-out=$("$binary" glare --table "$tmp/lamp.ldt" --csv "$tmp/table.csv" 2>&1)
+out=$("$binary" glare --table "$tmp/lamp.ldt" --out "$tmp/table.csv" 2>&1)
 rc=$?
 check "exit 0: $out" '[ $rc -eq 0 ]'
 check "the header names the file, the flux, the area and the spacing: $out" \
@@ -50,9 +50,15 @@ check "info states the table's 4H x 8H values: $(grep UGR <<<"$info")" \
     'grep -q "^UGR reference (CIE 190 table, room 4H x 8H, reflectances 70/50/20 %, luminaires every 0.25 H): $cross crosswise, $end endwise at 12334 lm$" <<<"$info"'
 
 # CIE 190's own spacing: 4H x 8H holds 32 luminaires and rates 15.6 / 15.2.
-one=$("$binary" glare --table "$tmp/lamp.ldt" --spacing 1 2>&1)
-check "--spacing 1: $one" \
+one=$("$binary" glare --table "$tmp/lamp.ldt" --spacing-ratio 1 2>&1)
+check "--spacing-ratio 1: $one" \
     'grep -q "luminaires every 1 H" <<<"$one" && grep -q "UGR 15.6 crosswise, 15.2 endwise$" <<<"$one"'
+# The old names, --spacing and --csv, still work, each with a line saying what replaces it.
+old=$("$binary" glare --table "$tmp/lamp.ldt" --spacing 1 --csv "$tmp/old.csv" 2>"$tmp/old.err"); rc=$?
+err=$(cat "$tmp/old.err")
+check "--spacing and --csv still work with their deprecation lines (exit $rc): $err" \
+    '[ $rc -eq 0 ] && grep -q "UGR 15.6 crosswise, 15.2 endwise$" <<<"$old" && [ $(wc -l <"$tmp/old.csv") -eq 191 ] &&
+     grep -qF -- "--spacing is now called --spacing-ratio" <<<"$err" && grep -qF -- "--csv is now called --out" <<<"$err"'
 
 # Refusals: one line on stderr naming the file (or flag), exit 1, nothing written.
 refused() {  # WHAT SUBSTRING ARGS...
@@ -65,26 +71,27 @@ refused() {  # WHAT SUBSTRING ARGS...
         '[ $rc -eq 1 ] && [ $(wc -l <<<"$err") -eq 1 ] && grep -qF -- "$want" <<<"$err"'
 }
 sum=$(cksum <"$tmp/lamp.ldt")
-refused "a missing file" "$tmp/missing.ldt: cannot open" --table "$tmp/missing.ldt" --csv "$tmp/m.csv"
-refused "the CSV onto the input" "$tmp/lamp.ldt: --csv $tmp/lamp.ldt would overwrite this input" \
-    --table "$tmp/lamp.ldt" --csv "$tmp/lamp.ldt"
+refused "a missing file" "$tmp/missing.ldt: cannot open" --table "$tmp/missing.ldt" --out "$tmp/m.csv"
+refused "the CSV onto the input" "$tmp/lamp.ldt: --out $tmp/lamp.ldt would overwrite this input" \
+    --table "$tmp/lamp.ldt" --out "$tmp/lamp.ldt"
 refused "the CSV onto the input by another path" "would overwrite this input" \
-    --table "$tmp/lamp.ldt" --csv "$tmp/./../$(basename "$tmp")/lamp.ldt"
+    --table "$tmp/lamp.ldt" --out "$tmp/./../$(basename "$tmp")/lamp.ldt"
 check "the input is untouched" '[ "$(cksum <"$tmp/lamp.ldt")" = "$sum" ]'
 sed '16s/.*/0/;17s/.*/0/' "$tmp/lamp.ldt" >"$tmp/dot.ldt"  # luminous area 0 x 0 mm
-refused "no luminous area (EULUMDAT)" "$tmp/dot.ldt: no luminous area" --table "$tmp/dot.ldt" --csv "$tmp/d.csv"
+refused "no luminous area (EULUMDAT)" "$tmp/dot.ldt: no luminous area" --table "$tmp/dot.ldt" --out "$tmp/d.csv"
 printf 'IESNA:LM-63-2002\n[TEST] point\nTILT=NONE\n1 -1 1 3 1 1 2 0 0 0\n1 1 10\n0 45 90\n0\n100 70 0\n' >"$tmp/dot.ies"
 refused "no luminous area (IES point source)" "$tmp/dot.ies: no luminous area" --table "$tmp/dot.ies"
 dotInfo=$("$binary" info "$tmp/dot.ies" 2>&1)
 check "info says why a point source has no UGR reference: $(grep UGR <<<"$dotInfo")" \
     'grep -q "^UGR reference: none ($tmp/dot.ies: no luminous area" <<<"$dotInfo"'
 
-refused "a spacing that leaves part rows" "--spacing: expected 1 / n of H" --table "$tmp/lamp.ldt" --spacing 0.3
+refused "a spacing that leaves part rows" "--spacing-ratio: expected 1 / n of H" --table "$tmp/lamp.ldt" --spacing-ratio 0.3
+refused "a spacing out of range" "--spacing-ratio: expected a number in 0.05..1" --table "$tmp/lamp.ldt" --spacing-ratio 2
 err=$("$binary" glare --table "$tmp/lamp.ldt" --observer 0,1.2,4 2>&1 >/dev/null); rc=$?
 check "an option of the observer form is bad usage: exit 2, the error, then the usage (rc $rc): $err" \
     '[ $rc -eq 2 ] && grep -qF -- "unknown option --observer" <<<"$err" && grep -q "^usage:" <<<"$err"'
 check "no CSV from a refused run" '[ ! -e "$tmp/m.csv" ] && [ ! -e "$tmp/d.csv" ]'
-expect "--table: expected a value" -- glare --table
+expect_usage "--table: expected FILE after it" -- glare --table
 
 echo "ugr_table: $passed passed, $failures failed"
 [ "$failures" -eq 0 ]

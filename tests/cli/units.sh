@@ -18,8 +18,8 @@ check() {  # check NAME COMMAND...: runs it, counts a failure with NAME when it 
   if "$@"; then passed=$((passed + 1)); else echo "FAIL: $name"; failures=$((failures + 1)); fi
 }
 
-"$binary" grid "$data/mixed.json" --plane y=0 --extent -1.5,-1,1.5,1 --spacing 0.5 --csv "$out/mixed.csv" >"$out/mixed.txt" 2>&1
-"$binary" grid "$data/photometric.json" --plane y=0 --extent -1.5,-1,1.5,1 --spacing 0.5 --csv "$out/photometric.csv" >"$out/photometric.txt" 2>&1
+"$binary" grid "$data/mixed.json" --plane y=0 --extent -1.5,-1,1.5,1 --spacing 0.5 --out "$out/mixed.csv" >"$out/mixed.txt" 2>&1
+"$binary" grid "$data/photometric.json" --plane y=0 --extent -1.5,-1,1.5,1 --spacing 0.5 --out "$out/photometric.csv" >"$out/photometric.txt" 2>&1
 check "mixed grid names lx and the conversion" grep -qF "illuminance E [lx], $note" "$out/mixed.txt"
 check "mixed grid summary in lx" grep -q "^Eavg: [0-9.]* lx$" "$out/mixed.txt"
 check "photometric grid has no conversion note" bash -c "! grep -q '683' '$out/photometric.txt'"

@@ -81,7 +81,7 @@ PY
 # of its spacing from its point, on the side that shows highest on screen (its label hangs below
 # the point); cells under 5 pixels from point to sample, and samples a label or dot of another
 # point may cover, are left out. Of the rest (at least 10; 15 here), 90 % must match.
-"$CANDELA" surfaces "$TMP/office.json" --csv "$TMP/surfaces.csv" >/dev/null 2>&1 || fail "candela surfaces --csv"
+"$CANDELA" surfaces "$TMP/office.json" --out "$TMP/surfaces.csv" >/dev/null 2>&1 || fail "candela surfaces --out"
 click_widget measure.colour_surfaces
 wait_frames 3
 xdotool key F12
