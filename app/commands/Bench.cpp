@@ -26,6 +26,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
+/// A default path as the help shows it: relative to the source folder, where the examples run.
+std::string shown(const std::string& path) {
+    const std::string root = std::string(CANDELA_SOURCE_DIR) + "/";
+    return path.rfind(root, 0) == 0 ? path.substr(root.size()) : path;
+}
+
 struct LightFieldOptions {
     std::string lightField, out = "bench-lightfield";
     std::vector<int> spp = {4, 8, 16, 32, 64, 128, 256, 512};
@@ -325,17 +331,17 @@ int cmdBench(const Args& args) {
              [] {});
     cli.flag("--shadows",
              "per-cell shadow maps against ray-traced shadows, on the scene FILE (default " +
-                 shadows.scenePath + ")",
+                 shown(shadows.scenePath) + ")",
              [] {});
     cli.flag("--indirect",
              "what interreflected light costs in time, from scratch and after a luminaire moves, "
              "and how it scales with the patches, on the scene FILE (default " +
-                 indirect.scenePath + ")",
+                 shown(indirect.scenePath) + ")",
              [] {});
     cli.flag("--drag",
              "how live the editor stays while each luminaire of the scene FILE is dragged, and how "
              "soon the image is right again after release (default " +
-                 drag.scenePath + ")",
+                 shown(drag.scenePath) + ")",
              [] {});
     cli.flag("--design",
              "a designer's calculations (grid, surfaces, reports) on the shipped office and "
@@ -460,9 +466,9 @@ int cmdBench(const Args& args) {
             formatText("%g", drag.timeout) + ")",
         [&drag](const std::string& v) { drag.timeout = parseInt("--timeout", v, 1, 100000); });
     cli.group("options of --design");
-    cli.text(
-        "--scenes", design.scenes, "DIR",
-        "the folder of office.json, classroom.json and office-gldf.json (" + design.scenes + ")");
+    cli.text("--scenes", design.scenes, "DIR",
+             "the folder of office.json, classroom.json and office-gldf.json (" +
+                 shown(design.scenes) + ")");
     if (!cli.parse(args)) return 0;
 
     const Bench& bench = chosenBench(cli);
