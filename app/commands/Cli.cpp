@@ -11,7 +11,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <set>
 
 #include "app/commands/CommandTable.h"
 #include "formats/Photometry.h"
@@ -65,7 +64,8 @@ struct CommandLine::Impl {
     std::vector<std::pair<std::string, std::string>> renamed;  ///< Old spelling, current one.
     std::string group = "options";
     int positionals = 0;
-    std::set<std::string> givenDirectly;  ///< Options given with an empty or no value.
+    /// Optional values left out, applied as "" (CLI11 does not see them).
+    std::vector<const Declaration*> direct;
 
     Declaration& declare(Declaration d) {
         d.group = d.kind == Kind::Positional ? "arguments" : group;
@@ -188,17 +188,6 @@ void CommandLine::output(const std::string& name, std::string& value, const std:
     });
 }
 
-void CommandLine::choice(const std::string& name, std::string& value,
-                         const std::vector<std::string>& values, const std::string& help) {
-    std::string form;
-    for (const std::string& v : values) form += (form.empty() ? "" : "|") + v;
-    option(name, form, help, [&value, name, values, form](const std::string& v) {
-        if (std::find(values.begin(), values.end(), v) == values.end())
-            throw InputError(name + ": expected " + form + ", got \"" + v + "\"");
-        value = v;
-    });
-}
-
 void CommandLine::integer(const std::string& name, int& value, int min, int max,
                           const std::string& form, const std::string& help) {
     option(name, form, help,
@@ -239,7 +228,9 @@ void CommandLine::renamed(const std::string& old, const std::string& current) {
 
 bool CommandLine::given(const std::string& name) const {
     for (const Declaration& d : impl_->declarations)
-        if (d.name == name) return d.option->count() > 0 || impl_->givenDirectly.count(name) > 0;
+        if (d.name == name)
+            return d.option->count() > 0 ||
+                   std::find(impl_->direct.begin(), impl_->direct.end(), &d) != impl_->direct.end();
     throw std::logic_error("CommandLine: " + name + " was not declared");
 }
 
@@ -264,7 +255,7 @@ bool CommandLine::parse(const Args& args) {
     // followed by a value still to come, so an empty value stays an argument of its own, and an
     // optional value left out goes to the option directly.
     Args joined;
-    std::vector<std::pair<const Declaration*, std::string>> direct;
+    m.direct.clear();
     for (size_t i = 0; i < line.size(); ++i) {
         const Declaration* d = m.find(line[i]);
         size_t equals = line[i].find('=');
@@ -291,7 +282,7 @@ bool CommandLine::parse(const Args& args) {
                 joined.push_back(line[i] + "=" + line[i + 1]);
                 ++i;
             } else {
-                direct.emplace_back(d, "");
+                m.direct.push_back(d);
             }
         } else {
             joined.push_back(line[i]);
@@ -314,10 +305,7 @@ bool CommandLine::parse(const Args& args) {
                 *this);
     }
     for (const Declaration& d : m.declarations)
-        if (d.required && d.option->count() == 0 &&
-            std::none_of(direct.begin(), direct.end(),
-                         [&](const auto& e) { return e.first == &d; }))
-            m.usage("missing " + d.name + " (" + d.help + ")", *this);
+        if (d.required && !given(d.name)) m.usage("missing " + d.name + " (" + d.help + ")", *this);
     // Values converted in the order the options were declared, each as often as it was given.
     for (const Declaration& d : m.declarations) {
         if (d.kind == Kind::Flag) {
@@ -325,10 +313,9 @@ bool CommandLine::parse(const Args& args) {
             continue;
         }
         for (const std::string& v : d.option->results()) d.apply(v);
-        for (const auto& [to, v] : direct)
-            if (to == &d) d.apply(v);
+        for (const Declaration* to : m.direct)
+            if (to == &d) d.apply("");
     }
-    for (const auto& [to, v] : direct) m.givenDirectly.insert(to->name);
     return true;
 }
 

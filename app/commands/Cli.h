@@ -74,9 +74,6 @@ class CommandLine {
     /// A file or folder to write: an empty name is refused.
     void output(const std::string& name, std::string& value, const std::string& form,
                 const std::string& help);
-    /// One of `values` ("total", "direct").
-    void choice(const std::string& name, std::string& value, const std::vector<std::string>& values,
-                const std::string& help);
     void integer(const std::string& name, int& value, int min, int max, const std::string& form,
                  const std::string& help);
     void number(const std::string& name, double& value, double min, double max,

@@ -26,6 +26,8 @@ int cmdSurfaces(const Args& args);
 int cmdGlare(const Args& args);
 /// `glare --table FILE`: the standard UGR table of a photometric file (calculation/UgrTable.h).
 int cmdGlareTable(const Args& args);
+/// The help of `glare --table`'s --spacing-ratio, which `glare --help` lists too.
+extern const char* const kSpacingRatioHelp;
 int cmdReport(const Args& args);
 int cmdPolar(const Args& args);
 int cmdValidate(const Args& args);

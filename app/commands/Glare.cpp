@@ -105,9 +105,7 @@ int cmdGlare(const Args& args) {
     cli.text("--table", unused, "FILE",
              "the standard UGR table of this photometry file (.ldt, .ies, .xml or .gldf) instead "
              "of a scene's UGR");
-    cli.text("--spacing-ratio", unused, "R",
-             "the luminaires' spacing as a ratio of the mounting height H, 1 / n (0.25 as "
-             "DIALux and Relux print it, 1 for CIE 190's 1:1; default 0.25)");
+    cli.text("--spacing-ratio", unused, "R", kSpacingRatioHelp);
     if (!cli.parse(args)) return 0;
     if (cli.given("--spacing-ratio"))
         throw CommandUsageError("--spacing-ratio goes with --table (the table form)",

@@ -152,6 +152,10 @@ std::string lowerExtension(const std::string& path) {
 
 }  // namespace
 
+const char* const kSpacingRatioHelp =
+    "the luminaires' spacing as a ratio of the mounting height H, 1 / n (0.25 as DIALux and Relux "
+    "print it, 1 for CIE 190's 1:1; default 0.25)";
+
 int cmdGlareTable(const Args& args) {
     std::string path, csvPath, spacingText;
     UgrTableOptions options;
@@ -164,13 +168,10 @@ int cmdGlareTable(const Args& args) {
                        throw InputError("--table: expected a photometry file, got an empty name");
                    path = v;
                });
-    cli.option("--spacing-ratio", "R",
-               "the luminaires' spacing as a ratio of the mounting height H, 1 / n (0.25 as "
-               "DIALux and Relux print it, 1 for CIE 190's 1:1; default 0.25)",
-               [&](const std::string& v) {
-                   spacingText = v;
-                   options.spacing = parseDouble("--spacing-ratio", v, 0.05, 1.0);
-               });
+    cli.option("--spacing-ratio", "R", kSpacingRatioHelp, [&](const std::string& v) {
+        spacingText = v;
+        options.spacing = parseDouble("--spacing-ratio", v, 0.05, 1.0);
+    });
     cli.output("--out", csvPath, "F.csv",
                "also write every cell with its intermediate values as CSV");
     cli.renamed("--csv", "--out");
