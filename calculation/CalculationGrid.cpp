@@ -310,25 +310,26 @@ ReceiverResult computeReceivers(const Scene& scene, const GridSpec& spec,
     if (scene.environmentMap) {
         std::string name = spec.environmentTechnique;
         if (name.empty())
-            name = findTechnique("environment", spec.technique) ? spec.technique : "reference";
-        envChosen = findTechnique("environment", name);
+            name = findTechnique(LuminaireKind::Environment, spec.technique) ? spec.technique
+                                                                             : "reference";
+        envChosen = findTechnique(LuminaireKind::Environment, name);
         if (!envChosen)
             throw SettingError("environment technique",
                                "\"" + name + "\" is not an environment technique (available: " +
-                                   techniqueNames("environment") + ")");
+                                   techniqueNames(LuminaireKind::Environment) + ")");
     }
     std::vector<const TechniqueInfo*> chosen;
     for (const auto& l : scene.luminaires) {
         std::string name = spec.technique.empty() ? l->technique : spec.technique;
         if (!spec.technique.empty() && !findTechnique(l->kind(), name) &&
-            findTechnique("environment", name))
+            findTechnique(LuminaireKind::Environment, name))
             name = l->technique;  // a name only the environment has leaves luminaires on their own
         const TechniqueInfo* t = findTechnique(l->kind(), name);
         if (!t || !t->irradiance)
             throw SettingError(
-                "technique", "\"" + name + "\" is not a technique of " + std::string(l->kind()) +
-                                 " with a CPU estimator (available: " + techniqueNames(l->kind()) +
-                                 ")");
+                "technique",
+                "\"" + name + "\" is not a technique of " + std::string(kindName(l->kind())) +
+                    " with a CPU estimator (available: " + techniqueNames(l->kind()) + ")");
         chosen.push_back(t);
     }
     // Shadows through Embree, the ray-traced reference (docs/visibility.md).

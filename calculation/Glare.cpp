@@ -38,14 +38,14 @@ GlareSource seenBy(const Scene& scene, const UnitSystem& units, const Luminaire&
                    const GlareObserver& o) {
     GlareSource g;
     g.luminaire = luminaire.name;
-    auto* p = dynamic_cast<const PhotometricLuminaire*>(&luminaire);
+    const PhotometricLuminaire* p = photometricModel(luminaire);
     if (!p || !p->data) {
         g.excluded = "not a photometric luminaire: UGR needs a luminaire's intensity table";
         return g;
     }
     glm::dvec3 x, y, z;
-    p->photometricFrame(x, y, z);
-    glm::dvec3 centre = p->emitterPose().position;
+    p->photometricFrame(luminaire.pose, x, y, z);
+    glm::dvec3 centre = luminaire.emitterPose().position;
     glm::dvec3 toEye = o.position - centre;
     g.distance = glm::length(toEye);
     if (!(g.distance > 0.0)) {
@@ -62,7 +62,7 @@ GlareSource seenBy(const Scene& scene, const UnitSystem& units, const Luminaire&
         g.excluded = "behind the eye's frontal plane";
         return g;
     }
-    g.intensity = p->intensity(toEye) * scene.lightScale(luminaire, units);
+    g.intensity = p->intensity(luminaire.pose, toEye) * scene.lightScale(luminaire, units);
     g.projectedArea = p->area() * std::abs(glm::dot(z, toEye / g.distance));
     g.solidAngle = g.projectedArea / (g.distance * g.distance);
     double p2 = g.positionIndex * g.positionIndex;

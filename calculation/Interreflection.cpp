@@ -17,8 +17,20 @@ namespace {
 using gpu::kPi;
 }  // namespace
 
+/// What a source's direct light depends on: its model (shared and immutable, so the same object
+/// is the same emission), where it is placed, the technique and the unit scale; for the
+/// environment, also the scene's description of it.
+struct SourceIdentity {
+    std::shared_ptr<const LuminaireModel> model;
+    Pose pose;
+    const TechniqueInfo* technique = nullptr;
+    double scale = 1.0;
+    std::string environment;
+    bool operator==(const SourceIdentity&) const = default;
+};
+
 struct Interreflection::Source {
-    std::vector<std::byte> key;                  ///< What its direct light depends on.
+    SourceIdentity key;                          ///< What its direct light depends on.
     std::shared_ptr<const Luminaire> luminaire;  ///< Its own copy (a luminaire or the environment).
     const Luminaire* origin = nullptr;           ///< The scene's, while sync() runs.
     IrradianceFn irradiance = nullptr;
@@ -36,12 +48,21 @@ struct Interreflection::Source {
 
 namespace {
 
-void append(std::vector<std::byte>& key, const void* data, size_t bytes) {
-    const auto* b = static_cast<const std::byte*>(data);
-    key.insert(key.end(), b, b + bytes);
-}
-void append(std::vector<std::byte>& key, const std::string& text) {
-    append(key, text.data(), text.size() + 1);
+/// A seed that is the same on every run for the same placement and technique (the model's
+/// address is not: it does not take part).
+uint64_t seedOf(const SourceIdentity& key, int spp) {
+    uint64_t seed = 0x5eed0000ull + uint64_t(spp);
+    auto mix = [&](const void* data, size_t bytes) {
+        const auto* b = static_cast<const unsigned char*>(data);
+        for (size_t i = 0; i < bytes; ++i) seed = seed * 131ull + b[i];
+    };
+    LuminaireKind kind = key.model->kind();
+    mix(&kind, sizeof kind);
+    mix(key.technique->name.data(), key.technique->name.size());
+    for (const glm::dvec3* v : {&key.pose.position, &key.pose.aim, &key.pose.c0}) mix(v, sizeof *v);
+    mix(&key.scale, sizeof key.scale);
+    mix(key.environment.data(), key.environment.size());
+    return seed;
 }
 
 }  // namespace
@@ -86,8 +107,7 @@ bool Interreflection::computeDirect(Source& s, int spp, std::vector<glm::dvec3>&
                                     const Progress& progress) const {
     EstimateOptions o;
     o.spp = spp;
-    o.seed = 0x5eed0000ull + uint64_t(spp);
-    for (std::byte b : s.key) o.seed = o.seed * 131ull + uint64_t(b);
+    o.seed = seedOf(s.key, spp);
     o.visibility = mVisibility.get();
     // Its own body receives none of its light: the photometry already holds what the housing
     // does to it (points on the body lie on the opening, or behind it).
@@ -138,38 +158,31 @@ std::vector<Interreflection::Source> Interreflection::currentSources(const Scene
         const TechniqueInfo* t = findTechnique(l->kind(), name);
         if (!t || !t->irradiance)
             throw SettingError(
-                "technique", "\"" + name + "\" is not a technique of " + std::string(l->kind()) +
-                                 " with a CPU estimator (available: " + techniqueNames(l->kind()) +
-                                 ")");
+                "technique",
+                "\"" + name + "\" is not a technique of " + std::string(kindName(l->kind())) +
+                    " with a CPU estimator (available: " + techniqueNames(l->kind()) + ")");
         Source s;
         s.origin = l.get();
         s.irradiance = t->irradiance;
         s.scale = scene.lightScale(*l, units);
-        nlohmann::json fields;
-        l->writeJson(fields);
-        append(s.key, std::string(l->kind()) + ":" + name + ":" + fields.dump());
-        std::vector<std::byte> record = l->gpuData();
-        s.key.insert(s.key.end(), record.begin(), record.end());
-        append(s.key, &l->pose, sizeof l->pose);
-        append(s.key, &s.scale, sizeof s.scale);
+        s.key = {l->sharedModel(), l->pose, t, s.scale, {}};
         fresh.push_back(std::move(s));
     }
     if (scene.environmentMap) {
         std::string name =
             mOptions.environmentTechnique.empty() ? "balanced-mis" : mOptions.environmentTechnique;
         Source s;
-        const TechniqueInfo* t = findTechnique("environment", name);
+        const TechniqueInfo* t = findTechnique(LuminaireKind::Environment, name);
         if (!t)
             throw SettingError("environment technique",
                                "\"" + name + "\" is not an environment technique (available: " +
-                                   techniqueNames("environment") + ")");
+                                   techniqueNames(LuminaireKind::Environment) + ")");
         s.origin = scene.environmentLight();
         s.irradiance = t->irradiance;
         s.scale = scene.environmentUnitScale();
-        append(s.key, "environment:" + name + ":" + scene.environment.dump());
-        const EnvironmentMap* map = scene.environmentMap.get();
-        append(s.key, &map, sizeof map);
-        append(s.key, &s.scale, sizeof s.scale);
+        // The light is made for the map the scene holds (Scene::environmentLight): the same map,
+        // the same model.
+        s.key = {s.origin->sharedModel(), Pose{}, t, s.scale, scene.environment.dump()};
         fresh.push_back(std::move(s));
     }
     return fresh;

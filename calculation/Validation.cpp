@@ -188,7 +188,7 @@ ValidationResult fromWorst(ValidationResult r, const Worst& w, double tolerance)
 /// 0.05 m), made in memory. Its B-splines (0.05 m apart) sum to one over S widened by 0.3 m on
 /// U, where every ray through S to the cases' points starts (at most 0.05 x 4 m / 1 m = 0.2 m
 /// out: 4 m aside and 1 m below at worst).
-std::unique_ptr<LightFieldLuminaire> lambertianLightField(double L, double a, double b) {
+std::unique_ptr<Luminaire> lambertianLightField(double L, double a, double b) {
     auto lf = std::make_shared<LightFieldData>();
     lf->delta = 0.05;
     lf->spacing = {0.05, 0.05};
@@ -204,8 +204,9 @@ std::unique_ptr<LightFieldLuminaire> lambertianLightField(double L, double a, do
     for (auto& image : lf->images) image.luminance.assign(16, float(L));
     lf->validate("validation light field");
     lf->precompute();
-    auto light = std::make_unique<LightFieldLuminaire>();
-    light->data = lf;
+    auto model = std::make_shared<LightFieldLuminaire>();
+    model->data = lf;
+    auto light = placed(std::move(model));
     light->technique = "reference";
     return light;
 }
@@ -218,27 +219,28 @@ struct Emitter {
 };
 std::vector<Emitter> lambertianEmitters(double a, double b, double H, double& L) {
     std::vector<Emitter> out;
-    auto rect = std::make_unique<LambertianRect>();
-    rect->size = {2 * a, 2 * b};
+    auto model = std::make_shared<LambertianRect>();
+    model->size = {2 * a, 2 * b};
     L = 1000.0 / (4 * a * b);  // the photometric table's 1000 cd over the opening
-    rect->emitted = glm::dvec3(L);
-    rect->luminous = true;
+    model->emitted = glm::dvec3(L);
+    model->luminous = true;
+    auto rect = placed(std::move(model));
     rect->pose.position = {0, H, 0};
     out.push_back({std::move(rect),
-                   {findTechnique("lambertian-rect", "analytic"),
-                    findTechnique("lambertian-rect", "reference")}});
+                   {findTechnique(LuminaireKind::LambertianRect, "analytic"),
+                    findTechnique(LuminaireKind::LambertianRect, "reference")}});
     std::string lamp = R"({"type": "photometric", "name": "T", "file": ")" +
                        resource("validation/lambert.ies") + R"(", "opening": [)" + number(2 * a) +
                        "," + number(2 * b) + R"(], "position": [0, )" + number(H) + ", 0]}";
     Scene s = sceneOf("", lamp);
-    out.push_back(
-        {std::move(s.luminaires[0]),
-         {findTechnique("photometric", "scattered"), findTechnique("photometric", "reference")}});
+    out.push_back({std::move(s.luminaires[0]),
+                   {findTechnique(LuminaireKind::Photometric, "scattered"),
+                    findTechnique(LuminaireKind::Photometric, "reference")}});
     auto lf = lambertianLightField(L, a, b);
     lf->pose.position = {0, H + 0.05, 0};  // S at height H
     out.push_back({std::move(lf),
-                   {findTechnique("lightfield", "reference"),
-                    findTechnique("lightfield", "restricted-cdf")}});
+                   {findTechnique(LuminaireKind::LightField, "reference"),
+                    findTechnique(LuminaireKind::LightField, "restricted-cdf")}});
     return out;
 }
 
@@ -251,7 +253,7 @@ ValidationResult directPointPlane() {
     const Luminaire& lamp = *scene.luminaires[0];
     Worst w;
     for (const TechniqueInfo& t : techniques()) {
-        if (t.kind != "photometric" || !t.irradiance) continue;
+        if (t.kind != LuminaireKind::Photometric || !t.irradiance) continue;
         for (double d : {0.0, 0.7, 2.0, 4.5, 9.0}) {
             // The point d m from the foot of the source, along a direction off the axes.
             glm::dvec3 p(0.8 * d, 0.0, 0.6 * d);
@@ -292,8 +294,8 @@ ValidationResult directRectangle(bool perpendicular) {
                 EstimateOptions o;
                 o.spp = 65536;
                 w.add(L * kPi * F, t->irradiance(*e.light, p, n, o),
-                      std::string(t->kind) + " " + std::string(t->name) + " at (" + number(p.x) +
-                          ", " + number(p.y) + ", " + number(p.z) + ")");
+                      std::string(kindName(t->kind)) + " " + std::string(t->name) + " at (" +
+                          number(p.x) + ", " + number(p.y) + ", " + number(p.z) + ")");
             }
         }
     return fromWorst(r, w, 0.005);
@@ -321,8 +323,8 @@ ValidationResult obstruction() {
                 o.spp = 65536;
                 o.visibility = &visibility;
                 Estimate got = t->irradiance(*e.light, {x, 0, 0}, {0, 1, 0}, o);
-                std::string label =
-                    std::string(t->kind) + " " + std::string(t->name) + " at x = " + number(x);
+                std::string label = std::string(kindName(t->kind)) + " " + std::string(t->name) +
+                                    " at x = " + number(x);
                 if (want == 0.0) {
                     // The umbra: exactly dark (a relative deviation would divide by zero).
                     if (luminance(got.irradiance) != 0.0) w.add(1e-300, got, label + " (umbra)");

@@ -13,6 +13,7 @@
 #include "formats/Tm25RayFile.h"
 #include "fuzz/FuzzSupport.h"
 #include "fuzz/PhotometryChecks.h"
+#include "luminaires/Adapter.h"
 #include "luminaires/environment/Environment.h"
 #include "luminaires/lightfield/LightField.h"
 #include "scene/GltfLoader.h"
@@ -138,7 +139,7 @@ inline void scene(const uint8_t* data, size_t size) {
         for (const auto& l : scene.luminaires) {
             glm::dvec3 p = l->power();
             checkFinite(std::vector<double>{p.x, p.y, p.z}, "luminaire power", 0.0);
-            (void)l->describe();
+            (void)describe(*l);
         }
     } catch (const InputError&) {
     }

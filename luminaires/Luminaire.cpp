@@ -44,4 +44,57 @@ void Pose::frame(glm::dvec3& x, glm::dvec3& y, glm::dvec3& z) const {
     y = glm::cross(z, x);
 }
 
+glm::dvec3 Pose::toLocal(const glm::dvec3& p) const {
+    glm::dvec3 x, y, z;
+    frame(x, y, z);
+    glm::dvec3 d = p - position;
+    return {glm::dot(d, x), glm::dot(d, y), glm::dot(d, z)};
+}
+
+glm::dvec3 Pose::toWorldDir(const glm::dvec3& v) const {
+    glm::dvec3 x, y, z;
+    frame(x, y, z);
+    return v.x * x + v.y * y + v.z * z;
+}
+
+}  // namespace candela
+
+namespace candela {
+
+Luminaire::Luminaire(std::shared_ptr<const LuminaireModel> model) : mModel(std::move(model)) {}
+
+void Luminaire::setModel(std::shared_ptr<const LuminaireModel> model) {
+    mModel = std::move(model);
+}
+
+namespace {
+
+struct KindName {
+    LuminaireKind kind;
+    std::string_view name;
+};
+constexpr KindName kKindNames[] = {
+    {LuminaireKind::LambertianRect, "lambertian-rect"},
+    {LuminaireKind::LightField, "lightfield"},
+    {LuminaireKind::Photometric, "photometric"},
+    {LuminaireKind::Environment, "environment"},
+};
+
+}  // namespace
+
+std::string_view kindName(LuminaireKind kind) {
+    for (const KindName& k : kKindNames)
+        if (k.kind == kind) return k.name;
+    return "unknown";
+}
+
+bool kindNamed(std::string_view name, LuminaireKind& kind) {
+    for (const KindName& k : kKindNames)
+        if (k.name == name) {
+            kind = k.kind;
+            return true;
+        }
+    return false;
+}
+
 }  // namespace candela

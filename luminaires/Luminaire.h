@@ -1,7 +1,9 @@
 #pragma once
-// The interface every luminaire kind implements (pbrt's "specified object" idea): emitted
-// radiance, power in closed form, a light sampler with its pdf, and the data its GPU passes read.
-// No GL here: renderer/ uploads what gpuData() packs.
+// A luminaire is a model and its placement (docs/architecture.md, "Models and placements"). The
+// model (LuminaireModel) is what every kind implements: emitted radiance, power in closed form, a
+// light sampler with its pdf, its outline; built once, immutable, shared. A placement (Luminaire)
+// is a model at a pose, with a name, a technique and a maintenance factor. What a kind does besides
+// its physics is its adapter (luminaires/Adapter.h).
 
 #include <cstddef>
 #include <glm/glm.hpp>
@@ -27,6 +29,11 @@ struct Pose {
     /// Orthonormal frame (x = c0', y = aim x c0', z = aim'). Falls back to a stable perpendicular
     /// when c0 is parallel to aim, so it never produces NaN.
     void frame(glm::dvec3& x, glm::dvec3& y, glm::dvec3& z) const;
+    /// World point p in the frame's coordinates (origin at position), metres.
+    glm::dvec3 toLocal(const glm::dvec3& p) const;
+    /// A direction in the frame's coordinates to world.
+    glm::dvec3 toWorldDir(const glm::dvec3& v) const;
+    bool operator==(const Pose&) const = default;
 };
 
 /// One light sample as seen from a receiver point p.
@@ -55,7 +62,7 @@ struct ShadowLights {
     bool operator==(const ShadowLights&) const = default;
 };
 
-/// What Luminaire::body() gives the scene.
+/// What a luminaire's body (luminaires/Adapter.h) gives the scene.
 struct LuminaireBody {
     /// World-space triangles, three points (metres) each; empty for none.
     std::vector<glm::dvec3> triangles;
@@ -66,69 +73,77 @@ struct LuminaireBody {
     double reflectance = 0.0;
 };
 
-class Luminaire {
+/// The kinds of light source. Scene files name them by kindName(); code compares the enum.
+enum class LuminaireKind : unsigned char { LambertianRect, LightField, Photometric, Environment };
+
+/// What a luminaire emits, apart from where it is placed: built once from its parameters (a file,
+/// sizes, a dimming), immutable afterwards and shared by every placement of it (Luminaire). Its
+/// interface is the physics, evaluated at the pose a placement gives; what a kind packs for the
+/// GPU, writes to a scene file or shows a user lives in its adapter (luminaires/Adapter.h).
+class LuminaireModel {
   public:
-    virtual ~Luminaire() = default;
+    explicit LuminaireModel(LuminaireKind kind) : mKind(kind) {}
+    virtual ~LuminaireModel() = default;
 
-    /// Kind name as in scene files ("lambertian-rect").
-    virtual std::string_view kind() const = 0;
-    virtual std::unique_ptr<Luminaire> clone() const = 0;
-
+    LuminaireKind kind() const { return mKind; }
     /// Radiance leaving emitter point x in unit direction w (away from the luminaire),
-    /// W/(m2 sr), RGB. Zero off the emitter and on its back side.
-    virtual glm::dvec3 radiance(const glm::dvec3& x, const glm::dvec3& w) const = 0;
+    /// W/(m2 sr), RGB, placed at `pose`. Zero off the emitter and on its back side.
+    virtual glm::dvec3 radiance(const Pose& pose, const glm::dvec3& x,
+                                const glm::dvec3& w) const = 0;
     /// Total emitted power in closed form (or exact quadrature), W per channel (lm for a
     /// photometric source, quantities()).
     virtual glm::dvec3 power() const = 0;
     /// The unit system of its numbers: radiometric (W, W/(m2 sr)) or photometric (lm, cd/m2).
     virtual Quantities quantities() const = 0;
-    /// Samples a point on the emitter as seen from receiver p; u in [0,1)^2.
-    virtual LightSample sample(const glm::dvec3& p, const glm::dvec2& u) const = 0;
+    /// Samples a point on the emitter placed at `pose` as seen from receiver p; u in [0,1)^2.
+    virtual LightSample sample(const Pose& pose, const glm::dvec3& p,
+                               const glm::dvec2& u) const = 0;
     /// Solid-angle pdf of sample() at p for the unit direction wi.
-    virtual double pdf(const glm::dvec3& p, const glm::dvec3& wi) const = 0;
+    virtual double pdf(const Pose& pose, const glm::dvec3& p, const glm::dvec3& wi) const = 0;
+    /// World-space outline of the emitting surface placed at `pose` (for drawing, picking and
+    /// occlusion analysis); empty for a source without a surface.
+    virtual std::vector<glm::dvec3> outline(const Pose& pose) const = 0;
+    /// Where its emitting surface is for a placement at `pose`: the pose itself, except for a
+    /// model whose geometry places the opening away from its insertion point (a GLDF variant's
+    /// L3D light-emitting object).
+    virtual Pose emitterPose(const Pose& pose) const { return pose; }
 
-    /// World-space outline of the emitting surface (for drawing, picking and occlusion analysis).
-    virtual std::vector<glm::dvec3> outline() const = 0;
-    /// Kind-specific fields written into the scene file entry (pose, name, technique are common).
-    virtual void writeJson(nlohmann::json& out) const = 0;
-    /// Packed std430 record for this kind's GPU passes (layout in shaders/shared/).
-    virtual std::vector<std::byte> gpuData() const = 0;
-    /// The tables its shaders read from textures (luminaires/GpuTable.h), made once per model and
-    /// shared: the same object comes back until the model changes. Null: none.
-    virtual std::shared_ptr<const GpuTables> gpuTables() const { return nullptr; }
-    /// Radiance the viewport shows on the emitting surface, W/(m2 sr): by default what leaves its
-    /// centre along the aim (exact for Lambertian emitters).
-    virtual glm::dvec3 displayRadiance() const {
-        glm::dvec3 x, y, z;
-        pose.frame(x, y, z);
-        return radiance(pose.position, z);
+  protected:
+    LuminaireModel(const LuminaireModel&) = default;
+    LuminaireModel& operator=(const LuminaireModel&) = default;
+
+  private:
+    LuminaireKind mKind;
+};
+
+/// A luminaire placed in a scene: a shared, immutable model and where it is (pose), what it is
+/// called, how it is rendered and its maintenance factor. Copying one shares the model; an edit
+/// of the model's parameters builds a new model (setModel). Its methods are the model's physics
+/// at its pose.
+class Luminaire {
+  public:
+    explicit Luminaire(std::shared_ptr<const LuminaireModel> model);
+
+    const LuminaireModel& model() const { return *mModel; }
+    const std::shared_ptr<const LuminaireModel>& sharedModel() const { return mModel; }
+    void setModel(std::shared_ptr<const LuminaireModel> model);
+    std::unique_ptr<Luminaire> clone() const { return std::make_unique<Luminaire>(*this); }
+
+    LuminaireKind kind() const { return mModel->kind(); }
+    glm::dvec3 radiance(const glm::dvec3& x, const glm::dvec3& w) const {
+        return mModel->radiance(pose, x, w);
     }
-    /// One line for `candela info` and the editor.
-    virtual std::string describe() const = 0;
-    /// The files its data was read from (a photometric file and its TILT file, a light field's
-    /// manifest and images), so commands never write onto them; empty for kinds made of numbers.
-    virtual std::vector<std::string> sourceFiles() const { return {}; }
-    /// The shadow maps this luminaire's shading reads for about `count` maps (0: the kind's
-    /// natural count); empty (no lights) for a kind that traces shadow rays instead.
-    virtual ShadowLights shadowLights(int count) const {
-        (void)count;
-        return {};
+    glm::dvec3 power() const { return mModel->power(); }
+    Quantities quantities() const { return mModel->quantities(); }
+    LightSample sample(const glm::dvec3& p, const glm::dvec2& u) const {
+        return mModel->sample(pose, p, u);
     }
+    double pdf(const glm::dvec3& p, const glm::dvec3& wi) const { return mModel->pdf(pose, p, wi); }
+    std::vector<glm::dvec3> outline() const { return mModel->outline(pose); }
+    Pose emitterPose() const { return mModel->emitterPose(pose); }
     /// A source at infinity (the environment): light arrives from directions, not from points;
     /// it has no outline, no pose and no finite flux.
-    virtual bool atInfinity() const { return false; }
-    /// Where its emitting surface is: the pose, except for a luminaire whose geometry places the
-    /// opening away from its insertion point (a GLDF variant's L3D light-emitting object).
-    virtual Pose emitterPose() const { return pose; }
-    /// The luminaire's body: its housing from L3D geometry, or the photometry's luminous box.
-    /// Scene::updateBodies makes it a mesh that blocks every other light and the interreflected
-    /// light, except light leaving a point inside its own bounds (the photometry already holds
-    /// what the housing does to its own light).
-    virtual LuminaireBody body() const { return {}; }
-    /// The other luminaires its scene entry makes (a GLDF variant placing several emitters: one
-    /// luminaire per emitter, this one the first); the loader gives them this one's name, pose,
-    /// technique and maintenance factor.
-    virtual std::vector<std::unique_ptr<Luminaire>> companions() const { return {}; }
+    bool atInfinity() const { return kind() == LuminaireKind::Environment; }
 
     Pose pose;  ///< Where it is placed (the insertion point, for a luminaire with geometry).
     std::string name;
@@ -136,6 +151,14 @@ class Luminaire {
     /// Its own maintenance factor (EN 12464-1: maintained over initial output, in (0, 1]);
     /// unset: the scene's (Scene::maintenanceFactor).
     std::optional<double> maintenanceFactor;
+
+  private:
+    std::shared_ptr<const LuminaireModel> mModel;
 };
+
+/// The kind's name in scene files ("lambertian-rect").
+std::string_view kindName(LuminaireKind kind);
+/// The kind a scene file's name means; false if none.
+bool kindNamed(std::string_view name, LuminaireKind& kind);
 
 }  // namespace candela

@@ -11,21 +11,22 @@ namespace candela {
 // The one table of luminaire kinds and techniques. A new technique is one line here plus its own
 // files; a new kind is one line in kKinds plus its model in luminaires/ and shaders.
 static const LuminaireKindInfo kKinds[] = {
-    {"lambertian-rect", "uniformly emitting (Lambertian) rectangle", &LambertianRect::parse,
-     &LambertianRect::create, "analytic", "analytic"},
-    {"lightfield", "measured near-field luminaire (light field on two planes, Lu et al. 2015)",
-     &LightFieldLuminaire::parse, &LightFieldLuminaire::create, "restricted-cdf",
-     "precomputed-global"},
-    {"photometric",
+    {LuminaireKind::LambertianRect, "lambertian-rect", "uniformly emitting (Lambertian) rectangle",
+     &lambertianRectAdapter, "analytic", "analytic"},
+    {LuminaireKind::LightField, "lightfield",
+     "measured near-field luminaire (light field on two planes, Lu et al. 2015)",
+     &lightFieldAdapter, "restricted-cdf", "precomputed-global"},
+    {LuminaireKind::Photometric, "photometric",
      "far-field photometry (IES LM-63, EULUMDAT) on its luminous opening (Prost 2019)",
-     &PhotometricLuminaire::parse, &PhotometricLuminaire::create, "adaptive", "scattered"},
+     &photometricAdapter, "adaptive", "scattered"},
     // Not placed: a scene's "environment" field makes it (Scene::environmentLight).
-    {"environment", "environment map at infinity (lat-long image, sky, sequence; Lu et al. 2013)",
-     nullptr, nullptr, "balanced", "balanced"},
+    {LuminaireKind::Environment, "environment",
+     "environment map at infinity (lat-long image, sky, sequence; Lu et al. 2013)",
+     &environmentAdapter, "balanced", "balanced"},
 };
 // Scene types that are file formats: a GLDF variant is its emitter's photometry.
 static const LuminaireFormatInfo kFormats[] = {
-    {"gldf", "photometric", &PhotometricLuminaire::parseGldf},
+    {"gldf", LuminaireKind::Photometric, &parseGldfLuminaire},
 };
 
 /// The kinds a scene places: all of kKinds but the last.
@@ -34,7 +35,7 @@ constexpr size_t kPlacedKinds = std::size(kKinds) - 1;
 using Limits = StatedLimits;
 
 static const TechniqueInfo kTechniques[] = {
-    {"lambertian-rect",
+    {LuminaireKind::LambertianRect,
      "analytic",
      "closed-form polygon irradiance (Baum et al. 1989); stochastic visibility ratio if occluded",
      false,
@@ -43,7 +44,7 @@ static const TechniqueInfo kTechniques[] = {
      false,
      {},
      {Limits::Exact, 1e-6, -1, 0, true, "Lambert's formula: exact to double rounding"}},
-    {"lambertian-rect",
+    {LuminaireKind::LambertianRect,
      "reference",
      "Monte Carlo, samples uniform in solid angle (Urena et al. 2013)",
      true,
@@ -55,7 +56,7 @@ static const TechniqueInfo kTechniques[] = {
     // The light-field GPU techniques read per-cell shadow maps (Sec. 6.2) when an occluder may
     // block the luminaire; restricted-cdf-raytraced is the same sampler with a shadow ray per
     // sample (the exact visibility the maps approximate, Fig. 7). On the CPU both trace rays.
-    {"lightfield",
+    {LuminaireKind::LightField,
      "restricted-cdf",
      "position-dependent restricted CDFs with balancing (Lu et al. 2015, Eq. 8, 12, 13); per-cell "
      "shadow maps",
@@ -65,7 +66,7 @@ static const TechniqueInfo kTechniques[] = {
      true,
      {},
      {Limits::Unbiased, 1e-3, -1, 0, true, "unbiased; its standard error covers its error"}},
-    {"lightfield",
+    {LuminaireKind::LightField,
      "restricted-cdf-raytraced",
      "restricted-cdf with a shadow ray per sample (exact visibility; BVH on the GPU, Embree on the "
      "CPU)",
@@ -75,7 +76,7 @@ static const TechniqueInfo kTechniques[] = {
      false,
      {},
      {Limits::Unbiased, 1e-3, -1, 0, true, "unbiased; its standard error covers its error"}},
-    {"lightfield",
+    {LuminaireKind::LightField,
      "uniform-restricted",
      "uniform samples in the same restricted boxes (Fig. 12)",
      true,
@@ -84,7 +85,7 @@ static const TechniqueInfo kTechniques[] = {
      true,
      {},
      {Limits::Unbiased, 1e-3, -1, 0, true, "unbiased; its standard error covers its error"}},
-    {"lightfield",
+    {LuminaireKind::LightField,
      "precomputed-global",
      "one global CDF over all images, the same for every receiver (Fig. 11)",
      true,
@@ -97,7 +98,7 @@ static const TechniqueInfo kTechniques[] = {
       "restricted-cdf pilot)"}},
     // The CPU estimator is precomputed-global's: at one receiver the shared set is distributed as
     // a set of the receiver's own.
-    {"lightfield",
+    {LuminaireKind::LightField,
      "precomputed-shared",
      "one set of global-CDF samples shared by every receiver (the paper's Fig. 11 baseline)",
      true,
@@ -108,7 +109,7 @@ static const TechniqueInfo kTechniques[] = {
      {Limits::Unbiased, 1e-3, -1, 0, true,
       "unbiased; its standard error covers its error (near S it adds the distance to a "
       "restricted-cdf pilot); one set of samples for all receivers, so its error is structured"}},
-    {"lightfield",
+    {LuminaireKind::LightField,
      "granier2003",
      "one textured spot light per basis function (Granier et al. 2003, Eq. 14); approximate",
      false,
@@ -120,7 +121,7 @@ static const TechniqueInfo kTechniques[] = {
      {Limits::Approximate, 0.1, 1e-2, 0, true,
       "an approximation within 10 % near the luminaire; within 1 % far away (its far field "
       "conserved)"}},
-    {"lightfield",
+    {LuminaireKind::LightField,
      "reference",
      "Gauss-Legendre quadrature of the exact model over U, split at knots and pixel edges",
      false,
@@ -129,7 +130,7 @@ static const TechniqueInfo kTechniques[] = {
      false,
      {},
      {Limits::Exact, 2e-3, -1, 0, true, "quadrature over U: exact to 0.2 %"}},
-    {"photometric",
+    {LuminaireKind::Photometric,
      "scattered",
      "corners + closest point, spherical Delaunay cubature normalised by the form factor (Prost "
      "Eq. 5.6, 5.11)",
@@ -145,7 +146,7 @@ static const TechniqueInfo kTechniques[] = {
       "near the opening: 28 % off on a smooth batwing 0.1 m away, any factor on a peaked one (the "
       "flux 0.1 m round spot.ies 3.6x)",
       0.3, 3.7}},
-    {"photometric",
+    {LuminaireKind::Photometric,
      "structured",
      "corners and barycentre as uniform solid-angle samples (Lagarde 2014)",
      false,
@@ -158,7 +159,7 @@ static const TechniqueInfo kTechniques[] = {
       "exact for a Lambertian opening, a segment or a point; on measured tables near the "
       "opening: 49 % off on a smooth batwing, any factor on a peaked one (flux 3.3x)",
       0.5, 2.4}},
-    {"photometric",
+    {LuminaireKind::Photometric,
      "mrp",
      "one sample at the most representative point (Drobot 2014)",
      false,
@@ -171,7 +172,7 @@ static const TechniqueInfo kTechniques[] = {
       "exact for a Lambertian opening, a segment or a point; one direction for a measured table: "
       "67 % off on a smooth batwing near the opening, any factor on a peaked one (flux 12.5x)",
       0.7, 11.6}},
-    {"photometric",
+    {LuminaireKind::Photometric,
      "mc-poisson-24",
      "a fixed set of 24 Poisson-disk points on the opening (MCI-24)",
      false,
@@ -184,7 +185,7 @@ static const TechniqueInfo kTechniques[] = {
       "its 24 points are no symmetric rule, so a peaked table is off by up to 30 % there and "
       "3.5 % 28 diagonals away (vee.ies)",
       1e-2, 1e-2}},
-    {"photometric",
+    {LuminaireKind::Photometric,
      "mc-poisson-40",
      "a fixed set of 40 Poisson-disk points on the opening (MCI-40)",
      false,
@@ -198,7 +199,7 @@ static const TechniqueInfo kTechniques[] = {
       1e-2, 1e-2}},
     // 1e-4: the test reads the cosine it tabulates at 1 degree steps (linear interpolation: at
     // most (pi / 180)^2 / 8 = 4e-5 relative).
-    {"photometric",
+    {LuminaireKind::Photometric,
      "point",
      "one photometric point light at the centre (DIALux-style preview)",
      false,
@@ -208,7 +209,7 @@ static const TechniqueInfo kTechniques[] = {
      {},
      {Limits::PointLaw, 1e-4, -1, 0, true, "the point law at the opening's centre, at any distance",
       1e-3, 0.0}},
-    {"photometric",
+    {LuminaireKind::Photometric,
      "adaptive",
      "scattered sampling refined where it matters: the worst spherical triangle split in four "
      "until the estimate's error is 0.1 % of it",
@@ -224,7 +225,7 @@ static const TechniqueInfo kTechniques[] = {
       "the CPU; the GPU's fewer splits: within 3 % from 0.3 m); a peak narrower than its first "
       "triangles can be missed",
       1e-2, 1e-2}},
-    {"photometric",
+    {LuminaireKind::Photometric,
      "hybrid",
      "scattered within half an opening size, 24 Poisson points from 1.5 on, blended between (Prost "
      "Sec. 6.6)",
@@ -240,7 +241,7 @@ static const TechniqueInfo kTechniques[] = {
       "errors near the opening (28 % on a smooth batwing, any factor on a peaked one) and "
       "mc-poisson-24's beyond (30 % on a peaked one at 5 diagonals)",
       0.3, 3.7}},
-    {"photometric",
+    {LuminaireKind::Photometric,
      "reference",
      "Monte Carlo: opening points (Prost Eq. 6.3), cosine and intensity-proportional directions, "
      "balance heuristic",
@@ -251,7 +252,7 @@ static const TechniqueInfo kTechniques[] = {
      {},
      {Limits::Unbiased, 2e-3, -1, 0, true,
       "unbiased; its standard error covers its error (4 standard errors)", 1e-3, 0.0}},
-    {"photometric",
+    {LuminaireKind::Photometric,
      "uniform-area",
      "Monte Carlo: points uniform on the opening only (Prost Eq. 6.3 on its own)",
      true,
@@ -268,7 +269,7 @@ static const TechniqueInfo kTechniques[] = {
     // The environment. Its pass (renderer/passes/EnvironmentPass) builds the tables each names:
     // the cube-map CDFs and a pool of light samples per pass, the lat-long CDF, or Havran's
     // lights.
-    {"environment",
+    {LuminaireKind::Environment,
      "reference",
      "exact: every texel's radiance times its clipped-cosine integral",
      false,
@@ -277,7 +278,7 @@ static const TechniqueInfo kTechniques[] = {
      false,
      {},
      {Limits::Exact, 1e-3, -1, 0, true, "exact: every texel's clipped-cosine integral"}},
-    {"environment",
+    {LuminaireKind::Environment,
      "balanced",
      "cube-map CDFs, samples per face balanced per normal (Lu et al. 2013, Eq. 3-5)",
      true,
@@ -286,7 +287,7 @@ static const TechniqueInfo kTechniques[] = {
      false,
      "cube",
      {Limits::Unbiased, 1e-3, -1, 0, true, "unbiased; its standard error covers its error"}},
-    {"environment",
+    {LuminaireKind::Environment,
      "uniform-faces",
      "cube-map CDFs, 1/6 of the samples per face (Lu et al. 2013, Fig. 2)",
      true,
@@ -295,7 +296,7 @@ static const TechniqueInfo kTechniques[] = {
      false,
      "cube",
      {Limits::Unbiased, 1e-3, -1, 0, true, "unbiased; its standard error covers its error"}},
-    {"environment",
+    {LuminaireKind::Environment,
      "global-cdf",
      "one CDF over the lat-long map with the sin(theta) Jacobian",
      true,
@@ -304,7 +305,7 @@ static const TechniqueInfo kTechniques[] = {
      false,
      "latlong",
      {Limits::Unbiased, 1e-3, -1, 0, true, "unbiased; its standard error covers its error"}},
-    {"environment",
+    {LuminaireKind::Environment,
      "havran2005",
      "256 filtered directional lights from relaxed Halton points (Havran et al. 2005); a shadow "
      "map each",
@@ -315,7 +316,7 @@ static const TechniqueInfo kTechniques[] = {
      "lights",
      {Limits::Approximate, 3e-2, -1, 0, true,
       "256 directional lights: within 3 % of a smooth sky"}},
-    {"environment",
+    {LuminaireKind::Environment,
      "havran2005-raytraced",
      "havran2005 with a shadow ray per light instead of its shadow map (exact visibility)",
      false,
@@ -325,7 +326,7 @@ static const TechniqueInfo kTechniques[] = {
      "lights",
      {Limits::Approximate, 3e-2, -1, 0, true,
       "256 directional lights: within 3 % of a smooth sky"}},
-    {"environment",
+    {LuminaireKind::Environment,
      "balanced-mis",
      "balanced light samples and cosine samples, balance heuristic (Eq. 6)",
      true,
@@ -334,7 +335,7 @@ static const TechniqueInfo kTechniques[] = {
      false,
      "cube",
      {Limits::Unbiased, 1e-3, -1, 0, true, "unbiased; its standard error covers its error"}},
-    {"environment",
+    {LuminaireKind::Environment,
      "balanced-integer",
      "balanced with N_f rounded to whole samples (biased, pops; the baseline of the "
      "temporal-stability bench)",
@@ -357,16 +358,22 @@ std::span<const TechniqueInfo> techniques() {
     return kTechniques;
 }
 
-std::vector<TechniqueInfo> techniquesOf(std::string_view kind) {
+std::vector<TechniqueInfo> techniquesOf(LuminaireKind kind) {
     std::vector<TechniqueInfo> out;
     for (const auto& t : kTechniques)
         if (t.kind == kind) out.push_back(t);
     return out;
 }
 
-const LuminaireKindInfo* findKind(std::string_view kind) {
+const LuminaireKindInfo& findKind(LuminaireKind kind) {
     for (const auto& k : kKinds)
-        if (k.kind == kind) return &k;
+        if (k.kind == kind) return k;
+    return kKinds[0];  // unreachable: every kind has a line
+}
+
+const LuminaireKindInfo* findKind(std::string_view name) {
+    for (const auto& k : kKinds)
+        if (k.name == name) return &k;
     return nullptr;
 }
 
@@ -380,17 +387,70 @@ const LuminaireFormatInfo* findFormat(std::string_view type) {
     return nullptr;
 }
 
-const TechniqueInfo* findTechnique(std::string_view kind, std::string_view name) {
+const TechniqueInfo* findTechnique(LuminaireKind kind, std::string_view name) {
     for (const auto& t : kTechniques)
         if (t.kind == kind && t.name == name) return &t;
     return nullptr;
 }
 
-std::string techniqueNames(std::string_view kind) {
+std::string techniqueNames(LuminaireKind kind) {
     std::string out;
     for (const auto& t : kTechniques)
         if (t.kind == kind) out += (out.empty() ? "" : ", ") + std::string(t.name);
     return out;
+}
+
+// The adapters' dispatch (luminaires/Adapter.h).
+
+const LuminaireAdapter& adapterOf(LuminaireKind kind) {
+    return findKind(kind).adapter();
+}
+
+void writeJson(const Luminaire& luminaire, nlohmann::json& out) {
+    if (auto f = adapterOf(luminaire.kind()).writeJson) f(luminaire.model(), out);
+}
+
+std::vector<std::byte> gpuData(const Luminaire& luminaire) {
+    auto f = adapterOf(luminaire.kind()).gpuData;
+    return f ? f(luminaire) : std::vector<std::byte>();
+}
+
+std::shared_ptr<const GpuTables> gpuTables(const Luminaire& luminaire) {
+    auto f = adapterOf(luminaire.kind()).gpuTables;
+    return f ? f(luminaire.model()) : nullptr;
+}
+
+std::string describe(const Luminaire& luminaire) {
+    auto f = adapterOf(luminaire.kind()).describe;
+    return f ? f(luminaire.model()) : std::string(kindName(luminaire.kind()));
+}
+
+std::vector<std::string> sourceFiles(const Luminaire& luminaire) {
+    auto f = adapterOf(luminaire.kind()).sourceFiles;
+    return f ? f(luminaire.model()) : std::vector<std::string>();
+}
+
+ShadowLights shadowLights(const Luminaire& luminaire, int count) {
+    auto f = adapterOf(luminaire.kind()).shadowLights;
+    return f ? f(luminaire, count) : ShadowLights();
+}
+
+LuminaireBody body(const Luminaire& luminaire) {
+    auto f = adapterOf(luminaire.kind()).body;
+    return f ? f(luminaire) : LuminaireBody();
+}
+
+std::vector<std::unique_ptr<Luminaire>> companions(const Luminaire& luminaire) {
+    auto f = adapterOf(luminaire.kind()).companions;
+    return f ? f(luminaire) : std::vector<std::unique_ptr<Luminaire>>();
+}
+
+glm::dvec3 displayRadiance(const Luminaire& luminaire) {
+    if (auto f = adapterOf(luminaire.kind()).displayRadiance) return f(luminaire);
+    glm::dvec3 x, y, z;
+    Pose emitter = luminaire.emitterPose();
+    emitter.frame(x, y, z);
+    return luminaire.radiance(emitter.position, z);
 }
 
 }  // namespace candela

@@ -13,6 +13,7 @@
 #include <string_view>
 #include <vector>
 
+#include "luminaires/Adapter.h"
 #include "luminaires/Estimate.h"
 #include "luminaires/Luminaire.h"
 #include "util/JsonRead.h"
@@ -55,7 +56,7 @@ struct StatedLimits {
 };
 
 struct TechniqueInfo {
-    std::string_view kind;         ///< Luminaire kind it renders.
+    LuminaireKind kind;            ///< Luminaire kind it renders.
     std::string_view name;         ///< As in scene files and --technique.
     std::string_view description;  ///< One line for the editor and `candela info`.
     bool progressive;              ///< Stochastic: refines over frames. Else exact in one frame.
@@ -64,7 +65,8 @@ struct TechniqueInfo {
     /// kind's shared shading); empty: CPU only (probe, tests, benches).
     std::string_view shader;
     /// Where an occluder can block the luminaire: true reads shadow maps (SHADOW_MAPS, rendered
-    /// from Luminaire::shadowLights()), false traces a ray per sample through the BVH (SHADOWS).
+    /// from the luminaire's shadowLights, luminaires/Adapter.h), false traces a ray per sample
+    /// through the BVH (SHADOWS).
     bool shadowMaps = false;
     /// What its kind's GPU pass prepares for it besides the source's record (space-separated
     /// names that pass knows; the environment's: "cube", "latlong", "lights"); empty: nothing.
@@ -72,21 +74,21 @@ struct TechniqueInfo {
     StatedLimits limits = {};
 };
 
-/// Builds a luminaire from its scene-file entry (kind-specific fields; pose is read by the caller).
+/// Builds a placed luminaire from its scene-file entry (luminaires/Adapter.h).
 using LuminaireParser = std::unique_ptr<Luminaire> (*)(const nlohmann::json& entry,
                                                        const json::Where& where);
-/// A luminaire of this kind with default parameters (the editor's "Add").
-using LuminaireFactory = std::unique_ptr<Luminaire> (*)();
 
 struct LuminaireKindInfo {
-    std::string_view kind;
+    LuminaireKind kind;
+    std::string_view name;  ///< As in scene files (kindName()).
     std::string_view description;
-    LuminaireParser parse;    ///< null for a kind that is not placed (the environment)
-    LuminaireFactory create;  ///< null for a kind that is not placed
+    const LuminaireAdapter& (*adapter)();
     std::string_view defaultTechnique;
     /// The editor's fallback while the user drags (renderer/LivePreview.h): cheap per sample and
     /// close at one sample per pixel.
     std::string_view previewTechnique;
+    /// Placed by a scene's "luminaires" list (the environment is not: its own field makes it).
+    bool placed() const { return adapter().parse != nullptr; }
 };
 
 /// A scene-file luminaire type that is a file format rather than a kind of its own: its entries
@@ -94,7 +96,7 @@ struct LuminaireKindInfo {
 /// photometric luminaire).
 struct LuminaireFormatInfo {
     std::string_view type;  ///< The entry's "type".
-    std::string_view kind;  ///< The kind of luminaire it builds.
+    LuminaireKind kind;     ///< The kind of luminaire it builds.
     LuminaireParser parse;
 };
 
@@ -104,13 +106,15 @@ std::span<const LuminaireKindInfo> luminaireKinds();
 std::span<const LuminaireKindInfo> sourceKinds();
 std::span<const TechniqueInfo> techniques();
 /// The techniques of one kind, in the table's order.
-std::vector<TechniqueInfo> techniquesOf(std::string_view kind);
-const LuminaireKindInfo* findKind(std::string_view kind);
+std::vector<TechniqueInfo> techniquesOf(LuminaireKind kind);
+const LuminaireKindInfo& findKind(LuminaireKind kind);
+/// The kind a scene file names; null if none.
+const LuminaireKindInfo* findKind(std::string_view name);
 /// The formats a scene's luminaire entries may name besides the kinds ("gldf").
 std::span<const LuminaireFormatInfo> luminaireFormats();
 const LuminaireFormatInfo* findFormat(std::string_view type);
-const TechniqueInfo* findTechnique(std::string_view kind, std::string_view name);
+const TechniqueInfo* findTechnique(LuminaireKind kind, std::string_view name);
 /// Comma-separated technique names of a kind, for error messages and help.
-std::string techniqueNames(std::string_view kind);
+std::string techniqueNames(LuminaireKind kind);
 
 }  // namespace candela

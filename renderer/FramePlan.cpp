@@ -49,18 +49,19 @@ const ShadeStep* FramePlan::stepOf(const Luminaire* source) const {
     return nullptr;
 }
 
-const ShadeStep* FramePlan::stepOfKind(std::string_view kind) const {
+const ShadeStep* FramePlan::stepOfKind(LuminaireKind kind) const {
     for (const ShadeStep& s : shading)
         if (s.technique->kind == kind) return &s;
     return nullptr;
 }
 
-std::string overrideFor(const std::string& techniqueOverride, std::string_view kind) {
+std::string overrideFor(const std::string& techniqueOverride, LuminaireKind kind) {
     std::istringstream list(techniqueOverride);
     for (std::string name; std::getline(list, name, ',');) {
         // "KIND=NAME" applies to that kind only.
         if (size_t eq = name.find('='); eq != std::string::npos) {
-            if (std::string_view(name).substr(0, eq) != kind) continue;
+            LuminaireKind named;
+            if (!kindNamed(std::string_view(name).substr(0, eq), named) || named != kind) continue;
             name = name.substr(eq + 1);
         }
         if (findTechnique(kind, name) != nullptr) return name;
@@ -71,20 +72,21 @@ std::string overrideFor(const std::string& techniqueOverride, std::string_view k
 void checkTechniqueList(const std::string& techniqueOverride) {
     std::string kinds;
     for (const LuminaireKindInfo& k : sourceKinds())
-        kinds += (kinds.empty() ? "" : ", ") + std::string(k.kind);
+        kinds += (kinds.empty() ? "" : ", ") + std::string(k.name);
     std::istringstream list(techniqueOverride);
     for (std::string item; std::getline(list, item, ',');) {
         size_t eq = item.find('=');
         std::string kind = eq == std::string::npos ? std::string() : item.substr(0, eq);
         std::string name = eq == std::string::npos ? item : item.substr(eq + 1);
         if (eq != std::string::npos) {
-            if (!findKind(kind))
+            const LuminaireKindInfo* found = findKind(kind);
+            if (!found)
                 throw InputError("technique list \"" + techniqueOverride + "\": unknown kind \"" +
                                  kind + "\" in \"" + item + "\" (kinds: " + kinds + ")");
-            if (!findTechnique(kind, name))
+            if (!findTechnique(found->kind, name))
                 throw InputError("technique list \"" + techniqueOverride + "\": " + kind +
                                  " has no technique \"" + name +
-                                 "\" (available: " + techniqueNames(kind) + ")");
+                                 "\" (available: " + techniqueNames(found->kind) + ")");
             continue;
         }
         bool known = false;
@@ -100,7 +102,8 @@ namespace {
 
 /// "luminaire \"Panel\"" or "environment", for messages.
 std::string described(const Luminaire& source) {
-    return source.atInfinity() ? std::string(source.kind()) : "luminaire \"" + source.name + "\"";
+    return source.atInfinity() ? std::string(kindName(source.kind()))
+                               : "luminaire \"" + source.name + "\"";
 }
 
 /// The technique a source is shaded with: the list's, else its own.
@@ -111,11 +114,12 @@ const TechniqueInfo& chosenTechnique(const Luminaire& source,
     const TechniqueInfo* t = findTechnique(source.kind(), name);
     if (!t)
         throw InputError(described(source) + ": unknown technique \"" + name + "\" for " +
-                         std::string(source.kind()) +
+                         std::string(kindName(source.kind())) +
                          " (available: " + techniqueNames(source.kind()) + ")");
     if (t->shader.empty())
         throw InputError(
-            described(source) + ": technique \"" + name + "\" of " + std::string(source.kind()) +
+            described(source) + ": technique \"" + name + "\" of " +
+            std::string(kindName(source.kind())) +
             " runs on the CPU only (`candela probe`, benches); pick another technique to render");
     return *t;
 }

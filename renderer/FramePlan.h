@@ -50,7 +50,7 @@ struct FramePlan {
     /// The step that shades `source`; null when it has none.
     const ShadeStep* stepOf(const Luminaire* source) const;
     /// The first step shading a source of `kind`; null when none.
-    const ShadeStep* stepOfKind(std::string_view kind) const;
+    const ShadeStep* stepOfKind(LuminaireKind kind) const;
 };
 
 /// "shadow:NAME": the pass that renders the shadow maps of a step's luminaire.
@@ -60,7 +60,7 @@ std::string shadowPassName(const ShadeStep& step);
 /// none. An item "KIND=NAME" applies to that kind only ("environment=NAME" to the environment),
 /// so a list can give two kinds different techniques that both have
 /// ("lambertian-rect=reference,photometric=hybrid").
-std::string overrideFor(const std::string& techniqueOverride, std::string_view kind);
+std::string overrideFor(const std::string& techniqueOverride, LuminaireKind kind);
 
 /// Checks a techniqueOverride list: every item names a technique of some source kind, and every
 /// "KIND=NAME" a kind ("environment" included) that has NAME. Throws InputError naming the item

@@ -32,7 +32,7 @@ RenderSettings previewSettings(const RenderSettings& full, const PreviewPolicy& 
 Scene previewScene(const Scene& scene) {
     Scene preview = scene.clone();
     for (auto& lum : preview.luminaires)
-        if (auto* lf = dynamic_cast<const LightFieldLuminaire*>(lum.get())) lum = farFieldTwin(*lf);
+        if (std::unique_ptr<Luminaire> twin = farFieldTwin(*lum)) lum = std::move(twin);
     return preview;
 }
 
@@ -41,12 +41,13 @@ bool syncPreviewScene(Scene& preview, const Scene& scene) {
     for (size_t i = 0; i < scene.luminaires.size(); ++i) {
         const Luminaire& source = *scene.luminaires[i];
         Luminaire& shown = *preview.luminaires[i];
-        if (auto* lf = dynamic_cast<const LightFieldLuminaire*>(&source)) {
-            auto* twin = dynamic_cast<PhotometricLuminaire*>(&shown);
-            if (!twin || shown.name != source.name) return false;
-            placeFarFieldTwin(*twin, *lf);
+        if (shown.name != source.name) return false;
+        if (source.kind() == LuminaireKind::LightField) {
+            // Its stand-in (farFieldTwin) follows its pose; another model needs a new stand-in.
+            if (shown.kind() != LuminaireKind::Photometric) return false;
+            placeFarFieldTwin(shown, source);
         } else {
-            if (shown.kind() != source.kind() || shown.name != source.name) return false;
+            if (shown.sharedModel() != source.sharedModel()) return false;
             shown.pose = source.pose;
         }
     }

@@ -183,7 +183,7 @@ void Renderer::syncSources(bool allRecords) {
     }
     for (const Luminaire* source : fresh) {
         KindPass& entry = passes[source];
-        entry.kind = std::string(source->kind());
+        entry.kind = source->kind();
         for (auto it = mSourcePasses.begin(); it != mSourcePasses.end(); ++it)
             if (it->second.kind == entry.kind) {
                 entry.pass = std::move(it->second.pass);
@@ -195,7 +195,7 @@ void Renderer::syncSources(bool allRecords) {
     for (const ShadeStep& step : mPlan.shading) {
         bool isNew = std::find(fresh.begin(), fresh.end(), step.source) != fresh.end();
         if (!allRecords && !isNew) continue;
-        records[step.source] = step.source->gpuData();
+        records[step.source] = gpuData(*step.source);
         passes[step.source].pass->setSource(*step.source, records[step.source]);
     }
     mSourcePasses = std::move(passes);  // the passes of sources that left are dropped

@@ -202,7 +202,7 @@ class Renderer {
     /// Per source of the plan: its GPU pass, its record as uploaded, its accumulation
     /// (deterministic steps hold their one pass: shaded once, not again on every pass).
     struct KindPass {
-        std::string kind;  ///< Its source's kind (kept: a source that left may be gone).
+        LuminaireKind kind;  ///< Its source's kind (kept: a source that left may be gone).
         std::unique_ptr<SourcePass> pass;
     };
     std::map<const Luminaire*, KindPass> mSourcePasses;

@@ -427,7 +427,7 @@ void scheduleSection(Pdf& pdf, const ReportInput& in) {
     // Where a product's own figures disagree (calculation/Plausibility.h): one line per photometry.
     std::vector<std::pair<const void*, const void*>> checked;
     for (const auto& l : scene.luminaires) {
-        auto* p = dynamic_cast<const PhotometricLuminaire*>(l.get());
+        const PhotometricLuminaire* p = photometricModel(*l);
         if (!p || !p->data) continue;
         std::pair<const void*, const void*> key(p->data.get(),
                                                 p->gldf ? p->gldfLightEmitter() : nullptr);
@@ -440,7 +440,7 @@ void scheduleSection(Pdf& pdf, const ReportInput& in) {
     // One polar diagram per distinct photometry, two to a row.
     std::vector<const PhotometricLuminaire*> distinct;
     for (const auto& l : scene.luminaires) {
-        auto* p = dynamic_cast<const PhotometricLuminaire*>(l.get());
+        const PhotometricLuminaire* p = photometricModel(*l);
         if (!p || !p->data) continue;
         bool seen = std::any_of(distinct.begin(), distinct.end(), [&](const auto* q) {
             return q->data == p->data && q->scale == p->scale;
@@ -854,8 +854,8 @@ std::vector<ScheduleRow> luminaireSchedule(const Scene& scene) {
         r.maintenanceFactor = scene.maintenanceFactorOf(*l);
         glm::dvec3 power = l->power() * scene.unitScale(*l, units);
         r.flux = (power.x + power.y + power.z) / 3.0;
-        r.kind = std::string(l->kind());
-        if (auto* p = dynamic_cast<const PhotometricLuminaire*>(l.get()); p && p->data) {
+        r.kind = std::string(kindName(l->kind()));
+        if (const PhotometricLuminaire* p = photometricModel(*l); p && p->data) {
             const PhotometricData& d = *p->data;
             r.file = p->file;
             r.flux = d.fluxFromTable() * p->scale;
@@ -872,7 +872,7 @@ std::vector<ScheduleRow> luminaireSchedule(const Scene& scene) {
                     r.power = e->ratedPower;
             }
         }
-        std::string key = l->describe() + "|" + fmt("%.9g", r.maintenanceFactor) + "|" + r.kind;
+        std::string key = describe(*l) + "|" + fmt("%.9g", r.maintenanceFactor) + "|" + r.kind;
         auto it = index.find(key);
         if (it == index.end()) {
             r.names = l->name;

@@ -57,7 +57,7 @@ std::vector<std::string> Scene::inputFiles() const {
     for (const GeometryItem& item : geometry)
         files.insert(files.end(), item.files.begin(), item.files.end());
     for (const auto& luminaire : luminaires) {
-        std::vector<std::string> own = luminaire->sourceFiles();
+        std::vector<std::string> own = sourceFiles(*luminaire);
         files.insert(files.end(), own.begin(), own.end());
     }
     if (environmentSequence) {
@@ -76,7 +76,7 @@ bool Scene::updateBodies(size_t maxTriangles) {
     for (const Mesh& m : meshes)
         if (!m.luminaireBody) triangleTotal += m.triangleCount();
     for (const auto& l : luminaires) {
-        LuminaireBody source = l->body();
+        LuminaireBody source = body(*l);
         triangleTotal += source.triangles.size() / 3;
         if (triangleTotal > maxTriangles)
             throw InputError((path.empty() ? std::string("the scene") : path) + ": luminaire \"" +
@@ -261,11 +261,12 @@ double Scene::environmentUnitScale() const {
 
 const Luminaire* Scene::environmentLight() const {
     if (!environmentMap) return nullptr;
-    auto* light = static_cast<const EnvironmentLight*>(mEnvironmentLight.get());
+    const EnvironmentLight* light =
+        mEnvironmentLight ? environmentModel(*mEnvironmentLight) : nullptr;
     if (!light || light->sharedMap() != environmentMap ||
         light->quantities() != environmentQuantities(environment))
-        mEnvironmentLight =
-            std::make_shared<EnvironmentLight>(environmentMap, environmentQuantities(environment));
+        mEnvironmentLight = placedEnvironment(
+            std::make_shared<EnvironmentLight>(environmentMap, environmentQuantities(environment)));
     return mEnvironmentLight.get();
 }
 

@@ -122,11 +122,11 @@ struct Scene {
     /// them (util/FileOutput.h) so no output is written onto one.
     std::vector<std::string> inputFiles() const;
 
-    /// Replaces the luminaires' body meshes (Luminaire::body: flat-shaded, a "luminaire housing"
-    /// material of the body's reflectance, after every geometry entry's meshes; hidden when the
-    /// camera sees through it) with their current shape and pose. Returns whether that changed
-    /// the meshes (false when every body is as it was: an edit of another luminaire moves no
-    /// geometry). `maxTriangles`: the most triangles the scene's meshes may make with the bodies
+    /// Replaces the luminaires' body meshes (body, luminaires/Adapter.h: flat-shaded, a "luminaire
+    /// housing" material of the body's reflectance, after every geometry entry's meshes; hidden
+    /// when the camera sees through it) with their current shape and pose. Returns whether that
+    /// changed the meshes (false when every body is as it was: an edit of another luminaire moves
+    /// no geometry). `maxTriangles`: the most triangles the scene's meshes may make with the bodies
     /// (SceneLimits::triangles at load); beyond, InputError naming the scene and the luminaire
     /// that passed it, before its body is kept.
     bool updateBodies(size_t maxTriangles = SIZE_MAX);

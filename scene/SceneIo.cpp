@@ -393,7 +393,7 @@ Camera parseCamera(const nlohmann::json& v, const json::Where& where) {
 std::string kindNames() {
     std::string names;
     for (const LuminaireKindInfo& kind : luminaireKinds())
-        names += (names.empty() ? "" : ", ") + std::string(kind.kind);
+        names += (names.empty() ? "" : ", ") + std::string(kind.name);
     for (const LuminaireFormatInfo& format : luminaireFormats())
         names += ", " + std::string(format.type);
     return names;
@@ -525,7 +525,7 @@ Scene parseScene(const nlohmann::json& doc, const std::string& path, const Scene
         for (size_t i = 0; i < items.size(); ++i) {
             std::unique_ptr<Luminaire> first =
                 parseLuminaire(items[i], (root / "luminaires")[i], i);
-            std::vector<std::unique_ptr<Luminaire>> more = first->companions();
+            std::vector<std::unique_ptr<Luminaire>> more = companions(*first);
             std::string name = first->name;
             for (size_t k = 0; k < more.size(); ++k) {
                 if (k == 0) first->name = name + " #0";
@@ -616,9 +616,9 @@ std::unique_ptr<Luminaire> parseLuminaire(const nlohmann::json& entry, const jso
     std::string type = json::string(entry["type"], where / "type");
     // A kind, or a format that builds a luminaire of a kind (a GLDF variant: photometric).
     const LuminaireKindInfo* kind = findKind(type);
-    LuminaireParser parse = kind ? kind->parse : nullptr;
+    LuminaireParser parse = kind ? kind->adapter().parse : nullptr;
     if (const LuminaireFormatInfo* format = findFormat(type)) {
-        kind = findKind(format->kind);
+        kind = &findKind(format->kind);
         parse = format->parse;
     }
     if (!kind || !parse) {
@@ -649,14 +649,14 @@ std::unique_ptr<Luminaire> parseLuminaire(const nlohmann::json& entry, const jso
 
 nlohmann::json luminaireToJson(const Luminaire& luminaire) {
     nlohmann::json out = nlohmann::json::object();
-    out["type"] = std::string(luminaire.kind());
+    out["type"] = std::string(kindName(luminaire.kind()));
     out["name"] = luminaire.name;
     out["position"] = toJson(luminaire.pose.position);
     out["aim"] = toJson(luminaire.pose.aim);
     out["c0"] = toJson(luminaire.pose.c0);
     out["technique"] = luminaire.technique;
     if (luminaire.maintenanceFactor) out["maintenance_factor"] = *luminaire.maintenanceFactor;
-    luminaire.writeJson(out);
+    writeJson(luminaire, out);
     return out;
 }
 

@@ -67,7 +67,8 @@ void saveScene(const Scene& scene, const std::string& path);
 /// name "<type> <index>".
 std::unique_ptr<Luminaire> parseLuminaire(const nlohmann::json& entry, const json::Where& where,
                                           size_t index = 0);
-/// The scene-file entry of a luminaire (common fields plus its writeJson()).
+/// The scene-file entry of a luminaire (common fields plus its kind's, writeJson in
+/// luminaires/Adapter.h).
 nlohmann::json luminaireToJson(const Luminaire& luminaire);
 
 /// Adds a plane (see the tangent convention above) as a new geometry entry with its source JSON.

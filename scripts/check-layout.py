@@ -1,8 +1,11 @@
 #!/usr/bin/env python3
 """Checks that the source folders form layers: every #include "..." of Candela's own code points
 at a file in its own folder or in a lower layer, never upward and never into a sibling of the
-same layer. docs/architecture.md explains each layer. Exits 1 listing every include that breaks
-the order, 0 (and one line) when there is none.
+same layer. docs/architecture.md explains each layer. Also checks that only a luminaire kind's
+own files know its class: no dynamic_cast, no cast to a kind's model class and no comparison of a
+kind with its scene-file name anywhere else (code asks the registry, the adapters and the
+LuminaireKind enum). Exits 1 listing every include or line that breaks a rule, 0 (and one line)
+when there is none.
 
 Usage: scripts/check-layout.py [--graph]   (--graph prints the folder graph as Graphviz dot)
 """
@@ -33,6 +36,17 @@ UI_USERS = {"app/main.cpp", "app/commands/Edit.cpp"}
 CHECKED = ("util", "shaders", "formats", "luminaires", "scene", "calculation", "renderer",
            "report", "ui", "app")
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
+# A kind's own files: its folder, and the editor's panel that shows its details.
+KIND_FILES = ("luminaires/photometric/", "luminaires/lightfield/", "luminaires/environment/",
+              "luminaires/lambertian/", "ui/PhotometricPanel.cpp", "ui/LightFieldPanel.cpp")
+MODELS = r"(PhotometricLuminaire|LightFieldLuminaire|LambertianRect|EnvironmentLight)"
+KIND_NAMES = r'"(lambertian-rect|lightfield|photometric|environment)"'
+KIND_KNOWLEDGE = [
+    (re.compile(r"\bdynamic_cast\s*<"), "a dynamic_cast"),
+    (re.compile(r"\bstatic_cast\s*<\s*(const\s+)?" + MODELS + r"\b"), "a cast to a kind's model"),
+    (re.compile(r"\bkind\w*(\(\))?\s*[!=]=\s*" + KIND_NAMES), "a kind compared by name"),
+    (re.compile(KIND_NAMES + r"\s*[!=]=\s*\w*kind"), "a kind compared by name"),
+]
 
 
 def unit_of(path):
@@ -77,6 +91,11 @@ def main():
                 problems.append(f"{path}: includes {inc}, a sibling of the same layer ({dst})")
             if dst == "ui" and src == "app" and path not in UI_USERS:
                 problems.append(f"{path}: a headless command includes the editor's {inc}")
+        if not path.startswith(KIND_FILES):
+            for number, line in enumerate((root / path).read_text(errors="replace").splitlines()):
+                for pattern, what in KIND_KNOWLEDGE:
+                    if pattern.search(line.split("//")[0]):
+                        problems.append(f"{path}:{number + 1}: {what} outside the kind's files")
     if "--graph" in sys.argv:
         print("digraph layers {\n  rankdir=BT;")
         for (a, b), n in sorted(edges.items()):
@@ -86,7 +105,8 @@ def main():
     for p in problems:
         print(p)
     if problems:
-        print(f"check-layout: {len(problems)} include(s) out of layer order")
+        print(f"check-layout: {len(problems)} include(s) out of layer order or kind knowledge "
+              "outside a kind's files")
         return 1
     print(f"check-layout: {len(edges)} folder dependencies, all downward")
     return 0

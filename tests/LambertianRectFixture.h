@@ -4,7 +4,9 @@
 // Pose::frame).
 
 #include <glm/glm.hpp>
+#include <memory>
 
+#include "luminaires/Luminaire.h"
 #include "luminaires/lambertian/LambertianRect.h"
 
 namespace candela::test {
@@ -23,11 +25,13 @@ inline Frame frameOf(const Pose& pose) {
     return f;
 }
 
-/// A tilted light, so that no test relies on axis alignment.
-inline LambertianRect makeLight() {
-    LambertianRect light;
-    light.size = {1.2, 0.6};
-    light.emitted = {10.0, 5.0, 2.0};
+/// A tilted light, so that no test relies on axis alignment: a placed luminaire whose model is a
+/// LambertianRect.
+inline Luminaire makeLight() {
+    auto model = std::make_shared<LambertianRect>();
+    model->size = {1.2, 0.6};
+    model->emitted = {10.0, 5.0, 2.0};
+    Luminaire light(model);
     light.pose.position = {0.3, 2.0, -0.2};
     light.pose.aim = {0.2, -1.0, 0.1};
     light.pose.c0 = {1.0, 0.0, 0.3};
@@ -35,13 +39,13 @@ inline LambertianRect makeLight() {
 }
 
 /// A point given in the light's local frame (metres), in world space.
-inline glm::dvec3 toWorld(const LambertianRect& light, const glm::dvec3& local) {
+inline glm::dvec3 toWorld(const Luminaire& light, const glm::dvec3& local) {
     Frame f = frameOf(light.pose);
     return light.pose.position + local.x * f.x + local.y * f.y + local.z * f.z;
 }
 
 /// A direction given in the light's local frame, in world space (unit).
-inline glm::dvec3 dirToWorld(const LambertianRect& light, const glm::dvec3& local) {
+inline glm::dvec3 dirToWorld(const Luminaire& light, const glm::dvec3& local) {
     Frame f = frameOf(light.pose);
     return glm::normalize(local.x * f.x + local.y * f.y + local.z * f.z);
 }

@@ -26,7 +26,7 @@ namespace candela::test {
 
 /// The names of a kind's techniques with a GPU pass that state they are unbiased (the samplers a
 /// statistical test holds against a reference), in the registry's order.
-inline std::vector<std::string> unbiasedGpuTechniques(std::string_view kind) {
+inline std::vector<std::string> unbiasedGpuTechniques(LuminaireKind kind) {
     std::vector<std::string> out;
     for (const TechniqueInfo& t : techniquesOf(kind))
         if (t.progressive && !t.shader.empty() && t.limits.accuracy == StatedLimits::Unbiased)
@@ -35,11 +35,12 @@ inline std::vector<std::string> unbiasedGpuTechniques(std::string_view kind) {
 }
 
 /// The environment as a source over tables a test built (its face size, its Havran lights), for
-/// the registry's estimators; it refers to `lighting`, which must outlive it.
-inline EnvironmentLight lightOf(const EnvironmentLighting& lighting) {
-    return EnvironmentLight(
+/// the registry's estimators: a placed luminaire on an EnvironmentLight model; it refers to
+/// `lighting`, which must outlive it.
+inline Luminaire lightOf(const EnvironmentLighting& lighting) {
+    return *placedEnvironment(std::make_shared<const EnvironmentLight>(
         std::shared_ptr<const EnvironmentLighting>(std::shared_ptr<void>(), &lighting),
-        Quantities::Radiometric);
+        Quantities::Radiometric));
 }
 
 /// Upper tail of the chi-square distribution with k degrees of freedom: P(X >= x).
@@ -80,7 +81,7 @@ std::vector<float> renderConverged(Renderer& renderer, const Scene& scene,
 /// Runs a test compute shader (a path relative to shaders/, e.g. "../tests/shaders/x.comp") with
 /// 64-wide groups over `count` inputs: `record` (a luminaire's gpuData) at binding 1, the inputs
 /// at binding 6, the outputs at 7, the count in uniform location 0. Returns the output bytes.
-/// `tables` (Luminaire::gpuTables), when given, are bound at their texture units.
+/// `tables` (gpuTables(luminaire)), when given, are bound at their texture units.
 std::vector<std::byte> runComputeTest(const std::string& shader,
                                       const std::vector<std::byte>& record, const void* inputs,
                                       size_t inputBytes, size_t count, size_t outputBytes,

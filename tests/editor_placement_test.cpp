@@ -93,7 +93,7 @@ TEST(EditorPlacement, SwapKeepsPoseAndNameAndIsOneUndoStep) {
     ASSERT_TRUE(swapLuminaireFile(
         state, 0, CANDELA_SOURCE_DIR "/resources/luminaires/photometric/prolicht-e30.ldt"));
     const Luminaire& swapped = *state.scene.luminaires[0];
-    EXPECT_EQ(swapped.kind(), "photometric");
+    EXPECT_EQ(swapped.kind(), LuminaireKind::Photometric);
     EXPECT_EQ(swapped.name, "Ceiling panel");
     EXPECT_EQ(swapped.pose.position, pose.position);
     EXPECT_EQ(swapped.pose.aim, pose.aim);
@@ -107,10 +107,10 @@ TEST(EditorPlacement, SwapKeepsPoseAndNameAndIsOneUndoStep) {
     EXPECT_FALSE(swapLuminaireFile(state, 0, "/nonexistent/lamp.ies"));
     EXPECT_EQ(state.history.undo.size(), steps);
     EXPECT_NE(state.modalError.find("lamp.ies"), std::string::npos);
-    EXPECT_EQ(state.scene.luminaires[0]->kind(), "photometric");
+    EXPECT_EQ(state.scene.luminaires[0]->kind(), LuminaireKind::Photometric);
     ASSERT_TRUE(undo(state));
     ASSERT_TRUE(undo(state));
-    EXPECT_EQ(state.scene.luminaires[0]->kind(), "lambertian-rect");
+    EXPECT_EQ(state.scene.luminaires[0]->kind(), LuminaireKind::LambertianRect);
 }
 
 }  // namespace
@@ -167,7 +167,7 @@ TEST(EditorPlacement, DroppedFilesBecomeLuminairesEnvironmentOrGeometry) {
 
     ASSERT_TRUE(dropFile(
         state, CANDELA_SOURCE_DIR "/resources/luminaires/photometric/floor-washlight.ies"));
-    EXPECT_EQ(state.scene.luminaires.back()->kind(), "photometric");
+    EXPECT_EQ(state.scene.luminaires.back()->kind(), LuminaireKind::Photometric);
     EXPECT_TRUE(state.placement.armed);  // the next click on a surface places it
 
     size_t steps = state.history.undo.size();
@@ -191,12 +191,13 @@ TEST(EditorPlacement, DroppedGldfBecomesItsFirstVariant) {
     EXPECT_EQ(fileKind("LAMP.GLDF"), FileKind::Gldf);
     ASSERT_TRUE(dropFile(state, CANDELA_SOURCE_DIR "/tests/data/gldf/GldfWithFilesComplete.gldf"));
     ASSERT_EQ(state.scene.luminaires.size(), count + 1);
-    auto* light = dynamic_cast<const PhotometricLuminaire*>(state.scene.luminaires.back().get());
+    const Luminaire& placedLight = *state.scene.luminaires.back();
+    const PhotometricLuminaire* light = photometricModel(placedLight);
     ASSERT_NE(light, nullptr);
     ASSERT_NE(light->gldf, nullptr);
     EXPECT_EQ(light->gldf->manufacturer, "DIAL");
     EXPECT_EQ(light->gldfVariant, "variant-1");
-    EXPECT_EQ(light->technique, "adaptive");  // the photometric kind's default
+    EXPECT_EQ(placedLight.technique, "adaptive");  // the photometric kind's default
     EXPECT_TRUE(state.placement.armed);
     // A container that cannot be placed is reported, naming the member, and changes nothing.
     size_t steps = state.history.undo.size();
@@ -214,11 +215,12 @@ TEST(EditorPlacement, DroppedGldfWithTwoEmittersAddsBothInOneStepSelectedTogethe
     ASSERT_TRUE(dropFile(state, CANDELA_SOURCE_DIR "/tests/data/gldf/PendantTwoEmitters.gldf"));
     ASSERT_EQ(state.scene.luminaires.size(), count + 2);
     EXPECT_EQ(state.history.undo.size(), steps + 1);  // one undo step
-    auto* down = dynamic_cast<const PhotometricLuminaire*>(state.scene.luminaires[count].get());
-    auto* up = dynamic_cast<const PhotometricLuminaire*>(state.scene.luminaires[count + 1].get());
-    ASSERT_TRUE(down && up);
-    EXPECT_EQ(down->placement->object, "leo_bottom");
-    EXPECT_EQ(up->placement->object, "leo_top");
+    const Luminaire* down = state.scene.luminaires[count].get();
+    const Luminaire* up = state.scene.luminaires[count + 1].get();
+    ASSERT_TRUE(photometricModel(*down) && photometricModel(*up));
+    ASSERT_TRUE(photometricModel(*down)->placement && photometricModel(*up)->placement);
+    EXPECT_EQ(photometricModel(*down)->placement->object, "leo_bottom");
+    EXPECT_EQ(photometricModel(*up)->placement->object, "leo_top");
     EXPECT_EQ(down->pose.position, up->pose.position);
     // Both selected, so a move or a delete takes both.
     EXPECT_EQ(state.selectedLuminaire, int(count));

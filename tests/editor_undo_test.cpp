@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "luminaires/Adapter.h"
 #include "scene/SceneIo.h"
 #include "ui/EditorState.h"
 #include "ui/Project.h"
@@ -144,7 +145,7 @@ TEST(EditorUndo, LuminaireBodiesFollowMovesAndUndo) {
                            {"position", {0, 2.2, 0}}};
     applyEdit(state, "Add pendant", kChangeLuminaires, [&](Scene& s) {
         s.luminaires.push_back(parseLuminaire(lamp, json::Where{"test", "luminaires"}));
-        for (auto& c : s.luminaires.back()->companions()) s.luminaires.push_back(std::move(c));
+        for (auto& c : companions(*s.luminaires.back())) s.luminaires.push_back(std::move(c));
     });
     // The demo room's linear pendant has its luminous box; the GLDF pendant brings its housing.
     auto housingX = [&] {

@@ -205,9 +205,10 @@ TEST(EnvironmentGl, ShadingPassMatchesTheReference) {
         EnvironmentLighting lighting(map, EnvironmentPass::defaultFaceSize(*map), 256);
         EstimateOptions o;
         o.spp = spp;
-        for (const std::string& technique : test::unbiasedGpuTechniques("environment")) {
+        for (const std::string& technique :
+             test::unbiasedGpuTechniques(LuminaireKind::Environment)) {
             std::vector<glm::dvec3> gpu = gpuProbe(map, technique, test::cubeNormals26(), spp);
-            const TechniqueInfo* t = findTechnique("environment", technique);
+            const TechniqueInfo* t = findTechnique(LuminaireKind::Environment, technique);
             for (size_t i = 0; i < gpu.size(); ++i) {
                 glm::dvec3 nrm = test::cubeNormals26()[i];
                 double ref = lum(environmentReference(lighting, {}, nrm, o).irradiance);
@@ -235,9 +236,9 @@ TEST(EnvironmentGl, ConstantMapGivesPiL) {
     EnvironmentLighting lighting(map, EnvironmentPass::defaultFaceSize(*map), 16);
     EstimateOptions o;
     o.spp = spp;
-    for (const std::string& technique : test::unbiasedGpuTechniques("environment")) {
+    for (const std::string& technique : test::unbiasedGpuTechniques(LuminaireKind::Environment)) {
         std::vector<glm::dvec3> e = gpuProbe(map, technique, test::cubeNormals26(), spp);
-        const TechniqueInfo* t = findTechnique("environment", technique);
+        const TechniqueInfo* t = findTechnique(LuminaireKind::Environment, technique);
         for (size_t i = 0; i < e.size(); ++i) {
             // No sampler here has the cosine in its pdf, so none is exact on a constant map:
             // 1e-3 plus 4 standard errors of the CPU twin at the same spp.
@@ -254,7 +255,7 @@ TEST(EnvironmentGl, BlackMapsAndHugeSunsStayFinite) {
     rgb[10 * 64 + 20] = glm::vec3(1e6f);  // a one-texel sun 1e8 times the rest
     auto sun = std::make_shared<EnvironmentMap>(64, 32, rgb, 1.0, 0.0, "sun");
     for (const TechniqueInfo& info :
-         techniquesOf("environment")) {  // every technique with a GPU pass
+         techniquesOf(LuminaireKind::Environment)) {  // every technique with a GPU pass
         if (info.shader.empty()) continue;
         const std::string technique(info.name);
         for (const glm::dvec3& v : gpuProbe(black, technique, test::cubeNormals26(), 64)) {
@@ -310,7 +311,8 @@ TEST(EnvironmentGl, TablesAreBuiltOnlyWhenTheMapChanges) {
     EXPECT_TRUE(has(first, "env:samples"));
     EXPECT_TRUE(has(first, "shade:environment:balanced"));
     // A single ground plane cannot shadow itself: no shadow variant.
-    EXPECT_FALSE(has(renderer.plan().stepOfKind("environment")->program.defines, "SHADOWS"));
+    EXPECT_FALSE(
+        has(renderer.plan().stepOfKind(LuminaireKind::Environment)->program.defines, "SHADOWS"));
     renderer.renderFrame();
     std::vector<std::string> second = passNames(renderer.stats());
     EXPECT_FALSE(has(second, "env:cdf"));     // same map: the tables are kept
@@ -350,7 +352,8 @@ TEST(EnvironmentGl, ARoofShadowsTheGround) {
         renderer.update(scene, kChangeAll);
         do renderer.renderFrame();
         while (!renderer.converged());
-        ASSERT_TRUE(has(renderer.plan().stepOfKind("environment")->program.defines, "SHADOWS"));
+        ASSERT_TRUE(has(renderer.plan().stepOfKind(LuminaireKind::Environment)->program.defines,
+                        "SHADOWS"));
         std::vector<float> e = renderer.readLinear();
         double centre = e[(16 * 33 + 16) * 3 + 1];
         // The pixel covers about 6 cm of ground along x (grazing view) where F changes by under
@@ -423,15 +426,15 @@ TEST(EnvironmentGl, PlanRunsOnlyWhatTheSceneNeeds) {
     Scene plain = groundScene(false), boxed = groundScene(true);
     glm::mat4 vp = cameraViewProj(boxed.camera, 4.0 / 3.0);
     FramePlan p = planFrame(boxed, vp);
-    ASSERT_TRUE(p.stepOfKind("environment"));
-    EXPECT_TRUE(has(p.stepOfKind("environment")->program.defines,
+    ASSERT_TRUE(p.stepOfKind(LuminaireKind::Environment));
+    EXPECT_TRUE(has(p.stepOfKind(LuminaireKind::Environment)->program.defines,
                     "SHADOWS"));  // the box shadows the ground
     EXPECT_TRUE(p.needsBvh);
     EXPECT_FALSE(planFrame(plain, vp).needsBvh);
     Scene none = groundScene(false);
     none.environmentMap.reset();
     FramePlan q = planFrame(none, vp);
-    EXPECT_FALSE(q.stepOfKind("environment"));
+    EXPECT_FALSE(q.stepOfKind(LuminaireKind::Environment));
     EXPECT_FALSE(has(q.passNames(), "env:cdf"));
     // The exact reference is CPU-only: rendering with it is refused with a clear message.
     EXPECT_THROW(planFrame(plain, vp, "environment=reference", Quantity::Radiance), InputError);

@@ -159,7 +159,7 @@ TEST(Environment, ConstantMapGivesPiL) {
         // The reference is exact up to the 8-point Gauss-Legendre rule on the horizon band.
         EXPECT_NEAR(lum(environmentReference(lighting, {}, n, o).irradiance), kPi * L,
                     1e-3 * kPi * L);
-        for (const auto& t : techniquesOf("environment")) {
+        for (const auto& t : techniquesOf(LuminaireKind::Environment)) {
             if (t.name == "reference" || t.irradiance == &onEnvironmentLight<&environmentHavran>)
                 continue;  // both havran2005s
             Estimate e = t.irradiance(test::lightOf(lighting), {}, n, o);
@@ -519,8 +519,8 @@ TEST(Environment, ARoofShadowsTheSky) {
     double F = test::rectangleFormFactor(-0.3, 0.7, -0.4, 0.2, 1.0);
     double expected = kPi * (1.0 - F);
     ASSERT_GT(F, 0.1);  // the test means something: the roof blocks a tenth of the sky or more
-    for (const std::string& name : test::unbiasedGpuTechniques("environment")) {
-        Estimate e = findTechnique("environment", name)
+    for (const std::string& name : test::unbiasedGpuTechniques(LuminaireKind::Environment)) {
+        Estimate e = findTechnique(LuminaireKind::Environment, name)
                          ->irradiance(test::lightOf(lighting), {}, glm::dvec3(0, 1, 0), o);
         // 4 standard errors at 2^16 spp, plus 1e-3 for the float vertices of the box.
         EXPECT_NEAR(lum(e.irradiance), expected, 4.0 * lum(e.stdError) + 1e-3 * expected) << name;
@@ -618,7 +618,7 @@ TEST(Environment, BlackFaceAndBlackMap) {
     }
     auto black = makeMap(w, h, [](int, int) { return glm::vec3(0.f); });
     EnvironmentLighting dark(black, 16, 16);
-    for (const auto& t : techniquesOf("environment"))
+    for (const auto& t : techniquesOf(LuminaireKind::Environment))
         for (const glm::dvec3& n : test::cubeNormals26()) {
             Estimate e = t.irradiance(test::lightOf(dark), {}, n, o);
             EXPECT_EQ(e.irradiance, glm::dvec3(0.0)) << t.name;  // exactly 0, not NaN

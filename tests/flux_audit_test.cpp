@@ -130,7 +130,7 @@ Audit auditBox(const Luminaire& light, const TechniqueInfo& t, const glm::dvec3&
     std::vector<double> gx, gw;
     gaussLegendre(kOrder, gx, gw);
     glm::dvec3 ex, ey, ez;
-    static_cast<const PhotometricLuminaire&>(light).photometricFrame(ex, ey, ez);
+    photometricModel(light)->photometricFrame(light.pose, ex, ey, ez);
     glm::dvec3 centre = light.emitterPose().position;
     Audit out;
     double variance = 0.0;
@@ -199,7 +199,8 @@ std::string auditFile(const fs::path& file, int& checked) {
     } catch (const std::exception& e) {
         return file.string() + " does not load: " + e.what() + "\n";
     }
-    auto* photometric = static_cast<PhotometricLuminaire*>(light.get());
+    const PhotometricLuminaire* photometric = photometricModel(*light);
+    if (!photometric) return file.string() + " is not a photometric luminaire\n";
     double flux = light->power().y;
     if (!(flux > 0.0)) return {};  // a table of zeros: nothing to conserve
     glm::dvec2 lo(0.0), hi(0.0);
@@ -207,9 +208,9 @@ std::string auditFile(const fs::path& file, int& checked) {
         lo = glm::min(lo, c);
         hi = glm::max(hi, c);
     }
-    const TechniqueInfo* point = findTechnique("photometric", "point");
+    const TechniqueInfo* point = findTechnique(LuminaireKind::Photometric, "point");
     for (const TechniqueInfo& t : techniques()) {
-        if (t.kind != "photometric") continue;
+        if (t.kind != LuminaireKind::Photometric) continue;
         const StatedLimits& limits = t.limits;
         double margin = std::max(kWallDistance, limits.fromOpeningSizes * photometric->size());
         glm::dvec3 boxLo(lo - margin, -margin), boxHi(hi + margin, margin);

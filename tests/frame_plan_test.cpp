@@ -98,17 +98,18 @@ TEST(FramePlan, OverrideListGivesEachKindTheFirstItHas) {
     FramePlan own = planFrame(scene, view(scene), "point,granier2003");
     EXPECT_EQ(own.shading[0].name, "shade:Panel:analytic");
     EXPECT_EQ(own.shading[1].name, "shade:Pendant:point");
-    EXPECT_EQ(overrideFor("point,reference", "lambertian-rect"), "reference");
-    EXPECT_EQ(overrideFor("point,havran2005", "environment"), "havran2005");
-    EXPECT_EQ(overrideFor("point", "lightfield"), "");
+    EXPECT_EQ(overrideFor("point,reference", LuminaireKind::LambertianRect), "reference");
+    EXPECT_EQ(overrideFor("point,havran2005", LuminaireKind::Environment), "havran2005");
+    EXPECT_EQ(overrideFor("point", LuminaireKind::LightField), "");
     // Scoped items: both kinds have "reference", only the photometric one is asked to use it.
     FramePlan scoped =
         planFrame(scene, view(scene), "photometric=reference,lambertian-rect=analytic");
     EXPECT_EQ(scoped.shading[0].name, "shade:Panel:analytic");
     EXPECT_EQ(scoped.shading[1].name, "shade:Pendant:reference");
-    EXPECT_EQ(overrideFor("photometric=reference", "lambertian-rect"), "");
-    EXPECT_EQ(overrideFor("lightfield=reference,environment=balanced-mis", "environment"),
-              "balanced-mis");
+    EXPECT_EQ(overrideFor("photometric=reference", LuminaireKind::LambertianRect), "");
+    EXPECT_EQ(
+        overrideFor("lightfield=reference,environment=balanced-mis", LuminaireKind::Environment),
+        "balanced-mis");
 }
 
 TEST(FramePlan, TechniqueListsAreChecked) {

@@ -215,17 +215,20 @@ TEST(Gldf, EmitterRotationAboutG0TurnsTheLight) {
         {"type": "gldf", "file": "plain.gldf", "position": [0, 3, 0]},
         {"type": "gldf", "file": "turned.gldf", "position": [0, 3, 0]}]})";
     Scene s = loadScene(scene);
-    auto& plain = dynamic_cast<const PhotometricLuminaire&>(*s.luminaires.at(0));
-    auto& turned = dynamic_cast<const PhotometricLuminaire&>(*s.luminaires.at(1));
+    const Luminaire& plainLight = *s.luminaires.at(0);
+    const Luminaire& turnedLight = *s.luminaires.at(1);
+    ASSERT_TRUE(photometricModel(plainLight) && photometricModel(turnedLight));
+    const PhotometricLuminaire& plain = *photometricModel(plainLight);
+    const PhotometricLuminaire& turned = *photometricModel(turnedLight);
     glm::dvec3 c0, c90, aim;
-    plain.photometricFrame(c0, c90, aim);
+    plain.photometricFrame(plainLight.pose, c0, c90, aim);
     const double h = std::sqrt(0.5);  // gamma 45 degrees
     const double cd[4] = {100, 200, 300, 400};
     for (int k = 0; k < 4; ++k) {
         double c = k * 0.5 * 3.14159265358979;
         glm::dvec3 w = h * (std::cos(c) * c0 + std::sin(c) * c90) + h * aim;
-        EXPECT_NEAR(plain.intensity(w), cd[k], 1e-9) << "C " << 90 * k;
-        EXPECT_NEAR(turned.intensity(w), cd[(k + 3) % 4], 1e-9) << "C " << 90 * k;
+        EXPECT_NEAR(plain.intensity(plainLight.pose, w), cd[k], 1e-9) << "C " << 90 * k;
+        EXPECT_NEAR(turned.intensity(turnedLight.pose, w), cd[(k + 3) % 4], 1e-9) << "C " << 90 * k;
     }
 }
 
@@ -664,23 +667,26 @@ TEST(Gldf, SceneEntryLoadsRendersAsPhotometricAndRoundTrips) {
          "technique": "point"}]})";
     Scene scene = loadScene(scenePath);
     ASSERT_EQ(scene.luminaires.size(), 2u);
-    auto* first = dynamic_cast<const PhotometricLuminaire*>(scene.luminaires[0].get());
+    const Luminaire& firstLight = *scene.luminaires[0];
+    const PhotometricLuminaire* first = photometricModel(firstLight);
     ASSERT_NE(first, nullptr);
-    EXPECT_EQ(first->kind(), "photometric");  // rendered by the photometric techniques
-    EXPECT_EQ(first->technique, "adaptive");  // the photometric kind's default
-    EXPECT_EQ(first->gldfVariant, "v1");      // the first variant when none is named
+    // Rendered by the photometric techniques.
+    EXPECT_EQ(firstLight.kind(), LuminaireKind::Photometric);
+    EXPECT_EQ(firstLight.technique, "adaptive");  // the photometric kind's default
+    EXPECT_EQ(first->gldfVariant, "v1");          // the first variant when none is named
     ASSERT_NE(first->gldf, nullptr);
     EXPECT_EQ(first->gldf->manufacturer, "Acme");
-    EXPECT_GT(first->power().x, 0.0);
-    EXPECT_EQ(first->sourceFiles(),
+    EXPECT_GT(firstLight.power().x, 0.0);
+    EXPECT_EQ(sourceFiles(firstLight),
               std::vector<std::string>{(fs::path(tmp.file("")) / "lamps/lamp.gldf").string()});
-    EXPECT_NE(first->describe().find("GLDF lamps/lamp.gldf variant \"v1\" (Acme Spot)"),
+    EXPECT_NE(describe(firstLight).find("GLDF lamps/lamp.gldf variant \"v1\" (Acme Spot)"),
               std::string::npos)
-        << first->describe();
-    auto* second = dynamic_cast<const PhotometricLuminaire*>(scene.luminaires[1].get());
+        << describe(firstLight);
+    const Luminaire& secondLight = *scene.luminaires[1];
+    const PhotometricLuminaire* second = photometricModel(secondLight);
     ASSERT_NE(second, nullptr);
     EXPECT_EQ(second->gldfVariant, "v2");
-    EXPECT_EQ(second->technique, "point");
+    EXPECT_EQ(secondLight.technique, "point");
 
     // Saved into another folder: the container path is rebased, the entry stays a "gldf" one.
     fs::create_directories(tmp.file("out"));
@@ -694,13 +700,14 @@ TEST(Gldf, SceneEntryLoadsRendersAsPhotometricAndRoundTrips) {
     EXPECT_EQ(entry["scale"], 0.5);
     Scene again = loadScene(saved);
     ASSERT_EQ(again.luminaires.size(), 2u);
-    auto* reloaded = dynamic_cast<const PhotometricLuminaire*>(again.luminaires[1].get());
+    const Luminaire& reloadedLight = *again.luminaires[1];
+    const PhotometricLuminaire* reloaded = photometricModel(reloadedLight);
     ASSERT_NE(reloaded, nullptr);
     EXPECT_EQ(reloaded->gldfVariant, "v2");
     EXPECT_EQ(reloaded->scale, 0.5);
-    EXPECT_EQ(reloaded->pose.position, second->pose.position);
-    EXPECT_EQ(luminaireToJson(*reloaded).dump(), [&] {
-        nlohmann::json j = luminaireToJson(*second);
+    EXPECT_EQ(reloadedLight.pose.position, secondLight.pose.position);
+    EXPECT_EQ(luminaireToJson(reloadedLight).dump(), [&] {
+        nlohmann::json j = luminaireToJson(secondLight);
         j["file"] = "../lamps/lamp.gldf";
         return j.dump();
     }());
@@ -757,14 +764,15 @@ TEST(GldfGeometry, PlacedVariantEmitsFromTheObjectWhereTheProductHasIt) {
                                     R"(", "variant": "variant-2", "position": [0, 3, 0],
         "aim": [0, -1, 0], "c0": [1, 0, 0]}]})";
     Scene scene = loadScene(scenePath);
-    auto* l = dynamic_cast<const PhotometricLuminaire*>(scene.luminaires.at(0).get());
+    const Luminaire& light = *scene.luminaires.at(0);
+    const PhotometricLuminaire* l = photometricModel(light);
     ASSERT_NE(l, nullptr);
     ASSERT_TRUE(l->placement.has_value());
     // By hand: the L3D frame at this pose has x = c0 = (1, 0, 0), y = C90 = c0 x aim = (0, 0, -1)
     // and z = -aim = (0, 1, 0), so the object's (-0.006, 0.003, -0.038) m is world
     // (0, 3, 0) + (-0.006, -0.038, -0.003) m.
     auto world = [](const glm::dvec3& v) { return glm::dvec3(v.x, v.z, -v.y); };
-    Pose e = l->emitterPose();
+    Pose e = light.emitterPose();
     EXPECT_NEAR(glm::distance(e.position, glm::dvec3(-0.006, 2.962, -0.003)), 0.0, 1e-12);
     // The emitter's <Rotation> (X 1, Y 2, Z 3, G0 4 degrees) turns the object's frame (C0 +x,
     // aim -z): G0 about the aim, then Rz Rx Ry, here with glm's rotation matrices.
@@ -776,11 +784,11 @@ TEST(GldfGeometry, PlacedVariantEmitsFromTheObjectWhereTheProductHasIt) {
     glm::dvec3 c0 = world(glm::dvec3(r * glm::dvec4(std::cos(4 * deg), std::sin(4 * deg), 0, 0)));
     EXPECT_NEAR(glm::distance(glm::normalize(e.aim), aim), 0.0, 1e-12);
     EXPECT_NEAR(glm::distance(glm::normalize(e.c0), c0), 0.0, 1e-12);
-    EXPECT_EQ(l->pose.position, glm::dvec3(0, 3, 0));  // the insertion point stays the pose
+    EXPECT_EQ(light.pose.position, glm::dvec3(0, 3, 0));  // the insertion point stays the pose
     // The opening is the object's rectangle, not the EULUMDAT's, turned with the aim: its
     // sides are sizeX along C0 and sizeY along C90, in the plane across the aim.
     EXPECT_NEAR(l->area(), 0.17 * 1.17, 1e-12);
-    std::vector<glm::dvec3> outline = l->outline();
+    std::vector<glm::dvec3> outline = light.outline();
     ASSERT_EQ(outline.size(), 4u);
     for (size_t k = 0; k < 4; ++k) {
         EXPECT_NEAR(glm::dot(outline[k] - e.position, aim), 0.0, 1e-12) << k;
@@ -795,9 +803,9 @@ TEST(GldfGeometry, PlacedVariantEmitsFromTheObjectWhereTheProductHasIt) {
     std::string ldt = tmp.file("photometry.ldt");
     std::ofstream(ldt, std::ios::binary) << realLdt();
     PhotometricData alone = loadPhotometry(ldt);
-    EXPECT_NEAR(l->power().x, alone.fluxFromTable(), 1e-9 * alone.fluxFromTable());
-    EXPECT_NE(l->describe().find("opening from its L3D object \"LEO\""), std::string::npos)
-        << l->describe();
+    EXPECT_NEAR(light.power().x, alone.fluxFromTable(), 1e-9 * alone.fluxFromTable());
+    EXPECT_NE(describe(light).find("opening from its L3D object \"LEO\""), std::string::npos)
+        << describe(light);
 }
 
 TEST(GldfGeometry, PlacementNamingAnObjectTheGeometryLacksIsRefused) {
@@ -858,13 +866,15 @@ TEST(GldfGeometry, TwoObjectsEmitEachThroughItsOwnOpening) {
               "position": [0, 3, 0], "aim": [0, -1, 0], "c0": [1, 0, 0], "technique": "scattered"}]})";
     Scene pair = loadScene(tmp.file("pair.json"));
     ASSERT_EQ(pair.luminaires.size(), 2u);  // one per emitter the variant places
-    auto* bottom = dynamic_cast<const PhotometricLuminaire*>(pair.luminaires[0].get());
-    auto* top = dynamic_cast<const PhotometricLuminaire*>(pair.luminaires[1].get());
+    const Luminaire& bottomLight = *pair.luminaires[0];
+    const Luminaire& topLight = *pair.luminaires[1];
+    const PhotometricLuminaire* bottom = photometricModel(bottomLight);
+    const PhotometricLuminaire* top = photometricModel(topLight);
     ASSERT_TRUE(bottom && top);
-    EXPECT_EQ(bottom->name, "pendant #0");
-    EXPECT_EQ(top->name, "pendant #1");
-    EXPECT_EQ(top->pose.position, bottom->pose.position);
-    EXPECT_EQ(top->technique, "scattered");
+    EXPECT_EQ(bottomLight.name, "pendant #0");
+    EXPECT_EQ(topLight.name, "pendant #1");
+    EXPECT_EQ(topLight.pose.position, bottomLight.pose.position);
+    EXPECT_EQ(topLight.technique, "scattered");
     ASSERT_TRUE(bottom->placement && top->placement);
     EXPECT_EQ(bottom->placement->object, "leo_bottom");
     EXPECT_EQ(top->placement->object, "leo_top");
@@ -959,7 +969,7 @@ TEST(GldfMaintenance, FactorFromTheLightSourceDataScalesEveryIlluminance) {
     const double mf = 0.8 * 0.82 * 0.9 * 0.95;  // by hand from product.xml
     ASSERT_TRUE(maintained.luminaires[0]->maintenanceFactor.has_value());
     EXPECT_NEAR(*maintained.luminaires[0]->maintenanceFactor, mf, 1e-15);
-    std::string d = maintained.luminaires[0]->describe();
+    std::string d = describe(*maintained.luminaires[0]);
     EXPECT_NE(d.find("maintenance factor 0.5609 = LLMF 0.8 x LSF 0.82 (150 h) x LMF 0.9 x RSMF "
                      "0.95 (from the GLDF data)"),
               std::string::npos)

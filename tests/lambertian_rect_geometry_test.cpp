@@ -87,7 +87,7 @@ TEST(Pose, FrameIsOrthonormalAndRightHanded) {
 }
 
 TEST(LambertianRect, OutlineIsCounterClockwiseFromTheEmittingSide) {
-    LambertianRect light = makeLight();
+    Luminaire light = makeLight();
     std::vector<glm::dvec3> c = light.outline();
     ASSERT_EQ(c.size(), 4u);
     Frame f = frameOf(light.pose);
@@ -103,11 +103,12 @@ TEST(LambertianRect, OutlineIsCounterClockwiseFromTheEmittingSide) {
 }
 
 TEST(LambertianRect, RadianceIsEmittedOnlyFromTheFrontOfTheSurface) {
-    LambertianRect light = makeLight();
+    Luminaire light = makeLight();
+    const LambertianRect& model = *lambertianRectModel(light);
     Frame f = frameOf(light.pose);
     glm::dvec3 x = toWorld(light, {0.5, -0.25, 0.0});
-    EXPECT_EQ(light.radiance(x, f.z), light.emitted);
-    EXPECT_EQ(light.radiance(x, glm::normalize(f.z + 10.0 * f.x)), light.emitted);
+    EXPECT_EQ(light.radiance(x, f.z), model.emitted);
+    EXPECT_EQ(light.radiance(x, glm::normalize(f.z + 10.0 * f.x)), model.emitted);
     EXPECT_EQ(light.radiance(x, -f.z), glm::dvec3(0.0));
     EXPECT_EQ(light.radiance(x, glm::normalize(f.x - 1e-9 * f.z)), glm::dvec3(0.0));
     EXPECT_EQ(light.radiance(toWorld(light, {0.7, 0.0, 0.0}), f.z), glm::dvec3(0.0));
@@ -115,8 +116,8 @@ TEST(LambertianRect, RadianceIsEmittedOnlyFromTheFrontOfTheSurface) {
 }
 
 TEST(LambertianRect, GpuRecordMatchesTheGeometry) {
-    LambertianRect light = makeLight();
-    std::vector<std::byte> bytes = light.gpuData();
+    Luminaire light = makeLight();
+    std::vector<std::byte> bytes = gpuData(light);
     ASSERT_EQ(bytes.size(), sizeof(gpu::LambertianRectGpu));
     ASSERT_EQ(bytes.size(), 80u);  // five vec4, std430
     gpu::LambertianRectGpu g;
@@ -130,7 +131,7 @@ TEST(LambertianRect, GpuRecordMatchesTheGeometry) {
         EXPECT_NEAR(g.edgeX[i], float(c[1][i] - c[0][i]), tol);
         EXPECT_NEAR(g.edgeY[i], float(c[3][i] - c[0][i]), tol);
         EXPECT_NEAR(g.normal[i], float(f.z[i]), tol);
-        EXPECT_EQ(g.radiance[i], float(light.emitted[i]));
+        EXPECT_EQ(g.radiance[i], float(lambertianRectModel(light)->emitted[i]));
     }
     EXPECT_NEAR(g.corner.w, 1.2f * 0.6f, tol);
     EXPECT_EQ(g.edgeX.w, 1.2f);
@@ -138,14 +139,16 @@ TEST(LambertianRect, GpuRecordMatchesTheGeometry) {
 }
 
 TEST(LambertianRect, DescribesItself) {
-    EXPECT_EQ(LambertianRect::create()->describe(),
+    const LuminaireAdapter& adapter = adapterOf(LuminaireKind::LambertianRect);
+    EXPECT_EQ(describe(*adapter.create()),
               "lambertian-rect 1.00 x 0.50 m, L = (10, 10, 10) W/(m2 sr), power 15.7 W");
-    EXPECT_EQ(LambertianRect::create()->kind(), "lambertian-rect");
+    EXPECT_EQ(adapter.create()->kind(), LuminaireKind::LambertianRect);
 }
 
 std::string parseError(const std::string& text) {
     try {
-        LambertianRect::parse(nlohmann::json::parse(text), {"t.json", "luminaires[0]"});
+        adapterOf(LuminaireKind::LambertianRect)
+            .parse(nlohmann::json::parse(text), {"t.json", "luminaires[0]"});
     } catch (const InputError& e) {
         return e.what();
     }
@@ -153,22 +156,25 @@ std::string parseError(const std::string& text) {
 }
 
 TEST(LambertianRect, ParsesAndWritesItsFields) {
-    auto parsed = LambertianRect::parse(
-        nlohmann::json::parse(R"({"type": "lambertian-rect", "size": [2, 0.25],
-                                  "radiance": [1, 2, 0]})"),
-        {"t.json", "luminaires[0]"});
-    const auto& light = static_cast<const LambertianRect&>(*parsed);
+    const LuminaireAdapter& adapter = adapterOf(LuminaireKind::LambertianRect);
+    auto parsed =
+        adapter.parse(nlohmann::json::parse(R"({"type": "lambertian-rect", "size": [2, 0.25],
+                                                "radiance": [1, 2, 0]})"),
+                      {"t.json", "luminaires[0]"});
+    ASSERT_TRUE(lambertianRectModel(*parsed));
+    const LambertianRect& light = *lambertianRectModel(*parsed);
     EXPECT_EQ(light.size, glm::dvec2(2.0, 0.25));
     EXPECT_EQ(light.emitted, glm::dvec3(1.0, 2.0, 0.0));
     nlohmann::json out;
-    light.writeJson(out);
+    writeJson(*parsed, out);
     EXPECT_EQ(out, nlohmann::json::parse(R"({"size": [2.0, 0.25], "radiance": [1.0, 2.0, 0.0]})"));
-    auto defaults =
-        LambertianRect::parse(nlohmann::json::parse(R"({"name": "a"})"), {"t.json", ""});
-    EXPECT_EQ(static_cast<const LambertianRect&>(*defaults).size, glm::dvec2(1.0, 0.5));
-    EXPECT_EQ(static_cast<const LambertianRect&>(*defaults).emitted, glm::dvec3(10.0));
-    auto copy = light.clone();
-    EXPECT_EQ(static_cast<const LambertianRect&>(*copy).size, light.size);
+    auto defaults = adapter.parse(nlohmann::json::parse(R"({"name": "a"})"), {"t.json", ""});
+    ASSERT_TRUE(lambertianRectModel(*defaults));
+    EXPECT_EQ(lambertianRectModel(*defaults)->size, glm::dvec2(1.0, 0.5));
+    EXPECT_EQ(lambertianRectModel(*defaults)->emitted, glm::dvec3(10.0));
+    auto copy = parsed->clone();
+    ASSERT_TRUE(lambertianRectModel(*copy));
+    EXPECT_EQ(lambertianRectModel(*copy)->size, light.size);
 
     EXPECT_EQ(parseError(R"({"size": [-1, 0.5]})"),
               "t.json: luminaires[0].size[0]: expected a positive number, got -1");

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <random>
 
 #include "luminaires/lambertian/LambertianRect.h"
@@ -22,15 +23,16 @@ struct ParityOut {
     glm::vec4 irradiance, sampleDir, sampleInfo;
 };
 
-std::vector<ParityOut> runParity(const LambertianRect& light, const std::vector<ParityIn>& in) {
+std::vector<ParityOut> runParity(const Luminaire& light, const std::vector<ParityIn>& in) {
     return test::runComputeTest<ParityOut>("../tests/shaders/lambertian_rect_parity.comp",
-                                           light.gpuData(), in);
+                                           gpuData(light), in);
 }
 
-LambertianRect testLight() {
-    LambertianRect light;
-    light.size = {1.2, 0.5};
-    light.emitted = {10.0, 7.0, 3.0};
+Luminaire testLight() {
+    auto model = std::make_shared<LambertianRect>();
+    model->size = {1.2, 0.5};
+    model->emitted = {10.0, 7.0, 3.0};
+    Luminaire light(model);
     light.pose.position = {0.3, 2.0, -0.2};
     light.pose.aim = {0.2, -1.0, 0.1};
     light.pose.c0 = {1.0, 0.0, 0.3};
@@ -38,7 +40,7 @@ LambertianRect testLight() {
 }
 
 TEST(LambertianRectGl, ClosedFormAndSolidAngleMatchCpp) {
-    LambertianRect light = testLight();
+    Luminaire light = testLight();
     std::mt19937 rng(7);
     std::uniform_real_distribution<double> U(-1.0, 1.0);
     std::vector<ParityIn> in;
@@ -52,20 +54,20 @@ TEST(LambertianRectGl, ClosedFormAndSolidAngleMatchCpp) {
     for (size_t i = 0; i < in.size(); ++i) {
         glm::dvec3 p(in[i].p), n(in[i].n);
         Estimate e = lambertianRectAnalytic(light, p, n, options);
-        double omega = light.solidAngle(p);
+        double omega = lambertianRectModel(light)->solidAngle(light.pose, p);
         // Float32 GLSL against double C++: the polygon formula sums a few O(1) angle terms, each
         // good to ~1e-6 relative, so 1e-4 of the value plus 1e-5 of the emitted radiance (the
         // scale of the irradiance near its maximum, pi L) bounds the difference.
         for (int c = 0; c < 3; ++c)
             EXPECT_NEAR(out[i].irradiance[c], e.irradiance[c],
-                        1e-4 * e.irradiance[c] + 1e-5 * light.emitted[c])
+                        1e-4 * e.irradiance[c] + 1e-5 * lambertianRectModel(light)->emitted[c])
                 << "point " << i << " channel " << c;
         EXPECT_NEAR(out[i].irradiance.w, omega, 1e-4 * omega + 1e-6) << "point " << i;
     }
 }
 
 TEST(LambertianRectGl, SamplerMatchesCppForTheSameRandomNumbers) {
-    LambertianRect light = testLight();
+    Luminaire light = testLight();
     std::mt19937 rng(11);
     std::uniform_real_distribution<double> U(0.0, 1.0);
     std::vector<ParityIn> in;
@@ -95,10 +97,11 @@ double triangleSolidAngle(glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) {
 }
 
 TEST(LambertianRectGl, GlslSamplerPassesChiSquare) {
-    LambertianRect light = testLight();
+    Luminaire light = testLight();
     glm::dvec3 x, y, z;
     light.pose.frame(x, y, z);
-    glm::dvec3 corner = light.pose.position - 0.5 * light.size.x * x - 0.5 * light.size.y * y;
+    const glm::dvec2 size = lambertianRectModel(light)->size;
+    glm::dvec3 corner = light.pose.position - 0.5 * size.x * x - 0.5 * size.y * y;
     const glm::dvec3 receivers[] = {{0.3, 0.5, -0.2}, {2.5, 1.6, 1.0}, {0.3, 1.95, 1.5}};
     const int kBins = 12, kSamples = 200000;
     for (const glm::dvec3& p : receivers) {
@@ -114,7 +117,7 @@ TEST(LambertianRectGl, GlslSamplerPassesChiSquare) {
         for (int j = 0; j < kBins; ++j)
             for (int i = 0; i < kBins; ++i) {
                 auto at = [&](double s, double t) {
-                    return corner + s * light.size.x * x + t * light.size.y * y - p;
+                    return corner + s * size.x * x + t * size.y * y - p;
                 };
                 double s0 = double(i) / kBins, s1 = double(i + 1) / kBins;
                 double t0 = double(j) / kBins, t1 = double(j + 1) / kBins;
@@ -130,7 +133,7 @@ TEST(LambertianRectGl, GlslSamplerPassesChiSquare) {
             glm::dvec3 wi = glm::normalize(glm::dvec3(o.sampleDir));
             double t = glm::dot(corner - p, z) / glm::dot(wi, z);
             glm::dvec3 h = p + t * wi - corner;
-            double fx = glm::dot(h, x) / light.size.x, fy = glm::dot(h, y) / light.size.y;
+            double fx = glm::dot(h, x) / size.x, fy = glm::dot(h, y) / size.y;
             // A float direction re-intersected with the plane at a grazing receiver lands up to
             // ~1e-4 of the size off the edge (float rounding times 1/cos of the incidence):
             // within 1e-3 it counts in the edge's bin, beyond that as off the light.

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <random>
 #include <string>
 #include <vector>
@@ -106,6 +107,25 @@ using test::frameOf;
 using test::makeLight;
 using test::toWorld;
 
+/// The rectangle model of a light from makeLight().
+const LambertianRect& rect(const Luminaire& light) {
+    return *lambertianRectModel(light);
+}
+
+/// The solid angle the light subtends at p (LambertianRect::solidAngle at its pose).
+double solidAngle(const Luminaire& light, const glm::dvec3& p) {
+    return rect(light).solidAngle(light.pose, p);
+}
+
+/// The light with another size (a copy of its model), at the same pose.
+Luminaire withSize(const Luminaire& light, const glm::dvec2& size) {
+    auto model = std::make_shared<LambertianRect>(rect(light));
+    model->size = size;
+    Luminaire out = light;
+    out.setModel(model);
+    return out;
+}
+
 /// Integral over the sub-rectangle [s0, s1] x [t0, t1] of the light (s, t measured from its
 /// centre along local x, y) of max(0, cos_r) cos_e / r^2 for a receiver at local position q with
 /// local unit normal m (useCosR false: of cos_e / r^2, the solid angle). Iterated adaptive
@@ -143,10 +163,9 @@ double rectIntegral(const glm::dvec3& q, const glm::dvec3& m, bool useCosR, doub
 }
 
 /// Quadrature irradiance (W/m2 per channel) for local receiver position q and normal m.
-glm::dvec3 quadratureIrradiance(const LambertianRect& light, const glm::dvec3& q,
-                                const glm::dvec3& m) {
-    double hw = 0.5 * light.size.x, hh = 0.5 * light.size.y;
-    return light.emitted * rectIntegral(q, m, true, -hw, hw, -hh, hh);
+glm::dvec3 quadratureIrradiance(const Luminaire& light, const glm::dvec3& q, const glm::dvec3& m) {
+    double hw = 0.5 * rect(light).size.x, hh = 0.5 * rect(light).size.y;
+    return rect(light).emitted * rectIntegral(q, m, true, -hw, hw, -hh, hh);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -162,13 +181,13 @@ double parallelCornerFactor(double a, double b, double h) {
 }
 
 /// Receiver at local (px, py, h) facing the light (normal -aim): factor of the whole rectangle.
-double parallelFactor(const LambertianRect& light, double px, double py, double h) {
+double parallelFactor(const Luminaire& light, double px, double py, double h) {
     auto g = [&](double x, double y) {
         double sx = x < 0.0 ? -1.0 : 1.0, sy = y < 0.0 ? -1.0 : 1.0;
         return sx * sy * parallelCornerFactor(std::abs(x), std::abs(y), h);
     };
-    double x0 = -0.5 * light.size.x - px, x1 = 0.5 * light.size.x - px;
-    double y0 = -0.5 * light.size.y - py, y1 = 0.5 * light.size.y - py;
+    double x0 = -0.5 * rect(light).size.x - px, x1 = 0.5 * rect(light).size.x - px;
+    double y0 = -0.5 * rect(light).size.y - py, y1 = 0.5 * rect(light).size.y - py;
     return g(x1, y1) - g(x1, y0) - g(x0, y1) + g(x0, y0);
 }
 
@@ -185,10 +204,10 @@ double perpendicularCornerFactor(double a, double b, double c) {
 
 /// Receiver at local (px, py, h) with normal +x (parallel to the light's plane). The part of the
 /// rectangle with x < px is behind the receiver's tangent plane and drops out.
-double perpendicularFactor(const LambertianRect& light, double px, double py, double h) {
-    double x0 = std::max(-0.5 * light.size.x - px, 0.0), x1 = 0.5 * light.size.x - px;
+double perpendicularFactor(const Luminaire& light, double px, double py, double h) {
+    double x0 = std::max(-0.5 * rect(light).size.x - px, 0.0), x1 = 0.5 * rect(light).size.x - px;
     if (x1 <= x0) return 0.0;
-    double y0 = -0.5 * light.size.y - py, y1 = 0.5 * light.size.y - py;
+    double y0 = -0.5 * rect(light).size.y - py, y1 = 0.5 * rect(light).size.y - py;
     auto g = [&](double x, double y) {
         double sy = y < 0.0 ? -1.0 : 1.0;
         return sy * perpendicularCornerFactor(x, std::abs(y), h);
@@ -235,7 +254,7 @@ std::vector<Receiver> receivers() {
 }
 
 TEST(LambertianRect, ClosedFormMatchesCatalogueAndQuadrature) {
-    LambertianRect light = makeLight();
+    Luminaire light = makeLight();
     for (const Receiver& rc : receivers()) {
         SCOPED_TRACE(rc.what);
         glm::dvec3 m = glm::normalize(rc.m);
@@ -244,9 +263,10 @@ TEST(LambertianRect, ClosedFormMatchesCatalogueAndQuadrature) {
         EXPECT_EQ(e.stdError, glm::dvec3(0.0));
         std::vector<glm::dvec3> refs;
         if (rc.closedForm == Ref::Parallel)
-            refs.push_back(light.emitted * kPi * parallelFactor(light, rc.q.x, rc.q.y, rc.q.z));
+            refs.push_back(rect(light).emitted * kPi *
+                           parallelFactor(light, rc.q.x, rc.q.y, rc.q.z));
         if (rc.closedForm == Ref::Perpendicular)
-            refs.push_back(light.emitted * kPi *
+            refs.push_back(rect(light).emitted * kPi *
                            perpendicularFactor(light, rc.q.x, rc.q.y, rc.q.z));
         if (rc.quadrature) refs.push_back(quadratureIrradiance(light, rc.q, m));
         if (rc.q.z <= 0.0) refs.push_back(glm::dvec3(0.0));
@@ -263,7 +283,7 @@ TEST(LambertianRect, ClosedFormMatchesCatalogueAndQuadrature) {
 }
 
 TEST(LambertianRect, ReferenceEstimatorConverges) {
-    LambertianRect light = makeLight();
+    Luminaire light = makeLight();
     EstimateOptions options;
     options.spp = 1 << 16;
     options.seed = 12345;
@@ -293,7 +313,7 @@ TEST(LambertianRect, ReferenceEstimatorConverges) {
 // Power and solid angle.
 
 TEST(LambertianRect, PowerMatchesIntegralOfEmittedRadiance) {
-    LambertianRect light = makeLight();
+    Luminaire light = makeLight();
     Frame f = frameOf(light.pose);
     const GaussRule& g = rule16();
     // Radiance is integrated over the surface (4 x 4 nodes: it must be constant there) and over
@@ -302,8 +322,9 @@ TEST(LambertianRect, PowerMatchesIntegralOfEmittedRadiance) {
     glm::dvec3 flux(0.0);
     for (size_t i = 0; i < area.x.size(); ++i)
         for (size_t j = 0; j < area.x.size(); ++j) {
-            double s = 0.5 * light.size.x * area.x[i], t = 0.5 * light.size.y * area.x[j];
-            double dA = 0.25 * light.size.x * light.size.y * area.w[i] * area.w[j];
+            double s = 0.5 * rect(light).size.x * area.x[i],
+                   t = 0.5 * rect(light).size.y * area.x[j];
+            double dA = 0.25 * rect(light).size.x * rect(light).size.y * area.w[i] * area.w[j];
             glm::dvec3 x = light.pose.position + s * f.x + t * f.y;
             for (int side = 0; side < 2; ++side)
                 for (size_t a = 0; a < g.x.size(); ++a)
@@ -325,20 +346,20 @@ TEST(LambertianRect, PowerMatchesIntegralOfEmittedRadiance) {
 }
 
 TEST(LambertianRect, SolidAngleMatchesQuadrature) {
-    LambertianRect light = makeLight();
+    Luminaire light = makeLight();
     const glm::dvec3 points[] = {{0.0, 0.0, 1.0},     {0.4, -0.2, 0.1},  {3.0, 2.0, 0.5},
                                  {0.2, 0.1, 1e-3},    {-0.9, 0.1, 1e-6}, {0.0, 0.0, 100.0},
                                  {40.0, -70.0, 100.0}};
-    double hw = 0.5 * light.size.x, hh = 0.5 * light.size.y;
+    double hw = 0.5 * rect(light).size.x, hh = 0.5 * rect(light).size.y;
     for (const glm::dvec3& q : points) {
         double exact = rectIntegral(q, glm::dvec3(0.0), false, -hw, hw, -hh, hh);
-        double omega = light.solidAngle(toWorld(light, q));
+        double omega = solidAngle(light, toWorld(light, q));
         // Quadrature to ~1e-12; 1e-9 also absorbs the rounding of the world position near the
         // plane (|p| ~ 2 m makes ~4e-16 m of error in a 1e-6 m distance).
         EXPECT_NEAR(omega, exact, 1e-9 * exact) << q.x << ", " << q.y << ", " << q.z;
     }
-    EXPECT_EQ(light.solidAngle(toWorld(light, {0.1, 0.1, -0.3})), 0.0);  // behind
-    EXPECT_EQ(light.solidAngle(toWorld(light, {0.1, 0.1, 0.0})), 0.0);   // in the plane
+    EXPECT_EQ(solidAngle(light, toWorld(light, {0.1, 0.1, -0.3})), 0.0);  // behind
+    EXPECT_EQ(solidAngle(light, toWorld(light, {0.1, 0.1, 0.0})), 0.0);   // in the plane
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -399,14 +420,14 @@ const glm::dvec3 kChiSquareReceivers[] = {
 };
 
 TEST(LambertianRect, SamplerPassesChiSquare) {
-    LambertianRect light = makeLight();
+    Luminaire light = makeLight();
     Frame f = frameOf(light.pose);
     const int kBins = 16, kSamples = 1 << 18;
     const int kTests = int(std::size(kChiSquareReceivers));
     // Sidak correction: with kTests independent tests at level alpha each, the chance that any
     // fails by accident is 1 - (1 - alpha)^kTests = 1e-3.
     const double alpha = 1.0 - std::pow(1.0 - 1e-3, 1.0 / kTests);
-    double hw = 0.5 * light.size.x, hh = 0.5 * light.size.y;
+    double hw = 0.5 * rect(light).size.x, hh = 0.5 * rect(light).size.y;
     for (const glm::dvec3& q : kChiSquareReceivers) {
         SCOPED_TRACE(testing::Message() << q.x << ", " << q.y << ", " << q.z);
         glm::dvec3 p = toWorld(light, q);
@@ -443,27 +464,27 @@ TEST(LambertianRect, SamplerPassesChiSquare) {
 }
 
 TEST(LambertianRect, SamplesAreOnTheLightAndAgreeWithPdf) {
-    LambertianRect light = makeLight();
+    Luminaire light = makeLight();
     Frame f = frameOf(light.pose);
     std::mt19937_64 rng(5);
     std::uniform_real_distribution<double> uniform(0.0, 1.0);
     for (const glm::dvec3& q : kChiSquareReceivers) {
         glm::dvec3 p = toWorld(light, q);
-        double omega = light.solidAngle(p);
+        double omega = solidAngle(light, p);
         for (int k = 0; k < 2000; ++k) {
             LightSample s = light.sample(p, {uniform(rng), uniform(rng)});
             ASSERT_GT(s.pdf, 0.0);
             EXPECT_EQ(s.pdf, 1.0 / omega);
             EXPECT_EQ(s.pdf, light.pdf(p, s.wi));
-            EXPECT_EQ(s.radiance, light.emitted);
+            EXPECT_EQ(s.radiance, rect(light).emitted);
             // Unit direction, consistent distance, and a point on the rectangle: tolerances are
             // a few hundred roundings of the coordinates (|p| < 60 m).
             EXPECT_NEAR(glm::length(s.wi), 1.0, 1e-14);
             EXPECT_LT(glm::length(p + s.distance * s.wi - s.position), 1e-12 * (1.0 + s.distance));
             glm::dvec3 local = s.position - light.pose.position;
             EXPECT_NEAR(glm::dot(local, f.z), 0.0, 1e-13);
-            EXPECT_LE(std::abs(glm::dot(local, f.x)), 0.5 * light.size.x + 1e-13);
-            EXPECT_LE(std::abs(glm::dot(local, f.y)), 0.5 * light.size.y + 1e-13);
+            EXPECT_LE(std::abs(glm::dot(local, f.x)), 0.5 * rect(light).size.x + 1e-13);
+            EXPECT_LE(std::abs(glm::dot(local, f.y)), 0.5 * rect(light).size.y + 1e-13);
             EXPECT_GT(glm::length(light.radiance(s.position, -s.wi)), 0.0);
         }
     }
@@ -483,8 +504,8 @@ double rectSolidAngle(const glm::dvec3& q, double s0, double s1, double t0, doub
 }
 
 TEST(LambertianRect, SolidAngleClosedFormMatchesQuadrature) {
-    LambertianRect light = makeLight();
-    double hw = 0.5 * light.size.x, hh = 0.5 * light.size.y;
+    Luminaire light = makeLight();
+    double hw = 0.5 * rect(light).size.x, hh = 0.5 * rect(light).size.y;
     const glm::dvec3 points[] = {{0.1, 0.05, 0.3}, {-0.9, 0.1, 0.05}, {2.0, -1.0, 1.5}};
     for (const glm::dvec3& q : points) {
         double quad = rectIntegral(q, glm::dvec3(0.0), false, -hw, 0.2, -hh, hh);
@@ -498,9 +519,9 @@ TEST(LambertianRect, SamplerInvertsItsCdfPrecisely) {
     // of the sample's x holds u1 of the solid angle, and along the sample's column the part below
     // it holds u2 of that column's. Checked where the map is ill-conditioned: 1e-6 m from the
     // plane, on all four sides and over the light, and 100 m away. Both splits are closed forms.
-    LambertianRect light = makeLight();
+    Luminaire light = makeLight();
     Frame f = frameOf(light.pose);
-    double hw = 0.5 * light.size.x, hh = 0.5 * light.size.y;
+    double hw = 0.5 * rect(light).size.x, hh = 0.5 * rect(light).size.y;
     const glm::dvec3 points[] = {{-0.9, 0.1, 1e-6},   {0.9, -0.1, 1e-6}, {0.2, 0.5, 1e-6},
                                  {-0.2, -0.5, 1e-6},  {0.1, 0.05, 1e-6}, {0.0, 0.0, 100.0},
                                  {60.0, -80.0, 10.0}, {0.7, 0.4, 1e-3}};
@@ -532,11 +553,11 @@ TEST(LambertianRect, SamplerInvertsItsCdfPrecisely) {
 }
 
 TEST(LambertianRect, PdfIsZeroOffTheLightAndBehindIt) {
-    LambertianRect light = makeLight();
+    Luminaire light = makeLight();
     glm::dvec3 p = toWorld(light, {0.1, 0.1, 1.0});
     glm::dvec3 toCentre = glm::normalize(light.pose.position - p);
-    EXPECT_EQ(light.pdf(p, toCentre), 1.0 / light.solidAngle(p));
-    EXPECT_EQ(light.pdf(p, 3.0 * toCentre), 1.0 / light.solidAngle(p));  // need not be unit
+    EXPECT_EQ(light.pdf(p, toCentre), 1.0 / solidAngle(light, p));
+    EXPECT_EQ(light.pdf(p, 3.0 * toCentre), 1.0 / solidAngle(light, p));  // need not be unit
     EXPECT_EQ(light.pdf(p, -toCentre), 0.0);
     EXPECT_EQ(light.pdf(p, glm::normalize(toWorld(light, {2.0, 0.0, 0.0}) - p)), 0.0);
     EXPECT_EQ(light.pdf(p, glm::dvec3(0.0)), 0.0);
@@ -550,14 +571,14 @@ TEST(LambertianRect, PdfIsZeroOffTheLightAndBehindIt) {
 /// Blocks every segment that ends on the light's x < 0 half.
 class HalfBlocked final : public Visibility {
   public:
-    explicit HalfBlocked(const LambertianRect& light) : mLight(light) {}
+    explicit HalfBlocked(const Luminaire& light) : mLight(light) {}
     bool visible(const glm::dvec3&, const glm::dvec3& to) const override {
         return glm::dot(to - mLight.pose.position, frameOf(mLight.pose).x) >= 0.0;
     }
     bool visibleToward(const glm::dvec3&, const glm::dvec3&) const override { return true; }
 
   private:
-    const LambertianRect& mLight;
+    const Luminaire& mLight;
 };
 
 class AllVisible final : public Visibility {
@@ -567,13 +588,14 @@ class AllVisible final : public Visibility {
 };
 
 TEST(LambertianRect, VisibilityScalesBothEstimators) {
-    LambertianRect light = makeLight();
+    Luminaire light = makeLight();
     HalfBlocked half(light);
     AllVisible all;
     glm::dvec3 q(0.3, 0.1, 0.8), m = glm::normalize(glm::dvec3(0.2, 0.1, -1.0));
     glm::dvec3 p = toWorld(light, q), n = dirToWorld(light, m);
-    double hh = 0.5 * light.size.y;
-    glm::dvec3 exact = light.emitted * rectIntegral(q, m, true, 0.0, 0.5 * light.size.x, -hh, hh);
+    double hh = 0.5 * rect(light).size.y;
+    glm::dvec3 exact =
+        rect(light).emitted * rectIntegral(q, m, true, 0.0, 0.5 * rect(light).size.x, -hh, hh);
     EstimateOptions options;
     options.spp = 1 << 16;
     options.visibility = &all;
@@ -595,7 +617,7 @@ TEST(LambertianRect, VisibilityScalesBothEstimators) {
 // ---------------------------------------------------------------------------------------------
 // Hard cases: nothing may be NaN or infinite.
 
-void expectFinite(const LambertianRect& light, const glm::dvec3& p, const glm::dvec3& n) {
+void expectFinite(const Luminaire& light, const glm::dvec3& p, const glm::dvec3& n) {
     EstimateOptions options;
     options.spp = 64;
     AllVisible all;
@@ -608,7 +630,7 @@ void expectFinite(const LambertianRect& light, const glm::dvec3& p, const glm::d
                 EXPECT_TRUE(std::isfinite(e.stdError[c]) && e.stdError[c] >= 0.0);
             }
     }
-    double omega = light.solidAngle(p);
+    double omega = solidAngle(light, p);
     EXPECT_TRUE(std::isfinite(omega) && omega >= 0.0 && omega <= 2.0 * kPi);
     for (glm::dvec2 u : {glm::dvec2(0.0), glm::dvec2(1.0), glm::dvec2(0.5, 0.999999),
                          glm::dvec2(std::nan(""), 2.0)}) {
@@ -623,13 +645,13 @@ void expectFinite(const LambertianRect& light, const glm::dvec3& p, const glm::d
 }
 
 TEST(LambertianRect, HardCasesStayFinite) {
-    LambertianRect light = makeLight();
+    Luminaire light = makeLight();
     glm::dvec3 n = dirToWorld(light, {0.1, 0.2, -1.0});
     // Exactly in the plane, over the light and beside it: nothing is emitted there.
     for (glm::dvec3 q : {glm::dvec3(0.1, 0.1, 0.0), glm::dvec3(-2.0, 0.1, 0.0)}) {
         glm::dvec3 p = toWorld(light, q);
         expectFinite(light, p, n);
-        EXPECT_EQ(light.solidAngle(p), 0.0);
+        EXPECT_EQ(solidAngle(light, p), 0.0);
         EXPECT_EQ(light.sample(p, {0.3, 0.6}).pdf, 0.0);
         EXPECT_EQ(lambertianRectAnalytic(light, p, n, {}).irradiance, glm::dvec3(0.0));
     }
@@ -639,29 +661,30 @@ TEST(LambertianRect, HardCasesStayFinite) {
     glm::dvec3 facing = dirToWorld(light, {0.0, 0.0, -1.0});
     Estimate e = lambertianRectAnalytic(light, close, facing, {});
     // The missing part of the hemisphere is ~1e-6 / 0.3 of it (the nearest edge is 0.3 m away).
-    EXPECT_NEAR(e.irradiance.x, kPi * light.emitted.x, 1e-4 * kPi * light.emitted.x);
-    EXPECT_NEAR(light.solidAngle(close), 2.0 * kPi, 1e-4);
+    EXPECT_NEAR(e.irradiance.x, kPi * rect(light).emitted.x, 1e-4 * kPi * rect(light).emitted.x);
+    EXPECT_NEAR(solidAngle(light, close), 2.0 * kPi, 1e-4);
     // Far and very far away, and a light of 1e-9 m: tiny but finite, and the far-field limit
     // E = L A cos_e cos_r / r^2 where that is representable.
     for (double dist : {1e3, 1e6, 1e12, 1e200}) {
         glm::dvec3 p = toWorld(light, {0.0, 0.0, dist});
         expectFinite(light, p, facing);
         if (dist <= 1e12) {
-            double far = light.emitted.x * light.size.x * light.size.y / (dist * dist);
+            double far =
+                rect(light).emitted.x * rect(light).size.x * rect(light).size.y / (dist * dist);
             // Relative difference from the far-field limit is ~(size / dist)^2.
             EXPECT_NEAR(lambertianRectAnalytic(light, p, facing, {}).irradiance.x, far, 1e-6 * far);
-            EXPECT_NEAR(light.solidAngle(p), far / light.emitted.x, 1e-6 * far / light.emitted.x);
+            EXPECT_NEAR(solidAngle(light, p), far / rect(light).emitted.x,
+                        1e-6 * far / rect(light).emitted.x);
         }
     }
-    LambertianRect tiny = light;
-    tiny.size = {1e-9, 1e-9};
+    Luminaire tiny = withSize(light, {1e-9, 1e-9});
     for (double dist : {1e-12, 1e-9, 1.0, 100.0}) {
         glm::dvec3 p = toWorld(tiny, {0.3e-9, 0.1e-9, dist});
         expectFinite(tiny, p, facing);
         expectFinite(tiny, toWorld(tiny, {5e-9, 0.0, dist}), facing);
     }
     glm::dvec3 p1 = toWorld(tiny, {0.0, 0.0, 1.0});
-    double farTiny = tiny.emitted.x * 1e-18;
+    double farTiny = rect(tiny).emitted.x * 1e-18;
     EXPECT_NEAR(lambertianRectAnalytic(tiny, p1, facing, {}).irradiance.x, farTiny, 1e-6 * farTiny);
     // Bad receivers: zero or NaN normal, NaN or infinite position.
     expectFinite(light, toWorld(light, {0.0, 0.0, 1.0}), glm::dvec3(0.0));
@@ -669,11 +692,10 @@ TEST(LambertianRect, HardCasesStayFinite) {
     expectFinite(light, glm::dvec3(std::nan("")), facing);
     expectFinite(light, glm::dvec3(1e300, -1e300, std::numeric_limits<double>::infinity()), facing);
     // Degenerate lights from the editor: zero or negative size.
-    LambertianRect flat = light;
-    flat.size = {0.0, 1.0};
+    Luminaire flat = withSize(light, {0.0, 1.0});
     expectFinite(flat, toWorld(light, {0.0, 0.0, 1.0}), facing);
     EXPECT_EQ(flat.power(), glm::dvec3(0.0));
-    flat.size = {-1.0, 1.0};
+    flat = withSize(light, {-1.0, 1.0});
     expectFinite(flat, toWorld(light, {0.0, 0.0, 1.0}), facing);
 }
 

@@ -29,21 +29,25 @@ struct ParityOut {
 
 const char* kTiny = CANDELA_TEST_DATA "/lightfield/tiny.lf.json";
 
-LightFieldLuminaire tiny() {
-    LightFieldLuminaire l;
-    l.data = LightFieldData::load(kTiny);
-    return l;
+/// A placed light field of the given data.
+Luminaire placedLightField(std::shared_ptr<const LightFieldData> data) {
+    auto model = std::make_shared<LightFieldLuminaire>();
+    model->data = std::move(data);
+    return Luminaire(model);
 }
 
-std::vector<ParityOut> runParity(const LightFieldLuminaire& light,
-                                 const std::vector<ParityIn>& in) {
+Luminaire tiny() {
+    return placedLightField(LightFieldData::load(kTiny));
+}
+
+std::vector<ParityOut> runParity(const Luminaire& light, const std::vector<ParityIn>& in) {
     return test::runComputeTest<ParityOut>("../tests/shaders/lightfield_parity.comp",
-                                           light.gpuData(), in, light.gpuTables().get());
+                                           gpuData(light), in, gpuTables(light).get());
 }
 
 TEST(LightFieldGl, BoxIntegralAndSamplerMatchCpp) {
-    LightFieldLuminaire light = tiny();
-    const LightFieldData& lf = *light.data;
+    Luminaire light = tiny();
+    const LightFieldData& lf = *lightFieldModel(light)->data;
     std::mt19937 rng(3);
     std::uniform_real_distribution<float> U(0.f, 1.f);
     std::vector<ParityIn> in;
@@ -98,7 +102,7 @@ TEST(LightFieldGl, BoxIntegralAndSamplerMatchCpp) {
 /// An image of 256^2 pixels whose quadrant at the table's origin is 1e6 times brighter than the
 /// rest (slightly structured): small boxes far from the origin hold 1e-10 of the table's largest
 /// entries, so their A_m cancels catastrophically in float.
-LightFieldLuminaire farFromTheOrigin() {
+Luminaire farFromTheOrigin() {
     auto lf = std::make_shared<LightFieldData>();
     lf->count = {1, 1};
     lf->spacing = {0.1, 0.1};
@@ -116,9 +120,7 @@ LightFieldLuminaire farFromTheOrigin() {
                 i < 128 && j < 128 ? 1e6f : 1.f + 0.5f * float((i * 7 + j * 3) % 5);
     lf->validate("far-from-the-origin");
     lf->precompute();
-    LightFieldLuminaire l;
-    l.data = lf;
-    return l;
+    return placedLightField(lf);
 }
 
 /// Plain float summed-area table arithmetic (what the shaders would do without float-float
@@ -138,8 +140,8 @@ double floatBoxIntegral(const LightFieldData& lf, glm::vec2 a, glm::vec2 b) {
 }
 
 TEST(LightFieldGl, SmallBoxesFarFromTheTableOriginKeepTheirDigits) {
-    LightFieldLuminaire light = farFromTheOrigin();
-    const LightFieldData& lf = *light.data;
+    Luminaire light = farFromTheOrigin();
+    const LightFieldData& lf = *lightFieldModel(light)->data;
     std::mt19937 rng(5);
     std::uniform_real_distribution<float> U(0.f, 1.f);
     std::vector<ParityIn> in;
@@ -183,8 +185,8 @@ TEST(LightFieldGl, SmallBoxesFarFromTheTableOriginKeepTheirDigits) {
 }
 
 TEST(LightFieldGl, GlslSamplerPassesChiSquare) {
-    LightFieldLuminaire light = tiny();
-    const LightFieldData& lf = *light.data;
+    Luminaire light = tiny();
+    const LightFieldData& lf = *lightFieldModel(light)->data;
     const int kBins = 6, kSamples = 60000;
     const glm::vec2 boxes[][2] = {{{-0.031f, -0.025f}, {0.029f, 0.013f}},
                                   {{-0.04f, -0.04f}, {0.04f, 0.04f}}};
@@ -253,7 +255,7 @@ TEST(LightFieldGl, ShadingPassMatchesTheCpuReference) {
     settings.height = 16;
     renderer.setSettings(settings);
     // Every sampler of the kind (progressive, with a GPU pass).
-    for (const TechniqueInfo& info : techniquesOf("lightfield")) {
+    for (const TechniqueInfo& info : techniquesOf(LuminaireKind::LightField)) {
         if (!info.progressive || info.shader.empty()) continue;
         const std::string technique(info.name);
         RenderSettings s = settings;
@@ -265,7 +267,7 @@ TEST(LightFieldGl, ShadingPassMatchesTheCpuReference) {
             Estimate ref =
                 lightFieldReference(light, glm::dvec3(points[i]), glm::dvec3(normals[i]), o);
             o.spp = 16384;
-            const TechniqueInfo* t = findTechnique("lightfield", technique);
+            const TechniqueInfo* t = findTechnique(LuminaireKind::LightField, technique);
             Estimate cpu = t->irradiance(light, glm::dvec3(points[i]), glm::dvec3(normals[i]), o);
             ASSERT_TRUE(std::isfinite(gpu[i].y));
             // The GPU estimator is the CPU one in float with its own random numbers: within 1 %

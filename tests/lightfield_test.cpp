@@ -58,22 +58,23 @@ std::shared_ptr<LightFieldData> randomField(uint32_t seed, double delta = 0.05) 
     });
 }
 
-LightFieldLuminaire place(std::shared_ptr<LightFieldData> lf) {
-    LightFieldLuminaire l;
-    l.data = lf;
+Luminaire place(std::shared_ptr<LightFieldData> lf) {
+    auto model = std::make_shared<LightFieldLuminaire>();
+    model->data = lf;
+    Luminaire l(model);
     l.pose.position = {0.2, 2.5, -0.3};
     l.pose.aim = {0.1, -1.0, 0.2};
     l.pose.c0 = {1.0, 0.0, 0.2};
     return l;
 }
 
-glm::dvec3 worldOf(const LightFieldLuminaire& l, glm::dvec3 local) {
+glm::dvec3 worldOf(const Luminaire& l, glm::dvec3 local) {
     glm::dvec3 x, y, z;
     l.pose.frame(x, y, z);
     return l.pose.position + local.x * x + local.y * y + local.z * z;
 }
 
-glm::dvec3 worldDir(const LightFieldLuminaire& l, glm::dvec3 local) {
+glm::dvec3 worldDir(const Luminaire& l, glm::dvec3 local) {
     glm::dvec3 x, y, z;
     l.pose.frame(x, y, z);
     return glm::normalize(local.x * x + local.y * y + local.z * z);
@@ -134,10 +135,11 @@ TEST(LightField, ConstantImagesActAsALambertianRectangle) {
     // the luminaire is a Lambertian rectangle of radiance C spanning S. Closed form: Baum et al.
     const double C = 250.0, delta = 0.05, half = 0.05;
     auto lf = makeField({13, 13}, 0.05, delta, half, 8, [&](int, int, int) { return float(C); });
-    LightFieldLuminaire l = place(lf);
-    LambertianRect rect;
-    rect.size = {2 * half, 2 * half};
-    rect.emitted = glm::dvec3(C);
+    Luminaire l = place(lf);
+    auto square = std::make_shared<LambertianRect>();
+    square->size = {2 * half, 2 * half};
+    square->emitted = glm::dvec3(C);
+    Luminaire rect(square);
     rect.pose = l.pose;
     glm::dvec3 x, y, z;
     l.pose.frame(x, y, z);
@@ -178,7 +180,7 @@ TEST(LightField, Granier2003ConvergesWhereItsAssumptionsHold) {
     // 0.5 % for the far-field table's interpolation (the closed form is the Lambertian square).
     const double C = 250.0, delta = 0.05, half = 0.05;
     auto lf = makeField({13, 13}, 0.05, delta, half, 8, [&](int, int, int) { return float(C); });
-    LightFieldLuminaire l = place(lf);
+    Luminaire l = place(lf);
     EstimateOptions o;
     for (double z : {1.05, 2.0, 5.05}) {
         glm::dvec3 p = worldOf(l, {0.05, -0.03, z}),
@@ -190,7 +192,7 @@ TEST(LightField, Granier2003ConvergesWhereItsAssumptionsHold) {
     // Its far field is the light field's own (issue 18: it was 42 % of it for the car headlight):
     // images of random pixels, 1e4 m away in several directions, within 0.5 %.
     auto rough = randomField(7);
-    LightFieldLuminaire r = place(rough);
+    Luminaire r = place(rough);
     for (glm::dvec3 d : {glm::dvec3(0, 0, 1), glm::dvec3(0.3, -0.2, 1), glm::dvec3(-0.6, 0.1, 1)}) {
         glm::dvec3 p = worldOf(r, 1e4 * glm::normalize(d)), n = worldDir(r, -glm::normalize(d));
         double ref = lightFieldReference(r, p, n, o).irradiance.x;
@@ -213,7 +215,7 @@ TEST(LightField, Granier2003ConvergesWhereItsAssumptionsHold) {
 
 TEST(LightField, ReferenceMatchesAnIndependentIntegralOverS) {
     auto lf = randomField(3);
-    LightFieldLuminaire l = place(lf);
+    Luminaire l = place(lf);
     const glm::dvec3 points[] = {
         {0.0, 0.0, 0.07}, {0.05, -0.03, 0.2}, {-0.4, 0.3, 1.0}, {0.0, 0.1, 0.09}};
     const glm::dvec3 normals[] = {{0, 0, -1}, {0.9, 0.2, -0.3}};
@@ -231,7 +233,7 @@ TEST(LightField, ReferenceMatchesAnIndependentIntegralOverS) {
 
 TEST(LightField, RestrictedCdfAgreesWithReferenceFrom2cmTo5m) {
     auto lf = randomField(5);
-    LightFieldLuminaire l = place(lf);
+    Luminaire l = place(lf);
     const glm::dvec3 points[] = {{0.0, 0.0, 0.07}, {0.02, 0.01, 0.07}, {0.04, -0.05, 0.1},
                                  {0.1, 0.1, 0.3},  {-0.2, 0.0, 0.5},   {0.0, 0.3, 1.0},
                                  {0.5, -0.5, 2.0}, {0.0, 0.0, 5.05},   {-1.0, 2.0, 4.0}};
@@ -257,7 +259,7 @@ TEST(LightField, RestrictedCdfAgreesWithReferenceFrom2cmTo5m) {
 TEST(LightField, RestrictedCdfIsUnbiased) {
     // The mean of 64 independent 16-spp estimates lies within 3 standard errors of the reference.
     auto lf = randomField(9);
-    LightFieldLuminaire l = place(lf);
+    Luminaire l = place(lf);
     const glm::dvec3 points[] = {{0.01, 0.02, 0.08}, {0.2, -0.1, 0.6}};
     for (glm::dvec3 q : points) {
         glm::dvec3 p = worldOf(l, q), n = worldDir(l, glm::normalize(glm::dvec3(0.2, 0.1, -1)));
@@ -380,7 +382,7 @@ TEST(LightField, GlobalCdfsAndMediansMatchDirectSums) {
 
 TEST(LightField, HardCasesStayFiniteAndExact) {
     auto lf = randomField(13);
-    LightFieldLuminaire l = place(lf);
+    Luminaire l = place(lf);
     EstimateOptions o;
     o.spp = 256;
     glm::dvec3 down = worldDir(l, {0, 0, -1});
@@ -415,7 +417,7 @@ TEST(LightField, HardCasesStayFiniteAndExact) {
     for (double v : all({0.0, 0.0, 0.3}, worldDir(l, {0, 0, 1}))) EXPECT_EQ(v, 0.0);
     // All-zero images: exactly 0 everywhere.
     auto dark = makeField({3, 3}, 0.02, 0.05, 0.04, 8, [](int, int, int) { return 0.f; });
-    LightFieldLuminaire ld = place(dark);
+    Luminaire ld = place(dark);
     o.spp = 64;
     for (auto fn : {&lightFieldReference, &lightFieldRestrictedCdf, &lightFieldUniformRestricted,
                     &lightFieldPrecomputedGlobal})
@@ -425,7 +427,7 @@ TEST(LightField, HardCasesStayFiniteAndExact) {
 TEST(LightField, ExtremeDeltasMatchTheReference) {
     for (double delta : {0.001, 1.0}) {
         auto lf = randomField(17, delta);
-        LightFieldLuminaire l = place(lf);
+        Luminaire l = place(lf);
         EstimateOptions o;
         o.spp = 4096;
         for (double dz : {0.02, 0.5, 3.0}) {

@@ -28,8 +28,8 @@ TEST(LivePreview, SettingsAreCheaperAndKeepTheLook) {
     EXPECT_EQ(p.shadowMaps.count, 1);
     EXPECT_LE(p.shadowMaps.resolution, 64);
     // Every kind's cheap technique, the full override dropped; the tone mapping kept.
-    EXPECT_EQ(overrideFor(p.techniqueOverride, "lambertian-rect"), "analytic");
-    EXPECT_EQ(overrideFor(p.techniqueOverride, "photometric"), "scattered");
+    EXPECT_EQ(overrideFor(p.techniqueOverride, LuminaireKind::LambertianRect), "analytic");
+    EXPECT_EQ(overrideFor(p.techniqueOverride, LuminaireKind::Photometric), "scattered");
     EXPECT_EQ(p.toneMap, ToneMapOperator::Reinhard);
     EXPECT_EQ(p.exposure, 2.f);
     policy.scale = 0.001f;
@@ -39,11 +39,11 @@ TEST(LivePreview, SettingsAreCheaperAndKeepTheLook) {
 TEST(LivePreview, LightFieldsBecomeTheirFarFieldAndFollowTheirPose) {
     Scene scene = loadScene(CANDELA_SOURCE_DIR "/resources/scenes/editor-room.json");
     ASSERT_EQ(scene.luminaires.size(), 3u);
-    ASSERT_EQ(scene.luminaires[1]->kind(), "lightfield");
+    ASSERT_EQ(scene.luminaires[1]->kind(), LuminaireKind::LightField);
     Scene preview = previewScene(scene);
     ASSERT_EQ(preview.luminaires.size(), 3u);
-    EXPECT_EQ(preview.luminaires[0]->kind(), "lambertian-rect");
-    EXPECT_EQ(preview.luminaires[1]->kind(), "photometric");
+    EXPECT_EQ(preview.luminaires[0]->kind(), LuminaireKind::LambertianRect);
+    EXPECT_EQ(preview.luminaires[1]->kind(), LuminaireKind::Photometric);
     EXPECT_EQ(preview.luminaires[1]->name, scene.luminaires[1]->name);
     EXPECT_EQ(preview.meshes.size(), scene.meshes.size());
     const Luminaire* kept = preview.luminaires[1].get();
@@ -57,7 +57,8 @@ TEST(LivePreview, LightFieldsBecomeTheirFarFieldAndFollowTheirPose) {
     EXPECT_EQ(preview.luminaires[0]->pose.aim, scene.luminaires[0]->pose.aim);
     EXPECT_EQ(preview.camera.fovDeg, 30.0);
     // The twin sits on S's image centre, delta along the aim from the light field's origin.
-    auto twin = farFieldTwin(static_cast<const LightFieldLuminaire&>(*scene.luminaires[1]));
+    auto twin = farFieldTwin(*scene.luminaires[1]);
+    ASSERT_NE(twin, nullptr);
     EXPECT_EQ(preview.luminaires[1]->pose.position, twin->pose.position);
 
     scene.luminaires.pop_back();

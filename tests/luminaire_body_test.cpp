@@ -56,7 +56,8 @@ TEST(LuminaireBody, IsTheL3dGeometryAtThePoseOncePerVariant) {
     EXPECT_EQ(scene.bodyCount(), 1u);        // and one body for both
     const Mesh* b = body(scene);
     ASSERT_NE(b, nullptr);
-    auto& lamp = dynamic_cast<const PhotometricLuminaire&>(*scene.luminaires[0]);
+    ASSERT_NE(photometricModel(*scene.luminaires[0]), nullptr);
+    const PhotometricLuminaire& lamp = *photometricModel(*scene.luminaires[0]);
     ASSERT_TRUE(lamp.geometry);
     EXPECT_EQ(b->triangleCount(), lamp.geometry->triangleCount());
     // The L3D frame at this pose (aim -y, C0 +x): x stays x, y (C90) is world -z, z is world y.
@@ -110,7 +111,7 @@ TEST(LuminaireBody, ItShadowsOtherLightCompletely) {
     // The 4 x 4 cm panel 0.7 m above the 0.17 m wide body: from the floor right below, every
     // line to the panel passes through the body. Without it, the panel's light there is the
     // point law L A / d^2 within 1e-3 (the panel is 2.9 m away and 4 cm wide).
-    const TechniqueInfo* analytic = findTechnique("lambertian-rect", "analytic");
+    const TechniqueInfo* analytic = findTechnique(LuminaireKind::LambertianRect, "analytic");
     ASSERT_NE(analytic, nullptr);
     for (bool withBody : {true, false}) {
         Scene scene = room(withBody, true);
@@ -243,7 +244,7 @@ TEST(LuminaireBody, APhotometryWithoutGeometryHasItsLuminousBox) {
 TEST(LuminaireBody, ALuminousBoxShadowsOtherLightButNotItsOwn) {
     // The panel 0.7 m above the 0.45 m box: from the floor right below, every line to it passes
     // through the box (Embree and the BVH); without the box, the point law within 1e-3.
-    const TechniqueInfo* analytic = findTechnique("lambertian-rect", "analytic");
+    const TechniqueInfo* analytic = findTechnique(LuminaireKind::LambertianRect, "analytic");
     for (bool withBody : {true, false}) {
         Scene scene = boxRoom(withBody, true);
         EmbreeVisibility embree(scene);

@@ -59,9 +59,9 @@ enum class ShadowModel {
              ///< fraction moves in steps of one node's share of the emitter.
 };
 
-ShadowModel modelOf(std::string_view kind, std::string_view name) {
-    if (kind == "photometric" && name == "point") return ShadowModel::Centre;
-    if (kind == "lightfield" && name == "granier2003") return ShadowModel::Nodes;
+ShadowModel modelOf(LuminaireKind kind, std::string_view name) {
+    if (kind == LuminaireKind::Photometric && name == "point") return ShadowModel::Centre;
+    if (kind == LuminaireKind::LightField && name == "granier2003") return ShadowModel::Nodes;
     return ShadowModel::Area;
 }
 
@@ -95,16 +95,16 @@ class Obstruction : public testing::Test {
     static void TearDownTestSuite() { fs::remove_all(dir); }
 
     /// The scene with the luminaire of `kind` and the table.
-    static Scene scene(const std::string& kind) {
+    static Scene scene(LuminaireKind kind) {
         std::string luminaire;
-        if (kind == "lambertian-rect")
+        if (kind == LuminaireKind::LambertianRect)
             luminaire = R"({"type": "lambertian-rect", "name": "L", "size": [0.2, 0.2],
                             "radiance": [25000, 25000, 25000], "position": [0, 2, 0]})";
-        else if (kind == "photometric")
+        else if (kind == LuminaireKind::Photometric)
             luminaire =
                 R"({"type": "photometric", "name": "L", "file": ")" + test::dataDir() +
                 R"(/photometric/lambert.ies", "opening": [0.2, 0.2], "position": [0, 2, 0]})";
-        else if (kind == "lightfield")  // U 0.05 m above S, so S is at 2 m
+        else if (kind == LuminaireKind::LightField)  // U 0.05 m above S, so S is at 2 m
             luminaire = R"({"type": "lightfield", "name": "L", "file": ")" +
                         (dir / "square.lf.json").string() + R"(", "position": [0, 2.05, 0]})";
         std::string text = R"({"geometry": [{"plane": {"center": [0, 0.75, 0], "normal": [0, 1, 0],
@@ -126,14 +126,14 @@ const double kLit[] = {0.9, 1.2, 1.6};
 TEST_F(Obstruction, EveryTechniqueOfEveryKindShadowsTheTableClosedForm) {
     int checked = 0;
     for (const LuminaireKindInfo& info : luminaireKinds()) {
-        const std::string kind(info.kind);
+        const LuminaireKind kind = info.kind;
         Scene s = scene(kind);
         ASSERT_EQ(s.luminaires.size(), 1u);
         const Luminaire& light = *s.luminaires[0];
         EmbreeVisibility visibility(s);
         for (const TechniqueInfo& t : techniques()) {
             if (t.kind != kind || !t.irradiance) continue;
-            SCOPED_TRACE(std::string(kind) + " " + std::string(t.name));
+            SCOPED_TRACE(std::string(kindName(kind)) + " " + std::string(t.name));
             ++checked;
             EstimateOptions open, shadowed;
             open.spp = shadowed.spp = 8192;
@@ -205,7 +205,7 @@ TEST_F(Obstruction, GridShowsTheTablesShadowWithVisibilityOnly) {
     EstimateOptions open, shadowed;
     shadowed.visibility = &visibility;
     const Luminaire& pendant = *room.luminaires[0];
-    const TechniqueInfo* t = findTechnique("photometric", pendant.technique);
+    const TechniqueInfo* t = findTechnique(LuminaireKind::Photometric, pendant.technique);
     ASSERT_NE(t, nullptr);
     // Under the middle of the table top (0.7 m up, 1.6 x 0.9 m centred on (0, -0.5)), straight
     // below the pendant: the table blocks every ray from the pendant's opening.
@@ -227,7 +227,7 @@ TEST_F(Obstruction, EveryEnvironmentTechniqueShadowsTheTableClosedForm) {
     EnvironmentLighting lighting(s.environmentMap);
     EmbreeVisibility visibility(s);
     int checked = 0;
-    for (const TechniqueInfo& t : techniquesOf("environment")) {
+    for (const TechniqueInfo& t : techniquesOf(LuminaireKind::Environment)) {
         SCOPED_TRACE(std::string(t.name));
         ++checked;
         for (double x : {0.0, 0.3, 0.5, 1.0, 2.5}) {

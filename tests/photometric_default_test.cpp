@@ -115,13 +115,15 @@ bool halfTurnSymmetric(const PhotometricData& data) {
 TEST(PhotometricDefault, HoldsItsStatedLimitOnRealFilesAtEveryDistance) {
     const LuminaireKindInfo* kind = findKind("photometric");
     ASSERT_NE(kind, nullptr);
-    const TechniqueInfo* technique = findTechnique("photometric", kind->defaultTechnique);
-    const TechniqueInfo* reference = findTechnique("photometric", "reference");
+    const TechniqueInfo* technique =
+        findTechnique(LuminaireKind::Photometric, kind->defaultTechnique);
+    const TechniqueInfo* reference = findTechnique(LuminaireKind::Photometric, "reference");
     ASSERT_NE(technique, nullptr);
     ASSERT_NE(reference, nullptr);
     for (const char* file : kFiles) {
         std::unique_ptr<Luminaire> light = load(file);
-        const auto& photometric = static_cast<const PhotometricLuminaire&>(*light);
+        ASSERT_NE(photometricModel(*light), nullptr) << file;
+        const PhotometricLuminaire& photometric = *photometricModel(*light);
         std::map<std::string, Receiver> points = receivers(photometric);
         std::map<std::string, double> value, truth, error;
         std::map<std::string, double> brightest;
@@ -158,16 +160,17 @@ TEST(PhotometricDefault, HoldsItsStatedLimitOnRealFilesAtEveryDistance) {
 TEST(PhotometricDefault, ThirtyCentimetresAboveALargeBoxLuminaire) {
     std::unique_ptr<Luminaire> light = load("photometric/up-down-box.ies");
     const TechniqueInfo* technique =
-        findTechnique("photometric", findKind("photometric")->defaultTechnique);
-    const TechniqueInfo* reference = findTechnique("photometric", "reference");
+        findTechnique(LuminaireKind::Photometric, findKind("photometric")->defaultTechnique);
+    const TechniqueInfo* reference = findTechnique(LuminaireKind::Photometric, "reference");
     glm::dvec3 p(0.0, 0.3, 0.0), n(0.0, -1.0, 0.0);
     EstimateOptions options;
     options.spp = 200000;
     Estimate truth = reference->irradiance(*light, p, n, options);
     double value = technique->irradiance(*light, p, n, options).irradiance.y;
     EXPECT_NEAR(value, truth.irradiance.y, 3e-2 * truth.irradiance.y + 4.0 * truth.stdError.y);
-    double hybrid =
-        findTechnique("photometric", "hybrid")->irradiance(*light, p, n, options).irradiance.y;
+    double hybrid = findTechnique(LuminaireKind::Photometric, "hybrid")
+                        ->irradiance(*light, p, n, options)
+                        .irradiance.y;
     EXPECT_GT(hybrid, 1.2 * truth.irradiance.y) << "the case the default fixes";
 }
 

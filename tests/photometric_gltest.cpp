@@ -35,7 +35,7 @@ TEST(PhotometricGl, EveryTechniqueMatchesItsCppTwin) {
         ShaderLibrary shaders;
         Renderer renderer(shaders);
         for (const auto& t : techniques()) {
-            if (t.kind != "photometric") continue;
+            if (t.kind != LuminaireKind::Photometric) continue;
             RenderSettings s;
             s.width = s.height = 16;
             s.techniqueOverride = std::string(t.name);

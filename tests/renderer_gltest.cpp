@@ -299,7 +299,8 @@ TEST(Renderer, PixelRadianceMatchesTheClosedForm) {
     renderer.renderFrame();
     std::vector<float> rgb = renderer.readLinear();
     glm::dmat4 inv = glm::inverse(glm::dmat4(renderer.viewProj()));
-    const auto& light = static_cast<const LambertianRect&>(*scene.luminaires[0]);
+    const Luminaire& light = *scene.luminaires[0];
+    ASSERT_NE(lambertianRectModel(light), nullptr);
     int checked = 0;
     for (int y = 0; y < s.height; y += 5)
         for (int x = 0; x < s.width; x += 5) {
@@ -325,7 +326,8 @@ TEST(Renderer, PixelRadianceMatchesTheClosedForm) {
 TEST(Renderer, GpuProbeMatchesCpuProbe) {
     test::glContext();
     Scene scene = sceneFrom(kFloor, kPanel);
-    const auto& light = static_cast<const LambertianRect&>(*scene.luminaires[0]);
+    const Luminaire& light = *scene.luminaires[0];
+    ASSERT_NE(lambertianRectModel(light), nullptr);
     std::vector<glm::vec3> points, normals;
     for (int i = 0; i < 16; ++i) {
         points.push_back(

@@ -108,7 +108,7 @@ TEST(ShadowMapLayout, GridFollowsTheRequestedCount) {
 TEST(ShadowMapLayout, LightFieldLightsLieOnSAndSharesSumToOne) {
     Scene scene = headlightRoom(true);
     const Luminaire& lum = *scene.luminaires[0];
-    ShadowLights lights = lum.shadowLights(49);
+    ShadowLights lights = shadowLights(lum, 49);
     ASSERT_EQ(lights.lights.size(), 49u);
     glm::dvec3 x, y, z;
     lum.pose.frame(x, y, z);
@@ -292,8 +292,9 @@ std::vector<float> skyIlluminance(Renderer& renderer, const Scene& scene,
 TEST_F(ShadowMapsGl, HavranLightsGetOneDirectionalMapEach) {
     Scene scene = skyScene(true);
     std::vector<float> maps = skyIlluminance(renderer, scene, "havran2005");
-    ASSERT_TRUE(renderer.plan().stepOfKind("environment"));
-    EXPECT_TRUE(has(renderer.plan().stepOfKind("environment")->program.defines, "SHADOW_MAPS"));
+    ASSERT_TRUE(renderer.plan().stepOfKind(LuminaireKind::Environment));
+    EXPECT_TRUE(has(renderer.plan().stepOfKind(LuminaireKind::Environment)->program.defines,
+                    "SHADOW_MAPS"));
     EXPECT_FALSE(renderer.plan().needsBvh);
     EXPECT_TRUE(has(renderer.plan().passNames(), "shadow:environment"));
     // The same map again: a new view renders no map.
@@ -304,9 +305,11 @@ TEST_F(ShadowMapsGl, HavranLightsGetOneDirectionalMapEach) {
     scene.camera.position.x -= 0.3;
 
     std::vector<float> rays = skyIlluminance(renderer, scene, "havran2005-raytraced");
-    EXPECT_TRUE(has(renderer.plan().stepOfKind("environment")->program.defines, "SHADOWS"));
+    EXPECT_TRUE(
+        has(renderer.plan().stepOfKind(LuminaireKind::Environment)->program.defines, "SHADOWS"));
     std::vector<float> open = skyIlluminance(renderer, skyScene(false), "havran2005");
-    EXPECT_FALSE(has(renderer.plan().stepOfKind("environment")->program.defines, "SHADOW_MAPS"));
+    EXPECT_FALSE(has(renderer.plan().stepOfKind(LuminaireKind::Environment)->program.defines,
+                     "SHADOW_MAPS"));
     // The same 256 lights in all three images, so rays / open and maps / open are each
     // pixel's irradiance-weighted visible fraction of them.
     int lit = 0, acne = 0, shaded = 0;
@@ -351,7 +354,7 @@ Scene photometricRoom(bool occluders) {
 
 TEST_F(ShadowMapsGl, PhotometricLightsShadowFromTheirOpeningInOneFrame) {
     Scene room = photometricRoom(true);
-    ShadowLights lights = room.luminaires[0]->shadowLights(0);
+    ShadowLights lights = shadowLights(*room.luminaires[0], 0);
     EXPECT_EQ(lights.lights.size(), 5u);  // centre and four corners of the opening
     std::vector<float> maps = illuminance(renderer, room, "hybrid", 1);
     EXPECT_TRUE(has(renderer.plan().shading[0].program.defines, "SHADOW_MAPS"));
@@ -426,7 +429,7 @@ TEST_F(ShadowMapsGl, PlannedPassesAreThoseOfTheFirstFrameInOrder) {
     renderer.setSettings(s);
     Scene scene = skyScene(true);
     nlohmann::json lum = lightField("Headlight", {1.5, 1.2, 0}, {-1, -1, 0});
-    scene.luminaires.push_back(LightFieldLuminaire::parse(lum, {"test", ""}));
+    scene.luminaires.push_back(adapterOf(LuminaireKind::LightField).parse(lum, {"test", ""}));
     scene.luminaires.back()->pose = {{1.5, 1.2, 0}, {-1, -1, 0}, {0, 0, 1}};
     scene.luminaires.back()->name = "Headlight";  // the scene reader sets these, not parse()
     scene.luminaires.back()->technique = "restricted-cdf";

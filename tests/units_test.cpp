@@ -37,15 +37,15 @@ TEST(Units, EachSourceSaysWhatItEmitsIn) {
     EXPECT_EQ(s.luminaires[2]->quantities(), Quantities::Photometric);
     // A luminance is written back as a luminance, a radiance as a radiance.
     nlohmann::json out;
-    s.luminaires[1]->writeJson(out);
+    writeJson(*s.luminaires[1], out);
     EXPECT_TRUE(out.contains("luminance"));
     EXPECT_FALSE(out.contains("radiance"));
-    EXPECT_NE(s.luminaires[1]->describe().find("cd/m2"), std::string::npos)
-        << s.luminaires[1]->describe();
-    EXPECT_NE(s.luminaires[1]->describe().find(" lm"), std::string::npos)
-        << s.luminaires[1]->describe();
-    EXPECT_NE(s.luminaires[0]->describe().find("W/(m2 sr)"), std::string::npos)
-        << s.luminaires[0]->describe();
+    EXPECT_NE(describe(*s.luminaires[1]).find("cd/m2"), std::string::npos)
+        << describe(*s.luminaires[1]);
+    EXPECT_NE(describe(*s.luminaires[1]).find(" lm"), std::string::npos)
+        << describe(*s.luminaires[1]);
+    EXPECT_NE(describe(*s.luminaires[0]).find("W/(m2 sr)"), std::string::npos)
+        << describe(*s.luminaires[0]);
 }
 
 TEST(Units, AScenesUnitsFollowItsSources) {
@@ -99,8 +99,8 @@ TEST(Units, AMixedGridAddsRadiometricLightAt683LumensPerWatt) {
     spec.spacing = 0.5;
     GridResult r = computeGrid(mixed, spec);
     EXPECT_TRUE(r.units.converted);
-    const TechniqueInfo* analytic = findTechnique("lambertian-rect", "analytic");
-    const TechniqueInfo* scattered = findTechnique("photometric", "scattered");
+    const TechniqueInfo* analytic = findTechnique(LuminaireKind::LambertianRect, "analytic");
+    const TechniqueInfo* scattered = findTechnique(LuminaireKind::Photometric, "scattered");
     EstimateOptions o;
     for (size_t j = 0; j < r.v.size(); ++j)
         for (size_t i = 0; i < r.u.size(); ++i) {

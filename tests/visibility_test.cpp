@@ -166,9 +166,10 @@ TEST(LightFieldVisibility, ProbeMatchesADiscOccludersClosedForm) {
     // The second point is beside the disc's shadow (its cone misses the disc): unshadowed.
     std::ofstream(dir / "points.csv") << "x,y,z,nx,ny,nz\n0,0.5,0,0,1,0\n0.3,0.5,0,0,1,0\n";
 
-    LambertianRect rect;
-    rect.size = {0.1, 0.1};
-    rect.emitted = glm::dvec3(C);
+    auto model = std::make_shared<LambertianRect>();
+    model->size = {0.1, 0.1};
+    model->emitted = glm::dvec3(C);
+    Luminaire rect(model);
     rect.pose.position = {0, 0.95, 0};
     rect.pose.aim = {0, -1, 0};
     rect.pose.c0 = {1, 0, 0};
@@ -221,7 +222,7 @@ TEST(LightFieldVisibility, ABoxedLuminaireLightsNothingAndUToSIsInsideTheLuminai
     std::ofstream(dir / "points.csv")
         << "x,y,z,nx,ny,nz\n0,0.5,0,0,1,0\n0.5,0.2,0.3,0,1,0\n0.02,0.6,0,0,1,0\n";
     std::string points = (dir / "points.csv").string();
-    for (const TechniqueInfo& info : techniquesOf("lightfield")) {
+    for (const TechniqueInfo& info : techniquesOf(LuminaireKind::LightField)) {
         const std::string t(info.name);
         std::vector<double> e = probeColumn({(dir / "boxed.json").string(), "--points", points,
                                              "--technique", t, "--spp", "4096", "--visibility"});

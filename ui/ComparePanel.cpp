@@ -27,45 +27,42 @@ ImTextureID textureId(GLuint id) {
 }
 
 /// The kinds a pane can choose a technique for: the scene's luminaire kinds in registry order,
-/// then "environment" when the scene has a map.
-std::vector<std::string> sceneKinds(const Scene& scene) {
-    std::vector<std::string> kinds;
+/// then the environment when the scene has a map.
+std::vector<LuminaireKind> sceneKinds(const Scene& scene) {
+    std::vector<LuminaireKind> kinds;
     for (const LuminaireKindInfo& k : luminaireKinds())
         for (const auto& lum : scene.luminaires)
             if (lum->kind() == k.kind) {
-                kinds.emplace_back(k.kind);
+                kinds.push_back(k.kind);
                 break;
             }
-    if (scene.environmentMap) kinds.emplace_back("environment");
+    if (scene.environmentMap) kinds.push_back(LuminaireKind::Environment);
     return kinds;
 }
 
 /// The technique a pane's list gives a kind; empty: the luminaire's own.
-std::string chosenFor(const std::string& list, const std::string& kind) {
-    return overrideFor(list, kind == "environment" ? std::string_view() : std::string_view(kind));
+std::string chosenFor(const std::string& list, LuminaireKind kind) {
+    return overrideFor(list, kind);
 }
 
 /// The list with kind's choice set to name (empty: its own), as "KIND=NAME" items for the kinds.
-std::string withChoice(const std::string& list, const std::vector<std::string>& kinds,
-                       const std::string& kind, const std::string& name) {
+std::string withChoice(const std::string& list, const std::vector<LuminaireKind>& kinds,
+                       LuminaireKind kind, const std::string& name) {
     std::string out;
-    for (const std::string& k : kinds) {
+    for (LuminaireKind k : kinds) {
         std::string chosen = k == kind ? name : chosenFor(list, k);
-        if (!chosen.empty()) out += (out.empty() ? "" : ",") + k + "=" + chosen;
+        if (chosen.empty()) continue;
+        if (!out.empty()) out += ',';
+        out.append(kindName(k)).append("=").append(chosen);
     }
     return out;
 }
 
 /// Techniques of a kind that render on the GPU.
-std::vector<std::string> gpuTechniques(const std::string& kind) {
+std::vector<std::string> gpuTechniques(LuminaireKind kind) {
     std::vector<std::string> out;
-    if (kind == "environment") {
-        for (const TechniqueInfo& t : techniquesOf("environment"))
-            if (!t.shader.empty()) out.emplace_back(t.name);
-        return out;
-    }
-    for (const TechniqueInfo& t : techniques())
-        if (t.kind == kind && !t.shader.empty()) out.emplace_back(t.name);
+    for (const TechniqueInfo& t : techniquesOf(kind))
+        if (!t.shader.empty()) out.emplace_back(t.name);
     return out;
 }
 
@@ -290,15 +287,16 @@ bool referenceControls(CompareUi& ui, const Comparison* c) {
 
 /// Pane p's technique per kind of the scene ("(its own)": the luminaire's) and its budget.
 bool paneControls(EditorState& state, PaneSpec& spec, int p,
-                  const std::vector<std::string>& kinds) {
+                  const std::vector<LuminaireKind>& kinds) {
     bool changed = false;
     ImGui::PushID(p);
     ImGui::Separator();
     ImGui::Text("Pane %s", kLetters[p]);
-    for (const std::string& kind : kinds) {
+    for (LuminaireKind kind : kinds) {
         std::string chosen = chosenFor(spec.technique, kind);
-        std::string id = "compare.pane" + std::to_string(p) + "." + kind;
-        if (ImGui::BeginCombo(kind.c_str(), chosen.empty() ? "(its own)" : chosen.c_str())) {
+        std::string label(kindName(kind));
+        std::string id = "compare.pane" + std::to_string(p) + "." + label;
+        if (ImGui::BeginCombo(label.c_str(), chosen.empty() ? "(its own)" : chosen.c_str())) {
             if (ImGui::Selectable("(its own)", chosen.empty())) {
                 spec.technique = withChoice(spec.technique, kinds, kind, "");
                 changed = true;
@@ -359,7 +357,7 @@ bool comparePanel(EditorState& state, const Comparison* c, const PanelRect& rect
     recordPanelRect(state, "compare");
     ImGui::PushItemWidth(-ImGui::GetFontSize() * 8.f);
     bool changed = referenceControls(ui, c);
-    std::vector<std::string> kinds = sceneKinds(state.scene);
+    std::vector<LuminaireKind> kinds = sceneKinds(state.scene);
     int shown = ui.layout == CompareLayout::Wipe ? 4 : ui.paneCount();
     for (int p = 0; p < shown; ++p)
         changed = paneControls(state, ui.panes[size_t(p)], p, kinds) || changed;

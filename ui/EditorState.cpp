@@ -100,14 +100,9 @@ void keepGldfPlacementsTogether(Scene& scene, const std::vector<Pose>& before) {
     auto& lums = scene.luminaires;
     if (lums.size() != before.size()) return;  // added or removed: nothing was only moved
     for (size_t i = 0; i < lums.size(); ++i) {
-        auto* moved = dynamic_cast<const PhotometricLuminaire*>(lums[i].get());
-        if (!moved || !moved->gldf || moved->gldfEmitterCount < 2 ||
-            samePose(lums[i]->pose, before[i]))
-            continue;
+        if (samePose(lums[i]->pose, before[i])) continue;
         for (size_t j = 0; j < lums.size(); ++j) {
-            auto* sibling = dynamic_cast<const PhotometricLuminaire*>(lums[j].get());
-            if (j == i || !sibling || !sibling->gldf || sibling->file != moved->file ||
-                sibling->gldfVariant != moved->gldfVariant || !samePose(before[j], before[i]) ||
+            if (j == i || !sameGldfVariant(*lums[i], *lums[j]) || !samePose(before[j], before[i]) ||
                 !samePose(lums[j]->pose, before[j]))
                 continue;
             lums[j]->pose = lums[i]->pose;
@@ -400,7 +395,7 @@ namespace {
 int insertLuminaire(EditorState& state, const LuminaireKindInfo& kind,
                     std::unique_ptr<Luminaire> lum) {
     if (!lum) {
-        reportError(state, "Add: kind " + std::string(kind.kind) + " has no default luminaire");
+        reportError(state, "Add: kind " + std::string(kind.name) + " has no default luminaire");
         return -1;
     }
     const Scene& scene = state.scene;
@@ -412,12 +407,12 @@ int insertLuminaire(EditorState& state, const LuminaireKindInfo& kind,
     lum->pose.position = position;
     lum->pose.aim = glm::dvec3(0.0, -1.0, 0.0);
     lum->pose.c0 = glm::dvec3(1.0, 0.0, 0.0);
-    lum->name = uniqueLuminaireName(scene, lum->name.empty() ? std::string(kind.kind) : lum->name);
+    lum->name = uniqueLuminaireName(scene, lum->name.empty() ? std::string(kind.name) : lum->name);
     if (lum->technique.empty()) lum->technique = std::string(kind.defaultTechnique);
     std::string label = "Add " + lum->name;
     // A GLDF variant placing several emitters comes with the others: added in the same step and
     // selected with it, so they move together.
-    std::vector<std::unique_ptr<Luminaire>> more = lum->companions();
+    std::vector<std::unique_ptr<Luminaire>> more = companions(*lum);
     for (size_t k = 0; k < more.size(); ++k) {
         more[k]->name = lum->name + " #" + std::to_string(k + 1);
         more[k]->pose = lum->pose;
@@ -442,9 +437,10 @@ int insertLuminaire(EditorState& state, const LuminaireKindInfo& kind,
 
 int addLuminaire(EditorState& state, const LuminaireKindInfo& kind) {
     try {
-        return insertLuminaire(state, kind, kind.create());
+        auto create = kind.adapter().create;
+        return insertLuminaire(state, kind, create ? create() : nullptr);
     } catch (const std::exception& e) {
-        reportError(state, "Add " + std::string(kind.kind) + ": " + e.what());
+        reportError(state, "Add " + std::string(kind.name) + ": " + e.what());
         return -1;
     }
 }
@@ -482,19 +478,19 @@ std::unique_ptr<Luminaire> luminaireFromFile(const std::string& path) {
     // .gldf: its first variant).
     nlohmann::json entry = {{"type", type}, {"file", path}};
     const LuminaireFormatInfo* format = findFormat(type);
-    LuminaireParser parse = format ? format->parse : findKind(type)->parse;
+    LuminaireParser parse = format ? format->parse : findKind(type)->adapter().parse;
     std::unique_ptr<Luminaire> lum = parse(entry, json::Where{path, "file"});
     std::string stem = std::filesystem::path(path).filename().string();
     lum->name = stem.substr(0, stem.find('.'));
-    lum->technique = std::string(findKind(lum->kind())->defaultTechnique);
+    lum->technique = std::string(findKind(lum->kind()).defaultTechnique);
     return lum;
 }
 
 int addLuminaireFromFile(EditorState& state, const std::string& path) {
     try {
         std::unique_ptr<Luminaire> lum = luminaireFromFile(path);
-        const LuminaireKindInfo* info = findKind(lum->kind());
-        int index = insertLuminaire(state, *info, std::move(lum));
+        const LuminaireKindInfo& info = findKind(lum->kind());
+        int index = insertLuminaire(state, info, std::move(lum));
         if (index >= 0)
             setStatus(state,
                       "Added " + state.scene.luminaires[size_t(index)]->name + " from " + path);

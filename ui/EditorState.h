@@ -210,10 +210,12 @@ struct CompareUi {
     }
 };
 /// One luminaire file of the library panel.
+enum class FileKind { Unknown, Photometric, Gldf, LightField, Environment, Geometry };
+
 struct LibraryEntry {
     std::string path;   ///< Absolute.
     std::string label;  ///< File name.
-    std::string kind;   ///< "photometric" or "lightfield".
+    FileKind kind;      ///< Photometric, Gldf or LightField.
 };
 
 /// The Library panel: luminaire files under resources/luminaires and the folders the user adds
@@ -393,7 +395,6 @@ int addLuminaireFromFile(EditorState& state, const std::string& path);
 /// and .xml or .iesxml for TM-33),
 /// Gldf (.gldf), LightField (.lf.json), Environment (.hdr, .exr), Geometry (.gltf, .glb), else
 /// Unknown.
-enum class FileKind { Unknown, Photometric, Gldf, LightField, Environment, Geometry };
 FileKind fileKind(const std::string& path);
 /// The scene-file luminaire type a file makes ("photometric", "gldf", "lightfield"), or null.
 const char* luminaireKindOf(FileKind kind);

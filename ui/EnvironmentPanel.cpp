@@ -281,7 +281,7 @@ bool environmentControls(EditorState& state) {
     RenderSettings& s = state.settings;
     std::string current = s.environmentTechnique.empty() ? "balanced" : s.environmentTechnique;
     if (ImGui::BeginCombo("Technique##env", current.c_str())) {
-        for (const TechniqueInfo& t : techniquesOf("environment")) {
+        for (const TechniqueInfo& t : techniquesOf(LuminaireKind::Environment)) {
             if (t.shader.empty()) continue;  // the exact reference is CPU-only
             if (ImGui::Selectable(std::string(t.name).c_str(), t.name == current)) {
                 s.environmentTechnique = std::string(t.name);

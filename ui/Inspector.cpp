@@ -228,10 +228,10 @@ bool kindFields(EditorState& state, int index) {
 /// Kind-specific details: a light field's images, a photometric file's polar diagram, else the
 /// luminaire's power or flux.
 void kindDetails(const Luminaire& shown) {
-    if (const auto* lf = dynamic_cast<const LightFieldLuminaire*>(&shown)) {
+    if (const LightFieldLuminaire* lf = lightFieldModel(shown)) {
         static int shownImage = 0;  // UI state only: which image the panel shows
         lightFieldDetails(*lf, shownImage);
-    } else if (const auto* ph = dynamic_cast<const PhotometricLuminaire*>(&shown)) {
+    } else if (const PhotometricLuminaire* ph = photometricModel(shown)) {
         photometricDetails(*ph);
     } else {
         glm::dvec3 power = shown.power();
@@ -244,9 +244,9 @@ void kindDetails(const Luminaire& shown) {
 bool luminaireInspector(EditorState& state, int index) {
     bool changed = false;
     const Luminaire& lum = *state.scene.luminaires[size_t(index)];
-    ImGui::Text("Kind: %s", std::string(lum.kind()).c_str());
+    ImGui::Text("Kind: %s", std::string(kindName(lum.kind())).c_str());
     ImGui::PushTextWrapPos(0.f);
-    ImGui::TextDisabled("%s", lum.describe().c_str());
+    ImGui::TextDisabled("%s", describe(lum).c_str());
     ImGui::PopTextWrapPos();
 
     std::string name = lum.name;
@@ -269,18 +269,26 @@ bool luminaireInspector(EditorState& state, int index) {
     // at the same insertion point) or the photometry's luminous box, blocking other light, or not.
     // (kindFields may have replaced the luminaire: `lum` is stale from here.)
     const Luminaire& current = *state.scene.luminaires[size_t(index)];
-    if (const auto* ph = dynamic_cast<const PhotometricLuminaire*>(&current);
+    if (const PhotometricLuminaire* ph = photometricModel(current);
         ph && (ph->geometry || ph->area() > 0.0)) {
         bool show = ph->showBody;
         if (ImGui::Checkbox(ph->geometry ? "Body (L3D geometry)" : "Body (luminous box)", &show)) {
             applyEdit(state, std::string(show ? "Show" : "Hide") + " body of " + current.name,
                       kChangeLuminaires, [&](Scene& s) {
-                          const Luminaire* self = s.luminaires[size_t(index)].get();
-                          for (auto& other : s.luminaires)
-                              if (auto* p = dynamic_cast<PhotometricLuminaire*>(other.get());
-                                  p && (p == self || (ph->geometry && p->geometry == ph->geometry &&
-                                                      p->pose.position == ph->pose.position)))
-                                  p->showBody = show;
+                          // A new model for each luminaire whose body this is (models are shared
+                          // and never changed in place).
+                          const Luminaire& self = *s.luminaires[size_t(index)];
+                          std::shared_ptr<const L3dLuminaire> geometry = ph->geometry;
+                          for (auto& other : s.luminaires) {
+                              const PhotometricLuminaire* p = photometricModel(*other);
+                              if (!p || !(other.get() == &self ||
+                                          (geometry && p->geometry == geometry &&
+                                           other->pose.position == self.pose.position)))
+                                  continue;
+                              auto model = std::make_shared<PhotometricLuminaire>(*p);
+                              model->showBody = show;
+                              other->setModel(std::move(model));
+                          }
                       });
             changed = true;
         }

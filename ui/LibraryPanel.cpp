@@ -60,10 +60,11 @@ void scan(LibraryUi& lib) {
                  root, fs::directory_options::skip_permission_denied, ec);
              !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
             if (!it->is_regular_file(ec)) continue;
-            const char* kind = luminaireKindOf(fileKind(it->path().string()));
+            FileKind kind = fileKind(it->path().string());
             // Every .xml is not TM-33 (an unpacked L3D's structure.xml): list those that say so.
-            if (kind && it->path().extension() == ".xml" && !looksLikeTm33(it->path())) continue;
-            if (kind)
+            if (!luminaireKindOf(kind)) continue;
+            if (it->path().extension() == ".xml" && !looksLikeTm33(it->path())) continue;
+            if (luminaireKindOf(kind))
                 lib.entries.push_back({fs::absolute(it->path()).lexically_normal().string(),
                                        it->path().filename().string(), kind});
         }
@@ -84,7 +85,7 @@ void makeThumbnail(LibraryUi& lib, ImageTextures& images, const LibraryEntry& en
     try {
         std::shared_ptr<const PhotometricData> table;
         char info[160];
-        if (entry.kind == "gldf") {
+        if (entry.kind == FileKind::Gldf) {
             // The product line first, so a container whose first variant cannot be placed still
             // says what it is.
             GldfProduct product = loadGldf(entry.path);
@@ -103,12 +104,12 @@ void makeThumbnail(LibraryUi& lib, ImageTextures& images, const LibraryEntry& en
             t.hasImage = true;
             return;
         }
-        if (entry.kind == "lightfield") {
-            LightFieldLuminaire light;
-            light.data = LightFieldData::load(entry.path);
-            table = farFieldTwin(light)->data;
+        if (entry.kind == FileKind::LightField) {
+            auto model = std::make_shared<LightFieldLuminaire>();
+            model->data = LightFieldData::load(entry.path);
+            table = photometricModel(*farFieldTwin(Luminaire(model)))->data;
             std::snprintf(info, sizeof info, "light field, %d x %d images, %.0f lm",
-                          light.data->count.x, light.data->count.y, light.data->cachedPower().y);
+                          model->data->count.x, model->data->count.y, model->data->cachedPower().y);
         } else {
             table = PhotometricLuminaire::load(entry.path);
             std::snprintf(info, sizeof info, "%s, %.0f lm%s", table->format.c_str(),

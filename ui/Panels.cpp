@@ -394,7 +394,7 @@ static bool luminaireList(EditorState& state) {
             state.inspectorError.clear();
             changed = true;
         }
-        itemTooltip(std::string(lum.kind()) + ": " + lum.describe());
+        itemTooltip(std::string(kindName(lum.kind())) + ": " + describe(lum));
         ImGui::PopID();
     }
     return changed;
@@ -406,10 +406,10 @@ static bool addLuminaireControls(EditorState& state) {
     if (kinds.empty()) return false;
     state.addKind = std::clamp(state.addKind, 0, int(kinds.size()) - 1);
     ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x - 60.f);
-    std::string current(kinds[size_t(state.addKind)].kind);
+    std::string current(kinds[size_t(state.addKind)].name);
     if (ImGui::BeginCombo("##addkind", current.c_str())) {
         for (size_t k = 0; k < kinds.size(); ++k) {
-            std::string name(kinds[k].kind);
+            std::string name(kinds[k].name);
             if (ImGui::Selectable(name.c_str(), int(k) == state.addKind)) state.addKind = int(k);
             recordRect(state, "outline.add_kind:" + name);
             itemTooltip(std::string(kinds[k].description));

@@ -53,7 +53,7 @@ Sweep lightFieldSweep(const LightFieldOptions& o) {
     sweep.spp = o.spp;
     sweep.timedPasses = "shade:";
     for (const TechniqueInfo& t : techniques())
-        if (t.kind == "lightfield" && t.shadowMaps)
+        if (t.kind == LuminaireKind::LightField && t.shadowMaps)
             (t.progressive ? sweep.progressive : sweep.deterministic).emplace_back(t.name);
     return sweep;
 }
@@ -85,7 +85,7 @@ Scene benchScene(const fs::path& lightField, const fs::path& outDir, ProtectedIn
         "," + num(-4 * R) + R"(], "fov_deg": 65}})";
     Scene scene = parseScene(nlohmann::json::parse(text),
                              (fs::absolute(lightField).parent_path() / "bench.json").string());
-    inputs.add(scene.luminaires[0]->sourceFiles());
+    inputs.add(sourceFiles(*scene.luminaires[0]));
     // Kept beside the results, so `candela render` can reproduce any image.
     writeFileAtomically((outDir / "bench_scene.json").string(),
                         nlohmann::json::parse(text).dump(2) + "\n");
@@ -177,7 +177,7 @@ int benchLightField(const LightFieldOptions& o) {
     double loadMs =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - loadStart)
             .count();
-    const auto& lf = *static_cast<const LightFieldLuminaire&>(*scene.luminaires[0]).data;
+    const auto& lf = *lightFieldModel(*scene.luminaires[0])->data;
     BenchGpu gpu;
     RenderSettings settings;
     settings.width = o.width;

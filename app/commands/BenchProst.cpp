@@ -161,7 +161,7 @@ std::vector<std::string> photometryFiles(const std::vector<std::string>& argumen
 std::vector<std::string> evaluatedTechniques() {
     std::vector<std::string> names;
     for (const TechniqueInfo& t : techniques())
-        if (t.kind == "photometric" && !t.progressive) names.emplace_back(t.name);
+        if (t.kind == LuminaireKind::Photometric && !t.progressive) names.emplace_back(t.name);
     return names;
 }
 
@@ -186,8 +186,8 @@ struct ProstRun {
 
 /// One file at one height: its receivers, sheets and the images of every rotation.
 struct HeightRun {
-    HeightRun(const std::string& file_, const Scene& scene_, PhotometricLuminaire& light_,
-              double height_, int size, size_t techniques)
+    HeightRun(const std::string& file_, const Scene& scene_, Luminaire& light_, double height_,
+              int size, size_t techniques)
         : file(file_),
           scene(scene_),
           light(light_),
@@ -196,7 +196,7 @@ struct HeightRun {
           errors(size, int(techniques), kRotations) {}
     const std::string& file;
     const Scene& scene;  ///< Holds `light` alone.
-    PhotometricLuminaire& light;
+    Luminaire& light;
     double height;  ///< Of the opening's lowest edge when it stands vertical, m.
     std::vector<glm::vec3> points, normals;
     Sheet images, errors;
@@ -256,7 +256,7 @@ RotationRef referenceAt(ProstRun& run, HeightRun& h, int rot) {
     ref.angle = gpu::kPi * (0.5 + 0.125 * rot);
     // The height is that of the opening's lowest edge when it stands vertical (Prost: height 0.1
     // leaves 0.246 at 3 pi / 4 and 0.6 at pi), so its centre is 0.5 higher.
-    PhotometricLuminaire& lum = h.light;
+    Luminaire& lum = h.light;
     lum.pose.position = {0.0, h.height + 0.5, 0.0};
     lum.pose.aim = {std::sin(ref.angle), std::cos(ref.angle), 0.0};
     lum.pose.c0 = {0.0, 0.0, 1.0};
@@ -372,10 +372,10 @@ void summarizeHeight(ProstRun& run, HeightRun& h, const std::string& stem) {
 
 /// Every height and rotation of one file; a file that does not load is skipped and named.
 void benchFile(ProstRun& run, const std::string& file, ProtectedInputs& inputs) {
-    auto light = std::make_unique<PhotometricLuminaire>();
+    auto light = std::make_shared<PhotometricLuminaire>();
     try {
         light->data = PhotometricLuminaire::load(file);
-        inputs.add(light->sourceFiles());  // its TILT file too
+        inputs.add(sourceFiles(Luminaire(light)));  // its TILT file too
     } catch (const std::exception& e) {
         std::fprintf(stderr, "bench --prost: skipping %s\n", e.what());
         run.summary.addText(std::string("skipped: ") + e.what() + "\n");
@@ -385,13 +385,14 @@ void benchFile(ProstRun& run, const std::string& file, ProtectedInputs& inputs) 
     light->openingOverride = {1.0, 1.0};  // the normalised light-emitting object
     light->updateOpening();
     Scene scene;
-    scene.luminaires.push_back(std::move(light));
-    auto& lum = static_cast<PhotometricLuminaire&>(*scene.luminaires[0]);
+    const PhotometricData& data = *light->data;
+    scene.luminaires.push_back(placed(std::move(light)));
+    Luminaire& lum = *scene.luminaires[0];
     std::string stem = fs::path(file).stem().string();
     for (char& c : stem)
         if (!std::isalnum((unsigned char)c) && c != '-' && c != '_') c = '_';
     run.summary.add("\n%s: flux %.5g lm, diffuseness (flux / pi I(0)) %.3g\n", file.c_str(),
-                    lum.data->fluxFromTable(), diffuseness(*lum.data));
+                    data.fluxFromTable(), diffuseness(data));
     for (double height : kHeights) {
         HeightRun h(file, scene, lum, height, run.options.size, run.techniques.size());
         placeReceivers(h, run.options.size);

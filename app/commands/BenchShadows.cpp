@@ -41,8 +41,8 @@ Shot shoot(Renderer& renderer, const Scene& scene, const RenderSettings& setting
         withBudget(withTechnique(settings, TechniqueSlot::Luminaires, technique), spp, seed, 16);
     Shot shot = renderShot(renderer, scene, s);
     for (const auto& lum : scene.luminaires)
-        if (lum->kind() == "lightfield") {
-            maps = int(lum->shadowLights(settings.shadowMaps.count).lights.size());
+        if (lum->kind() == LuminaireKind::LightField) {
+            maps = int(shadowLights(*lum, settings.shadowMaps.count).lights.size());
             break;
         }
     return shot;
@@ -107,7 +107,7 @@ int benchShadows(const ShadowOptions& o) {
     Scene scene = loadScene(o.scenePath);
     ProtectedInputs inputs(scene.inputFiles());
     bool any = false;
-    for (const auto& lum : scene.luminaires) any = any || lum->kind() == "lightfield";
+    for (const auto& lum : scene.luminaires) any = any || lum->kind() == LuminaireKind::LightField;
     if (!any)
         throw InputError(o.scenePath +
                          ": the shadow bench needs a light-field luminaire in the scene");

@@ -352,9 +352,9 @@ int cmdInfo(const Args& args) {
             const TechniqueInfo* t = findTechnique(l->kind(), l->technique);
             glm::dvec3 p = l->pose.position;
             std::printf("  \"%s\": %s\n    at (%.3f, %.3f, %.3f) m, technique %s (%s)\n",
-                        l->name.c_str(), l->describe().c_str(), p.x, p.y, p.z, l->technique.c_str(),
+                        l->name.c_str(), describe(*l).c_str(), p.x, p.y, p.z, l->technique.c_str(),
                         t ? std::string(t->description).c_str() : "?");
-            auto* photometric = dynamic_cast<const PhotometricLuminaire*>(l.get());
+            const PhotometricLuminaire* photometric = photometricModel(*l);
             if (photometric && photometric->data && !photometric->data->warnings.empty())
                 std::printf("    %zu warning(s) reading %s (candela info lists them)\n",
                             photometric->data->warnings.size(),

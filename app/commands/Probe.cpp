@@ -239,19 +239,21 @@ void checkProbeOptions(const CommandLine& cli, ProbeOptions& o) {
 const TechniqueInfo* chooseEnvironmentTechnique(const ProbeOptions& o, const Scene& scene) {
     const TechniqueInfo* chosen = nullptr;
     if (!o.envTechnique.empty()) {
-        chosen = findTechnique("environment", o.envTechnique);
+        chosen = findTechnique(LuminaireKind::Environment, o.envTechnique);
         if (!chosen)
             throw InputError("--env-technique: \"" + o.envTechnique +
                              "\" is not an environment "
                              "technique (available: " +
-                             techniqueNames("environment") + ")");
+                             techniqueNames(LuminaireKind::Environment) + ")");
     } else {
-        chosen = findTechnique("environment", o.technique.empty() ? "reference" : o.technique);
-        if (!chosen) chosen = findTechnique("environment", "reference");
+        chosen = findTechnique(LuminaireKind::Environment,
+                               o.technique.empty() ? "reference" : o.technique);
+        if (!chosen) chosen = findTechnique(LuminaireKind::Environment, "reference");
     }
     if (o.device == "gpu" && scene.environmentMap && o.envTechnique.empty() &&
         chosen->shader.empty())
-        chosen = findTechnique("environment", "balanced");  // the GPU has no exact reference
+        chosen = findTechnique(LuminaireKind::Environment,
+                               "balanced");  // the GPU has no exact reference
     if (o.device == "gpu" && scene.environmentMap && chosen->shader.empty())
         throw InputError("--env-technique: \"" + std::string(chosen->name) +
                          "\" runs on the CPU only; use the CPU probe (the default) or another "
@@ -268,13 +270,13 @@ std::vector<const TechniqueInfo*> chooseTechniques(const Scene& scene,
     for (const auto& l : scene.luminaires) {
         std::string name = technique.empty() ? l->technique : technique;
         if (!technique.empty() && !findTechnique(l->kind(), technique) &&
-            findTechnique("environment", technique))
+            findTechnique(LuminaireKind::Environment, technique))
             name = l->technique;
         const TechniqueInfo* t = findTechnique(l->kind(), name);
         if (!t)
             throw InputError("--technique: \"" + name + "\" is not a technique of " +
-                             std::string(l->kind()) + " (available: " + techniqueNames(l->kind()) +
-                             ")");
+                             std::string(kindName(l->kind())) +
+                             " (available: " + techniqueNames(l->kind()) + ")");
         chosen.push_back(t);
     }
     return chosen;

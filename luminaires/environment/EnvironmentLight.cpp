@@ -4,27 +4,23 @@
 
 namespace candela {
 
-EnvironmentLight::EnvironmentLight(std::shared_ptr<const EnvironmentMap> map, Quantities quantities,
-                                   std::string technique)
-    : mMap(std::move(map)), mQuantities(quantities), mShared(std::make_shared<Shared>()) {
-    name = std::string(kKind);
-    this->technique = std::move(technique);
-}
+EnvironmentLight::EnvironmentLight(std::shared_ptr<const EnvironmentMap> map, Quantities quantities)
+    : LuminaireModel(LuminaireKind::Environment),
+      mMap(std::move(map)),
+      mQuantities(quantities),
+      mShared(std::make_shared<Shared>()) {}
 
 EnvironmentLight::EnvironmentLight(std::shared_ptr<const EnvironmentLighting> lighting,
                                    Quantities quantities)
-    : mMap(lighting->sharedMap()), mQuantities(quantities), mShared(std::make_shared<Shared>()) {
-    name = std::string(kKind);
-    technique = "balanced";
+    : LuminaireModel(LuminaireKind::Environment),
+      mMap(lighting->sharedMap()),
+      mQuantities(quantities),
+      mShared(std::make_shared<Shared>()) {
     mShared->lighting = std::move(lighting);
     std::call_once(mShared->once, [] {});  // built already
 }
 
-std::unique_ptr<Luminaire> EnvironmentLight::clone() const {
-    return std::make_unique<EnvironmentLight>(*this);
-}
-
-glm::dvec3 EnvironmentLight::radiance(const glm::dvec3&, const glm::dvec3& w) const {
+glm::dvec3 EnvironmentLight::radiance(const Pose&, const glm::dvec3&, const glm::dvec3& w) const {
     return mMap->radiance(-w);
 }
 
@@ -34,7 +30,7 @@ const EnvironmentLighting& EnvironmentLight::lighting() const {
     return *mShared->lighting;
 }
 
-LightSample EnvironmentLight::sample(const glm::dvec3& p, const glm::dvec2& u) const {
+LightSample EnvironmentLight::sample(const Pose&, const glm::dvec3& p, const glm::dvec2& u) const {
     LightSample s;
     DirectionSample d = lighting().global().sample(u);
     if (!(d.pdf > 0.0)) return s;
@@ -46,13 +42,57 @@ LightSample EnvironmentLight::sample(const glm::dvec3& p, const glm::dvec2& u) c
     return s;
 }
 
-double EnvironmentLight::pdf(const glm::dvec3&, const glm::dvec3& wi) const {
+double EnvironmentLight::pdf(const Pose&, const glm::dvec3&, const glm::dvec3& wi) const {
     return lighting().global().pdf(wi);
 }
 
-std::string EnvironmentLight::describe() const {
-    return "environment map " + mMap->source() + " (" + std::to_string(mMap->width()) + " x " +
-           std::to_string(mMap->height()) + ", " + radianceUnit(mQuantities) + ")";
+namespace {
+
+const EnvironmentLight& environmentOf(const LuminaireModel& model) {
+    return static_cast<const EnvironmentLight&>(model);
+}
+
+std::string environmentDescribe(const LuminaireModel& model) {
+    const EnvironmentMap& map = environmentOf(model).map();
+    return "environment map " + map.source() + " (" + std::to_string(map.width()) + " x " +
+           std::to_string(map.height()) + ", " + radianceUnit(model.quantities()) + ")";
+}
+
+/// The viewport draws no emitter for it.
+glm::dvec3 environmentDisplayRadiance(const Luminaire&) {
+    return glm::dvec3(0.0);
+}
+
+}  // namespace
+
+const LuminaireAdapter& environmentAdapter() {
+    // Not placed (no parse, no create); the scene saves its "environment" field as written, and
+    // its GPU state is renderer/passes/EnvironmentPass's (the map and its tables): no record.
+    static const LuminaireAdapter adapter{nullptr,
+                                          nullptr,
+                                          nullptr,
+                                          nullptr,
+                                          nullptr,
+                                          &environmentDescribe,
+                                          nullptr,
+                                          nullptr,
+                                          nullptr,
+                                          nullptr,
+                                          &environmentDisplayRadiance};
+    return adapter;
+}
+
+const EnvironmentLight* environmentModel(const Luminaire& luminaire) {
+    return luminaire.kind() == LuminaireKind::Environment ? &environmentOf(luminaire.model())
+                                                          : nullptr;
+}
+
+std::unique_ptr<Luminaire> placedEnvironment(std::shared_ptr<const EnvironmentLight> model,
+                                             std::string technique) {
+    auto light = std::make_unique<Luminaire>(std::move(model));
+    light->name = std::string(kindName(LuminaireKind::Environment));
+    light->technique = std::move(technique);
+    return light;
 }
 
 }  // namespace candela

@@ -8,42 +8,30 @@
 #include <memory>
 #include <mutex>
 
+#include "luminaires/Adapter.h"
 #include "luminaires/Luminaire.h"
 #include "luminaires/environment/Environment.h"
 #include "luminaires/environment/EnvironmentSampling.h"
 
 namespace candela {
 
-class EnvironmentLight final : public Luminaire {
+class EnvironmentLight final : public LuminaireModel {
   public:
-    /// `technique`: one of the kind's techniques (the scene's choice; renders may override it).
-    EnvironmentLight(std::shared_ptr<const EnvironmentMap> map, Quantities quantities,
-                     std::string technique = "balanced");
+    EnvironmentLight(std::shared_ptr<const EnvironmentMap> map, Quantities quantities);
     /// With tables already built (another face size or number of Havran lights; tests).
     EnvironmentLight(std::shared_ptr<const EnvironmentLighting> lighting, Quantities quantities);
 
-    static constexpr std::string_view kKind = "environment";
-    std::string_view kind() const override { return kKind; }
-    std::unique_ptr<Luminaire> clone() const override;
-
     /// Radiance travelling along w: what the map holds in the direction -w it comes from,
-    /// W/(m2 sr) (cd/m2 for a photometric map), RGB.
-    glm::dvec3 radiance(const glm::dvec3& x, const glm::dvec3& w) const override;
+    /// W/(m2 sr) (cd/m2 for a photometric map), RGB. It has no pose: the one given is ignored.
+    glm::dvec3 radiance(const Pose&, const glm::dvec3& x, const glm::dvec3& w) const override;
     /// A source at infinity has no finite flux: 0 (flux totals count luminaires only).
     glm::dvec3 power() const override { return glm::dvec3(0.0); }
     Quantities quantities() const override { return mQuantities; }
     /// A direction from the lat-long CDF (LatLongDistribution); the point is at infinity.
-    LightSample sample(const glm::dvec3& p, const glm::dvec2& u) const override;
-    double pdf(const glm::dvec3& p, const glm::dvec3& wi) const override;
+    LightSample sample(const Pose&, const glm::dvec3& p, const glm::dvec2& u) const override;
+    double pdf(const Pose&, const glm::dvec3& p, const glm::dvec3& wi) const override;
     /// No surface: nothing to draw or pick.
-    std::vector<glm::dvec3> outline() const override { return {}; }
-    /// The scene saves its "environment" field as written; nothing here.
-    void writeJson(nlohmann::json&) const override {}
-    /// Its GPU state is renderer/passes/EnvironmentPass's (the map and its tables): no record.
-    std::vector<std::byte> gpuData() const override { return {}; }
-    glm::dvec3 displayRadiance() const override { return glm::dvec3(0.0); }
-    std::string describe() const override;
-    bool atInfinity() const override { return true; }
+    std::vector<glm::dvec3> outline(const Pose&) const override { return {}; }
 
     const EnvironmentMap& map() const { return *mMap; }
     const std::shared_ptr<const EnvironmentMap>& sharedMap() const { return mMap; }
@@ -61,11 +49,20 @@ class EnvironmentLight final : public Luminaire {
     std::shared_ptr<Shared> mShared;
 };
 
+/// Its description; nothing else (it is not placed, written or packed: luminaires/Adapter.h).
+const LuminaireAdapter& environmentAdapter();
+/// The environment model of a source; null when it is a luminaire.
+const EnvironmentLight* environmentModel(const Luminaire& luminaire);
+/// The environment as a source: named "environment", rendered by `technique`, one of the kind's
+/// techniques (the scene's choice; renders may override it).
+std::unique_ptr<Luminaire> placedEnvironment(std::shared_ptr<const EnvironmentLight> model,
+                                             std::string technique = "balanced");
+
 /// A registry estimator from an estimator over EnvironmentLighting (EnvironmentSampling.h).
 template <EnvironmentIrradianceFn F>
 Estimate onEnvironmentLight(const Luminaire& light, const glm::dvec3& p, const glm::dvec3& n,
                             const EstimateOptions& options) {
-    return F(static_cast<const EnvironmentLight&>(light).lighting(), p, n, options);
+    return F(environmentModel(light)->lighting(), p, n, options);
 }
 
 }  // namespace candela

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "luminaires/Adapter.h"
 #include "luminaires/Random.h"
 #include "luminaires/SphericalPolygon.h"
 #include "shaders/shared/Constants.h"
@@ -49,13 +50,14 @@ struct LocalRect {
 };
 
 /// Fills r and returns true when p is strictly in front of a non-empty emitter.
-bool seenFromFront(const LambertianRect& light, const glm::dvec3& p, LocalRect& r) {
+bool seenFromFront(const LambertianRect& light, const Pose& pose, const glm::dvec3& p,
+                   LocalRect& r) {
     glm::dvec2 size = extentOf(light);
     if (!(size.x > 0.0 && size.y > 0.0)) return false;
-    glm::dvec3 c = light.pose.position - p;
+    glm::dvec3 c = pose.position - p;
     double dist = glm::length(c);
     if (!(dist <= kMaxDistance)) return false;  // also rejects NaN
-    light.pose.frame(r.ex, r.ey, r.ez);
+    pose.frame(r.ex, r.ey, r.ez);
     double h = -glm::dot(c, r.ez);
     if (!(h > kPlaneTolerance * (dist + size.x + size.y))) return false;
     double cx = glm::dot(c, r.ex), cy = glm::dot(c, r.ey);
@@ -197,8 +199,8 @@ bool localNormal(const LocalRect& r, const glm::dvec3& n, glm::dvec3& m) {
 }
 
 /// A sample of `light` for the receiver described by r, which sees the solid angle omega (sr).
-LightSample makeSample(const LambertianRect& light, const LocalRect& r, double omega,
-                       const glm::dvec2& u) {
+LightSample makeSample(const LambertianRect& light, const Pose& pose, const LocalRect& r,
+                       double omega, const glm::dvec2& u) {
     LightSample s;
     if (!(omega >= DBL_MIN)) return s;
     glm::dvec2 xy = sampleLocal(r, u);
@@ -209,7 +211,7 @@ LightSample makeSample(const LambertianRect& light, const LocalRect& r, double o
     s.distance = len * r.scale;
     // From the corner rather than from p: the point lies exactly in the emitter's plane.
     glm::dvec2 size = extentOf(light);
-    glm::dvec3 corner = light.pose.position - 0.5 * size.x * r.ex - 0.5 * size.y * r.ey;
+    glm::dvec3 corner = pose.position - 0.5 * size.x * r.ex - 0.5 * size.y * r.ey;
     s.position = corner + (xy.x - r.x0) * r.scale * r.ex + (xy.y - r.y0) * r.scale * r.ey;
     s.radiance = light.emitted;
     s.pdf = 1.0 / omega;
@@ -243,11 +245,8 @@ glm::dvec3 readEmitted(const nlohmann::json& v, const json::Where& where, const 
 
 }  // namespace
 
-std::unique_ptr<Luminaire> LambertianRect::clone() const {
-    return std::make_unique<LambertianRect>(*this);
-}
-
-glm::dvec3 LambertianRect::radiance(const glm::dvec3& x, const glm::dvec3& w) const {
+glm::dvec3 LambertianRect::radiance(const Pose& pose, const glm::dvec3& x,
+                                    const glm::dvec3& w) const {
     glm::dvec2 s = extentOf(*this);
     if (!(s.x > 0.0 && s.y > 0.0)) return glm::dvec3(0.0);
     glm::dvec3 ex, ey, ez;
@@ -266,20 +265,21 @@ glm::dvec3 LambertianRect::power() const {
     return kPi * s.x * s.y * emitted;
 }
 
-double LambertianRect::solidAngle(const glm::dvec3& p) const {
+double LambertianRect::solidAngle(const Pose& pose, const glm::dvec3& p) const {
     LocalRect r;
-    return seenFromFront(*this, p, r) ? solidAngleOf(r) : 0.0;
+    return seenFromFront(*this, pose, p, r) ? solidAngleOf(r) : 0.0;
 }
 
-LightSample LambertianRect::sample(const glm::dvec3& p, const glm::dvec2& u) const {
+LightSample LambertianRect::sample(const Pose& pose, const glm::dvec3& p,
+                                   const glm::dvec2& u) const {
     LocalRect r;
-    if (!seenFromFront(*this, p, r)) return {};
-    return makeSample(*this, r, solidAngleOf(r), u);
+    if (!seenFromFront(*this, pose, p, r)) return {};
+    return makeSample(*this, pose, r, solidAngleOf(r), u);
 }
 
-double LambertianRect::pdf(const glm::dvec3& p, const glm::dvec3& wi) const {
+double LambertianRect::pdf(const Pose& pose, const glm::dvec3& p, const glm::dvec3& wi) const {
     LocalRect r;
-    if (!seenFromFront(*this, p, r)) return 0.0;
+    if (!seenFromFront(*this, pose, p, r)) return 0.0;
     double len = glm::length(wi);
     if (!(len > 0.0) || !std::isfinite(len)) return 0.0;
     glm::dvec3 w = wi / len;
@@ -296,7 +296,7 @@ double LambertianRect::pdf(const glm::dvec3& p, const glm::dvec3& wi) const {
     return omega >= DBL_MIN ? 1.0 / omega : 0.0;
 }
 
-std::vector<glm::dvec3> LambertianRect::outline() const {
+std::vector<glm::dvec3> LambertianRect::outline(const Pose& pose) const {
     glm::dvec3 ex, ey, ez;
     pose.frame(ex, ey, ez);
     glm::dvec2 s = extentOf(*this);
@@ -305,15 +305,26 @@ std::vector<glm::dvec3> LambertianRect::outline() const {
     return {c - hx - hy, c + hx - hy, c + hx + hy, c - hx + hy};
 }
 
-void LambertianRect::writeJson(nlohmann::json& out) const {
-    out["size"] = {size.x, size.y};
-    out[luminous ? "luminance" : "radiance"] = {emitted.x, emitted.y, emitted.z};
+namespace {
+
+const LambertianRect& rectOf(const LuminaireModel& model) {
+    return static_cast<const LambertianRect&>(model);
 }
 
-std::vector<std::byte> LambertianRect::gpuData() const {
+void rectJson(const LuminaireModel& model, nlohmann::json& out) {
+    const LambertianRect& light = rectOf(model);
+    out["size"] = {light.size.x, light.size.y};
+    out[light.luminous ? "luminance" : "radiance"] = {light.emitted.x, light.emitted.y,
+                                                      light.emitted.z};
+}
+
+std::vector<std::byte> rectGpuData(const Luminaire& luminaire) {
+    const LambertianRect& light = rectOf(luminaire.model());
+    const Pose& pose = luminaire.pose;
+    const glm::dvec3& emitted = light.emitted;
     glm::dvec3 ex, ey, ez;
     pose.frame(ex, ey, ez);
-    glm::dvec2 s = extentOf(*this);
+    glm::dvec2 s = extentOf(light);
     glm::dvec3 corner = pose.position - 0.5 * s.x * ex - 0.5 * s.y * ey;
     gpu::LambertianRectGpu g{};
     g.corner = glm::vec4(glm::vec3(corner), float(s.x * s.y));
@@ -326,10 +337,14 @@ std::vector<std::byte> LambertianRect::gpuData() const {
     return bytes;
 }
 
-std::string LambertianRect::describe() const {
-    glm::dvec3 p = power();
+std::string rectDescribe(const LuminaireModel& model) {
+    const LambertianRect& light = rectOf(model);
+    const glm::dvec2& size = light.size;
+    const glm::dvec3& emitted = light.emitted;
+    bool luminous = light.luminous;
+    glm::dvec3 p = light.power();
     char text[256];
-    Quantities q = quantities();
+    Quantities q = light.quantities();
     int n = std::snprintf(
         text, sizeof(text), "lambertian-rect %.2f x %.2f m, L = (%g, %g, %g) %s, %s ", size.x,
         size.y, emitted.x, emitted.y, emitted.z, radianceUnit(q), luminous ? "flux" : "power");
@@ -341,13 +356,12 @@ std::string LambertianRect::describe() const {
     return out + std::string(text, size_t(std::clamp(n, 0, int(sizeof(text)) - 1)));
 }
 
-std::unique_ptr<Luminaire> LambertianRect::parse(const nlohmann::json& entry,
-                                                 const json::Where& where) {
+std::unique_ptr<Luminaire> rectParse(const nlohmann::json& entry, const json::Where& where) {
     json::checkKeys(entry,
                     {"type", "name", "position", "aim", "c0", "technique", "maintenance_factor",
                      "size", "radiance", "luminance"},
                     where);
-    auto light = std::make_unique<LambertianRect>();
+    auto light = std::make_shared<LambertianRect>();
     light->size = json::optional(entry, "size", where, light->size, readSize);
     if (entry.contains("radiance") && entry.contains("luminance"))
         json::fail(where / "luminance",
@@ -358,20 +372,33 @@ std::unique_ptr<Luminaire> LambertianRect::parse(const nlohmann::json& entry,
         light->emitted =
             readEmitted(entry[key], where / key,
                         light->luminous ? "luminance (cd/m2)" : "radiance (W/(m2 sr))");
-    return light;
+    return placed(std::move(light));
 }
 
-std::unique_ptr<Luminaire> LambertianRect::create() {
-    return std::make_unique<LambertianRect>();
+std::unique_ptr<Luminaire> rectCreate() {
+    return placed(std::make_shared<LambertianRect>());
+}
+
+}  // namespace
+
+const LambertianRect* lambertianRectModel(const Luminaire& luminaire) {
+    return luminaire.kind() == LuminaireKind::LambertianRect ? &rectOf(luminaire.model()) : nullptr;
+}
+
+const LuminaireAdapter& lambertianRectAdapter() {
+    static const LuminaireAdapter adapter{&rectParse, &rectCreate,   &rectJson, &rectGpuData,
+                                          nullptr,    &rectDescribe, nullptr,   nullptr,
+                                          nullptr,    nullptr,       nullptr};
+    return adapter;
 }
 
 Estimate lambertianRectAnalytic(const Luminaire& luminaire, const glm::dvec3& p,
                                 const glm::dvec3& n, const EstimateOptions& options) {
-    const auto& light = static_cast<const LambertianRect&>(luminaire);
+    const auto& light = rectOf(luminaire.model());
     Estimate e;
     LocalRect r;
     glm::dvec3 m;
-    if (!seenFromFront(light, p, r) || !localNormal(r, n, m)) return e;
+    if (!seenFromFront(light, luminaire.pose, p, r) || !localNormal(r, n, m)) return e;
     e.irradiance = light.emitted * projectedSolidAngle(r, m);
     if (!options.visibility || options.spp <= 0) return e;
 
@@ -384,7 +411,7 @@ Estimate lambertianRectAnalytic(const Luminaire& luminaire, const glm::dvec3& p,
     double sumCos = 0.0, sumCosV = 0.0, sumCos2 = 0.0, sumCos2V = 0.0;
     for (int k = 0; k < options.spp; ++k) {
         double u1 = rng.uniform(), u2 = rng.uniform();
-        LightSample s = makeSample(light, r, omega, {u1, u2});
+        LightSample s = makeSample(light, luminaire.pose, r, omega, {u1, u2});
         if (s.pdf <= 0.0) continue;
         double c = std::max(0.0, glm::dot(unitN, s.wi));
         if (c <= 0.0) continue;
@@ -405,11 +432,12 @@ Estimate lambertianRectAnalytic(const Luminaire& luminaire, const glm::dvec3& p,
 
 Estimate lambertianRectReference(const Luminaire& luminaire, const glm::dvec3& p,
                                  const glm::dvec3& n, const EstimateOptions& options) {
-    const auto& light = static_cast<const LambertianRect&>(luminaire);
+    const auto& light = rectOf(luminaire.model());
     Estimate e;
     LocalRect r;
     glm::dvec3 m;
-    if (options.spp <= 0 || !seenFromFront(light, p, r) || !localNormal(r, n, m)) return e;
+    if (options.spp <= 0 || !seenFromFront(light, luminaire.pose, p, r) || !localNormal(r, n, m))
+        return e;
     double omega = solidAngleOf(r);
     glm::dvec3 unitN = n / glm::length(n);
     Random rng(options.seed);
@@ -418,7 +446,7 @@ Estimate lambertianRectReference(const Luminaire& luminaire, const glm::dvec3& p
     double mean = 0.0, m2 = 0.0;
     for (int k = 0; k < options.spp; ++k) {
         double u1 = rng.uniform(), u2 = rng.uniform();
-        LightSample s = makeSample(light, r, omega, {u1, u2});
+        LightSample s = makeSample(light, luminaire.pose, r, omega, {u1, u2});
         double f = 0.0;
         if (s.pdf > 0.0) {
             double c = std::max(0.0, glm::dot(unitN, s.wi));

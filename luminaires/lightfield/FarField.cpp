@@ -58,7 +58,10 @@ std::shared_ptr<const PhotometricData> farFieldPhotometry(const LightFieldData& 
     return out;
 }
 
-std::unique_ptr<PhotometricLuminaire> farFieldTwin(const LightFieldLuminaire& light) {
+std::unique_ptr<Luminaire> farFieldTwin(const Luminaire& placedLight) {
+    const LightFieldLuminaire* model = lightFieldModel(placedLight);
+    if (!model) return nullptr;
+    const LightFieldLuminaire& light = *model;
     // One table per light-field data, kept while the data lives (instances share data).
     static std::mutex mutex;
     static std::map<const LightFieldData*, std::pair<std::weak_ptr<const LightFieldData>,
@@ -74,16 +77,16 @@ std::unique_ptr<PhotometricLuminaire> farFieldTwin(const LightFieldLuminaire& li
         table = entry.second;
     }
     const LightFieldData& lf = *light.data;
-    auto twin = std::make_unique<PhotometricLuminaire>();
-    twin->data = table;
-    twin->file = table->path;
-    twin->name = light.name;
-    twin->technique = "scattered";
+    auto twinModel = std::make_shared<PhotometricLuminaire>();
+    twinModel->data = table;
+    twinModel->file = table->path;
     glm::dvec3 power = lf.cachedPower();
     double l = luminanceOf(power);
-    twin->colour = l > 0.0 ? power / l : glm::dvec3(1.0);
-    placeFarFieldTwin(*twin, light);
-    twin->updateOpening();
+    twinModel->colour = l > 0.0 ? power / l : glm::dvec3(1.0);
+    twinModel->updateOpening();
+    auto twin = placed(std::move(twinModel));
+    twin->technique = "scattered";
+    placeFarFieldTwin(*twin, placedLight);
     return twin;
 }
 
@@ -116,8 +119,10 @@ std::vector<unsigned char> footprintImage(const PhotometricData& data, int size,
     return rgb;
 }
 
-void placeFarFieldTwin(PhotometricLuminaire& twin, const LightFieldLuminaire& light) {
-    const LightFieldData& lf = *light.data;
+void placeFarFieldTwin(Luminaire& twin, const Luminaire& light) {
+    const LightFieldLuminaire* model = lightFieldModel(light);
+    if (!model) return;
+    const LightFieldData& lf = *model->data;
     glm::dvec3 x, y, z;
     light.pose.frame(x, y, z);
     glm::dvec2 centre = 0.5 * (lf.imageMin + lf.imageMax);

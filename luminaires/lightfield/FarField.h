@@ -21,10 +21,11 @@ namespace candela {
 std::shared_ptr<const PhotometricData> farFieldPhotometry(const LightFieldData& data,
                                                           double stepDeg = 2.5, int points = 64);
 
-/// A photometric luminaire standing in for `light`: the same name, aim and c0, centred on S's
-/// image rectangle, technique "scattered", with farFieldPhotometry of its data (computed once
-/// per light-field data and kept while that data lives).
-std::unique_ptr<PhotometricLuminaire> farFieldTwin(const LightFieldLuminaire& light);
+/// A photometric luminaire standing in for a light-field luminaire `light`: the same name, aim
+/// and c0, centred on S's image rectangle, technique "scattered", with farFieldPhotometry of its
+/// data (computed once per light-field data and kept while that data lives). Null for a
+/// luminaire of another kind.
+std::unique_ptr<Luminaire> farFieldTwin(const Luminaire& light);
 /// A thumbnail of what a far field casts: the illuminance on a floor `height` metres below it
 /// (aimed straight down, C0 along +x), over a square of half-side 2.5 height, size x size RGB8
 /// pixels, rows from +y down. Logarithmic over three decades below its brightest pixel, in a
@@ -32,7 +33,8 @@ std::unique_ptr<PhotometricLuminaire> farFieldTwin(const LightFieldLuminaire& li
 std::vector<unsigned char> footprintImage(const PhotometricData& data, int size,
                                           double height = 1.0);
 
-/// Moves a twin to where `light` now is (its pose, name and nothing else).
-void placeFarFieldTwin(PhotometricLuminaire& twin, const LightFieldLuminaire& light);
+/// Moves a twin to where the light-field luminaire `light` now is (its pose, name and nothing
+/// else); nothing for a luminaire of another kind.
+void placeFarFieldTwin(Luminaire& twin, const Luminaire& light);
 
 }  // namespace candela

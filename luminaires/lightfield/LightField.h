@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "luminaires/Adapter.h"
 #include "luminaires/Estimate.h"
 #include "luminaires/Luminaire.h"
 #include "util/JsonRead.h"
@@ -157,8 +158,10 @@ class LightFieldData {
 
 /// A light-field luminaire placed in a scene: local +z is aim, +x is c0, position the local
 /// origin (U's node grid is centred there by the converters).
-class LightFieldLuminaire final : public Luminaire {
+class LightFieldLuminaire final : public LuminaireModel {
   public:
+    LightFieldLuminaire() : LuminaireModel(LuminaireKind::LightField) {}
+
     /// K_max of the paper's Fig. 9: at most this many samples per image per frame on the GPU
     /// (the samples taken are reweighted, so the cap keeps the estimator unbiased).
     static constexpr int kMaxSamplesPerImage = 64;
@@ -166,10 +169,8 @@ class LightFieldLuminaire final : public Luminaire {
     std::shared_ptr<const LightFieldData> data;
     std::string file;  ///< As written in the scene file (relative to it or absolute).
 
-    std::string_view kind() const override { return "lightfield"; }
-    std::unique_ptr<Luminaire> clone() const override;
     /// x on S (world), w the direction of travel: L of the ray through x from U.
-    glm::dvec3 radiance(const glm::dvec3& x, const glm::dvec3& w) const override;
+    glm::dvec3 radiance(const Pose& pose, const glm::dvec3& x, const glm::dvec3& w) const override;
     glm::dvec3 power() const override;
     /// Photometric when the file's unit is cd/m2 (lm, lx), else radiometric.
     Quantities quantities() const override {
@@ -177,27 +178,17 @@ class LightFieldLuminaire final : public Luminaire {
     }
     /// A point on S by the balanced restricted sampler (image chosen with probability A_m / A
     /// from u.x, then s in its box); pdf is the marginal solid-angle density over all images.
-    LightSample sample(const glm::dvec3& p, const glm::dvec2& u) const override;
-    double pdf(const glm::dvec3& p, const glm::dvec3& wi) const override;
-    std::vector<glm::dvec3> outline() const override;
-    void writeJson(nlohmann::json& out) const override;
-    std::vector<std::byte> gpuData() const override;
-    std::shared_ptr<const GpuTables> gpuTables() const override;
-    std::string describe() const override;
-    /// The manifest (.lf.json) and its images.
-    std::vector<std::string> sourceFiles() const override;
-    /// Per-cell maps (Sec. 6.2, luminaires/lightfield/ShadowCells.h): items are the images.
-    ShadowLights shadowLights(int count) const override;
-
-    /// Mean radiance over S of the rays parallel to the axis (u = s).
-    glm::dvec3 displayRadiance() const override;
-
-    glm::dvec3 toLocal(const glm::dvec3& p) const;
-    glm::dvec3 toWorldDir(const glm::dvec3& v) const;
-
-    static std::unique_ptr<Luminaire> parse(const nlohmann::json& entry, const json::Where& where);
-    static std::unique_ptr<Luminaire> create();
+    LightSample sample(const Pose& pose, const glm::dvec3& p, const glm::dvec2& u) const override;
+    double pdf(const Pose& pose, const glm::dvec3& p, const glm::dvec3& wi) const override;
+    std::vector<glm::dvec3> outline(const Pose& pose) const override;
 };
+
+/// Its scene entry ("file"), GPU record and tables, per-cell shadow maps (Sec. 6.2,
+/// luminaires/lightfield/ShadowCells.h: items are the images), the manifest and its images as
+/// source files, and as display radiance the mean over S of the rays parallel to the axis.
+const LuminaireAdapter& lightFieldAdapter();
+/// The light-field model of a luminaire; null when it is of another kind.
+const LightFieldLuminaire* lightFieldModel(const Luminaire& luminaire);
 
 /// CPU estimators (luminaires/lightfield/LightFieldEstimators.cpp); all take world p and unit
 /// normal n. Exact model by Gauss-Legendre quadrature over U, split at knots and pixel edges

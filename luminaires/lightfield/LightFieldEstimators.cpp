@@ -14,6 +14,7 @@ namespace {
 
 struct Setup {
     const LightFieldLuminaire* light = nullptr;
+    Pose pose;
     const LightFieldData* lf = nullptr;
     glm::dvec3 q{0.0};      ///< Receiver in the luminaire's frame, metres.
     glm::dvec3 n{0.0};      ///< Unit receiver normal in the luminaire's frame.
@@ -24,11 +25,12 @@ struct Setup {
 
 /// False when p cannot receive light (behind S or between U and S): the estimate is exactly 0.
 bool setup(const Luminaire& l, const glm::dvec3& p, const glm::dvec3& n, Setup& s) {
-    s.light = &static_cast<const LightFieldLuminaire&>(l);
+    s.light = lightFieldModel(l);
+    s.pose = l.pose;
     s.lf = s.light->data.get();
-    s.q = s.light->toLocal(p);
+    s.q = s.pose.toLocal(p);
     s.world = p;
-    s.light->pose.frame(s.x, s.y, s.z);
+    s.pose.frame(s.x, s.y, s.z);
     double len = glm::length(n);
     if (!(len > 0.0)) return false;
     glm::dvec3 un = n / len;
@@ -42,7 +44,7 @@ bool setup(const Luminaire& l, const glm::dvec3& p, const glm::dvec3& n, Setup& 
 }
 
 glm::dvec3 worldOf(const Setup& s, glm::dvec2 sl) {
-    return s.light->pose.position + sl.x * s.x + sl.y * s.y + s.lf->delta * s.z;
+    return s.pose.position + sl.x * s.x + sl.y * s.y + s.lf->delta * s.z;
 }
 
 /// Halton radical inverse in base b.
@@ -109,7 +111,7 @@ Estimate onPlaneS(const Setup& s, const EstimateOptions& o) {
         double cosR = std::max(0.0, glm::dot(s.n, d / r));
         glm::dvec3 term(0.0);
         if (cosR > 0.0) {
-            glm::dvec3 uWorld = s.light->pose.position + u.x * s.x + u.y * s.y;
+            glm::dvec3 uWorld = s.pose.position + u.x * s.x + u.y * s.y;
             bool visible = !o.visibility || o.visibility->visible(s.world, uWorld);
             // f / pdf with pdf = (C_m / total) / area: total * area * Psi * c * delta cos / r^3.
             if (visible) term = lf.psi(m, u, p) * lf.colour(m, p) * (lf.delta * cosR / (r * r * r));

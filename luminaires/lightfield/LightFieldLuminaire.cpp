@@ -1,4 +1,5 @@
-// The light-field luminaire in a scene: pose, file reference, the Luminaire interface.
+// The light-field luminaire model (its physics at a pose) and its adapter (scene entry, GPU
+// record and tables, shadow maps, description).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -7,6 +8,7 @@
 #include <map>
 #include <mutex>
 
+#include "luminaires/Adapter.h"
 #include "luminaires/lightfield/LightField.h"
 #include "luminaires/lightfield/ShadowCells.h"
 #include "shaders/shared/GpuTypes.h"
@@ -41,25 +43,9 @@ std::shared_ptr<const LightFieldData> loadShared(const fs::path& file) {
 
 }  // namespace
 
-std::unique_ptr<Luminaire> LightFieldLuminaire::clone() const {
-    return std::make_unique<LightFieldLuminaire>(*this);
-}
-
-glm::dvec3 LightFieldLuminaire::toLocal(const glm::dvec3& p) const {
-    glm::dvec3 x, y, z;
-    pose.frame(x, y, z);
-    glm::dvec3 d = p - pose.position;
-    return {glm::dot(d, x), glm::dot(d, y), glm::dot(d, z)};
-}
-
-glm::dvec3 LightFieldLuminaire::toWorldDir(const glm::dvec3& v) const {
-    glm::dvec3 x, y, z;
-    pose.frame(x, y, z);
-    return v.x * x + v.y * y + v.z * z;
-}
-
-glm::dvec3 LightFieldLuminaire::radiance(const glm::dvec3& xWorld, const glm::dvec3& w) const {
-    glm::dvec3 s = toLocal(xWorld);
+glm::dvec3 LightFieldLuminaire::radiance(const Pose& pose, const glm::dvec3& xWorld,
+                                         const glm::dvec3& w) const {
+    glm::dvec3 s = pose.toLocal(xWorld);
     glm::dvec3 x, y, z;
     pose.frame(x, y, z);
     glm::dvec3 wl(glm::dot(w, x), glm::dot(w, y), glm::dot(w, z));
@@ -69,8 +55,14 @@ glm::dvec3 LightFieldLuminaire::radiance(const glm::dvec3& xWorld, const glm::dv
     return data->radiance(u, glm::dvec2(s.x, s.y));
 }
 
-glm::dvec3 LightFieldLuminaire::displayRadiance() const {
-    const LightFieldData& lf = *data;
+namespace {
+
+const LightFieldLuminaire& lightFieldOf(const LuminaireModel& model) {
+    return static_cast<const LightFieldLuminaire&>(model);
+}
+
+glm::dvec3 lightFieldDisplayRadiance(const Luminaire& luminaire) {
+    const LightFieldData& lf = *lightFieldOf(luminaire.model()).data;
     glm::dvec3 sum(0.0);
     const int n = 32;
     for (int j = 0; j < n; ++j)
@@ -82,14 +74,17 @@ glm::dvec3 LightFieldLuminaire::displayRadiance() const {
     return sum / double(n * n);
 }
 
+}  // namespace
+
 glm::dvec3 LightFieldLuminaire::power() const {
     return data->cachedPower();
 }
 
-LightSample LightFieldLuminaire::sample(const glm::dvec3& p, const glm::dvec2& u) const {
+LightSample LightFieldLuminaire::sample(const Pose& pose, const glm::dvec3& p,
+                                        const glm::dvec2& u) const {
     LightSample out;
     const LightFieldData& lf = *data;
-    glm::dvec3 q = toLocal(p);
+    glm::dvec3 q = pose.toLocal(p);
     if (!(q.z > lf.delta)) return out;
     // Image m with probability A_m / A (Eq. 12's balancing as a discrete choice), u.x reused.
     std::vector<double> cdf(size_t(lf.imageCount()) + 1, 0.0);
@@ -118,16 +113,16 @@ LightSample LightFieldLuminaire::sample(const glm::dvec3& p, const glm::dvec2& u
     glm::dvec3 x, y, z;
     pose.frame(x, y, z);
     out.position = pose.position + sl.x * x + sl.y * y + sl.z * z;
-    out.wi = toWorldDir(d / r);
+    out.wi = pose.toWorldDir(d / r);
     out.distance = r;
-    out.radiance = radiance(out.position, -out.wi);
-    out.pdf = pdf(p, out.wi);
+    out.radiance = radiance(pose, out.position, -out.wi);
+    out.pdf = pdf(pose, p, out.wi);
     return out;
 }
 
-double LightFieldLuminaire::pdf(const glm::dvec3& p, const glm::dvec3& wi) const {
+double LightFieldLuminaire::pdf(const Pose& pose, const glm::dvec3& p, const glm::dvec3& wi) const {
     const LightFieldData& lf = *data;
-    glm::dvec3 q = toLocal(p);
+    glm::dvec3 q = pose.toLocal(p);
     if (!(q.z > lf.delta)) return 0.0;
     glm::dvec3 x, y, z;
     pose.frame(x, y, z);
@@ -149,7 +144,7 @@ double LightFieldLuminaire::pdf(const glm::dvec3& p, const glm::dvec3& wi) const
     return density / total * r * r * r / dz;
 }
 
-std::vector<glm::dvec3> LightFieldLuminaire::outline() const {
+std::vector<glm::dvec3> LightFieldLuminaire::outline(const Pose& pose) const {
     glm::dvec3 x, y, z;
     pose.frame(x, y, z);
     const LightFieldData& lf = *data;
@@ -158,12 +153,16 @@ std::vector<glm::dvec3> LightFieldLuminaire::outline() const {
             c + lf.imageMax.x * x + lf.imageMax.y * y, c + lf.imageMin.x * x + lf.imageMax.y * y};
 }
 
-void LightFieldLuminaire::writeJson(nlohmann::json& out) const {
-    out["file"] = file;
+namespace {
+
+void lightFieldJson(const LuminaireModel& model, nlohmann::json& out) {
+    out["file"] = lightFieldOf(model).file;
 }
 
-std::vector<std::byte> LightFieldLuminaire::gpuData() const {
-    const LightFieldData& lf = *data;
+std::vector<std::byte> lightFieldGpuData(const Luminaire& luminaire) {
+    const LightFieldData& lf = *lightFieldOf(luminaire.model()).data;
+    const Pose& pose = luminaire.pose;
+    constexpr int kMaxSamplesPerImage = LightFieldLuminaire::kMaxSamplesPerImage;
     gpu::LightFieldGpu h{};
     glm::dvec3 x, y, z;
     pose.frame(x, y, z);
@@ -199,9 +198,11 @@ std::vector<std::byte> LightFieldLuminaire::gpuData() const {
     return out;
 }
 
-std::shared_ptr<const GpuTables> LightFieldLuminaire::gpuTables() const {
-    return data->gpuTables();
+std::shared_ptr<const GpuTables> lightFieldGpuTables(const LuminaireModel& model) {
+    return lightFieldOf(model).data->gpuTables();
 }
+
+}  // namespace
 
 std::shared_ptr<const GpuTables> LightFieldData::gpuTables() const {
     std::call_once(mGpuTablesOnce, [&] {
@@ -244,8 +245,11 @@ std::shared_ptr<const GpuTables> LightFieldData::gpuTables() const {
     return mGpuTables;
 }
 
-ShadowLights LightFieldLuminaire::shadowLights(int count) const {
-    const LightFieldData& lf = *data;
+namespace {
+
+ShadowLights lightFieldShadowLights(const Luminaire& luminaire, int count) {
+    const LightFieldData& lf = *lightFieldOf(luminaire.model()).data;
+    const Pose& pose = luminaire.pose;
     glm::ivec2 cells = lf.count + 2;
     ShadowMapLayout layout = shadowMapLayout(lf, shadowMapGrid(cells, count));
     glm::dvec3 x, y, z;
@@ -264,8 +268,9 @@ ShadowLights LightFieldLuminaire::shadowLights(int count) const {
     return out;
 }
 
-std::string LightFieldLuminaire::describe() const {
-    const LightFieldData& lf = *data;
+std::string lightFieldDescribe(const LuminaireModel& model) {
+    const LightFieldData& lf = *lightFieldOf(model).data;
+    const std::string& file = lightFieldOf(model).file;
     char buf[640];
     glm::dvec3 flux = lf.cachedPower();
     bool photometric = lf.unit == "cd/m2";
@@ -280,7 +285,8 @@ std::string LightFieldLuminaire::describe() const {
     return buf;
 }
 
-std::vector<std::string> LightFieldLuminaire::sourceFiles() const {
+std::vector<std::string> lightFieldSourceFiles(const LuminaireModel& model) {
+    const std::shared_ptr<const LightFieldData>& data = lightFieldOf(model).data;
     std::vector<std::string> files;
     if (!data || data->path.empty()) return files;  // built in memory
     files.push_back(data->path.string());
@@ -288,29 +294,28 @@ std::vector<std::string> LightFieldLuminaire::sourceFiles() const {
     return files;
 }
 
-std::unique_ptr<Luminaire> LightFieldLuminaire::parse(const nlohmann::json& entry,
-                                                      const json::Where& where) {
+std::unique_ptr<Luminaire> lightFieldParse(const nlohmann::json& entry, const json::Where& where) {
     json::checkKeys(
         entry, {"type", "name", "position", "aim", "c0", "technique", "maintenance_factor", "file"},
         where);
     if (!entry.contains("file"))
         json::fail(where / "file", "the path of a .lf.json light-field file");
-    auto light = std::make_unique<LightFieldLuminaire>();
+    auto light = std::make_shared<LightFieldLuminaire>();
     light->file = json::string(entry["file"], where / "file");
     fs::path resolved(light->file);
     if (resolved.is_relative()) resolved = fs::path(where.file).parent_path() / resolved;
     light->data = loadShared(resolved);
-    return light;
+    return placed(std::move(light));
 }
 
-std::unique_ptr<Luminaire> LightFieldLuminaire::create() {
+std::unique_ptr<Luminaire> lightFieldCreate() {
     // The editor's "Add": the bundled measured LED; a small uniform model if it is missing.
-    auto light = std::make_unique<LightFieldLuminaire>();
+    auto light = std::make_shared<LightFieldLuminaire>();
     fs::path bundled = fs::path(CANDELA_SOURCE_DIR) / "resources/luminaires/osram-lertduw.lf.json";
     try {
         light->data = loadShared(bundled);
         light->file = bundled.generic_string();
-        return light;
+        return placed(std::move(light));
     } catch (const InputError&) {
     }
     auto lf = std::make_shared<LightFieldData>();
@@ -324,7 +329,29 @@ std::unique_ptr<Luminaire> LightFieldLuminaire::create() {
     lf->images.assign(9, LightFieldImage{std::vector<float>(256, 1000.f), {}});
     lf->precompute();
     light->data = lf;
-    return light;
+    return placed(std::move(light));
+}
+
+}  // namespace
+
+const LightFieldLuminaire* lightFieldModel(const Luminaire& luminaire) {
+    return luminaire.kind() == LuminaireKind::LightField ? &lightFieldOf(luminaire.model())
+                                                         : nullptr;
+}
+
+const LuminaireAdapter& lightFieldAdapter() {
+    static const LuminaireAdapter adapter{&lightFieldParse,
+                                          &lightFieldCreate,
+                                          &lightFieldJson,
+                                          &lightFieldGpuData,
+                                          &lightFieldGpuTables,
+                                          &lightFieldDescribe,
+                                          &lightFieldSourceFiles,
+                                          &lightFieldShadowLights,
+                                          nullptr,
+                                          nullptr,
+                                          &lightFieldDisplayRadiance};
+    return adapter;
 }
 
 }  // namespace candela

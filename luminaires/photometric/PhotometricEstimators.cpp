@@ -52,10 +52,10 @@ struct Setup {
 Setup makeSetup(const Luminaire& l, const glm::dvec3& pWorld, const glm::dvec3& nWorld,
                 const Visibility* visibility = nullptr) {
     Setup s;
-    s.light = static_cast<const PhotometricLuminaire*>(&l);
+    s.light = photometricModel(l);
     s.pWorld = pWorld;
     s.visibility = visibility;
-    s.light->photometricFrame(s.x, s.y, s.z);
+    s.light->photometricFrame(l.pose, s.x, s.y, s.z);
     s.centre = l.emitterPose().position;
     glm::dvec3 d = pWorld - s.centre;
     s.p = {glm::dot(d, s.x), glm::dot(d, s.y), glm::dot(d, s.z)};

@@ -1,4 +1,5 @@
-// The photometric area light in a scene: file reference, opening, the Luminaire interface.
+// The photometric area light model (its physics at a pose, its opening) and its adapter (scene
+// entry, GPU record and tables, shadow maps, body, a GLDF variant's companions).
 #include "luminaires/photometric/PhotometricLuminaire.h"
 
 #include <algorithm>
@@ -36,9 +37,9 @@ constexpr double kMaxScale = 1e6;
 constexpr double kMaxColour = 1e3;
 using photometry_detail::formatNumber;
 
-glm::dvec3 toLocalDir(const PhotometricLuminaire& l, const glm::dvec3& w) {
+glm::dvec3 toLocalDir(const PhotometricLuminaire& l, const Pose& pose, const glm::dvec3& w) {
     glm::dvec3 x, y, z;
-    l.photometricFrame(x, y, z);
+    l.photometricFrame(pose, x, y, z);
     return {glm::dot(w, x), glm::dot(w, y), glm::dot(w, z)};
 }
 
@@ -228,12 +229,13 @@ bool PhotometricLuminaire::contains(const glm::dvec2& q, double slack) const {
     return true;
 }
 
-void PhotometricLuminaire::photometricFrame(glm::dvec3& x, glm::dvec3& y, glm::dvec3& z) const {
-    emitterPose().frame(x, y, z);
+void PhotometricLuminaire::photometricFrame(const Pose& pose, glm::dvec3& x, glm::dvec3& y,
+                                            glm::dvec3& z) const {
+    emitterPose(pose).frame(x, y, z);
     y = -y;  // c0 x aim
 }
 
-Pose PhotometricLuminaire::emitterPose() const {
+Pose PhotometricLuminaire::emitterPose(const Pose& pose) const {
     if (!placement) return pose;
     // The luminaire's L3D frame placed at the pose: x along C0, y along C90 (c0 x aim, the
     // negative of Pose::frame's y), z up, against the aim (a proper rotation: x cross y = z).
@@ -247,85 +249,35 @@ Pose PhotometricLuminaire::emitterPose() const {
     return e;
 }
 
-LuminaireBody PhotometricLuminaire::body() const {
-    LuminaireBody out;
-    out.reflectance = bodyReflectance;
-    if (!showBody) return out;
-    if (geometry) {
-        if (gldfEmitter != 0) return out;  // the first placement gives the variant's body
-        // The L3D frame at the pose, as emitterPose() places it.
-        glm::dvec3 x, y, z;
-        pose.frame(x, y, z);
-        auto place = [&](const glm::dvec3& v) {
-            return pose.position + v.x * x - v.y * y - v.z * z;
-        };
-        out.triangles.reserve(3 * geometry->triangleCount());
-        for (const L3dPart& part : geometry->parts)
-            for (uint32_t i : part.indices) out.triangles.push_back(place(part.positions[i]));
-        return out;
-    }
-    // The luminous opening's box: its polygon swept over the opening's height, centred on the
-    // emitting plane (LM-63 and EULUMDAT measure a luminaire about the centre of its luminous
-    // volume); a flat opening is the polygon alone. A point or a segment has none.
-    if (mPolygon.size() < 3 || !(mArea > 0.0)) return out;
-    out.drawn = false;
-    double half = 0.5 * std::max(0.0, opening().height);
-    glm::dvec3 x, y, z;
-    photometricFrame(x, y, z);
-    glm::dvec3 centre = emitterPose().position;
-    auto at = [&](const glm::dvec2& q, double h) { return centre + q.x * x + q.y * y + h * z; };
-    size_t n = mPolygon.size();
-    for (double h : half > 0.0 ? std::vector<double>{-half, half} : std::vector<double>{0.0})
-        for (size_t i = 1; i + 1 < n; ++i)
-            for (const glm::dvec2& q : {mPolygon[0], mPolygon[i], mPolygon[i + 1]})
-                out.triangles.push_back(at(q, h));
-    if (half > 0.0)
-        for (size_t i = 0; i < n; ++i) {
-            const glm::dvec2 &a = mPolygon[i], &b = mPolygon[(i + 1) % n];
-            for (auto [q, h] : {std::pair{a, -half}, std::pair{b, -half}, std::pair{b, half},
-                                std::pair{a, -half}, std::pair{b, half}, std::pair{a, half}})
-                out.triangles.push_back(at(q, h));
-        }
-    // Every face wound so its normal points out of the box (the frame's handedness and the
-    // polygon's turn decide the winding above; this does not depend on them).
-    for (size_t t = 0; t + 2 < out.triangles.size(); t += 3) {
-        glm::dvec3 &a = out.triangles[t], &b = out.triangles[t + 1], &c = out.triangles[t + 2];
-        if (glm::dot(glm::cross(b - a, c - a), (a + b + c) / 3.0 - centre) < 0.0) std::swap(b, c);
-    }
-    return out;
-}
-
-std::unique_ptr<Luminaire> PhotometricLuminaire::clone() const {
-    return std::make_unique<PhotometricLuminaire>(*this);
-}
-
-double PhotometricLuminaire::intensity(const glm::dvec3& w) const {
+double PhotometricLuminaire::intensity(const Pose& pose, const glm::dvec3& w) const {
     double l = glm::length(w);
     if (!(l > 0.0) || !data) return 0.0;
-    return scale * data->intensity(toLocalDir(*this, w / l));
+    return scale * data->intensity(toLocalDir(*this, pose, w / l));
 }
 
-glm::dvec3 PhotometricLuminaire::radiance(const glm::dvec3& xWorld, const glm::dvec3& w) const {
+glm::dvec3 PhotometricLuminaire::radiance(const Pose& pose, const glm::dvec3& xWorld,
+                                          const glm::dvec3& w) const {
     if (mArea <= 0.0) return glm::dvec3(0.0);
-    glm::dvec3 x = toLocalDir(*this, xWorld - emitterPose().position);
+    glm::dvec3 x = toLocalDir(*this, pose, xWorld - emitterPose(pose).position);
     double size = std::max(mSize, 1e-9);
     if (std::abs(x.z) > 1e-6 * size || !contains(glm::dvec2(x), 1e-9 * size))
         return glm::dvec3(0.0);
     double l = glm::length(w);
     if (!(l > 0.0)) return glm::dvec3(0.0);
-    double cosL = std::abs(glm::dot(toLocalDir(*this, w), glm::dvec3(0, 0, 1))) / l;
+    double cosL = std::abs(glm::dot(toLocalDir(*this, pose, w), glm::dvec3(0, 0, 1))) / l;
     if (!(cosL > 1e-12)) return glm::dvec3(0.0);
-    return colour * (intensity(w) / (mArea * cosL));
+    return colour * (intensity(pose, w) / (mArea * cosL));
 }
 
 glm::dvec3 PhotometricLuminaire::power() const {
     return data ? colour * (scale * data->fluxFromTable()) : glm::dvec3(0.0);
 }
 
-LightSample PhotometricLuminaire::sample(const glm::dvec3& p, const glm::dvec2& u) const {
+LightSample PhotometricLuminaire::sample(const Pose& pose, const glm::dvec3& p,
+                                         const glm::dvec2& u) const {
     LightSample s;
     glm::dvec3 ex, ey, ez;
-    photometricFrame(ex, ey, ez);
+    photometricFrame(pose, ex, ey, ez);
     glm::dvec2 local(0.0);
     if (mPolygon.size() >= 3) {
         // Uniform in area: a triangle of the fan by area, then a uniform point in it.
@@ -352,7 +304,7 @@ LightSample PhotometricLuminaire::sample(const glm::dvec3& p, const glm::dvec2& 
     } else if (mPolygon.size() == 2) {
         local = mPolygon[0] + std::clamp(u.x, 0.0, 1.0) * (mPolygon[1] - mPolygon[0]);
     }
-    s.position = emitterPose().position + local.x * ex + local.y * ey;
+    s.position = emitterPose(pose).position + local.x * ex + local.y * ey;
     glm::dvec3 d = s.position - p;
     s.distance = glm::length(d);
     if (!(s.distance > 0.0) || mArea <= 0.0) return s;
@@ -360,17 +312,18 @@ LightSample PhotometricLuminaire::sample(const glm::dvec3& p, const glm::dvec2& 
     double cosL = std::abs(glm::dot(s.wi, ez));
     if (!(cosL > 1e-12)) return s;
     s.pdf = s.distance * s.distance / (mArea * cosL);
-    s.radiance = colour * (intensity(-s.wi) / (mArea * cosL));
+    s.radiance = colour * (intensity(pose, -s.wi) / (mArea * cosL));
     return s;
 }
 
-double PhotometricLuminaire::pdf(const glm::dvec3& p, const glm::dvec3& wi) const {
+double PhotometricLuminaire::pdf(const Pose& pose, const glm::dvec3& p,
+                                 const glm::dvec3& wi) const {
     if (mArea <= 0.0) return 0.0;
     glm::dvec3 ex, ey, ez;
-    photometricFrame(ex, ey, ez);
+    photometricFrame(pose, ex, ey, ez);
     double denom = glm::dot(wi, ez);
     if (std::abs(denom) < 1e-12) return 0.0;
-    glm::dvec3 centre = emitterPose().position;
+    glm::dvec3 centre = emitterPose(pose).position;
     double t = glm::dot(centre - p, ez) / denom;
     if (!(t > 0.0)) return 0.0;
     glm::dvec3 x = p + t * wi - centre;
@@ -378,10 +331,10 @@ double PhotometricLuminaire::pdf(const glm::dvec3& p, const glm::dvec3& wi) cons
     return t * t / (mArea * std::abs(denom));
 }
 
-std::vector<glm::dvec3> PhotometricLuminaire::outline() const {
+std::vector<glm::dvec3> PhotometricLuminaire::outline(const Pose& pose) const {
     glm::dvec3 ex, ey, ez;
-    photometricFrame(ex, ey, ez);
-    glm::dvec3 centre = emitterPose().position;
+    photometricFrame(pose, ex, ey, ez);
+    glm::dvec3 centre = emitterPose(pose).position;
     std::vector<glm::dvec3> out;
     if (mPolygon.size() >= 3) {
         for (const auto& q : mPolygon) out.push_back(centre + q.x * ex + q.y * ey);
@@ -397,188 +350,6 @@ std::vector<glm::dvec3> PhotometricLuminaire::outline() const {
     return out;
 }
 
-ShadowLights PhotometricLuminaire::shadowLights(int count) const {
-    glm::dvec3 ex, ey, ez;
-    photometricFrame(ex, ey, ez);
-    std::vector<glm::dvec2> points = {glm::dvec2(0.0)};
-    if (count != 1 && mPolygon.size() == 2) {
-        points.push_back(mPolygon[0]);
-        points.push_back(mPolygon[1]);
-    } else if (count != 1 && mPolygon.size() >= 3) {
-        glm::dvec2 lo(1e300), hi(-1e300);
-        for (const glm::dvec2& q : mPolygon) lo = glm::min(lo, q), hi = glm::max(hi, q);
-        for (glm::dvec2 corner : {lo, glm::dvec2(hi.x, lo.y), hi, glm::dvec2(lo.x, hi.y)}) {
-            glm::dvec2 best = mPolygon[0];
-            for (const glm::dvec2& q : mPolygon)
-                if (glm::length(q - corner) < glm::length(best - corner)) best = q;
-            points.push_back(best);
-        }
-    }
-    ShadowLights out;
-    int n = int(points.size());
-    out.sharesPerItem = n;
-    out.shares.assign(size_t(2 * n), {});
-    for (int k = 0; k < n; ++k) {
-        out.lights.push_back(emitterPose().position + points[size_t(k)].x * ex +
-                             points[size_t(k)].y * ey);
-        out.lit.push_back(1);
-        out.shares[size_t(k)] = {k, 1.f / float(n)};
-    }
-    out.shares[size_t(n)] = {0, 1.f};  // item 1: the centre
-    return out;
-}
-
-glm::dvec3 PhotometricLuminaire::displayRadiance() const {
-    glm::dvec3 ex, ey, ez;
-    photometricFrame(ex, ey, ez);
-    double area = mArea;
-    if (area <= 0.0) {
-        auto o = outline();
-        area = glm::length(o[1] - o[0]) * glm::length(o[3] - o[0]);
-    }
-    return colour * (intensity(ez) / std::max(area, 1e-12));
-}
-
-void PhotometricLuminaire::writeJson(nlohmann::json& out) const {
-    if (gldf) {
-        out["type"] = "gldf";
-        out["variant"] = gldfVariant;
-        if (gldfEmitterCount > 1) out["emitter"] = gldfEmitter;
-        if (gldfMaintenance) {
-            const GldfMaintenanceChoice& c = *gldfMaintenance;
-            nlohmann::json m = {{"hours", c.hours}};
-            if (c.lmf >= 0.0)
-                m["lmf"] = c.lmf;
-            else
-                m["years"] = c.years, m["room"] = c.room;
-            if (c.rsmf != 1.0) m["rsmf"] = c.rsmf;
-            out["maintenance"] = m;
-        }
-    }
-    if (!showBody) out["body"] = false;
-    if (bodyReflectance > 0.0) out["body_reflectance"] = bodyReflectance;
-    out["file"] = file;
-    out["scale"] = scale;  // always present, so the inspector offers it
-    if (colour != glm::dvec3(1.0)) out["colour"] = {colour.x, colour.y, colour.z};
-    if (openingOverride.x > 0.0 || openingOverride.y > 0.0)
-        out["opening"] = {openingOverride.x, openingOverride.y};
-}
-
-std::vector<std::byte> PhotometricLuminaire::gpuData() const {
-    const PhotometricData& d = *data;
-    gpu::PhotometricGpu h{};
-    glm::dvec3 x, y, z;
-    photometricFrame(x, y, z);
-    h.position = glm::vec4(glm::vec3(emitterPose().position), float(mArea));
-    h.axisX = glm::vec4(glm::vec3(x), float(mSize));
-    h.axisY = glm::vec4(glm::vec3(y), float(0.1 * mSize));
-    h.axisZ = glm::vec4(glm::vec3(z), 0.f);
-    h.colour = glm::vec4(glm::vec3(colour), float(scale));
-    int nv = int(d.vertical.size()), nh = int(d.horizontal.size());
-    int corners = int(mPolygon.size());
-    h.dims = glm::ivec4(nv, nh, corners, d.goniometer == Goniometer::B ? 1 : 0);
-    int base = int(sizeof(h) / sizeof(float));
-    // The candela table is a texture (gpuTables); offsets.z is unused.
-    h.offsets = glm::ivec4(base, base + nv, 0, base + nv + nh);
-    const auto& p24 = poissonSet(24);
-    const auto& p40 = poissonSet(40);
-    h.samples = glm::ivec4(h.offsets.w + 2 * corners, h.offsets.w + 2 * corners + 48, 0, 0);
-    // The reference's intensity-proportional directions: the cells' CDF (gpuTables).
-    if (auto sampler = IntensitySampler::of(data); sampler && sampler->valid()) h.samples.z = 1;
-    std::vector<float> values(size_t(h.samples.y + 80), 0.f);
-    for (int i = 0; i < nv; ++i)
-        values[size_t(h.offsets.x + i)] = float(d.vertical[size_t(i)] * kPi / 180.0);
-    for (int i = 0; i < nh; ++i)
-        values[size_t(h.offsets.y + i)] = float(d.horizontal[size_t(i)] * kPi / 180.0);
-    for (int i = 0; i < corners; ++i) {
-        values[size_t(h.offsets.w + 2 * i)] = float(mPolygon[size_t(i)].x);
-        values[size_t(h.offsets.w + 2 * i + 1)] = float(mPolygon[size_t(i)].y);
-    }
-    for (int i = 0; i < 24; ++i) {
-        values[size_t(h.samples.x + 2 * i)] = float(p24[size_t(i)].x);
-        values[size_t(h.samples.x + 2 * i + 1)] = float(p24[size_t(i)].y);
-    }
-    for (int i = 0; i < 40; ++i) {
-        values[size_t(h.samples.y + 2 * i)] = float(p40[size_t(i)].x);
-        values[size_t(h.samples.y + 2 * i + 1)] = float(p40[size_t(i)].y);
-    }
-    std::vector<std::byte> out(values.size() * sizeof(float));
-    std::memcpy(out.data(), values.data(), out.size());
-    std::memcpy(out.data(), &h, sizeof(h));
-    return out;
-}
-
-std::shared_ptr<const GpuTables> PhotometricLuminaire::gpuTables() const {
-    if (mGpuTablesFor != data.get()) {
-        // The candela table, unscaled (the shader applies `scale`): vertical angle along x,
-        // horizontal along y, as PhotometricData::candela holds it.
-        const PhotometricData& d = *data;
-        int nv = int(d.vertical.size()), nh = int(d.horizontal.size());
-        GpuTable t{gpu::kUnitPhotometricIntensity, 1, nv, nh, 1, false, {}};
-        t.texels.resize(size_t(nv) * size_t(nh));
-        for (size_t i = 0; i < t.texels.size(); ++i) t.texels[i] = float(d.candela[i]);
-        GpuTables tables{std::move(t)};
-        // The cells' CDF for the reference's intensity-proportional directions
-        // (IntensitySampler.h): (nv - 1)(nh - 1) + 1 entries, nv - 1 to a row.
-        if (auto sampler = IntensitySampler::of(data); sampler && sampler->valid()) {
-            std::vector<double> cdf = sampler->normalisedCdf();
-            int width = std::max(nv - 1, 1),
-                height = int((cdf.size() + size_t(width) - 1) / size_t(width));
-            GpuTable cells{gpu::kUnitPhotometricCellCdf, 1, width, height, 1, false, {}};
-            cells.texels.assign(size_t(width) * size_t(height), 1.f);
-            for (size_t i = 0; i < cdf.size(); ++i) cells.texels[i] = float(cdf[i]);
-            tables.push_back(std::move(cells));
-        }
-        mGpuTables = std::make_shared<const GpuTables>(std::move(tables));
-        mGpuTablesFor = data.get();
-    }
-    return mGpuTables;
-}
-
-std::string PhotometricLuminaire::describe() const {
-    const PhotometricData& d = *data;
-    const char* shape = mPolygon.empty() ? "point" : (mPolygon.size() == 2 ? "segment" : "polygon");
-    char buf[768];
-    std::snprintf(buf, sizeof buf,
-                  "%s: %s, type %s, %zu x %zu angles, opening %.4g x %.4g m (%s, %.4g m2), "
-                  "flux %.5g lm from the table%s",
-                  source().c_str(), d.format.c_str(), d.goniometer == Goniometer::B ? "B" : "C",
-                  d.vertical.size(), d.horizontal.size(), opening().length, opening().width, shape,
-                  mArea, scale * d.fluxFromTable(), scale != 1.0 ? " (scaled)" : "");
-    std::string out = buf;
-    if (gldfMaintenance)
-        out += ", maintenance factor " + gldfFactors.text(gldfMaintenance->hours) +
-               " (from the GLDF data)";
-    if (gldf && placement) {
-        // Unit vectors to 4 decimals, without rounding noise (6e-17) or signed zeros.
-        auto tidy = [](glm::dvec3 v) {
-            for (int i = 0; i < 3; ++i) v[i] = std::round(v[i] * 1e4) / 1e4 + 0.0;
-            return v;
-        };
-        glm::dvec3 c0 = tidy(placement->c0), aim = tidy(placement->aim);
-        std::snprintf(buf, sizeof buf,
-                      ", C0 along (%.4g, %.4g, %.4g) and aim (%.4g, %.4g, %.4g) in the luminaire "
-                      "frame",
-                      c0.x, c0.y, c0.z, aim.x, aim.y, aim.z);
-        out += buf;
-    }
-    if (placement && !placement->object.empty() &&
-        !(openingOverride.x > 0.0 || openingOverride.y > 0.0)) {
-        glm::dvec3 c = placement->centre;
-        std::snprintf(buf, sizeof buf,
-                      ", opening from its L3D object \"%s\" at (%.4g, %.4g, %.4g) m from the "
-                      "insertion point",
-                      placement->object.c_str(), c.x, c.y, c.z);
-        out += buf;
-    }
-    if (d.lampFlux > 0.0) {
-        std::snprintf(buf, sizeof buf, ", lamps %.5g lm x LOR %.3g = %.5g lm", d.lampFlux,
-                      d.lightOutputRatio, d.lampFlux * d.lightOutputRatio);
-        out += buf;
-    }
-    return out;
-}
-
 const GldfLightEmitter* PhotometricLuminaire::gldfLightEmitter() const {
     if (!gldf) return nullptr;
     const GldfVariant* v = gldf->variant(gldfVariant);
@@ -587,49 +358,310 @@ const GldfLightEmitter* PhotometricLuminaire::gldfLightEmitter() const {
     return e && !e->lights.empty() ? &e->lights.front() : nullptr;
 }
 
-std::vector<std::unique_ptr<Luminaire>> PhotometricLuminaire::companions() const {
-    std::vector<std::unique_ptr<Luminaire>> out;
-    if (!gldf || !mAllEmitters || gldfEmitter != 0) return out;
-    for (int k = 1; k < gldfEmitterCount; ++k) {
-        auto other = std::make_unique<PhotometricLuminaire>(*this);
-        other->loadGldf(gldf->path, gldfVariant, k);
-        other->mAllEmitters = false;
-        other->updateOpening();
-        out.push_back(std::move(other));
+/// The kind's adapter (luminaires/Adapter.h): a friend, for the model's private polygon and
+/// tables.
+struct PhotometricAdapter {
+    static const PhotometricLuminaire& of(const LuminaireModel& model) {
+        return static_cast<const PhotometricLuminaire&>(model);
     }
-    return out;
-}
+    static std::unique_ptr<Luminaire> parse(const nlohmann::json& entry, const json::Where& where);
+    static std::unique_ptr<Luminaire> parseGldf(const nlohmann::json& entry,
+                                                const json::Where& where);
+    static std::unique_ptr<Luminaire> create();
+    static LuminaireBody body(const Luminaire& luminaire) {
+        const PhotometricLuminaire& l = of(luminaire.model());
+        const Pose& pose = luminaire.pose;
+        LuminaireBody out;
+        out.reflectance = l.bodyReflectance;
+        if (!l.showBody) return out;
+        if (l.geometry) {
+            if (l.gldfEmitter != 0) return out;  // the first placement gives the variant's body
+            // The L3D frame at the pose, as emitterPose() places it.
+            glm::dvec3 x, y, z;
+            pose.frame(x, y, z);
+            auto place = [&](const glm::dvec3& v) {
+                return pose.position + v.x * x - v.y * y - v.z * z;
+            };
+            out.triangles.reserve(3 * l.geometry->triangleCount());
+            for (const L3dPart& part : l.geometry->parts)
+                for (uint32_t i : part.indices) out.triangles.push_back(place(part.positions[i]));
+            return out;
+        }
+        // The luminous opening's box: its polygon swept over the opening's height, centred on the
+        // emitting plane (LM-63 and EULUMDAT measure a luminaire about the centre of its luminous
+        // volume); a flat opening is the polygon alone. A point or a segment has none.
+        if (l.mPolygon.size() < 3 || !(l.mArea > 0.0)) return out;
+        out.drawn = false;
+        double half = 0.5 * std::max(0.0, l.opening().height);
+        glm::dvec3 x, y, z;
+        l.photometricFrame(pose, x, y, z);
+        glm::dvec3 centre = l.emitterPose(pose).position;
+        auto at = [&](const glm::dvec2& q, double h) { return centre + q.x * x + q.y * y + h * z; };
+        size_t n = l.mPolygon.size();
+        for (double h : half > 0.0 ? std::vector<double>{-half, half} : std::vector<double>{0.0})
+            for (size_t i = 1; i + 1 < n; ++i)
+                for (const glm::dvec2& q : {l.mPolygon[0], l.mPolygon[i], l.mPolygon[i + 1]})
+                    out.triangles.push_back(at(q, h));
+        if (half > 0.0)
+            for (size_t i = 0; i < n; ++i) {
+                const glm::dvec2 &a = l.mPolygon[i], &b = l.mPolygon[(i + 1) % n];
+                for (auto [q, h] : {std::pair{a, -half}, std::pair{b, -half}, std::pair{b, half},
+                                    std::pair{a, -half}, std::pair{b, half}, std::pair{a, half}})
+                    out.triangles.push_back(at(q, h));
+            }
+        // Every face wound so its normal points out of the box (the frame's handedness and the
+        // polygon's turn decide the winding above; this does not depend on them).
+        for (size_t t = 0; t + 2 < out.triangles.size(); t += 3) {
+            glm::dvec3 &a = out.triangles[t], &b = out.triangles[t + 1], &c = out.triangles[t + 2];
+            if (glm::dot(glm::cross(b - a, c - a), (a + b + c) / 3.0 - centre) < 0.0)
+                std::swap(b, c);
+        }
+        return out;
+    }
 
-std::string PhotometricLuminaire::source() const {
-    if (!gldf) return "photometric " + file;
-    std::string out = "GLDF " + file + " variant \"" + gldfVariant + "\"";
-    if (gldfEmitterCount > 1)
-        out +=
-            " emitter " + std::to_string(gldfEmitter) + " of " + std::to_string(gldfEmitterCount);
-    if (!gldf->manufacturer.empty() || !gldf->productName.empty())
-        out += " (" + gldf->manufacturer + (gldf->manufacturer.empty() ? "" : " ") +
-               gldf->productName + ")";
-    return out;
-}
+    static ShadowLights shadowLights(const Luminaire& luminaire, int count) {
+        const PhotometricLuminaire& l = of(luminaire.model());
+        const Pose& pose = luminaire.pose;
+        glm::dvec3 ex, ey, ez;
+        l.photometricFrame(pose, ex, ey, ez);
+        std::vector<glm::dvec2> points = {glm::dvec2(0.0)};
+        if (count != 1 && l.mPolygon.size() == 2) {
+            points.push_back(l.mPolygon[0]);
+            points.push_back(l.mPolygon[1]);
+        } else if (count != 1 && l.mPolygon.size() >= 3) {
+            glm::dvec2 lo(1e300), hi(-1e300);
+            for (const glm::dvec2& q : l.mPolygon) lo = glm::min(lo, q), hi = glm::max(hi, q);
+            for (glm::dvec2 corner : {lo, glm::dvec2(hi.x, lo.y), hi, glm::dvec2(lo.x, hi.y)}) {
+                glm::dvec2 best = l.mPolygon[0];
+                for (const glm::dvec2& q : l.mPolygon)
+                    if (glm::length(q - corner) < glm::length(best - corner)) best = q;
+                points.push_back(best);
+            }
+        }
+        ShadowLights out;
+        int n = int(points.size());
+        out.sharesPerItem = n;
+        out.shares.assign(size_t(2 * n), {});
+        for (int k = 0; k < n; ++k) {
+            out.lights.push_back(l.emitterPose(pose).position + points[size_t(k)].x * ex +
+                                 points[size_t(k)].y * ey);
+            out.lit.push_back(1);
+            out.shares[size_t(k)] = {k, 1.f / float(n)};
+        }
+        out.shares[size_t(n)] = {0, 1.f};  // item 1: the centre
+        return out;
+    }
 
-std::vector<std::string> PhotometricLuminaire::sourceFiles() const {
-    if (gldf) return {gldf->path};
-    std::vector<std::string> files;
-    if (data && !data->path.empty()) files.push_back(data->path);
-    if (data && !data->tiltPath.empty()) files.push_back(data->tiltPath);
-    return files;
-}
+    static glm::dvec3 displayRadiance(const Luminaire& luminaire) {
+        const PhotometricLuminaire& l = of(luminaire.model());
+        const Pose& pose = luminaire.pose;
+        glm::dvec3 ex, ey, ez;
+        l.photometricFrame(pose, ex, ey, ez);
+        double area = l.mArea;
+        if (area <= 0.0) {
+            auto o = l.outline(pose);
+            area = glm::length(o[1] - o[0]) * glm::length(o[3] - o[0]);
+        }
+        return l.colour * (l.intensity(pose, ez) / std::max(area, 1e-12));
+    }
+
+    static void writeJson(const LuminaireModel& model, nlohmann::json& out) {
+        const PhotometricLuminaire& l = of(model);
+        if (l.gldf) {
+            out["type"] = "gldf";
+            out["variant"] = l.gldfVariant;
+            if (l.gldfEmitterCount > 1) out["emitter"] = l.gldfEmitter;
+            if (l.gldfMaintenance) {
+                const GldfMaintenanceChoice& c = *l.gldfMaintenance;
+                nlohmann::json m = {{"hours", c.hours}};
+                if (c.lmf >= 0.0)
+                    m["lmf"] = c.lmf;
+                else
+                    m["years"] = c.years, m["room"] = c.room;
+                if (c.rsmf != 1.0) m["rsmf"] = c.rsmf;
+                out["maintenance"] = m;
+            }
+        }
+        if (!l.showBody) out["body"] = false;
+        if (l.bodyReflectance > 0.0) out["body_reflectance"] = l.bodyReflectance;
+        out["file"] = l.file;
+        out["scale"] = l.scale;  // always present, so the inspector offers it
+        if (l.colour != glm::dvec3(1.0)) out["colour"] = {l.colour.x, l.colour.y, l.colour.z};
+        if (l.openingOverride.x > 0.0 || l.openingOverride.y > 0.0)
+            out["opening"] = {l.openingOverride.x, l.openingOverride.y};
+    }
+
+    static std::vector<std::byte> gpuData(const Luminaire& luminaire) {
+        const PhotometricLuminaire& l = of(luminaire.model());
+        const Pose& pose = luminaire.pose;
+        const PhotometricData& d = *l.data;
+        gpu::PhotometricGpu h{};
+        glm::dvec3 x, y, z;
+        l.photometricFrame(pose, x, y, z);
+        h.position = glm::vec4(glm::vec3(l.emitterPose(pose).position), float(l.mArea));
+        h.axisX = glm::vec4(glm::vec3(x), float(l.mSize));
+        h.axisY = glm::vec4(glm::vec3(y), float(0.1 * l.mSize));
+        h.axisZ = glm::vec4(glm::vec3(z), 0.f);
+        h.colour = glm::vec4(glm::vec3(l.colour), float(l.scale));
+        int nv = int(d.vertical.size()), nh = int(d.horizontal.size());
+        int corners = int(l.mPolygon.size());
+        h.dims = glm::ivec4(nv, nh, corners, d.goniometer == Goniometer::B ? 1 : 0);
+        int base = int(sizeof(h) / sizeof(float));
+        // The candela table is a texture (gpuTables); offsets.z is unused.
+        h.offsets = glm::ivec4(base, base + nv, 0, base + nv + nh);
+        const auto& p24 = poissonSet(24);
+        const auto& p40 = poissonSet(40);
+        h.samples = glm::ivec4(h.offsets.w + 2 * corners, h.offsets.w + 2 * corners + 48, 0, 0);
+        // The reference's intensity-proportional directions: the cells' CDF (gpuTables).
+        if (auto sampler = IntensitySampler::of(l.data); sampler && sampler->valid())
+            h.samples.z = 1;
+        std::vector<float> values(size_t(h.samples.y + 80), 0.f);
+        for (int i = 0; i < nv; ++i)
+            values[size_t(h.offsets.x + i)] = float(d.vertical[size_t(i)] * kPi / 180.0);
+        for (int i = 0; i < nh; ++i)
+            values[size_t(h.offsets.y + i)] = float(d.horizontal[size_t(i)] * kPi / 180.0);
+        for (int i = 0; i < corners; ++i) {
+            values[size_t(h.offsets.w + 2 * i)] = float(l.mPolygon[size_t(i)].x);
+            values[size_t(h.offsets.w + 2 * i + 1)] = float(l.mPolygon[size_t(i)].y);
+        }
+        for (int i = 0; i < 24; ++i) {
+            values[size_t(h.samples.x + 2 * i)] = float(p24[size_t(i)].x);
+            values[size_t(h.samples.x + 2 * i + 1)] = float(p24[size_t(i)].y);
+        }
+        for (int i = 0; i < 40; ++i) {
+            values[size_t(h.samples.y + 2 * i)] = float(p40[size_t(i)].x);
+            values[size_t(h.samples.y + 2 * i + 1)] = float(p40[size_t(i)].y);
+        }
+        std::vector<std::byte> out(values.size() * sizeof(float));
+        std::memcpy(out.data(), values.data(), out.size());
+        std::memcpy(out.data(), &h, sizeof(h));
+        return out;
+    }
+
+    static std::shared_ptr<const GpuTables> gpuTables(const LuminaireModel& model) {
+        const PhotometricLuminaire& l = of(model);
+        if (l.mGpuTablesFor != l.data.get()) {
+            // The candela table, unscaled (the shader applies `scale`): vertical angle along x,
+            // horizontal along y, as PhotometricData::candela holds it.
+            const PhotometricData& d = *l.data;
+            int nv = int(d.vertical.size()), nh = int(d.horizontal.size());
+            GpuTable t{gpu::kUnitPhotometricIntensity, 1, nv, nh, 1, false, {}};
+            t.texels.resize(size_t(nv) * size_t(nh));
+            for (size_t i = 0; i < t.texels.size(); ++i) t.texels[i] = float(d.candela[i]);
+            GpuTables tables{std::move(t)};
+            // The cells' CDF for the reference's intensity-proportional directions
+            // (IntensitySampler.h): (nv - 1)(nh - 1) + 1 entries, nv - 1 to a row.
+            if (auto sampler = IntensitySampler::of(l.data); sampler && sampler->valid()) {
+                std::vector<double> cdf = sampler->normalisedCdf();
+                int width = std::max(nv - 1, 1),
+                    height = int((cdf.size() + size_t(width) - 1) / size_t(width));
+                GpuTable cells{gpu::kUnitPhotometricCellCdf, 1, width, height, 1, false, {}};
+                cells.texels.assign(size_t(width) * size_t(height), 1.f);
+                for (size_t i = 0; i < cdf.size(); ++i) cells.texels[i] = float(cdf[i]);
+                tables.push_back(std::move(cells));
+            }
+            l.mGpuTables = std::make_shared<const GpuTables>(std::move(tables));
+            l.mGpuTablesFor = l.data.get();
+        }
+        return l.mGpuTables;
+    }
+
+    static std::string describe(const LuminaireModel& model) {
+        const PhotometricLuminaire& l = of(model);
+        const PhotometricData& d = *l.data;
+        const char* shape =
+            l.mPolygon.empty() ? "point" : (l.mPolygon.size() == 2 ? "segment" : "polygon");
+        char buf[768];
+        std::snprintf(buf, sizeof buf,
+                      "%s: %s, type %s, %zu x %zu angles, opening %.4g x %.4g m (%s, %.4g m2), "
+                      "flux %.5g lm from the table%s",
+                      source(l).c_str(), d.format.c_str(),
+                      d.goniometer == Goniometer::B ? "B" : "C", d.vertical.size(),
+                      d.horizontal.size(), l.opening().length, l.opening().width, shape, l.mArea,
+                      l.scale * d.fluxFromTable(), l.scale != 1.0 ? " (scaled)" : "");
+        std::string out = buf;
+        if (l.gldfMaintenance)
+            out += ", maintenance factor " + l.gldfFactors.text(l.gldfMaintenance->hours) +
+                   " (from the GLDF data)";
+        if (l.gldf && l.placement) {
+            // Unit vectors to 4 decimals, without rounding noise (6e-17) or signed zeros.
+            auto tidy = [](glm::dvec3 v) {
+                for (int i = 0; i < 3; ++i) v[i] = std::round(v[i] * 1e4) / 1e4 + 0.0;
+                return v;
+            };
+            glm::dvec3 c0 = tidy(l.placement->c0), aim = tidy(l.placement->aim);
+            std::snprintf(
+                buf, sizeof buf,
+                ", C0 along (%.4g, %.4g, %.4g) and aim (%.4g, %.4g, %.4g) in the luminaire "
+                "frame",
+                c0.x, c0.y, c0.z, aim.x, aim.y, aim.z);
+            out += buf;
+        }
+        if (l.placement && !l.placement->object.empty() &&
+            !(l.openingOverride.x > 0.0 || l.openingOverride.y > 0.0)) {
+            glm::dvec3 c = l.placement->centre;
+            std::snprintf(buf, sizeof buf,
+                          ", opening from its L3D object \"%s\" at (%.4g, %.4g, %.4g) m from the "
+                          "insertion point",
+                          l.placement->object.c_str(), c.x, c.y, c.z);
+            out += buf;
+        }
+        if (d.lampFlux > 0.0) {
+            std::snprintf(buf, sizeof buf, ", lamps %.5g lm x LOR %.3g = %.5g lm", d.lampFlux,
+                          d.lightOutputRatio, d.lampFlux * d.lightOutputRatio);
+            out += buf;
+        }
+        return out;
+    }
+
+    static std::vector<std::unique_ptr<Luminaire>> companions(const Luminaire& luminaire) {
+        const PhotometricLuminaire& l = of(luminaire.model());
+        std::vector<std::unique_ptr<Luminaire>> out;
+        if (!l.gldf || !l.mAllEmitters || l.gldfEmitter != 0) return out;
+        for (int k = 1; k < l.gldfEmitterCount; ++k) {
+            auto other = std::make_shared<PhotometricLuminaire>(l);
+            other->loadGldf(l.gldf->path, l.gldfVariant, k);
+            other->mAllEmitters = false;
+            other->updateOpening();
+            auto placement = std::make_unique<Luminaire>(luminaire);
+            placement->setModel(std::move(other));
+            out.push_back(std::move(placement));
+        }
+        return out;
+    }
+
+    static std::string source(const PhotometricLuminaire& l) {
+        if (!l.gldf) return "photometric " + l.file;
+        std::string out = "GLDF " + l.file + " variant \"" + l.gldfVariant + "\"";
+        if (l.gldfEmitterCount > 1)
+            out += " emitter " + std::to_string(l.gldfEmitter) + " of " +
+                   std::to_string(l.gldfEmitterCount);
+        if (!l.gldf->manufacturer.empty() || !l.gldf->productName.empty())
+            out += " (" + l.gldf->manufacturer + (l.gldf->manufacturer.empty() ? "" : " ") +
+                   l.gldf->productName + ")";
+        return out;
+    }
+
+    static std::vector<std::string> sourceFiles(const LuminaireModel& model) {
+        const PhotometricLuminaire& l = of(model);
+        if (l.gldf) return {l.gldf->path};
+        std::vector<std::string> files;
+        if (l.data && !l.data->path.empty()) files.push_back(l.data->path);
+        if (l.data && !l.data->tiltPath.empty()) files.push_back(l.data->tiltPath);
+        return files;
+    }
+};
 
 namespace {
 
 /// The fields a photometric and a GLDF entry share: scale, colour, opening; `file` resolved
 /// against the scene's folder.
-std::unique_ptr<PhotometricLuminaire> parseCommon(const nlohmann::json& entry,
+std::shared_ptr<PhotometricLuminaire> parseCommon(const nlohmann::json& entry,
                                                   const json::Where& where,
                                                   const std::string& fileWanted,
                                                   std::string& resolvedFile) {
     if (!entry.contains("file")) json::fail(where / "file", fileWanted);
-    auto light = std::make_unique<PhotometricLuminaire>();
+    auto light = std::make_shared<PhotometricLuminaire>();
     light->file = json::string(entry["file"], where / "file");
     fs::path resolved(light->file);
     if (resolved.is_relative()) resolved = fs::path(where.file).parent_path() / resolved;
@@ -675,8 +707,8 @@ std::unique_ptr<PhotometricLuminaire> parseCommon(const nlohmann::json& entry,
 
 }  // namespace
 
-std::unique_ptr<Luminaire> PhotometricLuminaire::parse(const nlohmann::json& entry,
-                                                       const json::Where& where) {
+std::unique_ptr<Luminaire> PhotometricAdapter::parse(const nlohmann::json& entry,
+                                                     const json::Where& where) {
     json::checkKeys(entry,
                     {"type", "name", "position", "aim", "c0", "technique", "maintenance_factor",
                      "file", "scale", "colour", "opening", "body", "body_reflectance"},
@@ -684,13 +716,13 @@ std::unique_ptr<Luminaire> PhotometricLuminaire::parse(const nlohmann::json& ent
     std::string resolved;
     auto light = parseCommon(entry, where,
                              "the path of an .ies, .ldt or TM-33 .xml photometric file", resolved);
-    light->data = load(resolved);
+    light->data = PhotometricLuminaire::load(resolved);
     light->updateOpening();
-    return light;
+    return placed(std::move(light));
 }
 
-std::unique_ptr<Luminaire> PhotometricLuminaire::parseGldf(const nlohmann::json& entry,
-                                                           const json::Where& where) {
+std::unique_ptr<Luminaire> PhotometricAdapter::parseGldf(const nlohmann::json& entry,
+                                                         const json::Where& where) {
     json::checkKeys(entry,
                     {"type", "name", "position", "aim", "c0", "technique", "maintenance_factor",
                      "file", "variant", "emitter", "maintenance", "scale", "colour", "opening",
@@ -707,6 +739,7 @@ std::unique_ptr<Luminaire> PhotometricLuminaire::parseGldf(const nlohmann::json&
         });
     light->loadGldf(resolved, variant, emitter);
     light->updateOpening();
+    std::optional<double> maintenanceFactor;
     if (entry.contains("maintenance")) {
         // EN 12464-1's MF from the product's data: {"hours": h, "lmf": x | "years": y, "room":
         // r, "rsmf": x}.
@@ -746,22 +779,50 @@ std::unique_ptr<Luminaire> PhotometricLuminaire::parseGldf(const nlohmann::json&
             json::fail(where / "maintenance_factor",
                        "no maintenance_factor beside \"maintenance\", which makes it " +
                            std::to_string(mf));
-        light->maintenanceFactor = mf;
+        maintenanceFactor = mf;
     }
     // Without "emitter", an entry is every emitter its variant places (companions()).
     light->mAllEmitters = !entry.contains("emitter");
-    return light;
+    auto out = placed(std::move(light));
+    out->maintenanceFactor = maintenanceFactor;
+    return out;
 }
 
-std::unique_ptr<Luminaire> PhotometricLuminaire::create() {
+std::unique_ptr<Luminaire> PhotometricAdapter::create() {
     // The editor's "Add": a bundled real file (resources/luminaires/photometric/LICENSE.md).
-    auto light = std::make_unique<PhotometricLuminaire>();
+    auto light = std::make_shared<PhotometricLuminaire>();
     fs::path bundled =
         fs::path(CANDELA_SOURCE_DIR) / "resources/luminaires/photometric/linear-pendant.ies";
     light->file = bundled.generic_string();
-    light->data = load(light->file);
+    light->data = PhotometricLuminaire::load(light->file);
     light->updateOpening();
-    return light;
+    return placed(std::move(light));
+}
+
+const LuminaireAdapter& photometricAdapter() {
+    using A = PhotometricAdapter;
+    static const LuminaireAdapter adapter{&A::parse,       &A::create,         &A::writeJson,
+                                          &A::gpuData,     &A::gpuTables,      &A::describe,
+                                          &A::sourceFiles, &A::shadowLights,   &A::body,
+                                          &A::companions,  &A::displayRadiance};
+    return adapter;
+}
+
+bool sameGldfVariant(const Luminaire& a, const Luminaire& b) {
+    const PhotometricLuminaire *p = photometricModel(a), *q = photometricModel(b);
+    return p && q && p->gldf && q->gldf && p->gldfEmitterCount > 1 && p->file == q->file &&
+           p->gldfVariant == q->gldfVariant;
+}
+
+std::unique_ptr<Luminaire> parseGldfLuminaire(const nlohmann::json& entry,
+                                              const json::Where& where) {
+    return PhotometricAdapter::parseGldf(entry, where);
+}
+
+const PhotometricLuminaire* photometricModel(const Luminaire& luminaire) {
+    return luminaire.kind() == LuminaireKind::Photometric
+               ? &PhotometricAdapter::of(luminaire.model())
+               : nullptr;
 }
 
 }  // namespace candela

@@ -15,14 +15,17 @@
 
 #include "formats/Gldf.h"
 #include "formats/Photometry.h"
+#include "luminaires/Adapter.h"
 #include "luminaires/Estimate.h"
 #include "luminaires/Luminaire.h"
 #include "util/JsonRead.h"
 
 namespace candela {
 
-class PhotometricLuminaire final : public Luminaire {
+class PhotometricLuminaire final : public LuminaireModel {
   public:
+    PhotometricLuminaire() : LuminaireModel(LuminaireKind::Photometric) {}
+
     std::shared_ptr<const PhotometricData> data;
     std::string file;        ///< As written in the scene (relative to it or absolute).
     double scale = 1.0;      ///< Dimming: multiplies every intensity.
@@ -63,32 +66,17 @@ class PhotometricLuminaire final : public Luminaire {
     /// photometric formats hold one): black.
     double bodyReflectance = 0.0;
 
-    std::string_view kind() const override { return "photometric"; }
     /// The pose moved to the placement's object (the pose itself without one).
-    Pose emitterPose() const override;
-    LuminaireBody body() const override;
-    std::unique_ptr<Luminaire> clone() const override;
-    glm::dvec3 radiance(const glm::dvec3& x, const glm::dvec3& w) const override;
+    Pose emitterPose(const Pose& pose) const override;
+    glm::dvec3 radiance(const Pose& pose, const glm::dvec3& x, const glm::dvec3& w) const override;
     /// Flux from the table (exact quadrature of the interpolant) times scale, lm per channel.
     glm::dvec3 power() const override;
     Quantities quantities() const override { return Quantities::Photometric; }
     /// Uniform in area on the opening (the reference's density, Eq. 6.3), as a solid-angle pdf;
     /// pdf 0 in the opening's plane.
-    LightSample sample(const glm::dvec3& p, const glm::dvec2& u) const override;
-    double pdf(const glm::dvec3& p, const glm::dvec3& wi) const override;
-    std::vector<glm::dvec3> outline() const override;
-    void writeJson(nlohmann::json& out) const override;
-    std::vector<std::byte> gpuData() const override;
-    std::shared_ptr<const GpuTables> gpuTables() const override;
-    std::string describe() const override;
-    /// The photometric file and its TILT file, if any; the .gldf container for a GLDF variant.
-    std::vector<std::string> sourceFiles() const override;
-    glm::dvec3 displayRadiance() const override;
-    /// Maps at the opening's centre and near its four corners (the polygon vertex closest to
-    /// each corner of its bounding rectangle; the two ends of a segment; the centre alone for a
-    /// point or for count 1). Item 0, the whole opening, averages them with equal weights;
-    /// item 1, the centre, reads the centre's map (the `point` technique).
-    ShadowLights shadowLights(int count) const override;
+    LightSample sample(const Pose& pose, const glm::dvec3& p, const glm::dvec2& u) const override;
+    double pdf(const Pose& pose, const glm::dvec3& p, const glm::dvec3& wi) const override;
+    std::vector<glm::dvec3> outline(const Pose& pose) const override;
 
     /// The opening in the local z = 0 plane (metres), counter-clockwise about +z; empty for a
     /// point source.
@@ -99,45 +87,54 @@ class PhotometricLuminaire final : public Luminaire {
     bool contains(const glm::dvec2& q, double slack = 0.0) const;
     /// Largest extent of the opening, metres (0 for a point).
     double size() const { return mSize; }
-    /// Candela towards world direction w (from the luminaire), scale applied.
-    double intensity(const glm::dvec3& w) const;
+    /// Candela towards world direction w (from the luminaire placed at `pose`), scale applied.
+    double intensity(const Pose& pose, const glm::dvec3& w) const;
     /// The photometric frame in world directions: x = C0 (c0 made orthogonal to the aim),
     /// y = C90 = c0 x aim (so C grows counter-clockwise seen from above a downlight, the
     /// photometric convention; Pose::frame's y is aim x c0, the other way), z = the aim
     /// (gamma = 0). The opening, the table and the GPU record all use this frame.
-    void photometricFrame(glm::dvec3& x, glm::dvec3& y, glm::dvec3& z) const;
+    void photometricFrame(const Pose& pose, glm::dvec3& x, glm::dvec3& y, glm::dvec3& z) const;
     /// The opening used: openingOverride, else the placement's, else the file's.
     LuminousOpening opening() const;
     /// Recomputes the polygon after data or openingOverride changed.
     void updateOpening();
 
-    static std::unique_ptr<Luminaire> parse(const nlohmann::json& entry, const json::Where& where);
-    /// A scene's "gldf" entry: {"type": "gldf", "file": "lamp.gldf", "variant": "id", "emitter": k}
-    /// (variant optional: the first; emitter optional: every placement of the variant, the
-    /// others as companions()), with the photometric entry's scale, colour and opening.
-    static std::unique_ptr<Luminaire> parseGldf(const nlohmann::json& entry,
-                                                const json::Where& where);
-    static std::unique_ptr<Luminaire> create();
     /// Loads (shared between instances) a photometric file; throws InputError naming it.
     static std::shared_ptr<const PhotometricData> load(const std::string& path);
-    /// The variant's other placements, when this luminaire is the first of an entry that names
-    /// no "emitter" (each with this one's fields; the scene loader copies name, pose, technique).
-    std::vector<std::unique_ptr<Luminaire>> companions() const override;
     /// Sets gldf, gldfVariant and data from a GLDF container's variant ("" for the first),
     /// shared between instances like load(); throws InputError naming the container.
     void loadGldf(const std::string& path, const std::string& variant, int emitter = 0);
 
   private:
+    friend struct PhotometricAdapter;
     bool mAllEmitters = false;  ///< Parsed from an entry without "emitter" (see companions()).
-    /// "photometric FILE", or "GLDF FILE variant "ID" (MANUFACTURER PRODUCT)", for describe().
-    std::string source() const;
-    /// gpuTables() of `data` as last made (rebuilt when `data` is another model).
+    /// The GPU tables of `data` as last made (rebuilt when `data` is another model).
     mutable std::shared_ptr<const GpuTables> mGpuTables;
     mutable const PhotometricData* mGpuTablesFor = nullptr;
     std::vector<glm::dvec2> mPolygon;
     double mArea = 0.0;
     double mSize = 0.0;
 };
+
+/// Its scene entry (type "photometric", or "gldf" for a GLDF variant: {"type": "gldf", "file":
+/// "lamp.gldf", "variant": "id", "emitter": k}, variant optional: the first; emitter optional:
+/// every placement of the variant, the others as companions), its GPU record and tables, the
+/// photometric file and its TILT file (the .gldf container for a variant) as source files, its
+/// body, and shadow maps at the opening's centre and near its four corners (the polygon vertex
+/// closest to each corner of its bounding rectangle; the two ends of a segment; the centre alone
+/// for a point or for count 1): item 0, the whole opening, averages them with equal weights;
+/// item 1, the centre, reads the centre's map (the `point` technique).
+const LuminaireAdapter& photometricAdapter();
+/// A scene's "gldf" entry (luminaires/Registry.h: a format of the photometric kind), with the
+/// photometric entry's scale, colour and opening; a "maintenance" object sets the placement's
+/// maintenance factor from the product's data.
+std::unique_ptr<Luminaire> parseGldfLuminaire(const nlohmann::json& entry,
+                                              const json::Where& where);
+/// The photometric model of a luminaire; null when it is of another kind.
+const PhotometricLuminaire* photometricModel(const Luminaire& luminaire);
+/// Whether a and b place emitters of one GLDF variant that places several (the luminaires one
+/// scene entry makes, which the editor moves as one).
+bool sameGldfVariant(const Luminaire& a, const Luminaire& b);
 
 /// The techniques (luminaires/photometric/PhotometricEstimators.cpp); all take world p and unit
 /// normal n and return illuminance in lux (per channel, times the colour).

@@ -10,11 +10,12 @@ namespace candela {
 
 Estimate photometricUniformArea(const Luminaire& luminaire, const glm::dvec3& p,
                                 const glm::dvec3& n, const EstimateOptions& options) {
-    const auto& light = static_cast<const PhotometricLuminaire&>(luminaire);
+    const auto& light = *photometricModel(luminaire);
+    const Pose& pose = luminaire.pose;
     if (!(light.area() > 0.0))
         return photometricReference(luminaire, p, n, options);  // a segment or a point
     glm::dvec3 x, y, z;
-    light.photometricFrame(x, y, z);
+    light.photometricFrame(pose, x, y, z);
     glm::dvec2 lo(std::numeric_limits<double>::infinity()), hi(-lo);
     for (const glm::dvec2& v : light.polygon()) {
         lo = glm::min(lo, v);
@@ -26,7 +27,7 @@ Estimate photometricUniformArea(const Luminaire& luminaire, const glm::dvec3& p,
     Random rng(options.seed);
     double mean = 0.0, m2 = 0.0;
     int spp = std::max(1, options.spp);
-    const glm::dvec3 centre = light.emitterPose().position;
+    const glm::dvec3 centre = luminaire.emitterPose().position;
     for (int k = 0; k < spp; ++k) {
         glm::dvec2 u = lo + glm::dvec2(rng.uniform(), rng.uniform()) * (hi - lo);
         double value = 0.0;
@@ -35,7 +36,7 @@ Estimate photometricUniformArea(const Luminaire& luminaire, const glm::dvec3& p,
             glm::dvec3 v = q - p;
             double r = glm::length(v), cosP = r > 0.0 ? glm::dot(normal, v) / r : 0.0;
             if (cosP > 0.0 && (!options.visibility || options.visibility->visible(p, q)))
-                value = light.intensity(-v) * cosP * rect / (light.area() * r * r);
+                value = light.intensity(pose, -v) * cosP * rect / (light.area() * r * r);
         }
         if (!std::isfinite(value)) value = 0.0;
         double delta = value - mean;

@@ -223,7 +223,7 @@ std::vector<std::string> EnvironmentPass::prepassNames(const TechniqueInfo& tech
 }
 
 void EnvironmentPass::setSource(const Luminaire& source, const std::vector<std::byte>&) {
-    mSourceMap = static_cast<const EnvironmentLight&>(source).sharedMap();
+    mSourceMap = environmentModel(source)->sharedMap();
 }
 
 void EnvironmentPass::prepare(const ShadeStep& step, SourceContext& context, int frame, int spp) {

@@ -69,7 +69,7 @@ void GBufferPass::setLuminaires(const Scene& scene) {
         glm::dvec3 x, y, z;
         lum->emitterPose().frame(x, y, z);
         // Emitters show the radiance they send along their axis (exact for Lambertian ones).
-        glm::vec3 emission = glm::vec3(lum->displayRadiance() * scene.lightScale(*lum));
+        glm::vec3 emission = glm::vec3(displayRadiance(*lum) * scene.lightScale(*lum));
         uint32_t base = uint32_t(vertices.size());
         for (const auto& p : outline)
             vertices.push_back({glm::vec3(p), glm::vec3(z), glm::vec3(0.05f), glm::vec4(0.f),

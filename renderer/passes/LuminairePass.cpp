@@ -30,7 +30,7 @@ gl::TextureArray uploadGpuTable(const GpuTable& t) {
 }
 
 void LuminairePass::setSource(const Luminaire& source, const std::vector<std::byte>& record) {
-    std::shared_ptr<const GpuTables> tables = source.gpuTables();
+    std::shared_ptr<const GpuTables> tables = gpuTables(source);
     if (tables != mTables) {
         mTextures.clear();
         try {
@@ -38,7 +38,7 @@ void LuminairePass::setSource(const Luminaire& source, const std::vector<std::by
                 for (const GpuTable& t : *tables) mTextures.push_back(uploadGpuTable(t));
         } catch (const RuntimeError& e) {
             // Name the luminaire and its file: the table is the file's data.
-            std::vector<std::string> files = source.sourceFiles();
+            std::vector<std::string> files = sourceFiles(source);
             throw RuntimeError("luminaire \"" + source.name + "\"" +
                                (files.empty() ? std::string() : " (" + files.front() + ")") + ": " +
                                e.what());
@@ -55,7 +55,7 @@ void LuminairePass::setSource(const Luminaire& source, const std::vector<std::by
 void LuminairePass::prepare(const ShadeStep& step, SourceContext& context, int, int) {
     if (!step.shadowMaps) return;
     if (!mShadowMaps) mShadowMaps = std::make_unique<ShadowMaps>();
-    ShadowLights lights = step.source->shadowLights(context.settings.shadowMaps.count);
+    ShadowLights lights = shadowLights(*step.source, context.settings.shadowMaps.count);
     if (!mShadowMaps->stale(lights, context.settings.shadowMaps, context.geometryGeneration))
         return;
     const ShadowGeometry& geometry = context.geometry();

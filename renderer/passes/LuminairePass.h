@@ -1,8 +1,8 @@
 #pragma once
-// A placed luminaire's GPU pass: its record (Luminaire::gpuData) in a buffer of its own, its
-// tables (Luminaire::gpuTables) in textures, uploaded again only when the model changes, its
-// shadow maps when its technique reads them (rendered from Luminaire::shadowLights when stale),
-// and the shading of its technique's variant (luminaires/Registry.cpp names the shader).
+// A placed luminaire's GPU pass: its record (gpuData, luminaires/Adapter.h) in a buffer of its own,
+// its tables (gpuTables) in textures, uploaded again only when the model changes, its shadow maps
+// when its technique reads them (rendered from its shadowLights when stale), and the shading of its
+// technique's variant (luminaires/Registry.cpp names the shader).
 
 #include <memory>
 #include <vector>

@@ -1,8 +1,8 @@
 #pragma once
 // Shadow maps of one luminaire (Lu et al. 2015, Sec. 6.2, for light fields; the same module for
-// any kind whose Luminaire::shadowLights() names lights). Each map is a depth cube map around
-// one light point, so every direction is covered and no receiver falls outside a frustum; the
-// maps of a luminaire share one cube-map array texture (6 layers per map). Shading reads them
+// any kind whose shadowLights (luminaires/Adapter.h) names lights). Each map is a depth cube map
+// around one light point, so every direction is covered and no receiver falls outside a frustum;
+// the maps of a luminaire share one cube-map array texture (6 layers per map). Shading reads them
 // through shaders/shadow_maps.glsl, which documents the bias and the filtering.
 //
 // Work happens only when something the maps depend on changed: the lights (the luminaire moved,

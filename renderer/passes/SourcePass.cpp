@@ -10,17 +10,18 @@ namespace {
 /// The kinds whose GPU shading needs more than a record and shadow maps. A kind not listed is
 /// served by LuminairePass.
 struct KindPass {
-    std::string_view kind;
+    LuminaireKind kind;
     std::unique_ptr<SourcePass> (*make)();
     std::vector<std::string> (*prepasses)(const TechniqueInfo&);
 };
 
 const KindPass kKindPasses[] = {
-    {"environment", [] { return std::unique_ptr<SourcePass>(std::make_unique<EnvironmentPass>()); },
+    {LuminaireKind::Environment,
+     [] { return std::unique_ptr<SourcePass>(std::make_unique<EnvironmentPass>()); },
      &EnvironmentPass::prepassNames},
 };
 
-const KindPass* kindPass(std::string_view kind) {
+const KindPass* kindPass(LuminaireKind kind) {
     for (const KindPass& k : kKindPasses)
         if (k.kind == kind) return &k;
     return nullptr;
@@ -28,7 +29,7 @@ const KindPass* kindPass(std::string_view kind) {
 
 }  // namespace
 
-std::unique_ptr<SourcePass> makeSourcePass(std::string_view kind) {
+std::unique_ptr<SourcePass> makeSourcePass(LuminaireKind kind) {
     if (const KindPass* k = kindPass(kind)) return k->make();
     return std::make_unique<LuminairePass>();
 }

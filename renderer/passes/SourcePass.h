@@ -41,7 +41,7 @@ class SourcePass {
   public:
     virtual ~SourcePass() = default;
     /// The source this pass serves now (a new one, or the same with new data) and its record
-    /// (Luminaire::gpuData, made once by the renderer): upload what changed.
+    /// (gpuData, luminaires/Adapter.h, made once by the renderer): upload what changed.
     virtual void setSource(const Luminaire& source, const std::vector<std::byte>& record) = 0;
     /// At the start of a pass (before its first band): what the step's technique reads (tables,
     /// this pass's samples, shadow maps), each timed under the names of ShadeStep::prepasses or
@@ -53,7 +53,7 @@ class SourcePass {
 };
 
 /// The pass for a source of `kind` (needs a current GL context).
-std::unique_ptr<SourcePass> makeSourcePass(std::string_view kind);
+std::unique_ptr<SourcePass> makeSourcePass(LuminaireKind kind);
 /// The names of the prepasses a technique's kind runs for it (FramePlan::passNames).
 std::vector<std::string> sourcePrepasses(const TechniqueInfo& technique);
 

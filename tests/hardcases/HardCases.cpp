@@ -130,17 +130,17 @@ std::string iesText(const std::vector<double>& gamma, const std::vector<double>&
 
 /// A photometric light 2 m up, aiming down, C0 along +x: its table and its opening
 /// (length along x, width along z; zero width: a segment; both zero: a point).
-std::shared_ptr<PhotometricLuminaire> photometric(const std::string& ies, double length,
-                                                  double width) {
-    auto light = std::make_shared<PhotometricLuminaire>();
-    light->data = std::make_shared<const PhotometricData>(parseIes(ies, "hard-case.ies"));
-    light->openingOverride = {length, width};
-    if (length == 0.0 && width == 0.0) light->openingOverride = {0.0, 0.0};
+std::shared_ptr<Luminaire> photometric(const std::string& ies, double length, double width) {
+    auto model = std::make_shared<PhotometricLuminaire>();
+    model->data = std::make_shared<const PhotometricData>(parseIes(ies, "hard-case.ies"));
+    model->openingOverride = {length, width};
+    if (length == 0.0 && width == 0.0) model->openingOverride = {0.0, 0.0};
+    model->updateOpening();
+    auto light = std::make_shared<Luminaire>(model);
     light->pose.position = {0, kH, 0};
     light->pose.aim = {0, -1, 0};
     light->pose.c0 = {1, 0, 0};
     light->technique = "reference";
-    light->updateOpening();
     return light;
 }
 
@@ -157,11 +157,12 @@ std::string isotropicTable(double length, double width) {
     return iesText({0, 90, 180}, {1000, 1000, 1000}, length, width);
 }
 
-std::shared_ptr<LambertianRect> rect(double a, double b, double L) {
-    auto light = std::make_shared<LambertianRect>();
-    light->size = {2 * a, 2 * b};
-    light->emitted = glm::dvec3(L);
-    light->luminous = true;
+std::shared_ptr<Luminaire> rect(double a, double b, double L) {
+    auto model = std::make_shared<LambertianRect>();
+    model->size = {2 * a, 2 * b};
+    model->emitted = glm::dvec3(L);
+    model->luminous = true;
+    auto light = std::make_shared<Luminaire>(model);
     light->pose.position = {0, kH, 0};
     light->pose.aim = {0, -1, 0};
     light->pose.c0 = {1, 0, 0};
@@ -174,7 +175,7 @@ constexpr int kLfNodes = 9;  ///< Nodes -0.2 .. 0.2: the B-splines sum to one on
 
 /// A light field, S at y = kH ([-0.1, 0.1]^2, delta 0.05), U above; images of 4 x 4 pixels of
 /// value `value`, or (bright) zero but for one pixel of the centre image.
-std::shared_ptr<LightFieldLuminaire> lightField(double value, bool bright) {
+std::shared_ptr<Luminaire> lightField(double value, bool bright) {
     auto lf = std::make_shared<LightFieldData>();
     lf->delta = kLfDelta;
     lf->spacing = {kLfSpacing, kLfSpacing};
@@ -192,8 +193,9 @@ std::shared_ptr<LightFieldLuminaire> lightField(double value, bool bright) {
     }
     lf->validate("hard-case light field");
     lf->precompute();
-    auto light = std::make_shared<LightFieldLuminaire>();
-    light->data = lf;
+    auto model = std::make_shared<LightFieldLuminaire>();
+    model->data = lf;
+    auto light = std::make_shared<Luminaire>(model);
     light->pose.position = {0, kH + kLfDelta, 0};  // S at y = kH
     light->pose.aim = {0, -1, 0};
     light->pose.c0 = {1, 0, 0};
@@ -301,11 +303,12 @@ struct CaseBuilder {
     double lMax = 0.0;                    // brightest radiance of the opening, cd/m2
     const glm::dvec3 up{0, 1, 0}, down{0, -1, 0}, side{1, 0, 0};
 
-    void add(std::string name, std::string kind, Class cls, std::shared_ptr<const Luminaire> light,
-             glm::dvec3 p, glm::dvec3 n, double expected, std::string how) {
+    void add(std::string name, LuminaireKind kind, Class cls,
+             std::shared_ptr<const Luminaire> light, glm::dvec3 p, glm::dvec3 n, double expected,
+             std::string how) {
         Case c;
         c.name = std::move(name);
-        c.kind = std::move(kind);
+        c.kind = kind;
         c.cls = cls;
         c.light = std::move(light);
         c.p = p;
@@ -314,7 +317,7 @@ struct CaseBuilder {
         c.how = std::move(how);
         // Float keeps about 7 digits of the emitter's 2 m: 1e-6 m is its last.
         c.belowFloat = std::abs(kH - p.y) < 1e-5 && std::abs(kH - p.y) > 0.0;
-        if (c.kind == "photometric") {
+        if (c.kind == LuminaireKind::Photometric) {
             c.intensity = table;
             c.upperBound =
                 opening.size() >= 3 ? kPi * lMax * polygonFormFactor(c.p, c.n, opening) : 0.0;
@@ -351,30 +354,31 @@ void CaseBuilder::photometricLambert() {
         return kPi * L * polygonFormFactor(p, n, rectangle(a, b));
     };
     std::string lam = "pi L F (Lambert's polygon formula)";
-    add("photometric/lambert/ordinary", "photometric", Class::Ordinary, light, {0.4, 1.0, 0.3}, up,
-        form({0.4, 1.0, 0.3}, up), lam);
+    add("photometric/lambert/ordinary", LuminaireKind::Photometric, Class::Ordinary, light,
+        {0.4, 1.0, 0.3}, up, form({0.4, 1.0, 0.3}, up), lam);
     for (double d : {1e-9, 1e-6, 1e-3}) {
         char name[64];
         std::snprintf(name, sizeof name, "photometric/lambert/contact-%g", d);
-        add(name, "photometric", Class::Contact, light, {0, kH - d, 0}, up,
+        add(name, LuminaireKind::Photometric, Class::Contact, light, {0, kH - d, 0}, up,
             form({0, kH - d, 0}, up), lam);
     }
-    add("photometric/lambert/contact-1e-6-off-centre", "photometric", Class::Contact, light,
-        {0.2, kH - 1e-6, 0.1}, up, form({0.2, kH - 1e-6, 0.1}, up), lam);
-    add("photometric/lambert/on-plane-inside", "photometric", Class::OnPlane, light, {0, kH, 0}, up,
-        kPi * L, "the front limit pi L (a receiver on the emitter: any value in [0, pi L])");
-    add("photometric/lambert/in-plane-beside", "photometric", Class::OnPlane, light, {0.5, kH, 0},
-        {-1, 0, 0}, 0.0, "0: the opening is seen edge-on");
-    add("photometric/lambert/grazing-contact", "photometric", Class::Grazing, light,
+    add("photometric/lambert/contact-1e-6-off-centre", LuminaireKind::Photometric, Class::Contact,
+        light, {0.2, kH - 1e-6, 0.1}, up, form({0.2, kH - 1e-6, 0.1}, up), lam);
+    add("photometric/lambert/on-plane-inside", LuminaireKind::Photometric, Class::OnPlane, light,
+        {0, kH, 0}, up, kPi * L,
+        "the front limit pi L (a receiver on the emitter: any value in [0, pi L])");
+    add("photometric/lambert/in-plane-beside", LuminaireKind::Photometric, Class::OnPlane, light,
+        {0.5, kH, 0}, {-1, 0, 0}, 0.0, "0: the opening is seen edge-on");
+    add("photometric/lambert/grazing-contact", LuminaireKind::Photometric, Class::Grazing, light,
         {0, kH - 1e-9, 0}, side, form({0, kH - 1e-9, 0}, side), lam + ": pi L / 2");
     glm::dvec3 graze = glm::normalize(glm::dvec3(1, 1e-6, 0));
-    add("photometric/lambert/grazing-normal-1m", "photometric", Class::Grazing, light,
+    add("photometric/lambert/grazing-normal-1m", LuminaireKind::Photometric, Class::Grazing, light,
         {-0.5, 1.0, 0}, graze, form({-0.5, 1.0, 0}, graze), lam);
-    add("photometric/lambert/behind", "photometric", Class::Behind, light, {0, 2.5, 0}, down, 0.0,
-        "0: the table sends nothing up");
+    add("photometric/lambert/behind", LuminaireKind::Photometric, Class::Behind, light, {0, 2.5, 0},
+        down, 0.0, "0: the table sends nothing up");
     double r = std::sqrt(1e10 + 9e8);
-    add("photometric/lambert/far-1e5", "photometric", Class::Far, light, {3e4, kH - 1e5, 0}, up,
-        1000.0 * std::pow(1e5 / r, 2) / (r * r), "I cos(gamma) cos / r^2");
+    add("photometric/lambert/far-1e5", LuminaireKind::Photometric, Class::Far, light,
+        {3e4, kH - 1e5, 0}, up, 1000.0 * std::pow(1e5 / r, 2) / (r * r), "I cos(gamma) cos / r^2");
 }
 
 /// Tiny and huge openings.
@@ -386,21 +390,23 @@ void CaseBuilder::photometricSizes() {
     glm::dvec3 p(0.3, 0.0, 0.2);
     glm::dvec3 v = glm::dvec3(0, kH, 0) - p;
     double r = glm::length(v), c = v.y / r;
-    add("photometric/tiny-1e-6/at-2m", "photometric", Class::Tiny, tiny, p, up,
+    add("photometric/tiny-1e-6/at-2m", LuminaireKind::Photometric, Class::Tiny, tiny, p, up,
         1000.0 * c * c / (r * r), "the point law I cos / r^2 (the opening's size is 1e-6 of r)");
     p = {0.03, kH - 0.1, 0.02};
     v = glm::dvec3(0, kH, 0) - p;
     r = glm::length(v);
     c = v.y / r;
-    add("photometric/tiny-1e-6/at-0.1m", "photometric", Class::Tiny, tiny, p, up,
+    add("photometric/tiny-1e-6/at-0.1m", LuminaireKind::Photometric, Class::Tiny, tiny, p, up,
         1000.0 * c * c / (r * r), "the point law I cos / r^2");
     auto huge = photometric(lambertTable(100, 100), 100, 100);
     const double L = 1000.0 / 1e4;
     opening = rectangle(50, 50);
     lMax = L;
-    add("photometric/huge-100m/contact-1e-9", "photometric", Class::Huge, huge, {0, kH - 1e-9, 0},
-        up, kPi * L * polygonFormFactor({0, kH - 1e-9, 0}, up, rectangle(50, 50)), "pi L F");
-    add("photometric/huge-100m/at-1m", "photometric", Class::Huge, huge, {10, kH - 1.0, -5}, up,
+    add("photometric/huge-100m/contact-1e-9", LuminaireKind::Photometric, Class::Huge, huge,
+        {0, kH - 1e-9, 0}, up,
+        kPi * L * polygonFormFactor({0, kH - 1e-9, 0}, up, rectangle(50, 50)), "pi L F");
+    add("photometric/huge-100m/at-1m", LuminaireKind::Photometric, Class::Huge, huge,
+        {10, kH - 1.0, -5}, up,
         kPi * L * polygonFormFactor({10, kH - 1.0, -5}, up, rectangle(50, 50)), "pi L F");
 }
 
@@ -418,12 +424,12 @@ void CaseBuilder::photometricSegment() {
         char name[64];
         table = cosine;
         std::snprintf(name, sizeof name, "photometric/segment-cosine/below-%g", d);
-        add(name, "photometric", Class::Segment, lam, {0, kH - d, 0}, up,
+        add(name, LuminaireKind::Photometric, Class::Segment, lam, {0, kH - d, 0}, up,
             1000.0 / 0.6 * (lamInt(0.3) - lamInt(-0.3)),
             "the line integral of I0 cos cos / r^2 (closed form)");
         table = isotropic;
         std::snprintf(name, sizeof name, "photometric/segment-isotropic/below-%g", d);
-        add(name, "photometric", Class::Segment, iso, {0, kH - d, 0}, up,
+        add(name, LuminaireKind::Photometric, Class::Segment, iso, {0, kH - d, 0}, up,
             1000.0 / 0.6 * (isoInt(0.3) - isoInt(-0.3)),
             "the line integral of I0 cos / r^2 (closed form)");
     }
@@ -436,15 +442,15 @@ void CaseBuilder::photometricPoint() {
     for (double d : {1e-9, 1e-3, 1.0}) {
         char name[64];
         std::snprintf(name, sizeof name, "photometric/point/below-%g", d);
-        add(name, "photometric", Class::Point, point, {0, kH - d, 0}, up, 1000.0 / (d * d),
-            "I / d^2");
+        add(name, LuminaireKind::Photometric, Class::Point, point, {0, kH - d, 0}, up,
+            1000.0 / (d * d), "I / d^2");
     }
     // A normal 1e-6 rad above perpendicular to the light's direction: cos = sin(1e-6).
     glm::dvec3 toLight = glm::normalize(glm::dvec3(-1, 1, 0)),
                across = glm::normalize(glm::dvec3(1, 1, 0));
     glm::dvec3 n = std::cos(1e-6) * across + std::sin(1e-6) * toLight;
-    add("photometric/point/grazing", "photometric", Class::Grazing, point, {1.0, 1.0, 0}, n,
-        1000.0 * std::sin(1e-6) / 2.0, "I cos / r^2 with cos = sin(1e-6)");
+    add("photometric/point/grazing", LuminaireKind::Photometric, Class::Grazing, point,
+        {1.0, 1.0, 0}, n, 1000.0 * std::sin(1e-6) / 2.0, "I cos / r^2 with cos = sin(1e-6)");
 }
 
 /// A 1e9 cd spike 0.5 degrees wide on the axis over 100 cd elsewhere, on a point and on a
@@ -460,16 +466,17 @@ void CaseBuilder::photometricTables() {
     };
     table = spike;
     auto point = photometric(iesText(g, c, 0, 0), 0, 0);
-    add("photometric/spike-point/below-1m", "photometric", Class::Spike, point, {0, kH - 1.0, 0},
-        up, 1e9, "I / d^2");
-    add("photometric/spike-point/off-axis", "photometric", Class::Spike, point, {0.5, kH - 1.0, 0},
-        up, 100.0 * (1.0 / std::sqrt(1.25)) / 1.25, "I cos / r^2 (100 cd there)");
+    add("photometric/spike-point/below-1m", LuminaireKind::Photometric, Class::Spike, point,
+        {0, kH - 1.0, 0}, up, 1e9, "I / d^2");
+    add("photometric/spike-point/off-axis", LuminaireKind::Photometric, Class::Spike, point,
+        {0.5, kH - 1.0, 0}, up, 100.0 * (1.0 / std::sqrt(1.25)) / 1.25,
+        "I cos / r^2 (100 cd there)");
     auto wide = photometric(iesText(g, c, 0.6, 0.3), 0.6, 0.3);
     opening = rectangle(0.3, 0.15);
     lMax = 1e9 / 0.18;
     // The spike's cone meets the opening within 1 m tan(0.5 deg) = 8.7 mm of the foot point.
     double w = std::tan(0.5 * kPi / 180.0);
-    add("photometric/spike-opening/below-1m", "photometric", Class::Spike, wide,
+    add("photometric/spike-opening/below-1m", LuminaireKind::Photometric, Class::Spike, wide,
         {0.05, kH - 1.0, 0.02}, up,
         areaForm({0.05, kH - 1.0, 0.02}, up, 0.3, 0.15, spike, {0.05 - w, 0.05 + w},
                  {0.02 - w, 0.02 + w}),
@@ -477,8 +484,8 @@ void CaseBuilder::photometricTables() {
     table = [](double) { return 0.0; };
     lMax = 0.0;
     auto zeros = photometric(iesText({0, 90, 180}, {0, 0, 0}, 0.6, 0.3), 0.6, 0.3);
-    add("photometric/zeros/below-1m", "photometric", Class::Zero, zeros, {0.1, 1.0, 0}, up, 0.0,
-        "0");
+    add("photometric/zeros/below-1m", LuminaireKind::Photometric, Class::Zero, zeros, {0.1, 1.0, 0},
+        up, 0.0, "0");
     std::vector<double> g1 = {0, 20, 25, 30, 35, 40, 90}, c1 = {0, 0, 0, 500, 0, 0, 0};
     opening.clear();
     table = [](double gamma) {
@@ -489,7 +496,7 @@ void CaseBuilder::photometricTables() {
     };
     auto ring = photometric(iesText(g1, c1, 0, 0), 0, 0);
     double gamma = 28.0 * kPi / 180.0, h = 1.0, x = h * std::tan(gamma), r = h / std::cos(gamma);
-    add("photometric/single-value/at-28deg", "photometric", Class::SingleValue, ring,
+    add("photometric/single-value/at-28deg", LuminaireKind::Photometric, Class::SingleValue, ring,
         {x, kH - h, 0}, up, 500.0 * (3.0 / 5.0) * std::cos(gamma) / (r * r),
         "I (linear between 25 and 30 deg) cos / r^2");
 }
@@ -526,8 +533,8 @@ void CaseBuilder::photometricBox() {
     lMax = 0.0;
     auto light = photometric(iesText(g, c, 2 * a, 2 * a), 2 * a, 2 * a);
     auto add1 = [&](const char* name, glm::dvec3 p, glm::dvec3 n) {
-        add(std::string("photometric/box-up-down/") + name, "photometric", Class::Table, light, p,
-            n, areaForm(p, glm::normalize(n), a, a, boxTable),
+        add(std::string("photometric/box-up-down/") + name, LuminaireKind::Photometric,
+            Class::Table, light, p, n, areaForm(p, glm::normalize(n), a, a, boxTable),
             "the area form by the test's graded quadrature");
     };
     add1("above-0.3m", {0.0, kH + 0.3, 0.0}, down);
@@ -547,30 +554,32 @@ void CaseBuilder::lambertianRect() {
         return kPi * L * polygonFormFactor(p, n, rectangle(a, b));
     };
     std::string lam = "pi L F (Lambert's polygon formula)";
-    add("lambertian-rect/ordinary", "lambertian-rect", Class::Ordinary, light, {0.4, 1.0, 0.3}, up,
-        form({0.4, 1.0, 0.3}, up), lam);
+    add("lambertian-rect/ordinary", LuminaireKind::LambertianRect, Class::Ordinary, light,
+        {0.4, 1.0, 0.3}, up, form({0.4, 1.0, 0.3}, up), lam);
     for (double d : {1e-9, 1e-6, 1e-3}) {
         char name[64];
         std::snprintf(name, sizeof name, "lambertian-rect/contact-%g", d);
-        add(name, "lambertian-rect", Class::Contact, light, {0, kH - d, 0}, up,
+        add(name, LuminaireKind::LambertianRect, Class::Contact, light, {0, kH - d, 0}, up,
             form({0, kH - d, 0}, up), lam);
     }
-    add("lambertian-rect/on-plane-inside", "lambertian-rect", Class::OnPlane, light, {0, kH, 0}, up,
-        kPi * L, "the front limit pi L (a receiver on the emitter: any value in [0, pi L])");
-    add("lambertian-rect/grazing-contact", "lambertian-rect", Class::Grazing, light,
+    add("lambertian-rect/on-plane-inside", LuminaireKind::LambertianRect, Class::OnPlane, light,
+        {0, kH, 0}, up, kPi * L,
+        "the front limit pi L (a receiver on the emitter: any value in [0, pi L])");
+    add("lambertian-rect/grazing-contact", LuminaireKind::LambertianRect, Class::Grazing, light,
         {0, kH - 1e-9, 0}, side, form({0, kH - 1e-9, 0}, side), lam + ": pi L / 2");
-    add("lambertian-rect/behind", "lambertian-rect", Class::Behind, light, {0, 2.5, 0}, down, 0.0,
-        "0: it emits down only");
+    add("lambertian-rect/behind", LuminaireKind::LambertianRect, Class::Behind, light, {0, 2.5, 0},
+        down, 0.0, "0: it emits down only");
     double r = std::sqrt(1e10 + 9e8);
-    add("lambertian-rect/far-1e5", "lambertian-rect", Class::Far, light, {3e4, kH - 1e5, 0}, up,
-        L * 4 * a * b * std::pow(1e5 / r, 2) / (r * r), "L A cos cos / r^2");
+    add("lambertian-rect/far-1e5", LuminaireKind::LambertianRect, Class::Far, light,
+        {3e4, kH - 1e5, 0}, up, L * 4 * a * b * std::pow(1e5 / r, 2) / (r * r),
+        "L A cos cos / r^2");
     auto tiny = rect(0.5e-6, 0.5e-6, L);
     glm::dvec3 p(0.3, 0.0, 0.2), v = glm::dvec3(0, kH, 0) - p;
     double rr = glm::length(v), c = v.y / rr;
-    add("lambertian-rect/tiny-1e-6/at-2m", "lambertian-rect", Class::Tiny, tiny, p, up,
+    add("lambertian-rect/tiny-1e-6/at-2m", LuminaireKind::LambertianRect, Class::Tiny, tiny, p, up,
         L * 1e-12 * c * c / (rr * rr), "L A cos cos / r^2");
     auto huge = rect(50, 50, L);
-    add("lambertian-rect/huge-100m/contact-1e-9", "lambertian-rect", Class::Huge, huge,
+    add("lambertian-rect/huge-100m/contact-1e-9", LuminaireKind::LambertianRect, Class::Huge, huge,
         {0, kH - 1e-9, 0}, up,
         kPi * L * polygonFormFactor({0, kH - 1e-9, 0}, up, rectangle(50, 50)), lam);
 }
@@ -581,30 +590,30 @@ void CaseBuilder::lightFields() {
     auto constant = lightField(1000.0, false);
     auto q = [](glm::dvec3 p, glm::dvec3 n) { return lightFieldQuadrature(p, n, 1000.0, false); };
     std::string how = "the test's quadrature over U";
-    add("lightfield/ordinary", "lightfield", Class::Ordinary, constant, {0.3, 1.0, 0.1}, up,
-        q({0.3, 1.0, 0.1}, up), how);
+    add("lightfield/ordinary", LuminaireKind::LightField, Class::Ordinary, constant,
+        {0.3, 1.0, 0.1}, up, q({0.3, 1.0, 0.1}, up), how);
     for (double d : {1e-9, 1e-6, 1e-3}) {
         char name[64];
         std::snprintf(name, sizeof name, "lightfield/beyond-S-%g", d);
-        add(name, "lightfield", Class::Contact, constant, {0.01, kH - d, 0.02}, up,
+        add(name, LuminaireKind::LightField, Class::Contact, constant, {0.01, kH - d, 0.02}, up,
             q({0.01, kH - d, 0.02}, up), how);
     }
-    add("lightfield/on-S", "lightfield", Class::OnPlane, constant, {0.01, kH, 0.02}, up,
-        q({0.01, kH - 1e-12, 0.02}, up), how + " (Eq. 9: the limit onto S)");
-    add("lightfield/between-U-and-S", "lightfield", Class::Behind, constant, {0, kH + 0.025, 0}, up,
-        0.0, "0: inside the luminaire");
-    add("lightfield/behind-U", "lightfield", Class::Behind, constant, {0, kH + 0.3, 0}, down, 0.0,
-        "0: behind it");
-    add("lightfield/grazing-contact", "lightfield", Class::Grazing, constant,
+    add("lightfield/on-S", LuminaireKind::LightField, Class::OnPlane, constant, {0.01, kH, 0.02},
+        up, q({0.01, kH - 1e-12, 0.02}, up), how + " (Eq. 9: the limit onto S)");
+    add("lightfield/between-U-and-S", LuminaireKind::LightField, Class::Behind, constant,
+        {0, kH + 0.025, 0}, up, 0.0, "0: inside the luminaire");
+    add("lightfield/behind-U", LuminaireKind::LightField, Class::Behind, constant, {0, kH + 0.3, 0},
+        down, 0.0, "0: behind it");
+    add("lightfield/grazing-contact", LuminaireKind::LightField, Class::Grazing, constant,
         {0.01, kH - 1e-6, 0.02}, side, q({0.01, kH - 1e-6, 0.02}, side), how);
     double r = std::sqrt(1e10 + 9e8);
-    add("lightfield/far-1e5", "lightfield", Class::Far, constant, {3e4, kH - 1e5, 0}, up,
-        1000.0 * 0.04 * std::pow(1e5 / r, 2) / (r * r), "its far field: C A_S cos cos / r^2");
+    add("lightfield/far-1e5", LuminaireKind::LightField, Class::Far, constant, {3e4, kH - 1e5, 0},
+        up, 1000.0 * 0.04 * std::pow(1e5 / r, 2) / (r * r), "its far field: C A_S cos cos / r^2");
     auto bright = lightField(1e6, true);
-    add("lightfield/bright-pixel/at-1m", "lightfield", Class::BrightPixel, bright,
+    add("lightfield/bright-pixel/at-1m", LuminaireKind::LightField, Class::BrightPixel, bright,
         {-0.04, kH - 1.0, -0.03}, up, lightFieldQuadrature({-0.04, kH - 1.0, -0.03}, up, 1e6, true),
         how);
-    add("lightfield/bright-pixel/near", "lightfield", Class::BrightPixel, bright,
+    add("lightfield/bright-pixel/near", LuminaireKind::LightField, Class::BrightPixel, bright,
         {-0.04, kH - 0.01, -0.03}, up,
         lightFieldQuadrature({-0.04, kH - 0.01, -0.03}, up, 1e6, true), how);
 }

@@ -46,12 +46,12 @@ const char* className(Class c);
 
 struct Case {
     std::string name;
-    std::string kind;  ///< Luminaire kind.
+    LuminaireKind kind = LuminaireKind::Photometric;  ///< Luminaire kind.
     Class cls = Class::Ordinary;
-    std::shared_ptr<const Luminaire> light;
-    glm::dvec3 p{0.0}, n{0.0, 1.0, 0.0};  ///< Receiver, world, unit normal.
-    double expected = 0.0;                ///< Irradiance (luminance-weighted), the light's unit.
-    std::string how;                      ///< How the expected value was found.
+    std::shared_ptr<const Luminaire> light;  ///< A placed luminaire of that kind.
+    glm::dvec3 p{0.0}, n{0.0, 1.0, 0.0};     ///< Receiver, world, unit normal.
+    double expected = 0.0;                   ///< Irradiance (luminance-weighted), the light's unit.
+    std::string how;                         ///< How the expected value was found.
     /// The receiver is within float rounding of the emitter (the GPU sees it on the plane).
     bool belowFloat = false;
     /// Photometric cases: the table's intensity (cd) at the angle gamma from the aim (every

@@ -34,7 +34,7 @@ bool common(const TechniqueInfo& t, const Case& c, Promise& out) {
     }
     // A receiver on the emitter itself: the limit from its front is pi L, from behind 0; any
     // value between is a correct reading of an ill-posed question (docs/hard-cases.md says so).
-    if (c.cls == Class::OnPlane && c.kind != "lightfield") {
+    if (c.cls == Class::OnPlane && c.kind != LuminaireKind::LightField) {
         out = bounded(0.0, c.expected * (1.0 + 1e-9),
                       "on the emitter: between the limits 0 and pi L");
         return true;
@@ -88,9 +88,9 @@ Promise stated(const TechniqueInfo& t, const Case& c) {
 }  // namespace
 
 double openingSizesAway(const Case& c) {
-    auto* light = dynamic_cast<const PhotometricLuminaire*>(c.light.get());
+    const PhotometricLuminaire* light = photometricModel(*c.light);
     if (!light || !(light->area() > 0.0)) return std::numeric_limits<double>::infinity();
-    return glm::length(c.p - light->pose.position) / light->size();
+    return glm::length(c.p - c.light->pose.position) / light->size();
 }
 
 Promise promise(const TechniqueInfo& t, const Case& c) {

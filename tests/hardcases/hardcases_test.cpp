@@ -43,7 +43,7 @@ TEST(HardCases, GridCoversEveryKindAndClass) {
     for (const LuminaireKindInfo& k : luminaireKinds()) {
         bool has = false;
         for (const hard::Case& c : hard::cases()) has = has || c.kind == k.kind;
-        EXPECT_TRUE(has) << "no hard case for the kind " << k.kind;
+        EXPECT_TRUE(has) << "no hard case for the kind " << k.name;
     }
     for (int cls = 0; cls <= int(hard::Class::Table); ++cls) {
         bool has = false;
