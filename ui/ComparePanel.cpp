@@ -40,17 +40,12 @@ std::vector<LuminaireKind> sceneKinds(const Scene& scene) {
     return kinds;
 }
 
-/// The technique a pane's list gives a kind; empty: the luminaire's own.
-std::string chosenFor(const std::string& list, LuminaireKind kind) {
-    return overrideFor(list, kind);
-}
-
 /// The list with kind's choice set to name (empty: its own), as "KIND=NAME" items for the kinds.
 std::string withChoice(const std::string& list, const std::vector<LuminaireKind>& kinds,
                        LuminaireKind kind, const std::string& name) {
     std::string out;
     for (LuminaireKind k : kinds) {
-        std::string chosen = k == kind ? name : chosenFor(list, k);
+        std::string chosen = k == kind ? name : overrideFor(list, k);
         if (chosen.empty()) continue;
         if (!out.empty()) out += ',';
         out.append(kindName(k)).append("=").append(chosen);
@@ -293,7 +288,8 @@ bool paneControls(EditorState& state, PaneSpec& spec, int p,
     ImGui::Separator();
     ImGui::Text("Pane %s", kLetters[p]);
     for (LuminaireKind kind : kinds) {
-        std::string chosen = chosenFor(spec.technique, kind);
+        // The technique the pane's list gives the kind; empty: the luminaire's own.
+        std::string chosen = overrideFor(spec.technique, kind);
         std::string label(kindName(kind));
         std::string id = "compare.pane" + std::to_string(p) + "." + label;
         if (ImGui::BeginCombo(label.c_str(), chosen.empty() ? "(its own)" : chosen.c_str())) {

@@ -89,10 +89,6 @@ bool step(EditorState& state, std::vector<UndoStep>& from, std::vector<UndoStep>
 
 namespace {
 
-bool samePose(const Pose& a, const Pose& b) {
-    return a.position == b.position && a.aim == b.aim && a.c0 == b.c0;
-}
-
 /// The placements of one GLDF variant (one luminaire per emitter, sharing the insertion point)
 /// move as one: a pose edit to one of them, whatever made it, is given to those that shared its
 /// pose and were not edited themselves.
@@ -100,10 +96,10 @@ void keepGldfPlacementsTogether(Scene& scene, const std::vector<Pose>& before) {
     auto& lums = scene.luminaires;
     if (lums.size() != before.size()) return;  // added or removed: nothing was only moved
     for (size_t i = 0; i < lums.size(); ++i) {
-        if (samePose(lums[i]->pose, before[i])) continue;
+        if (lums[i]->pose == before[i]) continue;
         for (size_t j = 0; j < lums.size(); ++j) {
-            if (j == i || !sameGldfVariant(*lums[i], *lums[j]) || !samePose(before[j], before[i]) ||
-                !samePose(lums[j]->pose, before[j]))
+            if (j == i || !sameGldfVariant(*lums[i], *lums[j]) || before[j] != before[i] ||
+                lums[j]->pose != before[j])
                 continue;
             lums[j]->pose = lums[i]->pose;
         }
