@@ -15,6 +15,8 @@
 #include "luminaires/Registry.h"
 #include "luminaires/environment/Environment.h"
 #include "scene/GltfLoader.h"
+#include "scene/Procedural.h"
+#include "scene/RoomIo.h"
 #include "shaders/shared/Constants.h"
 #include "util/Activity.h"
 #include "util/Error.h"
@@ -227,28 +229,7 @@ void parseBox(const nlohmann::json& item, const json::Where& where, size_t index
 
     Mesh mesh = itemMesh(item, where, "box " + std::to_string(index),
                          inside ? MeshShape::General : MeshShape::Convex, scene);
-    // Six faces, four vertices each (flat normals). For axis a, e_b x e_c = e_a with b = a + 1,
-    // c = a + 2 (mod 3); swapping u and v on the negative face keeps u x v = outward normal.
-    for (int a = 0; a < 3; ++a) {
-        for (double sign : {1.0, -1.0}) {
-            glm::dvec3 n(0.0), u(0.0), v(0.0);
-            n[a] = sign;
-            u[(a + 1) % 3] = half[(a + 1) % 3];
-            v[(a + 2) % 3] = half[(a + 2) % 3];
-            if (sign < 0.0) std::swap(u, v);
-            glm::dvec3 faceCenter = n * half[a];
-            uint32_t base = uint32_t(mesh.positions.size());
-            for (glm::dvec3 corner :
-                 {faceCenter - u - v, faceCenter + u - v, faceCenter + u + v, faceCenter - u + v}) {
-                mesh.positions.push_back(glm::vec3(center + rotation * corner));
-                mesh.normals.push_back(glm::vec3(rotation * (inside ? -n : n)));
-            }
-            if (inside)
-                for (uint32_t k : {0u, 2u, 1u, 0u, 3u, 2u}) mesh.indices.push_back(base + k);
-            else
-                for (uint32_t k : {0u, 1u, 2u, 0u, 2u, 3u}) mesh.indices.push_back(base + k);
-        }
-    }
+    appendBox(mesh, center, half, rotation, inside);
     mesh.computeBounds();
     scene.meshes.push_back(std::move(mesh));
 }
@@ -337,11 +318,13 @@ std::vector<std::string> parseGltfItem(const nlohmann::json& item, const json::W
 void parseGeometryItem(const nlohmann::json& item, const json::Where& where, size_t index,
                        Scene& scene) {
     if (!item.is_object()) json::fail(where, "an object, got " + std::string(item.type_name()));
-    int kinds = int(item.contains("gltf")) + int(item.contains("plane")) +
-                int(item.contains("box")) + int(item.contains("disc")) +
-                int(item.contains("sphere"));
+    int kinds = 0;
+    for (const char* key : {"gltf", "plane", "disc", "box", "sphere", "room", "furniture"})
+        kinds += int(item.contains(key));
     if (kinds != 1)
-        json::fail(where, "exactly one of \"gltf\", \"plane\", \"disc\", \"box\" or \"sphere\"");
+        json::fail(where,
+                   "exactly one of \"room\", \"furniture\", \"gltf\", \"plane\", \"disc\", "
+                   "\"box\" or \"sphere\"");
 
     GeometryItem geometry;
     geometry.source = item;
@@ -354,6 +337,10 @@ void parseGeometryItem(const nlohmann::json& item, const json::Where& where, siz
         parseDisc(item, where, index, scene);
     else if (item.contains("sphere"))
         parseSphere(item, where, index, scene);
+    else if (item.contains("room"))
+        parseRoom(item, where, scene);
+    else if (item.contains("furniture"))
+        parseFurniture(item, where, index, scene);
     else
         parseBox(item, where, index, scene);
     for (size_t m = firstMesh; m < scene.meshes.size(); ++m) {
