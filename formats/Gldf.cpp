@@ -123,12 +123,15 @@ class ProductReader {
             if (mProduct.file(file.id))
                 defect("two <File> elements with the id " + inQuotes(file.id));
             file.contentType = attribute(f, "contentType");
+            // An unknown content type matters only where the file is used: a photometry must be
+            // one read here (gldfVariantPhotometry says so), and other files are not read.
             if (std::find(std::begin(kContentTypes), std::end(kContentTypes), file.contentType) ==
                 std::end(kContentTypes))
-                defect("file " + inQuotes(file.id) + ": unknown contentType " +
-                       inQuotes(file.contentType) + " (the schema's: ldc/eulumdat, ldc/ies, " +
-                       "ldc/iesxml, image/*, geo/*, document/pdf, symbol/*, sensor/*, " +
-                       "spectrum/text, other)");
+                mProduct.warnings.push_back(
+                    mProduct.path + ": product.xml: file " + inQuotes(file.id) +
+                    ": unknown contentType " + inQuotes(toValidUtf8(file.contentType)) +
+                    " (the schema's: ldc/eulumdat, ldc/ies, ldc/iesxml, image/*, geo/*, "
+                    "document/pdf, symbol/*, sensor/*, spectrum/text, other); not read as any");
             std::string type = attribute(f, "type");
             if (type != "localFileName" && type != "url")
                 defect("file " + inQuotes(file.id) + ": type " + inQuotes(type) +
@@ -352,6 +355,32 @@ class ProductReader {
         }
     }
 
+    /// Leaves a variant's sensor-only emitters out of its placements, and places the product's
+    /// only light emitter where the variant's <Geometry> names none.
+    void placeableEmitters(GldfVariant& variant) const {
+        for (size_t i = variant.emitters.size(); i-- > 0;) {
+            const GldfEmitter* e = mProduct.emitter(variant.emitters[i]);
+            if (!e || !e->lights.empty() || e->sensors == 0) continue;
+            if (std::find(variant.sensorEmitters.begin(), variant.sensorEmitters.end(), e->id) ==
+                variant.sensorEmitters.end())
+                variant.sensorEmitters.insert(variant.sensorEmitters.begin(), e->id);
+            variant.emitters.erase(variant.emitters.begin() + std::ptrdiff_t(i));
+            variant.emitterObjects.erase(variant.emitterObjects.begin() + std::ptrdiff_t(i));
+        }
+        if (!variant.emitters.empty() || !variant.sensorEmitters.empty()) return;
+        const GldfEmitter* only = nullptr;
+        int lights = 0;
+        for (const GldfEmitter& e : mProduct.emitters)
+            if (!e.lights.empty()) {
+                only = &e;
+                ++lights;
+            }
+        if (lights != 1) return;
+        variant.emitters.push_back(only->id);
+        variant.emitterObjects.emplace_back();
+        variant.assumedEmitter = only->id;
+    }
+
     void productDefinitions(const pugi::xml_node& definitions) {
         if (!definitions) defect("no <ProductDefinitions> (the schema requires one)");
         pugi::xml_node meta = definitions.child("ProductMetaData");
@@ -385,6 +414,7 @@ class ProductReader {
             variant.name = locale(v.child("Name"));
             variant.description = locale(v.child("Description"));
             variantGeometry(v.child("Geometry"), variant);
+            placeableEmitters(variant);
             mProduct.variants.push_back(std::move(variant));
         }
         if (mProduct.variants.empty()) defect("no <Variant> in <ProductDefinitions>/<Variants>");
@@ -436,7 +466,8 @@ std::string readMember(const ZipArchive& archive, const std::string& path,
         if (count > kMembersNamed)
             held += " and " + std::to_string(count - kMembersNamed) + " more";
         fail(path + ": " + label + ": not in the container" +
-             (held.empty() ? "" : " (it holds " + held + ")"));
+             (held.empty() ? "" : " (it holds " + held + ")") +
+             "; the container is incomplete: ask the manufacturer for a corrected one");
     }
     return archive.read(index, label);
 }
@@ -541,8 +572,20 @@ GldfPhotometry gldfVariantPhotometry(const std::string& bytes, const GldfProduct
     const std::string& path = product.path;
     std::string variantName = "variant " + inQuotes(variant.id);
     size_t count = variant.emitters.size();
-    if (count == 0)
-        fail(path + ": " + variantName + " places no emitter (its <Geometry> names none)");
+    if (count == 0 && !variant.sensorEmitters.empty())
+        fail(path + ": " + variantName + " has only sensor emitters (" +
+             emitterList(variant.sensorEmitters) +
+             "), which give no light: choose another variant of the product");
+    if (count == 0) {
+        int lights = 0;
+        for (const GldfEmitter& e : product.emitters) lights += e.lights.empty() ? 0 : 1;
+        fail(path + ": " + variantName + " places no emitter (its <Geometry> names none) and " +
+             (lights == 0 ? "the product defines no light emitter: the container holds no "
+                            "photometry to place; ask the manufacturer for one that does"
+                          : "the product has " + std::to_string(lights) +
+                                " light emitters, so which one it places is unknown: choose "
+                                "another variant, or place one of its photometry files itself"));
+    }
     if (placement >= count)
         fail(path + ": " + variantName + " places " + std::to_string(count) +
              " emitter(s); there is no emitter " + std::to_string(placement) + " (from 0)");
@@ -575,7 +618,8 @@ GldfPhotometry gldfVariantPhotometry(const std::string& bytes, const GldfProduct
     const GldfFile& file = *out.file;
     if (file.url)
         fail(path + ": photometry file " + inQuotes(file.id) + " is only a URL (" + file.name +
-             "), not in the container");
+             "), not in the container: download it and place it as a photometric luminaire, or "
+             "ask the manufacturer for a container that holds it");
     std::string member = file.member();
     std::string label =
         member + " (file " + inQuotes(file.id) + ", referenced by " + emitterName + ")";
@@ -595,7 +639,19 @@ GldfPhotometry gldfVariantPhotometry(const std::string& bytes, const GldfProduct
              (type == "ldc/eulumdat" ? "a EULUMDAT"
               : type == "ldc/ies"    ? "an IES"
                                      : "an IES TM-33") +
-             " file: " + e.what());
+             " file: " + e.what() + "; ask the manufacturer for a corrected container");
+    }
+    // What was read leniently, once per variant (its first placement).
+    if (placement == 0) {
+        for (const std::string& w : product.warnings) out.data.warnings.push_back(w);
+        if (!variant.assumedEmitter.empty())
+            out.data.warnings.push_back(path + ": " + variantName +
+                                        ": its <Geometry> names no emitter; placing the "
+                                        "product's only light emitter, " +
+                                        inQuotes(variant.assumedEmitter));
+        for (const std::string& sensor : variant.sensorEmitters)
+            out.data.warnings.push_back(path + ": " + variantName + ": sensor emitter " +
+                                        inQuotes(sensor) + " skipped (a sensor gives no light)");
     }
     out.geometry = geometry ? std::move(geometry) : readVariantGeometry(archive, product, variant);
     if (out.geometry && !object.empty()) {

@@ -133,6 +133,12 @@ struct GldfVariant {
     std::vector<std::string> emitterObjects;
     std::vector<std::string> geometryIds;  ///< Simple and model geometries referenced.
     std::string modelGeometryId;  ///< The ModelGeometry that places the emitters ("" for none).
+    /// Emitters the geometry places that are sensors only (a presence sensor gives no light):
+    /// listed, and left out of `emitters`.
+    std::vector<std::string> sensorEmitters;
+    /// The product's only light emitter, placed because the variant's <Geometry> names none (an
+    /// empty <Geometry>, as some manufacturers write); "" when the variant names its own.
+    std::string assumedEmitter;
 };
 
 /// GeneralDefinitions/Geometries/ModelGeometry: a 3D model (its files: levels of detail and
@@ -154,6 +160,9 @@ struct GldfProduct {
     std::vector<GldfVariant> variants;
     std::vector<GldfModelGeometry> modelGeometries;
     std::vector<std::string> members;  ///< Every member of the container, UTF-8.
+    /// What was read leniently, one line each ("PATH: product.xml: file "x": unknown contentType
+    /// "invalid"; kept"); every placement repeats them among its photometry's warnings.
+    std::vector<std::string> warnings;
 
     const GldfFile* file(const std::string& id) const;
     const GldfEmitter* emitter(const std::string& id) const;

@@ -306,9 +306,16 @@ TEST(Gldf, ProductXmlWithoutProductDefinitions) {
 }
 
 TEST(Gldf, UnknownContentType) {
-    std::string m = refusal([] { loadGldf(container("GldfWithInvalidRoot")); });
-    EXPECT_NE(m.find("product.xml: file \"eulumdat\": unknown contentType \"invalid\""),
+    // Read with a warning (the type matters only where the file is used); this one's photometry
+    // is only a URL besides, so its variant cannot be placed, and says why.
+    GldfProduct p = loadGldf(container("GldfWithInvalidRoot"));
+    ASSERT_EQ(p.warnings.size(), 1u);
+    EXPECT_NE(p.warnings[0].find("product.xml: file \"eulumdat\": unknown contentType \"invalid\""),
               std::string::npos)
+        << p.warnings[0];
+    std::string m = refusal([] { photometryOf(container("GldfWithInvalidRoot")); });
+    EXPECT_NE(m.find("is only a URL"), std::string::npos) << m;
+    EXPECT_NE(m.find("download it and place it as a photometric luminaire"), std::string::npos)
         << m;
 }
 
@@ -337,13 +344,87 @@ TEST(Gldf, MetaInformationOnlyVariantHasNoEmitter) {
     EXPECT_EQ(p.productName, "Product name");
     std::string m = refusal([] { photometryOf(container("GldfWithMetaInfo")); });
     EXPECT_NE(m.find("variant \"variant-1\" places no emitter"), std::string::npos) << m;
+    EXPECT_NE(m.find("the product defines no light emitter"), std::string::npos) << m;
+}
+
+TEST(Gldf, AnEmptyGeometryPlacesTheOnlyEmitter) {
+    // RZB's FLAT POLYMERO KREIS writes <Geometry/> although the product has one light emitter:
+    // it is placed, with a warning; with two light emitters which one is unknown, and refused.
+    TempDir tmp;
+    std::string one = tmp.file("one.gldf"), two = tmp.file("two.gldf");
+    std::string xml = replaced(
+        productXml(), "<Geometry><EmitterReference emitterId=\"e1\"/></Geometry>", "<Geometry/>");
+    writeZip(one, {{"product.xml", xml}, {"ldc/lamp.ldt", realLdt()}});
+    GldfPhotometry placed = photometryOf(one);
+    EXPECT_EQ(placed.data.fluxFromTable(),
+              photometryOf(container("GldfWithFilesComplete")).data.fluxFromTable());
+    bool warned = false;
+    for (const std::string& w : placed.data.warnings)
+        warned |= w.find("placing the product's only light emitter, \"e1\"") != std::string::npos;
+    EXPECT_TRUE(warned);
+    std::string second = replaced(xml, "</Emitters>",
+                                  "<Emitter id=\"e2\"><FixedLightEmitter><PhotometryReference "
+                                  "photometryId=\"p1\"/></FixedLightEmitter></Emitter></Emitters>");
+    writeZip(two, {{"product.xml", second}, {"ldc/lamp.ldt", realLdt()}});
+    std::string m = refusal([&] { photometryOf(two); });
+    EXPECT_NE(m.find("the product has 2 light emitters"), std::string::npos) << m;
+}
+
+TEST(Gldf, EveryTestContainerPlacesItsEmbeddedPhotometryOrSaysWhatIsWrong) {
+    // Each container of the format's reference tests: every variant whose photometry is a
+    // member of the container is placed; any other is refused with a one-line message naming
+    // the container and a defect the test knows the container to have.
+    const std::vector<std::pair<std::string, std::string>> defects = {
+        {"GldfWithCodepage850", "not in the container (it holds"},
+        {"GldfWithEncodingUtf8", "not in the container (it holds"},
+        {"GldfWithFiles", "no <ProductDefinitions>"},
+        {"GldfWithFilesComplete", ""},
+        {"GldfWithHeaderMandatory", "only a URL"},
+        {"GldfWithInvalidRoot", "only a URL"},
+        {"GldfWithLargeFiles", "only a URL"},
+        {"GldfWithMetaInfo", "defines no light emitter"},
+        {"GldfWithMissingFiles", "not in the container"},
+        {"GldfWithMissingProduct", "product.xml: missing"},
+        {"GldfWithNoFiles", "only a URL"},
+        {"GldfWithOrphanedFiles", "0 bytes, not a EULUMDAT file"},
+    };
+    size_t seen = 0;
+    for (const auto& entry : fs::directory_iterator(kData + "/gldf")) {
+        // The reference library's containers (the others here are this project's own).
+        if (entry.path().extension() != ".gldf" ||
+            entry.path().stem().string().rfind("GldfWith", 0) != 0)
+            continue;
+        ++seen;
+        const std::string name = entry.path().stem().string(), path = entry.path().string();
+        auto known = std::find_if(defects.begin(), defects.end(),
+                                  [&name](const auto& d) { return d.first == name; });
+        ASSERT_NE(known, defects.end()) << name << ": a container the test does not know";
+        std::string message;
+        try {
+            std::string bytes = readGldfBytes(path);
+            GldfProduct product = parseGldf(bytes, path);
+            for (const GldfVariant& v : product.variants)
+                for (size_t k = 0; k < std::max<size_t>(v.emitters.size(), 1); ++k)
+                    gldfVariantPhotometry(bytes, product, v, defaultPhotometryOptions(), k);
+        } catch (const InputError& e) {
+            message = e.what();
+        }
+        if (known->second.empty()) {
+            EXPECT_EQ(message, "") << name;
+        } else {
+            EXPECT_NE(message.find(path), std::string::npos) << message;
+            EXPECT_NE(message.find(known->second), std::string::npos) << message;
+        }
+    }
+    EXPECT_EQ(seen, defects.size());
 }
 
 TEST(Gldf, MissingMember) {
     std::string m = refusal([] { photometryOf(container("GldfWithMissingFiles")); });
     EXPECT_EQ(m, container("GldfWithMissingFiles") +
                      ": ldc/file.ldt (file \"eulumdat\", referenced by emitter \"emitter\"): not "
-                     "in the container");
+                     "in the container; the container is incomplete: ask the manufacturer for a "
+                     "corrected one");
 }
 
 TEST(Gldf, EmptyPlaceholderMember) {
@@ -403,7 +484,8 @@ TEST(Gldf, PhotometryOnlyAsUrl) {
     EXPECT_EQ(refusal([&] { photometryOf(path); }),
               path +
                   ": photometry file \"f1\" is only a URL (https://example.com/lamp.ldt), not "
-                  "in the container");
+                  "in the container: download it and place it as a photometric luminaire, or "
+                  "ask the manufacturer for a container that holds it");
 }
 
 TEST(Gldf, PhotometryFileIdMissingFromFiles) {
@@ -580,7 +662,9 @@ TEST(Gldf, TwoEmitterVariantNeedsItsGeometry) {
     EXPECT_EQ(product.variants[0].modelGeometryId, "g1");
     // Its placements name objects of an L3D member the container lacks.
     EXPECT_EQ(refusal([&] { photometryOf(path); }),
-              path + ": geo/lamp.l3d (file \"geo\", model geometry \"g1\"): not in the container");
+              path +
+                  ": geo/lamp.l3d (file \"geo\", model geometry \"g1\"): not in the container; "
+                  "the container is incomplete: ask the manufacturer for a corrected one");
     // And from a scene entry, naming the container and the member.
     std::string scene = tmp.file("scene.json");
     std::ofstream(scene) << R"({"luminaires": [{"type": "gldf", "file": "lamp.gldf"}]})";
@@ -620,7 +704,8 @@ TEST(Gldf, MissingMemberNamesAtMostFiveOfItsFolder) {
               path +
                   ": ldc/lamp.ldt (file \"f1\", referenced by emitter \"e1\"): not in the "
                   "container (it holds ldc/other0.ldt, ldc/other1.ldt, ldc/other2.ldt, "
-                  "ldc/other3.ldt, ldc/other4.ldt and 2 more)");
+                  "ldc/other3.ldt, ldc/other4.ldt and 2 more); the container is incomplete: ask "
+                  "the manufacturer for a corrected one");
 }
 
 TEST(Gldf, ValueWithLineBreaksGivesOneLineMessage) {
@@ -853,6 +938,44 @@ std::string pendantProductXml() {
     return replaced(
         xml, "</Files>",
         R"(<File id="geo" contentType="geo/l3d" type="localFileName">pendant.l3d</File></Files>)");
+}
+
+TEST(GldfGeometry, SensorEmittersAreListedAndSkipped) {
+    // The pendant's variant places a light at leo_bottom and a presence sensor at leo_top (SLV's
+    // NEW TRIA 2 has such variants): the light alone is placed, where the product has it, with
+    // a warning naming the sensor; a variant of sensors alone is refused with what to do.
+    TempDir tmp;
+    std::string both = tmp.file("both.gldf"), sensor = tmp.file("sensor.gldf");
+    const std::string light =
+        R"(<Emitter id="e2"><FixedLightEmitter><PhotometryReference photometryId="p1"/></FixedLightEmitter></Emitter>)";
+    const std::string presence =
+        R"(<Emitter id="e2"><SensorEmitter><SensorReference sensorId="x"/></SensorEmitter></Emitter>)";
+    std::string xml = replaced(pendantProductXml(), light, presence);
+    writeZip(
+        both,
+        {{"product.xml", xml}, {"ldc/lamp.ldt", realLdt()}, {"geo/pendant.l3d", pendantL3d()}});
+    GldfProduct p = loadGldf(both);
+    EXPECT_EQ(p.variants[0].emitters, std::vector<std::string>{"e1"});
+    EXPECT_EQ(p.variants[0].emitterObjects, std::vector<std::string>{"leo_bottom"});
+    EXPECT_EQ(p.variants[0].sensorEmitters, std::vector<std::string>{"e2"});
+    GldfPhotometry placed = photometryOf(both);
+    ASSERT_NE(placed.opening, nullptr);
+    EXPECT_EQ(placed.opening->name, "leo_bottom");
+    bool warned = false;
+    for (const std::string& w : placed.data.warnings)
+        warned |= w.find("sensor emitter \"e2\" skipped") != std::string::npos;
+    EXPECT_TRUE(warned);
+    // A variant that places only the sensor.
+    std::string only = replaced(
+        xml,
+        R"(<EmitterReference emitterId="e1"><EmitterObjectExternalName>leo_bottom</EmitterObjectExternalName></EmitterReference>)",
+        "");
+    writeZip(
+        sensor,
+        {{"product.xml", only}, {"ldc/lamp.ldt", realLdt()}, {"geo/pendant.l3d", pendantL3d()}});
+    std::string m = refusal([&] { photometryOf(sensor); });
+    EXPECT_NE(m.find("has only sensor emitters (e2)"), std::string::npos) << m;
+    EXPECT_NE(m.find("choose another variant"), std::string::npos) << m;
 }
 
 TEST(GldfGeometry, TwoObjectsEmitEachThroughItsOwnOpening) {

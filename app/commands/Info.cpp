@@ -139,7 +139,7 @@ static void printGldfEmitter(const GldfProduct& product, const GldfEmitter& emit
     std::printf("  emitter \"%s\": %zu light emitter(s)%s%s\n", emitter.id.c_str(),
                 emitter.lights.size(),
                 emitter.lights.size() > 1 ? " (interchangeable; the first is placed)" : "",
-                emitter.sensors > 0 ? ", sensors not shown" : "");
+                emitter.sensors > 0 ? ", and sensors (skipped: a sensor gives no light)" : "");
     for (const GldfLightEmitter& light : emitter.lights) {
         const GldfFile* file = product.file(light.fileId);
         std::string where = !file ? "no file" : file->url ? "URL " + file->name : file->member();
@@ -220,9 +220,17 @@ static void printGldf(const std::string& path) {
     printMaintenance("  ", product.luminaireMaintenance);
     std::printf("files: %zu listed, %zu members in the container\n", product.files.size(),
                 product.members.size());
+    for (const std::string& w : product.warnings) std::printf("warning: %s\n", w.c_str());
     std::printf("variants: %zu\n", product.variants.size());
     for (const GldfVariant& variant : product.variants) {
         std::printf("variant \"%s\": %s\n", variant.id.c_str(), variant.name.c_str());
+        if (!variant.assumedEmitter.empty())
+            std::printf(
+                "  its <Geometry> names no emitter: the product's only light emitter, "
+                "\"%s\", is placed\n",
+                variant.assumedEmitter.c_str());
+        for (const std::string& id : variant.sensorEmitters)
+            std::printf("  sensor emitter \"%s\": skipped (a sensor gives no light)\n", id.c_str());
         std::vector<std::string> shown;
         for (const std::string& id : variant.emitters) {
             if (std::find(shown.begin(), shown.end(), id) != shown.end()) continue;
