@@ -52,6 +52,15 @@ const CommandInfo kCommands[] = {
      "  backgrounds against their requirements, and planar and cylindrical illuminance at its\n"
      "  calculation points.\n",
      "candela surfaces resources/scenes/classroom.json", &cmdSurfaces},
+    {"layout", "the count and arrangement of a luminaire that meets a task area's target",
+     "layout scene.json --luminaire FILE --height M [--em LX] [--u0 U] [--out F.json]\n"
+     "  The lumen method's first guess, then each regular arrangement computed as `surfaces`\n"
+     "  computes it (direct light with shadows and interreflected light) until the fewest\n"
+     "  luminaires that meet the target maintained Em (lx) and U0 are found; --out writes the\n"
+     "  scene with them.\n",
+     "candela layout resources/scenes/classroom-project.json --luminaire "
+     "resources/luminaires/photometric/prolicht-e30.ldt --height 2.4 --out classroom-laid-out.json",
+     &cmdLayout},
     {"glare", "the Unified Glare Rating at observers, or a luminaire's UGR table",
      "glare scene.json [--observer X,Y,Z --view X,Y,Z] [options]\n"
      "  UGR (CIE 117) at the scene's \"glare_observers\" or the one given (metres), the\n"

@@ -23,6 +23,7 @@ int cmdConvert(const Args& args);
 int cmdBench(const Args& args);
 int cmdGrid(const Args& args);
 int cmdSurfaces(const Args& args);
+int cmdLayout(const Args& args);
 int cmdGlare(const Args& args);
 /// `glare --table FILE`: the standard UGR table of a photometric file (calculation/UgrTable.h).
 int cmdGlareTable(const Args& args);

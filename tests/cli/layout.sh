@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# `candela layout` on the classroom project: the lumen method's guess and every arrangement
+# computed, with units; --out writes a scene whose own `surfaces` run meets the target; the
+# layout is not written onto its input, and what it needs is asked for.
+set -uo pipefail
+binary=$1
+root="$2/.."
+failures=0
+passed=0
+check() { if eval "$2"; then passed=$((passed + 1)); else failures=$((failures + 1)); echo "FAIL: $1"; fi; }
+source "$2/cli/lib/expect.sh"
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+
+scene="$root/resources/scenes/classroom-project.json"
+lamp="$root/resources/luminaires/photometric/prolicht-e30.ldt"
+out=$("$binary" layout "$scene" --luminaire "$lamp" --height 2.4 --out "$tmp/laid.json" 2>/dev/null)
+check "layout exits 0: $out" '[ $? -eq 0 ]'
+check "the lumen method, with its units: $out" 'grep -q "^lumen method: one luminaire 5136.1 lm, maintenance factor 0.8, .* room index k 2.69, utilisation guessed .*: N = [0-9]*$" <<<"$out"'
+check "what light the values include: $out" 'grep -qx "light: direct light with shadows, and interreflected light" <<<"$out"'
+check "a table of arrangements in lx: $out" 'grep -q "Em \[lx\]" <<<"$out" && [ $(grep -c "  met" <<<"$out") -ge 1 ] && grep -q "not met" <<<"$out"'
+check "one chosen: $out" '[ $(grep -c "<- chosen" <<<"$out") -eq 1 ] && grep -q "^layout: [0-9]* luminaires" <<<"$out"'
+count=$(sed -n 's/^layout: \([0-9]*\) luminaires.*/\1/p' <<<"$out")
+surfaces=$("$binary" surfaces "$tmp/laid.json" 2>/dev/null)
+check "the written scene has the $count luminaires" '[ $(python3 -c "import json,sys; print(len(json.load(open(sys.argv[1]))[\"luminaires\"]))" "$tmp/laid.json") -eq "$count" ]'
+check "and its own surfaces run passes: $surfaces" 'grep -A4 "^Classroom (task area)" <<<"$surfaces" | grep -q "required: Em >= 500 lx, U0 >= 0.60: PASS"'
+
+mkdir -p "$tmp/scenes" "$tmp/luminaires/photometric"
+cp "$scene" "$tmp/scenes/scene.json" && cp "$lamp" "$tmp/luminaires/photometric/"
+expect "scene.json" "input" -- layout "$tmp/scenes/scene.json" --luminaire "$lamp" --height 2.4 --out "$tmp/scenes/scene.json"
+check "the input is untouched" 'cmp -s "$scene" "$tmp/scenes/scene.json"'
+expect_usage "--height" -- layout "$scene" --luminaire "$lamp"
+expect_usage "--luminaire" -- layout "$scene" --height 2.4
+expect "no task area \"Desk\"" -- layout "$scene" --luminaire "$lamp" --height 2.4 --area Desk
+expect "at or below task area" -- layout "$scene" --luminaire "$lamp" --height 0.5
+
+echo "$passed passed, $failures failed"
+[ $failures -eq 0 ]
