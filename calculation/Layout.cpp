@@ -5,7 +5,7 @@
 #include <cstdio>
 
 #include "luminaires/photometric/PhotometricLuminaire.h"
-#include "scene/Procedural.h"
+#include "scene/LayoutGrid.h"
 #include "scene/Scene.h"
 #include "scene/SceneIo.h"
 #include "shaders/shared/Constants.h"
@@ -40,24 +40,6 @@ double downwardShare(const PhotometricData& d) {
         if (z < kZones / 2) down += flux;
     }
     return all > 0.0 ? down / all : 0.0;
-}
-
-/// The room (a scene-file "room" entry) whose outline holds `point` (x, z): its outline and
-/// floor height; false when none does.
-bool roomAround(const Scene& scene, const glm::dvec2& point, std::vector<glm::dvec2>& outline,
-                double& floorY) {
-    for (const GeometryItem& item : scene.geometry) {
-        auto room = item.source.find("room");
-        if (room == item.source.end()) continue;
-        std::vector<glm::dvec2> corners;
-        for (const nlohmann::json& c : (*room)["floor"])
-            corners.push_back({c[0].get<double>(), c[1].get<double>()});
-        if (!insidePolygon(corners, point)) continue;
-        outline = std::move(corners);
-        floorY = room->value("elevation", 0.0);
-        return true;
-    }
-    return false;
 }
 
 /// The next grid of a chain of near-square spacings over `size` (x, z), one step up (a column or
@@ -116,27 +98,11 @@ LayoutResult proposeLayout(const Scene& scene, const LayoutRequest& request,
         throw InputError(file + ": task area \"" + area->name +
                          "\" requires no Em: give the target maintained illuminance in lx");
 
-    // Where the luminaires go: the room around the area's middle, else the area itself.
-    const glm::dvec3 a0 = area->plane.point(area->lo.x, area->lo.y);
-    const glm::dvec3 a1 = area->plane.point(area->hi.x, area->hi.y);
-    const glm::dvec2 middle(0.5 * (a0.x + a1.x), 0.5 * (a0.z + a1.z));
-    std::vector<glm::dvec2> outline;
-    if (roomAround(scene, middle, outline, r.floorY)) {
-        r.lo = r.hi = outline.front();
-        for (const glm::dvec2& c : outline) {
-            r.lo = glm::min(r.lo, c);
-            r.hi = glm::max(r.hi, c);
-        }
-    } else if (scene.hasSurfaces()) {
-        // A room written as planes: the scene's bounds.
-        const glm::dvec3 lo(scene.boundsMin()), hi(scene.boundsMax());
-        r.lo = {lo.x, lo.z};
-        r.hi = {hi.x, hi.z};
-        r.floorY = lo.y;
-    } else {
-        r.lo = {std::min(a0.x, a1.x), std::min(a0.z, a1.z)};
-        r.hi = {std::max(a0.x, a1.x), std::max(a0.z, a1.z)};
-    }
+    // Where the luminaires go: the room around the area's middle, else the scene's bounds.
+    const LayoutFrame frame = layoutFrame(scene, *area);
+    r.lo = frame.lo;
+    r.hi = frame.hi;
+    r.floorY = frame.floorY;
     if (!(r.hi.x > r.lo.x && r.hi.y > r.lo.y))
         throw InputError(file + ": task area \"" + area->name +
                          "\": no room around it to spread luminaires over");
@@ -194,12 +160,7 @@ LayoutResult proposeLayout(const Scene& scene, const LayoutRequest& request,
         c.columns = grid.x;
         c.rows = grid.y;
         c.spacing = {size.x / grid.x, size.y / grid.y};
-        for (int j = 0; j < grid.y; ++j)
-            for (int i = 0; i < grid.x; ++i) {
-                glm::dvec2 p = r.lo + glm::dvec2((i + 0.5) * c.spacing.x, (j + 0.5) * c.spacing.y);
-                if (!outline.empty() && !insidePolygon(outline, p)) continue;
-                c.positions.push_back({p.x, mountY, p.y});
-            }
+        c.positions = layoutPositions(frame, grid.x, grid.y, request.mountingHeight);
         trial.luminaires.resize(kept);
         for (const glm::dvec3& p : c.positions) {
             auto l = prototype->clone();
@@ -283,24 +244,33 @@ nlohmann::json applyLayout(const Scene& scene, const LayoutRequest& request,
                            const LayoutResult& result) {
     const LayoutCandidate* best = result.best();
     if (!best) throw InputError("no layout met the target: nothing to apply");
+    auto replaced = [&result](const nlohmann::json& position) {
+        const double x = position[0].get<double>(), z = position[2].get<double>();
+        return x >= result.lo.x && x <= result.hi.x && z >= result.lo.y && z <= result.hi.y;
+    };
     nlohmann::json doc = sceneToJson(scene);
-    nlohmann::json kept = nlohmann::json::array();
-    for (size_t i = 0; i < scene.luminaires.size(); ++i) {
-        const Luminaire& l = *scene.luminaires[i];
-        const glm::dvec3& p = l.pose.position;
-        bool replaced = !l.atInfinity() && p.x >= result.lo.x && p.x <= result.hi.x &&
-                        p.z >= result.lo.y && p.z <= result.hi.y;
-        if (!replaced) kept.push_back(doc["luminaires"][i]);
-    }
-    const std::string name = request.luminaire.value("name", std::string("Luminaire"));
-    for (size_t i = 0; i < best->positions.size(); ++i) {
-        nlohmann::json entry = request.luminaire;
-        const glm::dvec3& p = best->positions[i];
-        entry["position"] = {p.x, p.y, p.z};
-        entry["name"] = name + " " + std::to_string(i + 1);
-        kept.push_back(entry);
-    }
-    doc["luminaires"] = kept;
+    nlohmann::json luminaires = nlohmann::json::array(), layouts = nlohmann::json::array();
+    for (const nlohmann::json& entry : doc["luminaires"])
+        if (!entry.contains("position") || !replaced(entry["position"]))
+            luminaires.push_back(entry);
+    // The scene's layouts written back (sceneToJson keeps those still as placed) go where any
+    // of their luminaires is replaced.
+    if (doc.contains("layouts"))
+        for (const nlohmann::json& source : doc["layouts"]) {
+            bool keep = true;
+            for (const LayoutItem& layout : scene.layouts)
+                if (layout.source == source)
+                    for (const nlohmann::json& placed : layout.placed)
+                        keep = keep && !replaced(placed["position"]);
+            if (keep) layouts.push_back(source);
+        }
+    layouts.push_back({{"name", request.name},
+                       {"area", result.area},
+                       {"grid", {best->columns, best->rows}},
+                       {"height", request.mountingHeight},
+                       {"luminaire", request.luminaire}});
+    doc["luminaires"] = luminaires;
+    doc["layouts"] = layouts;
     return doc;
 }
 

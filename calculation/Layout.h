@@ -34,7 +34,8 @@ struct Scene;
 class Luminaire;
 
 struct LayoutRequest {
-    std::string area;  ///< The task area's name; "" for the scene's only task area.
+    std::string name = "Layout";  ///< Its luminaires are named "<name> 1", "<name> 2", ...
+    std::string area;             ///< The task area's name; "" for the scene's only task area.
     /// A scene-file luminaire entry (its position is set here; its file relative to the
     /// scene's folder, as the scene's own entries are).
     nlohmann::json luminaire;
@@ -76,9 +77,10 @@ struct LayoutResult {
 LayoutResult proposeLayout(const Scene& scene, const LayoutRequest& request,
                            const std::function<void(const std::string&)>& status = {});
 
-/// The scene with the layout applied: the luminaires above the layout's rectangle removed, the
-/// chosen arrangement's added (named "<name> 1", "<name> 2", ...), every other thing as it was.
-/// The scene-file document, so that the editor can apply it as one undoable step.
+/// The scene with the layout applied, as a scene-file document (so that the editor can apply it
+/// as one undoable step): the luminaires above the layout's rectangle removed (and any layout
+/// that placed one of them), and a "layouts" entry (scene/LayoutGrid.h) of the chosen grid added;
+/// every other thing as it was.
 nlohmann::json applyLayout(const Scene& scene, const LayoutRequest& request,
                            const LayoutResult& result);
 

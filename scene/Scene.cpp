@@ -39,6 +39,7 @@ Scene Scene::clone() const {
     copy.materials = materials;
     copy.luminaires.reserve(luminaires.size());
     for (const auto& luminaire : luminaires) copy.luminaires.push_back(luminaire->clone());
+    copy.layouts = layouts;
     copy.environment = environment;
     copy.environmentMap = environmentMap;  // immutable, shared
     copy.environmentSequence = environmentSequence;

@@ -80,6 +80,15 @@ struct GeometryItem {
     std::vector<std::string> files;
 };
 
+/// One entry of the scene file's "layouts" list: a regular grid of one luminaire over a task
+/// area's room (scene/LayoutGrid.h), kept as written. Its luminaires are in Scene::luminaires;
+/// saving writes the entry back while they are still as it placed them, and writes them one by
+/// one once any of them has been moved, changed or removed.
+struct LayoutItem {
+    nlohmann::json source;               ///< The entry as read.
+    std::vector<nlohmann::json> placed;  ///< Its luminaires' scene-file entries as placed.
+};
+
 struct Camera {
     glm::dvec3 position{0.0, 1.5, 4.0};  ///< Metres.
     glm::dvec3 target{0.0, 1.0, 0.0};    ///< Metres.
@@ -95,6 +104,7 @@ struct Scene {
     std::vector<Mesh> meshes;
     std::vector<Material> materials;
     std::vector<std::unique_ptr<Luminaire>> luminaires;
+    std::vector<LayoutItem> layouts;
     nlohmann::json environment;  ///< null: no environment map. Kept as written, for saving.
     /// The environment's radiance now (luminaires/environment/Environment.h); null when
     /// `environment` is.

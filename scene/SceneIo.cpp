@@ -15,6 +15,7 @@
 #include "luminaires/Registry.h"
 #include "luminaires/environment/Environment.h"
 #include "scene/GltfLoader.h"
+#include "scene/LayoutGrid.h"
 #include "scene/Procedural.h"
 #include "scene/RoomIo.h"
 #include "shaders/shared/Constants.h"
@@ -424,6 +425,18 @@ void rebaseGltfPaths(nlohmann::json& doc, const std::string& fromPath, const std
         fs::path relative = target.lexically_relative(toDir);
         *it = (relative.empty() ? target : relative).generic_string();
     }
+    // A layout's luminaire file likewise.
+    if (doc.contains("layouts"))
+        for (nlohmann::json& layout : doc["layouts"]) {
+            if (!layout.is_object() || !layout.contains("luminaire")) continue;
+            auto it = layout["luminaire"].find("file");
+            if (it == layout["luminaire"].end() || !it->is_string()) continue;
+            fs::path file(it->get<std::string>());
+            if (file.is_absolute()) continue;
+            fs::path target = (fromDir / file).lexically_normal();
+            fs::path relative = target.lexically_relative(toDir);
+            *it = (relative.empty() ? target : relative).generic_string();
+        }
     // The environment's "file" or "sequence" pattern, relative to the scene file, likewise.
     nlohmann::json& env = doc["environment"];
     if (!env.is_object()) return;
@@ -483,8 +496,8 @@ const nlohmann::json& boundedList(const nlohmann::json& doc, const char* key,
 Scene parseScene(const nlohmann::json& doc, const std::string& path, const SceneLimits& limits) {
     const json::Where root{path, ""};
     json::checkKeys(doc,
-                    {"geometry", "luminaires", "environment", "camera", "maintenance_factor",
-                     "task_areas", "calculation_points", "glare_observers"},
+                    {"geometry", "luminaires", "layouts", "environment", "camera",
+                     "maintenance_factor", "task_areas", "calculation_points", "glare_observers"},
                     root);
     Scene scene;
     scene.path = path;
@@ -506,12 +519,10 @@ Scene parseScene(const nlohmann::json& doc, const std::string& path, const Scene
                                " triangles in all, reached " + std::to_string(triangles));
         }
     }
-    if (doc.contains("luminaires")) {
-        const nlohmann::json& items =
-            boundedList(doc, "luminaires", root, limits.luminaires, "luminaires");
-        for (size_t i = 0; i < items.size(); ++i) {
-            std::unique_ptr<Luminaire> first =
-                parseLuminaire(items[i], (root / "luminaires")[i], i);
+    // One scene-file luminaire entry: its luminaire and its product's other emitters.
+    auto addLuminaire = [&](const nlohmann::json& entry, const json::Where& where, size_t i) {
+        {
+            std::unique_ptr<Luminaire> first = parseLuminaire(entry, where, i);
             std::vector<std::unique_ptr<Luminaire>> more = companions(*first);
             std::string name = first->name;
             for (size_t k = 0; k < more.size(); ++k) {
@@ -524,12 +535,16 @@ Scene parseScene(const nlohmann::json& doc, const std::string& path, const Scene
             scene.luminaires.push_back(std::move(first));
             for (auto& m : more) scene.luminaires.push_back(std::move(m));
             if (scene.luminaires.size() > limits.luminaires)
-                json::fail(root / "luminaires",
-                           "at most " + std::to_string(limits.luminaires) +
-                               " luminaires, their products' emitters counted, reached " +
-                               std::to_string(scene.luminaires.size()) + " at entry " +
-                               std::to_string(i));
+                json::fail(where, "at most " + std::to_string(limits.luminaires) +
+                                      " luminaires, their products' emitters counted, reached " +
+                                      std::to_string(scene.luminaires.size()));
         }
+    };
+    if (doc.contains("luminaires")) {
+        const nlohmann::json& items =
+            boundedList(doc, "luminaires", root, limits.luminaires, "luminaires");
+        for (size_t i = 0; i < items.size(); ++i)
+            addLuminaire(items[i], (root / "luminaires")[i], i);
     }
     scene.environment = nullptr;
     if (doc.contains("environment") && !doc["environment"].is_null()) {
@@ -559,6 +574,22 @@ Scene parseScene(const nlohmann::json& doc, const std::string& path, const Scene
             scene.glareObservers.push_back(
                 parseGlareObserver(items[i], (root / "glare_observers")[i]));
     }
+    if (doc.contains("layouts")) {
+        const nlohmann::json& items =
+            boundedList(doc, "layouts", root, limits.luminaires, "layouts");
+        for (size_t i = 0; i < items.size(); ++i) {
+            const json::Where where = (root / "layouts")[i];
+            LayoutItem layout;
+            layout.source = items[i];
+            const size_t first = scene.luminaires.size();
+            for (const nlohmann::json& entry :
+                 parseLayout(items[i], where, scene, limits.luminaires))
+                addLuminaire(entry, where / "luminaire", scene.luminaires.size());
+            for (size_t k = first; k < scene.luminaires.size(); ++k)
+                layout.placed.push_back(luminaireToJson(*scene.luminaires[k]));
+            scene.layouts.push_back(std::move(layout));
+        }
+    }
     scene.updateBodies(limits.triangles);
     return scene;
 }
@@ -567,9 +598,27 @@ nlohmann::json sceneToJson(const Scene& scene) {
     nlohmann::json doc = nlohmann::json::object();
     doc["geometry"] = nlohmann::json::array();
     for (const GeometryItem& item : scene.geometry) doc["geometry"].push_back(item.source);
+    std::vector<nlohmann::json> entries;
+    for (const auto& luminaire : scene.luminaires) entries.push_back(luminaireToJson(*luminaire));
+    // A layout is written back while its luminaires are still a run of the list exactly as it
+    // placed them; else they are written one by one.
+    std::vector<bool> inLayout(entries.size(), false);
+    for (const LayoutItem& layout : scene.layouts) {
+        const size_t n = layout.placed.size();
+        for (size_t start = 0; n > 0 && start + n <= entries.size(); ++start) {
+            bool same = true;
+            for (size_t k = 0; k < n && same; ++k)
+                same = !inLayout[start + k] && entries[start + k] == layout.placed[k];
+            if (!same) continue;
+            std::fill(inLayout.begin() + std::ptrdiff_t(start),
+                      inLayout.begin() + std::ptrdiff_t(start + n), true);
+            doc["layouts"].push_back(layout.source);
+            break;
+        }
+    }
     doc["luminaires"] = nlohmann::json::array();
-    for (const auto& luminaire : scene.luminaires)
-        doc["luminaires"].push_back(luminaireToJson(*luminaire));
+    for (size_t i = 0; i < entries.size(); ++i)
+        if (!inLayout[i]) doc["luminaires"].push_back(entries[i]);
     doc["environment"] = scene.environment;
     doc["camera"] = {{"position", toJson(scene.camera.position)},
                      {"target", toJson(scene.camera.target)},
@@ -582,12 +631,54 @@ nlohmann::json sceneToJson(const Scene& scene) {
     return doc;
 }
 
+namespace {
+
+/// A value on one line, with ", " between items and ": " after keys, as people write JSON.
+std::string oneLine(const nlohmann::json& v) {
+    if (v.is_object() || v.is_array()) {
+        const bool object = v.is_object();
+        std::string s = object ? "{" : "[";
+        bool first = true;
+        for (const auto& [key, item] : v.items()) {
+            if (!first) s += ", ";
+            first = false;
+            if (object) s += nlohmann::json(key).dump() + ": ";
+            s += oneLine(item);
+        }
+        return s + (object ? "}" : "]");
+    }
+    return v.dump();
+}
+
+/// The scene file's text: each top-level field on its own line, and each entry of a list (a
+/// geometry entry, a luminaire) on one line of its own, so that a room of twenty luminaires reads
+/// as about thirty lines and a change shows as a changed line.
+std::string sceneText(const nlohmann::json& doc) {
+    std::string s = "{\n";
+    size_t field = 0;
+    for (const auto& [key, value] : doc.items()) {
+        s += "  " + nlohmann::json(key).dump() + ": ";
+        if (value.is_array() && !value.empty()) {
+            s += "[\n";
+            for (size_t i = 0; i < value.size(); ++i)
+                s += "    " + oneLine(value[i]) + (i + 1 < value.size() ? ",\n" : "\n");
+            s += "  ]";
+        } else {
+            s += oneLine(value);
+        }
+        s += ++field < doc.size() ? ",\n" : "\n";
+    }
+    return s + "}\n";
+}
+
+}  // namespace
+
 void saveScene(const Scene& scene, const std::string& path) {
     nlohmann::json doc = sceneToJson(scene);
     rebaseGltfPaths(doc, scene.path, path);
     std::string text;
     try {
-        text = doc.dump(2) + "\n";
+        text = sceneText(doc);
     } catch (const nlohmann::json::exception& e) {
         // E.g. a name that is not valid UTF-8: nothing has been written yet.
         throw InputError(path + ": cannot save scene (" + e.what() + ")");

@@ -31,7 +31,8 @@ void checkLayout(const std::string& sceneFile, const std::string& luminaireFile,
     const std::string path = test::sourceDir() + "/resources/scenes/" + sceneFile;
     Scene scene = loadScene(path);
     LayoutRequest request;
-    request.luminaire = {{"type", "photometric"}, {"file", luminaireFile}, {"name", "Lamp"}};
+    request.luminaire = {{"type", "photometric"}, {"file", luminaireFile}};
+    request.name = "Lamp";
     request.mountingHeight = height;
     LayoutResult r = proposeLayout(scene, request);
     ASSERT_NE(r.best(), nullptr) << sceneFile;
@@ -96,6 +97,36 @@ TEST(Layout, AnLShapedRoomGetsNoLuminaireOutsideItsOutline) {
     }
 }
 
+TEST(Layout, ASceneFilesLayoutPlacesItsGridAndSavesAsWritten) {
+    const std::string path = test::sourceDir() + "/resources/scenes/classroom-project.json";
+    Scene scene = loadScene(path);
+    // The classroom's 5 x 3 layout over its 10 x 8 m room: 2 m and 2.667 m apart, half a
+    // spacing from the walls, 2.4 m above the floor, named after the layout.
+    ASSERT_EQ(scene.luminaires.size(), 15u);
+    EXPECT_EQ(scene.luminaires[0]->name, "Linear 1");
+    EXPECT_EQ(scene.luminaires[0]->pose.position, glm::dvec3(-4.0, 2.4, -2.667));
+    EXPECT_EQ(scene.luminaires[14]->pose.position, glm::dvec3(4.0, 2.4, 2.667));
+    nlohmann::json saved = sceneToJson(scene);
+    ASSERT_EQ(saved["layouts"].size(), 1u);
+    EXPECT_EQ(saved["layouts"][0], nlohmann::json::parse(R"({"name": "Linear", "area": "Classroom",
+        "grid": [5, 3], "height": 2.4, "luminaire": {"type": "photometric",
+        "file": "../luminaires/photometric/prolicht-e30.ldt"}})"));
+    EXPECT_TRUE(saved["luminaires"].empty());
+    // A copy (undo's) saves the same; once one luminaire moves, each is written on its own.
+    Scene copy = scene.clone();
+    EXPECT_EQ(sceneToJson(copy), saved);
+    copy.luminaires[3]->pose.position.x += 0.5;
+    nlohmann::json moved = sceneToJson(copy);
+    EXPECT_FALSE(moved.contains("layouts"));
+    ASSERT_EQ(moved["luminaires"].size(), 15u);
+    EXPECT_EQ(moved["luminaires"][3]["position"][0], 2.5);
+    EXPECT_EQ(parseScene(moved, path).luminaires.size(), 15u);
+    // A removed luminaire: likewise.
+    copy = scene.clone();
+    copy.luminaires.erase(copy.luminaires.begin());
+    EXPECT_EQ(sceneToJson(copy)["luminaires"].size(), 14u);
+}
+
 TEST(Layout, WhatCannotBeLaidOutSaysWhy) {
     Scene scene = lShaped();
     LayoutRequest request;
@@ -105,6 +136,15 @@ TEST(Layout, WhatCannotBeLaidOutSaysWhy) {
     request.area = "Desk";
     std::string e = test::inputError([&] { proposeLayout(scene, request); });
     EXPECT_NE(e.find("no task area \"Desk\" (it has \"Floor\")"), std::string::npos) << e;
+    // A scene file's layout names the field.
+    e = test::inputError([] {
+        parseScene(nlohmann::json::parse(R"({"task_areas": [{"name": "A", "plane": "y=0.8",
+            "extent": [0, 0, 1, 1]}], "layouts": [{"grid": [2, 0], "height": 2,
+            "luminaire": {"type": "photometric", "file": "x.ies"}}]})"),
+                   "s.json");
+    });
+    EXPECT_NE(e.find("s.json: layouts[0].grid[1]: expected a whole number"), std::string::npos)
+        << e;
     request.area = "";
     request.mountingHeight = 0.5;
     e = test::inputError([&] { proposeLayout(scene, request); });

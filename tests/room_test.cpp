@@ -315,7 +315,7 @@ TEST(Room, TheClassroomAsARoomEqualsItAsPlanes) {
         EXPECT_NEAR(x.summary.eMin, y.summary.eMin, 0.005 * y.summary.eMin) << x.name;
         EXPECT_NEAR(x.summary.eMax, y.summary.eMax, 0.005 * y.summary.eMax) << x.name;
     }
-    EXPECT_GT(a.surfaces[0].summary.eAvg, 300.0);  // lit: 12 pendants of 5134 lm over 80 m2
+    EXPECT_GT(a.surfaces[0].summary.eAvg, 300.0);  // lit: its layout of 15 pendants of 5134 lm
 }
 
 TEST(Room, AnLShapedRoomKeepsItsEnergyBalance) {

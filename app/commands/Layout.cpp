@@ -85,8 +85,8 @@ int cmdLayout(const Args& args) {
     for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
     request.luminaire = {{"type", ext == ".gldf" ? "gldf" : "photometric"},
                          {"file", relative.empty() ? fs::absolute(luminaireFile).string()
-                                                   : relative.generic_string()},
-                         {"name", fs::path(luminaireFile).stem().string()}};
+                                                   : relative.generic_string()}};
+    request.name = fs::path(luminaireFile).stem().string();
     if (!variant.empty()) request.luminaire["variant"] = variant;
     LayoutResult result = proposeLayout(scene, request, [](const std::string& s) {
         std::fprintf(stderr, "layout: %s\n", s.c_str());
