@@ -37,6 +37,37 @@ std::string fmt(const char* f, double a) {
 }
 
 /// A document being drawn: the cairo context, the cursor and the page number.
+/// Text as a document prints it: square metres and the like with superscripts ("cd/m2" ->
+/// "cd/m²", "m2 sr" -> "m² sr"), log10 with its subscript, >= and <= as one sign. Only a "2" or "3"
+/// after "m" that ends a unit (followed by a space, ")", "/", ",", ";", "." or the end) is raised.
+std::string typeset(const std::string& s) {
+    std::string out;
+    out.reserve(s.size());
+    for (size_t i = 0; i < s.size(); ++i) {
+        const char c = s[i];
+        const bool unitEnd = i + 1 >= s.size() || std::strchr(" )/,;.]", s[i + 1]) != nullptr;
+        const bool afterM = i > 0 && s[i - 1] == 'm' &&
+                            (i < 2 || !std::isalpha(static_cast<unsigned char>(s[i - 2])) ||
+                             s[i - 2] == 'c' || s[i - 2] == 'k');
+        if ((c == '2' || c == '3') && afterM && unitEnd) {
+            out += c == '2' ? "\u00b2" : "\u00b3";
+            continue;
+        }
+        if (s.compare(i, 2, ">=") == 0 || s.compare(i, 2, "<=") == 0) {
+            out += c == '>' ? "\u2265" : "\u2264";
+            ++i;
+            continue;
+        }
+        if (s.compare(i, 5, "log10") == 0) {
+            out += "log\u2081\u2080";
+            i += 4;
+            continue;
+        }
+        out += c;
+    }
+    return out;
+}
+
 class Pdf {
   public:
     explicit Pdf(const std::string& title) {
@@ -63,12 +94,13 @@ class Pdf {
     }
     double textWidth(const std::string& s) {
         cairo_text_extents_t e;
-        cairo_text_extents(cr, s.c_str(), &e);
+        const std::string t = typeset(s);
+        cairo_text_extents(cr, t.c_str(), &e);
         return e.x_advance;
     }
     /// Text with its baseline at (x, baseline); align 0 left, 0.5 centre, 1 right of x.
     void text(double x, double baseline, const std::string& s, double align = 0.0) {
-        std::string t = toValidUtf8(s);
+        std::string t = typeset(toValidUtf8(s));
         cairo_move_to(cr, x - align * textWidth(t), baseline);
         cairo_show_text(cr, t.c_str());
     }
@@ -82,6 +114,15 @@ class Pdf {
     void need(double height) {
         if (y + height > kBottom) newPage();
     }
+    /// A numbered part of the report: a new page, its heading, and its line in the contents.
+    void section(const std::string& s) {
+        newPage();
+        heading(s);
+        sections.push_back({s, mPage});
+    }
+    /// The sections so far, with the page each starts on.
+    std::vector<std::pair<std::string, int>> sections;
+
     void heading(const std::string& s, double size = 14.0) {
         need(size * 3.0);
         y += size * 0.6;
@@ -265,38 +306,49 @@ std::string shortPath(const std::string& path) {
 // ---------------------------------------------------------------------------------------------
 // Sections
 
-void titlePage(Pdf& pdf, const ReportInput& in) {
-    const Scene& scene = *in.scene;
+/// Page 1: the project, who it is for and by whom, and the rendered view.
+void coverPage(Pdf& pdf, const ReportInput& in) {
+    const ProjectInfo& project = in.scene->project;
     cairo_t* cr = pdf.cr;
-    pdf.font(24, true);
-    cairo_set_source_rgb(cr, 0.1, 0.1, 0.25);
-    pdf.text(kLeft, pdf.y + 24, "Lighting report");
     pdf.y += 40;
-    pdf.font(15);
-    pdf.text(kLeft, pdf.y + 15, in.title);
+    pdf.font(28, true);
+    cairo_set_source_rgb(cr, 0.1, 0.1, 0.25);
+    pdf.text(kLeft, pdf.y + 28, "Lighting report");
+    pdf.y += 50;
+    pdf.font(17);
+    pdf.text(kLeft, pdf.y + 17, in.title);
     cairo_set_source_rgb(cr, 0, 0, 0);
-    pdf.y += 30;
+    pdf.y += 40;
+    std::vector<std::vector<std::string>> rows;
+    if (!project.client.empty()) rows.push_back({"Client", project.client});
+    if (!project.designer.empty()) rows.push_back({"Lighting designer", project.designer});
+    rows.push_back({"Date", in.date});
+    if (!project.description.empty()) rows.push_back({"Description", project.description});
+    pdf.table({"Project", in.title}, rows, {120, kWidth - 120}, {0, 0}, 9.5);
+    pdf.y += 20;
+    if (in.view.empty()) {
+        pdf.paragraph("No rendered view: " + in.viewNote + ".", 8);
+        return;
+    }
+    double w = kWidth, h = w * in.viewHeight / double(in.viewWidth);
+    pdf.need(h + 30);
+    pdf.image(in.view, in.viewWidth, in.viewHeight, kLeft, pdf.y, w, h);
+    pdf.y += h + 6;
+    pdf.paragraph("Rendered view from the scene's camera: " + in.viewNote + ".", 7.5);
+}
 
-    UnitSystem units = scene.units();
-    glm::vec3 lo = scene.boundsMin(), hi = scene.boundsMax();
-    char bounds[160];
-    std::snprintf(bounds, sizeof bounds, "x %.2f..%.2f m, y %.2f..%.2f m, z %.2f..%.2f m", lo.x,
-                  hi.x, lo.y, hi.y, lo.z, hi.z);
-    std::vector<std::vector<std::string>> rows = {
-        {"Scene file", shortPath(scene.path)},
-        {"Date", in.date},
-        {"Made with", "Candela (candela report)"},
-        {"Units", units.photometric ? std::string("photometric: lm, cd, cd/m2, lx")
-                                    : std::string("radiometric: W, W/sr, W/(m2 sr), W/m2")},
-        {"Maintenance", scene.maintenanceNote()},
-        {"Luminaire housings", housingText(scene)},
-        {"Room (scene bounds)", bounds},
-        {"Surfaces", std::to_string(scene.geometry.size()) + " geometry entries"},
-        {"Luminaires", std::to_string(scene.luminaires.size())},
-        {"Illuminance", in.evaluation},
-    };
-    pdf.table({"Project", ""}, rows, {120, kWidth - 120}, {0, 0}, 8.5);
-
+/// Page 2: the contents (the sections' pages, from a first drawing of the report) and the
+/// results at a glance.
+void contentsPage(Pdf& pdf, const ReportInput& in,
+                  const std::vector<std::pair<std::string, int>>& contents) {
+    pdf.newPage();
+    pdf.heading("Contents");
+    pdf.font(10);
+    for (const auto& [title, page] : contents) {
+        pdf.text(kLeft + 10, pdf.y + 10, title);
+        pdf.text(kRight, pdf.y + 10, std::to_string(page), 1.0);
+        pdf.y += 16;
+    }
     pdf.heading("Summary", 12);
     std::vector<std::vector<std::string>> summary;
     const char* unit = in.surfaces.units.irradiance();
@@ -315,21 +367,53 @@ void titlePage(Pdf& pdf, const ReportInput& in) {
             summary.push_back({g.observer.name + " (UGR)", fmt("UGR %.1f", g.ugr), "",
                                g.observer.limit > 0.0 ? (g.passes ? "PASS" : "FAIL") : "no limit"});
     if (summary.empty())
-        pdf.paragraph("The scene has no calculation surfaces, points or glare observers.");
+        pdf.paragraph("The design has no calculation surfaces, points or glare observers.");
     else
         pdf.table({"Result", "Mean", "U0", "Verdict"}, summary, {230, 95, 70, 100}, {0, 1, 1, 0},
                   8.5);
+}
 
-    pdf.heading("Rendered view", 12);
-    if (in.view.empty()) {
-        pdf.paragraph("Not rendered: " + in.viewNote);
-        return;
-    }
-    double w = kWidth, h = w * in.viewHeight / double(in.viewWidth);
-    pdf.need(h + 30);
-    pdf.image(in.view, in.viewWidth, in.viewHeight, kLeft, pdf.y, w, h);
-    pdf.y += h + 6;
-    pdf.paragraph("From the scene's camera; " + in.viewNote + ".", 7.5);
+/// The design's data: units, maintenance, the room, its surfaces and luminaires, and how the
+/// light was computed.
+void projectSection(Pdf& pdf, const ReportInput& in) {
+    const Scene& scene = *in.scene;
+    pdf.section("Project data");
+    UnitSystem units = scene.units();
+    glm::vec3 lo = scene.boundsMin(), hi = scene.boundsMax();
+    char bounds[200];
+    std::snprintf(bounds, sizeof bounds,
+                  "%.2f m x %.2f m, %.2f m high (x %.2f..%.2f m, z %.2f..%.2f m)", hi.x - lo.x,
+                  hi.z - lo.z, hi.y - lo.y, lo.x, hi.x, lo.z, hi.z);
+    std::vector<std::vector<std::string>> rows = {
+        {"Date", in.date},
+        {"Made with", "Candela"},
+        {"Units", units.photometric ? std::string("photometric: lm, cd, cd/m2, lx")
+                                    : std::string("radiometric: W, W/sr, W/(m2 sr), W/m2")},
+        {"Maintenance", scene.maintenanceNote()},
+        {"Luminaire housings", housingText(scene)},
+        {"Room (its overall size)", bounds},
+        {"Surfaces", std::to_string(scene.geometry.size()) + " (walls, floors, furniture and "
+                                                             "other objects)"},
+        {"Luminaires", std::to_string(scene.luminaires.size())},
+        {"Illuminance", in.evaluation},
+    };
+    pdf.table({"Design", ""}, rows, {120, kWidth - 120}, {0, 0}, 8.5);
+}
+
+/// A message without the file it names ("lamp.gldf:ldc/a.ldt: the product rates ..." -> "the
+/// product rates ..."): a client cannot open the file.
+std::string withoutPath(const std::string& note) {
+    size_t colon = note.find(": ");
+    if (colon == std::string::npos || note.substr(0, colon).find(' ') != std::string::npos)
+        return note;
+    return note.substr(colon + 2);
+}
+
+/// The factor from a photometry's candela to cd/klm: per 1000 lm of its lamps' flux, or of the
+/// luminaire's own for absolute photometry (no lamp flux stated).
+double perKilolumen(const PhotometricData& d, double scale) {
+    double basis = d.lampFlux > 0.0 ? d.lampFlux * scale : d.fluxFromTable() * scale;
+    return basis > 0.0 ? 1000.0 / basis : 0.0;
 }
 
 /// The polar diagram of one photometry in the square (x, top, size): C0-C180 solid, C90-C270
@@ -351,7 +435,7 @@ void polarDiagram(Pdf& pdf, const PhotometricData& data, double scale, double x,
         cairo_new_sub_path(cr);
         cairo_arc(cr, cx, cy, radius * r / outer, 0, 2 * M_PI);
         cairo_stroke(cr);
-        pdf.text(cx + 2, cy - radius * r / outer - 1.5, fmt("%g cd", r));
+        pdf.text(cx + 2, cy - radius * r / outer - 1.5, fmt("%g cd/klm", r));
     }
     for (int a = 0; a < 360; a += 30) {
         double t = a * M_PI / 180.0;
@@ -391,8 +475,7 @@ void polarDiagram(Pdf& pdf, const PhotometricData& data, double scale, double x,
 
 void scheduleSection(Pdf& pdf, const ReportInput& in) {
     const Scene& scene = *in.scene;
-    pdf.newPage();
-    pdf.heading("Luminaire schedule");
+    pdf.section("Luminaire schedule");
     std::vector<ScheduleRow> schedule = luminaireSchedule(scene);
     const char* fluxUnit = scene.units().photometric ? "lm" : "W";
     std::vector<std::vector<std::string>> rows;
@@ -434,7 +517,7 @@ void scheduleSection(Pdf& pdf, const ReportInput& in) {
         if (std::find(checked.begin(), checked.end(), key) != checked.end()) continue;
         checked.push_back(key);
         for (const std::string& note : plausibilityNotes(*p))
-            pdf.paragraph("Data check: " + note + ".", 8);
+            pdf.paragraph("Data check: " + withoutPath(note) + ".", 8);
     }
 
     // One polar diagram per distinct photometry, two to a row.
@@ -450,8 +533,9 @@ void scheduleSection(Pdf& pdf, const ReportInput& in) {
     if (distinct.empty()) return;
     pdf.heading("Polar diagrams", 12);
     pdf.paragraph(
-        "Luminous intensity in cd, gamma 0 (the aim) at the bottom: C0-C180 solid "
-        "(orange), C90-C270 dashed (blue).",
+        "Luminous intensity in cd/klm (candela per 1000 lm of the luminaire's lamps), "
+        "straight down at the bottom: the C0-C180 plane solid (orange), the C90-C270 plane "
+        "dashed (blue).",
         8);
     const double size = 230.0, gap = kWidth - 2 * size;
     for (size_t k = 0; k < distinct.size(); ++k) {
@@ -465,8 +549,10 @@ void scheduleSection(Pdf& pdf, const ReportInput& in) {
         pdf.font(7);
         pdf.text(x, top + 18,
                  fmt("peak %.5g cd", p.data->maxIntensity() * p.scale) +
+                     fmt(" (%.4g cd/klm)",
+                         p.data->maxIntensity() * p.scale * perKilolumen(*p.data, p.scale)) +
                      fmt(", flux %.5g lm", p.data->fluxFromTable() * p.scale));
-        polarDiagram(pdf, *p.data, p.scale, x, top + 22, size);
+        polarDiagram(pdf, *p.data, p.scale * perKilolumen(*p.data, p.scale), x, top + 22, size);
         if (k % 2 == 1 || k + 1 == distinct.size()) pdf.y = top + size + 30;
     }
 }
@@ -528,6 +614,9 @@ void surfacePicture(Pdf& pdf, const SurfaceResult& s, const char* unit) {
         w = h * extentU / extentV;
     }
     pdf.need(h + 40);
+    // A horizontal plane is a plan seen from above: x to the right, z down the page (y up is
+    // towards the reader). Any other plane keeps its v axis up.
+    const bool plan = s.plane.axis == 1;
     double x0 = kLeft + 30, top = pdf.y + 6;
     double peak = 0.0;
     for (double e : s.E) peak = std::max(peak, e);
@@ -540,7 +629,8 @@ void surfacePicture(Pdf& pdf, const SurfaceResult& s, const char* unit) {
     std::vector<double> field(size_t(px) * size_t(py));
     for (int r = 0; r < py; ++r)
         for (int c = 0; c < px; ++c) {
-            double fx = (c + 0.5) / px * g.nx, fy = (1.0 - (r + 0.5) / py) * g.ny;
+            double fx = (c + 0.5) / px * g.nx;
+            double fy = (plan ? (r + 0.5) / py : 1.0 - (r + 0.5) / py) * g.ny;
             double v = sampleCells(g, fx, fy);
             field[size_t(r) * size_t(px) + size_t(c)] = v;
             glm::vec3 col =
@@ -559,7 +649,9 @@ void surfacePicture(Pdf& pdf, const SurfaceResult& s, const char* unit) {
     auto pos = [&](double c, double r) {
         return glm::dvec2(x0 + (c + 0.5) / px * w, top + (r + 0.5) / py * h);
     };
-    for (float level : levels)
+    std::vector<std::vector<glm::dvec2>> labelAt(levels.size());  // segment midpoints per level
+    for (size_t l = 0; l < levels.size(); ++l) {
+        const float level = levels[l];
         for (int r = 0; r + 1 < py; ++r)
             for (int c = 0; c + 1 < px; ++c) {
                 double v[4] = {at(c, r), at(c + 1, r), at(c + 1, r + 1), at(c, r + 1)};
@@ -579,9 +671,44 @@ void surfacePicture(Pdf& pdf, const SurfaceResult& s, const char* unit) {
                 for (size_t k = 0; k + 1 < cross.size(); k += 2) {
                     cairo_move_to(cr, cross[k].x, cross[k].y);
                     cairo_line_to(cr, cross[k + 1].x, cross[k + 1].y);
+                    labelAt[l].push_back(0.5 * (cross[k] + cross[k + 1]));
                 }
             }
+    }
     cairo_stroke(cr);
+    // Each line's value, at up to three points of it spread apart (the first nearest the
+    // picture's middle, then each farthest from those taken), on a white patch, never closer
+    // than kLabelGap to another label.
+    constexpr double kLabelGap = 36.0;  // points
+    const glm::dvec2 middle(x0 + w / 2, top + h / 2);
+    std::vector<glm::dvec2> placed;
+    pdf.font(6);
+    for (size_t l = 0; l < levels.size(); ++l) {
+        const std::string label = fmt("%g", levels[l]);
+        for (int n = 0; n < 3 && !labelAt[l].empty(); ++n) {
+            const glm::dvec2* best = nullptr;
+            double bestScore = -1.0;
+            for (const glm::dvec2& m : labelAt[l]) {
+                double gap = 1e30;
+                for (const glm::dvec2& q : placed) gap = std::min(gap, glm::distance(m, q));
+                if (gap < kLabelGap) continue;
+                const double score = n == 0 ? 1.0 / (1.0 + glm::distance(m, middle)) : gap;
+                if (score > bestScore) {
+                    bestScore = score;
+                    best = &m;
+                }
+            }
+            if (!best) break;
+            const glm::dvec2 at = *best;
+            placed.push_back(at);
+            const double tw = pdf.textWidth(label);
+            cairo_set_source_rgb(cr, 1, 1, 1);
+            cairo_rectangle(cr, at.x - tw / 2 - 1, at.y - 3.5, tw + 2, 7);
+            cairo_fill(cr);
+            cairo_set_source_rgb(cr, 0, 0, 0);
+            pdf.text(at.x, at.y + 2.2, label, 0.5);
+        }
+    }
     cairo_rectangle(cr, x0, top, w, h);
     cairo_set_line_width(cr, 0.5);
     cairo_stroke(cr);
@@ -590,8 +717,8 @@ void surfacePicture(Pdf& pdf, const SurfaceResult& s, const char* unit) {
     pdf.text(x0, top + h + 9, fmt("%.2f", s.lo.x), 0.5);
     pdf.text(x0 + w, top + h + 9, fmt("%.2f", s.hi.x), 0.5);
     pdf.text(x0 + w / 2, top + h + 9, s.plane.uName() + " [m]", 0.5);
-    pdf.text(x0 - 3, top + h, fmt("%.2f", s.lo.y), 1.0);
-    pdf.text(x0 - 3, top + 6, fmt("%.2f", s.hi.y), 1.0);
+    pdf.text(x0 - 3, top + h, fmt("%.2f", plan ? s.hi.y : s.lo.y), 1.0);
+    pdf.text(x0 - 3, top + 6, fmt("%.2f", plan ? s.lo.y : s.hi.y), 1.0);
     pdf.text(x0 - 3, top + h / 2, s.plane.vName() + " [m]", 1.0);
     // Legend: the scale, its ticks and the isolux levels.
     double lx = x0 + w + 24, lw = 12;
@@ -623,11 +750,12 @@ void surfacePicture(Pdf& pdf, const SurfaceResult& s, const char* unit) {
     pdf.paragraph(std::string("False colour ") + fmt("%g", legend.min) + ".." +
                       fmt("%g ", legend.max) + unit + " (linear), isolux lines at " +
                       (isolux.empty() ? std::string("none") : isolux + " " + unit) +
-                      "; white: not part of the surface.",
+                      ", each labelled with its value; white: not part of the surface" +
+                      (plan ? "; seen from above, x to the right and z down the page." : "."),
                   7);
 }
 
-/// Every value of the grid: rows from the far side down, columns in blocks that fit the page.
+/// Every value of the grid, laid out as the picture, columns in blocks that fit the page.
 void valueTable(Pdf& pdf, const SurfaceResult& s, const char* unit) {
     CellGrid g = cells(s);
     const int perBlock = 13;
@@ -641,7 +769,10 @@ void valueTable(Pdf& pdf, const SurfaceResult& s, const char* unit) {
             align.push_back(1);
         }
         std::vector<std::vector<std::string>> rows;
-        for (int j = g.ny - 1; j >= 0; --j) {
+        // As the picture: a plan's rows from the smallest z down, another plane's from the top.
+        const bool plan = s.plane.axis == 1;
+        for (int k = 0; k < g.ny; ++k) {
+            const int j = plan ? k : g.ny - 1 - k;
             std::vector<std::string> row = {fmt("%.2f", s.lo.y + (j + 0.5) * s.spacing.y)};
             for (int i = c0; i < c1; ++i) {
                 double v = g.at(i, j);
@@ -665,8 +796,7 @@ std::string requirementText(const Requirement& r, bool cylindrical, const char* 
 void surfacesSection(Pdf& pdf, const ReportInput& in) {
     const SurfaceReport& r = in.surfaces;
     const char* unit = r.units.irradiance();
-    pdf.newPage();
-    pdf.heading("Calculation surfaces (EN 12464-1)");
+    pdf.section("Calculation surfaces (EN 12464-1)");
     pdf.paragraph(
         "Maintained illuminance on each task area, its immediate surrounding and its "
         "background, on the standard's grids; " +
@@ -725,18 +855,18 @@ void surfacesSection(Pdf& pdf, const ReportInput& in) {
 }
 
 void glareSection(Pdf& pdf, const ReportInput& in) {
-    pdf.need(200);
-    pdf.heading("Glare: UGR (CIE 117)");
+    pdf.section("Glare: UGR (CIE 117)");
     if (!in.glare) {
         pdf.paragraph(in.glareNote, 8);
         return;
     }
     pdf.paragraph(
-        "UGR = 8 log10(0.25 / Lb x sum L2 omega / p2) at each observer: L the "
-        "luminance of each luminaire's opening towards the eye, omega its solid angle, "
-        "p Guth's position index, Lb the background luminance (the interreflected "
-        "illuminance at the eye over pi, unless given). Openings under 0.005 m2 take "
-        "CIE 147's 200 I2 / r2. " +
+        "The Unified Glare Rating at each observer, UGR = 8 log10(0.25 / Lb \u00d7 "
+        "\u03a3 L\u00b2\u03c9 / p\u00b2): L is the luminance of each luminaire's opening "
+        "towards the eye, \u03c9 the solid angle it fills, p its position index (Guth), and "
+        "Lb the background luminance (the reflected light reaching the eye, over \u03c0, "
+        "unless given). Openings smaller than 0.005 m2 are rated by CIE 147's rule for small "
+        "sources. Lower is better: 19 is the usual limit for offices and classrooms. " +
             in.glare->maintenance + ".",
         8);
     std::vector<std::vector<std::string>> rows;
@@ -758,12 +888,13 @@ void glareSection(Pdf& pdf, const ReportInput& in) {
 }
 
 void methodSection(Pdf& pdf, const ReportInput& in) {
-    pdf.need(160);
-    pdf.heading("How this was computed", 12);
+    pdf.section("How this was computed");
     pdf.paragraph(
         "Illuminance: " + in.evaluation +
-            ". The grids follow EN 12464-1's rule p = 0.2 x 5^log10(d) unless a spacing is "
-            "given; U0 = Emin / Em.",
+            ". The calculation points lie on the grid EN 12464-1 prescribes for each area's "
+            "size (0.2 m apart on a 1 m task, 1 m apart on a 10 m room) unless another "
+            "spacing was chosen. Em is the mean illuminance, Emin and Emax the lowest and "
+            "highest, and the uniformity U0 = Emin / Em.",
         8);
     pdf.paragraph(
         "Rendered view: " + (in.view.empty() ? "none (" + in.viewNote + ")" : in.viewNote) + ".",
@@ -916,7 +1047,7 @@ void computeReportContents(ReportInput& in, const Scene& scene, const std::strin
                            const std::function<void(const std::string&)>& status) {
     in.scene = &scene;
     in.title = title;
-    in.date = todayUtc();
+    in.date = scene.project.date.empty() ? todayUtc() : scene.project.date;
     if (!scene.taskAreas.empty() || !scene.calcPoints.empty()) {
         in.surfaces = computeSurfaces(scene, how, status);
     } else {
@@ -928,17 +1059,26 @@ void computeReportContents(ReportInput& in, const Scene& scene, const std::strin
     if (!scene.glareObservers.empty())
         in.glare = computeGlare(scene, how, {}, status);
     else
-        in.glareNote = "The scene places no glare observers (\"glare_observers\"): no UGR.";
+        in.glareNote = "No glare observers were placed in the design, so no UGR was rated.";
 }
 
 std::string reportPdf(const ReportInput& in) {
-    Pdf pdf(in.title);
-    titlePage(pdf, in);
-    scheduleSection(pdf, in);
-    surfacesSection(pdf, in);
-    glareSection(pdf, in);
-    methodSection(pdf, in);
-    return pdf.finish();
+    // Drawn twice: the first drawing finds the page each section starts on, which the second
+    // lists on its contents page (a page of its own, so the pages after it do not move).
+    std::vector<std::pair<std::string, int>> contents;
+    for (int pass = 0;; ++pass) {
+        Pdf pdf(in.title);
+        coverPage(pdf, in);
+        contentsPage(pdf, in, contents);
+        projectSection(pdf, in);
+        scheduleSection(pdf, in);
+        surfacesSection(pdf, in);
+        glareSection(pdf, in);
+        methodSection(pdf, in);
+        if (pass == 1) return pdf.finish();
+        contents = pdf.sections;
+        pdf.finish();
+    }
 }
 
 }  // namespace candela

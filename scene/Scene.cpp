@@ -45,6 +45,7 @@ Scene Scene::clone() const {
     copy.environmentSequence = environmentSequence;
     copy.mEnvironmentLight = mEnvironmentLight;  // immutable, shared: the same source
     copy.camera = camera;
+    copy.project = project;
     copy.maintenanceFactor = maintenanceFactor;
     copy.taskAreas = taskAreas;
     copy.calcPoints = calcPoints;

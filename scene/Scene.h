@@ -89,6 +89,16 @@ struct LayoutItem {
     std::vector<nlohmann::json> placed;  ///< Its luminaires' scene-file entries as placed.
 };
 
+/// The project a report is made for (the scene file's "project" block): plain text for the
+/// report's cover and the editor's Project window; empty fields are left out.
+struct ProjectInfo {
+    std::string name, client, designer, date, description;
+    bool empty() const {
+        return name.empty() && client.empty() && designer.empty() && date.empty() &&
+               description.empty();
+    }
+};
+
 struct Camera {
     glm::dvec3 position{0.0, 1.5, 4.0};  ///< Metres.
     glm::dvec3 target{0.0, 1.0, 0.0};    ///< Metres.
@@ -112,6 +122,7 @@ struct Scene {
     /// Set only for {"sequence": ...}: the frames; environmentMap is its frame at t = 0.
     std::shared_ptr<EnvironmentSequence> environmentSequence;
     Camera camera;
+    ProjectInfo project;
     /// The project's maintenance factor (EN 12464-1: maintained over initial output, in (0, 1]):
     /// that of every luminaire that sets none. Daylight (the environment) takes none.
     double maintenanceFactor = 1.0;

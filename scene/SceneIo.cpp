@@ -496,7 +496,7 @@ const nlohmann::json& boundedList(const nlohmann::json& doc, const char* key,
 Scene parseScene(const nlohmann::json& doc, const std::string& path, const SceneLimits& limits) {
     const json::Where root{path, ""};
     json::checkKeys(doc,
-                    {"geometry", "luminaires", "layouts", "environment", "camera",
+                    {"project", "geometry", "luminaires", "layouts", "environment", "camera",
                      "maintenance_factor", "task_areas", "calculation_points", "glare_observers"},
                     root);
     Scene scene;
@@ -555,6 +555,18 @@ Scene parseScene(const nlohmann::json& doc, const std::string& path, const Scene
         scene.environmentSequence = std::move(env.sequence);
     }
     if (doc.contains("camera")) scene.camera = parseCamera(doc["camera"], root / "camera");
+    if (doc.contains("project")) {
+        const json::Where at = root / "project";
+        const nlohmann::json& p = doc["project"];
+        json::checkKeys(p, {"name", "client", "designer", "date", "description"}, at);
+        ProjectInfo& info = scene.project;
+        for (auto [key, field] : {std::pair{"name", &info.name},
+                                  {"client", &info.client},
+                                  {"designer", &info.designer},
+                                  {"date", &info.date},
+                                  {"description", &info.description}})
+            *field = json::optional(p, key, at, std::string(), json::string);
+    }
     if (doc.contains("task_areas")) {
         const nlohmann::json& items =
             boundedList(doc, "task_areas", root, limits.taskAreas, "task areas");
@@ -625,6 +637,17 @@ nlohmann::json sceneToJson(const Scene& scene) {
                      {"fov_deg", scene.camera.fovDeg}};
     if (scene.camera.exposure > 0.0) doc["camera"]["exposure"] = scene.camera.exposure;
     if (scene.maintenanceFactor != 1.0) doc["maintenance_factor"] = scene.maintenanceFactor;
+    if (!scene.project.empty()) {
+        const ProjectInfo& info = scene.project;
+        nlohmann::json& p = doc["project"];
+        p = nlohmann::json::object();
+        for (auto [key, field] : {std::pair{"name", &info.name},
+                                  {"client", &info.client},
+                                  {"designer", &info.designer},
+                                  {"date", &info.date},
+                                  {"description", &info.description}})
+            if (!field->empty()) p[key] = *field;
+    }
     for (const TaskArea& a : scene.taskAreas) doc["task_areas"].push_back(toJson(a));
     for (const CalcPoint& p : scene.calcPoints) doc["calculation_points"].push_back(toJson(p));
     for (const GlareObserver& o : scene.glareObservers) doc["glare_observers"].push_back(toJson(o));

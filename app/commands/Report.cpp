@@ -23,7 +23,8 @@ int cmdReport(const Args& args) {
     CommandLine cli("report");
     cli.argument("scene.json", scenePath, "the scene file");
     cli.output("--out", out, "F.pdf", "the report to write (required)");
-    cli.text("--title", title, "TEXT", "the report's title (default: the scene file's name)");
+    cli.text("--title", title, "TEXT",
+             "the report's title (default: the project's name, else the scene file's name)");
     cli.option("--view-size", "WxH", "the rendered view's size, pixels (960x540)",
                [&](const std::string& v) { parseSize(v, viewWidth, viewHeight, "--view-size"); });
     cli.integer("--view-spp", viewSpp, 1, 65536, "N", "samples per pixel of the view (64)");
@@ -52,7 +53,10 @@ int cmdReport(const Args& args) {
 
     ReportInput in;
     computeReportContents(in, scene,
-                          title.empty() ? std::filesystem::path(scenePath).stem().string() : title,
+                          !title.empty() ? title
+                          : !scene.project.name.empty()
+                              ? scene.project.name
+                              : std::filesystem::path(scenePath).stem().string(),
                           how, status);
     if (view) {
         try {
@@ -66,7 +70,7 @@ int cmdReport(const Args& args) {
             std::fprintf(stderr, "report: warning: the view was not rendered: %s\n", e.what());
         }
     } else {
-        in.viewNote = "--no-view";
+        in.viewNote = "left out at the designer's request";
     }
     std::string pdf = reportPdf(in);
     writeFileAtomically(out, pdf, "cannot write the report");

@@ -61,6 +61,35 @@ first=$(ls "$tmp"/page-*.png | head -1)
 saturation=$(convert "$first" -colorspace HSL -channel G -separate -format "%[fx:maxima]" info:)
 check "the first page shows the rendered view in colour (max saturation $saturation)" 'awk -v s="$saturation" "BEGIN { exit !(s > 0.1) }"'
 
+# The classroom project's report: its cover names the project, client and designer, a contents
+# page lists the sections at the pages they start on, and its text is a client's: no command-line
+# flag, no README, no backtick, no file path; the polar diagram in cd/klm; the plan's isolines
+# labelled.
+classroom="$root/resources/scenes/classroom-project.json"
+"$binary" report "$classroom" --out "$tmp/classroom.pdf" --view-size 320x180 --view-spp 4 >/dev/null 2>"$tmp/err"
+check "the classroom's report is written: $(tail -2 "$tmp/err")" '[ -s "$tmp/classroom.pdf" ]'
+pdftotext -layout "$tmp/classroom.pdf" "$tmp/classroom.txt"
+ctext=$(cat "$tmp/classroom.txt")
+cover=$(pdftotext -f 1 -l 1 -layout "$tmp/classroom.pdf" - 2>/dev/null)
+check "the cover: project, client, designer, date" 'grep -qF "Primary school, classroom 2.14" <<<"$cover" && grep -qF "Town of Riverside" <<<"$cover" && grep -qF "A. Designer" <<<"$cover" && grep -qF "2026-11-29" <<<"$cover"'
+for section in "Contents" "Project data" "Luminaire schedule" "Calculation surfaces (EN 12464-1)" \
+               "Glare: UGR (CIE 117)" "How this was computed"; do
+  page=$(sed -n "s/^ *${section//[()]/.} \{2,\}\([0-9][0-9]*\)\$/\1/p" <<<"$ctext" | head -1)
+  if [ "$section" = "Contents" ]; then
+    check "a contents page" 'grep -qx "Contents" <<<"$(pdftotext -f 2 -l 2 -layout "$tmp/classroom.pdf" - | sed "s/^ *//; s/ *$//")"'
+    continue
+  fi
+  starts=$(pdftotext -f "${page:-1}" -l "${page:-1}" -layout "$tmp/classroom.pdf" - 2>/dev/null | head -3)
+  check "the contents list \"$section\" at page ${page:-none}, where it starts" '[ -n "$page" ] && grep -qF "$section" <<<"$starts"'
+done
+check "no command-line flag in the report" '! grep -qE "(^|[ (])--[a-z]" <<<"$ctext"'
+check "no README, backtick or scene file path" '! grep -qE "README|\`|\.json|\.ldt|\.ies|\.gldf" <<<"$ctext"'
+check "no formula written without superscripts" '! grep -qE "sum L2|omega / p2| m2\b|cd/m2" <<<"$ctext"'
+check "the polar diagram in cd/klm" 'grep -qF "cd/klm" <<<"$ctext"'
+check "the plan seen from above, its isolines labelled with their values" 'grep -qF "each labelled with its value; white: not part of the surface; seen from above, x to the right and z down the page" <<<"$(tr -s " \n" " " <<<"$ctext")"'
+pdftoppm -r 30 -png "$tmp/classroom.pdf" "$tmp/cpage"
+check "every classroom page renders" '[ $(ls "$tmp"/cpage-*.png | wc -l) -eq $(pdfinfo "$tmp/classroom.pdf" | sed -n "s/^Pages: *//p") ]'
+
 expect "the report is a PDF: name it NAME.pdf" -- report "$scene" --out "$tmp/report.png"
 cp "$scene" "$tmp/office.json"
 ln -s "$(cd "$(dirname "$scene")" && pwd)/office.json" "$tmp/link.pdf"
