@@ -403,8 +403,12 @@ size_t addGeneratedItem(Scene& scene, nlohmann::json item, const Material& mater
 /// folder of `fromPath` so they resolve from the folder of `toPath`. Paths stay as written when the
 /// folder does not change.
 void rebaseGltfPaths(nlohmann::json& doc, const std::string& fromPath, const std::string& toPath) {
-    fs::path fromDir = fs::absolute(fs::path(fromPath).parent_path()).lexically_normal();
-    fs::path toDir = fs::absolute(fs::path(toPath).parent_path()).lexically_normal();
+    // The folder of a file named without one ("room.json") is the current folder.
+    auto folderOf = [](const std::string& file) {
+        return (file.empty() ? fs::current_path() : fs::absolute(file).parent_path())
+            .lexically_normal();
+    };
+    fs::path fromDir = folderOf(fromPath), toDir = folderOf(toPath);
     if (fromDir == toDir) return;
     for (nlohmann::json& item : doc["geometry"]) {
         auto it = item.find("gltf");

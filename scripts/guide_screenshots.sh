@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Takes the user guide's images (docs/editor.md) with the editor itself (View > Save window image, F12),
 # driven by real X input under Xvfb: docs/guide/{editor,preview,place,compare,wipe}.png; and the
-# comparison sheet `candela render --pane ... --sheet` writes headless: docs/guide/sheet.png.
+# comparison sheet `candela render --pane ... --sheet` writes headless: docs/guide/sheet.png; and two
+# pages of the classroom project's report (`candela report`): docs/guide/report.png.
 # Usage: bash scripts/guide_screenshots.sh [build/candela]   (needs xvfb, xdotool, imagemagick)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -86,4 +87,13 @@ EDITOR_PID=""
     --size 320x180 --spp 64 --reference-spp 256
 cp "$TMP/sheet/sheet-000.png" "$OUT/sheet.png"
 log "wrote $OUT/sheet.png"
+
+# 7. Two pages of the classroom project's report, side by side: its cover and its task area.
+"$CANDELA" report "$PWD/resources/scenes/classroom-project.json" --out "$TMP/report.pdf" \
+    --view-size 640x360 --view-spp 8
+pdftoppm -r 60 -f 1 -l 1 -singlefile -png "$TMP/report.pdf" "$TMP/report-cover"
+pdftoppm -r 60 -f 5 -l 5 -singlefile -png "$TMP/report.pdf" "$TMP/report-surface"
+convert "$TMP/report-cover.png" "$TMP/report-surface.png" -bordercolor gray70 -border 1 +append \
+    "$OUT/report.png"
+log "wrote $OUT/report.png"
 PASSED=1

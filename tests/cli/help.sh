@@ -13,8 +13,8 @@ check() { if eval "$2"; then passed=$((passed + 1)); else failures=$((failures +
 list=$("$binary" --help); rc=$?
 check "--help exits 0 (rc $rc)" '[ $rc -eq 0 ]'
 commands=$(awk '/^  [a-z]+  / {print $1}' <<<"$list")
-check "--help lists the twelve commands: $(tr '\n' ' ' <<<"$commands")" \
-  '[ "$(wc -l <<<"$commands")" -eq 12 ]'
+check "--help lists the thirteen commands: $(tr '\n' ' ' <<<"$commands")" \
+  '[ "$(wc -l <<<"$commands")" -eq 13 ]'
 for command in $commands; do
   help=$("$binary" "$command" --help); rc=$?
   check "$command --help exits 0 (rc $rc)" '[ $rc -eq 0 ]'

@@ -22,8 +22,14 @@ check "a table of arrangements in lx: $out" 'grep -q "Em \[lx\]" <<<"$out" && [ 
 check "one chosen: $out" '[ $(grep -c "<- chosen" <<<"$out") -eq 1 ] && grep -q "^layout: [0-9]* luminaires" <<<"$out"'
 count=$(sed -n 's/^layout: \([0-9]*\) luminaires.*/\1/p' <<<"$out")
 surfaces=$("$binary" surfaces "$tmp/laid.json" 2>/dev/null)
-check "the written scene has the $count luminaires" '[ $(python3 -c "import json,sys; print(len(json.load(open(sys.argv[1]))[\"luminaires\"]))" "$tmp/laid.json") -eq "$count" ]'
+# Its luminaires are one layout entry, its grid the layout's (the room is a rectangle: no point
+# of the grid falls outside it).
+check "the written scene's layout has the $count luminaires" '[ $(python3 -c "import json,sys; d = json.load(open(sys.argv[1])); print(sum(l[\"grid\"][0] * l[\"grid\"][1] for l in d[\"layouts\"]) + len(d[\"luminaires\"]))" "$tmp/laid.json") -eq "$count" ]'
 check "and its own surfaces run passes: $surfaces" 'grep -A4 "^Classroom (task area)" <<<"$surfaces" | grep -q "required: Em >= 500 lx, U0 >= 0.60: PASS"'
+
+# Written into the current folder by a bare name, its paths still lead to the same files.
+bare=$(cd "$tmp" && "$binary" layout "$scene" --luminaire "$lamp" --height 2.4 --out bare.json 2>&1)
+check "--out bare.json into the current folder: $bare" '[ -s "$tmp/bare.json" ] && "$binary" info "$tmp/bare.json" >/dev/null 2>&1'
 
 mkdir -p "$tmp/scenes" "$tmp/luminaires/photometric"
 cp "$scene" "$tmp/scenes/scene.json" && cp "$lamp" "$tmp/luminaires/photometric/"
