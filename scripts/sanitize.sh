@@ -33,9 +33,11 @@ export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 # every shader variant (an external tool: nothing of ours to sanitize), the flux from a sphere of
 # probes and the brute-force quadrature (PhotometryIes' closed-form fluxes, the photometric
 # luminaire's other tests), and the classroom's 2048-ray gathers at 40 points (the office's
-# adaptive test runs the same gather and refinement under the sanitizers). Every shard of the
-# test binaries reads the filter (tests/CMakeLists.txt).
-LONG='Obstruction.EveryTechniqueOfEveryKind*:LightFieldVisibility.ProbeMatchesADisc*:ShaderVariants.*:PhotometricLuminaire.FluxFromASphereOfProbes*:PhotometryIes.ExactQuadratureMatchesBruteForce*:IndirectAtPoints.RefinementFollowsOccludersEdges*:FluxAudit.*'
+# adaptive test runs the same gather and refinement under the sanitizers). Likewise the layouts
+# of the classroom and the office and the classroom written two ways, which run the whole surfaces
+# calculation up to a dozen times (the L-shaped room's layout and the room tests keep that code
+# under the sanitizers). Every shard of the test binaries reads the filter (tests/CMakeLists.txt).
+LONG='Obstruction.EveryTechniqueOfEveryKind*:LightFieldVisibility.ProbeMatchesADisc*:ShaderVariants.*:PhotometricLuminaire.FluxFromASphereOfProbes*:PhotometryIes.ExactQuadratureMatchesBruteForce*:IndirectAtPoints.RefinementFollowsOccludersEdges*:FluxAudit.*:Layout.TheClassroom*:Layout.TheOffice*:Room.TheClassroomAsARoom*'
 export GTEST_FILTER="${1:-*}-$LONG"
 cd build-asan
 ctest --output-on-failure -j"$(nproc)" -L '^(cpu|gl)$'

@@ -28,7 +28,10 @@ check "the written scene's layout has the $count luminaires" '[ $(python3 -c "im
 check "and its own surfaces run passes: $surfaces" 'grep -A4 "^Classroom (task area)" <<<"$surfaces" | grep -q "required: Em >= 500 lx, U0 >= 0.60: PASS"'
 
 # Written into the current folder by a bare name, its paths still lead to the same files.
-bare=$(cd "$tmp" && "$binary" layout "$scene" --luminaire "$lamp" --height 2.4 --out bare.json 2>&1)
+# (The office: its layout takes half the classroom's time.)
+office="$root/resources/scenes/office.json"
+downlight="$root/resources/luminaires/photometric/halo-recessed-downlight.ies"
+bare=$(cd "$tmp" && "$binary" layout "$office" --luminaire "$downlight" --height 2.79 --out bare.json 2>&1)
 check "--out bare.json into the current folder: $bare" '[ -s "$tmp/bare.json" ] && "$binary" info "$tmp/bare.json" >/dev/null 2>&1'
 
 mkdir -p "$tmp/scenes" "$tmp/luminaires/photometric"
