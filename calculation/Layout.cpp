@@ -142,12 +142,10 @@ LayoutResult proposeLayout(const Scene& scene, const LayoutRequest& request,
     trial.taskAreas = {*area};
     trial.taskAreas[0].surroundings = false;
     trial.calcPoints.clear();
-    auto replaced = [&r](const Luminaire& l) {
-        const glm::dvec3& p = l.pose.position;
-        return !l.atInfinity() && p.x >= r.lo.x && p.x <= r.hi.x && p.z >= r.lo.y && p.z <= r.hi.y;
-    };
     trial.luminaires.erase(std::remove_if(trial.luminaires.begin(), trial.luminaires.end(),
-                                          [&](const auto& l) { return replaced(*l); }),
+                                          [&r](const auto& l) {
+                                              return !l->atInfinity() && r.covers(l->pose.position);
+                                          }),
                            trial.luminaires.end());
     const size_t kept = trial.luminaires.size();
     GridSpec how;
@@ -245,8 +243,7 @@ nlohmann::json applyLayout(const Scene& scene, const LayoutRequest& request,
     const LayoutCandidate* best = result.best();
     if (!best) throw InputError("no layout met the target: nothing to apply");
     auto replaced = [&result](const nlohmann::json& position) {
-        const double x = position[0].get<double>(), z = position[2].get<double>();
-        return x >= result.lo.x && x <= result.hi.x && z >= result.lo.y && z <= result.hi.y;
+        return result.covers({position[0].get<double>(), 0.0, position[2].get<double>()});
     };
     nlohmann::json doc = sceneToJson(scene);
     nlohmann::json luminaires = nlohmann::json::array(), layouts = nlohmann::json::array();

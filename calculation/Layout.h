@@ -69,6 +69,10 @@ struct LayoutResult {
     int chosen = -1;    ///< Index into tried of the smallest arrangement that meets the target.
     std::string light;  ///< What light the task area's values include.
     const LayoutCandidate* best() const { return chosen < 0 ? nullptr : &tried[size_t(chosen)]; }
+    /// Whether a luminaire at `p` (m) stands over the rectangle: the layout replaces it.
+    bool covers(const glm::dvec3& p) const {
+        return p.x >= lo.x && p.x <= hi.x && p.z >= lo.y && p.z <= hi.y;
+    }
 };
 
 /// Proposes the layout; InputError naming what is wrong (no such task area, a luminaire that is

@@ -51,16 +51,6 @@ void emitPiece(const Side& left, const Side& right, double y0, double y1,
 
 }  // namespace
 
-double signedArea(const std::vector<glm::dvec2>& polygon) {
-    double twice = 0.0;
-    for (size_t i = 0; i < polygon.size(); ++i) {
-        const glm::dvec2& a = polygon[i];
-        const glm::dvec2& b = polygon[(i + 1) % polygon.size()];
-        twice += a.x * b.y - b.x * a.y;
-    }
-    return 0.5 * twice;
-}
-
 bool insidePolygon(const std::vector<glm::dvec2>& polygon, const glm::dvec2& p) {
     bool inside = false;
     for (size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {

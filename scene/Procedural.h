@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "scene/Scene.h"
+#include "util/Polygon.h"
 
 namespace candela {
 
@@ -30,9 +31,6 @@ struct Rect2 {
 std::vector<glm::dvec2> tessellate(const std::vector<glm::dvec2>& outline,
                                    const std::vector<Rect2>& holes);
 
-/// Signed area of a polygon, m2: positive when its corners run counter-clockwise with the first
-/// coordinate to the right and the second up.
-double signedArea(const std::vector<glm::dvec2>& polygon);
 /// Whether `p` lies inside the polygon (even-odd rule; points on an edge count either way).
 bool insidePolygon(const std::vector<glm::dvec2>& polygon, const glm::dvec2& p);
 /// An empty string when `polygon` is simple (at least three corners, no edge shorter than 1 mm,

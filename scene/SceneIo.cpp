@@ -410,49 +410,26 @@ void rebaseGltfPaths(nlohmann::json& doc, const std::string& fromPath, const std
     };
     fs::path fromDir = folderOf(fromPath), toDir = folderOf(toPath);
     if (fromDir == toDir) return;
-    for (nlohmann::json& item : doc["geometry"]) {
-        auto it = item.find("gltf");
-        if (it == item.end() || !it->is_string()) continue;
+    // The relative path `object[key]` (if it is one) rewritten to name the same file from toDir.
+    auto rebase = [&](nlohmann::json& object, const char* key) {
+        if (!object.is_object()) return;
+        auto it = object.find(key);
+        if (it == object.end() || !it->is_string()) return;
         fs::path file(it->get<std::string>());
-        if (file.is_absolute()) continue;
+        if (file.is_absolute()) return;
         fs::path target = (fromDir / file).lexically_normal();
         fs::path relative = target.lexically_relative(toDir);
         *it = (relative.empty() ? target : relative).generic_string();
-    }
-    // Luminaire files (photometry, light fields), relative to the scene file, likewise.
-    for (nlohmann::json& entry : doc["luminaires"]) {
-        auto it = entry.find("file");
-        if (it == entry.end() || !it->is_string()) continue;
-        fs::path file(it->get<std::string>());
-        if (file.is_absolute()) continue;
-        fs::path target = (fromDir / file).lexically_normal();
-        fs::path relative = target.lexically_relative(toDir);
-        *it = (relative.empty() ? target : relative).generic_string();
-    }
-    // A layout's luminaire file likewise.
+    };
+    for (nlohmann::json& item : doc["geometry"]) rebase(item, "gltf");
+    // Luminaire files (photometry, light fields), a layout's luminaire's, and the environment's
+    // "file" or "sequence" pattern, relative to the scene file, likewise.
+    for (nlohmann::json& entry : doc["luminaires"]) rebase(entry, "file");
     if (doc.contains("layouts"))
-        for (nlohmann::json& layout : doc["layouts"]) {
-            if (!layout.is_object() || !layout.contains("luminaire")) continue;
-            auto it = layout["luminaire"].find("file");
-            if (it == layout["luminaire"].end() || !it->is_string()) continue;
-            fs::path file(it->get<std::string>());
-            if (file.is_absolute()) continue;
-            fs::path target = (fromDir / file).lexically_normal();
-            fs::path relative = target.lexically_relative(toDir);
-            *it = (relative.empty() ? target : relative).generic_string();
-        }
-    // The environment's "file" or "sequence" pattern, relative to the scene file, likewise.
-    nlohmann::json& env = doc["environment"];
-    if (!env.is_object()) return;
-    for (const char* key : {"file", "sequence"}) {
-        auto it = env.find(key);
-        if (it == env.end() || !it->is_string()) continue;
-        fs::path file(it->get<std::string>());
-        if (file.is_absolute()) continue;
-        fs::path target = (fromDir / file).lexically_normal();
-        fs::path relative = target.lexically_relative(toDir);
-        *it = (relative.empty() ? target : relative).generic_string();
-    }
+        for (nlohmann::json& layout : doc["layouts"])
+            if (layout.is_object() && layout.contains("luminaire"))
+                rebase(layout["luminaire"], "file");
+    for (const char* key : {"file", "sequence"}) rebase(doc["environment"], key);
 }
 
 }  // namespace

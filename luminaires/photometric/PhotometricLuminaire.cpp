@@ -18,6 +18,7 @@
 #include "shaders/shared/GpuTypes.h"
 #include "util/Error.h"
 #include "util/JsonRead.h"
+#include "util/Polygon.h"
 #include "util/TextEncoding.h"
 
 namespace candela {
@@ -41,17 +42,6 @@ glm::dvec3 toLocalDir(const PhotometricLuminaire& l, const Pose& pose, const glm
     glm::dvec3 x, y, z;
     l.photometricFrame(pose, x, y, z);
     return {glm::dot(w, x), glm::dot(w, y), glm::dot(w, z)};
-}
-
-/// Signed area of a polygon in the plane (shoelace), positive counter-clockwise.
-double signedArea(const std::vector<glm::dvec2>& p) {
-    double a = 0.0;
-    for (size_t i = 0; i < p.size(); ++i) {
-        const glm::dvec2& u = p[i];
-        const glm::dvec2& v = p[(i + 1) % p.size()];
-        a += u.x * v.y - v.x * u.y;
-    }
-    return 0.5 * a;
 }
 
 }  // namespace
