@@ -558,6 +558,8 @@ void Editor::buildUi() {
     statsPanel(state, shownRenderer(), *mShaders, stats);
     statusBar(state, shownRenderer(), status);
     fileDialogs(state);
+    roomDialog(state);
+    layoutDialog(state);
 }
 
 void Editor::takeScreenshot() {
@@ -850,6 +852,18 @@ void Editor::writeLayout() {
                                    {"plane", planeText(a.plane)},
                                    {"lo", {a.lo.x, a.lo.y}},
                                    {"hi", {a.hi.x, a.hi.y}}});
+    // The geometry entries (File > New, Add), and the layout dialog's proposal.
+    j["geometry"] = nlohmann::json::array();
+    for (size_t i = 0; i < state.scene.geometry.size(); ++i)
+        j["geometry"].push_back(geometryLabel(state.scene.geometry[i], i));
+    j["scene_path"] = state.scene.path;
+    j["layout_job"] = nullptr;
+    if (const LayoutJob* job = state.layoutDialog.job.get()) {
+        const LayoutCandidate* best =
+            job->done() && job->result() ? job->result()->best() : nullptr;
+        j["layout_job"] = {
+            {"done", job->done()}, {"error", job->error()}, {"count", best ? best->count() : 0}};
+    }
     j["drawing_area"] = state.measure.drawingArea;
     j["grid_plane"] = planeText(state.measure.grid.plane);
     const Camera& camera = state.scene.camera;

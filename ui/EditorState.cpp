@@ -1,12 +1,16 @@
 #include "ui/EditorState.h"
 
+#include <imgui.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <map>
 
+#include "luminaires/Adapter.h"
 #include "luminaires/Registry.h"
 #include "luminaires/environment/Environment.h"
 #include "luminaires/photometric/PhotometricLuminaire.h"
@@ -23,6 +27,7 @@ SceneSnapshot snapshot(const EditorState& state, bool geometry) {
     const Scene& scene = state.scene;
     SceneSnapshot out;
     for (const auto& lum : scene.luminaires) out.luminaires.push_back(lum->clone());
+    out.layouts = scene.layouts;
     out.camera = scene.camera;
     out.maintenanceFactor = scene.maintenanceFactor;
     out.taskAreas = scene.taskAreas;
@@ -44,6 +49,7 @@ SceneSnapshot snapshot(const EditorState& state, bool geometry) {
 void restore(EditorState& state, SceneSnapshot& from) {
     Scene& scene = state.scene;
     scene.luminaires = std::move(from.luminaires);
+    scene.layouts = std::move(from.layouts);
     scene.camera = from.camera;
     scene.maintenanceFactor = from.maintenanceFactor;
     scene.taskAreas = std::move(from.taskAreas);
@@ -137,6 +143,39 @@ void applyEdit(EditorState& state, std::string_view label, unsigned changes,
     state.dirty = true;
     ++state.edits;
     if (changes & kChangeGeometry) ++state.geometryVersion;
+}
+
+std::vector<LibraryEntry> sceneLuminaireFiles(const Scene& scene) {
+    std::map<std::string, std::pair<FileKind, int>> files;  // by absolute path: kind, users
+    for (const auto& l : scene.luminaires) {
+        std::vector<std::string> used;
+        for (const std::string& file : sourceFiles(*l)) {
+            FileKind kind = fileKind(file);
+            // A light field's images and an L3D's parts are not luminaire files of their own.
+            if (!luminaireKindOf(kind)) continue;
+            std::string path = std::filesystem::absolute(file).lexically_normal().string();
+            if (std::find(used.begin(), used.end(), path) != used.end()) continue;
+            used.push_back(path);
+            auto& entry = files[path];
+            entry.first = kind;
+            ++entry.second;
+        }
+    }
+    std::vector<LibraryEntry> out;
+    for (const auto& [path, what] : files)
+        out.push_back({path,
+                       std::filesystem::path(path).filename().string() + " (" +
+                           std::to_string(what.second) +
+                           (what.second == 1 ? " luminaire)" : " luminaires)"),
+                       what.first});
+    std::sort(out.begin(), out.end(),
+              [](const LibraryEntry& a, const LibraryEntry& b) { return a.label < b.label; });
+    return out;
+}
+
+double snapStep(const PlacementUi& placement) {
+    bool ctrl = ImGui::GetCurrentContext() && ImGui::GetIO().KeyCtrl;
+    return placement.snapping != ctrl ? placement.snap : 0.0;
 }
 
 const Bvh& surfaceBvh(EditorState& state) {

@@ -27,6 +27,8 @@
 #include "scene/Scene.h"
 #include "ui/AccuracyPlot.h"
 #include "ui/EditorSession.h"
+#include "ui/LayoutJob.h"
+#include "ui/RoomEditing.h"
 
 namespace candela::ui {
 
@@ -218,6 +220,10 @@ struct LibraryEntry {
     FileKind kind;      ///< Photometric, Gldf or LightField.
 };
 
+/// The luminaire files (photometry, GLDF, light field) the scene's luminaires are made from,
+/// absolute, each once, sorted by name; the label says how many luminaires use it.
+std::vector<LibraryEntry> sceneLuminaireFiles(const Scene& scene);
+
 /// The Library panel: luminaire files under resources/luminaires and the folders the user adds
 /// (kept in the state folder's library.json), each with a thumbnail of what it casts.
 struct LibraryUi {
@@ -241,19 +247,43 @@ struct PlacementUi {
     bool alongSurfaces =
         false;                ///< Dragging moves a luminaire over the surfaces, not in its plane.
     double clearance = 0.01;  ///< Distance from the surface, metres.
-    double snap = 0.1;        ///< Grid step with Ctrl held while dragging or placing, metres.
+    /// Dragged and placed luminaires land on a grid of `snap` metres (Ctrl held: the other way).
+    bool snapping = true;
+    double snap = 0.1;           ///< The grid's step, metres.
     int arrayCount[2] = {3, 2};  ///< Array: luminaires along x and z.
     double arraySpacing[2] = {1.2,
                               1.2};  ///< Array: distance between neighbours along x and z, metres.
     /// The scene's BVH for picking surfaces, rebuilt when geometryVersion moves on.
     std::shared_ptr<const Bvh> surfaces;
     int surfacesVersion = -1;
+    /// The same without the luminaires' bodies: distances to the walls (ui/RoomEditing.h).
+    std::shared_ptr<const Bvh> walls;
+    int wallsVersion = -1;
+};
+
+/// Add > Luminaire layout: a layout that reaches a task area's target (ui/LayoutJob.h).
+struct LayoutUi {
+    bool requested = false;          ///< Open the dialog next frame.
+    std::string file;                ///< The luminaire file, absolute.
+    std::string variant;             ///< GLDF only ("" for the first).
+    int area = 0;                    ///< Index into the scene's task areas.
+    double height = 2.5;             ///< Mounting height above the floor, m.
+    double em = 0.0, u0 = 0.0;       ///< Targets; 0: the task area's requirement.
+    std::shared_ptr<LayoutJob> job;  ///< Running or done; reset by a new proposal.
+};
+
+/// File > New's room dialog and Add > Room.
+struct RoomDialogUi {
+    bool requested = false;  ///< Open the dialog next frame.
+    bool newScene = true;    ///< A new scene (File > New), else a room added to this one.
+    RoomDraft draft;
 };
 
 /// What an undo step restores: the scene's editable state. Meshes and materials are kept only
 /// for steps that changed geometry (a luminaire move does not copy the room).
 struct SceneSnapshot {
     std::vector<std::unique_ptr<Luminaire>> luminaires;
+    std::vector<LayoutItem> layouts;  ///< Small: kept by every step, as the luminaires are.
     Camera camera;
     double maintenanceFactor = 1.0;
     std::vector<TaskArea> taskAreas;  ///< Small: kept by every step.
@@ -331,6 +361,8 @@ struct EditorState {
     PlacementUi placement;
     LibraryUi library;
     CompareUi compare;
+    RoomDialogUi room;
+    LayoutUi layoutDialog;
     int geometryVersion = 0;  ///< Moves on whenever the scene's meshes may have changed.
     /// Test hook for --layout-file: screen rectangles (x0, y0, x1, y1, window pixels) of named
     /// widgets drawn this frame ("inspector.spin", "outline.add", ...), recorded by the panels
@@ -426,6 +458,10 @@ int duplicateLuminaire(EditorState& state, int index);
 void deleteLuminaire(EditorState& state, int index);
 /// Replaces a luminaire by one built from edited fields, keeping its pose, name and technique.
 void replaceLuminaire(EditorState& state, int index, std::unique_ptr<Luminaire> replacement);
+
+/// The grid step a drag or placement lands on now (0: none): the placement's snap step while
+/// snapping is on, Ctrl held turning it off (or on, while it is off).
+double snapStep(const PlacementUi& placement);
 
 /// The scene's BVH for surface picks (cached in state.placement until the geometry changes).
 const Bvh& surfaceBvh(EditorState& state);

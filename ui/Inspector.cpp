@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <optional>
 #include <vector>
 
 #include "luminaires/lightfield/LightField.h"
@@ -16,6 +17,7 @@
 #include "scene/SceneIo.h"
 #include "ui/ImGuiUtil.h"
 #include "ui/Panels.h"
+#include "ui/RoomEditing.h"
 #include "util/JsonRead.h"
 
 namespace candela::ui {
@@ -40,64 +42,96 @@ bool dragVec3(const char* label, glm::dvec3& v, float speed) {
                               "%.3f");
 }
 
-/// Edits the numeric, string and boolean fields of a kind-specific entry in place.
+/// Edits one value of a scene-file entry in place: a number (dragged), a short list of numbers,
+/// a string (applied on Enter: a file path should not be loaded at every keystroke), a boolean,
+/// and an object or a list as a tree of its own values (a room's reflectances, its openings).
+bool editJsonValue(EditorState& state, const std::string& key, nlohmann::json& value,
+                   int depth = 0) {
+    bool edited = false;
+    std::string label = key + fieldUnit(key);
+    ImGui::PushID(key.c_str());
+    if (value.is_number_integer()) {
+        int64_t v = value.get<int64_t>();
+        if (ImGui::DragScalar(label.c_str(), ImGuiDataType_S64, &v, 0.2f)) {
+            value = v;
+            edited = true;
+        }
+    } else if (value.is_number()) {
+        double v = value.get<double>();
+        if (ImGui::DragScalar(label.c_str(), ImGuiDataType_Double, &v, dragSpeed(v), nullptr,
+                              nullptr, "%.4g")) {
+            value = v;
+            edited = true;
+        }
+    } else if (value.is_array() && !value.empty() && value.size() <= 4 &&
+               std::all_of(value.begin(), value.end(),
+                           [](const nlohmann::json& e) { return e.is_number(); })) {
+        double v[4] = {0.0, 0.0, 0.0, 0.0};
+        double largest = 0.0;
+        for (size_t k = 0; k < value.size(); ++k) {
+            v[k] = value[k].get<double>();
+            largest = std::max(largest, std::abs(v[k]));
+        }
+        if (ImGui::DragScalarN(label.c_str(), ImGuiDataType_Double, v, int(value.size()),
+                               dragSpeed(largest), nullptr, nullptr, "%.4g")) {
+            for (size_t k = 0; k < value.size(); ++k)
+                value[k] = value[k].is_number_integer() ? nlohmann::json(std::llround(v[k]))
+                                                        : nlohmann::json(v[k]);
+            edited = true;
+        }
+    } else if (value.is_string()) {
+        std::string text = value.get<std::string>();
+        if (ImGui::InputText(label.c_str(), &text, ImGuiInputTextFlags_EnterReturnsTrue)) {
+            value = text;
+            edited = true;
+        }
+        recordRect(state, "inspector.field:" + key);
+        itemTooltip("Press Enter to apply");
+    } else if (value.is_boolean()) {
+        bool b = value.get<bool>();
+        if (ImGui::Checkbox(label.c_str(), &b)) {
+            value = b;
+            edited = true;
+        }
+    } else if ((value.is_object() || value.is_array()) && depth < 4 && !value.empty()) {
+        if (ImGui::TreeNodeEx(key.c_str(), ImGuiTreeNodeFlags_DefaultOpen, "%s", label.c_str())) {
+            if (value.is_object()) {
+                for (auto it = value.begin(); it != value.end(); ++it)
+                    edited = editJsonValue(state, it.key(), it.value(), depth + 1) || edited;
+            } else {
+                // A list's items are "key 1", "key 2", ...; objects in it (openings) can be
+                // removed one by one.
+                for (size_t k = 0; k < value.size(); ++k) {
+                    std::string item = key + " " + std::to_string(k + 1);
+                    if (value[k].is_object()) {
+                        ImGui::PushID(int(k));
+                        bool remove = ImGui::SmallButton("x");
+                        itemTooltip("Remove " + item);
+                        ImGui::PopID();
+                        if (remove) {
+                            value.erase(k);
+                            edited = true;
+                            break;
+                        }
+                        ImGui::SameLine();
+                    }
+                    edited = editJsonValue(state, item, value[k], depth + 1) || edited;
+                }
+            }
+            ImGui::TreePop();
+        }
+    } else {
+        ImGui::TextDisabled("%s: %s", label.c_str(), value.dump().c_str());
+    }
+    ImGui::PopID();
+    return edited;
+}
+
+/// Edits the kind-specific fields of a luminaire's entry in place.
 bool editKindFields(EditorState& state, nlohmann::json& entry) {
     bool edited = false;
-    for (auto it = entry.begin(); it != entry.end(); ++it) {
-        const std::string& key = it.key();
-        if (isCommonField(key)) continue;
-        nlohmann::json& value = it.value();
-        std::string label = key + fieldUnit(key);
-        ImGui::PushID(key.c_str());
-        if (value.is_number_integer()) {
-            int64_t v = value.get<int64_t>();
-            if (ImGui::DragScalar(label.c_str(), ImGuiDataType_S64, &v, 0.2f)) {
-                value = v;
-                edited = true;
-            }
-        } else if (value.is_number()) {
-            double v = value.get<double>();
-            if (ImGui::DragScalar(label.c_str(), ImGuiDataType_Double, &v, dragSpeed(v), nullptr,
-                                  nullptr, "%.4g")) {
-                value = v;
-                edited = true;
-            }
-        } else if (value.is_array() && !value.empty() && value.size() <= 4 &&
-                   std::all_of(value.begin(), value.end(),
-                               [](const nlohmann::json& e) { return e.is_number(); })) {
-            double v[4] = {0.0, 0.0, 0.0, 0.0};
-            double largest = 0.0;
-            for (size_t k = 0; k < value.size(); ++k) {
-                v[k] = value[k].get<double>();
-                largest = std::max(largest, std::abs(v[k]));
-            }
-            if (ImGui::DragScalarN(label.c_str(), ImGuiDataType_Double, v, int(value.size()),
-                                   dragSpeed(largest), nullptr, nullptr, "%.4g")) {
-                for (size_t k = 0; k < value.size(); ++k)
-                    value[k] = value[k].is_number_integer() ? nlohmann::json(std::llround(v[k]))
-                                                            : nlohmann::json(v[k]);
-                edited = true;
-            }
-        } else if (value.is_string()) {
-            std::string text = value.get<std::string>();
-            // Applied on Enter: a file path should not be loaded at every keystroke.
-            if (ImGui::InputText(label.c_str(), &text, ImGuiInputTextFlags_EnterReturnsTrue)) {
-                value = text;
-                edited = true;
-            }
-            recordRect(state, "inspector.field:" + key);
-            itemTooltip("Press Enter to apply");
-        } else if (value.is_boolean()) {
-            bool b = value.get<bool>();
-            if (ImGui::Checkbox(label.c_str(), &b)) {
-                value = b;
-                edited = true;
-            }
-        } else {
-            ImGui::TextDisabled("%s: %s", label.c_str(), value.dump().c_str());
-        }
-        ImGui::PopID();
-    }
+    for (auto it = entry.begin(); it != entry.end(); ++it)
+        if (!isCommonField(it.key())) edited = editJsonValue(state, it.key(), it.value()) || edited;
     return edited;
 }
 
@@ -136,6 +170,41 @@ bool poseFields(EditorState& state, int index) {
     };
     Pose pose = lum.pose;
     if (dragVec3("Position [m]", pose.position, 0.01f)) setPose("Move", pose);
+    recordRect(state, "inspector.position");
+
+    // Typed distances: the height above the floor under the luminaire, and the clear distance
+    // to the first surface along -x, +x, -z and +z at its height (walls, partitions).
+    pose = lum.pose;
+    if (std::optional<double> floor = floorBelow(state, pose.position)) {
+        double height = pose.position.y - *floor;
+        if (ImGui::DragScalar("Mounting height [m]", ImGuiDataType_Double, &height, 0.01f, nullptr,
+                              nullptr, "%.3f")) {
+            pose.position.y = *floor + height;
+            setPose("Move", pose);
+        }
+        recordRect(state, "inspector.mounting_height");
+        itemTooltip("Above the floor under the luminaire (double-click to type)");
+    }
+    for (int axis : {0, 2}) {
+        pose = state.scene.luminaires[size_t(index)]->pose;
+        glm::dvec3 dir(0.0);
+        dir[axis] = 1.0;
+        std::optional<double> back = clearDistance(state, pose.position, -dir);
+        std::optional<double> ahead = clearDistance(state, pose.position, dir);
+        if (!back || !ahead) continue;
+        double d[2] = {*back, *ahead};
+        const char* label = axis == 0 ? "From walls -x, +x [m]" : "From walls -z, +z [m]";
+        if (ImGui::DragScalarN(label, ImGuiDataType_Double, d, 2, 0.01f, nullptr, nullptr,
+                               "%.3f")) {
+            // The side edited keeps the typed distance; the luminaire moves along the axis.
+            pose.position[axis] += d[0] != *back ? d[0] - *back : *ahead - d[1];
+            setPose("Move", pose);
+        }
+        recordRect(state, axis == 0 ? "inspector.walls_x" : "inspector.walls_z");
+        itemTooltip(
+            "The clear distance at the luminaire's height to the first surface on each side (a "
+            "wall or a partition); double-click one to type it and the luminaire moves to it");
+    }
 
     pose = lum.pose;
     if (dragVec3("Aim (direction)", pose.aim, 0.01f)) {
@@ -315,24 +384,64 @@ bool luminaireInspector(EditorState& state, int index) {
     return changed;
 }
 
-void geometryInspector(const EditorState& state, int index) {
+/// A geometry entry: what it made, and its scene-file fields, edited in place (each change
+/// rebuilds the geometry as one undo step; a value the parser refuses is shown and not applied).
+/// A room can take openings; any entry can be deleted.
+bool geometryInspector(EditorState& state, int index) {
+    bool changed = false;
     const GeometryItem& item = state.scene.geometry[size_t(index)];
-    ImGui::Text("Geometry entry #%d: %zu mesh(es)", index, item.meshes.size());
     size_t triangles = 0;
     for (uint32_t m : item.meshes)
         if (m < state.scene.meshes.size()) triangles += state.scene.meshes[m].triangleCount();
-    ImGui::Text("Triangles: %zu", triangles);
-    if (!item.meshes.empty() && item.meshes[0] < state.scene.meshes.size()) {
-        const Mesh& mesh = state.scene.meshes[item.meshes[0]];
-        ImGui::Text("Bounds min [m]: %.3f %.3f %.3f", mesh.boundsMin.x, mesh.boundsMin.y,
-                    mesh.boundsMin.z);
-        ImGui::Text("Bounds max [m]: %.3f %.3f %.3f", mesh.boundsMax.x, mesh.boundsMax.y,
-                    mesh.boundsMax.z);
+    ImGui::Text("Geometry entry #%d: %zu mesh(es), %zu triangles", index, item.meshes.size(),
+                triangles);
+    glm::vec3 lo(1e30f), hi(-1e30f);
+    for (uint32_t m : item.meshes)
+        if (m < state.scene.meshes.size()) {
+            lo = glm::min(lo, state.scene.meshes[m].boundsMin);
+            hi = glm::max(hi, state.scene.meshes[m].boundsMax);
+        }
+    if (lo.x <= hi.x)
+        ImGui::TextDisabled(
+            "Extent %.2f x %.2f x %.2f m (x %.2f..%.2f, y %.2f..%.2f, z %.2f..%.2f)", hi.x - lo.x,
+            hi.y - lo.y, hi.z - lo.z, lo.x, hi.x, lo.y, hi.y, lo.z, hi.z);
+    nlohmann::json entry = item.source;
+    bool edited = false;
+    if (entry.is_object())
+        for (auto it = entry.begin(); it != entry.end(); ++it)
+            edited = editJsonValue(state, it.key(), it.value()) || edited;
+    if (edited) {
+        changed =
+            replaceGeometryEntry(state, index, entry, "Edit " + geometryLabel(item, size_t(index)));
     }
-    ImGui::TextDisabled("Scene-file entry (read-only in this version):");
-    ImGui::PushTextWrapPos(0.f);
-    ImGui::TextUnformatted(item.source.dump(2).c_str());
-    ImGui::PopTextWrapPos();
+    if (!state.inspectorError.empty()) errorText(state.inspectorError);
+
+    ImGui::Spacing();
+    if (entry.is_object() && entry.contains("room")) {
+        int walls = int(entry["room"].value("floor", nlohmann::json::array()).size());
+        for (const char* type : {"window", "door", "skylight"}) {
+            std::string button = std::string("Add ") + type;
+            if (ImGui::Button(button.c_str())) {
+                OpeningDraft o;
+                o.type = type;
+                if (o.type == "door") o.wall = 2, o.width = 1.0, o.height = 2.1, o.offset = 0.5;
+                changed = addOpening(state, index, o) || changed;
+            }
+            recordRect(state, std::string("inspector.add_") + type);
+            itemTooltip(std::string(type) == "skylight"
+                            ? std::string("A 1.2 x 1.2 m opening in the middle of the ceiling; "
+                                          "edit its centre and size below")
+                            : std::string("On wall ") + (std::string(type) == "door" ? "2" : "1") +
+                                  " (wall N runs from corner N to N + 1; the room has " +
+                                  std::to_string(walls) +
+                                  " walls); edit its wall, offset, width and height below");
+            ImGui::SameLine();
+        }
+        ImGui::NewLine();
+    }
+    if (ImGui::Button("Delete")) changed = removeGeometryEntry(state, index) || changed;
+    recordRect(state, "inspector.delete_geometry");
+    return changed;
 }
 
 }  // namespace
@@ -348,7 +457,7 @@ bool inspectorPanel(EditorState& state, const PanelRect& rect) {
     if (lum >= 0 && lum < int(state.scene.luminaires.size())) {
         changed = luminaireInspector(state, lum);
     } else if (geo >= 0 && geo < int(state.scene.geometry.size())) {
-        geometryInspector(state, geo);
+        changed = geometryInspector(state, geo);
     } else {
         ImGui::PushTextWrapPos(0.f);
         ImGui::TextDisabled(

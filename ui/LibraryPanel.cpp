@@ -234,8 +234,21 @@ bool libraryPanel(EditorState& state, const PanelRect& rect) {
     recordPanelRect(state, "library");
     bool changed = false;
     bool madeOne = false;  // at most one new thumbnail per frame
-    for (const LibraryEntry& entry : lib.entries)
-        changed = libraryRow(state, entry, madeOne) || changed;
+    // The files the open scene uses first (where they are, beside the bundled ones or not).
+    std::vector<LibraryEntry> used = sceneLuminaireFiles(state.scene);
+    std::string usedHeader = "In this scene (" + std::to_string(used.size()) + ")###library_scene";
+    if (!used.empty() &&
+        ImGui::CollapsingHeader(usedHeader.c_str(), ImGuiTreeNodeFlags_DefaultOpen)) {
+        ImGui::PushID("scene");  // a file may be listed below too
+        for (const LibraryEntry& entry : used)
+            changed = libraryRow(state, entry, madeOne) || changed;
+        ImGui::PopID();
+    }
+    recordRect(state, "library.in_scene");
+    std::string allHeader = "Library (" + std::to_string(lib.entries.size()) + ")###library_all";
+    if (ImGui::CollapsingHeader(allHeader.c_str(), ImGuiTreeNodeFlags_DefaultOpen))
+        for (const LibraryEntry& entry : lib.entries)
+            changed = libraryRow(state, entry, madeOne) || changed;
     ImGui::Separator();
     libraryFolders(state);
     ImGui::End();

@@ -23,7 +23,8 @@ void requestSave(EditorState& state) {
         saveSceneFile(state, {});
 }
 
-/// "plane #0", "box #5", "gltf chair.glb #7": the entry's shape key (or its name) and index.
+}  // namespace
+
 std::string geometryLabel(const GeometryItem& item, size_t index) {
     std::string label;
     const nlohmann::json& src = item.source;
@@ -36,6 +37,10 @@ std::string geometryLabel(const GeometryItem& item, size_t index) {
             for (const char* k : kMaterialKeys) material = material || it.key() == k;
             if (material) continue;
             label = it.key();
+            // {"room": {"name": "Classroom", ...}}: "Classroom (room)".
+            if (it.value().is_object() && it.value().contains("name") &&
+                it.value()["name"].is_string())
+                label = it.value()["name"].get<std::string>() + " (" + it.key() + ")";
             if (it.value().is_string()) {
                 std::filesystem::path file = it.value().get<std::string>();
                 label.append(" ").append(file.filename().string());
@@ -45,8 +50,6 @@ std::string geometryLabel(const GeometryItem& item, size_t index) {
     if (label.empty()) label = "geometry";
     return label + " #" + std::to_string(index);
 }
-
-}  // namespace
 
 const char* fieldUnit(const std::string& key) {
     struct Unit {
@@ -62,7 +65,9 @@ const char* fieldUnit(const std::string& key) {
         {"irradiance", " [W/m2]"}, {"intensity", " [cd]"},
         {"lumens", " [lm]"},       {"flux", " [lm]"},
         {"illuminance", " [lx]"},  {"opening", " [m]"},
-        {"scale", " [x]"},
+        {"scale", " [x]"},         {"offset", " [m]"},
+        {"sill", " [m]"},          {"elevation", " [m]"},
+        {"position", " [m]"},      {"center", " [m]"},
     };
     for (const Unit& u : kUnits)
         if (key == u.key) return u.unit;
@@ -81,6 +86,10 @@ bool mainMenuBar(EditorState& state, float& barHeight) {
     barHeight = 0.f;
     if (ImGui::BeginMainMenuBar()) {
         if (ImGui::BeginMenu("File")) {
+            if (ImGui::MenuItem("New room...", "Ctrl+N")) {
+                state.room.requested = true;
+                state.room.newScene = true;
+            }
             if (ImGui::MenuItem("Open...", "Ctrl+O")) state.files.openRequested = true;
             if (ImGui::MenuItem("Save", "Ctrl+S")) requestSave(state);
             if (ImGui::MenuItem("Save As...")) state.files.saveAsRequested = true;
@@ -115,6 +124,31 @@ bool mainMenuBar(EditorState& state, float& barHeight) {
                 changed = redo(state) || changed;
             ImGui::EndMenu();
         }
+        if (ImGui::BeginMenu("Add")) {
+            if (ImGui::MenuItem("Room...")) {
+                state.room.requested = true;
+                state.room.newScene = false;
+            }
+            itemTooltip("A room beside the scene's others (move its floor's corners to place it)");
+            if (ImGui::MenuItem("Luminaire layout...", "Ctrl+L"))
+                state.layoutDialog.requested = true;
+            itemTooltip(
+                "The fewest luminaires in a grid that reach a task area's target, computed");
+            if (ImGui::BeginMenu("Furniture")) {
+                for (const FurnitureType& t : furnitureTypes())
+                    if (ImGui::MenuItem(t.label)) {
+                        // Where the camera looks, on the floor of the room there.
+                        glm::dvec3 target = state.scene.camera.target;
+                        glm::dvec2 at(target.x, target.z);
+                        double floorY = roomFloorAt(state.scene, at)
+                                            .value_or(double(state.scene.boundsMin().y));
+                        if (state.scene.geometry.empty()) floorY = 0.0;
+                        changed = addFurniture(state, t.name, at, floorY) >= 0 || changed;
+                    }
+                ImGui::EndMenu();
+            }
+            ImGui::EndMenu();
+        }
         if (ImGui::BeginMenu("View")) {
             if (ImGui::MenuItem("Save window image", "F12")) state.windowShotRequested = true;
             ImGui::EndMenu();
@@ -127,6 +161,11 @@ bool mainMenuBar(EditorState& state, float& barHeight) {
         // GLFW key codes equal ASCII for letters (the 1.86 backend indexes KeysDown by them).
         if (io.KeyCtrl && ImGui::IsKeyPressed('S', false)) requestSave(state);
         if (io.KeyCtrl && ImGui::IsKeyPressed('O', false)) state.files.openRequested = true;
+        if (io.KeyCtrl && ImGui::IsKeyPressed('L', false)) state.layoutDialog.requested = true;
+        if (io.KeyCtrl && ImGui::IsKeyPressed('N', false)) {
+            state.room.requested = true;
+            state.room.newScene = true;
+        }
         if (io.KeyCtrl && ImGui::IsKeyPressed('E', false) && !state.report.running)
             state.files.reportRequested = true;
         if (io.KeyCtrl && !io.KeyShift && ImGui::IsKeyPressed('Z', false))
@@ -325,7 +364,8 @@ static void placementControls(EditorState& state, bool noSelection) {
     recordRect(state, "outline.place");
     itemTooltip(
         "The next left click on a surface in the viewport puts the selected luminaire "
-        "there (Shift+click to place it again, Ctrl to snap, Escape to cancel)");
+        "there (Shift+click to place it again, Ctrl to turn snapping off or on, Escape to "
+        "cancel)");
     ImGui::EndDisabled();
     if (noSelection) p.armed = false;
     if (p.armed && ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false)) p.armed = false;
@@ -348,9 +388,15 @@ static void placementControls(EditorState& state, bool noSelection) {
     ImGui::SliderScalar("Clearance [m]", ImGuiDataType_Double, &p.clearance, &minClear, &maxClear,
                         "%.3f");
     ImGui::SameLine();
+    ImGui::Checkbox("Snap", &p.snapping);
+    recordRect(state, "outline.snap");
+    ImGui::SameLine();
     ImGui::SetNextItemWidth(70.f);
-    ImGui::SliderScalar("Snap [m]", ImGuiDataType_Double, &p.snap, &minSnap, &maxSnap, "%.2f");
-    itemTooltip("Grid step for positions while Ctrl is held (dragging or placing)");
+    ImGui::SliderScalar("grid [m]", ImGuiDataType_Double, &p.snap, &minSnap, &maxSnap, "%.2f");
+    itemTooltip(
+        "Dragged and placed luminaires land on a grid of this step (hold Ctrl for the other "
+        "way); type exact positions, mounting heights and distances from the walls in the "
+        "inspector");
     ImGui::SetNextItemWidth(90.f);
     ImGui::InputInt2("##arraycount", p.arrayCount);
     recordRect(state, "outline.array_count");

@@ -31,12 +31,20 @@ void recordPanelRect(EditorState& state, const std::string& name);
 
 /// File menu (Open, Save, Save As, Quit) and keyboard shortcuts (Ctrl+O, Ctrl+S, Delete).
 /// barHeight receives the menu bar's height in pixels.
+/// "plane #0", "Classroom (room) #1", "gltf chair.glb #7": the entry's name (its own or its
+/// shape's), else its shape key and file, and its index.
+std::string geometryLabel(const GeometryItem& item, size_t index);
+
 bool mainMenuBar(EditorState& state, float& barHeight);
 /// The project's dialogs: autosaves found when the scene was opened (restore, discard, later) and
 /// a save that found the scene changed on disk (overwrite, save as, reload, cancel).
 bool projectDialogs(EditorState& state);
 /// The Open / Save As modals, the project's dialogs and the error modal.
 bool fileDialogs(EditorState& state);
+/// The room dialog (File > New, Add > Room; ui/RoomDialog.cpp).
+bool roomDialog(EditorState& state);
+/// Add > Luminaire layout (ui/LayoutDialog.cpp).
+bool layoutDialog(EditorState& state);
 
 /// Outline of geometry and luminaires (click to select) with Add / Duplicate / Delete.
 bool outlinePanel(EditorState& state, const PanelRect& rect);

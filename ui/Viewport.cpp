@@ -226,8 +226,7 @@ bool continueLuminaireDrag(EditorState& state, const Renderer& renderer, const I
     if (index < 0 || index >= int(state.scene.luminaires.size())) return false;
     glm::dvec2 px = map.toRender(mouse);
     Luminaire& lum = *state.scene.luminaires[size_t(index)];
-    bool snap = ImGui::GetIO().KeyCtrl;  // Ctrl: positions on the placement grid
-    double step = snap ? state.placement.snap : 0.0;
+    double step = snapStep(state.placement);
     if (state.drag.onSurfaces) {
         const PlacementUi& p = state.placement;
         auto hit = pickSurface(surfaceBvh(state), renderer.viewProj(), px.x, px.y, map.renderWidth,
@@ -345,7 +344,7 @@ void placeAtPixel(EditorState& state, const Renderer& renderer, const ImageMappi
     const ImGuiIO& io = ImGui::GetIO();
     Luminaire& lum = *state.scene.luminaires[size_t(index)];
     Pose pose = poseOnSurface(lum.pose, hit->point, hit->normal, p.aimAlongNormal, p.clearance,
-                              io.KeyCtrl ? p.snap : 0.0);
+                              snapStep(p));
     applyEdit(state, "Place " + lum.name, kChangeLuminaires,
               [&](Scene& s) { s.luminaires[size_t(index)]->pose = pose; });
     p.armed = io.KeyShift;

@@ -79,8 +79,9 @@ read -r PX PY < <(python3 -c "print(round(($NX-$VX)*$IW/$VW), round(($NY-$VY)*$I
 # the noise of a few-spp image in 400-pixel means.
 e2e_spot_moved "$SHOTS/shot-000.png" "$SHOTS/shot-001.png" "$OX" "$OY" "$PX" "$PY" 20
 
-# Sidecars: parse, the luminaire moved in its horizontal plane, and its new position projects to
-# where the mouse was released (the renderer's camera model: lookAt + perspective, Y-up).
+# Sidecars: parse, the luminaire moved in its horizontal plane onto the placement grid, in the
+# grid cell where the mouse was released (the renderer's camera model: lookAt + perspective,
+# Y-up).
 PYTHONPATH="$E2E_LIB" python3 - "$SHOTS/shot-000.json" "$SHOTS/shot-001.json" "$NAME" "$PX" "$PY" <<'EOF' ||
 import json, math, sys
 from camera import project
@@ -99,9 +100,19 @@ assert abs(d[1]) < 1e-6, f"the drag changed the height by {d[1]} m"
 assert math.hypot(d[0], d[2]) > 0.2, f"the luminaire moved only {math.hypot(d[0], d[2]):.3f} m"
 assert d[0] > 0, "dragging right should move the luminaire towards +x in this view"
 
+# It lands on the placement grid (0.1 m by default): x and z are multiples of the step...
+step = 0.1
+for c in (p1[0], p1[2]):
+    assert abs(c / step - round(c / step)) < 1e-6, f"{p1} is not on the {step} m grid"
+# ...in the grid cell where the mouse was released: the mouse within (4 px of) the cell's
+# projection.
+corners = [project([p1[0] + dx, p1[1], p1[2] + dz], after)
+           for dx in (-step / 2, step / 2) for dz in (-step / 2, step / 2)]
+xs, ys = [c[0] for c in corners], [c[1] for c in corners]
 sx, sy = project(p1, after)
-print(f"editor_drag: new position projects to ({sx:.1f}, {sy:.1f}), mouse released at ({px}, {py})")
-assert abs(sx - px) < 4 and abs(sy - py) < 4, "the luminaire is not where it was dropped"
+print(f"editor_drag: new position projects to ({sx:.1f}, {sy:.1f}), its cell to x {min(xs):.1f}..{max(xs):.1f}, y {min(ys):.1f}..{max(ys):.1f}; mouse released at ({px}, {py})")
+assert min(xs) - 4 <= px <= max(xs) + 4 and min(ys) - 4 <= py <= max(ys) + 4, \
+    "the luminaire is not in the grid cell where it was dropped"
 EOF
     fail "sidecar check"
 
