@@ -74,6 +74,11 @@ SurfaceResult gridded(std::string name, std::string role, const CalcPlane& plane
 
 }  // namespace
 
+double surroundingCell(const glm::dvec2& size) {
+    if (!(size.x > 0.0) || !(size.y > 0.0)) return 0.0;
+    return std::min(standardGridCell(size.x, size.y), kSurroundingBand / 3.0);
+}
+
 std::vector<SurfaceResult> layoutSurfaces(const Scene& scene) {
     std::vector<SurfaceResult> out;
     for (const TaskArea& a : scene.taskAreas) {
@@ -91,7 +96,7 @@ std::vector<SurfaceResult> layoutSurfaces(const Scene& scene) {
         glm::dvec2 sHi = glm::min(a.hi + kSurroundingBand, roomHi);
         SurfaceResult surrounding =
             gridded(a.name + ": immediate surrounding", "immediate surrounding", a.plane, sLo, sHi,
-                    a.lo, a.hi, 0.0);
+                    a.lo, a.hi, surroundingCell(sHi - sLo));
         if (a.required.em > 0.0) surrounding.required.em = surroundingIlluminance(a.required.em);
         surrounding.required.u0 = kSurroundingU0;
         glm::dvec2 bLo = glm::max(sLo - kBackgroundBand, roomLo + kWallBand);

@@ -34,6 +34,14 @@ double surroundingIlluminance(double taskLux);
 constexpr double kSurroundingU0 = 0.40, kBackgroundU0 = 0.10, kBackgroundShare = 1.0 / 3.0;
 /// Widths of the immediate surrounding, the background and the wall band, m.
 constexpr double kSurroundingBand = 0.5, kBackgroundBand = 3.0, kWallBand = 0.5;
+/// The immediate surrounding's grid cell for its rectangle of `size` (m, task area and band): the
+/// standard's rule on the whole rectangle, at most a third of the band. The rule alone gives the
+/// whole rectangle's cell (0.39 m around a 1.6 x 0.8 m desk), which leaves one ring of points
+/// across the 0.5 m band: the surrounding's Emin and U0 would then be one ring's and its picture
+/// the interpolation of one ring. With cells of at most a third of the band, the centres in a
+/// whole band are sLo + (k + 1/2) p < sLo + 0.5 m for k = 0, 1, 2 on every side: three rings
+/// (fewer where the room's walls cut the band). 0 for an empty rectangle.
+double surroundingCell(const glm::dvec2& size);
 /// Cylindrical illuminance is the mean vertical illuminance over this many horizontal
 /// directions: light from any one direction is then weighted within 0.33 % of the exact 1/pi
 /// (the ripple of a mean of 32 shifted clamped cosines; less for light from many directions).

@@ -381,6 +381,23 @@ class ProductReader {
         variant.assumedEmitter = only->id;
     }
 
+    /// A Pictures element's images; one naming no file is left out with a warning (the picture
+    /// is an illustration: the product is read without it).
+    std::vector<GldfPicture> pictures(const pugi::xml_node& node) {
+        std::vector<GldfPicture> out;
+        for (pugi::xml_node image : node.children("Image")) {
+            GldfPicture picture{attribute(image, "fileId"), attribute(image, "imageType")};
+            if (!mProduct.file(picture.fileId)) {
+                mProduct.warnings.push_back(mProduct.path + ": product.xml: picture file " +
+                                            inQuotes(picture.fileId) +
+                                            " is not among the files; left out");
+                continue;
+            }
+            out.push_back(std::move(picture));
+        }
+        return out;
+    }
+
     void productDefinitions(const pugi::xml_node& definitions) {
         if (!definitions) defect("no <ProductDefinitions> (the schema requires one)");
         pugi::xml_node meta = definitions.child("ProductMetaData");
@@ -389,6 +406,7 @@ class ProductReader {
         mProduct.productNumber = locale(meta.child("ProductNumber"));
         mProduct.productName = locale(meta.child("Name"));
         mProduct.description = locale(meta.child("Description"));
+        mProduct.pictures = pictures(meta.child("Pictures"));
         pugi::xml_node maintenance = meta.child("LuminaireMaintenance");
         for (const char* group : {"CieLuminaireMaintenanceFactors", "IesLuminaireLightLossFactors",
                                   "JiegMaintenanceFactors"})
@@ -413,6 +431,8 @@ class ProductReader {
                 defect("two <Variant> elements with the id " + inQuotes(variant.id));
             variant.name = locale(v.child("Name"));
             variant.description = locale(v.child("Description"));
+            variant.productNumber = locale(v.child("ProductNumber"));
+            variant.pictures = pictures(v.child("Pictures"));
             variantGeometry(v.child("Geometry"), variant);
             placeableEmitters(variant);
             mProduct.variants.push_back(std::move(variant));

@@ -4,14 +4,17 @@
 // ldc/*.ldt or ldc/*.ies photometry and geo/*.l3d geometry. The container is read with libzip and
 // product.xml with pugixml; element names follow the format's schema (gldf.xsd, 1.0.0-rc.3).
 //
-// What is read: the header, the product's metadata and maintenance, the Files list, the
-// photometries, light sources, equipments and emitters, and the variants with the emitters their
-// geometry places. A variant is placed as one photometric luminaire: its emitter's photometry
-// (the first of interchangeable light emitters) read from the container by the IES or EULUMDAT
-// parser. A variant whose model geometry (an L3D member, formats/L3d.h) names the emitter's
-// light-emitting object takes its opening and its position and rotation in the luminaire from
-// it; a variant that places several emitters at such objects is several photometric
-// luminaires, one per placement. Not yet: the emitter's own <Rotation>, sensors, spectra.
+// What is read: the header, the product's metadata (name, article number, description,
+// pictures) and maintenance, the Files list, the photometries, light sources, equipments and
+// emitters, and the variants (their own article numbers, descriptions and pictures) with the
+// emitters their geometry places. gldfProductInfo and gldfPicture give what a designer reads
+// about a variant: manufacturer, article number, description and its picture decoded. A variant is
+// placed as one photometric luminaire: its emitter's photometry (the first of interchangeable light
+// emitters) read from the container by the IES or EULUMDAT parser. A variant whose model geometry
+// (an L3D member, formats/L3d.h) names the emitter's light-emitting object takes its opening and
+// its position and rotation in the luminaire from it; a variant that places several emitters at
+// such objects is several photometric luminaires, one per placement. Not yet: the emitter's own
+// <Rotation>, sensors, spectra.
 //
 // Every defect is an InputError of one line in valid UTF-8 that names the container, the member
 // and what is wrong ("lamp.gldf: product.xml: missing"); member names in code page 850 or UTF-8.
@@ -19,6 +22,7 @@
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -119,11 +123,21 @@ struct GldfEmitter {
     int sensors = 0;  ///< SensorEmitter children (not placed).
 };
 
+/// One Image of a Pictures element (the product's ProductMetaData/Pictures or a variant's):
+/// a file of GeneralDefinitions/Files and what it shows.
+struct GldfPicture {
+    std::string fileId;
+    std::string
+        imageType;  ///< "Product Picture", "Application Picture", "Technical Sketch", "Other".
+};
+
 /// ProductDefinitions/Variants/Variant.
 struct GldfVariant {
     std::string id;
-    std::string name;         ///< First Locale of Name (may be empty).
-    std::string description;  ///< First Locale of Description (may be empty).
+    std::string name;           ///< First Locale of Name (may be empty).
+    std::string description;    ///< First Locale of Description (may be empty).
+    std::string productNumber;  ///< Its own ProductNumber (overrides the product's; may be empty).
+    std::vector<GldfPicture> pictures;  ///< Its Pictures, in the file's order.
     /// Emitter ids as the variant's geometry places them, one per placement (a model geometry can
     /// place an emitter at several named objects); the simple and model levels of detail of a
     /// GeometryReferences element are the same placements, so the model's are taken.
@@ -154,6 +168,7 @@ struct GldfProduct {
     std::string manufacturer, author, formatVersion, createdWithApplication, creationTime;
     // ProductMetaData: first Locale of each translatable field.
     std::string uniqueProductId, productName, productNumber, description;
+    std::vector<GldfPicture> pictures;  ///< ProductMetaData/Pictures, in the file's order.
     std::vector<GldfMaintenance> luminaireMaintenance;  ///< LuminaireMaintenance factors.
     std::vector<GldfFile> files;
     std::vector<GldfEmitter> emitters;
@@ -215,6 +230,49 @@ std::shared_ptr<const L3dLuminaire> gldfVariantGeometry(const std::string& bytes
 GldfMaintenanceFactors gldfMaintenanceFactors(const GldfProduct& product,
                                               const GldfLightEmitter& light,
                                               const GldfMaintenanceChoice& choice);
+
+/// What a designer and a client read about one variant of a product, from product.xml alone
+/// (no member is read): for the editor's inspector and the report's luminaire schedule and
+/// datasheets.
+struct GldfProductInfo {
+    std::string manufacturer;   ///< The header's Manufacturer (may be empty).
+    std::string product;        ///< The product's name (may be empty).
+    std::string variant;        ///< The variant's name (may be empty).
+    std::string articleNumber;  ///< The variant's ProductNumber, else the product's; may be empty.
+    std::string description;    ///< The variant's Description, else the product's; may be empty.
+    /// The picture to show: the variant's first "Product Picture", else the product's; failing
+    /// those, the variant's first image of another type, else the product's. Only PNG and JPEG
+    /// files in the container are taken (an SVG or a URL is not decoded); null when there is none.
+    const GldfFile* picture = nullptr;  ///< Points into the product.
+};
+
+/// The product data of variant `variantId` of `product` ("" or an unknown id: the product's own,
+/// with no variant name). For a placed GLDF luminaire (luminaires/photometric, `gldf` and
+/// `gldfVariant` of its model), as the report's schedule does it:
+///     GldfProductInfo info = gldfProductInfo(*model.gldf, model.gldfVariant);
+///     std::vector<std::string> warnings;  // shown, never fatal
+///     std::optional<GldfImage> picture =
+///         gldfPicture(readGldfBytes(model.gldf->path), *model.gldf, info, warnings);
+/// (readGldfBytes throws InputError when the container is gone since it was loaded.)
+GldfProductInfo gldfProductInfo(const GldfProduct& product, const std::string& variantId);
+
+/// A picture decoded to 8-bit RGB, rows top to bottom (transparent pixels over white).
+struct GldfImage {
+    int width = 0, height = 0;
+    std::vector<unsigned char> rgb;  ///< width x height x 3 bytes.
+};
+
+/// The largest picture side decoded, pixels: product pictures are a few hundred pixels; beyond
+/// this a picture is refused with a warning rather than decoded.
+constexpr int kMaxGldfPictureSide = 8192;
+
+/// Decodes `info.picture` from `bytes` (the same container's bytes, readGldfBytes(product.path)).
+/// Never throws for the picture itself: a missing, empty, oversized or undecodable member is a
+/// warning ("lamp.gldf: image/lamp.png: cannot read image: ...") appended to `warnings`, and the
+/// result is empty; so is the result when `info` has no picture.
+std::optional<GldfImage> gldfPicture(const std::string& bytes, const GldfProduct& product,
+                                     const GldfProductInfo& info,
+                                     std::vector<std::string>& warnings);
 
 namespace gldf_detail {
 /// Reads product.xml's text into `product` (product.path names the container in messages); for

@@ -1,8 +1,5 @@
 #include "report/Report.h"
 
-#include <cairo-pdf.h>
-#include <cairo.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -14,7 +11,7 @@
 #include "formats/Gldf.h"
 #include "luminaires/photometric/PhotometricLuminaire.h"
 #include "renderer/passes/TonemapPass.h"
-#include "report/PolarDiagram.h"
+#include "report/ReportSections.h"
 #include "scene/Scene.h"
 #include "shaders/shared/FalseColour.h"
 #include "util/Error.h"
@@ -22,273 +19,9 @@
 
 namespace candela {
 
+using namespace report_detail;
+
 namespace {
-
-// A4 in points, and the printable area.
-constexpr double kPageW = 595.276, kPageH = 841.89;
-constexpr double kLeft = 50.0, kRight = kPageW - 50.0, kTop = 56.0, kBottom = kPageH - 56.0;
-constexpr double kWidth = kRight - kLeft;
-const char* kFont = "DejaVu Sans";
-
-std::string fmt(const char* f, double a) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, f, a);
-    return buf;
-}
-
-/// A document being drawn: the cairo context, the cursor and the page number.
-/// Text as a document prints it: square metres and the like with superscripts ("cd/m2" ->
-/// "cd/m²", "m2 sr" -> "m² sr"), log10 with its subscript, >= and <= as one sign. Only a "2" or "3"
-/// after "m" that ends a unit (followed by a space, ")", "/", ",", ";", "." or the end) is raised.
-std::string typeset(const std::string& s) {
-    std::string out;
-    out.reserve(s.size());
-    for (size_t i = 0; i < s.size(); ++i) {
-        const char c = s[i];
-        const bool unitEnd = i + 1 >= s.size() || std::strchr(" )/,;.]", s[i + 1]) != nullptr;
-        const bool afterM = i > 0 && s[i - 1] == 'm' &&
-                            (i < 2 || !std::isalpha(static_cast<unsigned char>(s[i - 2])) ||
-                             s[i - 2] == 'c' || s[i - 2] == 'k');
-        if ((c == '2' || c == '3') && afterM && unitEnd) {
-            out += c == '2' ? "\u00b2" : "\u00b3";
-            continue;
-        }
-        if (s.compare(i, 2, ">=") == 0 || s.compare(i, 2, "<=") == 0) {
-            out += c == '>' ? "\u2265" : "\u2264";
-            ++i;
-            continue;
-        }
-        if (s.compare(i, 5, "log10") == 0) {
-            out += "log\u2081\u2080";
-            i += 4;
-            continue;
-        }
-        out += c;
-    }
-    return out;
-}
-
-class Pdf {
-  public:
-    explicit Pdf(const std::string& title) {
-        mSurface = cairo_pdf_surface_create_for_stream(&Pdf::write, this, kPageW, kPageH);
-        cairo_pdf_surface_set_metadata(mSurface, CAIRO_PDF_METADATA_TITLE, title.c_str());
-        cairo_pdf_surface_set_metadata(mSurface, CAIRO_PDF_METADATA_CREATOR, "Candela");
-        cr = cairo_create(mSurface);
-        mTitle = title;
-    }
-    ~Pdf() {
-        if (cr) cairo_destroy(cr);
-        if (mSurface) cairo_surface_destroy(mSurface);
-    }
-    Pdf(const Pdf&) = delete;
-    Pdf& operator=(const Pdf&) = delete;
-
-    cairo_t* cr = nullptr;
-    double y = kTop;
-
-    void font(double size, bool bold = false) {
-        cairo_select_font_face(cr, kFont, CAIRO_FONT_SLANT_NORMAL,
-                               bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
-        cairo_set_font_size(cr, size);
-    }
-    double textWidth(const std::string& s) {
-        cairo_text_extents_t e;
-        const std::string t = typeset(s);
-        cairo_text_extents(cr, t.c_str(), &e);
-        return e.x_advance;
-    }
-    /// Text with its baseline at (x, baseline); align 0 left, 0.5 centre, 1 right of x.
-    void text(double x, double baseline, const std::string& s, double align = 0.0) {
-        std::string t = typeset(toValidUtf8(s));
-        cairo_move_to(cr, x - align * textWidth(t), baseline);
-        cairo_show_text(cr, t.c_str());
-    }
-    void newPage() {
-        footer();
-        cairo_show_page(cr);
-        ++mPage;
-        y = kTop;
-    }
-    /// Starts a new page unless `height` more points fit on this one.
-    void need(double height) {
-        if (y + height > kBottom) newPage();
-    }
-    /// A numbered part of the report: a new page, its heading, and its line in the contents.
-    void section(const std::string& s) {
-        newPage();
-        heading(s);
-        sections.push_back({s, mPage});
-    }
-    /// The sections so far, with the page each starts on.
-    std::vector<std::pair<std::string, int>> sections;
-
-    void heading(const std::string& s, double size = 14.0) {
-        need(size * 3.0);
-        y += size * 0.6;
-        font(size, true);
-        cairo_set_source_rgb(cr, 0.1, 0.1, 0.25);
-        text(kLeft, y + size, s);
-        y += size * 1.6;
-        cairo_set_source_rgb(cr, 0, 0, 0);
-    }
-    /// Words wrapped to the width, `size` points.
-    void paragraph(const std::string& s, double size = 9.0, bool bold = false,
-                   double indent = 0.0) {
-        font(size, bold);
-        std::string line, word;
-        auto flush = [&] {
-            need(size * 1.4);
-            text(kLeft + indent, y + size, line);
-            y += size * 1.4;
-            line.clear();
-        };
-        for (size_t i = 0; i <= s.size(); ++i) {
-            if (i == s.size() || s[i] == ' ') {
-                std::string next = line.empty() ? word : line + " " + word;
-                if (!line.empty() && textWidth(next) > kWidth - indent) {
-                    flush();
-                    line = word;
-                } else {
-                    line = next;
-                }
-                word.clear();
-            } else {
-                word += s[i];
-            }
-        }
-        if (!line.empty()) flush();
-        y += size * 0.3;
-    }
-    /// Words of `s` in lines no wider than `width` at the current font (a word wider than the
-    /// line is cut with "~").
-    std::vector<std::string> wrap(const std::string& s, double width) {
-        std::vector<std::string> lines;
-        std::string line, word;
-        for (size_t i = 0; i <= s.size(); ++i) {
-            if (i < s.size() && s[i] != ' ') {
-                word += s[i];
-                continue;
-            }
-            while (word.size() > 1 && textWidth(word) > width)
-                word = word.substr(0, word.size() - 2) + "~";
-            std::string next = line.empty() ? word : line + " " + word;
-            if (!line.empty() && textWidth(next) > width) {
-                lines.push_back(line);
-                line = word;
-            } else {
-                line = next;
-            }
-            word.clear();
-        }
-        if (!line.empty() || lines.empty()) lines.push_back(line);
-        return lines;
-    }
-    /// A table: a bold header row, then rows; columns at the given widths (points), numbers
-    /// (align 1) right-aligned, text wrapped within its column. Rows break across pages with the
-    /// header repeated.
-    void table(const std::vector<std::string>& header,
-               const std::vector<std::vector<std::string>>& rows, const std::vector<double>& widths,
-               const std::vector<double>& align, double size = 8.0) {
-        double lineH = size * 1.3, pad = size * 0.3;
-        auto layout = [&](const std::vector<std::string>& cells, bool bold) {
-            font(size, bold);
-            std::vector<std::vector<std::string>> lines;
-            for (size_t c = 0; c < cells.size() && c < widths.size(); ++c)
-                lines.push_back(wrap(cells[c], widths[c] - 4.0));
-            return lines;
-        };
-        auto height = [&](const std::vector<std::vector<std::string>>& lines) {
-            size_t n = 1;
-            for (const auto& l : lines) n = std::max(n, l.size());
-            return double(n) * lineH + pad;
-        };
-        auto draw = [&](const std::vector<std::vector<std::string>>& lines, bool bold) {
-            font(size, bold);
-            double x = kLeft;
-            for (size_t c = 0; c < lines.size(); ++c) {
-                for (size_t k = 0; k < lines[c].size(); ++k)
-                    text(x + 2.0 + align[c] * (widths[c] - 4.0), y + size + double(k) * lineH,
-                         lines[c][k], align[c]);
-                x += widths[c];
-            }
-            y += height(lines);
-            if (bold) {
-                cairo_set_line_width(cr, 0.5);
-                cairo_move_to(cr, kLeft, y - pad);
-                cairo_line_to(cr, x, y - pad);
-                cairo_stroke(cr);
-            }
-        };
-        auto head = layout(header, true);
-        need(height(head) + lineH);
-        draw(head, true);
-        for (const auto& r : rows) {
-            auto lines = layout(r, false);
-            if (y + height(lines) > kBottom) {
-                newPage();
-                draw(head, true);
-            }
-            draw(lines, false);
-        }
-        y += size * 0.8;
-    }
-    /// RGB rows top to bottom drawn into the box (x, top, w, h).
-    void image(const std::vector<unsigned char>& rgb, int width, int height, double x, double top,
-               double w, double h) {
-        cairo_surface_t* img = cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height);
-        unsigned char* data = cairo_image_surface_get_data(img);
-        int stride = cairo_image_surface_get_stride(img);
-        cairo_surface_flush(img);
-        for (int r = 0; r < height; ++r)
-            for (int c = 0; c < width; ++c) {
-                const unsigned char* p = &rgb[(size_t(r) * size_t(width) + size_t(c)) * 3];
-                uint32_t v = (uint32_t(p[0]) << 16) | (uint32_t(p[1]) << 8) | uint32_t(p[2]);
-                std::memcpy(data + size_t(r) * size_t(stride) + size_t(c) * 4, &v, 4);
-            }
-        cairo_surface_mark_dirty(img);
-        cairo_save(cr);
-        cairo_translate(cr, x, top);
-        cairo_scale(cr, w / width, h / height);
-        cairo_set_source_surface(cr, img, 0, 0);
-        cairo_pattern_set_filter(cairo_get_source(cr), CAIRO_FILTER_GOOD);
-        cairo_paint(cr);
-        cairo_restore(cr);
-        cairo_surface_destroy(img);
-    }
-
-    std::string finish() {
-        footer();
-        cairo_show_page(cr);
-        cairo_destroy(cr);
-        cr = nullptr;
-        cairo_surface_finish(mSurface);
-        cairo_status_t status = cairo_surface_status(mSurface);
-        cairo_surface_destroy(mSurface);
-        mSurface = nullptr;
-        if (status != CAIRO_STATUS_SUCCESS)
-            throw InputError(std::string("the report could not be drawn: ") +
-                             cairo_status_to_string(status));
-        return mBytes;
-    }
-
-  private:
-    static cairo_status_t write(void* closure, const unsigned char* data, unsigned int length) {
-        static_cast<Pdf*>(closure)->mBytes.append(reinterpret_cast<const char*>(data), length);
-        return CAIRO_STATUS_SUCCESS;
-    }
-    void footer() {
-        font(7.5);
-        cairo_set_source_rgb(cr, 0.35, 0.35, 0.35);
-        text(kLeft, kPageH - 30.0, "Candela lighting report: " + mTitle);
-        text(kRight, kPageH - 30.0, "page " + std::to_string(mPage), 1.0);
-        cairo_set_source_rgb(cr, 0, 0, 0);
-    }
-
-    cairo_surface_t* mSurface = nullptr;
-    std::string mBytes, mTitle;
-    int mPage = 1;
-};
 
 /// The luminaire bodies in plain words for a client.
 std::string housingText(const Scene& scene) {
@@ -298,13 +31,34 @@ std::string housingText(const Scene& scene) {
            " housings block the light of the others and reflected light (black)";
 }
 
-std::string shortPath(const std::string& path) {
-    size_t slash = path.find_last_of("/\\");
-    return slash == std::string::npos ? path : path.substr(slash + 1);
-}
-
 // ---------------------------------------------------------------------------------------------
 // Sections
+
+/// What the scene's geometry is, in words: "1 room, 3 pieces of furniture, 2 other objects".
+std::string geometryText(const Scene& scene) {
+    int rooms = 0, furniture = 0, other = 0;
+    for (const GeometryItem& item : scene.geometry) {
+        if (item.source.contains("room"))
+            ++rooms;
+        else if (item.source.contains("furniture"))
+            ++furniture;
+        else
+            ++other;
+    }
+    auto count = [](int n, const char* one, const char* many) {
+        return std::to_string(n) + " " + (n == 1 ? one : many);
+    };
+    std::string out;
+    if (rooms > 0) out = count(rooms, "room", "rooms");
+    if (furniture > 0)
+        out += (out.empty() ? "" : ", ") +
+               count(furniture, "piece of furniture", "pieces of furniture");
+    if (other > 0)
+        out += (out.empty() ? "" : ", ") +
+               count(other, rooms + furniture > 0 ? "other object" : "surface or object",
+                     rooms + furniture > 0 ? "other objects" : "surfaces and objects");
+    return out.empty() ? "nothing: no room, furniture or other objects" : out;
+}
 
 /// Page 1: the project, who it is for and by whom, and the rendered view.
 void coverPage(Pdf& pdf, const ReportInput& in) {
@@ -391,110 +145,62 @@ void projectSection(Pdf& pdf, const ReportInput& in) {
                                     : std::string("radiometric: W, W/sr, W/(m2 sr), W/m2")},
         {"Maintenance", scene.maintenanceNote()},
         {"Luminaire housings", housingText(scene)},
-        {"Room (its overall size)", bounds},
-        {"Surfaces", std::to_string(scene.geometry.size()) + " (walls, floors, furniture and "
-                                                             "other objects)"},
+        {"Overall size", bounds},
+        {"Modelled", geometryText(scene)},
         {"Luminaires", std::to_string(scene.luminaires.size())},
         {"Illuminance", in.evaluation},
     };
     pdf.table({"Design", ""}, rows, {120, kWidth - 120}, {0, 0}, 8.5);
 }
 
-/// A message without the file it names ("lamp.gldf:ldc/a.ldt: the product rates ..." -> "the
-/// product rates ..."): a client cannot open the file.
-std::string withoutPath(const std::string& note) {
-    size_t colon = note.find(": ");
-    if (colon == std::string::npos || note.substr(0, colon).find(' ') != std::string::npos)
-        return note;
-    return note.substr(colon + 2);
-}
+/// A product picture's side in the schedule, points.
+constexpr double kThumbnail = 36.0;
 
-/// The factor from a photometry's candela to cd/klm: per 1000 lm of its lamps' flux, or of the
-/// luminaire's own for absolute photometry (no lamp flux stated).
-double perKilolumen(const PhotometricData& d, double scale) {
-    double basis = d.lampFlux > 0.0 ? d.lampFlux * scale : d.fluxFromTable() * scale;
-    return basis > 0.0 ? 1000.0 / basis : 0.0;
-}
-
-/// The polar diagram of one photometry in the square (x, top, size): C0-C180 solid, C90-C270
-/// dashed, gamma 0 (the aim) at the bottom, rings in cd.
-void polarDiagram(Pdf& pdf, const PhotometricData& data, double scale, double x, double top,
-                  double size) {
-    cairo_t* cr = pdf.cr;
-    PolarCurves curves = polarCurves(data, 1.0);
-    for (std::vector<double>* c : {&curves.c0, &curves.c180, &curves.c90, &curves.c270})
-        for (double& v : *c) v *= scale;
-    curves.peak *= scale;
-    std::vector<double> rings = polarRings(curves.peak);
-    double outer = rings.empty() ? 1.0 : rings.back();
-    double cx = x + size / 2, cy = top + size / 2, radius = size / 2 - 14;
-    cairo_set_line_width(cr, 0.4);
-    cairo_set_source_rgb(cr, 0.6, 0.6, 0.6);
-    pdf.font(6);
-    for (double r : rings) {
-        cairo_new_sub_path(cr);
-        cairo_arc(cr, cx, cy, radius * r / outer, 0, 2 * M_PI);
-        cairo_stroke(cr);
-        pdf.text(cx + 2, cy - radius * r / outer - 1.5, fmt("%g cd/klm", r));
-    }
-    for (int a = 0; a < 360; a += 30) {
-        double t = a * M_PI / 180.0;
-        cairo_move_to(cr, cx, cy);
-        cairo_line_to(cr, cx + radius * std::sin(t), cy + radius * std::cos(t));
-        cairo_stroke(cr);
-        int label = a <= 180 ? a : 360 - a;
-        pdf.text(cx + (radius + 7) * std::sin(t), cy + (radius + 7) * std::cos(t) + 2,
-                 std::to_string(label), 0.5);
-    }
-    auto curve = [&](const std::vector<double>& v, double side) {
-        for (size_t k = 0; k < curves.gamma.size(); ++k) {
-            double g = curves.gamma[k] * M_PI / 180.0, r = radius * v[k] / outer;
-            double px = cx + side * r * std::sin(g), py = cy + r * std::cos(g);
-            if (k == 0)
-                cairo_move_to(cr, px, py);
-            else
-                cairo_line_to(cr, px, py);
-        }
-    };
-    cairo_set_line_width(cr, 1.1);
-    cairo_set_source_rgb(cr, 0.85, 0.35, 0.05);
-    curve(curves.c0, 1.0);
-    cairo_stroke(cr);
-    curve(curves.c180, -1.0);
-    cairo_stroke(cr);
-    double dash[] = {3.0, 2.0};
-    cairo_set_dash(cr, dash, 2, 0);
-    cairo_set_source_rgb(cr, 0.1, 0.3, 0.8);
-    curve(curves.c90, 1.0);
-    cairo_stroke(cr);
-    curve(curves.c270, -1.0);
-    cairo_stroke(cr);
-    cairo_set_dash(cr, nullptr, 0, 0);
-    cairo_set_source_rgb(cr, 0, 0, 0);
+/// "Product, variant", or the variant alone where its name already holds the product's (as
+/// manufacturers often name variants), so that the name is not printed twice.
+std::string productAndVariant(const std::string& product, const std::string& variant) {
+    if (variant.empty()) return product;
+    if (product.empty() || variant.find(product) != std::string::npos) return variant;
+    return product + ", " + variant;
 }
 
 void scheduleSection(Pdf& pdf, const ReportInput& in) {
     const Scene& scene = *in.scene;
     pdf.section("Luminaire schedule");
-    std::vector<ScheduleRow> schedule = luminaireSchedule(scene);
+    std::vector<ScheduleRow> schedule = luminaireSchedule(scene, true);
     const char* fluxUnit = scene.units().photometric ? "lm" : "W";
     std::vector<std::vector<std::string>> rows;
+    std::vector<double> minHeights;
     double totalFlux = 0.0, totalPower = 0.0;
     int count = 0;
+    bool anyPicture = false;
     for (const ScheduleRow& r : schedule) {
-        rows.push_back({std::to_string(r.count), r.names,
+        rows.push_back({std::to_string(r.count), r.names, "",
                         r.manufacturer.empty() ? "-" : r.manufacturer,
-                        r.product.empty() ? shortPath(r.file) : r.product, fmt("%.5g", r.flux),
+                        r.product.empty() ? shortPath(r.file) : r.product,
+                        r.articleNumber.empty() ? "-" : r.articleNumber, fmt("%.5g", r.flux),
                         r.power > 0.0 ? fmt("%.4g", r.power) : "-",
                         r.power > 0.0 ? fmt("%.1f", r.flux / r.power) : "-",
                         fmt("%.3g", r.maintenanceFactor)});
+        minHeights.push_back(r.picture ? kThumbnail + 4.0 : 0.0);
+        anyPicture = anyPicture || r.picture.has_value();
         totalFlux += r.flux * r.count;
         totalPower += r.power * r.count;
         count += r.count;
     }
-    pdf.table({"Count", "Luminaires", "Manufacturer", "Product",
+    const std::vector<double> widths = {30, 106, 40, 62, 76, 48, 38, 32, 30, 33};
+    // Each row's picture in its cell, scaled to fit kThumbnail square.
+    auto picture = [&](size_t row, double top) {
+        const std::optional<GldfImage>& p = schedule[row].picture;
+        if (!p) return;
+        double s = kThumbnail / double(std::max(p->width, p->height));
+        double w = p->width * s, h = p->height * s;
+        double x = kLeft + widths[0] + widths[1] + (widths[2] - w) / 2;
+        pdf.image(p->rgb, p->width, p->height, x, top + 2, w, h);
+    };
+    pdf.table({"Count", "Luminaires", "Picture", "Manufacturer", "Product", "Article no.",
                std::string("Flux [") + fluxUnit + "]", "Power [W]", "lm/W", "MF"},
-              rows, {32, 104, 78, 116, 50, 48, 36, 31}, {1, 0, 0, 0, 1, 1, 1, 1}, 7.5);
+              rows, widths, {1, 0, 0, 0, 0, 0, 1, 1, 1, 1}, 7.5, minHeights, picture);
     char total[200];
     std::snprintf(total, sizeof total,
                   "%d luminaire%s, %.5g %s in all from the tables (flux per luminaire: the exact "
@@ -507,6 +213,12 @@ void scheduleSection(Pdf& pdf, const ReportInput& in) {
                           fmt(" (%.1f lm/W)", totalFlux / totalPower) +
                           "; MF: the maintenance factor each luminaire's light is scaled by.",
                       8);
+    if (!anyPicture) pdf.paragraph("Pictures: none of the products' data holds a picture.", 8);
+    for (const ScheduleRow& r : schedule)
+        if (!r.pictureNotes.empty())
+            pdf.paragraph("The picture of " + (r.product.empty() ? r.names : r.product) +
+                              " could not be read from the product's data and is left out.",
+                          8);
     // Where a product's own figures disagree (calculation/Plausibility.h): one line per photometry.
     std::vector<std::pair<const void*, const void*>> checked;
     for (const auto& l : scene.luminaires) {
@@ -519,339 +231,6 @@ void scheduleSection(Pdf& pdf, const ReportInput& in) {
         for (const std::string& note : plausibilityNotes(*p))
             pdf.paragraph("Data check: " + withoutPath(note) + ".", 8);
     }
-
-    // One polar diagram per distinct photometry, two to a row.
-    std::vector<const PhotometricLuminaire*> distinct;
-    for (const auto& l : scene.luminaires) {
-        const PhotometricLuminaire* p = photometricModel(*l);
-        if (!p || !p->data) continue;
-        bool seen = std::any_of(distinct.begin(), distinct.end(), [&](const auto* q) {
-            return q->data == p->data && q->scale == p->scale;
-        });
-        if (!seen) distinct.push_back(p);
-    }
-    if (distinct.empty()) return;
-    pdf.heading("Polar diagrams", 12);
-    pdf.paragraph(
-        "Luminous intensity in cd/klm (candela per 1000 lm of the luminaire's lamps), "
-        "straight down at the bottom: the C0-C180 plane solid (orange), the C90-C270 plane "
-        "dashed (blue).",
-        8);
-    const double size = 230.0, gap = kWidth - 2 * size;
-    for (size_t k = 0; k < distinct.size(); ++k) {
-        const PhotometricLuminaire& p = *distinct[k];
-        double x = kLeft + (k % 2) * (size + gap);
-        if (k % 2 == 0) pdf.need(size + 30);
-        double top = pdf.y;
-        pdf.font(8, true);
-        std::string caption = p.data->name.empty() ? shortPath(p.file) : p.data->name;
-        pdf.text(x, top + 8, caption.substr(0, 60));
-        pdf.font(7);
-        pdf.text(x, top + 18,
-                 fmt("peak %.5g cd", p.data->maxIntensity() * p.scale) +
-                     fmt(" (%.4g cd/klm)",
-                         p.data->maxIntensity() * p.scale * perKilolumen(*p.data, p.scale)) +
-                     fmt(", flux %.5g lm", p.data->fluxFromTable() * p.scale));
-        polarDiagram(pdf, *p.data, p.scale * perKilolumen(*p.data, p.scale), x, top + 22, size);
-        if (k % 2 == 1 || k + 1 == distinct.size()) pdf.y = top + size + 30;
-    }
-}
-
-/// The grid's values as a matrix of cells (NaN where the surface has no point).
-struct CellGrid {
-    int nx = 0, ny = 0;
-    std::vector<double> v;
-    double at(int i, int j) const { return v[size_t(j) * size_t(nx) + size_t(i)]; }
-};
-
-CellGrid cells(const SurfaceResult& s) {
-    CellGrid g;
-    g.nx = std::max(s.cells.x, 1);
-    g.ny = std::max(s.cells.y, 1);
-    g.v.assign(size_t(g.nx) * size_t(g.ny), std::nan(""));
-    for (size_t k = 0; k < s.points.size(); ++k) {
-        int i = int(std::floor((s.points[k].x - s.lo.x) / s.spacing.x));
-        int j = int(std::floor((s.points[k].y - s.lo.y) / s.spacing.y));
-        if (i >= 0 && i < g.nx && j >= 0 && j < g.ny)
-            g.v[size_t(j) * size_t(g.nx) + size_t(i)] = s.E[k];
-    }
-    return g;
-}
-
-/// The value at fractional cell coordinates (cell centres at integer + 0.5): bilinear among the
-/// four nearest cell centres that hold a point, weights renormalised; NaN where none does.
-double sampleCells(const CellGrid& g, double fx, double fy) {
-    double x = fx - 0.5, y = fy - 0.5;
-    int i0 = int(std::floor(x)), j0 = int(std::floor(y));
-    double tx = x - i0, ty = y - j0;
-    double sum = 0.0, weight = 0.0;
-    for (int dj = 0; dj <= 1; ++dj)
-        for (int di = 0; di <= 1; ++di) {
-            int i = std::clamp(i0 + di, 0, g.nx - 1), j = std::clamp(j0 + dj, 0, g.ny - 1);
-            double v = g.at(i, j);
-            if (std::isnan(v)) continue;
-            double w = (di ? tx : 1 - tx) * (dj ? ty : 1 - ty);
-            sum += w * v;
-            weight += w;
-        }
-    // Inside the cell of a point the picture keeps its colour even where neighbours are missing.
-    if (weight <= 1e-9) {
-        int i = std::clamp(int(std::floor(fx)), 0, g.nx - 1),
-            j = std::clamp(int(std::floor(fy)), 0, g.ny - 1);
-        return g.at(i, j);
-    }
-    return sum / weight;
-}
-
-/// The false-colour picture of a surface with its isolux lines and legend, at the cursor.
-void surfacePicture(Pdf& pdf, const SurfaceResult& s, const char* unit) {
-    cairo_t* cr = pdf.cr;
-    CellGrid g = cells(s);
-    double extentU = s.hi.x - s.lo.x, extentV = s.hi.y - s.lo.y;
-    double w = 320.0, h = w * extentV / extentU;
-    if (h > 240.0) {
-        h = 240.0;
-        w = h * extentU / extentV;
-    }
-    pdf.need(h + 40);
-    // A horizontal plane is a plan seen from above: x to the right, z down the page (y up is
-    // towards the reader). Any other plane keeps its v axis up.
-    const bool plan = s.plane.axis == 1;
-    double x0 = kLeft + 30, top = pdf.y + 6;
-    double peak = 0.0;
-    for (double e : s.E) peak = std::max(peak, e);
-    FalseColourLegend legend;
-    fitLegend(legend, float(peak));
-    legend = sanitizedLegend(legend);
-    // The picture: 8 pixels per cell side at least, bilinear between the points.
-    int px = std::max(8 * g.nx, 160), py = std::max(1, int(std::lround(px * h / w)));
-    std::vector<unsigned char> rgb(size_t(px) * size_t(py) * 3);
-    std::vector<double> field(size_t(px) * size_t(py));
-    for (int r = 0; r < py; ++r)
-        for (int c = 0; c < px; ++c) {
-            double fx = (c + 0.5) / px * g.nx;
-            double fy = (plan ? (r + 0.5) / py : 1.0 - (r + 0.5) / py) * g.ny;
-            double v = sampleCells(g, fx, fy);
-            field[size_t(r) * size_t(px) + size_t(c)] = v;
-            glm::vec3 col =
-                std::isnan(v)
-                    ? glm::vec3(1.0f)
-                    : gpu::falseColour(gpu::legendPosition(float(v), legend.min, legend.max, 0));
-            unsigned char* p = &rgb[(size_t(r) * size_t(px) + size_t(c)) * 3];
-            for (int k = 0; k < 3; ++k) p[k] = (unsigned char)std::lround(255.0f * col[k]);
-        }
-    pdf.image(rgb, px, py, x0, top, w, h);
-    // Isolux lines: marching squares on the picture's field, one segment per crossed pixel cell.
-    std::vector<float> levels = contourLevels(legend);
-    cairo_set_source_rgb(cr, 0, 0, 0);
-    cairo_set_line_width(cr, 0.6);
-    auto at = [&](int c, int r) { return field[size_t(r) * size_t(px) + size_t(c)]; };
-    auto pos = [&](double c, double r) {
-        return glm::dvec2(x0 + (c + 0.5) / px * w, top + (r + 0.5) / py * h);
-    };
-    std::vector<std::vector<glm::dvec2>> labelAt(levels.size());  // segment midpoints per level
-    for (size_t l = 0; l < levels.size(); ++l) {
-        const float level = levels[l];
-        for (int r = 0; r + 1 < py; ++r)
-            for (int c = 0; c + 1 < px; ++c) {
-                double v[4] = {at(c, r), at(c + 1, r), at(c + 1, r + 1), at(c, r + 1)};
-                if (std::isnan(v[0]) || std::isnan(v[1]) || std::isnan(v[2]) || std::isnan(v[3]))
-                    continue;
-                const int corner[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-                std::vector<glm::dvec2> cross;
-                for (int e = 0; e < 4; ++e) {
-                    double a = v[e] - level, b = v[(e + 1) % 4] - level;
-                    if ((a < 0) == (b < 0)) continue;
-                    double t = a / (a - b);
-                    const int* p0 = corner[e];
-                    const int* p1 = corner[(e + 1) % 4];
-                    cross.push_back(
-                        pos(c + p0[0] + t * (p1[0] - p0[0]), r + p0[1] + t * (p1[1] - p0[1])));
-                }
-                for (size_t k = 0; k + 1 < cross.size(); k += 2) {
-                    cairo_move_to(cr, cross[k].x, cross[k].y);
-                    cairo_line_to(cr, cross[k + 1].x, cross[k + 1].y);
-                    labelAt[l].push_back(0.5 * (cross[k] + cross[k + 1]));
-                }
-            }
-    }
-    cairo_stroke(cr);
-    // Each line's value, at up to three points of it spread apart (the first nearest the
-    // picture's middle, then each farthest from those taken), on a white patch, never closer
-    // than kLabelGap to another label.
-    constexpr double kLabelGap = 36.0;  // points
-    const glm::dvec2 middle(x0 + w / 2, top + h / 2);
-    std::vector<glm::dvec2> placed;
-    pdf.font(6);
-    for (size_t l = 0; l < levels.size(); ++l) {
-        const std::string label = fmt("%g", levels[l]);
-        for (int n = 0; n < 3 && !labelAt[l].empty(); ++n) {
-            const glm::dvec2* best = nullptr;
-            double bestScore = -1.0;
-            for (const glm::dvec2& m : labelAt[l]) {
-                double gap = 1e30;
-                for (const glm::dvec2& q : placed) gap = std::min(gap, glm::distance(m, q));
-                if (gap < kLabelGap) continue;
-                const double score = n == 0 ? 1.0 / (1.0 + glm::distance(m, middle)) : gap;
-                if (score > bestScore) {
-                    bestScore = score;
-                    best = &m;
-                }
-            }
-            if (!best) break;
-            const glm::dvec2 at = *best;
-            placed.push_back(at);
-            const double tw = pdf.textWidth(label);
-            cairo_set_source_rgb(cr, 1, 1, 1);
-            cairo_rectangle(cr, at.x - tw / 2 - 1, at.y - 3.5, tw + 2, 7);
-            cairo_fill(cr);
-            cairo_set_source_rgb(cr, 0, 0, 0);
-            pdf.text(at.x, at.y + 2.2, label, 0.5);
-        }
-    }
-    cairo_rectangle(cr, x0, top, w, h);
-    cairo_set_line_width(cr, 0.5);
-    cairo_stroke(cr);
-    // Axes: the plane's in-plane coordinates at the corners.
-    pdf.font(6.5);
-    pdf.text(x0, top + h + 9, fmt("%.2f", s.lo.x), 0.5);
-    pdf.text(x0 + w, top + h + 9, fmt("%.2f", s.hi.x), 0.5);
-    pdf.text(x0 + w / 2, top + h + 9, s.plane.uName() + " [m]", 0.5);
-    pdf.text(x0 - 3, top + h, fmt("%.2f", plan ? s.hi.y : s.lo.y), 1.0);
-    pdf.text(x0 - 3, top + 6, fmt("%.2f", plan ? s.lo.y : s.hi.y), 1.0);
-    pdf.text(x0 - 3, top + h / 2, s.plane.vName() + " [m]", 1.0);
-    // Legend: the scale, its ticks and the isolux levels.
-    double lx = x0 + w + 24, lw = 12;
-    int steps = 64;
-    for (int k = 0; k < steps; ++k) {
-        glm::vec3 col = gpu::falseColour((k + 0.5f) / steps);
-        cairo_set_source_rgb(cr, col.x, col.y, col.z);
-        cairo_rectangle(cr, lx, top + h - (k + 1) * h / steps, lw, h / steps + 0.3);
-        cairo_fill(cr);
-    }
-    cairo_set_source_rgb(cr, 0, 0, 0);
-    cairo_rectangle(cr, lx, top, lw, h);
-    cairo_set_line_width(cr, 0.5);
-    cairo_stroke(cr);
-    pdf.font(6.5);
-    for (float t : legendTicks(legend)) {
-        double yy = top + h - h * gpu::legendPosition(t, legend.min, legend.max, 0);
-        pdf.text(lx + lw + 3, yy + 2.2, fmt("%g", t) + " " + unit);
-    }
-    for (float level : levels) {
-        double yy = top + h - h * gpu::legendPosition(level, legend.min, legend.max, 0);
-        cairo_move_to(cr, lx - 3, yy);
-        cairo_line_to(cr, lx + lw, yy);
-    }
-    cairo_stroke(cr);
-    pdf.y = top + h + 16;
-    std::string isolux;
-    for (float level : levels) isolux += (isolux.empty() ? "" : ", ") + fmt("%g", level);
-    pdf.paragraph(std::string("False colour ") + fmt("%g", legend.min) + ".." +
-                      fmt("%g ", legend.max) + unit + " (linear), isolux lines at " +
-                      (isolux.empty() ? std::string("none") : isolux + " " + unit) +
-                      ", each labelled with its value; white: not part of the surface" +
-                      (plan ? "; seen from above, x to the right and z down the page." : "."),
-                  7);
-}
-
-/// Every value of the grid, laid out as the picture, columns in blocks that fit the page.
-void valueTable(Pdf& pdf, const SurfaceResult& s, const char* unit) {
-    CellGrid g = cells(s);
-    const int perBlock = 13;
-    for (int c0 = 0; c0 < g.nx; c0 += perBlock) {
-        int c1 = std::min(g.nx, c0 + perBlock);
-        std::vector<std::string> header = {s.plane.vName() + " \\ " + s.plane.uName() + " [m]"};
-        std::vector<double> widths = {60}, align = {0};
-        for (int i = c0; i < c1; ++i) {
-            header.push_back(fmt("%.2f", s.lo.x + (i + 0.5) * s.spacing.x));
-            widths.push_back(34);
-            align.push_back(1);
-        }
-        std::vector<std::vector<std::string>> rows;
-        // As the picture: a plan's rows from the smallest z down, another plane's from the top.
-        const bool plan = s.plane.axis == 1;
-        for (int k = 0; k < g.ny; ++k) {
-            const int j = plan ? k : g.ny - 1 - k;
-            std::vector<std::string> row = {fmt("%.2f", s.lo.y + (j + 0.5) * s.spacing.y)};
-            for (int i = c0; i < c1; ++i) {
-                double v = g.at(i, j);
-                row.push_back(std::isnan(v) ? "" : fmt(v >= 10.0 ? "%.0f" : "%.1f", v));
-            }
-            rows.push_back(row);
-        }
-        pdf.table(header, rows, widths, align, 6.5);
-    }
-    pdf.paragraph(std::string("Values in ") + unit + " at the points (cell centres).", 7);
-}
-
-std::string requirementText(const Requirement& r, bool cylindrical, const char* unit) {
-    if (!r.any()) return "no requirement";
-    std::string out;
-    if (r.em > 0.0) out = std::string(cylindrical ? "Ezm" : "Em") + fmt(" >= %g ", r.em) + unit;
-    if (r.u0 > 0.0) out += std::string(out.empty() ? "" : ", ") + fmt("U0 >= %.2f", r.u0);
-    return out;
-}
-
-void surfacesSection(Pdf& pdf, const ReportInput& in) {
-    const SurfaceReport& r = in.surfaces;
-    const char* unit = r.units.irradiance();
-    pdf.section("Calculation surfaces (EN 12464-1)");
-    pdf.paragraph(
-        "Maintained illuminance on each task area, its immediate surrounding and its "
-        "background, on the standard's grids; " +
-            r.maintenance + "; light: " + in.evaluation + ".",
-        8);
-    if (r.surfaces.empty()) pdf.paragraph("The scene has no task areas.");
-    for (const SurfaceResult& s : r.surfaces) {
-        // The heading, its summary and the picture on one page.
-        double extentU = s.hi.x - s.lo.x, extentV = s.hi.y - s.lo.y;
-        double pictureH = std::min(240.0, 320.0 * extentV / std::max(extentU, 1e-9));
-        pdf.need(pictureH + 130);
-        bool named = s.name.find(s.role) != std::string::npos;  // "Desk: background"
-        pdf.heading(named ? s.name : s.name + " (" + s.role + ")", 11);
-        char line[320];
-        std::snprintf(line, sizeof line,
-                      "Plane %s, area %s %.3f..%.3f m, %s %.3f..%.3f m; grid %d x %d cells of "
-                      "%.3f x %.3f m, %zu points",
-                      planeText(s.plane).c_str(), s.plane.uName().c_str(), s.lo.x, s.hi.x,
-                      s.plane.vName().c_str(), s.lo.y, s.hi.y, s.cells.x, s.cells.y, s.spacing.x,
-                      s.spacing.y, s.points.size());
-        pdf.paragraph(line, 8);
-        if (s.points.empty() || !(s.spacing.x > 0.0) || !(s.spacing.y > 0.0)) {
-            pdf.paragraph("No points: the room leaves no " + s.role + ".", 8);
-            continue;
-        }
-        const char* e = s.cylindrical ? "Ez" : "E";
-        std::snprintf(line, sizeof line, "%sm %.4g %s, U0 %.3f, %smin %.4g %s, %smax %.4g %s", e,
-                      s.summary.eAvg, unit, s.summary.u0, e, s.summary.eMin, unit, e,
-                      s.summary.eMax, unit);
-        pdf.paragraph(line, 9.5, true);
-        pdf.paragraph("Required: " + requirementText(s.required, s.cylindrical, unit) + ": " +
-                          (!s.required.any() ? "-" : (s.passes ? "PASS" : "FAIL")),
-                      9);
-        surfacePicture(pdf, s, unit);
-        valueTable(pdf, s, unit);
-    }
-    if (r.points.empty()) return;
-    pdf.heading("Calculation points", 12);
-    std::vector<std::vector<std::string>> rows;
-    for (const PointResult& p : r.points) {
-        const CalcPoint& c = p.point;
-        char where[96], kind[96];
-        std::snprintf(where, sizeof where, "(%.2f, %.2f, %.2f)", c.position.x, c.position.y,
-                      c.position.z);
-        if (c.cylindrical)
-            std::snprintf(kind, sizeof kind, "cylindrical Ez");
-        else
-            std::snprintf(kind, sizeof kind, "E, normal (%.2f, %.2f, %.2f)", c.normal.x, c.normal.y,
-                          c.normal.z);
-        rows.push_back({c.name, where, kind, fmt("%.4g ", p.E) + unit,
-                        c.requiredLux > 0.0 ? fmt("%g ", c.requiredLux) + unit : "-",
-                        c.requiredLux > 0.0 ? (p.passes ? "PASS" : "FAIL") : "-"});
-    }
-    pdf.table({"Point", "Position [m]", "Quantity", "Value", "Required", "Verdict"}, rows,
-              {120, 90, 120, 60, 60, 45}, {0, 0, 0, 1, 1, 0});
 }
 
 void glareSection(Pdf& pdf, const ReportInput& in) {
@@ -976,43 +355,82 @@ std::vector<unsigned char> withFalseColourLegend(const std::vector<unsigned char
     return out;
 }
 
-std::vector<ScheduleRow> luminaireSchedule(const Scene& scene) {
+double luminaireInputPower(const Luminaire& luminaire) {
+    const PhotometricLuminaire* p = photometricModel(luminaire);
+    if (!p || !p->data) return 0.0;
+    if (p->gldf)
+        if (const GldfLightEmitter* e = p->gldfLightEmitter(); e && e->ratedPower > 0.0)
+            return e->ratedPower;
+    return p->data->inputWatts > 0.0 ? p->data->inputWatts : 0.0;
+}
+
+DatasheetFigures datasheetFigures(const PhotometricData& data) {
+    DatasheetFigures f;
+    f.flux = data.fluxFromTable();
+    // Absolute photometry (the luminaire measured as a whole) states no lamp flux: the ratio of
+    // the luminaire's flux to its lamps' does not exist, so it is not shown as a number.
+    const bool absolute = !data.keyword({"absolute photometry"}).empty() || !(data.lampFlux > 0.0);
+    if (!absolute) {
+        f.lampFlux = data.lampFlux;
+        f.lightOutputRatio = f.flux / data.lampFlux;
+    }
+    if (data.declaresLightOutputRatio && data.lightOutputRatio > 0.0)
+        f.statedLightOutputRatio = data.lightOutputRatio;
+    return f;
+}
+
+std::vector<ScheduleRow> luminaireSchedule(const Scene& scene, bool pictures) {
     std::vector<ScheduleRow> rows;
     std::map<std::string, size_t> index;
     UnitSystem units = scene.units();  // once: it looks at every luminaire
-    for (const auto& l : scene.luminaires) {
+    for (size_t k = 0; k < scene.luminaires.size(); ++k) {
+        const Luminaire* l = scene.luminaires[k].get();
         ScheduleRow r;
         r.maintenanceFactor = scene.maintenanceFactorOf(*l);
         glm::dvec3 power = l->power() * scene.unitScale(*l, units);
         r.flux = (power.x + power.y + power.z) / 3.0;
         r.kind = std::string(kindName(l->kind()));
-        if (const PhotometricLuminaire* p = photometricModel(*l); p && p->data) {
+        r.power = luminaireInputPower(*l);
+        const PhotometricLuminaire* p = photometricModel(*l);
+        if (p && p->data) {
             const PhotometricData& d = *p->data;
             r.file = p->file;
             r.flux = d.fluxFromTable() * p->scale;
-            r.power = d.inputWatts;
             r.manufacturer = d.keyword({"MANUFAC", "company", "Manufacturer"});
             r.product = d.name;
+            r.articleNumber = d.keyword({"LUMCAT", "CatalogNumber", "luminaire number"});
             if (p->gldf) {
+                const GldfProductInfo info = gldfProductInfo(*p->gldf, p->gldfVariant);
                 r.kind = "GLDF";
-                r.manufacturer = p->gldf->manufacturer;
-                r.product = p->gldf->productName;
-                if (const GldfVariant* v = p->gldf->variant(p->gldfVariant); v && !v->name.empty())
-                    r.product += ", " + v->name;
-                if (const GldfLightEmitter* e = p->gldfLightEmitter(); e && e->ratedPower > 0.0)
-                    r.power = e->ratedPower;
+                r.manufacturer = info.manufacturer;
+                r.product = productAndVariant(info.product, info.variant);
+                r.articleNumber = info.articleNumber;
+                r.description = info.description;
             }
         }
         std::string key = describe(*l) + "|" + fmt("%.9g", r.maintenanceFactor) + "|" + r.kind;
         auto it = index.find(key);
         if (it == index.end()) {
+            if (pictures && p && p->gldf) {
+                const GldfProductInfo info = gldfProductInfo(*p->gldf, p->gldfVariant);
+                if (info.picture) {
+                    try {
+                        r.picture = gldfPicture(readGldfBytes(p->gldf->path), *p->gldf, info,
+                                                r.pictureNotes);
+                    } catch (const InputError& e) {  // the container is gone since it loaded
+                        r.pictureNotes.push_back(e.what());
+                    }
+                }
+            }
             r.names = l->name;
             r.count = 1;
+            r.members = {k};
             index[key] = rows.size();
             rows.push_back(r);
         } else {
             ScheduleRow& row = rows[it->second];
             ++row.count;
+            row.members.push_back(k);
             size_t dots = row.names.find(" .. ");
             row.names = (dots == std::string::npos ? row.names : row.names.substr(0, dots)) +
                         " .. " + l->name;
@@ -1071,8 +489,11 @@ std::string reportPdf(const ReportInput& in) {
         coverPage(pdf, in);
         contentsPage(pdf, in, contents);
         projectSection(pdf, in);
+        roomSections(pdf, in);
         scheduleSection(pdf, in);
+        datasheetSections(pdf, in);
         surfacesSection(pdf, in);
+        powerDensitySection(pdf, in);
         glareSection(pdf, in);
         methodSection(pdf, in);
         if (pass == 1) return pdf.finish();

@@ -92,17 +92,9 @@ RoomReflectances readReflectances(const nlohmann::json& spec, const json::Where&
     return r;
 }
 
-/// The openings of a room: per wall, its holes in the wall's (along, up) coordinates; and the
-/// ceiling's skylights in (x, z).
-struct RoomOpenings {
-    std::vector<std::vector<Rect2>> walls;
-    std::vector<Rect2> ceiling;
-};
-
-RoomOpenings readOpenings(const nlohmann::json& spec, const json::Where& at,
-                          const std::vector<glm::dvec2>& floor, double height) {
-    RoomOpenings o;
-    o.walls.resize(floor.size());
+std::vector<RoomOpening> readOpenings(const nlohmann::json& spec, const json::Where& at,
+                                      const std::vector<glm::dvec2>& floor, double height) {
+    std::vector<RoomOpening> o;
     auto it = spec.find("openings");
     if (it == spec.end()) return o;
     const json::Where list = at / "openings";
@@ -119,8 +111,10 @@ RoomOpenings readOpenings(const nlohmann::json& spec, const json::Where& at,
                         where);
         if (!e.contains("type"))
             json::fail(where / "type", "\"window\", \"door\" or \"skylight\" (missing)");
-        const std::string type = json::string(e["type"], where / "type");
-        if (e.contains("name")) json::string(e["name"], where / "name");
+        RoomOpening opening;
+        opening.type = json::string(e["type"], where / "type");
+        const std::string& type = opening.type;
+        if (e.contains("name")) opening.name = json::string(e["name"], where / "name");
         if (e.contains("glazing")) {
             if (type == "door") json::fail(where / "glazing", "no glazing on a door");
             json::inRange(e["glazing"], where / "glazing", 0.0, 1.0, "a transmittance");
@@ -139,14 +133,15 @@ RoomOpenings readOpenings(const nlohmann::json& spec, const json::Where& at,
             for (int k = 0; k < 2; ++k)
                 if (!(s[k] > 0.0 && s[k] <= json::kMaxMetres))
                     json::fail((where / "size")[k], "a positive size in metres");
-            Rect2 r{c - 0.5 * s, c + 0.5 * s};
-            for (glm::dvec2 corner :
-                 {r.lo, r.hi, glm::dvec2(r.lo.x, r.hi.y), glm::dvec2(r.hi.x, r.lo.y)})
+            const glm::dvec2 lo = c - 0.5 * s, hi = c + 0.5 * s;
+            for (glm::dvec2 corner : {lo, hi, glm::dvec2(lo.x, hi.y), glm::dvec2(hi.x, lo.y)})
                 if (!insidePolygon(floor, corner))
                     json::fail(where,
                                "a skylight within the room's outline (a corner of it is "
                                "outside)");
-            o.ceiling.push_back(r);
+            opening.center = c;
+            opening.size = s;
+            o.push_back(std::move(opening));
             continue;
         }
         if (type != "window" && type != "door")
@@ -183,27 +178,63 @@ RoomOpenings readOpenings(const nlohmann::json& spec, const json::Where& at,
             json::fail(where, "a " + type + " below the ceiling: sill + height is " +
                                   std::to_string(sill + tall) + " m, the room is " +
                                   std::to_string(height) + " m high");
-        o.walls[wall].push_back(
-            {{offset, sill}, {std::min(offset + width, length), std::min(sill + tall, height)}});
+        opening.wall = wall;
+        opening.offset = offset;
+        opening.width = width;
+        opening.sill = sill;
+        opening.height = tall;
+        o.push_back(std::move(opening));
     }
     return o;
 }
 
+/// The holes the openings cut: per wall in the wall's (along, up) coordinates, and the ceiling's
+/// skylights in (x, z).
+struct RoomHoles {
+    std::vector<std::vector<Rect2>> walls;
+    std::vector<Rect2> ceiling;
+};
+
+RoomHoles holesOf(const RoomSpec& room) {
+    RoomHoles h;
+    h.walls.resize(room.floor.size());
+    for (const RoomOpening& o : room.openings) {
+        if (o.type == "skylight") {
+            h.ceiling.push_back({o.center - 0.5 * o.size, o.center + 0.5 * o.size});
+            continue;
+        }
+        // Within the wall's slack (readOpenings allows a micrometre for written decimals).
+        h.walls[o.wall].push_back({{o.offset, o.sill},
+                                   {std::min(o.offset + o.width, room.wallLength(o.wall)),
+                                    std::min(o.sill + o.height, room.height)}});
+    }
+    return h;
+}
+
 }  // namespace
 
-void parseRoom(const nlohmann::json& item, const json::Where& where, Scene& scene) {
+double RoomSpec::area() const {
+    return std::abs(signedArea(floor));
+}
+
+double RoomSpec::wallLength(size_t i) const {
+    return glm::length(floor[(i + 1) % floor.size()] - floor[i]);
+}
+
+RoomSpec readRoom(const nlohmann::json& item, const json::Where& where) {
     json::checkKeys(item, {"room"}, where);
     const json::Where at = where / "room";
     const nlohmann::json& spec = item["room"];
     json::checkKeys(spec, {"name", "floor", "height", "elevation", "reflectance", "openings"}, at);
-    const std::string name = json::optional(spec, "name", at, std::string("Room"), json::string);
+    RoomSpec room;
+    room.name = json::optional(spec, "name", at, std::string("Room"), json::string);
     if (!spec.contains("floor"))
         json::fail(at / "floor", "the floor's outline, [[x, z], ...] in metres (missing)");
     const nlohmann::json& corners = spec["floor"];
     if (!corners.is_array() || corners.size() < 3 || corners.size() > kMaxRoomCorners)
         json::fail(at / "floor", "the floor's outline: from 3 to " +
                                      std::to_string(kMaxRoomCorners) + " corners [x, z] in metres");
-    std::vector<glm::dvec2> floor;
+    std::vector<glm::dvec2>& floor = room.floor;
     for (size_t i = 0; i < corners.size(); ++i) {
         glm::dvec2 p = json::vec2(corners[i], (at / "floor")[i]);
         if (std::abs(p.x) > json::kMaxMetres || std::abs(p.y) > json::kMaxMetres)
@@ -214,26 +245,40 @@ void parseRoom(const nlohmann::json& item, const json::Where& where, Scene& scen
         json::fail(at / "floor", "an outline that does not cross itself: " + defect);
     if (!spec.contains("height"))
         json::fail(at / "height", "the room's height in metres (missing)");
-    const double height = json::length(spec["height"], at / "height");
-    const double elevation = json::optional(
+    room.height = json::length(spec["height"], at / "height");
+    room.elevation = json::optional(
         spec, "elevation", at, 0.0,
         json::range(-json::kMaxMetres, json::kMaxMetres, "the floor's height in metres"));
     const RoomReflectances reflectance = readReflectances(spec, at, floor.size());
-    const RoomOpenings openings = readOpenings(spec, at, floor, height);
+    room.floorReflectance = reflectance.floor;
+    room.ceilingReflectance = reflectance.ceiling;
+    room.wallReflectances = reflectance.walls;
+    room.openings = readOpenings(spec, at, floor, room.height);
+    size_t skylights = 0;
+    for (const RoomOpening& o : room.openings) skylights += o.type == "skylight" ? 1 : 0;
     // The ceiling's strips grow with corners x skylights, and each strip looks at every edge.
-    if (floor.size() * (openings.ceiling.size() + 1) > kMaxCornersTimesSkylights)
+    if (floor.size() * (skylights + 1) > kMaxCornersTimesSkylights)
         json::fail(at / "openings", "at most " + std::to_string(kMaxCornersTimesSkylights) +
                                         " for the floor's corners times (skylights + 1), got " +
                                         std::to_string(floor.size()) + " x " +
-                                        std::to_string(openings.ceiling.size() + 1) +
+                                        std::to_string(skylights + 1) +
                                         " (split a large room into several)");
+    return room;
+}
 
+void parseRoom(const nlohmann::json& item, const json::Where& where, Scene& scene) {
+    const RoomSpec room = readRoom(item, where);
+    const RoomHoles holes = holesOf(room);
+    const std::string& name = room.name;
+    const std::vector<glm::dvec2>& floor = room.floor;
+    const double height = room.height, elevation = room.elevation;
     const glm::dvec3 x(1.0, 0.0, 0.0), up(0.0, 1.0, 0.0), z(0.0, 0.0, 1.0);
-    Mesh floorMesh = surfaceMesh(name + ": floor", reflectance.floor, MeshShape::Plane, scene);
+    Mesh floorMesh = surfaceMesh(name + ": floor", room.floorReflectance, MeshShape::Plane, scene);
     appendFlat(floorMesh, tessellate(floor, {}), elevation * up, x, z, up);
     keepMesh(std::move(floorMesh), scene);
-    Mesh ceiling = surfaceMesh(name + ": ceiling", reflectance.ceiling, MeshShape::Plane, scene);
-    appendFlat(ceiling, tessellate(floor, openings.ceiling), (elevation + height) * up, x, z, -up);
+    Mesh ceiling =
+        surfaceMesh(name + ": ceiling", room.ceilingReflectance, MeshShape::Plane, scene);
+    appendFlat(ceiling, tessellate(floor, holes.ceiling), (elevation + height) * up, x, z, -up);
     keepMesh(std::move(ceiling), scene);
     // The inside lies left of each edge when the corners run counter-clockwise (x right, z up).
     const double turn = signedArea(floor) > 0.0 ? 1.0 : -1.0;
@@ -242,11 +287,11 @@ void parseRoom(const nlohmann::json& item, const json::Where& where, Scene& scen
         const double length = glm::length(b - a);
         const glm::dvec2 d = (b - a) / length;
         const glm::dvec3 along(d.x, 0.0, d.y), inward(-turn * d.y, 0.0, turn * d.x);
-        Mesh wall = surfaceMesh(name + ": wall " + std::to_string(i + 1), reflectance.walls[i],
+        Mesh wall = surfaceMesh(name + ": wall " + std::to_string(i + 1), room.wallReflectances[i],
                                 MeshShape::Plane, scene);
         std::vector<glm::dvec2> outline = {
             {0.0, 0.0}, {length, 0.0}, {length, height}, {0.0, height}};
-        appendFlat(wall, tessellate(outline, openings.walls[i]), glm::dvec3(a.x, elevation, a.y),
+        appendFlat(wall, tessellate(outline, holes.walls[i]), glm::dvec3(a.x, elevation, a.y),
                    along, up, inward);
         keepMesh(std::move(wall), scene);
     }
@@ -318,8 +363,7 @@ std::vector<Part> furnitureParts(const std::string& type, const glm::dvec3& s) {
 
 }  // namespace
 
-void parseFurniture(const nlohmann::json& item, const json::Where& where, size_t index,
-                    Scene& scene) {
+FurnitureSpec readFurniture(const nlohmann::json& item, const json::Where& where, size_t index) {
     json::checkKeys(item, {"furniture"}, where);
     const json::Where at = where / "furniture";
     const nlohmann::json& spec = item["furniture"];
@@ -328,33 +372,72 @@ void parseFurniture(const nlohmann::json& item, const json::Where& where, size_t
     for (const FurnitureType& t : furnitureTypes())
         names += (names.empty() ? "\"" : ", \"") + std::string(t.name) + "\"";
     if (!spec.contains("type")) json::fail(at / "type", "one of " + names + " (missing)");
-    const std::string type = json::string(spec["type"], at / "type");
+    FurnitureSpec f;
+    f.type = json::string(spec["type"], at / "type");
     auto known = std::find_if(furnitureTypes().begin(), furnitureTypes().end(),
-                              [&type](const FurnitureType& t) { return type == t.name; });
+                              [&f](const FurnitureType& t) { return f.type == t.name; });
     if (known == furnitureTypes().end())
-        json::fail(at / "type", "one of " + names + ", got \"" + type + "\"");
-    const std::string name = json::optional(
-        spec, "name", at, std::string(known->label) + " " + std::to_string(index), json::string);
-    const glm::dvec3 position = json::optional(spec, "position", at, glm::dvec3(0.0), json::point);
-    const double angle =
+        json::fail(at / "type", "one of " + names + ", got \"" + f.type + "\"");
+    f.name = json::optional(spec, "name", at,
+                            std::string(known->label) + " " + std::to_string(index), json::string);
+    f.position = json::optional(spec, "position", at, glm::dvec3(0.0), json::point);
+    f.rotateYDeg =
         json::optional(spec, "rotate_y_deg", at, 0.0,
                        json::range(-json::kMaxAngleDeg, json::kMaxAngleDeg, "an angle in degrees"));
-    glm::dvec3 size = known->size;
+    f.size = known->size;
     if (spec.contains("size")) {
-        size = json::vec3(spec["size"], at / "size");
+        f.size = json::vec3(spec["size"], at / "size");
         for (int k = 0; k < 3; ++k)
-            if (!(size[k] > 0.0 && size[k] <= json::kMaxMetres))
+            if (!(f.size[k] > 0.0 && f.size[k] <= json::kMaxMetres))
                 json::fail((at / "size")[k], "a positive size in metres (width, height, depth)");
     }
-    const glm::dvec3 reflectance =
+    f.reflectance =
         json::optional(spec, "reflectance", at, glm::dvec3(known->reflectance), reflectanceValue);
-    const std::vector<Part> parts = furnitureParts(type, size);
-    Mesh mesh = surfaceMesh(name, reflectance,
+    return f;
+}
+
+namespace {
+
+glm::dmat3 furnitureRotation(const FurnitureSpec& f) {
+    return glm::dmat3(
+        glm::rotate(glm::dmat4(1.0), glm::radians(f.rotateYDeg), glm::dvec3(0.0, 1.0, 0.0)));
+}
+
+}  // namespace
+
+std::vector<glm::dvec2> FurnitureSpec::footprint() const {
+    const glm::dmat3 rotation = furnitureRotation(*this);
+    std::vector<glm::dvec2> corners;
+    for (glm::dvec2 c :
+         {glm::dvec2(-1, -1), glm::dvec2(1, -1), glm::dvec2(1, 1), glm::dvec2(-1, 1)}) {
+        const glm::dvec3 p =
+            position + rotation * glm::dvec3(0.5 * c.x * size.x, 0.0, 0.5 * c.y * size.z);
+        corners.push_back({p.x, p.z});
+    }
+    return corners;
+}
+
+void parseFurniture(const nlohmann::json& item, const json::Where& where, size_t index,
+                    Scene& scene) {
+    const FurnitureSpec f = readFurniture(item, where, index);
+    const std::vector<Part> parts = furnitureParts(f.type, f.size);
+    Mesh mesh = surfaceMesh(f.name, f.reflectance,
                             parts.size() == 1 ? MeshShape::Convex : MeshShape::General, scene);
-    const glm::dmat3 rotation(
-        glm::rotate(glm::dmat4(1.0), glm::radians(angle), glm::dvec3(0.0, 1.0, 0.0)));
-    for (const Part& p : parts) appendBox(mesh, position + rotation * p.center, p.half, rotation);
+    const glm::dmat3 rotation = furnitureRotation(f);
+    for (const Part& p : parts) appendBox(mesh, f.position + rotation * p.center, p.half, rotation);
     keepMesh(std::move(mesh), scene);
+}
+
+std::optional<RoomSpec> roomSpec(const Scene& scene, size_t index) {
+    const nlohmann::json& source = scene.geometry.at(index).source;
+    if (!source.contains("room")) return std::nullopt;
+    return readRoom(source, json::Where{scene.path, "geometry"}[index]);
+}
+
+std::optional<FurnitureSpec> furnitureSpec(const Scene& scene, size_t index) {
+    const nlohmann::json& source = scene.geometry.at(index).source;
+    if (!source.contains("furniture")) return std::nullopt;
+    return readFurniture(source, json::Where{scene.path, "geometry"}[index], index);
 }
 
 }  // namespace candela

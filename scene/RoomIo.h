@@ -20,6 +20,7 @@
 
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -48,8 +49,58 @@ struct FurnitureType {
 };
 const std::vector<FurnitureType>& furnitureTypes();
 
-/// Appends the meshes and materials of a {"room": ...} entry to `scene`; InputError naming the
-/// field for anything it cannot build (a crossing outline, an opening off its wall).
+/// A window, door or skylight of a room, as written (m).
+struct RoomOpening {
+    std::string type;  ///< "window", "door" or "skylight".
+    std::string name;  ///< May be empty.
+    size_t wall = 0;   ///< Window or door: its wall, from 0 (the file's wall N is N - 1).
+    double offset = 0.0, width = 0.0;   ///< Along the wall from its first corner, m.
+    double sill = 0.0, height = 0.0;    ///< Above the floor, m.
+    glm::dvec2 center{0.0}, size{0.0};  ///< Skylight: its middle and size (x, z), m.
+};
+
+/// A {"room": ...} entry as read: the meshes are built from it, and the report's room data and
+/// plan read it back from the geometry entry the scene keeps as written (roomSpec).
+struct RoomSpec {
+    std::string name;
+    std::vector<glm::dvec2> floor;  ///< Corners (x, z), m, as written.
+    double height = 0.0;            ///< Floor to ceiling, m.
+    double elevation = 0.0;         ///< The floor's y, m.
+    glm::dvec3 floorReflectance{kDefaultFloorReflectance};
+    glm::dvec3 ceilingReflectance{kDefaultCeilingReflectance};
+    std::vector<glm::dvec3> wallReflectances;  ///< One per wall (wall N from corner N).
+    std::vector<RoomOpening> openings;
+    /// The floor's area by the shoelace formula, m2.
+    double area() const;
+    /// Wall `i`'s length, m.
+    double wallLength(size_t i) const;
+};
+
+/// A {"furniture": ...} entry as read.
+struct FurnitureSpec {
+    std::string type, name;
+    glm::dvec3 position{0.0};  ///< The middle of its footprint at floor level, m.
+    double rotateYDeg = 0.0;
+    glm::dvec3 size{0.0};  ///< Width (x), height (y), depth (z) before the turn, m.
+    glm::dvec3 reflectance{0.5};
+    /// The footprint's corners (x, z), m, turned as placed.
+    std::vector<glm::dvec2> footprint() const;
+};
+
+/// Reads a {"room": ...} entry; InputError naming the field for anything it cannot build (a
+/// crossing outline, an opening off its wall).
+RoomSpec readRoom(const nlohmann::json& item, const json::Where& where);
+/// Reads a {"furniture": ...} entry (`index`: its place in the geometry list, for its default
+/// name).
+FurnitureSpec readFurniture(const nlohmann::json& item, const json::Where& where, size_t index);
+
+/// The room a scene's geometry entry holds (read back from the entry as written); empty for
+/// another kind of entry. `index`: its place in scene.geometry.
+std::optional<RoomSpec> roomSpec(const Scene& scene, size_t index);
+/// The furniture a scene's geometry entry holds, likewise.
+std::optional<FurnitureSpec> furnitureSpec(const Scene& scene, size_t index);
+
+/// Appends the meshes and materials of a {"room": ...} entry to `scene` (readRoom's checks).
 void parseRoom(const nlohmann::json& item, const json::Where& where, Scene& scene);
 /// Appends the mesh and material of a {"furniture": ...} entry.
 void parseFurniture(const nlohmann::json& item, const json::Where& where, size_t index,

@@ -91,8 +91,11 @@ log "wrote $OUT/sheet.png"
 # 7. Two pages of the classroom project's report, side by side: its cover and its task area.
 "$CANDELA" report "$PWD/resources/scenes/classroom-project.json" --out "$TMP/report.pdf" \
     --view-size 640x360 --view-spp 8
+# The task area's page: where the contents (page 2) say the calculation surfaces start.
+surfaces=$(pdftotext -f 2 -l 2 -layout "$TMP/report.pdf" - |
+    sed -n 's/^ *Calculation surfaces.* \([0-9][0-9]*\)$/\1/p')
 pdftoppm -r 60 -f 1 -l 1 -singlefile -png "$TMP/report.pdf" "$TMP/report-cover"
-pdftoppm -r 60 -f 5 -l 5 -singlefile -png "$TMP/report.pdf" "$TMP/report-surface"
+pdftoppm -r 60 -f "$surfaces" -l "$surfaces" -singlefile -png "$TMP/report.pdf" "$TMP/report-surface"
 convert "$TMP/report-cover.png" "$TMP/report-surface.png" -bordercolor gray70 -border 1 +append \
     "$OUT/report.png"
 log "wrote $OUT/report.png"

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <set>
 
 #include "TestUtil.h"
 #include "calculation/CalculationSurfaces.h"
@@ -72,17 +73,27 @@ TEST(CalculationSurfaces, DeskSurroundingAndBackgroundLayout) {
     std::vector<SurfaceResult> s = layoutSurfaces(deskScene(kDesk));
     ASSERT_EQ(s.size(), 3u);
     // Worked by hand: the desk is twice as long as wide, so d = 0.8 m, p = 0.1711 m: 10 x 5
-    // cells of 0.16 m. Its surrounding, 2.6 x 1.8 m: d = 2.6 m, p = 0.3900 m, 7 x 5 cells, 35
-    // points of which 15 lie on the desk. The background, 3 m beyond that but inside the room
-    // less its 0.5 m wall band (-2.5..2.5 m): d = 5 m, p = 0.616 m, 9 x 9 cells, 15 of them
-    // inside the surrounding.
+    // cells of 0.16 m. Its surrounding, 2.6 x 1.8 m: d = 2.6 m, p = 0.3900 m, more than a third
+    // of the 0.5 m band, so p = 0.5 / 3 m: 16 x 11 cells (2.6 / 0.1667 = 15.6, 1.8 / 0.1667 =
+    // 10.8), 176 points of which 10 x 5 lie on the desk. The background, 3 m beyond that but inside
+    // the room less its 0.5 m wall band (-2.5..2.5 m): d = 5 m, p = 0.616 m, 9 x 9 cells, 15 of
+    // them inside the surrounding.
     EXPECT_EQ(s[0].role, "task area");
     EXPECT_EQ(s[0].cells, glm::ivec2(10, 5));
     EXPECT_NEAR(s[0].spacing.x, 0.16, 1e-12);
     EXPECT_EQ(s[0].points.size(), 50u);
     EXPECT_EQ(s[1].role, "immediate surrounding");
-    EXPECT_EQ(s[1].cells, glm::ivec2(7, 5));
-    EXPECT_EQ(s[1].points.size(), 20u);
+    EXPECT_EQ(s[1].cells, glm::ivec2(16, 11));
+    EXPECT_EQ(s[1].points.size(), 126u);
+    // Three rings of points across the band on every side, not one: the columns left of the desk
+    // and the rows in front of it.
+    std::set<double> left, front;
+    for (const glm::dvec2& q : s[1].points) {
+        if (q.x < -0.8) left.insert(q.x);
+        if (q.y < -0.4) front.insert(q.y);
+    }
+    EXPECT_EQ(left.size(), 3u);
+    EXPECT_EQ(front.size(), 3u);
     EXPECT_NEAR(s[1].lo.x, -1.3, 1e-12);
     EXPECT_NEAR(s[1].hi.y, 0.9, 1e-12);
     EXPECT_EQ(s[2].role, "background");

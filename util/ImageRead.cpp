@@ -1,5 +1,6 @@
 #include "util/ImageRead.h"
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
@@ -176,6 +177,8 @@ void checkExrHeader(const std::string& path, const std::string& context, int max
 }  // namespace
 
 struct ImageFileReader::Input {
+    /// The bytes read from memory (declared first: `in` reads through it until it is closed).
+    std::unique_ptr<OIIO::Filesystem::IOMemReader> memory;
     std::unique_ptr<OIIO::ImageInput> in;
 };
 
@@ -195,12 +198,36 @@ ImageFileReader::ImageFileReader(const std::string& path, const std::string& con
     if (!in || !in->open(path, opened))
         throw InputError(context +
                          ": cannot read image: " + (in ? in->geterror() : OIIO::geterror()));
-    const OIIO::ImageSpec& spec = in->spec();
+    takeSize(maxSide);
+}
+
+ImageFileReader::ImageFileReader(InMemory, const std::string& bytes, const std::string& format,
+                                 const std::string& context, int maxSide)
+    : mInput(std::make_unique<Input>()), mContext(context) {
+    if (format != "png" && format != "jpeg")
+        throw InputError(context + ": cannot read image: " + format +
+                         " is not read from memory (png and jpeg are)");
+    if (bytes.size() > kMaxImageBytes)
+        throw InputError(context + ": cannot read image: " + std::to_string(bytes.size()) +
+                         " bytes, more than the " + std::to_string(kMaxImageBytes) + " allowed");
+    auto& in = mInput->in;
+    in = OIIO::ImageInput::create(format);
+    mInput->memory = std::make_unique<OIIO::Filesystem::IOMemReader>(bytes.data(), bytes.size());
+    OIIO::ImageSpec opened;
+    if (!in || !in->supports("ioproxy") || !in->set_ioproxy(mInput->memory.get()) ||
+        !in->open("image." + format, opened))
+        throw InputError(context +
+                         ": cannot read image: " + (in ? in->geterror() : OIIO::geterror()));
+    takeSize(maxSide);
+}
+
+void ImageFileReader::takeSize(int maxSide) {
+    const OIIO::ImageSpec& spec = mInput->in->spec();
     mWidth = spec.width;
     mHeight = spec.height;
     mChannels = spec.nchannels;
     if (mWidth < 1 || mHeight < 1 || mWidth > maxSide || mHeight > maxSide)
-        throw InputError(context + ": image size " + std::to_string(mWidth) + "x" +
+        throw InputError(mContext + ": image size " + std::to_string(mWidth) + "x" +
                          std::to_string(mHeight) + " out of range (1.." + std::to_string(maxSide) +
                          " per side)");
 }

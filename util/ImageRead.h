@@ -26,6 +26,12 @@ class ImageFileReader {
     /// size WxH out of range (1..MAX_SIDE per side)" for an empty image or one wider or higher
     /// than `maxSide` pixels (checked in an OpenEXR header before OpenEXR reads it).
     ImageFileReader(const std::string& path, const std::string& context, int maxSide);
+    /// Reads an image held in memory (an image member of a container): `bytes` (kept by the
+    /// caller while the reader lives) by the reader of `format` only, "png" or "jpeg" (others are
+    /// refused: OpenEXR's header check above reads a file); the same size check and messages.
+    struct InMemory {};
+    ImageFileReader(InMemory, const std::string& bytes, const std::string& format,
+                    const std::string& context, int maxSide);
     ~ImageFileReader();
     ImageFileReader(const ImageFileReader&) = delete;
     ImageFileReader& operator=(const ImageFileReader&) = delete;
@@ -39,6 +45,8 @@ class ImageFileReader {
     std::unique_ptr<float[]> readPixels(int channels);
 
   private:
+    /// Takes the opened image's size; refuses one outside 1..maxSide per side.
+    void takeSize(int maxSide);
     struct Input;
     std::unique_ptr<Input> mInput;
     std::string mContext;

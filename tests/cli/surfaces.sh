@@ -24,7 +24,7 @@ grid = open(sys.argv[3]).read()
 fail = []
 for want in ["Desk (task area), plane y=0.75 (normal +y)",
              "grid 10 x 5 cells of 0.160 x 0.160 m, 50 points",
-             "grid 7 x 5 cells of 0.371 x 0.360 m, 20 points",
+             "grid 16 x 11 cells of 0.163 x 0.164 m, 126 points",
              "grid 9 x 5 cells of 0.556 x 0.600 m, 35 points",
              "required: Em >= 500 lx, U0 >= 0.60: FAIL",
              "required: Em >= 300 lx, U0 >= 0.40:",
@@ -50,7 +50,7 @@ m = re.search(r"Eavg: ([\d.e+]+) lx", grid)
 if not m or abs(float(m.group(1)) - sum(desk) / len(desk)) > 1e-5 * float(m.group(1)):
     fail.append("grid's Eavg %s differs from the task area's %.8g" %
                 (m.group(1) if m else "?", sum(desk) / len(desk)))
-if len(rows) != 50 + 20 + 35 + 2: fail.append("%d CSV rows, want 107" % len(rows))
+if len(rows) != 50 + 126 + 35 + 2: fail.append("%d CSV rows, want 213" % len(rows))
 for f in fail: print("FAIL: surfaces:", f)
 sys.exit(1 if fail else 0)
 PY

@@ -40,7 +40,7 @@ PDF="$TMP/office-report.pdf"
 [ -s "$PDF" ] || fail "no report at $PDF"
 layout "d['error'] == ''" || fail "the editor reported an error: $(layout "d['error']")"
 pdftotext -layout "$PDF" "$TMP/report.txt"
-for section in "Lighting report" "Luminaire schedule" "Polar diagrams" "Desk (task area)" \
+for section in "Lighting report" "Luminaire schedule" "Polar diagram" "Desk (task area)" \
                "Calculation points" "Glare: UGR (CIE 117)" "the editor's viewport"; do
   grep -qF "$section" "$TMP/report.txt" || fail "the report has no \"$section\""
 done
