@@ -237,6 +237,9 @@ struct LibraryUi {
         bool failed = false;
     };
     std::map<std::string, Thumbnail> thumbnails;  ///< By path.
+    /// GLDF product pictures decoded for the inspector (key "gldf:PATH:FILE-ID", uploaded to
+    /// EditorState::images): "" or why there is none.
+    std::map<std::string, std::string> pictures;
 };
 
 /// Placing luminaires on the scene's surfaces (the outline's Placement row and the viewport).

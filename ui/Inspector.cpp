@@ -11,6 +11,7 @@
 #include <optional>
 #include <vector>
 
+#include "formats/Gldf.h"
 #include "luminaires/lightfield/LightField.h"
 #include "luminaires/photometric/PhotometricLuminaire.h"
 #include "renderer/ViewportMath.h"
@@ -294,6 +295,53 @@ bool kindFields(EditorState& state, int index) {
     return changed;
 }
 
+/// A GLDF product's data as the manufacturer gives it: manufacturer, product and variant,
+/// article number, description and picture (decoded once; a picture that cannot be read is a
+/// line saying so).
+void gldfProductDetails(EditorState& state, const PhotometricLuminaire& p) {
+    if (!p.gldf) return;
+    GldfProductInfo info = gldfProductInfo(*p.gldf, p.gldfVariant);
+    ImGui::PushTextWrapPos(0.f);
+    if (!info.manufacturer.empty()) ImGui::Text("Manufacturer: %s", info.manufacturer.c_str());
+    std::string product = info.product;
+    if (!info.variant.empty() && info.variant.find(product) == std::string::npos)
+        product += (product.empty() ? "" : ", ") + info.variant;
+    else if (!info.variant.empty())
+        product = info.variant;
+    if (!product.empty()) ImGui::Text("Product: %s", product.c_str());
+    ImGui::Text("Article number: %s",
+                info.articleNumber.empty() ? "(not given)" : info.articleNumber.c_str());
+    if (!info.description.empty()) ImGui::TextDisabled("%s", info.description.c_str());
+    ImGui::PopTextWrapPos();
+    if (!info.picture || !state.images) return;
+    std::string key = "gldf:" + p.gldf->path + ":" + info.picture->id;
+    auto [note, fresh] = state.library.pictures.try_emplace(key);
+    if (fresh) {
+        std::vector<std::string> warnings;
+        try {
+            std::optional<GldfImage> picture =
+                gldfPicture(readGldfBytes(p.gldf->path), *p.gldf, info, warnings);
+            if (picture) state.images->upload(key, picture->width, picture->height, picture->rgb);
+        } catch (const std::exception& e) {
+            warnings.push_back(e.what());
+        }
+        for (const std::string& w : warnings)
+            note->second += (note->second.empty() ? "" : "; ") + w;
+    }
+    ImageTextures::Shown shown = state.images->find(key);
+    if (shown.id) {
+        float side = ImGui::GetFontSize() * 8.f;
+        float scale = side / float(std::max(shown.width, shown.height));
+        ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(shown.id)),
+                     ImVec2(float(shown.width) * scale, float(shown.height) * scale));
+        itemTooltip("The product's picture from its GLDF container");
+    } else if (!note->second.empty()) {
+        ImGui::PushTextWrapPos(0.f);
+        ImGui::TextDisabled("No picture: %s", note->second.c_str());
+        ImGui::PopTextWrapPos();
+    }
+}
+
 /// Kind-specific details: a light field's images, a photometric file's polar diagram, else the
 /// luminaire's power or flux.
 void kindDetails(const Luminaire& shown) {
@@ -368,6 +416,8 @@ bool luminaireInspector(EditorState& state, int index) {
             "the reflected light (never its own, which its photometry already holds)");
     }
 
+    if (const PhotometricLuminaire* ph = photometricModel(*state.scene.luminaires[size_t(index)]))
+        gldfProductDetails(state, *ph);
     kindDetails(*state.scene.luminaires[size_t(index)]);
     if (!state.inspectorError.empty()) errorText(state.inspectorError);
 
