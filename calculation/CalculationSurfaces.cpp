@@ -32,6 +32,20 @@ double surroundingIlluminance(double taskLux) {
     return taskLux;
 }
 
+const char* verdictText(Verdict verdict) {
+    switch (verdict) {
+        case Verdict::Pass:
+            return "PASS";
+        case Verdict::Fail:
+            return "FAIL";
+        case Verdict::NoRequirement:
+            return "no requirement";
+        case Verdict::NoPoints:
+            return "no points";
+    }
+    return "?";
+}
+
 namespace {
 
 /// The scene's bounds on the plane (u, v), or an unbounded rectangle without geometry.
@@ -160,16 +174,26 @@ SurfaceReport computeSurfaces(const Scene& scene, const GridSpec& how,
             take(s.cylindrical, s.E[k], s.stdError[k], s.initial[k]);
         s.summary = summariseGrid(s.E);
         // A surface the room leaves no points of (a task area over the whole floor has no
-        // surroundings) has nothing to fail: every output counts it as met, as none.
-        s.passes = s.summary.count == 0 ||
-                   (s.summary.eAvg >= s.required.em && s.summary.u0 >= s.required.u0);
+        // surroundings) has nothing to judge: "no points", neither met nor failed.
+        if (s.summary.count == 0)
+            s.verdict = Verdict::NoPoints;
+        else if (!s.required.any())
+            s.verdict = Verdict::NoRequirement;
+        else
+            s.verdict = s.summary.eAvg >= s.required.em && s.summary.u0 >= s.required.u0
+                            ? Verdict::Pass
+                            : Verdict::Fail;
+        s.passes = s.verdict != Verdict::Fail;
         anyLux = anyLux || s.required.em > 0.0;
     }
     for (const CalcPoint& p : scene.calcPoints) {
         PointResult r;
         r.point = p;
         take(p.cylindrical, r.E, r.stdError, r.initial);
-        r.passes = r.E >= p.requiredLux;
+        r.verdict = p.requiredLux <= 0.0   ? Verdict::NoRequirement
+                    : r.E >= p.requiredLux ? Verdict::Pass
+                                           : Verdict::Fail;
+        r.passes = r.verdict != Verdict::Fail;
         anyLux = anyLux || p.requiredLux > 0.0;
         report.points.push_back(r);
     }

@@ -39,6 +39,13 @@ constexpr double kSurroundingBand = 0.5, kBackgroundBand = 3.0, kWallBand = 0.5;
 /// (the ripple of a mean of 32 shifted clamped cosines; less for light from many directions).
 constexpr int kCylinderAzimuths = 32;
 
+/// How a surface or a point stands against its requirement. A surface the room leaves no points
+/// of (an immediate surrounding or background clipped away by the walls) has nothing to judge:
+/// it neither passes nor fails.
+enum class Verdict { Pass, Fail, NoRequirement, NoPoints };
+/// The words every output uses: "PASS", "FAIL", "no requirement", "no points".
+const char* verdictText(Verdict verdict);
+
 /// One surface as evaluated: its grid (the points of `lo`..`hi` outside `hole`), summary and
 /// verdict.
 struct SurfaceResult {
@@ -56,14 +63,17 @@ struct SurfaceResult {
     std::vector<double> initial;          ///< The same before maintenance (GridResult::initial).
     GridSummary summary;
     Requirement required;
-    bool passes = true;  ///< Every requirement met (true when there is none, or no point).
+    Verdict verdict = Verdict::NoPoints;
+    /// Not failing: verdict is not Fail (true when there is no requirement, or no point).
+    bool passes = true;
 };
 
 struct PointResult {
     CalcPoint point;
     double E = 0.0, stdError = 0.0;
     double initial = 0.0;  ///< E before maintenance.
-    bool passes = true;
+    Verdict verdict = Verdict::NoRequirement;
+    bool passes = true;  ///< Not failing: verdict is not Fail.
 };
 
 struct SurfaceReport {
