@@ -121,6 +121,24 @@ std::vector<SurfaceResult> layoutSurfaces(const Scene& scene) {
     return out;
 }
 
+NodeGrid surfaceNodes(const SurfaceResult& s) {
+    NodeGrid g;
+    if (s.cells.x < 1 || s.cells.y < 1) return g;
+    g.nx = s.cells.x, g.ny = s.cells.y;
+    g.spacing = s.spacing;
+    g.origin = s.lo + 0.5 * s.spacing;
+    g.values.assign(size_t(g.nx) * size_t(g.ny), std::nan(""));
+    // Each point's cell from its position (points sit at the cells' centres, so rounding finds it
+    // whatever the floating-point error of the layout).
+    for (size_t k = 0; k < s.points.size() && k < s.E.size(); ++k) {
+        glm::dvec2 at = (s.points[k] - g.origin) / s.spacing;
+        int i = int(std::lround(at.x)), j = int(std::lround(at.y));
+        if (i >= 0 && i < g.nx && j >= 0 && j < g.ny)
+            g.values[size_t(j) * size_t(g.nx) + size_t(i)] = s.E[k];
+    }
+    return g;
+}
+
 SurfaceReport computeSurfaces(const Scene& scene, const GridSpec& how,
                               const std::function<void(const std::string&)>& status) {
     SurfaceReport report;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "calculation/CalculationGrid.h"
+#include "calculation/Isolines.h"
 #include "util/JsonRead.h"
 
 namespace candela {
@@ -92,6 +93,9 @@ struct SurfaceReport {
 /// The grids of the scene's task areas and, where asked, their surroundings and backgrounds
 /// (no illuminance yet). The room is the scene's bounds on each area's plane.
 std::vector<SurfaceResult> layoutSurfaces(const Scene& scene);
+/// A surface's values on its full grid of cells.x x cells.y points (at the cells' centres), NaN
+/// at the points its hole takes, for its isolines (calculation/Isolines.h).
+NodeGrid surfaceNodes(const SurfaceResult& surface);
 /// Lays out and evaluates every surface and point in one computeReceivers call (`how`: its
 /// technique, spp, visibility and interreflection). Throws InputError when the scene has
 /// neither, or when a requirement in lux meets a radiometric scene.
