@@ -32,6 +32,20 @@ double surroundingIlluminance(double taskLux) {
     return taskLux;
 }
 
+const char* verdictText(Verdict verdict) {
+    switch (verdict) {
+        case Verdict::Pass:
+            return "PASS";
+        case Verdict::Fail:
+            return "FAIL";
+        case Verdict::NoRequirement:
+            return "no requirement";
+        case Verdict::NoPoints:
+            return "no points";
+    }
+    return "?";
+}
+
 namespace {
 
 /// The scene's bounds on the plane (u, v), or an unbounded rectangle without geometry.
@@ -112,6 +126,24 @@ std::vector<SurfaceResult> layoutSurfaces(const Scene& scene) {
     return out;
 }
 
+NodeGrid surfaceNodes(const SurfaceResult& s) {
+    NodeGrid g;
+    if (s.cells.x < 1 || s.cells.y < 1) return g;
+    g.nx = s.cells.x, g.ny = s.cells.y;
+    g.spacing = s.spacing;
+    g.origin = s.lo + 0.5 * s.spacing;
+    g.values.assign(size_t(g.nx) * size_t(g.ny), std::nan(""));
+    // Each point's cell from its position (points sit at the cells' centres, so rounding finds it
+    // whatever the floating-point error of the layout).
+    for (size_t k = 0; k < s.points.size() && k < s.E.size(); ++k) {
+        glm::dvec2 at = (s.points[k] - g.origin) / s.spacing;
+        int i = int(std::lround(at.x)), j = int(std::lround(at.y));
+        if (i >= 0 && i < g.nx && j >= 0 && j < g.ny)
+            g.values[size_t(j) * size_t(g.nx) + size_t(i)] = s.E[k];
+    }
+    return g;
+}
+
 SurfaceReport computeSurfaces(const Scene& scene, const GridSpec& how,
                               const std::function<void(const std::string&)>& status) {
     SurfaceReport report;
@@ -165,16 +197,26 @@ SurfaceReport computeSurfaces(const Scene& scene, const GridSpec& how,
             take(s.cylindrical, s.E[k], s.stdError[k], s.initial[k]);
         s.summary = summariseGrid(s.E);
         // A surface the room leaves no points of (a task area over the whole floor has no
-        // surroundings) has nothing to fail: every output counts it as met, as none.
-        s.passes = s.summary.count == 0 ||
-                   (s.summary.eAvg >= s.required.em && s.summary.u0 >= s.required.u0);
+        // surroundings) has nothing to judge: "no points", neither met nor failed.
+        if (s.summary.count == 0)
+            s.verdict = Verdict::NoPoints;
+        else if (!s.required.any())
+            s.verdict = Verdict::NoRequirement;
+        else
+            s.verdict = s.summary.eAvg >= s.required.em && s.summary.u0 >= s.required.u0
+                            ? Verdict::Pass
+                            : Verdict::Fail;
+        s.passes = s.verdict != Verdict::Fail;
         anyLux = anyLux || s.required.em > 0.0;
     }
     for (const CalcPoint& p : scene.calcPoints) {
         PointResult r;
         r.point = p;
         take(p.cylindrical, r.E, r.stdError, r.initial);
-        r.passes = r.E >= p.requiredLux;
+        r.verdict = p.requiredLux <= 0.0   ? Verdict::NoRequirement
+                    : r.E >= p.requiredLux ? Verdict::Pass
+                                           : Verdict::Fail;
+        r.passes = r.verdict != Verdict::Fail;
         anyLux = anyLux || p.requiredLux > 0.0;
         report.points.push_back(r);
     }

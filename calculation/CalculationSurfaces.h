@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "calculation/CalculationGrid.h"
+#include "calculation/Isolines.h"
 #include "util/JsonRead.h"
 
 namespace candela {
@@ -47,6 +48,13 @@ double surroundingCell(const glm::dvec2& size);
 /// (the ripple of a mean of 32 shifted clamped cosines; less for light from many directions).
 constexpr int kCylinderAzimuths = 32;
 
+/// How a surface or a point stands against its requirement. A surface the room leaves no points
+/// of (an immediate surrounding or background clipped away by the walls) has nothing to judge:
+/// it neither passes nor fails.
+enum class Verdict { Pass, Fail, NoRequirement, NoPoints };
+/// The words every output uses: "PASS", "FAIL", "no requirement", "no points".
+const char* verdictText(Verdict verdict);
+
 /// One surface as evaluated: its grid (the points of `lo`..`hi` outside `hole`), summary and
 /// verdict.
 struct SurfaceResult {
@@ -64,14 +72,17 @@ struct SurfaceResult {
     std::vector<double> initial;          ///< The same before maintenance (GridResult::initial).
     GridSummary summary;
     Requirement required;
-    bool passes = true;  ///< Every requirement met (true when there is none, or no point).
+    Verdict verdict = Verdict::NoPoints;
+    /// Not failing: verdict is not Fail (true when there is no requirement, or no point).
+    bool passes = true;
 };
 
 struct PointResult {
     CalcPoint point;
     double E = 0.0, stdError = 0.0;
     double initial = 0.0;  ///< E before maintenance.
-    bool passes = true;
+    Verdict verdict = Verdict::NoRequirement;
+    bool passes = true;  ///< Not failing: verdict is not Fail.
 };
 
 struct SurfaceReport {
@@ -90,6 +101,9 @@ struct SurfaceReport {
 /// The grids of the scene's task areas and, where asked, their surroundings and backgrounds
 /// (no illuminance yet). The room is the scene's bounds on each area's plane.
 std::vector<SurfaceResult> layoutSurfaces(const Scene& scene);
+/// A surface's values on its full grid of cells.x x cells.y points (at the cells' centres), NaN
+/// at the points its hole takes, for its isolines (calculation/Isolines.h).
+NodeGrid surfaceNodes(const SurfaceResult& surface);
 /// Lays out and evaluates every surface and point in one computeReceivers call (`how`: its
 /// technique, spp, visibility and interreflection). Throws InputError when the scene has
 /// neither, or when a requirement in lux meets a radiometric scene.

@@ -134,6 +134,52 @@ TEST(EditorUndo, DrawnTaskAreasAreStepsOnTheGridsPlane) {
     EXPECT_EQ(state.scene.taskAreas.back().hi, glm::dvec2(2.0, 1.0));
 }
 
+// The Measure panel's grid starts on the scene's first task area, moves to an area just added,
+// back to the first when areas are removed or an edit undone, stays where the user put it while
+// the areas stay as they are, and a scene opened without task areas starts it afresh.
+TEST(EditorUndo, TheMeasureGridFollowsTheTaskAreas) {
+    EditorState state = demo();
+    state.measure.surfaces = SurfaceReport{};  // results of the scene about to be left
+    ASSERT_TRUE(openSceneFile(state, CANDELA_SOURCE_DIR "/resources/scenes/office.json"));
+    EXPECT_FALSE(state.measure.surfaces.has_value());
+    // The office's desk: y=0.75, x -0.4..1.2 m, z -0.7..0.1 m (its scene file).
+    GridSpec& g = state.measure.grid;
+    EXPECT_EQ(planeText(g.plane), "y=0.75");
+    EXPECT_EQ(g.lo, glm::dvec2(-0.4, -0.7));
+    EXPECT_EQ(g.hi, glm::dvec2(1.2, 0.1));
+    EXPECT_TRUE(state.measure.extentSet);
+    // The user's own grid stays while the areas do.
+    g.plane = parsePlane("y=0");
+    g.lo = {-2.0, -2.0};
+    EXPECT_FALSE(followTaskAreas(state));
+    EXPECT_EQ(planeText(g.plane), "y=0");
+    // An area added (here not through the grid): the grid shows it.
+    TaskArea shelf;
+    shelf.name = "Shelf";
+    shelf.plane = parsePlane("-x=1.9");
+    shelf.lo = {1.0, -1.0};
+    shelf.hi = {1.8, 0.5};
+    applyEdit(state, "Add task area Shelf", kChangeSettings,
+              [&](Scene& s) { s.taskAreas.push_back(shelf); });
+    EXPECT_TRUE(followTaskAreas(state));
+    EXPECT_EQ(planeText(g.plane), planeText(shelf.plane));
+    EXPECT_EQ(g.lo, shelf.lo);
+    EXPECT_EQ(g.hi, shelf.hi);
+    EXPECT_FALSE(followTaskAreas(state));  // once
+    // The desk removed: the first left is the shelf; undone: the desk again.
+    removeTaskArea(state, 0);
+    followTaskAreas(state);
+    EXPECT_EQ(planeText(g.plane), planeText(shelf.plane));
+    ASSERT_TRUE(undo(state));
+    EXPECT_TRUE(followTaskAreas(state));
+    EXPECT_EQ(planeText(g.plane), "y=0.75");
+    EXPECT_EQ(g.lo, glm::dvec2(-0.4, -0.7));
+    // A scene without task areas: the floor, its extent the scene's bounds when computed.
+    ASSERT_TRUE(openSceneFile(state, CANDELA_SOURCE_DIR "/resources/scenes/editor-room.json"));
+    EXPECT_EQ(planeText(g.plane), "y=0");
+    EXPECT_FALSE(state.measure.extentSet);
+}
+
 // A GLDF luminaire's body follows its luminaire through edits, undo and redo, and tells the
 // renderer the geometry changed (its mesh moved).
 TEST(EditorUndo, LuminaireBodiesFollowMovesAndUndo) {

@@ -152,18 +152,58 @@ TEST(CalculationSurfaces, SummariesAreTheClosedFormsMeans) {
 
 TEST(CalculationSurfaces, ASurfaceWithoutPointsHasNothingToFail) {
     // The classroom's task area covers its floor: no immediate surrounding or background is
-    // left, and they count as met (with no points), as the CLI, the report and the editor
-    // count them; the task area itself is judged.
+    // left. They have "no points": neither met nor failed (passes only says "not failed"), as
+    // the CLI, the report and the editor say; the task area itself is judged.
     Scene classroom = loadScene(test::sourceDir() + "/resources/scenes/classroom.json");
     SurfaceReport r = computeSurfaces(classroom, GridSpec{});
     ASSERT_EQ(r.surfaces.size(), 3u);
     EXPECT_EQ(r.surfaces[0].points.size(), 80u);
     EXPECT_FALSE(r.surfaces[0].passes);  // direct light alone is far from 500 lx
+    EXPECT_EQ(r.surfaces[0].verdict, Verdict::Fail);
     for (size_t k : {1u, 2u}) {
         EXPECT_TRUE(r.surfaces[k].points.empty()) << r.surfaces[k].name;
         EXPECT_TRUE(r.surfaces[k].required.any()) << r.surfaces[k].name;
+        EXPECT_EQ(r.surfaces[k].verdict, Verdict::NoPoints) << r.surfaces[k].name;
         EXPECT_TRUE(r.surfaces[k].passes) << r.surfaces[k].name;
     }
+}
+
+TEST(CalculationSurfaces, SurroundingsOutsideTheRoomHaveNoPoints) {
+    // A task area over the whole 6 x 6 m floor: its immediate surrounding, kept inside the room,
+    // is the task area itself, all hole; its background, inside the wall band, lies within that
+    // hole too. Both have "no points" whatever they require; the task area is judged on its own.
+    Scene scene = deskScene(R"([{"name": "Floor", "plane": "y=0.75", "extent": [-3, -3, 3, 3],
+        "required": {"em_lx": 50, "u0": 0.01}}])");
+    SurfaceReport r = computeSurfaces(scene, GridSpec{});
+    ASSERT_EQ(r.surfaces.size(), 3u);
+    EXPECT_FALSE(r.surfaces[0].points.empty());
+    // Em over the floor: about 150 lx (494 lx 2.25 m below the source, 24 lx in the corners),
+    // U0 about 0.16: it meets 50 lx and 0.01.
+    EXPECT_GT(r.surfaces[0].summary.eAvg, 50.0);
+    EXPECT_EQ(r.surfaces[0].verdict, Verdict::Pass);
+    EXPECT_STREQ(verdictText(r.surfaces[0].verdict), "PASS");
+    for (size_t k : {1u, 2u}) {
+        const SurfaceResult& s = r.surfaces[k];
+        EXPECT_TRUE(s.points.empty()) << s.name;
+        EXPECT_EQ(s.summary.count, 0u) << s.name;
+        EXPECT_GT(s.required.em, 0.0) << s.name;  // Table 1 still asks for something
+        EXPECT_EQ(s.verdict, Verdict::NoPoints) << s.name;
+        EXPECT_STREQ(verdictText(s.verdict), "no points") << s.name;
+        EXPECT_TRUE(s.passes) << s.name;  // nothing failed
+    }
+    // Asking for more than it reaches fails the task area, not its empty surroundings.
+    scene.taskAreas[0].required.em = 1000.0;
+    r = computeSurfaces(scene, GridSpec{});
+    EXPECT_EQ(r.surfaces[0].verdict, Verdict::Fail);
+    EXPECT_STREQ(verdictText(r.surfaces[0].verdict), "FAIL");
+    EXPECT_EQ(r.surfaces[1].verdict, Verdict::NoPoints);
+    EXPECT_EQ(r.surfaces[2].verdict, Verdict::NoPoints);
+    // Without a requirement, a surface with points has "no requirement".
+    scene.taskAreas[0].required = {};
+    scene.taskAreas[0].surroundings = false;
+    r = computeSurfaces(scene, GridSpec{});
+    EXPECT_EQ(r.surfaces[0].verdict, Verdict::NoRequirement);
+    EXPECT_STREQ(verdictText(r.surfaces[0].verdict), "no requirement");
 }
 
 TEST(CalculationSurfaces, VerticalAndCylindricalPoints) {
@@ -176,6 +216,7 @@ TEST(CalculationSurfaces, VerticalAndCylindricalPoints) {
     double board = closedForm({-1, 1.2, 0}, {1, 0, 0});
     EXPECT_NEAR(r.points[0].E, board, 1e-5 * board);
     EXPECT_EQ(r.points[0].passes, board >= 50.0);
+    EXPECT_EQ(r.points[0].verdict, board >= 50.0 ? Verdict::Pass : Verdict::Fail);
     // Cylindrical: Ez = L A cos(emission) sin(theta) / (pi r^2), theta from the vertical. The mean
     // over 32 horizontal directions weights one direction within 0.33 % of 1/pi.
     glm::dvec3 p(1.5, 1.2, 0.5), w = glm::dvec3(0, kLightY, 0) - p;

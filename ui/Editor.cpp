@@ -541,6 +541,7 @@ void Editor::buildUi() {
                     middle - render.h - measure.h};
     PanelRect status{0.f, top + middle, display.x, statusHeight};
 
+    state.measure.drawnIsolines.clear();  // the Measure panel's overlay records this frame's
     bool comparing = state.compare.layout != CompareLayout::Single && !mPreviewingSplit;
     viewportPanel(state, shownRenderer(), viewport, comparing ? mComparison.get() : nullptr);
     outlinePanel(state, outline);
@@ -840,10 +841,14 @@ void Editor::writeLayout() {
                                      {"u0", s.summary.u0},
                                      {"emin", s.summary.eMin},
                                      {"emax", s.summary.eMax},
-                                     {"passes", s.passes}});
+                                     {"passes", s.passes},
+                                     {"verdict", verdictText(s.verdict)}});
         for (const PointResult& p : state.measure.surfaces->points)
-            j["surfaces"].push_back(
-                {{"name", p.point.name}, {"points", 1}, {"em", p.E}, {"passes", p.passes}});
+            j["surfaces"].push_back({{"name", p.point.name},
+                                     {"points", 1},
+                                     {"em", p.E},
+                                     {"passes", p.passes},
+                                     {"verdict", verdictText(p.verdict)}});
     }
     // The scene's task areas (metres on their planes) and the camera, for tests that draw one.
     j["task_areas"] = nlohmann::json::array();
@@ -866,6 +871,19 @@ void Editor::writeLayout() {
     }
     j["drawing_area"] = state.measure.drawingArea;
     j["grid_plane"] = planeText(state.measure.grid.plane);
+    const GridSpec& grid = state.measure.grid;
+    j["grid"] = {{"plane", planeText(grid.plane)},
+                 {"lo", {grid.lo.x, grid.lo.y}},
+                 {"hi", {grid.hi.x, grid.hi.y}},
+                 {"extent_set", state.measure.extentSet}};
+    // The isolux lines drawn over the computed surfaces this frame (each one's first point on
+    // its surface's plane, u and v in metres).
+    j["isolines"] = nlohmann::json::array();
+    for (const MeasureState::DrawnIsoline& line : state.measure.drawnIsolines)
+        j["isolines"].push_back({{"surface", line.surface},
+                                 {"level", line.level},
+                                 {"first", {line.first.x, line.first.y}},
+                                 {"labelled", line.labelled}});
     const Camera& camera = state.scene.camera;
     j["camera"] = {{"position", {camera.position.x, camera.position.y, camera.position.z}},
                    {"target", {camera.target.x, camera.target.y, camera.target.z}},

@@ -279,6 +279,42 @@ void removeTaskArea(EditorState& state, size_t index) {
     state.measure.surfaces.reset();
 }
 
+namespace {
+
+/// The task areas' names, planes and extents as text: what followTaskAreas compares.
+std::vector<std::string> areaKeys(const std::vector<TaskArea>& areas) {
+    std::vector<std::string> keys;
+    char text[200];
+    for (const TaskArea& a : areas) {
+        std::snprintf(text, sizeof text, "%s %.17g %.17g %.17g %.17g;", planeText(a.plane).c_str(),
+                      a.lo.x, a.lo.y, a.hi.x, a.hi.y);
+        keys.push_back(a.name + " " + text);
+    }
+    return keys;
+}
+
+}  // namespace
+
+bool followTaskAreas(EditorState& state) {
+    MeasureState& measure = state.measure;
+    std::vector<std::string> keys = areaKeys(state.scene.taskAreas);
+    std::string all;
+    for (const std::string& k : keys) all += k;
+    if (all == measure.followedAreas) return false;
+    // One area more than before, the others as they were: the grid shows the new one.
+    bool added = !measure.followedAreas.empty() && keys.size() >= 2 &&
+                 all.size() > keys.back().size() &&
+                 all.compare(0, all.size() - keys.back().size(), measure.followedAreas) == 0;
+    measure.followedAreas = all;
+    if (state.scene.taskAreas.empty()) return false;
+    const TaskArea& a = added ? state.scene.taskAreas.back() : state.scene.taskAreas.front();
+    measure.grid.plane = a.plane;
+    measure.grid.lo = a.lo;
+    measure.grid.hi = a.hi;
+    measure.extentSet = true;
+    return true;
+}
+
 bool addGlareObserverAtCamera(EditorState& state) {
     const Camera& c = state.scene.camera;
     glm::dvec3 view = c.target - c.position;
@@ -337,6 +373,20 @@ bool openSceneFile(EditorState& state, const std::string& path) {
         if (state.dirty) writeAutosave(state);
         state.scene = std::move(loaded);
         if (state.scene.path.empty()) state.scene.path = path;
+        // The Measure panel's grid and results were the last scene's: the grid starts on this
+        // scene's first task area (followTaskAreas) or, without one, on its floor's bounds.
+        MeasureState& measure = state.measure;
+        measure.grid.plane = CalcPlane{};
+        measure.grid.lo = measure.grid.hi = glm::dvec2(0.0);
+        measure.extentSet = false;
+        measure.followedAreas.clear();
+        measure.result.reset();
+        measure.surfaces.reset();
+        measure.glare.reset();
+        measure.error.clear();
+        measure.surfacesError.clear();
+        measure.glareError.clear();
+        followTaskAreas(state);
         if (state.scene.camera.exposure > 0.0)
             state.settings.exposure = float(state.scene.camera.exposure);
         state.selectedLuminaire = -1;

@@ -111,7 +111,20 @@ struct MeasureState {
     std::optional<SurfaceReport> surfaces;  ///< Last computed surfaces and points.
     /// Each computed surface point's cell filled with its false colour in the viewport.
     bool colourSurfaces = false;
+    /// The computed surfaces' isolux lines, at the legend's levels, with their values, in the
+    /// viewport (calculation/Isolines.h).
+    bool isolinesOnSurfaces = true;
     std::string surfacesError;  ///< Why the last computation failed.
+    /// The scene's task areas as the grid last followed them (followTaskAreas), as text.
+    std::string followedAreas;
+    /// Test hook for the layout file: the isolines drawn over the viewport this frame.
+    struct DrawnIsoline {
+        std::string surface;
+        double level = 0.0;     ///< In the surfaces' unit (lx).
+        glm::dvec2 first{0.0};  ///< Its first point on the surface's plane (u, v), m.
+        bool labelled = false;  ///< Its value is written beside it (not crowded out).
+    };
+    std::vector<DrawnIsoline> drawnIsolines;
     // Glare (calculation/Glare.h): the next observer's name and limit, the last UGR computed.
     std::string observerName = "Observer";
     double observerLimit = 19.0;  ///< UGR_L; EN 12464-1's for offices.
@@ -401,6 +414,11 @@ constexpr double kMinDrawnSide = 0.05;
 bool addTaskAreaFromDrag(EditorState& state, const glm::dvec3& a, const glm::dvec3& b);
 /// Removes task area `index` as one undo step.
 void removeTaskArea(EditorState& state, size_t index);
+/// Keeps the Measure panel's grid on the scene's task areas: when they change (a scene opened or
+/// restored, an area drawn, added, removed, undone), the grid takes the plane and extent of the
+/// area just added, or else of the first. Without task areas the grid stays as it is. True when
+/// it moved the grid.
+bool followTaskAreas(EditorState& state);
 /// Adds a UGR observer where the camera is, looking where it looks (made horizontal), named
 /// measure.observerName with measure.observerLimit, as one undo step. False, with a status, when
 /// the camera looks straight up or down.

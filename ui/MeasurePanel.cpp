@@ -1,6 +1,8 @@
 // The Measure panel: what the image shows (radiance or illuminance), the false-colour legend
-// (range in lux, log or linear, isolux levels) with its colour bar, and the calculation grid on a
-// plane, whose summary it lists and whose values it writes over the viewport.
+// (range in lux, log or linear, isolux levels) with its colour bar, then the scene's task areas
+// with their surroundings' and points' results against EN 12464-1, the calculation grid on a
+// plane (it starts on the first task area) with its summary, and the UGR at glare observers.
+// What it draws over the viewport is ui/MeasureOverlay.cpp's.
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
@@ -8,9 +10,9 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
+#include <initializer_list>
 #include <sstream>
 
-#include "renderer/ViewportMath.h"
 #include "shaders/shared/FalseColour.h"
 #include "ui/ImGuiUtil.h"
 #include "ui/Panels.h"
@@ -20,7 +22,6 @@ namespace candela::ui {
 namespace {
 
 constexpr int kBarSegments = 96;  ///< Quads of the colour bar (the scale is piecewise linear).
-constexpr size_t kMaxLabelledPoints = 900;  ///< More grid points than this: dots only, no values.
 
 ImU32 toImColour(const glm::vec3& c) {
     return ImGui::ColorConvertFloat4ToU32(ImVec4(c.x, c.y, c.z, 1.f));
@@ -243,16 +244,97 @@ void gridSpecControls(EditorState& state, MeasureState& measure) {
     ImGui::SliderScalar("Spacing [m]", ImGuiDataType_Double, &g.spacing, &minSpacing, &maxSpacing,
                         "%.3f", ImGuiSliderFlags_Logarithmic);
     ImGui::SliderInt("Samples / point", &g.spp, 16, 4096, "%d", ImGuiSliderFlags_Logarithmic);
-    itemTooltip("For stochastic techniques; exact ones ignore it");
-    // What a light meter would read unless switched off, as on the command line.
+    itemTooltip(
+        "For stochastic techniques (the grid, the surfaces and the UGR); exact ones "
+        "ignore it");
+}
+
+/// What the grid, the surfaces and the UGR include: what a light meter would read unless switched
+/// off, as on the command line.
+void lightChoiceControls(EditorState& state, MeasureState& measure) {
     ImGui::Checkbox("Shadows", &measure.light.shadows);
     itemTooltip("Surfaces and luminaire bodies block light (where the scene has any)");
+    ImGui::SameLine();
     ImGui::Checkbox("Interreflected light##grid", &measure.light.interreflection);
     recordRect(state, "measure.indirect");
     itemTooltip(
         "The light the surfaces reflect onto each other (where any surface reflects): the "
         "patches' solution, traced point by point where it is not accurate enough. Uncheck for "
         "direct light alone.");
+}
+
+/// A column of a results table that is never squeezed: as wide as its header and the widest of
+/// the texts it shows (`widest`), so a value never reads "4 0 5 F".
+void fixedColumn(const char* header, std::initializer_list<const char*> widest) {
+    float width = ImGui::CalcTextSize(header).x;
+    for (const char* text : widest) width = std::max(width, ImGui::CalcTextSize(text).x);
+    ImGui::TableSetupColumn(header, ImGuiTableColumnFlags_WidthFixed, width);
+}
+
+/// Flags of the panel's results tables: rows told apart; the first column (names) takes the width
+/// the fixed ones leave, and its names wrap.
+constexpr ImGuiTableFlags kResultTable = ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerH;
+
+/// The first cell of a row: a name over a grey second line (what it is), both wrapped in their
+/// column; `detail` is its tooltip.
+void nameCell(const std::string& name, const std::string& kind, const std::string& detail) {
+    ImGui::TableNextRow();
+    ImGui::TableNextColumn();
+    ImGui::PushTextWrapPos(0.f);
+    ImGui::TextUnformatted(name.c_str());
+    itemTooltip(detail);
+    if (!kind.empty()) {
+        ImGui::TextDisabled("%s", kind.c_str());
+        itemTooltip(detail);
+    }
+    ImGui::PopTextWrapPos();
+}
+
+/// An illuminance in a column whose header gives the unit: 412, 12.3, 0.0123, 1.2e-05; at most
+/// seven characters below 10^7 (the columns are sized for seven).
+std::string compactNumber(double value) {
+    char text[32];
+    double a = std::abs(value);
+    if (a == 0.0 || a >= 100.0)
+        std::snprintf(text, sizeof text, "%.0f", value);
+    else if (a >= 0.01)
+        std::snprintf(text, sizeof text, "%.3g", value);
+    else
+        std::snprintf(text, sizeof text, "%.1e", value);
+    return text;
+}
+
+/// A value over the grey requirement it is held to (">= 500"), in one cell.
+void valueCell(const std::string& value, const std::string& required) {
+    ImGui::TableNextColumn();
+    ImGui::TextUnformatted(value.c_str());
+    if (!required.empty()) ImGui::TextDisabled("%s", required.c_str());
+}
+
+/// The verdict as every output words it (verdictText): PASS green, FAIL red, "no points" grey;
+/// a dash where nothing is required.
+void verdictCell(Verdict verdict) {
+    ImGui::TableNextColumn();
+    if (verdict == Verdict::Pass)
+        ImGui::TextColored(ImVec4(0.4f, 0.9f, 0.4f, 1.f), "%s", verdictText(verdict));
+    else if (verdict == Verdict::Fail)
+        ImGui::TextColored(ImVec4(1.f, 0.4f, 0.4f, 1.f), "%s", verdictText(verdict));
+    else if (verdict == Verdict::NoPoints)
+        ImGui::TextDisabled("%s", verdictText(verdict));
+    else
+        ImGui::TextDisabled("-");
+    itemTooltip(verdict == Verdict::NoPoints
+                    ? "The room leaves no points of this surface: nothing to judge"
+                    : std::string(verdictText(verdict)));
+}
+
+/// "Desk" for "Desk: immediate surrounding" (the second line names the role).
+std::string ownerName(const SurfaceResult& s) {
+    std::string suffix = ": " + s.role;
+    if (s.name.size() > suffix.size() &&
+        s.name.compare(s.name.size() - suffix.size(), suffix.size(), suffix) == 0)
+        return s.name.substr(0, s.name.size() - suffix.size());
+    return s.name;
 }
 
 /// Emin, Eavg, Emax and the uniformities of the computed grid; with interreflected light, Em
@@ -276,10 +358,11 @@ void gridResultTables(const GridResult& r, const GridSummary& s) {
         row("Emin/Emax", "%.3f", s.minOverMax);
         ImGui::EndTable();
     }
-    if (r.hasIndirect && ImGui::BeginTable("parts", 3, ImGuiTableFlags_RowBg)) {
-        ImGui::TableSetupColumn("Light");
-        ImGui::TableSetupColumn((std::string("Em [") + r.units.irradiance() + "]").c_str());
-        ImGui::TableSetupColumn("U0");
+    std::string em = std::string("Em [") + r.units.irradiance() + "]";
+    if (r.hasIndirect && ImGui::BeginTable("parts", 3, kResultTable)) {
+        ImGui::TableSetupColumn("Light", ImGuiTableColumnFlags_WidthStretch);
+        fixedColumn(em.c_str(), {"8888888"});
+        fixedColumn("U0", {"0.888"});
         ImGui::TableHeadersRow();
         for (auto [name, values] :
              {std::pair<const char*, const std::vector<double>*>{"direct", &r.direct},
@@ -290,7 +373,7 @@ void gridResultTables(const GridResult& r, const GridSummary& s) {
             ImGui::TableNextColumn();
             ImGui::TextUnformatted(name);
             ImGui::TableNextColumn();
-            ImGui::Text("%.4g", p.eAvg);
+            ImGui::TextUnformatted(compactNumber(p.eAvg).c_str());
             ImGui::TableNextColumn();
             ImGui::Text("%.3f", p.u0);
         }
@@ -309,32 +392,58 @@ void gridControls(EditorState& state, MeasureState& measure) {
     ImGui::Checkbox("Values in the viewport", &measure.showValues);
 }
 
-/// The scene's task areas (add the grid as one, remove), and the surfaces' and points' results
-/// against their requirements (calculation/CalculationSurfaces.h), computed on demand.
+/// The surfaces' and points' results: what each reached over what it needs, and the verdict.
+void surfaceTable(const SurfaceReport& r) {
+    const char* unit = r.units.irradiance();
+    std::string em = std::string("Em [") + unit + "]";
+    if (!ImGui::BeginTable("surfaces", 4, kResultTable)) return;
+    ImGui::TableSetupColumn("Surface", ImGuiTableColumnFlags_WidthStretch);
+    fixedColumn(em.c_str(), {"8888888", ">= 8888"});
+    fixedColumn("U0", {"0.88", ">= 0.88"});
+    fixedColumn("Result", {verdictText(Verdict::NoPoints), verdictText(Verdict::Fail)});
+    ImGui::TableHeadersRow();
+    char text[160];
+    for (const SurfaceResult& s : r.surfaces) {
+        std::snprintf(text, sizeof text, ": %s%s, %zu points", s.role.c_str(),
+                      s.cylindrical ? " (cylindrical illuminance)" : "", s.points.size());
+        std::string detail = s.name + text;
+        if (!s.points.empty()) {
+            std::snprintf(text, sizeof text, "; Em %.4g %s, U0 %.3f, Emin %.4g %s, Emax %.4g %s",
+                          s.summary.eAvg, unit, s.summary.u0, s.summary.eMin, unit, s.summary.eMax,
+                          unit);
+            detail += text;
+        }
+        nameCell(ownerName(s), s.role, detail);
+        std::string needU0;
+        if (s.required.u0 > 0.0) {
+            std::snprintf(text, sizeof text, ">= %.2f", s.required.u0);
+            needU0 = text;
+        }
+        bool any = !s.points.empty();
+        valueCell(any ? compactNumber(s.summary.eAvg) : "-",
+                  s.required.em > 0.0 ? ">= " + compactNumber(s.required.em) : "");
+        std::snprintf(text, sizeof text, "%.2f", s.summary.u0);
+        valueCell(any ? text : "-", needU0);
+        verdictCell(s.verdict);
+    }
+    for (const PointResult& p : r.points) {
+        const CalcPoint& c = p.point;
+        std::snprintf(text, sizeof text, " at (%.2f, %.2f, %.2f) m: %s %.4g %s", c.position.x,
+                      c.position.y, c.position.z, c.cylindrical ? "cylindrical Ez" : "E", p.E,
+                      unit);
+        nameCell(c.name, c.cylindrical ? "point, cylindrical" : "point", c.name + text);
+        valueCell(compactNumber(p.E),
+                  c.requiredLux > 0.0 ? ">= " + compactNumber(c.requiredLux) : "");
+        valueCell("", "");
+        verdictCell(p.verdict);
+    }
+    ImGui::EndTable();
+}
+
+/// The scene's task areas (remove one), and the surfaces' and points' results against their
+/// requirements (calculation/CalculationSurfaces.h), computed on demand; then a new task area
+/// from the grid or drawn in the viewport.
 void surfaceControls(EditorState& state, MeasureState& measure) {
-    ImGui::InputText("Task name", &measure.taskName);
-    ImGui::DragScalar("Required Em [lx]", ImGuiDataType_Double, &measure.taskRequired.em, 5.0f,
-                      nullptr, nullptr, "%.0f");
-    const double zero = 0.0, one = 1.0;
-    ImGui::SliderScalar("Required U0", ImGuiDataType_Double, &measure.taskRequired.u0, &zero, &one,
-                        "%.2f");
-    measure.taskRequired.em = std::max(0.0, measure.taskRequired.em);
-    if (ImGui::Button("Add the grid as a task area", ImVec2(-1.f, 0.f))) addTaskAreaFromGrid(state);
-    recordRect(state, "measure.add_task");
-    std::string drawLabel = measure.drawingArea
-                                ? "Drag across the viewport (click here to cancel)"
-                                : "Draw a task area on " + planeText(measure.grid.plane);
-    if (ImGui::Button(drawLabel.c_str(), ImVec2(-1.f, 0.f)))
-        measure.drawingArea = !measure.drawingArea;
-    recordRect(state, "measure.draw_task");
-    itemTooltip(
-        "Then drag a rectangle in the viewport: it is drawn on the grid's plane (set it above) "
-        "and becomes a task area with this name and requirement, and the grid's extent "
-        "(corners rounded to 1 cm; one undo step)");
-    itemTooltip(
-        "The grid's plane and extent become a task area of the scene (saved with it); its "
-        "immediate surrounding (0.5 m) and background (3 m) are evaluated with it, on the "
-        "standard's grid (p = 0.2 x 5^log10(d))");
     for (size_t i = 0; i < state.scene.taskAreas.size(); ++i) {
         const TaskArea& a = state.scene.taskAreas[i];
         ImGui::PushID(int(i));
@@ -345,85 +454,70 @@ void surfaceControls(EditorState& state, MeasureState& measure) {
         }
         itemTooltip("Remove this task area");
         ImGui::SameLine();
-        ImGui::Text("%s: %s, %.2f x %.2f m", a.name.c_str(), planeText(a.plane).c_str(),
-                    a.hi.x - a.lo.x, a.hi.y - a.lo.y);
+        ImGui::TextWrapped("%s: %s m, %.2f x %.2f m", a.name.c_str(), planeText(a.plane).c_str(),
+                           a.hi.x - a.lo.x, a.hi.y - a.lo.y);
         ImGui::PopID();
     }
-    if (state.scene.taskAreas.empty() && state.scene.calcPoints.empty()) return;
-    if (ImGui::Button("Compute surfaces", ImVec2(-1.f, 0.f))) {
-        try {
-            GridSpec how = measure.grid;
-            applyLightChoice(state.scene, measure.light, how);  // as the command line does
-            measure.surfaces = computeSurfaces(state.scene, how);
-            measure.surfacesError.clear();
-        } catch (const std::exception& e) {
-            measure.surfacesError = e.what();
+    if (state.scene.taskAreas.empty())
+        ImGui::TextWrapped("No task areas yet: draw one in the viewport or add the grid (below).");
+    if (!state.scene.taskAreas.empty() || !state.scene.calcPoints.empty()) {
+        if (ImGui::Button("Compute surfaces", ImVec2(-1.f, 0.f))) {
+            try {
+                GridSpec how = measure.grid;
+                applyLightChoice(state.scene, measure.light, how);  // as the command line does
+                measure.surfaces = computeSurfaces(state.scene, how);
+                measure.surfacesError.clear();
+            } catch (const std::exception& e) {
+                measure.surfacesError = e.what();
+            }
+        }
+        recordRect(state, "measure.compute_surfaces");
+        itemTooltip(
+            "Each task area with its immediate surrounding (0.5 m) and background (3 m) on the "
+            "standard's grid (p = 0.2 x 5^log10(d)), and the calculation points, against their "
+            "requirements");
+        ImGui::Checkbox("False colour on the surfaces", &measure.colourSurfaces);
+        recordRect(state, "measure.colour_surfaces");
+        itemTooltip(
+            "Fills each computed point's cell of the grid in the viewport with the colour of its "
+            "value on the false-colour legend (its range: tick False colour above)");
+        ImGui::Checkbox("Isolux lines on the surfaces", &measure.isolinesOnSurfaces);
+        recordRect(state, "measure.isolines");
+        itemTooltip(
+            "Lines of equal illuminance over the computed surfaces in the viewport, each with its "
+            "value, at the legend's isolux levels (its ticks unless levels are typed)");
+        if (!measure.surfacesError.empty()) errorText(measure.surfacesError);
+        if (measure.surfaces) {
+            surfaceTable(*measure.surfaces);
+            recordRect(state, "measure.surfaces_table");
+            ImGui::PushTextWrapPos(0.f);
+            ImGui::TextDisabled("%s", measure.surfaces->maintenance.c_str());
+            ImGui::PopTextWrapPos();
         }
     }
-    recordRect(state, "measure.compute_surfaces");
-    ImGui::Checkbox("False colour on the surfaces", &measure.colourSurfaces);
-    recordRect(state, "measure.colour_surfaces");
+    ImGui::TextDisabled("New task area");
+    ImGui::InputText("Task name", &measure.taskName);
+    ImGui::DragScalar("Required Em [lx]", ImGuiDataType_Double, &measure.taskRequired.em, 5.0f,
+                      nullptr, nullptr, "%.0f");
+    const double zero = 0.0, one = 1.0;
+    ImGui::SliderScalar("Required U0", ImGuiDataType_Double, &measure.taskRequired.u0, &zero, &one,
+                        "%.2f");
+    measure.taskRequired.em = std::max(0.0, measure.taskRequired.em);
+    std::string drawLabel = measure.drawingArea
+                                ? "Drag across the viewport (click here to cancel)"
+                                : "Draw a task area on " + planeText(measure.grid.plane) + " m";
+    if (ImGui::Button(drawLabel.c_str(), ImVec2(-1.f, 0.f)))
+        measure.drawingArea = !measure.drawingArea;
+    recordRect(state, "measure.draw_task");
     itemTooltip(
-        "Fills each computed point's cell of the grid in the viewport with the colour of its "
-        "value on the false-colour legend (its range: tick False colour above)");
-    if (!measure.surfacesError.empty()) errorText(measure.surfacesError);
-    if (!measure.surfaces) return;
-    const SurfaceReport& r = *measure.surfaces;
-    const char* unit = r.units.irradiance();
-    if (ImGui::BeginTable("surfaces", 5, ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingFixedFit)) {
-        ImGui::TableSetupColumn("Surface");
-        ImGui::TableSetupColumn((std::string("Em [") + unit + "]").c_str());
-        ImGui::TableSetupColumn("U0");
-        ImGui::TableSetupColumn("Required");
-        ImGui::TableSetupColumn("");
-        ImGui::TableHeadersRow();
-        auto verdict = [](bool any, bool passes) {
-            if (!any)
-                ImGui::TextDisabled("-");
-            else if (passes)
-                ImGui::TextColored(ImVec4(0.4f, 0.9f, 0.4f, 1.f), "pass");
-            else
-                ImGui::TextColored(ImVec4(1.f, 0.4f, 0.4f, 1.f), "FAIL");
-        };
-        for (const SurfaceResult& s : r.surfaces) {
-            ImGui::TableNextRow();
-            ImGui::TableNextColumn();
-            ImGui::TextUnformatted(s.name.c_str());
-            itemTooltip(s.role + (s.cylindrical ? " (cylindrical illuminance)" : "") + ", " +
-                        std::to_string(s.points.size()) + " points; Emin " +
-                        std::to_string(s.summary.eMin) + " " + unit + ", Emax " +
-                        std::to_string(s.summary.eMax) + " " + unit);
-            ImGui::TableNextColumn();
-            ImGui::Text("%.4g", s.summary.eAvg);
-            ImGui::TableNextColumn();
-            ImGui::Text("%.2f", s.summary.u0);
-            ImGui::TableNextColumn();
-            if (s.required.any())
-                ImGui::Text("%.0f / %.2f", s.required.em, s.required.u0);
-            else
-                ImGui::TextDisabled("-");
-            ImGui::TableNextColumn();
-            verdict(s.required.any(), s.passes);
-        }
-        for (const PointResult& p : r.points) {
-            ImGui::TableNextRow();
-            ImGui::TableNextColumn();
-            ImGui::Text("%s (%s)", p.point.name.c_str(), p.point.cylindrical ? "Ez" : "point");
-            ImGui::TableNextColumn();
-            ImGui::Text("%.4g", p.E);
-            ImGui::TableNextColumn();
-            ImGui::TextDisabled("-");
-            ImGui::TableNextColumn();
-            if (p.point.requiredLux > 0.0)
-                ImGui::Text("%.0f", p.point.requiredLux);
-            else
-                ImGui::TextDisabled("-");
-            ImGui::TableNextColumn();
-            verdict(p.point.requiredLux > 0.0, p.passes);
-        }
-        ImGui::EndTable();
-    }
-    ImGui::TextDisabled("%s", r.maintenance.c_str());
+        "Then drag a rectangle in the viewport: it is drawn on the grid's plane (set it below) "
+        "and becomes a task area with this name and requirement, and the grid's extent "
+        "(corners rounded to 1 cm; one undo step)");
+    if (ImGui::Button("Add the grid as a task area", ImVec2(-1.f, 0.f))) addTaskAreaFromGrid(state);
+    recordRect(state, "measure.add_task");
+    itemTooltip(
+        "The grid's plane and extent (below) become a task area of the scene (saved with it); "
+        "its immediate surrounding (0.5 m) and background (3 m) are evaluated with it");
 }
 
 /// The scene's glare observers (add one at the camera, remove), and the UGR at each against its
@@ -450,8 +544,8 @@ void glareControls(EditorState& state, MeasureState& measure) {
         }
         itemTooltip("Remove this observer");
         ImGui::SameLine();
-        ImGui::Text("%s: eye (%.2f, %.2f, %.2f) m", o.name.c_str(), o.position.x, o.position.y,
-                    o.position.z);
+        ImGui::TextWrapped("%s: eye at (%.2f, %.2f, %.2f) m", o.name.c_str(), o.position.x,
+                           o.position.y, o.position.z);
         ImGui::PopID();
     }
     if (state.scene.glareObservers.empty()) return;
@@ -468,148 +562,34 @@ void glareControls(EditorState& state, MeasureState& measure) {
     recordRect(state, "measure.compute_glare");
     if (!measure.glareError.empty()) errorText(measure.glareError);
     if (!measure.glare) return;
-    if (ImGui::BeginTable("glare", 4, ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingFixedFit)) {
-        ImGui::TableSetupColumn("Observer");
-        ImGui::TableSetupColumn("Lb [cd/m2]");
-        ImGui::TableSetupColumn("UGR");
-        ImGui::TableSetupColumn("Limit");
+    if (ImGui::BeginTable("glare", 4, kResultTable)) {
+        ImGui::TableSetupColumn("Observer", ImGuiTableColumnFlags_WidthStretch);
+        fixedColumn("Lb [cd/m2]", {"8888888"});
+        fixedColumn("UGR", {"88.8", "<= 88"});
+        fixedColumn("Result", {verdictText(Verdict::Fail)});
         ImGui::TableHeadersRow();
+        char text[64];
         for (const GlareResult& g : measure.glare->observers) {
-            ImGui::TableNextRow();
-            ImGui::TableNextColumn();
-            ImGui::TextUnformatted(g.observer.name.c_str());
             int counted = 0;
             for (const GlareSource& s : g.sources) counted += s.excluded.empty();
-            itemTooltip(std::to_string(counted) + " of " + std::to_string(g.sources.size()) +
-                        " luminaires in view; background " +
-                        (g.backgroundFromIndirect ? "from the interreflected light" : "given"));
-            ImGui::TableNextColumn();
-            ImGui::Text("%.3g", g.background);
-            ImGui::TableNextColumn();
-            ImGui::Text("%.1f", g.ugr);
-            ImGui::TableNextColumn();
-            if (g.observer.limit <= 0.0)
-                ImGui::TextDisabled("-");
-            else if (g.passes)
-                ImGui::TextColored(ImVec4(0.4f, 0.9f, 0.4f, 1.f), "%.0f pass", g.observer.limit);
-            else
-                ImGui::TextColored(ImVec4(1.f, 0.4f, 0.4f, 1.f), "%.0f FAIL", g.observer.limit);
+            nameCell(g.observer.name, "",
+                     std::to_string(counted) + " of " + std::to_string(g.sources.size()) +
+                         " luminaires in view; background " +
+                         (g.backgroundFromIndirect ? "from the interreflected light" : "given"));
+            valueCell(compactNumber(g.background), "");
+            std::snprintf(text, sizeof text, "%.1f", g.ugr);
+            std::string limit;
+            if (g.observer.limit > 0.0) limit = "<= " + compactNumber(g.observer.limit);
+            valueCell(text, limit);
+            verdictCell(g.observer.limit <= 0.0 ? Verdict::NoRequirement
+                        : g.passes              ? Verdict::Pass
+                                                : Verdict::Fail);
         }
         ImGui::EndTable();
     }
+    ImGui::PushTextWrapPos(0.f);
     ImGui::TextDisabled("%s", measure.glare->maintenance.c_str());
-}
-
-/// Dots with their illuminance at world points over the viewport image.
-void drawValues(const EditorState& state, const Renderer& renderer,
-                const std::vector<glm::dvec3>& points, const std::vector<double>& values) {
-    const glm::vec4& v = state.layout.viewport;
-    int width = renderer.settings().width, height = renderer.settings().height;
-    ImDrawList* draw = ImGui::GetForegroundDrawList();
-    draw->PushClipRect(ImVec2(v.x, v.y), ImVec2(v.x + v.z, v.y + v.w), true);
-    bool labels = values.size() <= kMaxLabelledPoints;
-    char text[32];
-    std::vector<ImVec4> drawn;  ///< Label boxes drawn so far: x0, y0, x1, y1 in window pixels.
-    glm::mat4 viewProj = renderer.viewProj();
-    for (size_t k = 0; k < points.size(); ++k) {
-        auto px = projectToPixels(viewProj, points[k], width, height);
-        if (!px) continue;
-        ImVec2 at(v.x + float(px->x) * v.z / float(width),
-                  v.y + float(px->y) * v.w / float(height));
-        draw->AddCircleFilled(at, 2.f, IM_COL32(255, 255, 255, 230));
-        if (!labels) continue;
-        std::snprintf(text, sizeof text, "%.3g", values[k]);
-        ImVec2 size = ImGui::CalcTextSize(text);
-        ImVec2 lo(at.x - 0.5f * size.x - 1.f, at.y + 3.f);
-        ImVec4 box(lo.x, lo.y, lo.x + size.x + 2.f, lo.y + size.y);
-        // Far from the camera the labels crowd: keep the first of any that overlap.
-        bool overlaps = std::any_of(drawn.begin(), drawn.end(), [&](const ImVec4& o) {
-            return box.x < o.z && o.x < box.z && box.y < o.w && o.y < box.w;
-        });
-        if (overlaps) continue;
-        drawn.push_back(box);
-        draw->AddRectFilled(lo, ImVec2(lo.x + size.x + 2.f, lo.y + size.y), IM_COL32(0, 0, 0, 150));
-        draw->AddText(ImVec2(lo.x + 1.f, lo.y), IM_COL32(255, 255, 255, 255), text);
-    }
-    draw->PopClipRect();
-}
-
-/// The rectangle [lo, hi] less [holeLo, holeHi]: up to four rectangles (left, right, then the
-/// parts below and above the hole between them), as lo, hi pairs.
-std::vector<std::pair<glm::dvec2, glm::dvec2>> minusHole(glm::dvec2 lo, glm::dvec2 hi,
-                                                         glm::dvec2 holeLo, glm::dvec2 holeHi) {
-    std::vector<std::pair<glm::dvec2, glm::dvec2>> out;
-    bool overlaps = lo.x < holeHi.x && holeLo.x < hi.x && lo.y < holeHi.y && holeLo.y < hi.y;
-    if (!overlaps) return {{lo, hi}};
-    if (lo.x < holeLo.x) out.push_back({lo, {holeLo.x, hi.y}});
-    if (hi.x > holeHi.x) out.push_back({{holeHi.x, lo.y}, hi});
-    double x0 = std::max(lo.x, holeLo.x), x1 = std::min(hi.x, holeHi.x);
-    if (lo.y < holeLo.y) out.push_back({{x0, lo.y}, {x1, holeLo.y}});
-    if (hi.y > holeHi.y) out.push_back({{x0, holeHi.y}, {x1, hi.y}});
-    return out;
-}
-
-/// Each computed surface point's grid cell (the rectangle of its spacing around it, on its plane,
-/// less its surface's hole) filled with its value's colour on the false-colour legend, opaque,
-/// under the values. Backgrounds first, task areas last, so inner surfaces show where cells meet.
-void drawSurfaceColours(const EditorState& state, const SurfaceReport& report,
-                        const Renderer& renderer) {
-    const glm::vec4& v = state.layout.viewport;
-    int width = renderer.settings().width, height = renderer.settings().height;
-    ImDrawList* draw = ImGui::GetForegroundDrawList();
-    draw->PushClipRect(ImVec2(v.x, v.y), ImVec2(v.x + v.z, v.y + v.w), true);
-    glm::mat4 viewProj = renderer.viewProj();
-    FalseColourLegend legend = sanitizedLegend(state.settings.legend);
-    auto byte = [](float x) { return int(std::lround(std::clamp(x, 0.f, 1.f) * 255.f)); };
-    for (auto it = report.surfaces.rbegin(); it != report.surfaces.rend(); ++it) {
-        const SurfaceResult& s = *it;
-        for (size_t k = 0; k < s.points.size(); ++k) {
-            glm::dvec2 c = s.points[k], h = 0.5 * s.spacing;
-            glm::vec3 rgb = gpu::falseColour(gpu::legendPosition(
-                float(s.E[k]), legend.min, legend.max, legend.logScale ? 1 : 0));
-            ImU32 colour = IM_COL32(byte(rgb.x), byte(rgb.y), byte(rgb.z), 255);
-            for (auto [lo, hi] : minusHole(c - h, c + h, s.holeLo, s.holeHi)) {
-                glm::dvec2 corners[4] = {lo, {hi.x, lo.y}, hi, {lo.x, hi.y}};
-                ImVec2 quad[4];
-                bool shown = true;
-                for (int i = 0; i < 4 && shown; ++i) {
-                    auto px = projectToPixels(viewProj, s.plane.point(corners[i].x, corners[i].y),
-                                              width, height);
-                    shown = px.has_value();
-                    if (shown)
-                        quad[i] = ImVec2(v.x + float(px->x) * v.z / float(width),
-                                         v.y + float(px->y) * v.w / float(height));
-                }
-                if (shown) draw->AddQuadFilled(quad[0], quad[1], quad[2], quad[3], colour);
-            }
-        }
-    }
-    draw->PopClipRect();
-}
-
-/// The grid's points, and the computed surfaces' points, with their values in the viewport.
-void drawMeasuredValues(const EditorState& state, const MeasureState& measure,
-                        const Renderer& renderer) {
-    if (measure.colourSurfaces && measure.surfaces)
-        drawSurfaceColours(state, *measure.surfaces, renderer);
-    if (!measure.showValues) return;
-    std::vector<glm::dvec3> points;
-    std::vector<double> values;
-    if (measure.result) {
-        const GridResult& r = *measure.result;
-        for (size_t j = 0; j < r.v.size(); ++j)
-            for (size_t i = 0; i < r.u.size(); ++i) {
-                points.push_back(r.spec.plane.point(r.u[i], r.v[j]));
-                values.push_back(r.E[j * r.u.size() + i]);
-            }
-    }
-    if (measure.surfaces)
-        for (const SurfaceResult& s : measure.surfaces->surfaces)
-            for (size_t k = 0; k < s.points.size(); ++k) {
-                points.push_back(s.plane.point(s.points[k].x, s.points[k].y));
-                values.push_back(s.E[k]);
-            }
-    if (!points.empty()) drawValues(state, renderer, points, values);
+    ImGui::PopTextWrapPos();
 }
 
 }  // namespace
@@ -618,6 +598,7 @@ bool measurePanel(EditorState& state, const Renderer& renderer, const PanelRect&
     RenderSettings& s = state.settings;
     MeasureState& measure = state.measure;
     bool changed = false;
+    followTaskAreas(state);  // a scene opened, an area added or removed: the grid goes there
     placeNextWindow(rect);
     ImGui::Begin("Measure", nullptr, kPanelFlags);
     recordPanelRect(state, "measure");
@@ -654,17 +635,18 @@ bool measurePanel(EditorState& state, const Renderer& renderer, const PanelRect&
     }
     ImGui::Separator();
     changed = maintenanceControl(state) || changed;
-    ImGui::TextDisabled("Calculation grid");
-    gridControls(state, measure);
-    ImGui::Separator();
-    ImGui::TextDisabled("Calculation surfaces (EN 12464-1)");
-    surfaceControls(state, measure);
-    ImGui::Separator();
-    ImGui::TextDisabled("Glare: UGR (CIE 117)");
-    glareControls(state, measure);
+    lightChoiceControls(state, measure);
+    // The task areas first: the panel opens on them, and the grid below starts on the first.
+    if (ImGui::CollapsingHeader("Calculation surfaces (EN 12464-1)",
+                                ImGuiTreeNodeFlags_DefaultOpen))
+        surfaceControls(state, measure);
+    if (ImGui::CollapsingHeader("Calculation grid", ImGuiTreeNodeFlags_DefaultOpen))
+        gridControls(state, measure);
+    if (ImGui::CollapsingHeader("Glare: UGR (CIE 117)", ImGuiTreeNodeFlags_DefaultOpen))
+        glareControls(state, measure);
     ImGui::PopItemWidth();
     ImGui::End();
-    drawMeasuredValues(state, measure, renderer);
+    drawMeasuredValues(state, renderer);
     return changed;
 }
 

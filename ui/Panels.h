@@ -66,6 +66,10 @@ bool environmentControls(EditorState& state);
 /// isolux levels) drawn as a colour bar, and the calculation grid (Emin, Eavg, Emax, U0) whose
 /// values it writes over the viewport (ui/MeasurePanel.cpp); its own settings are state.measure.
 bool measurePanel(EditorState& state, const Renderer& renderer, const PanelRect& rect);
+/// Over the viewport (ui/MeasureOverlay.cpp): the computed surfaces in false colour and their
+/// isolux lines with their values, and the grid's and surfaces' points with theirs, as the
+/// Measure panel's checkboxes ask; the isolines drawn go to state.measure.drawnIsolines.
+void drawMeasuredValues(EditorState& state, const Renderer& renderer);
 /// Passes with GPU times, accumulation, compiled variants and the shader error log.
 void statsPanel(const EditorState& state, const Renderer& renderer, const ShaderLibrary& shaders,
                 const PanelRect& rect);

@@ -49,8 +49,8 @@ void printReport(const SurfaceReport& r) {
                         s.holeLo.x, s.holeHi.x, s.plane.vName().c_str(), s.holeLo.y, s.holeHi.y);
         std::printf("\n  grid %d x %d cells of %.3f x %.3f m, %zu points\n", s.cells.x, s.cells.y,
                     s.spacing.x, s.spacing.y, s.points.size());
-        if (s.points.empty()) {
-            std::printf("  no points (the room leaves no %s)\n", s.role.c_str());
+        if (s.verdict == Verdict::NoPoints) {
+            std::printf("  %s (the room leaves no %s)\n", verdictText(s.verdict), s.role.c_str());
             continue;
         }
         const GridSummary& g = s.summary;
@@ -59,9 +59,8 @@ void printReport(const SurfaceReport& r) {
         std::printf("  %sm %.4g %s, U0 %.3f, %smin %.4g %s, %smax %.4g %s\n", e, g.eAvg, unit, g.u0,
                     e, g.eMin, unit, e, g.eMax, unit);
         std::string need = requirementText(s.required, s.cylindrical ? "Ezm" : "Em", unit);
-        std::printf("  required: %s: %s\n", need.c_str(),
-                    !s.required.any() ? "no requirement" : (s.passes ? "PASS" : "FAIL"));
-        if (s.required.any() && !s.passes) ++failed;
+        std::printf("  required: %s: %s\n", need.c_str(), verdictText(s.verdict));
+        failed += s.verdict == Verdict::Fail;
     }
     if (!r.points.empty()) std::printf("\ncalculation points\n");
     for (const PointResult& p : r.points) {
@@ -75,8 +74,8 @@ void printReport(const SurfaceReport& r) {
                         c.normal.z);
         if (p.stdError > 0.0) std::printf(", standard error %.2g %s", p.stdError, unit);
         if (c.requiredLux > 0.0) {
-            std::printf(", required %g %s: %s", c.requiredLux, unit, p.passes ? "PASS" : "FAIL");
-            if (!p.passes) ++failed;
+            std::printf(", required %g %s: %s", c.requiredLux, unit, verdictText(p.verdict));
+            failed += p.verdict == Verdict::Fail;
         }
         std::printf("\n");
     }

@@ -2,12 +2,18 @@
 # End-to-end test of the editor's EN 12464-1 calculation surfaces (issue 21, part 5) and its UGR
 # (part 6), with real X
 # input under Xvfb, on the shipped office (a desk task area, a cylindrical and a vertical point):
-#   1. scroll the Measure panel to "Compute surfaces" and click it;
+#   1. the Measure panel opens on the task areas: its grid on the desk's plane and extent, and
+#      "Compute surfaces" in view without scrolling at the editor's default size (1280x800);
+#      click it;
 #   2. the panel's results (the layout file's "surfaces") list the desk, its immediate
 #      surrounding and background and the two points, each Em, U0, Emin and Emax equal to
 #      `candela surfaces`'s to its printed digits (the total light with shadows in both, by
-#      default), and the desk fails its 500 lx as the CLI says; the UGR equal to `candela glare`'s;
-#   3. save the window image (F12) for a person to look at (CANDELA_E2E_KEEP=1 keeps it).
+#      default), each verdict the CLI's word, and the desk fails its 500 lx as the CLI says; the
+#      UGR equal to `candela glare`'s;
+#   3. the surfaces' false colour, then their isolux lines: one at each of the legend's levels
+#      within a surface's range, none outside it, each where the CLI's values interpolate to
+#      its level;
+#   4. save the window images (F12) for a person to look at (CANDELA_E2E_KEEP=1 keeps them).
 # Usage: bash tests/e2e/editor_surfaces.sh /path/to/candela /path/to/tests
 set -euo pipefail
 
@@ -32,6 +38,14 @@ PY
 "$CANDELA" surfaces "$TMP/office.json" >"$TMP/cli.txt" 2>&1 || fail "candela surfaces: $(cat "$TMP/cli.txt")"
 
 e2e_start_editor "$TMP/office.json" 1280x800 "len(d['luminaires']) == 6 and d['frame'] >= 2"
+# The panel starts on the desk (y=0.75, x -0.4..1.2 m, z -0.7..0.1 m), not on plane 0 with no
+# extent, and shows "Compute surfaces" without scrolling.
+wait_until "the Measure panel" "w('measure.compute_surfaces') is not None and w('panel.measure') is not None"
+log "grid: $(layout "d['grid']"); Compute surfaces at $(layout "w('measure.compute_surfaces')") in $(layout "w('panel.measure')")"
+layout "d['grid']['plane'] == 'y=0.75' and d['grid']['extent_set'] and close(d['grid']['lo'], [-0.4, -0.7]) and close(d['grid']['hi'], [1.2, 0.1])" ||
+  fail "the Measure panel's grid does not start on the desk: $(layout "d['grid']")"
+layout "w('measure.compute_surfaces')[1] >= w('panel.measure')[1] and w('measure.compute_surfaces')[3] <= w('panel.measure')[3]" ||
+  fail "Compute surfaces is not in view at the default size: $(layout "w('measure.compute_surfaces')") in $(layout "w('panel.measure')")"
 click_widget measure.compute_surfaces
 wait_until "the surfaces' results" "d['surfaces'] is not None and len(d['surfaces']) == 5"
 log "surfaces: $(layout "d['surfaces']")"
@@ -54,6 +68,12 @@ for s, w in zip(d[len(rows):], points):
     if "%.4g" % s["em"] != "%.4g" % w: fail.append("%s: editor %.6g, CLI %g" % (s["name"], s["em"], w))
 if d[0]["name"] != "Desk" or d[0]["passes"] or d[0]["points"] != 50:
     fail.append("desk: %s (want 50 points, failing 500 lx as the CLI says)" % d[0])
+# Each verdict in the CLI's words (PASS, FAIL, no requirement; "no points" for a surface the
+# room leaves none of), surfaces in order, then the points that have a requirement.
+words = re.findall(r"(?:required: .*: |  )(PASS|FAIL|no requirement|no points)(?: \(|\n)", cli)
+words += re.findall(r", required [\d.]+ lx: (PASS|FAIL)", cli)
+want = [s["verdict"] for s in d[:len(rows)]] + [s["verdict"] for s in d[len(rows):] if s["verdict"] != "no requirement"]
+if words != want: fail.append("verdicts: editor %s, CLI %s" % (want, words))
 for f in fail: print("FAIL:", f)
 sys.exit(1 if fail else 0)
 PY
@@ -82,6 +102,10 @@ PY
 # the point); cells under 5 pixels from point to sample, and samples a label or dot of another
 # point may cover, are left out. Of the rest (at least 10; 15 here), 90 % must match.
 "$CANDELA" surfaces "$TMP/office.json" --out "$TMP/surfaces.csv" >/dev/null 2>&1 || fail "candela surfaces --out"
+# The colours alone first: the isolux lines (on by default) would cross some of the samples.
+wait_until "the surfaces' isolux lines" "len(d['isolines']) > 0"
+click_widget measure.isolines
+wait_until "no isolux lines" "len(d['isolines']) == 0"
 click_widget measure.colour_surfaces
 wait_frames 3
 xdotool key F12
@@ -141,6 +165,58 @@ for r, (x, y) in zip(rows, at):
     elif total <= 60: print("  (%d, %d): %s, want %s for %.1f lx" % (px, py, got, want, float(r["E_lx"])))
 print("%d of %d cells clear of labels in their legend colour" % (good, total))
 sys.exit(0 if total >= 10 and good >= 0.9 * total else 1)
+PY
+# The isolux lines on the surfaces, at the legend's levels (0 to 500 lx: 100, 200, 300, 400 lx),
+# against the CLI's points (the CSV): each surface has a line at every level that some complete
+# cell of its points (four neighbours, none in its hole) spans, and at no other (an immediate
+# surrounding one point wide has no complete cell, hence no line); and each line's first point
+# lies on an edge between two neighbouring points whose values, interpolated linearly, give its
+# level. The editor's values agree with the CLI's to 4 digits (above): 0.05 % of 300 lx is
+# 0.15 lx, so within 0.5 lx.
+click_widget measure.isolines
+wait_until "the isolux lines" "len(d['isolines']) > 0"
+xdotool key F12
+wait_until "the window image with isolux lines" "d['window_images'] >= 2"
+log "isolines: $(layout "[(l['surface'], l['level'], l['labelled']) for l in d['isolines']]")"
+python3 - "$TMP/surfaces.csv" "$LAYOUT" <<'PY' || fail "the isolux lines are not where the CLI's values put them (above)"
+import csv, json, sys
+d = json.load(open(sys.argv[2]))
+lines = d["isolines"]
+values = {}  # surface -> {(x, z) to 0.1 mm: E}; the office's surfaces are horizontal: u = x, v = z
+for r in csv.DictReader(open(sys.argv[1])):
+    if r["role"] in ("task area", "immediate surrounding", "background"):
+        values.setdefault(r["surface"], {})[(round(float(r["x"]), 4), round(float(r["z"]), 4))] = float(r["E_lx"])
+fail = []
+for name, pts in values.items():
+    us, vs = sorted(set(u for u, v in pts)), sorted(set(v for u, v in pts))  # the grid's columns, rows
+    spans = set()
+    for i in range(len(us) - 1):
+        for j in range(len(vs) - 1):
+            corners = [(us[i], vs[j]), (us[i + 1], vs[j]), (us[i + 1], vs[j + 1]), (us[i], vs[j + 1])]
+            if all(c in pts for c in corners):
+                e = [pts[c] for c in corners]
+                spans |= {l for l in (100.0, 200.0, 300.0, 400.0) if min(e) < l <= max(e)}
+    got = sorted(set(l["level"] for l in lines if l["surface"] == name))
+    if got != sorted(spans): fail.append("%s: lines at %s lx, want %s" % (name, got, sorted(spans)))
+    for l in (l for l in lines if l["surface"] == name):
+        u, v = l["first"]
+        found = []
+        for k in range(len(us) - 1):  # along u, on a row
+            for row in vs:
+                a, b = (us[k], row), (us[k + 1], row)
+                if abs(v - row) < 1e-4 and a[0] - 1e-4 <= u <= b[0] + 1e-4 and a in pts and b in pts:
+                    found.append(pts[a] + (u - a[0]) / (b[0] - a[0]) * (pts[b] - pts[a]))
+        for k in range(len(vs) - 1):  # along v, on a column
+            for col in us:
+                a, b = (col, vs[k]), (col, vs[k + 1])
+                if abs(u - col) < 1e-4 and a[1] - 1e-4 <= v <= b[1] + 1e-4 and a in pts and b in pts:
+                    found.append(pts[a] + (v - a[1]) / (b[1] - a[1]) * (pts[b] - pts[a]))
+        if not any(abs(e - l["level"]) <= 0.5 for e in found):
+            fail.append("%s %g lx at (%.4f, %.4f) m: the CLI's points there give %s lx" % (name, l["level"], u, v, ["%.2f" % e for e in found]))
+if not any(l["labelled"] for l in lines): fail.append("no isolux line has its value written")
+for f in fail: print("FAIL:", f)
+print("%d isolux lines on %d surfaces where the CLI's values put them" % (len(lines), len(set(l["surface"] for l in lines))))
+sys.exit(1 if fail else 0)
 PY
 # Drawing a task area with the mouse (part 5): arm "Draw a task area", then drag in the viewport
 # from where one world point on the grid's plane shows to where another does (projected through
