@@ -290,6 +290,20 @@ void nameCell(const std::string& name, const std::string& kind, const std::strin
     ImGui::PopTextWrapPos();
 }
 
+/// A list entry after its remove button: "name: details" on one line where it fits, else the
+/// name (wrapped at its spaces) over the details in grey (numbers are never split).
+void listEntry(const std::string& name, const std::string& details) {
+    std::string line = name + ": " + details;
+    if (ImGui::CalcTextSize(line.c_str()).x <= ImGui::GetContentRegionAvail().x) {
+        ImGui::TextUnformatted(line.c_str());
+        return;
+    }
+    ImGui::PushTextWrapPos(0.f);
+    ImGui::TextUnformatted(name.c_str());
+    ImGui::PopTextWrapPos();
+    ImGui::TextDisabled("%s", details.c_str());
+}
+
 /// An illuminance in a column whose header gives the unit: 412, 12.3, 0.0123, 1.2e-05; at most
 /// seven characters below 10^7 (the columns are sized for seven).
 std::string compactNumber(double value) {
@@ -454,8 +468,10 @@ void surfaceControls(EditorState& state, MeasureState& measure) {
         }
         itemTooltip("Remove this task area");
         ImGui::SameLine();
-        ImGui::TextWrapped("%s: %s m, %.2f x %.2f m", a.name.c_str(), planeText(a.plane).c_str(),
-                           a.hi.x - a.lo.x, a.hi.y - a.lo.y);
+        char text[96];
+        std::snprintf(text, sizeof text, "%s m, %.2f x %.2f m", planeText(a.plane).c_str(),
+                      a.hi.x - a.lo.x, a.hi.y - a.lo.y);
+        listEntry(a.name, text);
         ImGui::PopID();
     }
     if (state.scene.taskAreas.empty())
@@ -544,8 +560,10 @@ void glareControls(EditorState& state, MeasureState& measure) {
         }
         itemTooltip("Remove this observer");
         ImGui::SameLine();
-        ImGui::TextWrapped("%s: eye at (%.2f, %.2f, %.2f) m", o.name.c_str(), o.position.x,
-                           o.position.y, o.position.z);
+        char text[96];
+        std::snprintf(text, sizeof text, "eye at (%.2f, %.2f, %.2f) m", o.position.x, o.position.y,
+                      o.position.z);
+        listEntry(o.name, text);
         ImGui::PopID();
     }
     if (state.scene.glareObservers.empty()) return;
@@ -586,6 +604,7 @@ void glareControls(EditorState& state, MeasureState& measure) {
                                                 : Verdict::Fail);
         }
         ImGui::EndTable();
+        recordRect(state, "measure.glare_table");
     }
     ImGui::PushTextWrapPos(0.f);
     ImGui::TextDisabled("%s", measure.glare->maintenance.c_str());
@@ -602,7 +621,7 @@ bool measurePanel(EditorState& state, const Renderer& renderer, const PanelRect&
     placeNextWindow(rect);
     ImGui::Begin("Measure", nullptr, kPanelFlags);
     recordPanelRect(state, "measure");
-    ImGui::PushItemWidth(-ImGui::GetFontSize() * 8.5f);
+    ImGui::PushItemWidth(-ImGui::GetFontSize() * 10.f);  // room for "Maintenance factor"
     int quantity = int(s.quantity);
     changed = ImGui::RadioButton("Radiance", &quantity, 0) || changed;
     ImGui::SameLine();
@@ -620,7 +639,14 @@ bool measurePanel(EditorState& state, const Renderer& renderer, const PanelRect&
         // The image may show each part alone (false colour of the interreflected light, say).
         int parts = int(s.parts);
         ImGui::TextUnformatted("Light:");
+        // The choices beside their label where they fit, else on the next line (never clipped).
+        const ImGuiStyle& style = ImGui::GetStyle();
+        float choices = 0.f;
+        for (const char* label : {"total", "direct", "interreflected"})
+            choices += ImGui::GetFrameHeight() + style.ItemInnerSpacing.x +
+                       ImGui::CalcTextSize(label).x + style.ItemSpacing.x;
         ImGui::SameLine();
+        if (ImGui::GetContentRegionAvail().x < choices) ImGui::NewLine();
         changed = ImGui::RadioButton("total", &parts, 0) || changed;
         ImGui::SameLine();
         changed = ImGui::RadioButton("direct", &parts, 1) || changed;
