@@ -107,10 +107,13 @@ void contentsPage(Pdf& pdf, const ReportInput& in,
     std::vector<std::vector<std::string>> summary;
     const char* unit = in.surfaces.units.irradiance();
     for (const SurfaceResult& s : in.surfaces.surfaces) {
-        if (s.points.empty()) continue;
-        std::string verdict = !s.required.any() ? "no requirement" : (s.passes ? "PASS" : "FAIL");
-        summary.push_back(
-            {s.name, fmt("%.4g ", s.summary.eAvg) + unit, fmt("%.3f", s.summary.u0), verdict});
+        // A surface the room leaves no points of says so, in the words of every output.
+        if (s.points.empty()) {
+            summary.push_back({s.name, "-", "", verdictText(s.verdict)});
+            continue;
+        }
+        summary.push_back({s.name, fmt("%.4g ", s.summary.eAvg) + unit, fmt("%.3f", s.summary.u0),
+                           verdictText(s.verdict)});
     }
     for (const PointResult& p : in.surfaces.points)
         summary.push_back(

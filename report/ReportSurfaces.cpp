@@ -286,7 +286,7 @@ void surfacesSection(Pdf& pdf, const ReportInput& in) {
                       s.summary.eMax, unit);
         pdf.paragraph(line, 9.5, true);
         pdf.paragraph("Required: " + requirementText(s.required, s.cylindrical, unit) + ": " +
-                          (!s.required.any() ? "-" : (s.passes ? "PASS" : "FAIL")),
+                          (!s.required.any() ? "-" : verdictText(s.verdict)),
                       9);
         surfacePicture(pdf, s, unit);
         valueTable(pdf, s, unit);
