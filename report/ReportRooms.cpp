@@ -609,7 +609,7 @@ void powerDensitySection(Pdf& pdf, const ReportInput& in) {
         }
     }
     pdf.table(
-        {"Room", "Floor area", "Luminaires", "Input power", "Power density", "Em of", "Per 100 lx"},
+        {"Room", "Floor area", "Count", "Input power", "Power density", "Em of", "Per 100 lx"},
         rows, {66, 52, 52, 60, 62, 98, 105}, {0, 1, 1, 1, 1, 0, 1}, 8);
     for (const std::string& sum : sums) pdf.paragraph(sum, 8);
 }

@@ -233,6 +233,23 @@ TEST(EditorRoom, AddingARoomToAScenePutsItsTaskAreaWithIt) {
     EXPECT_EQ(state.scene.taskAreas.size(), 1u);
 }
 
+TEST(EditorRoom, TheProjectsDataIsAnUndoStepSavedWithTheScene) {
+    isolate();
+    EditorState state;
+    ASSERT_TRUE(newSceneFromRoom(state, classroomDraft()));
+    std::string original = sceneToJson(state.scene).dump();
+    ProjectInfo p;
+    p.name = "Primary school";
+    p.client = "Town of Riverside";
+    ASSERT_TRUE(setProjectInfo(state, p));
+    EXPECT_FALSE(setProjectInfo(state, p));  // nothing changes: no step
+    EXPECT_EQ(state.history.undo.size(), 1u);
+    EXPECT_EQ(sceneToJson(state.scene)["project"],
+              nlohmann::json({{"name", "Primary school"}, {"client", "Town of Riverside"}}));
+    ASSERT_TRUE(undo(state));
+    EXPECT_EQ(sceneToJson(state.scene).dump(), original);
+}
+
 TEST(EditorRoom, TypedDistancesAreTheRoomsOwn) {
     isolate();
     EditorState state;

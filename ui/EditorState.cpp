@@ -28,6 +28,7 @@ SceneSnapshot snapshot(const EditorState& state, bool geometry) {
     SceneSnapshot out;
     for (const auto& lum : scene.luminaires) out.luminaires.push_back(lum->clone());
     out.layouts = scene.layouts;
+    out.project = scene.project;
     out.camera = scene.camera;
     out.maintenanceFactor = scene.maintenanceFactor;
     out.taskAreas = scene.taskAreas;
@@ -50,6 +51,7 @@ void restore(EditorState& state, SceneSnapshot& from) {
     Scene& scene = state.scene;
     scene.luminaires = std::move(from.luminaires);
     scene.layouts = std::move(from.layouts);
+    scene.project = std::move(from.project);
     scene.camera = from.camera;
     scene.maintenanceFactor = from.maintenanceFactor;
     scene.taskAreas = std::move(from.taskAreas);
@@ -357,6 +359,17 @@ void setFalseColour(EditorState& state, bool on) {
     } else {
         op = state.measure.previousOperator;
     }
+}
+
+bool setProjectInfo(EditorState& state, const ProjectInfo& project) {
+    const ProjectInfo& now = state.scene.project;
+    if (now.name == project.name && now.client == project.client &&
+        now.designer == project.designer && now.date == project.date &&
+        now.description == project.description)
+        return false;
+    // Nothing the renderer draws changes; the settings flag records the step.
+    applyEdit(state, "Project data", kChangeSettings, [&](Scene& s) { s.project = project; });
+    return true;
 }
 
 void reportError(EditorState& state, const std::string& message) {

@@ -59,9 +59,11 @@ struct ScreenLayout {
 
 /// The File menu's dialogs.
 struct FileDialogs {
-    bool openRequested = false;    ///< Open the "Open scene" modal next frame.
-    bool saveAsRequested = false;  ///< Open the "Save scene as" modal next frame.
-    bool reportRequested = false;  ///< Open the "Export report" modal next frame.
+    bool openRequested = false;     ///< Open the "Open scene" modal next frame.
+    bool saveAsRequested = false;   ///< Open the "Save scene as" modal next frame.
+    bool reportRequested = false;   ///< Open the "Export report" modal next frame.
+    bool projectRequested = false;  ///< Open the "Project data" modal next frame.
+    ProjectInfo projectDraft;       ///< What that modal edits until OK.
     std::string openPath;
     std::string saveAsPath;
     std::string reportPath;
@@ -300,6 +302,7 @@ struct RoomDialogUi {
 struct SceneSnapshot {
     std::vector<std::unique_ptr<Luminaire>> luminaires;
     std::vector<LayoutItem> layouts;  ///< Small: kept by every step, as the luminaires are.
+    ProjectInfo project;
     Camera camera;
     double maintenanceFactor = 1.0;
     std::vector<TaskArea> taskAreas;  ///< Small: kept by every step.
@@ -425,6 +428,9 @@ bool followTaskAreas(EditorState& state);
 bool addGlareObserverAtCamera(EditorState& state);
 /// Removes glare observer `index` as one undo step.
 void removeGlareObserver(EditorState& state, size_t index);
+/// Sets the project's data (the report's cover: name, client, designer, date, description) as
+/// one undo step; false when nothing changes.
+bool setProjectInfo(EditorState& state, const ProjectInfo& project);
 /// Shows message in the status bar and in the error modal.
 void reportError(EditorState& state, const std::string& message);
 

@@ -93,6 +93,7 @@ bool mainMenuBar(EditorState& state, float& barHeight) {
             if (ImGui::MenuItem("Open...", "Ctrl+O")) state.files.openRequested = true;
             if (ImGui::MenuItem("Save", "Ctrl+S")) requestSave(state);
             if (ImGui::MenuItem("Save As...")) state.files.saveAsRequested = true;
+            if (ImGui::MenuItem("Project data...")) state.files.projectRequested = true;
             if (ImGui::MenuItem("Export report...", "Ctrl+E", false, !state.report.running))
                 state.files.reportRequested = true;
             if (ImGui::BeginMenu("Open Recent")) {
@@ -337,6 +338,32 @@ bool fileDialogs(EditorState& state) {
         },
         "Report (.pdf): luminaire schedule, polar diagrams, the calculation surfaces, UGR and "
         "this view:");
+
+    // The project's data for the report's cover, edited as one undo step.
+    if (state.files.projectRequested) {
+        state.files.projectDraft = state.scene.project;
+        ImGui::OpenPopup("Project data");
+        state.files.projectRequested = false;
+    }
+    if (ImGui::BeginPopupModal("Project data", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+        ProjectInfo& p = state.files.projectDraft;
+        ImGui::TextUnformatted("What the report's cover says about the project:");
+        ImGui::PushItemWidth(ImGui::GetFontSize() * 28.f);
+        ImGui::InputText("Project", &p.name);
+        ImGui::InputText("Client", &p.client);
+        ImGui::InputText("Lighting designer", &p.designer);
+        ImGui::InputTextWithHint("Date", "the day the report is made", &p.date);
+        ImGui::InputTextMultiline("Description", &p.description,
+                                  ImVec2(ImGui::GetFontSize() * 28.f, ImGui::GetFontSize() * 4.f));
+        ImGui::PopItemWidth();
+        if (ImGui::Button("OK")) {
+            changed = setProjectInfo(state, p) || changed;
+            ImGui::CloseCurrentPopup();
+        }
+        ImGui::SameLine();
+        if (ImGui::Button("Cancel")) ImGui::CloseCurrentPopup();
+        ImGui::EndPopup();
+    }
 
     changed = projectDialogs(state) || changed;
 

@@ -49,7 +49,8 @@ wait_for_file "$SHOTS/shot-000.json"
 echo "editor_drag: shot-000 written"
 
 # --- 2. Drag the luminaire by DRAG_PX to the right ----------------------------------------------
-e2e_drag "$NAME" "$LX" "$LY" "$DRAG_PX"
+# On the placement grid (0.1 m, about 24 px across in this view): within a cell of the mouse.
+E2E_DRAG_GRID=20 e2e_drag "$NAME" "$LX" "$LY" "$DRAG_PX"
 wait_until "the end of the drag" "not d['dragging']"
 read -r NX NY < <(layout "'%.2f %.2f' % tuple(d['luminaires'][0]['screen'])")
 echo "editor_drag: \"$NAME\" now at ($NX, $NY)"

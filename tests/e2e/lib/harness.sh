@@ -266,6 +266,11 @@ e2e_drag() {
     move_to "$x" "$y"
     xdotool mousedown 1
     wait_until "\"$name\" to be picked and dragged" "d['dragging'] and d['selected'] == '$name'"
+    # Ctrl held once the drag is under way (pressed with the click it would add to the selection):
+    # the luminaire moves freely, off the placement grid, and follows the mouse to the pixel.
+    # E2E_DRAG_GRID=PX leaves it on the grid: it follows to within PX pixels (a grid cell's size).
+    local tolerance=${E2E_DRAG_GRID:-3}
+    [ -z "${E2E_DRAG_GRID:-}" ] && xdotool keydown ctrl
     for ((i = 1; i <= 10; i++)); do
         xdotool mousemove --window "$WID" $((x + dx * i / 10)) "$y"
         sleep 0.05
@@ -273,6 +278,8 @@ e2e_drag() {
     NX=$((x + dx))
     move_to "$NX" "$y"
     wait_until "\"$name\" to follow the mouse to ($NX, $y)" \
-        "abs(lum('$name')['screen'][0] - $NX) < 3 and abs(lum('$name')['screen'][1] - $y) < 3"
+        "abs(lum('$name')['screen'][0] - $NX) < $tolerance and abs(lum('$name')['screen'][1] - $y) < $tolerance"
     xdotool mouseup 1
+    [ -z "${E2E_DRAG_GRID:-}" ] && xdotool keyup ctrl
+    return 0
 }
