@@ -377,40 +377,44 @@ void reportError(EditorState& state, const std::string& message) {
     state.modalError = message;
 }
 
+void takeScene(EditorState& state, Scene scene) {
+    // Unsaved edits of the scene being left stay in this session's autosave, offered when
+    // that scene is opened again (or after this editor ends).
+    if (state.dirty) writeAutosave(state);
+    state.scene = std::move(scene);
+    // The Measure panel's grid and results were the last scene's: the grid starts on this
+    // scene's first task area (followTaskAreas) or, without one, on its floor's bounds.
+    MeasureState& measure = state.measure;
+    measure.grid.plane = CalcPlane{};
+    measure.grid.lo = measure.grid.hi = glm::dvec2(0.0);
+    measure.extentSet = false;
+    measure.followedAreas.clear();
+    measure.result.reset();
+    measure.surfaces.reset();
+    measure.glare.reset();
+    measure.error.clear();
+    measure.surfacesError.clear();
+    measure.glareError.clear();
+    followTaskAreas(state);
+    if (state.scene.camera.exposure > 0.0)
+        state.settings.exposure = float(state.scene.camera.exposure);
+    state.selectedLuminaire = -1;
+    state.alsoSelected.clear();
+    state.selectedGeometry = -1;
+    state.drag = {};
+    state.inspectorError.clear();
+    state.pendingChanges = kChangeAll;
+    state.dirty = false;
+    state.history = {};
+    ++state.geometryVersion;
+}
+
 bool openSceneFile(EditorState& state, const std::string& path) {
     try {
         Scene loaded = loadScene(path);
         std::string onDisk = fileFingerprint(path);
-        // Unsaved edits of the scene being left stay in this session's autosave, offered when
-        // that scene is opened again (or after this editor ends).
-        if (state.dirty) writeAutosave(state);
-        state.scene = std::move(loaded);
+        takeScene(state, std::move(loaded));
         if (state.scene.path.empty()) state.scene.path = path;
-        // The Measure panel's grid and results were the last scene's: the grid starts on this
-        // scene's first task area (followTaskAreas) or, without one, on its floor's bounds.
-        MeasureState& measure = state.measure;
-        measure.grid.plane = CalcPlane{};
-        measure.grid.lo = measure.grid.hi = glm::dvec2(0.0);
-        measure.extentSet = false;
-        measure.followedAreas.clear();
-        measure.result.reset();
-        measure.surfaces.reset();
-        measure.glare.reset();
-        measure.error.clear();
-        measure.surfacesError.clear();
-        measure.glareError.clear();
-        followTaskAreas(state);
-        if (state.scene.camera.exposure > 0.0)
-            state.settings.exposure = float(state.scene.camera.exposure);
-        state.selectedLuminaire = -1;
-        state.alsoSelected.clear();
-        state.selectedGeometry = -1;
-        state.drag = {};
-        state.inspectorError.clear();
-        state.pendingChanges = kChangeAll;
-        state.dirty = false;
-        state.history = {};
-        ++state.geometryVersion;
         state.project.onDisk = onDisk;
         state.project.conflict = false;
         setStatus(state, "Opened " + path);

@@ -434,6 +434,10 @@ bool setProjectInfo(EditorState& state, const ProjectInfo& project);
 /// Shows message in the status bar and in the error modal.
 void reportError(EditorState& state, const std::string& message);
 
+/// Makes `scene` the editor's (opening a file, File > New): unsaved edits of the scene it replaces
+/// go to the autosave first; selection, drag, undo history and the Measure panel's results start
+/// afresh, the grid on the new scene's first task area. The caller sets path, dirty and status.
+void takeScene(EditorState& state, Scene scene);
 /// Loads a scene file into the state; on failure reports the error and keeps the current scene.
 /// Unsaved edits of the scene it replaces go to this session's autosave first; autosaves of the
 /// new scene left by other editors are offered (project.offers), not applied.

@@ -219,19 +219,10 @@ std::string roomDraftSummary(const RoomDraft& draft, bool& valid) {
 bool newSceneFromRoom(EditorState& state, const RoomDraft& draft) {
     try {
         Scene scene = parseScene(newSceneDocument(draft), "");
-        if (state.dirty) writeAutosave(state);
-        state.scene = std::move(scene);
+        takeScene(state, std::move(scene));
         state.scene.path.clear();
-        state.selectedLuminaire = -1;
-        state.alsoSelected.clear();
-        state.selectedGeometry = -1;
-        state.drag = {};
-        state.inspectorError.clear();
-        state.pendingChanges = kChangeAll;
         state.dirty = true;  // nothing of it is on disk yet
         ++state.edits;
-        state.history = {};
-        ++state.geometryVersion;
         state.project.onDisk.clear();
         state.project.conflict = false;
         state.project.offers.clear();
